@@ -1,0 +1,2 @@
+//! The built-in rovers.
+#![warn(missing_docs)]

@@ -1,0 +1,66 @@
+//! Attitude of the body: yaw ψ, roll φ, pitch θ (MODEL.md §1–§2, eq. 1–4, 9).
+
+use crate::linalg::M3;
+use crate::scalar::Scalar;
+
+/// Sines and cosines of the three attitude angles, computed once.
+#[derive(Clone, Copy, Debug)]
+pub struct Attitude<S> {
+    /// sin φ, cos φ (roll).
+    pub sphi: S,
+    /// cos φ.
+    pub cphi: S,
+    /// sin θ (pitch).
+    pub sth: S,
+    /// cos θ.
+    pub cth: S,
+    /// sin ψ (yaw).
+    pub spsi: S,
+    /// cos ψ.
+    pub cpsi: S,
+}
+
+impl<S: Scalar> Attitude<S> {
+    /// From the angles φ (roll), θ (pitch), ψ (yaw) [rad].
+    pub fn new(phi: S, theta: S, psi: S) -> Self {
+        Self {
+            sphi: phi.sin(),
+            cphi: phi.cos(),
+            sth: theta.sin(),
+            cth: theta.cos(),
+            spsi: psi.sin(),
+            cpsi: psi.cos(),
+        }
+    }
+
+    /// `R = Rz(ψ)·Rx(φ)·Ry(θ)`: body components → inertial components (eq. 1–4).
+    pub fn rotation(&self) -> M3<S> {
+        let (sf, cf, st, ct, sp, cp) = (self.sphi, self.cphi, self.sth, self.cth, self.spsi, self.cpsi);
+        // Rx(φ)·Ry(θ)
+        let a = [
+            [ct, S::zero(), st],
+            [sf * st, cf, -(sf * ct)],
+            [-(cf * st), sf, cf * ct],
+        ];
+        [
+            [cp * a[0][0] - sp * a[1][0], cp * a[0][1] - sp * a[1][1], cp * a[0][2] - sp * a[1][2]],
+            [sp * a[0][0] + cp * a[1][0], sp * a[0][1] + cp * a[1][1], sp * a[0][2] + cp * a[1][2]],
+            a[2],
+        ]
+    }
+
+    /// `Rᵀ·e_Z`: the inertial vertical in body components (third row of R).
+    pub fn up_in_body(&self) -> [S; 3] {
+        [-(self.cphi * self.sth), self.sphi, self.cphi * self.cth]
+    }
+
+    /// Euler-angle rates from the body angular velocity, `E⁻¹·Ω` (eq. 9):
+    /// `φ̇ = cθ·Ωx + sθ·Ωz`, `ψ̇ = (−sθ·Ωx + cθ·Ωz)/cφ`, `θ̇ = Ωy − sφ·ψ̇`.
+    /// Returns `[φ̇, θ̇, ψ̇]`.
+    pub fn rates(&self, omega: [S; 3]) -> [S; 3] {
+        let phid = self.cth * omega[0] + self.sth * omega[2];
+        let psid = (self.cth * omega[2] - self.sth * omega[0]) / self.cphi;
+        let thd = omega[1] - self.sphi * psid;
+        [phid, thd, psid]
+    }
+}

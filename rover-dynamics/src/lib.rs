@@ -1,0 +1,38 @@
+//! The equations of motion of a wheeled rover in pseudo-coordinates
+//! (F. Chen and G. Genta, Acta Astronautica 81 (2012) 288–305; the project's
+//! `spec/MODEL.md` fixes every convention).
+//!
+//! ```text
+//! M(y)·ẇ = −Ṁ·w − f1 + f2 + Q        (eq. 25)
+//! ẋ      = B(x)·w                    (eq. 10, 24)
+//! ```
+//! x = [X, Y, Z, φ, θ, ψ, y1 … ym], w = [vx, vy, vz, Ωx, Ωy, Ωz, ẏ1 … ẏm].
+//!
+//! The crate is `#![no_std]`. Without features it holds the [`Scalar`] trait
+//! and the [`Plant`] trait that a generated, allocation-free plant
+//! implements; with `alloc` (default) it also holds the numeric [`Model`] and
+//! the equations, written once, generic over the scalar, so that the generic
+//! plant runs them with `f64` and the code generator traces them.
+#![no_std]
+#![warn(missing_docs)]
+
+#[cfg(feature = "alloc")]
+extern crate alloc;
+#[cfg(feature = "std")]
+extern crate std;
+
+pub mod attitude;
+pub mod linalg;
+pub mod plant;
+pub mod scalar;
+
+#[cfg(feature = "alloc")]
+pub mod model;
+#[cfg(feature = "alloc")]
+pub mod poly;
+
+pub use plant::Plant;
+pub use scalar::Scalar;
+
+#[cfg(feature = "alloc")]
+pub use model::Model;

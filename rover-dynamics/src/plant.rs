@@ -1,0 +1,91 @@
+//! The plant: what every back end (generic or generated) offers the runtime.
+//!
+//! The trait speaks `f64` slices so that a generated type can implement it
+//! with fixed-size arrays and no allocation, and so that it stays object
+//! safe. Vectors are in inertial components unless a name says otherwise.
+
+/// Kinematics of one wheel centre G_j, inertial components.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WheelState {
+    /// Position r_Gj [m] (eq. 7).
+    pub centre: [f64; 3],
+    /// Absolute velocity V_j [m/s] (eq. 12).
+    pub velocity: [f64; 3],
+    /// Unit spin axis a_wj = R·R_wj·e_y (points to the wheel's left).
+    pub spin_axis: [f64; 3],
+}
+
+/// What the ground does to one wheel, reduced to its centre G_j (MODEL.md §7).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WheelLoad {
+    /// Resultant contact force F [N], applied at G_j.
+    pub force: [f64; 3],
+    /// Moment about G_j of the contact force [N·m], less its component along
+    /// the spin axis; it acts on the member carrying the wheel.
+    pub moment: [f64; 3],
+    /// Reaction of the drive motor on its stator, `−τ_eff·a_wj` [N·m]; it acts
+    /// on the wheel carrier (hub motor) or on the body (body motor).
+    pub stator_torque: [f64; 3],
+}
+
+/// Why the accelerations could not be computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PlantError {
+    /// The mass matrix is not positive definite at this state (pivot index and value).
+    SingularMass {
+        /// Row of the failing pivot.
+        row: usize,
+        /// The pivot.
+        pivot: f64,
+    },
+    /// cos φ vanished: the attitude representation is singular (rolled over).
+    AttitudeSingular {
+        /// Roll angle φ [rad].
+        roll: f64,
+    },
+}
+
+impl core::fmt::Display for PlantError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            PlantError::SingularMass { row, pivot } => write!(
+                f,
+                "the mass matrix is not positive definite (pivot {row} = {pivot:e})"
+            ),
+            PlantError::AttitudeSingular { roll } => write!(
+                f,
+                "the attitude is singular at roll {:.1}° (cos φ = 0): the rover has rolled over",
+                roll.to_degrees()
+            ),
+        }
+    }
+}
+
+/// A rover plant model: state in, wheel kinematics out; wheel loads in,
+/// derivatives out (MODEL.md §2–§5).
+///
+/// State layout: `x = [X, Y, Z, φ, θ, ψ, y1 … ym]` and
+/// `w = [vx, vy, vz, Ωx, Ωy, Ωz, ẏ1 … ẏm]`, both of length [`Plant::dof`].
+pub trait Plant {
+    /// Number of generalized coordinates, 6 + m.
+    fn dof(&self) -> usize;
+    /// Number of wheels.
+    fn wheel_count(&self) -> usize;
+    /// Wheel-centre kinematics for the steering angles `steer` (one per wheel,
+    /// ignored for wheels that are not steerable) into `out`.
+    fn wheels(&self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]);
+    /// The derivatives `ẋ = B·w` and `ẇ = M⁻¹·(−Ṁ·w − f1 + f2 + Q)` under the
+    /// wheel loads `loads` (one per wheel).
+    fn derivatives(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[WheelLoad],
+        xdot: &mut [f64],
+        wdot: &mut [f64],
+    ) -> Result<(), PlantError>;
+    /// The mass matrix M(y), row-major, `dof × dof`.
+    fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]);
+    /// Set the neutral value y_0 of coordinate i's spring (active suspension, eq. 42).
+    fn set_spring_neutral(&mut self, coord: usize, neutral: f64);
+}

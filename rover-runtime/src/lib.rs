@@ -1,0 +1,2 @@
+//! The rover runtime: everything around the plant.
+#![warn(missing_docs)]

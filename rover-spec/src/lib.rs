@@ -1,0 +1,2 @@
+//! Rover descriptions, validated into a [`rover_dynamics::Model`].
+#![warn(missing_docs)]
