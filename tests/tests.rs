@@ -1,1 +1,5 @@
+//! The workspace's integration tests, one binary (STYLE.md §6).
 
+mod support;
+
+mod dynamics;

@@ -35,7 +35,9 @@ impl<S: Scalar> Attitude<S> {
 
     /// `R = Rz(ψ)·Rx(φ)·Ry(θ)`: body components → inertial components (eq. 1–4).
     pub fn rotation(&self) -> M3<S> {
-        let (sf, cf, st, ct, sp, cp) = (self.sphi, self.cphi, self.sth, self.cth, self.spsi, self.cpsi);
+        let (sf, cf, st, ct, sp, cp) = (
+            self.sphi, self.cphi, self.sth, self.cth, self.spsi, self.cpsi,
+        );
         // Rx(φ)·Ry(θ)
         let a = [
             [ct, S::zero(), st],
@@ -43,8 +45,16 @@ impl<S: Scalar> Attitude<S> {
             [-(cf * st), sf, cf * ct],
         ];
         [
-            [cp * a[0][0] - sp * a[1][0], cp * a[0][1] - sp * a[1][1], cp * a[0][2] - sp * a[1][2]],
-            [sp * a[0][0] + cp * a[1][0], sp * a[0][1] + cp * a[1][1], sp * a[0][2] + cp * a[1][2]],
+            [
+                cp * a[0][0] - sp * a[1][0],
+                cp * a[0][1] - sp * a[1][1],
+                cp * a[0][2] - sp * a[1][2],
+            ],
+            [
+                sp * a[0][0] + cp * a[1][0],
+                sp * a[0][1] + cp * a[1][1],
+                sp * a[0][2] + cp * a[1][2],
+            ],
             a[2],
         ]
     }

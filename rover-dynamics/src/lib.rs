@@ -22,6 +22,7 @@ extern crate alloc;
 extern crate std;
 
 pub mod attitude;
+pub mod dual;
 pub mod linalg;
 pub mod plant;
 pub mod scalar;
@@ -36,3 +37,18 @@ pub use scalar::Scalar;
 
 #[cfg(feature = "alloc")]
 pub use model::Model;
+
+#[cfg(feature = "alloc")]
+pub mod bias;
+#[cfg(feature = "alloc")]
+pub mod eom;
+#[cfg(feature = "alloc")]
+pub mod forces;
+#[cfg(feature = "alloc")]
+pub mod kinematics;
+#[cfg(feature = "alloc")]
+pub mod mass;
+#[cfg(feature = "alloc")]
+pub mod solve;
+#[cfg(feature = "alloc")]
+pub mod workspace;

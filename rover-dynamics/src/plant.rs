@@ -73,7 +73,7 @@ pub trait Plant {
     fn wheel_count(&self) -> usize;
     /// Wheel-centre kinematics for the steering angles `steer` (one per wheel,
     /// ignored for wheels that are not steerable) into `out`.
-    fn wheels(&self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]);
+    fn wheels(&mut self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]);
     /// The derivatives `ẋ = B·w` and `ẇ = M⁻¹·(−Ṁ·w − f1 + f2 + Q)` under the
     /// wheel loads `loads` (one per wheel).
     fn derivatives(

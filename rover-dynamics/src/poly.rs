@@ -58,7 +58,10 @@ fn horner<S: Scalar>(coeffs: &[f64], xi: S) -> (S, S, S) {
 impl PolyVec {
     /// A constant vector (a body fixed to the rover body).
     pub fn constant(c: [f64; 3]) -> Self {
-        Self { constant: c, terms: Vec::new() }
+        Self {
+            constant: c,
+            terms: Vec::new(),
+        }
     }
 
     /// u(y).
@@ -69,7 +72,11 @@ impl PolyVec {
     /// Value u(y), and for each term the coordinate, ∂u/∂y_i and ∂²u/∂y_i².
     /// Calls `each(coord, d1, d2)` once per term.
     pub fn eval<S: Scalar>(&self, y: &[S], mut each: impl FnMut(usize, [S; 3], [S; 3])) -> [S; 3] {
-        let mut u = [S::cst(self.constant[0]), S::cst(self.constant[1]), S::cst(self.constant[2])];
+        let mut u = [
+            S::cst(self.constant[0]),
+            S::cst(self.constant[1]),
+            S::cst(self.constant[2]),
+        ];
         for t in &self.terms {
             let xi = y[t.coord] - S::cst(t.center);
             let mut d1 = [S::zero(); 3];
@@ -103,12 +110,19 @@ fn horner_component<S: Scalar>(coeffs: &[[f64; 3]], k: usize, xi: S) -> (S, S, S
 impl ScalarPoly {
     /// A constant.
     pub fn constant(c: f64) -> Self {
-        Self { constant: c, terms: Vec::new() }
+        Self {
+            constant: c,
+            terms: Vec::new(),
+        }
     }
 
     /// Whether the polynomial is identically zero.
     pub fn is_zero(&self) -> bool {
-        self.constant == 0.0 && self.terms.iter().all(|t| t.coeffs.iter().all(|&c| c == 0.0))
+        self.constant == 0.0
+            && self
+                .terms
+                .iter()
+                .all(|t| t.coeffs.iter().all(|&c| c == 0.0))
     }
 
     /// Value at y.

@@ -1,2 +1,8 @@
-//! The rover runtime: everything around the plant.
+//! The rover runtime: everything around the plant — the generic plant,
+//! terrain, contact, wheel laws, control, integrators, the simulation
+//! driver and its outputs.
 #![warn(missing_docs)]
+
+pub mod generic_plant;
+
+pub use generic_plant::GenericPlant;
