@@ -3,6 +3,10 @@
 //! driver and its outputs.
 #![warn(missing_docs)]
 
+pub mod contact;
+pub mod control;
 pub mod generic_plant;
+pub mod ground;
+pub mod wheel_law;
 
 pub use generic_plant::GenericPlant;

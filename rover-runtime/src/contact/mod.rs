@@ -1,0 +1,10 @@
+//! Contact geometry between a wheel and the terrain (MODEL.md §6, paper §4.1).
+
+mod meridional;
+mod patch;
+mod tracked;
+
+pub use meridional::{MeridionalContact, RimSampling};
+pub use patch::{Contact, MAX_PATCHES, Patch};
+pub use tracked::TrackedContact;
+pub(crate) use patch::{cross, dot};

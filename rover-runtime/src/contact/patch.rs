@@ -1,0 +1,139 @@
+//! What the contact search finds for one wheel.
+
+/// Most contact patches one wheel can have (a wheel straddling a ridge or
+/// the two edges of a ditch); fixed so the search never allocates.
+pub const MAX_PATCHES: usize = 4;
+
+/// One contact patch: the chord AB of the rim below ground (MODEL.md §6).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Patch {
+    /// Contact point H, the midpoint of AB, inertial [m].
+    pub point: [f64; 3],
+    /// Unit normal n = (G_j − H)/|G_j − H|, towards the wheel centre.
+    pub normal: [f64; 3],
+    /// Unit tangent t along AB, forward (t·f > 0).
+    pub tangent: [f64; 3],
+    /// Unit lateral c = n × t, to the wheel's left.
+    pub lateral: [f64; 3],
+    /// Radial deflection Δ = R_w − |G_jH| [m].
+    pub deflection: f64,
+    /// Distance |G_jH| [m]: the lever arm of the drive force.
+    pub lever: f64,
+    /// Rim angle of H, β from the downward direction d towards f [rad].
+    pub angle: f64,
+}
+
+/// All the patches of one wheel.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Contact {
+    /// The patches found; only the first `count` are meaningful.
+    pub patches: [Patch; MAX_PATCHES],
+    /// Number of patches (0: the wheel is in the air).
+    pub count: usize,
+    /// The lower half of the wheel is entirely below ground at one end
+    /// (h < 0 at β = ±90°): the end was taken as the crossing, and the run
+    /// summary flags it.
+    pub deep: bool,
+}
+
+impl Contact {
+    /// The patches found.
+    pub fn patches(&self) -> &[Patch] {
+        &self.patches[..self.count]
+    }
+
+    /// Add a patch if room is left; returns false when the wheel already has
+    /// [`MAX_PATCHES`] (the extra patch is dropped; the caller counts it).
+    pub(crate) fn push(&mut self, p: Patch) -> bool {
+        if self.count < MAX_PATCHES {
+            self.patches[self.count] = p;
+            self.count += 1;
+            true
+        } else {
+            false
+        }
+    }
+}
+
+/// The wheel's mid-plane frame: `d` downward in the plane, `f = d × a` forward.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RimFrame {
+    pub centre: [f64; 3],
+    pub down: [f64; 3],
+    pub forward: [f64; 3],
+    pub radius: f64,
+}
+
+impl RimFrame {
+    /// From the wheel centre, the unit spin axis and the radius. `d` is −e_Z
+    /// projected on the mid-plane; a wheel lying flat (axis vertical) has no
+    /// such direction and gets None.
+    pub fn new(centre: [f64; 3], axis: [f64; 3], radius: f64) -> Option<Self> {
+        let d = [axis[2] * axis[0], axis[2] * axis[1], axis[2] * axis[2] - 1.0];
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if len < 1e-9 {
+            return None;
+        }
+        let down = [d[0] / len, d[1] / len, d[2] / len];
+        let forward = cross(down, axis);
+        Some(Self { centre, down, forward, radius })
+    }
+
+    /// Rim point P(β) = G + R·(cos β·d + sin β·f).
+    pub fn point(&self, beta: f64) -> [f64; 3] {
+        let (s, c) = beta.sin_cos();
+        [0, 1, 2].map(|k| self.centre[k] + self.radius * (c * self.down[k] + s * self.forward[k]))
+    }
+
+    /// Build the patch from its crossings A, B (rim angles).
+    pub fn patch(&self, beta_a: f64, beta_b: f64) -> Patch {
+        let a = self.point(beta_a);
+        let b = self.point(beta_b);
+        let h = [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]));
+        let gh = [0, 1, 2].map(|k| self.centre[k] - h[k]);
+        let lever = norm(gh);
+        // A chord through the centre cannot happen for a half-rim search; keep
+        // the direction defined anyway by falling back to the mid-angle.
+        let mid = 0.5 * (beta_a + beta_b);
+        let normal = if lever > 1e-12 {
+            gh.map(|v| v / lever)
+        } else {
+            let p = self.point(mid);
+            let r = [0, 1, 2].map(|k| self.centre[k] - p[k]);
+            let l = norm(r);
+            r.map(|v| v / l)
+        };
+        let mut ab = [0, 1, 2].map(|k| b[k] - a[k]);
+        if dot(ab, self.forward) < 0.0 {
+            ab = ab.map(|v| -v);
+        }
+        let la = norm(ab);
+        let tangent = if la > 1e-15 {
+            ab.map(|v| v / la)
+        } else {
+            // A single-point contact: the rim tangent at H.
+            let (s, c) = mid.sin_cos();
+            [0, 1, 2].map(|k| c * self.forward[k] - s * self.down[k])
+        };
+        let lateral = cross(normal, tangent);
+        Patch {
+            point: h,
+            normal,
+            tangent,
+            lateral,
+            deflection: self.radius - lever,
+            lever,
+            angle: mid,
+        }
+    }
+}
+
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub(crate) fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}

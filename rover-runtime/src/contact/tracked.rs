@@ -1,0 +1,111 @@
+//! Contact by tracking the contact centre from step to step (MODEL.md §6,
+//! our form of the paper's eq. 35, whose extracted text is garbled).
+//!
+//! From the previous rim angle β* of H, a few secant steps on dh/dβ = 0 reach
+//! the deepest rim point; A and B are then found by marching outwards from it
+//! and refining with the meridional crossing search. One patch per wheel; the
+//! meridional search is the fallback when there is no previous contact or the
+//! iteration fails.
+
+use crate::terrain::{HeightField, OffMap};
+
+use super::meridional::{MeridionalContact, clearance, crossing};
+use super::patch::{Contact, RimFrame};
+
+/// March step of the crossing search [rad] (2°).
+const MARCH: f64 = 2.0 * core::f64::consts::PI / 180.0;
+/// Secant iterations on dh/dβ = 0.
+const NEWTON_STEPS: usize = 8;
+
+/// The tracking search; holds the previous contact angle of one wheel.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TrackedContact {
+    /// The fallback search (and its sampling).
+    pub fallback: MeridionalContact,
+    previous: Option<f64>,
+}
+
+impl TrackedContact {
+    /// A tracker with no previous contact.
+    pub fn new(fallback: MeridionalContact) -> Self {
+        Self { fallback, previous: None }
+    }
+
+    /// The patch of one wheel (see [`MeridionalContact::find`]).
+    pub fn find<H: HeightField + ?Sized>(
+        &mut self,
+        terrain: &H,
+        centre: [f64; 3],
+        axis: [f64; 3],
+        radius: f64,
+    ) -> Result<Contact, OffMap> {
+        let found = match (self.previous, RimFrame::new(centre, axis, radius)) {
+            (Some(b0), Some(frame)) => self.track(terrain, &frame, b0)?,
+            _ => None,
+        };
+        let contact = match found {
+            Some(c) => c,
+            None => {
+                let mut c = self.fallback.find(terrain, centre, axis, radius)?;
+                // Keep the deepest patch only: tracking follows one patch.
+                if c.count > 1 {
+                    let deepest = (0..c.count)
+                        .max_by(|&a, &b| c.patches[a].deflection.total_cmp(&c.patches[b].deflection))
+                        .unwrap_or(0);
+                    c.patches[0] = c.patches[deepest];
+                    c.count = 1;
+                }
+                c
+            }
+        };
+        self.previous = (contact.count > 0).then(|| contact.patches[0].angle);
+        Ok(contact)
+    }
+
+    fn track<H: HeightField + ?Sized>(&self, terrain: &H, frame: &RimFrame, b0: f64) -> Result<Option<Contact>, OffMap> {
+        let half = core::f64::consts::FRAC_PI_2;
+        let tol = self.fallback.sampling.tolerance;
+        let slope = |b: f64| -> Result<f64, OffMap> {
+            let e = 1e-6;
+            Ok((clearance(terrain, frame, b + e)? - clearance(terrain, frame, b - e)?) / (2.0 * e))
+        };
+        // Secant on g(β) = dh/dβ.
+        let (mut b_prev, mut b) = (b0 - 0.01, b0);
+        let (mut g_prev, mut g) = (slope(b_prev)?, slope(b)?);
+        for _ in 0..NEWTON_STEPS {
+            if g.abs() < 1e-10 || g == g_prev {
+                break;
+            }
+            let next = (b - g * (b - b_prev) / (g - g_prev)).clamp(-half, half);
+            b_prev = b;
+            g_prev = g;
+            b = next;
+            g = slope(b)?;
+        }
+        let h_min = clearance(terrain, frame, b)?;
+        if !(h_min < 0.0) || g.abs() > 1e-3 || !b.is_finite() {
+            return Ok(None);
+        }
+        let mut contact = Contact::default();
+        let mut edge = |dir: f64| -> Result<f64, OffMap> {
+            let (mut inner, mut h_in) = (b, h_min);
+            loop {
+                let outer = (inner + dir * MARCH).clamp(-half, half);
+                let h_out = clearance(terrain, frame, outer)?;
+                if h_out >= 0.0 {
+                    return crossing(terrain, frame, inner, h_in, outer, h_out, tol);
+                }
+                if outer.abs() >= half {
+                    contact.deep = true;
+                    return Ok(outer);
+                }
+                inner = outer;
+                h_in = h_out;
+            }
+        };
+        let a = edge(-1.0)?;
+        let e = edge(1.0)?;
+        contact.push(frame.patch(a, e));
+        Ok(Some(contact))
+    }
+}

@@ -1,0 +1,301 @@
+//! The controller of a run: speed loop, torque distribution, steering and
+//! active suspension together, driven by time profiles.
+
+use rover_dynamics::Model;
+use rover_dynamics::plant::Plant;
+use serde::{Deserialize, Serialize};
+
+use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
+use super::distribution::{Distribution, share};
+use super::speed::SpeedConfig;
+use super::steering::{Steering, ackermann_angle, curvature_from_angle};
+
+/// The `[control]` table of a scenario.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControllerConfig {
+    /// The speed loop; absent: the motors give no torque.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed: Option<SpeedConfig>,
+    /// Steering.
+    #[serde(default)]
+    pub steering: Steering,
+    /// Active suspension; absent: passive.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub active_suspension: Option<ActiveSuspensionConfig>,
+}
+
+/// A controller that cannot run on this rover.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("control.{field}: {message}")]
+pub struct ControlError {
+    /// Dotted path of the offending field.
+    pub field: String,
+    /// What is wrong and how to fix it.
+    pub message: String,
+}
+
+fn err(field: &str, message: impl Into<String>) -> ControlError {
+    ControlError { field: field.into(), message: message.into() }
+}
+
+/// The running controller.
+#[derive(Clone, Debug)]
+pub struct Controller {
+    config: ControllerConfig,
+    settle: f64,
+    left: Vec<bool>,
+    rest_xy: Vec<(f64, f64)>,
+    steerable: Vec<bool>,
+    max_torque: Vec<f64>,
+    centre_x: f64,
+    static_weights: Option<Vec<f64>>,
+    active: Option<ActiveSuspension>,
+    neutral: Vec<f64>,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+}
+
+impl Controller {
+    /// A controller for `model`; commands start after `settle` seconds.
+    pub fn new(config: ControllerConfig, model: &Model, settle: f64) -> Result<Self, ControlError> {
+        let rest = model.rest();
+        let rest_xy: Vec<(f64, f64)> = model
+            .wheels
+            .iter()
+            .map(|w| {
+                let u = model.bodies[w.body].position.value(&rest);
+                (u[0], u[1])
+            })
+            .collect();
+        let steerable: Vec<bool> = model.wheels.iter().map(|w| w.steerable).collect();
+        if let Some(s) = &config.speed {
+            s.speed.validate().map_err(|m| err("speed.speed", m))?;
+            if !(s.kp.is_finite() && s.kp >= 0.0 && s.ki.is_finite() && s.ki >= 0.0) {
+                return Err(err("speed", format!("gains must be finite and ≥ 0, got kp = {}, ki = {}", s.kp, s.ki)));
+            }
+        }
+        let mut centre_x = 0.0;
+        match &config.steering {
+            Steering::None => {}
+            Steering::Slip { delta_tau } => delta_tau.validate().map_err(|m| err("steering.delta_tau", m))?,
+            Steering::Ackermann(a) => {
+                if !steerable.iter().any(|&s| s) {
+                    return Err(err("steering", "Ackermann steering needs steerable wheels; this rover has none (use kind = \"slip\")"));
+                }
+                match (&a.radius, &a.front_left_deg) {
+                    (Some(p), None) => p.validate().map_err(|m| err("steering.radius", m))?,
+                    (None, Some(p)) => p.validate().map_err(|m| err("steering.front_left_deg", m))?,
+                    _ => return Err(err("steering", "give exactly one of `radius` (m) or `front_left_deg`")),
+                }
+                centre_x = a.centre_x.unwrap_or_else(|| default_centre_x(&rest_xy, &steerable));
+            }
+        }
+        let active = match &config.active_suspension {
+            None => None,
+            Some(c) => {
+                if !(c.sample_time.is_finite() && c.sample_time > 0.0) {
+                    return Err(err("active_suspension.sample_time", format!("must be > 0 s, got {}", c.sample_time)));
+                }
+                let sprung: Vec<bool> =
+                    model.coordinates.iter().map(|c| !matches!(c.spring, rover_dynamics::model::Spring::None)).collect();
+                if !sprung.iter().any(|&s| s) {
+                    return Err(err("active_suspension", "the rover has no sprung coordinate whose neutral could be moved"));
+                }
+                Some(ActiveSuspension::new(c.clone(), &sprung, &slopes(model, &rest)))
+            }
+        };
+        Ok(Self {
+            left: rest_xy.iter().map(|&(_, y)| y > 0.0).collect(),
+            rest_xy,
+            steerable,
+            max_torque: model.wheels.iter().map(|w| w.max_torque).collect(),
+            centre_x,
+            static_weights: None,
+            active,
+            neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
+            lo: model.coordinates.iter().map(|c| c.min).collect(),
+            hi: model.coordinates.iter().map(|c| c.max).collect(),
+            config,
+            settle,
+        })
+    }
+
+    /// Time commands start (end of settling) [s].
+    pub fn settle_time(&self) -> f64 {
+        self.settle
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &ControllerConfig {
+        &self.config
+    }
+
+    /// The current spring neutrals y0 (moved by the active suspension).
+    pub fn neutrals(&self) -> &[f64] {
+        &self.neutral
+    }
+
+    /// Speed set-point V(t) [m/s]: zero while settling.
+    pub fn speed_setpoint(&self, t: f64) -> f64 {
+        match &self.config.speed {
+            Some(s) if t >= self.settle => s.speed.at(t - self.settle),
+            _ => 0.0,
+        }
+    }
+
+    /// Rate of the speed loop's integral state: `V − v_x`, frozen while the
+    /// integral term alone saturates the torque in the same direction (anti-windup).
+    pub fn integral_rate(&self, t: f64, w: &[f64], integral: f64) -> f64 {
+        let Some(s) = &self.config.speed else { return 0.0 };
+        let e = self.speed_setpoint(t) - w[0];
+        let cap = self.max_torque.iter().cloned().fold(0.0, f64::max);
+        let held = s.ki * integral;
+        if (held >= cap && e > 0.0) || (held <= -cap && e < 0.0) { 0.0 } else { e }
+    }
+
+    /// Motor torques per wheel [N·m] from the forward speed `w[0]`, the
+    /// integral state and the wheels' normal loads `normals` (this evaluation).
+    pub fn torques(&mut self, t: f64, w: &[f64], integral: f64, normals: &[f64], out: &mut [f64]) {
+        let Some(s) = &self.config.speed else {
+            out.iter_mut().for_each(|o| *o = 0.0);
+            return;
+        };
+        if self.static_weights.is_none() && s.distribution == Distribution::StaticLoad && t >= self.settle {
+            self.static_weights = Some(normals.to_vec());
+        }
+        let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * integral;
+        match s.distribution {
+            Distribution::Even => out.iter_mut().for_each(|o| *o = tau0),
+            Distribution::MeasuredLoad => share(tau0, normals, out),
+            Distribution::StaticLoad => match &self.static_weights {
+                Some(wts) => share(tau0, wts, out),
+                None => share(tau0, normals, out),
+            },
+        }
+        if let Steering::Slip { delta_tau } = &self.config.steering {
+            let dt = if t >= self.settle { delta_tau.at(t - self.settle) } else { 0.0 };
+            for (o, &left) in out.iter_mut().zip(&self.left) {
+                *o += if left { -dt } else { dt };
+            }
+        }
+        for (o, &cap) in out.iter_mut().zip(&self.max_torque) {
+            *o = o.clamp(-cap, cap);
+        }
+    }
+
+    /// Steering angles δ_j [rad] at time t.
+    pub fn steer(&self, t: f64, out: &mut [f64]) {
+        out.iter_mut().for_each(|o| *o = 0.0);
+        let Steering::Ackermann(a) = &self.config.steering else { return };
+        if t < self.settle {
+            return;
+        }
+        let tc = t - self.settle;
+        let kappa = match (&a.radius, &a.front_left_deg) {
+            (Some(r), _) => {
+                let r = r.at(tc);
+                if r == 0.0 { 0.0 } else { 1.0 / r }
+            }
+            (None, Some(d)) => {
+                let Some(k) = self.steerable.iter().position(|&s| s) else { return };
+                let (x1, y1) = self.rest_xy[k];
+                curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x)
+            }
+            (None, None) => 0.0,
+        };
+        for (k, o) in out.iter_mut().enumerate() {
+            if self.steerable[k] {
+                let (x, y) = self.rest_xy[k];
+                *o = ackermann_angle(kappa, x, y, self.centre_x);
+            }
+        }
+    }
+
+    /// Kinematic turning radius R_k = sqrt(x_c² + R²) at time t, when steering
+    /// kinematically with a non-zero curvature.
+    pub fn kinematic_radius(&self, t: f64) -> Option<f64> {
+        let Steering::Ackermann(a) = &self.config.steering else { return None };
+        let tc = (t - self.settle).max(0.0);
+        let r = match (&a.radius, &a.front_left_deg) {
+            (Some(r), _) => r.at(tc),
+            (None, Some(d)) => {
+                let k = self.steerable.iter().position(|&s| s)?;
+                let (x1, y1) = self.rest_xy[k];
+                let kappa = curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x);
+                if kappa == 0.0 {
+                    return None;
+                }
+                1.0 / kappa
+            }
+            _ => return None,
+        };
+        (r != 0.0 && r.is_finite()).then(|| (self.centre_x * self.centre_x + r * r).sqrt())
+    }
+
+    /// Period of the sampled part (active suspension), if any.
+    pub fn sample_period(&self) -> Option<f64> {
+        self.active.as_ref().map(|a| a.config.sample_time)
+    }
+
+    /// Times at which commands jump (step profiles, end of settling).
+    pub fn breakpoints(&self) -> Vec<f64> {
+        let mut b = vec![self.settle];
+        let shift = |v: Vec<f64>| v.into_iter().map(|t| t + self.settle);
+        if let Some(s) = &self.config.speed {
+            b.extend(shift(s.speed.breakpoints()));
+        }
+        match &self.config.steering {
+            Steering::Slip { delta_tau } => b.extend(shift(delta_tau.breakpoints())),
+            Steering::Ackermann(a) => {
+                for p in a.radius.iter().chain(a.front_left_deg.iter()) {
+                    b.extend(shift(p.breakpoints()));
+                }
+            }
+            Steering::None => {}
+        }
+        b
+    }
+
+    /// The sampled update (active suspension, eq. 42) at time t; moves the
+    /// plant's spring neutrals. Inactive while settling.
+    pub fn sample<P: Plant + ?Sized>(&mut self, t: f64, x: &[f64], w: &[f64], plant: &mut P) {
+        let Some(active) = &self.active else { return };
+        if t < self.settle {
+            return;
+        }
+        let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
+        let rates = att.rates([w[3], w[4], w[5]]);
+        active.update(x[4], rates[1], x[3], rates[0], &mut self.neutral, &self.lo, &self.hi);
+        for (i, &n) in self.neutral.iter().enumerate() {
+            plant.set_spring_neutral(i, n);
+        }
+    }
+}
+
+/// Default x_c: the mean rest x of the non-steerable wheels, or, when all
+/// steer, the rest x of the wheel nearest to G along x.
+fn default_centre_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> f64 {
+    let fixed: Vec<f64> = rest_xy.iter().zip(steerable).filter(|(_, s)| !**s).map(|(p, _)| p.0).collect();
+    if !fixed.is_empty() {
+        return fixed.iter().sum::<f64>() / fixed.len() as f64;
+    }
+    rest_xy.iter().map(|p| p.0).min_by(|a, b| a.abs().total_cmp(&b.abs())).unwrap_or(0.0)
+}
+
+/// Per coordinate: each wheel's rest (x, y) and ∂u_z/∂y_i at rest.
+fn slopes(model: &Model, rest: &[f64]) -> Vec<Vec<(f64, f64, f64)>> {
+    let m = model.m();
+    let mut out = vec![Vec::new(); m];
+    for w in &model.wheels {
+        let body = &model.bodies[w.body];
+        let mut dz = vec![0.0; m];
+        let u = body.position.eval(rest, |i, d1, _| dz[i] += d1[2]);
+        for i in 0..m {
+            if dz[i] != 0.0 {
+                out[i].push((u[0], u[1], dz[i]));
+            }
+        }
+    }
+    out
+}

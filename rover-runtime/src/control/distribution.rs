@@ -1,0 +1,29 @@
+//! How the mean torque is shared among the wheels (MODEL.md §8).
+
+use serde::{Deserialize, Serialize};
+
+/// Torque distribution: `τ_j = τ_0·n·w_j / Σ w`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Distribution {
+    /// w_j = 1: every wheel gets τ_0.
+    #[default]
+    Even,
+    /// w_j = the wheel's static normal load, measured at the end of settling
+    /// (the rover then stands in static equilibrium on flat ground), or at
+    /// the first evaluation when there is no settling.
+    StaticLoad,
+    /// w_j = the wheel's normal load now (from the same right-hand-side
+    /// evaluation): wheels in the air get no torque.
+    MeasuredLoad,
+}
+
+/// Share `tau0` (per wheel, mean) by weights into `out`; equal shares when
+/// the weights sum to zero (every wheel airborne).
+pub fn share(tau0: f64, weights: &[f64], out: &mut [f64]) {
+    let n = out.len() as f64;
+    let total: f64 = weights.iter().sum();
+    for (o, w) in out.iter_mut().zip(weights) {
+        *o = if total > 0.0 { tau0 * n * w / total } else { tau0 };
+    }
+}

@@ -1,0 +1,17 @@
+//! Controllers (MODEL.md §8, paper §5): the speed loop and the torque
+//! distribution, kinematic (Ackermann) and slip steering, active suspension,
+//! and the time schedule of set-points that drives them.
+
+mod active_suspension;
+mod controller;
+mod distribution;
+mod profile;
+mod speed;
+mod steering;
+
+pub use active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
+pub use controller::{Controller, ControllerConfig, ControlError};
+pub use distribution::Distribution;
+pub use profile::Profile;
+pub use speed::SpeedConfig;
+pub use steering::{Ackermann, Steering};

@@ -1,0 +1,167 @@
+//! The ground acting on the wheels: contact geometry, force law and the
+//! reduction of the patch forces to loads on the plant (MODEL.md §6–§7).
+
+use rover_dynamics::Model;
+use rover_dynamics::plant::{WheelLoad, WheelState};
+use serde::{Deserialize, Serialize};
+
+use crate::contact::{Contact, MeridionalContact, RimSampling, TrackedContact};
+use crate::contact::{cross, dot};
+use crate::terrain::{HeightField, OffMap};
+use crate::wheel_law::{PatchMotion, Tyre, WheelLaw, WheelLawConfig};
+
+/// Which contact search the run uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactMethod {
+    /// The meridional profile, every evaluation (the paper's first method).
+    #[default]
+    Meridional,
+    /// Track the contact centre from the previous evaluation (eq. 35).
+    Tracked,
+}
+
+/// What the contact did on one wheel, for the CSV and the summary.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WheelReport {
+    /// Contact point H of the patch with the largest normal force; the
+    /// wheel centre when the wheel is airborne [m].
+    pub point: [f64; 3],
+    /// Sum of the normal forces [N].
+    pub normal: f64,
+    /// Sum of the drawbar pulls [N].
+    pub drawbar: f64,
+    /// Sum of the lateral forces [N].
+    pub lateral: f64,
+    /// Torque the ground took from the motor, Σ |G_jH|·F_d [N·m].
+    pub torque: f64,
+    /// Number of patches.
+    pub patches: usize,
+    /// The whole lower half of the wheel was below ground.
+    pub deep: bool,
+}
+
+/// A wheel left the terrain map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WheelOffMap {
+    /// Wheel index (0-based).
+    pub wheel: usize,
+    /// The failed query.
+    pub off: OffMap,
+}
+
+/// Terrain, contact search and wheel law, with the per-wheel tracking state.
+#[derive(Clone, Debug)]
+pub struct Ground<H> {
+    /// The terrain.
+    pub terrain: H,
+    /// The force law.
+    pub law: WheelLawConfig,
+    method: ContactMethod,
+    meridional: MeridionalContact,
+    trackers: Vec<TrackedContact>,
+    tyres: Vec<Tyre>,
+    radii: Vec<f64>,
+}
+
+impl<H: HeightField> Ground<H> {
+    /// Ground for the wheels of `model`.
+    pub fn new(terrain: H, model: &Model, method: ContactMethod, sampling: RimSampling, law: WheelLawConfig) -> Self {
+        let meridional = MeridionalContact { sampling };
+        let tyres = model
+            .wheels
+            .iter()
+            .map(|w| Tyre {
+                stiffness: w.stiffness,
+                damping: w.damping,
+                mu_x: w.mu_x,
+                mu_y: w.mu_y,
+                cornering_stiffness: w.cornering_stiffness,
+            })
+            .collect();
+        Self {
+            terrain,
+            law,
+            method,
+            meridional,
+            trackers: vec![TrackedContact::new(meridional); model.wheels.len()],
+            tyres,
+            radii: model.wheels.iter().map(|w| w.radius).collect(),
+        }
+    }
+
+    /// Contact of wheel k in state `s`.
+    pub fn contact(&mut self, k: usize, s: &WheelState) -> Result<Contact, OffMap> {
+        match self.method {
+            ContactMethod::Meridional => self.meridional.find(&self.terrain, s.centre, s.spin_axis, self.radii[k]),
+            ContactMethod::Tracked => self.trackers[k].find(&self.terrain, s.centre, s.spin_axis, self.radii[k]),
+        }
+    }
+
+    /// Loads on every wheel for wheel states `states` and motor torques
+    /// `torques` (N·m, positive drives forward), with reports.
+    pub fn loads(
+        &mut self,
+        states: &[WheelState],
+        torques: &[f64],
+        loads: &mut [WheelLoad],
+        reports: &mut [WheelReport],
+    ) -> Result<(), WheelOffMap> {
+        for k in 0..states.len() {
+            let contact = self.contact(k, &states[k]).map_err(|off| WheelOffMap { wheel: k, off })?;
+            let (load, report) = wheel_load(&self.law, &self.tyres[k], &states[k], &contact, torques[k]);
+            loads[k] = load;
+            reports[k] = report;
+        }
+        Ok(())
+    }
+}
+
+/// Reduce the forces on a wheel's patches to its centre (MODEL.md §7):
+/// ```text
+/// F = Σ (F_n·n + F_d·t + F_c*·c)                         at G_j
+/// μ = Σ (H − G_j) × F_patch,  less its component along a_w   on the carrier
+/// τ_stator = −τ_eff·a_w,  τ_eff = Σ |G_jH|·F_d              on the stator
+/// ```
+/// The drive torque is shared among patches in proportion to their normal forces.
+pub fn wheel_load<L: WheelLaw>(law: &L, tyre: &Tyre, s: &WheelState, contact: &Contact, torque: f64) -> (WheelLoad, WheelReport) {
+    let mut load = WheelLoad::default();
+    let mut report = WheelReport { point: s.centre, patches: contact.count, deep: contact.deep, ..Default::default() };
+    let patches = contact.patches();
+    let motion = |p: &crate::contact::Patch, torque: f64| PatchMotion {
+        deflection: p.deflection,
+        deflection_rate: -dot(s.velocity, p.normal),
+        v_t: dot(s.velocity, p.tangent),
+        v_c: dot(s.velocity, p.lateral),
+        lever: p.lever,
+        torque,
+    };
+    let normals: [f64; crate::contact::MAX_PATCHES] = core::array::from_fn(|i| {
+        patches.get(i).map_or(0.0, |p| crate::wheel_law::normal_force_of(tyre, &motion(p, 0.0)))
+    });
+    let total: f64 = normals.iter().sum();
+    let mut strongest = 0.0;
+    for (i, p) in patches.iter().enumerate() {
+        let share = if total > 0.0 { torque * normals[i] / total } else { 0.0 };
+        let f = law.forces(tyre, &motion(p, share));
+        let force = [0, 1, 2].map(|k| f.normal * p.normal[k] + f.drawbar * p.tangent[k] + f.lateral * p.lateral[k]);
+        let arm = [0, 1, 2].map(|k| p.point[k] - s.centre[k]);
+        let m = cross(arm, force);
+        let axial = dot(m, s.spin_axis);
+        let tau = p.lever * f.drawbar;
+        for k in 0..3 {
+            load.force[k] += force[k];
+            load.moment[k] += m[k] - axial * s.spin_axis[k];
+            load.stator_torque[k] -= tau * s.spin_axis[k];
+        }
+        report.normal += f.normal;
+        report.drawbar += f.drawbar;
+        report.lateral += f.lateral;
+        report.torque += tau;
+        if f.normal > strongest || i == 0 {
+            strongest = f.normal;
+            report.point = p.point;
+        }
+    }
+    (load, report)
+}
