@@ -7,6 +7,8 @@ pub mod contact;
 pub mod control;
 pub mod generic_plant;
 pub mod ground;
+pub mod integrate;
+pub mod terrain;
 pub mod wheel_law;
 
 pub use generic_plant::GenericPlant;

@@ -1,0 +1,112 @@
+//! The height-field interface the contact code queries, and the off-map error.
+
+use core::fmt;
+
+/// A ground surface `Z_G(X, Y)` (MODEL.md §6), queried in the simulation hot loop.
+///
+/// The contact search calls these about 181 times per wheel per right-hand-side
+/// evaluation, so implementations do no allocation, take no lock and return in a
+/// few tens of nanoseconds. Coordinates are inertial `X`, `Y` [m]; heights are
+/// inertial `Z` [m], positive up.
+///
+/// A query that cannot be answered — a point outside a finite map under the
+/// default edge policy, or a non-finite coordinate — returns [`OffMap`]; an
+/// implementation never returns a NaN or infinite height.
+pub trait HeightField {
+    /// Ground height `Z_G` [m] at inertial (`x`, `y`) [m], or the off-map error.
+    fn height(&self, x: f64, y: f64) -> Result<f64, OffMap>;
+
+    /// Height `Z_G` [m] and gradient `[∂Z_G/∂X, ∂Z_G/∂Y]` [m/m] at (`x`, `y`).
+    fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap>;
+}
+
+impl<H: HeightField + ?Sized> HeightField for &H {
+    fn height(&self, x: f64, y: f64) -> Result<f64, OffMap> {
+        (**self).height(x, y)
+    }
+
+    fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
+        (**self).height_gradient(x, y)
+    }
+}
+
+/// A rectangle of the horizontal plane, `[x_min, x_max] × [y_min, y_max]` [m].
+///
+/// Unbounded terrains (the analytic library) report infinite bounds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bounds {
+    /// Smallest `X` [m].
+    pub x_min: f64,
+    /// Largest `X` [m].
+    pub x_max: f64,
+    /// Smallest `Y` [m].
+    pub y_min: f64,
+    /// Largest `Y` [m].
+    pub y_max: f64,
+}
+
+impl Bounds {
+    /// The whole plane (every finite point).
+    pub const UNBOUNDED: Bounds = Bounds {
+        x_min: f64::NEG_INFINITY,
+        x_max: f64::INFINITY,
+        y_min: f64::NEG_INFINITY,
+        y_max: f64::INFINITY,
+    };
+
+    /// Whether (`x`, `y`) lies inside, edges included; false for NaN.
+    pub fn contains(&self, x: f64, y: f64) -> bool {
+        x >= self.x_min && x <= self.x_max && y >= self.y_min && y <= self.y_max
+    }
+}
+
+/// A terrain query that fell outside the map (or had a non-finite coordinate).
+///
+/// Carries the queried point and the map's bounds so the simulator can report
+/// which wheel left the map, when and where (MODEL.md §11).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OffMap {
+    /// Queried `X` [m].
+    pub x: f64,
+    /// Queried `Y` [m].
+    pub y: f64,
+    /// The area the terrain covers.
+    pub bounds: Bounds,
+}
+
+impl fmt::Display for OffMap {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let b = &self.bounds;
+        if !(self.x.is_finite() && self.y.is_finite()) {
+            return write!(
+                f,
+                "terrain queried at a non-finite point (X = {} m, Y = {} m); \
+                 the state has diverged before the contact search",
+                self.x, self.y
+            );
+        }
+        write!(
+            f,
+            "point (X = {} m, Y = {} m) is off the terrain map, which covers \
+             X from {} m to {} m and Y from {} m to {} m; make the terrain larger \
+             or set edge = \"clamp\" to hold the edge height beyond it",
+            self.x, self.y, b.x_min, b.x_max, b.y_min, b.y_max
+        )
+    }
+}
+
+impl std::error::Error for OffMap {}
+
+/// Checks that a query point is finite, for the unbounded analytic terrains.
+#[inline]
+pub(crate) fn finite_point(x: f64, y: f64) -> Result<(), OffMap> {
+    if x.is_finite() && y.is_finite() {
+        Ok(())
+    } else {
+        Err(OffMap {
+            x,
+            y,
+            bounds: Bounds::UNBOUNDED,
+        })
+    }
+}

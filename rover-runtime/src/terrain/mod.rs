@@ -1,0 +1,70 @@
+//! Terrain: the ground height `Z_G(X, Y)` the wheels touch (MODEL.md §6, §11).
+//!
+//! - [`HeightField`] is what the contact code queries: height and gradient at
+//!   a point, or an [`OffMap`] error, with no allocation.
+//! - [`Terrain`] is any terrain: the analytic library ([`Flat`], [`Slope`],
+//!   [`Bump`], [`Ditch`], [`Step`], [`Sinusoid`], exact and unbounded) or a
+//!   [`Grid`] of heights with a C1 Catmull–Rom bicubic (default) or bilinear
+//!   interpolant and an [`EdgePolicy`].
+//! - [`RandomField`] builds the seeded random terrain `Z_G = Z_R·Z_ran` of
+//!   MODEL.md §11 (SplitMix64 node values, see [`prng`]); [`TerrainStatistics`]
+//!   gives its RMS height, RMS slope, steepest slope and correlation length.
+//! - Files: ESRI ASCII grids ([`asc`]), CSV matrices ([`csv_grid`]), 16-bit PNG
+//!   height maps ([`png_map`]) and GeoTIFF DEMs ([`geotiff`]), each with a
+//!   reader and a writer; corrupt files give a [`TerrainError`] naming the
+//!   file, the line (or pixel, or tag), the problem and the fix.
+//! - [`TerrainConfig`] is the scenario's `[terrain]` table;
+//!   [`TerrainConfig::build`] checks it and makes the [`Terrain`].
+//!
+//! `docs/TERRAIN.md` is the long form: formats, the library's formulas, the
+//! random field's statistics.
+
+pub mod asc;
+mod bump;
+mod config;
+pub mod csv_grid;
+mod ditch;
+mod error;
+mod file_format;
+mod flat;
+pub mod geotiff;
+mod georeference;
+mod grid;
+mod height_field;
+mod io;
+mod kernel;
+mod param;
+pub mod png_map;
+pub mod prng;
+mod profile;
+mod random_field;
+mod sinusoid;
+mod slope;
+mod statistics;
+mod step;
+#[allow(clippy::module_inception)]
+mod terrain;
+
+pub use asc::{read_asc, write_asc};
+pub use bump::Bump;
+pub use config::{
+    BumpConfig, DitchConfig, FileConfig, FlatConfig, RandomConfig, SinusoidConfig, SlopeConfig,
+    StepConfig, TerrainConfig,
+};
+pub use csv_grid::{read_csv, write_csv};
+pub use ditch::Ditch;
+pub use error::{FileError, Place, TerrainError};
+pub use file_format::{FileFormat, LoadOptions, load_grid};
+pub use flat::Flat;
+pub use geotiff::{read_geotiff, write_geotiff};
+pub use georeference::Georeference;
+pub use grid::{EdgePolicy, Grid, Interpolation};
+pub use height_field::{Bounds, HeightField, OffMap};
+pub use png_map::{SampleScale, read_png, write_png};
+pub use profile::Footprint;
+pub use random_field::RandomField;
+pub use sinusoid::Sinusoid;
+pub use slope::Slope;
+pub use statistics::TerrainStatistics;
+pub use step::Step;
+pub use terrain::Terrain;

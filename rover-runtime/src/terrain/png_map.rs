@@ -1,0 +1,169 @@
+//! 16-bit grayscale PNG height maps.
+//!
+//! Each pixel is one grid node; the image's top row is the north edge (row 1
+//! at `Y = y0 + (height−1)·dy`), its left column the west edge. A sample `k`
+//! (0 … 65535, stored big-endian as PNG requires) is the height
+//! ```text
+//! Z = offset + scale·k      [m]
+//! ```
+//! A PNG carries no georeference: the scenario gives `origin` (the centre of
+//! the bottom-left pixel) and `spacing`. Only 16-bit grayscale is accepted:
+//! an 8-bit map has only 256 levels (a 2.5 m relief in 1 cm terraces), and
+//! a colour image has no single height per pixel.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use super::error::{FileError, Place, TerrainError};
+use super::georeference::Georeference;
+use super::grid::Grid;
+use super::io::{read_bytes, write_bytes};
+use super::param::finite;
+
+/// The vertical mapping of PNG samples: `Z = offset + scale·k`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampleScale {
+    /// Metres per count (non-zero; negative flips the relief).
+    pub scale: f64,
+    /// Height [m] of sample 0.
+    pub offset: f64,
+}
+
+impl SampleScale {
+    fn check(&self) -> Result<SampleScale, TerrainError> {
+        finite("offset", self.offset, "m")?;
+        if !(self.scale.is_finite() && self.scale != 0.0) {
+            return Err(TerrainError::parameter(
+                "scale",
+                format!("must be a finite, non-zero number of metres per count, got {}", self.scale),
+                "e.g. scale = 0.001 maps sample 1000 to 1 m above offset",
+            ));
+        }
+        Ok(*self)
+    }
+}
+
+/// Reads a 16-bit grayscale PNG height map placed by `georeference`.
+pub fn read_png(
+    path: &Path,
+    georeference: Georeference,
+    scale: SampleScale,
+) -> Result<Grid, TerrainError> {
+    decode_png(&read_bytes(path)?, path, georeference, scale)
+}
+
+/// Decodes PNG `bytes`; `path` names the file in errors.
+pub fn decode_png(
+    bytes: &[u8],
+    path: &Path,
+    georeference: Georeference,
+    scale: SampleScale,
+) -> Result<Grid, TerrainError> {
+    let georeference = georeference.check()?;
+    let scale = scale.check()?;
+    let whole = |problem: String, help: &str| FileError::at(path, Place::Whole, problem, help);
+    let decoder = png::Decoder::new(Cursor::new(bytes));
+    let mut reader = decoder.read_info().map_err(|e| {
+        whole(
+            format!("not a readable PNG image ({e})"),
+            "check that the file is a complete PNG (re-export or re-copy it), or set format",
+        )
+    })?;
+    let info = reader.info();
+    let (width, height) = (info.width as usize, info.height as usize);
+    let (color, depth) = (info.color_type, info.bit_depth);
+    if color != png::ColorType::Grayscale || depth != png::BitDepth::Sixteen {
+        return Err(whole(
+            format!(
+                "the image is {}-bit {color:?}; a height map must be 16-bit Grayscale",
+                depth as u8
+            ),
+            "re-export the height map as a 16-bit grayscale PNG (8 bits give only 256 \
+             height levels; colour has no single height per pixel)",
+        ));
+    }
+    if width < 2 || height < 2 {
+        return Err(whole(
+            format!("the image is {width} × {height} pixels; a grid needs at least 2 × 2"),
+            "give a height map of at least two rows and two columns",
+        ));
+    }
+    let size = reader.output_buffer_size().ok_or_else(|| {
+        whole(
+            format!("the image ({width} × {height}) is too large to decode"),
+            "crop or downsample the height map",
+        )
+    })?;
+    let mut buffer = vec![0; size];
+    let frame = reader.next_frame(&mut buffer).map_err(|e| {
+        whole(
+            format!("the image data is corrupt or truncated ({e})"),
+            "re-export or re-copy the file",
+        )
+    })?;
+    let line = frame.line_size;
+    let mut heights = vec![0.0; width * height];
+    for r in 0..height {
+        let j = height - 1 - r;
+        let row = buffer.get(r * line..r * line + 2 * width).unwrap_or(&[]);
+        for (i, pair) in row.chunks_exact(2).enumerate() {
+            let k = u16::from_be_bytes([pair[0], pair[1]]);
+            heights[j * width + i] = scale.offset + scale.scale * f64::from(k);
+        }
+    }
+    Grid::new(georeference.origin, georeference.spacing, width, height, heights)
+}
+
+/// Writes `grid` as a 16-bit grayscale PNG, each height quantized to
+/// `k = round((Z − offset)/scale)`; an error if a height falls outside 0 … 65535.
+pub fn write_png(grid: &Grid, path: &Path, scale: SampleScale) -> Result<(), TerrainError> {
+    write_bytes(path, &encode_png(grid, scale)?)
+}
+
+/// The PNG bytes of `grid` (see [`write_png`]).
+pub fn encode_png(grid: &Grid, scale: SampleScale) -> Result<Vec<u8>, TerrainError> {
+    let scale = scale.check()?;
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let too_big = || {
+        TerrainError::parameter(
+            "grid",
+            format!("{nx} × {ny} nodes do not fit a PNG image"),
+            "split the grid",
+        )
+    };
+    let width = u32::try_from(nx).map_err(|_| too_big())?;
+    let height = u32::try_from(ny).map_err(|_| too_big())?;
+    let mut data = Vec::with_capacity(2 * nx * ny);
+    for j in (0..ny).rev() {
+        for i in 0..nx {
+            let z = grid.node(i, j).unwrap_or(0.0);
+            let k = ((z - scale.offset) / scale.scale).round();
+            if !(0.0..=65535.0).contains(&k) {
+                return Err(TerrainError::parameter(
+                    "scale",
+                    format!(
+                        "the height {z} m at node (i = {i}, j = {j}) maps to sample {k}, \
+                         outside 0 … 65535"
+                    ),
+                    "choose offset below the lowest height and scale so that the highest fits",
+                ));
+            }
+            data.extend_from_slice(&(k as u16).to_be_bytes());
+        }
+    }
+    let encode_error = |e: png::EncodingError| {
+        TerrainError::parameter(
+            "grid",
+            format!("the PNG encoder failed: {e}"),
+            "write the grid in another format (asc, csv, geotiff)",
+        )
+    };
+    let mut out = Vec::new();
+    let mut encoder = png::Encoder::new(&mut out, width, height);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.set_depth(png::BitDepth::Sixteen);
+    let mut writer = encoder.write_header().map_err(encode_error)?;
+    writer.write_image_data(&data).map_err(encode_error)?;
+    writer.finish().map_err(encode_error)?;
+    Ok(out)
+}
