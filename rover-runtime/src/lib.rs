@@ -1,2 +1,3 @@
 //! The rover runtime: everything around the plant.
 #![warn(missing_docs)]
+pub mod integrate;
