@@ -1,0 +1,54 @@
+//! The system of ordinary differential equations an integrator advances.
+
+/// A first-order system `ẏ = f(t, y)` whose dimension is known at run time.
+///
+/// For a rover, `y = [x; w]`: `n` positions `x` (X, Y, Z, φ, θ, ψ, y1..ym) followed by `n`
+/// pseudo-velocities `w`, with `ẋ = B(x)·w` and `ẇ = a(x, w)` (MODEL.md §2–§5). The integrators
+/// call [`rhs`](OdeSystem::rhs) with slices of length [`dim`](OdeSystem::dim) and never allocate
+/// on the system's behalf.
+///
+/// Controls are held constant between two calls of `advance` (zero-order hold): a system whose
+/// right-hand side changes between calls (a new controller sample) should be followed by
+/// `Integrator::restart`, so multistep history is not carried across the jump.
+pub trait OdeSystem {
+    /// Why the right-hand side can fail (singular mass matrix, wheel off the terrain map, …).
+    /// The integrators return it wrapped with the time of the failing evaluation.
+    type Error;
+
+    /// Dimension of the state `y`.
+    fn dim(&self) -> usize;
+
+    /// Writes `dy = f(t, y)`. Both slices have length [`dim`](OdeSystem::dim).
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Self::Error>;
+
+    /// Number of leading position entries `x` in `y = [x; w]`, used by semi-implicit Euler.
+    /// Default: half the dimension.
+    fn split(&self) -> usize {
+        self.dim() / 2
+    }
+
+    /// The position rates `ẋ` (length [`split`](OdeSystem::split)) for the positions and
+    /// velocities in `y` (length [`dim`](OdeSystem::dim)), for semi-implicit Euler: for the
+    /// rover, `ẋ = B(x)·w` without the cost of `ẇ`. Default: `None`, and the integrator takes
+    /// the leading entries of a full [`rhs`](OdeSystem::rhs) evaluation instead.
+    fn position_rates(
+        &mut self,
+        _t: f64,
+        _y: &[f64],
+        _dx: &mut [f64],
+    ) -> Option<Result<(), Self::Error>> {
+        None
+    }
+
+    /// The exact Jacobian `∂f/∂y` at `(t, y)`, row-major (`jac[i·dim + j] = ∂f_i/∂y_j`), for
+    /// the implicit BDF method. Default: `None`, and the integrator uses forward finite
+    /// differences (`dim` extra right-hand-side evaluations).
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        _y: &[f64],
+        _jac: &mut [f64],
+    ) -> Option<Result<(), Self::Error>> {
+        None
+    }
+}
