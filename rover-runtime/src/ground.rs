@@ -60,6 +60,7 @@ pub struct Ground<H> {
     method: ContactMethod,
     meridional: MeridionalContact,
     trackers: Vec<TrackedContact>,
+    contacts: Vec<Contact>,
     tyres: Vec<Tyre>,
     radii: Vec<f64>,
 }
@@ -85,6 +86,7 @@ impl<H: HeightField> Ground<H> {
             method,
             meridional,
             trackers: vec![TrackedContact::new(meridional); model.wheels.len()],
+            contacts: vec![Contact::default(); model.wheels.len()],
             tyres,
             radii: model.wheels.iter().map(|w| w.radius).collect(),
         }
@@ -98,23 +100,44 @@ impl<H: HeightField> Ground<H> {
         }
     }
 
-    /// Loads on every wheel for wheel states `states` and motor torques
-    /// `torques` (N·m, positive drives forward), with reports.
-    pub fn loads(
-        &mut self,
-        states: &[WheelState],
-        torques: &[f64],
-        loads: &mut [WheelLoad],
-        reports: &mut [WheelReport],
-    ) -> Result<(), WheelOffMap> {
-        for k in 0..states.len() {
-            let contact = self.contact(k, &states[k]).map_err(|off| WheelOffMap { wheel: k, off })?;
-            let (load, report) = wheel_load(&self.law, &self.tyres[k], &states[k], &contact, torques[k]);
-            loads[k] = load;
-            reports[k] = report;
+    /// Find every wheel's contact (phase 1 of a right-hand side): the
+    /// patches, and each wheel's total normal force into `normals` (the
+    /// normal force does not depend on the drive torque, so a torque
+    /// distribution by measured load can use it before phase 2).
+    pub fn find_contacts(&mut self, states: &[WheelState], normals: &mut [f64]) -> Result<(), WheelOffMap> {
+        for (k, s) in states.iter().enumerate() {
+            let c = self.contact(k, s).map_err(|off| WheelOffMap { wheel: k, off })?;
+            normals[k] = c.patches().iter().map(|p| normal_force(&self.tyres[k], s, p)).sum();
+            self.contacts[k] = c;
         }
         Ok(())
     }
+
+    /// Loads on every wheel from the contacts of [`Ground::find_contacts`]
+    /// and the motor torques (N·m, positive drives forward), with reports
+    /// (phase 2).
+    pub fn loads(&self, states: &[WheelState], torques: &[f64], loads: &mut [WheelLoad], reports: &mut [WheelReport]) {
+        for k in 0..states.len() {
+            let (load, report) = wheel_load(&self.law, &self.tyres[k], &states[k], &self.contacts[k], torques[k]);
+            loads[k] = load;
+            reports[k] = report;
+        }
+    }
+}
+
+fn motion(s: &WheelState, p: &crate::contact::Patch, torque: f64) -> PatchMotion {
+    PatchMotion {
+        deflection: p.deflection,
+        deflection_rate: -dot(s.velocity, p.normal),
+        v_t: dot(s.velocity, p.tangent),
+        v_c: dot(s.velocity, p.lateral),
+        lever: p.lever,
+        torque,
+    }
+}
+
+fn normal_force(tyre: &Tyre, s: &WheelState, p: &crate::contact::Patch) -> f64 {
+    crate::wheel_law::normal_force_of(tyre, &motion(s, p, 0.0))
 }
 
 /// Reduce the forces on a wheel's patches to its centre (MODEL.md §7):
@@ -128,22 +151,13 @@ pub fn wheel_load<L: WheelLaw>(law: &L, tyre: &Tyre, s: &WheelState, contact: &C
     let mut load = WheelLoad::default();
     let mut report = WheelReport { point: s.centre, patches: contact.count, deep: contact.deep, ..Default::default() };
     let patches = contact.patches();
-    let motion = |p: &crate::contact::Patch, torque: f64| PatchMotion {
-        deflection: p.deflection,
-        deflection_rate: -dot(s.velocity, p.normal),
-        v_t: dot(s.velocity, p.tangent),
-        v_c: dot(s.velocity, p.lateral),
-        lever: p.lever,
-        torque,
-    };
-    let normals: [f64; crate::contact::MAX_PATCHES] = core::array::from_fn(|i| {
-        patches.get(i).map_or(0.0, |p| crate::wheel_law::normal_force_of(tyre, &motion(p, 0.0)))
-    });
+    let normals: [f64; crate::contact::MAX_PATCHES] =
+        core::array::from_fn(|i| patches.get(i).map_or(0.0, |p| normal_force(tyre, s, p)));
     let total: f64 = normals.iter().sum();
     let mut strongest = 0.0;
     for (i, p) in patches.iter().enumerate() {
         let share = if total > 0.0 { torque * normals[i] / total } else { 0.0 };
-        let f = law.forces(tyre, &motion(p, share));
+        let f = law.forces(tyre, &motion(s, p, share));
         let force = [0, 1, 2].map(|k| f.normal * p.normal[k] + f.drawbar * p.tangent[k] + f.lateral * p.lateral[k]);
         let arm = [0, 1, 2].map(|k| p.point[k] - s.centre[k]);
         let m = cross(arm, force);

@@ -8,6 +8,7 @@ pub mod control;
 pub mod generic_plant;
 pub mod ground;
 pub mod integrate;
+pub mod sim;
 pub mod terrain;
 pub mod wheel_law;
 

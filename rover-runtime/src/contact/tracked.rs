@@ -83,7 +83,7 @@ impl TrackedContact {
             g = slope(b)?;
         }
         let h_min = clearance(terrain, frame, b)?;
-        if !(h_min < 0.0) || g.abs() > 1e-3 || !b.is_finite() {
+        if h_min.is_nan() || h_min >= 0.0 || g.abs() > 1e-3 || !b.is_finite() {
             return Ok(None);
         }
         let mut contact = Contact::default();

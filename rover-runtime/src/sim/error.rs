@@ -1,0 +1,60 @@
+//! Why a right-hand side or a run failed.
+
+use rover_dynamics::plant::PlantError;
+
+use crate::ground::WheelOffMap;
+
+/// A right-hand-side evaluation failed.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// The plant could not produce accelerations.
+    #[error("{0}")]
+    Plant(PlantError),
+    /// A wheel left the terrain map.
+    #[error("wheel {} left the terrain: {}", .0.wheel + 1, .0.off)]
+    OffMap(WheelOffMap),
+}
+
+/// Why a run stopped before its end time. Every variant names the time.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RunError {
+    /// |φ| or |θ| passed the roll-over limit.
+    #[error(
+        "the rover rolled over at t = {t:.3} s: roll {roll_deg:.1}°, pitch {pitch_deg:.1}° (limit {limit_deg:.0}°)"
+    )]
+    RolledOver {
+        /// Time [s].
+        t: f64,
+        /// Roll φ [deg].
+        roll_deg: f64,
+        /// Pitch θ [deg].
+        pitch_deg: f64,
+        /// The limit [deg].
+        limit_deg: f64,
+    },
+    /// The integrator stopped (divergence, failing right-hand side, step too small).
+    #[error("the run stopped at t = {t:.6} s: {message}")]
+    Integration {
+        /// Time [s].
+        t: f64,
+        /// What happened.
+        message: String,
+    },
+    /// The output sink failed (disk full, closed pipe).
+    #[error("writing the output failed at t = {t:.3} s: {message}")]
+    Output {
+        /// Time [s].
+        t: f64,
+        /// The I/O error.
+        message: String,
+    },
+}
+
+impl RunError {
+    /// The simulation time of the failure [s].
+    pub fn time(&self) -> f64 {
+        match self {
+            RunError::RolledOver { t, .. } | RunError::Integration { t, .. } | RunError::Output { t, .. } => *t,
+        }
+    }
+}

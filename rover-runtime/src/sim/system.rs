@@ -1,0 +1,124 @@
+//! The rover as a first-order ODE system `ẏ = f(t, y)`, `y = [x; w; ζ]`
+//! (ζ: the speed loop's integral state).
+
+use rover_dynamics::kinematics::position_rates;
+use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
+
+use crate::control::Controller;
+use crate::ground::{Ground, WheelReport};
+use crate::integrate::OdeSystem;
+use crate::terrain::HeightField;
+
+use super::error::SimError;
+
+/// Plant, ground and controller, with every buffer a right-hand side needs
+/// (sized once: an evaluation allocates nothing).
+#[derive(Clone, Debug)]
+pub struct RoverSystem<P, H> {
+    /// The plant (generic or generated).
+    pub plant: P,
+    /// The ground; `None` for free flight.
+    pub ground: Option<Ground<H>>,
+    /// The controller.
+    pub control: Controller,
+    n: usize,
+    wheels: Vec<WheelState>,
+    loads: Vec<WheelLoad>,
+    reports: Vec<WheelReport>,
+    torques: Vec<f64>,
+    steer: Vec<f64>,
+    normals: Vec<f64>,
+}
+
+impl<P: Plant, H: HeightField> RoverSystem<P, H> {
+    /// Assemble a system.
+    pub fn new(plant: P, ground: Option<Ground<H>>, control: Controller) -> Self {
+        let n = plant.dof();
+        let k = plant.wheel_count();
+        Self {
+            plant,
+            ground,
+            control,
+            n,
+            wheels: vec![WheelState::default(); k],
+            loads: vec![WheelLoad::default(); k],
+            reports: vec![WheelReport::default(); k],
+            torques: vec![0.0; k],
+            steer: vec![0.0; k],
+            normals: vec![0.0; k],
+        }
+    }
+
+    /// Number of generalized coordinates N.
+    pub fn dof(&self) -> usize {
+        self.n
+    }
+
+    /// Wheel states of the last evaluation.
+    pub fn wheel_states(&self) -> &[WheelState] {
+        &self.wheels
+    }
+    /// Contact reports of the last evaluation.
+    pub fn reports(&self) -> &[WheelReport] {
+        &self.reports
+    }
+    /// Motor torques of the last evaluation [N·m].
+    pub fn torques(&self) -> &[f64] {
+        &self.torques
+    }
+    /// Steering angles of the last evaluation [rad].
+    pub fn steering(&self) -> &[f64] {
+        &self.steer
+    }
+
+    /// The full evaluation: wheels, contacts, control, loads, accelerations.
+    fn evaluate(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
+        let n = self.n;
+        let (x, rest) = y.split_at(n);
+        let (w, z) = rest.split_at(n);
+        self.control.steer(t, &mut self.steer);
+        self.plant.wheels(x, w, &self.steer, &mut self.wheels);
+        match &mut self.ground {
+            Some(g) => {
+                g.find_contacts(&self.wheels, &mut self.normals).map_err(SimError::OffMap)?;
+                self.control.torques(t, w, z[0], &self.normals, &mut self.torques);
+                g.loads(&self.wheels, &self.torques, &mut self.loads, &mut self.reports);
+            }
+            None => {
+                self.normals.iter_mut().for_each(|v| *v = 0.0);
+                self.control.torques(t, w, z[0], &self.normals, &mut self.torques);
+                self.loads.iter_mut().for_each(|l| *l = WheelLoad::default());
+                for (r, s) in self.reports.iter_mut().zip(&self.wheels) {
+                    *r = WheelReport { point: s.centre, ..Default::default() };
+                }
+            }
+        }
+        let (xd, rest) = dy.split_at_mut(n);
+        let (wd, zd) = rest.split_at_mut(n);
+        self.plant.derivatives(x, w, &self.loads, xd, wd).map_err(SimError::Plant)?;
+        zd[0] = self.control.integral_rate(t, w, z[0]);
+        Ok(())
+    }
+}
+
+impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
+    type Error = SimError;
+
+    fn dim(&self) -> usize {
+        2 * self.n + 1
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
+        self.evaluate(t, y, dy)
+    }
+
+    fn split(&self) -> usize {
+        self.n
+    }
+
+    fn position_rates(&mut self, _t: f64, y: &[f64], dx: &mut [f64]) -> Option<Result<(), SimError>> {
+        let n = self.n;
+        position_rates(&y[..n], &y[n..2 * n], dx);
+        Some(Ok(()))
+    }
+}
