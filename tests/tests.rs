@@ -3,3 +3,4 @@
 mod support;
 
 mod dynamics;
+mod free_flight;

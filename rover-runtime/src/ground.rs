@@ -67,7 +67,13 @@ pub struct Ground<H> {
 
 impl<H: HeightField> Ground<H> {
     /// Ground for the wheels of `model`.
-    pub fn new(terrain: H, model: &Model, method: ContactMethod, sampling: RimSampling, law: WheelLawConfig) -> Self {
+    pub fn new(
+        terrain: H,
+        model: &Model,
+        method: ContactMethod,
+        sampling: RimSampling,
+        law: WheelLawConfig,
+    ) -> Self {
         let meridional = MeridionalContact { sampling };
         let tyres = model
             .wheels
@@ -95,8 +101,13 @@ impl<H: HeightField> Ground<H> {
     /// Contact of wheel k in state `s`.
     pub fn contact(&mut self, k: usize, s: &WheelState) -> Result<Contact, OffMap> {
         match self.method {
-            ContactMethod::Meridional => self.meridional.find(&self.terrain, s.centre, s.spin_axis, self.radii[k]),
-            ContactMethod::Tracked => self.trackers[k].find(&self.terrain, s.centre, s.spin_axis, self.radii[k]),
+            ContactMethod::Meridional => {
+                self.meridional
+                    .find(&self.terrain, s.centre, s.spin_axis, self.radii[k])
+            }
+            ContactMethod::Tracked => {
+                self.trackers[k].find(&self.terrain, s.centre, s.spin_axis, self.radii[k])
+            }
         }
     }
 
@@ -104,10 +115,20 @@ impl<H: HeightField> Ground<H> {
     /// patches, and each wheel's total normal force into `normals` (the
     /// normal force does not depend on the drive torque, so a torque
     /// distribution by measured load can use it before phase 2).
-    pub fn find_contacts(&mut self, states: &[WheelState], normals: &mut [f64]) -> Result<(), WheelOffMap> {
+    pub fn find_contacts(
+        &mut self,
+        states: &[WheelState],
+        normals: &mut [f64],
+    ) -> Result<(), WheelOffMap> {
         for (k, s) in states.iter().enumerate() {
-            let c = self.contact(k, s).map_err(|off| WheelOffMap { wheel: k, off })?;
-            normals[k] = c.patches().iter().map(|p| normal_force(&self.tyres[k], s, p)).sum();
+            let c = self
+                .contact(k, s)
+                .map_err(|off| WheelOffMap { wheel: k, off })?;
+            normals[k] = c
+                .patches()
+                .iter()
+                .map(|p| normal_force(&self.tyres[k], s, p))
+                .sum();
             self.contacts[k] = c;
         }
         Ok(())
@@ -116,9 +137,21 @@ impl<H: HeightField> Ground<H> {
     /// Loads on every wheel from the contacts of [`Ground::find_contacts`]
     /// and the motor torques (N·m, positive drives forward), with reports
     /// (phase 2).
-    pub fn loads(&self, states: &[WheelState], torques: &[f64], loads: &mut [WheelLoad], reports: &mut [WheelReport]) {
+    pub fn loads(
+        &self,
+        states: &[WheelState],
+        torques: &[f64],
+        loads: &mut [WheelLoad],
+        reports: &mut [WheelReport],
+    ) {
         for k in 0..states.len() {
-            let (load, report) = wheel_load(&self.law, &self.tyres[k], &states[k], &self.contacts[k], torques[k]);
+            let (load, report) = wheel_load(
+                &self.law,
+                &self.tyres[k],
+                &states[k],
+                &self.contacts[k],
+                torques[k],
+            );
             loads[k] = load;
             reports[k] = report;
         }
@@ -147,18 +180,34 @@ fn normal_force(tyre: &Tyre, s: &WheelState, p: &crate::contact::Patch) -> f64 {
 /// τ_stator = −τ_eff·a_w,  τ_eff = Σ |G_jH|·F_d              on the stator
 /// ```
 /// The drive torque is shared among patches in proportion to their normal forces.
-pub fn wheel_load<L: WheelLaw>(law: &L, tyre: &Tyre, s: &WheelState, contact: &Contact, torque: f64) -> (WheelLoad, WheelReport) {
+pub fn wheel_load<L: WheelLaw>(
+    law: &L,
+    tyre: &Tyre,
+    s: &WheelState,
+    contact: &Contact,
+    torque: f64,
+) -> (WheelLoad, WheelReport) {
     let mut load = WheelLoad::default();
-    let mut report = WheelReport { point: s.centre, patches: contact.count, deep: contact.deep, ..Default::default() };
+    let mut report = WheelReport {
+        point: s.centre,
+        patches: contact.count,
+        deep: contact.deep,
+        ..Default::default()
+    };
     let patches = contact.patches();
     let normals: [f64; crate::contact::MAX_PATCHES] =
         core::array::from_fn(|i| patches.get(i).map_or(0.0, |p| normal_force(tyre, s, p)));
     let total: f64 = normals.iter().sum();
     let mut strongest = 0.0;
     for (i, p) in patches.iter().enumerate() {
-        let share = if total > 0.0 { torque * normals[i] / total } else { 0.0 };
+        let share = if total > 0.0 {
+            torque * normals[i] / total
+        } else {
+            0.0
+        };
         let f = law.forces(tyre, &motion(s, p, share));
-        let force = [0, 1, 2].map(|k| f.normal * p.normal[k] + f.drawbar * p.tangent[k] + f.lateral * p.lateral[k]);
+        let force = [0, 1, 2]
+            .map(|k| f.normal * p.normal[k] + f.drawbar * p.tangent[k] + f.lateral * p.lateral[k]);
         let arm = [0, 1, 2].map(|k| p.point[k] - s.centre[k]);
         let m = cross(arm, force);
         let axial = dot(m, s.spin_axis);

@@ -8,7 +8,10 @@ pub mod control;
 pub mod generic_plant;
 pub mod ground;
 pub mod integrate;
+pub mod output;
+pub mod scenario;
 pub mod sim;
+pub mod simulate;
 pub mod terrain;
 pub mod wheel_law;
 

@@ -24,7 +24,10 @@ pub struct RimSampling {
 
 impl Default for RimSampling {
     fn default() -> Self {
-        Self { samples: 181, tolerance: 1e-9 }
+        Self {
+            samples: 181,
+            tolerance: 1e-9,
+        }
     }
 }
 
@@ -36,7 +39,11 @@ pub struct MeridionalContact {
 }
 
 /// Height of rim point β above the ground.
-pub(crate) fn clearance<H: HeightField + ?Sized>(terrain: &H, frame: &RimFrame, beta: f64) -> Result<f64, OffMap> {
+pub(crate) fn clearance<H: HeightField + ?Sized>(
+    terrain: &H,
+    frame: &RimFrame,
+    beta: f64,
+) -> Result<f64, OffMap> {
     let p = frame.point(beta);
     Ok(p[2] - terrain.height(p[0], p[1])?)
 }
@@ -55,7 +62,11 @@ pub(crate) fn crossing<H: HeightField + ?Sized>(
     let mut side = 0i8;
     for _ in 0..60 {
         let denom = h_hi - h_lo;
-        let mut b = if denom != 0.0 { hi - h_hi * (hi - lo) / denom } else { 0.5 * (lo + hi) };
+        let mut b = if denom != 0.0 {
+            hi - h_hi * (hi - lo) / denom
+        } else {
+            0.5 * (lo + hi)
+        };
         if !(b > lo.min(hi) && b < lo.max(hi)) {
             b = 0.5 * (lo + hi);
         }

@@ -6,5 +6,5 @@ mod tracked;
 
 pub use meridional::{MeridionalContact, RimSampling};
 pub use patch::{Contact, MAX_PATCHES, Patch};
-pub use tracked::TrackedContact;
 pub(crate) use patch::{cross, dot};
+pub use tracked::TrackedContact;

@@ -69,14 +69,23 @@ impl RimFrame {
     /// projected on the mid-plane; a wheel lying flat (axis vertical) has no
     /// such direction and gets None.
     pub fn new(centre: [f64; 3], axis: [f64; 3], radius: f64) -> Option<Self> {
-        let d = [axis[2] * axis[0], axis[2] * axis[1], axis[2] * axis[2] - 1.0];
+        let d = [
+            axis[2] * axis[0],
+            axis[2] * axis[1],
+            axis[2] * axis[2] - 1.0,
+        ];
         let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         if len < 1e-9 {
             return None;
         }
         let down = [d[0] / len, d[1] / len, d[2] / len];
         let forward = cross(down, axis);
-        Some(Self { centre, down, forward, radius })
+        Some(Self {
+            centre,
+            down,
+            forward,
+            radius,
+        })
     }
 
     /// Rim point P(β) = G + R·(cos β·d + sin β·f).
@@ -129,7 +138,11 @@ impl RimFrame {
 }
 
 pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]

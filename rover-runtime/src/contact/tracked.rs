@@ -28,7 +28,10 @@ pub struct TrackedContact {
 impl TrackedContact {
     /// A tracker with no previous contact.
     pub fn new(fallback: MeridionalContact) -> Self {
-        Self { fallback, previous: None }
+        Self {
+            fallback,
+            previous: None,
+        }
     }
 
     /// The patch of one wheel (see [`MeridionalContact::find`]).
@@ -50,7 +53,9 @@ impl TrackedContact {
                 // Keep the deepest patch only: tracking follows one patch.
                 if c.count > 1 {
                     let deepest = (0..c.count)
-                        .max_by(|&a, &b| c.patches[a].deflection.total_cmp(&c.patches[b].deflection))
+                        .max_by(|&a, &b| {
+                            c.patches[a].deflection.total_cmp(&c.patches[b].deflection)
+                        })
                         .unwrap_or(0);
                     c.patches[0] = c.patches[deepest];
                     c.count = 1;
@@ -62,7 +67,12 @@ impl TrackedContact {
         Ok(contact)
     }
 
-    fn track<H: HeightField + ?Sized>(&self, terrain: &H, frame: &RimFrame, b0: f64) -> Result<Option<Contact>, OffMap> {
+    fn track<H: HeightField + ?Sized>(
+        &self,
+        terrain: &H,
+        frame: &RimFrame,
+        b0: f64,
+    ) -> Result<Option<Contact>, OffMap> {
         let half = core::f64::consts::FRAC_PI_2;
         let tol = self.fallback.sampling.tolerance;
         let slope = |b: f64| -> Result<f64, OffMap> {

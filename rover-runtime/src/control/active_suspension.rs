@@ -49,8 +49,20 @@ impl ActiveSuspension {
     /// to the body; positive φ (left side up) moves the left wheels up and the
     /// right ones down. Example 2 gives s_θ = [+1, +1, +1, +1],
     /// s_φ = [−1, +1, +1, −1], as MODEL.md §8 states.
-    pub fn new(config: ActiveSuspensionConfig, sprung: &[bool], rest_xy_dz: &[Vec<(f64, f64, f64)>]) -> Self {
-        let sgn = |v: f64| if v > 0.0 { 1.0 } else if v < 0.0 { -1.0 } else { 0.0 };
+    pub fn new(
+        config: ActiveSuspensionConfig,
+        sprung: &[bool],
+        rest_xy_dz: &[Vec<(f64, f64, f64)>],
+    ) -> Self {
+        let sgn = |v: f64| {
+            if v > 0.0 {
+                1.0
+            } else if v < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        };
         let mut sign_pitch = Vec::new();
         let mut sign_roll = Vec::new();
         for (i, wheels) in rest_xy_dz.iter().enumerate() {
@@ -60,12 +72,25 @@ impl ActiveSuspension {
             sign_pitch.push(if on { -sgn(sx) } else { 0.0 });
             sign_roll.push(if on { sgn(sy) } else { 0.0 });
         }
-        Self { config, sign_pitch, sign_roll }
+        Self {
+            config,
+            sign_pitch,
+            sign_roll,
+        }
     }
 
     /// One update of the neutrals `y0` (clamped to `[lo, hi]`) from pitch,
     /// roll and their Euler rates.
-    pub fn update(&self, pitch: f64, pitch_rate: f64, roll: f64, roll_rate: f64, y0: &mut [f64], lo: &[f64], hi: &[f64]) {
+    pub fn update(
+        &self,
+        pitch: f64,
+        pitch_rate: f64,
+        roll: f64,
+        roll_rate: f64,
+        y0: &mut [f64],
+        lo: &[f64],
+        hi: &[f64],
+    ) {
         let c = &self.config;
         let dp = c.kp_pitch * pitch + c.kd_pitch * pitch_rate;
         let dr = c.kp_roll * roll + c.kd_roll * roll_rate;

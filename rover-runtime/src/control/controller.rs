@@ -36,7 +36,10 @@ pub struct ControlError {
 }
 
 fn err(field: &str, message: impl Into<String>) -> ControlError {
-    ControlError { field: field.into(), message: message.into() }
+    ControlError {
+        field: field.into(),
+        message: message.into(),
+    }
 }
 
 /// The running controller.
@@ -72,37 +75,70 @@ impl Controller {
         if let Some(s) = &config.speed {
             s.speed.validate().map_err(|m| err("speed.speed", m))?;
             if !(s.kp.is_finite() && s.kp >= 0.0 && s.ki.is_finite() && s.ki >= 0.0) {
-                return Err(err("speed", format!("gains must be finite and ≥ 0, got kp = {}, ki = {}", s.kp, s.ki)));
+                return Err(err(
+                    "speed",
+                    format!(
+                        "gains must be finite and ≥ 0, got kp = {}, ki = {}",
+                        s.kp, s.ki
+                    ),
+                ));
             }
         }
         let mut centre_x = 0.0;
         match &config.steering {
             Steering::None => {}
-            Steering::Slip { delta_tau } => delta_tau.validate().map_err(|m| err("steering.delta_tau", m))?,
+            Steering::Slip { delta_tau } => delta_tau
+                .validate()
+                .map_err(|m| err("steering.delta_tau", m))?,
             Steering::Ackermann(a) => {
                 if !steerable.iter().any(|&s| s) {
-                    return Err(err("steering", "Ackermann steering needs steerable wheels; this rover has none (use kind = \"slip\")"));
+                    return Err(err(
+                        "steering",
+                        "Ackermann steering needs steerable wheels; this rover has none (use kind = \"slip\")",
+                    ));
                 }
                 match (&a.radius, &a.front_left_deg) {
                     (Some(p), None) => p.validate().map_err(|m| err("steering.radius", m))?,
-                    (None, Some(p)) => p.validate().map_err(|m| err("steering.front_left_deg", m))?,
-                    _ => return Err(err("steering", "give exactly one of `radius` (m) or `front_left_deg`")),
+                    (None, Some(p)) => p
+                        .validate()
+                        .map_err(|m| err("steering.front_left_deg", m))?,
+                    _ => {
+                        return Err(err(
+                            "steering",
+                            "give exactly one of `radius` (m) or `front_left_deg`",
+                        ));
+                    }
                 }
-                centre_x = a.centre_x.unwrap_or_else(|| default_centre_x(&rest_xy, &steerable));
+                centre_x = a
+                    .centre_x
+                    .unwrap_or_else(|| default_centre_x(&rest_xy, &steerable));
             }
         }
         let active = match &config.active_suspension {
             None => None,
             Some(c) => {
                 if !(c.sample_time.is_finite() && c.sample_time > 0.0) {
-                    return Err(err("active_suspension.sample_time", format!("must be > 0 s, got {}", c.sample_time)));
+                    return Err(err(
+                        "active_suspension.sample_time",
+                        format!("must be > 0 s, got {}", c.sample_time),
+                    ));
                 }
-                let sprung: Vec<bool> =
-                    model.coordinates.iter().map(|c| !matches!(c.spring, rover_dynamics::model::Spring::None)).collect();
+                let sprung: Vec<bool> = model
+                    .coordinates
+                    .iter()
+                    .map(|c| !matches!(c.spring, rover_dynamics::model::Spring::None))
+                    .collect();
                 if !sprung.iter().any(|&s| s) {
-                    return Err(err("active_suspension", "the rover has no sprung coordinate whose neutral could be moved"));
+                    return Err(err(
+                        "active_suspension",
+                        "the rover has no sprung coordinate whose neutral could be moved",
+                    ));
                 }
-                Some(ActiveSuspension::new(c.clone(), &sprung, &slopes(model, &rest)))
+                Some(ActiveSuspension::new(
+                    c.clone(),
+                    &sprung,
+                    &slopes(model, &rest),
+                ))
             }
         };
         Ok(Self {
@@ -147,11 +183,17 @@ impl Controller {
     /// Rate of the speed loop's integral state: `V − v_x`, frozen while the
     /// integral term alone saturates the torque in the same direction (anti-windup).
     pub fn integral_rate(&self, t: f64, w: &[f64], integral: f64) -> f64 {
-        let Some(s) = &self.config.speed else { return 0.0 };
+        let Some(s) = &self.config.speed else {
+            return 0.0;
+        };
         let e = self.speed_setpoint(t) - w[0];
         let cap = self.max_torque.iter().cloned().fold(0.0, f64::max);
         let held = s.ki * integral;
-        if (held >= cap && e > 0.0) || (held <= -cap && e < 0.0) { 0.0 } else { e }
+        if (held >= cap && e > 0.0) || (held <= -cap && e < 0.0) {
+            0.0
+        } else {
+            e
+        }
     }
 
     /// Motor torques per wheel [N·m] from the forward speed `w[0]`, the
@@ -161,7 +203,10 @@ impl Controller {
             out.iter_mut().for_each(|o| *o = 0.0);
             return;
         };
-        if self.static_weights.is_none() && s.distribution == Distribution::StaticLoad && t >= self.settle {
+        if self.static_weights.is_none()
+            && s.distribution == Distribution::StaticLoad
+            && t >= self.settle
+        {
             self.static_weights = Some(normals.to_vec());
         }
         let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * integral;
@@ -174,7 +219,11 @@ impl Controller {
             },
         }
         if let Steering::Slip { delta_tau } = &self.config.steering {
-            let dt = if t >= self.settle { delta_tau.at(t - self.settle) } else { 0.0 };
+            let dt = if t >= self.settle {
+                delta_tau.at(t - self.settle)
+            } else {
+                0.0
+            };
             for (o, &left) in out.iter_mut().zip(&self.left) {
                 *o += if left { -dt } else { dt };
             }
@@ -187,7 +236,9 @@ impl Controller {
     /// Steering angles δ_j [rad] at time t.
     pub fn steer(&self, t: f64, out: &mut [f64]) {
         out.iter_mut().for_each(|o| *o = 0.0);
-        let Steering::Ackermann(a) = &self.config.steering else { return };
+        let Steering::Ackermann(a) = &self.config.steering else {
+            return;
+        };
         if t < self.settle {
             return;
         }
@@ -198,7 +249,9 @@ impl Controller {
                 if r == 0.0 { 0.0 } else { 1.0 / r }
             }
             (None, Some(d)) => {
-                let Some(k) = self.steerable.iter().position(|&s| s) else { return };
+                let Some(k) = self.steerable.iter().position(|&s| s) else {
+                    return;
+                };
                 let (x1, y1) = self.rest_xy[k];
                 curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x)
             }
@@ -215,7 +268,9 @@ impl Controller {
     /// Kinematic turning radius R_k = sqrt(x_c² + R²) at time t, when steering
     /// kinematically with a non-zero curvature.
     pub fn kinematic_radius(&self, t: f64) -> Option<f64> {
-        let Steering::Ackermann(a) = &self.config.steering else { return None };
+        let Steering::Ackermann(a) = &self.config.steering else {
+            return None;
+        };
         let tc = (t - self.settle).max(0.0);
         let r = match (&a.radius, &a.front_left_deg) {
             (Some(r), _) => r.at(tc),
@@ -266,7 +321,15 @@ impl Controller {
         }
         let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
         let rates = att.rates([w[3], w[4], w[5]]);
-        active.update(x[4], rates[1], x[3], rates[0], &mut self.neutral, &self.lo, &self.hi);
+        active.update(
+            x[4],
+            rates[1],
+            x[3],
+            rates[0],
+            &mut self.neutral,
+            &self.lo,
+            &self.hi,
+        );
         for (i, &n) in self.neutral.iter().enumerate() {
             plant.set_spring_neutral(i, n);
         }
@@ -276,11 +339,20 @@ impl Controller {
 /// Default x_c: the mean rest x of the non-steerable wheels, or, when all
 /// steer, the rest x of the wheel nearest to G along x.
 fn default_centre_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> f64 {
-    let fixed: Vec<f64> = rest_xy.iter().zip(steerable).filter(|(_, s)| !**s).map(|(p, _)| p.0).collect();
+    let fixed: Vec<f64> = rest_xy
+        .iter()
+        .zip(steerable)
+        .filter(|(_, s)| !**s)
+        .map(|(p, _)| p.0)
+        .collect();
     if !fixed.is_empty() {
         return fixed.iter().sum::<f64>() / fixed.len() as f64;
     }
-    rest_xy.iter().map(|p| p.0).min_by(|a, b| a.abs().total_cmp(&b.abs())).unwrap_or(0.0)
+    rest_xy
+        .iter()
+        .map(|p| p.0)
+        .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+        .unwrap_or(0.0)
 }
 
 /// Per coordinate: each wheel's rest (x, y) and ∂u_z/∂y_i at rest.

@@ -24,6 +24,10 @@ pub fn share(tau0: f64, weights: &[f64], out: &mut [f64]) {
     let n = out.len() as f64;
     let total: f64 = weights.iter().sum();
     for (o, w) in out.iter_mut().zip(weights) {
-        *o = if total > 0.0 { tau0 * n * w / total } else { tau0 };
+        *o = if total > 0.0 {
+            tau0 * n * w / total
+        } else {
+            tau0
+        };
     }
 }

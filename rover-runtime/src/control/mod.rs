@@ -10,7 +10,7 @@ mod speed;
 mod steering;
 
 pub use active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
-pub use controller::{Controller, ControllerConfig, ControlError};
+pub use controller::{ControlError, Controller, ControllerConfig};
 pub use distribution::Distribution;
 pub use profile::Profile;
 pub use speed::SpeedConfig;

@@ -42,8 +42,13 @@ impl Profile {
     pub fn at(&self, t: f64) -> f64 {
         match self {
             Profile::Constant(v) => *v,
-            Profile::Table { points, interpolation } => {
-                let Some(first) = points.first() else { return 0.0 };
+            Profile::Table {
+                points,
+                interpolation,
+            } => {
+                let Some(first) = points.first() else {
+                    return 0.0;
+                };
                 if t <= first[0] {
                     return first[1];
                 }
@@ -52,7 +57,9 @@ impl Profile {
                     if t < b[0] {
                         return match interpolation {
                             Interpolation::Step => a[1],
-                            Interpolation::Linear => a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]),
+                            Interpolation::Linear => {
+                                a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0])
+                            }
                         };
                     }
                 }
@@ -64,7 +71,10 @@ impl Profile {
     /// Times at which the value jumps (step tables), for the driver to stop at.
     pub fn breakpoints(&self) -> Vec<f64> {
         match self {
-            Profile::Table { points, interpolation: Interpolation::Step } => points.iter().map(|p| p[0]).collect(),
+            Profile::Table {
+                points,
+                interpolation: Interpolation::Step,
+            } => points.iter().map(|p| p[0]).collect(),
             _ => Vec::new(),
         }
     }
@@ -73,7 +83,9 @@ impl Profile {
     /// message saying what to fix.
     pub fn validate(&self) -> Result<(), String> {
         match self {
-            Profile::Constant(v) if !v.is_finite() => Err(format!("value {v} is not a finite number")),
+            Profile::Constant(v) if !v.is_finite() => {
+                Err(format!("value {v} is not a finite number"))
+            }
             Profile::Constant(_) => Ok(()),
             Profile::Table { points, .. } => {
                 if points.is_empty() {
@@ -81,7 +93,12 @@ impl Profile {
                 }
                 for (i, p) in points.iter().enumerate() {
                     if !p[0].is_finite() || !p[1].is_finite() {
-                        return Err(format!("point {} = [{}, {}] is not finite", i + 1, p[0], p[1]));
+                        return Err(format!(
+                            "point {} = [{}, {}] is not finite",
+                            i + 1,
+                            p[0],
+                            p[1]
+                        ));
                     }
                     if i > 0 && p[0] <= points[i - 1][0] {
                         return Err(format!(

@@ -38,6 +38,11 @@ fn default_kp() -> f64 {
 
 impl Default for SpeedConfig {
     fn default() -> Self {
-        Self { speed: Profile::default(), kp: default_kp(), ki: 0.0, distribution: Distribution::default() }
+        Self {
+            speed: Profile::default(),
+            kp: default_kp(),
+            ki: 0.0,
+            distribution: Distribution::default(),
+        }
     }
 }

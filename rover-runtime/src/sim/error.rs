@@ -54,7 +54,9 @@ impl RunError {
     /// The simulation time of the failure [s].
     pub fn time(&self) -> f64 {
         match self {
-            RunError::RolledOver { t, .. } | RunError::Integration { t, .. } | RunError::Output { t, .. } => *t,
+            RunError::RolledOver { t, .. }
+            | RunError::Integration { t, .. }
+            | RunError::Output { t, .. } => *t,
         }
     }
 }

@@ -79,13 +79,23 @@ where
     let n = sys.dof();
     let mut t = 0.0;
     let mut scratch = vec![0.0; y.len()];
-    let mut breaks: Vec<f64> = sys.control.breakpoints().into_iter().filter(|&b| b > 0.0 && b < opts.duration).collect();
+    let mut breaks: Vec<f64> = sys
+        .control
+        .breakpoints()
+        .into_iter()
+        .filter(|&b| b > 0.0 && b < opts.duration)
+        .collect();
     breaks.sort_by(f64::total_cmp);
     let sample = sys.control.sample_period();
     let mut k_out = 0u64;
     let mut k_sample = 0u64;
     let mut next_break = 0usize;
-    let mut outcome = RunOutcome { stop: Stop::Completed, t: 0.0, max_roll: 0.0, max_pitch: 0.0 };
+    let mut outcome = RunOutcome {
+        stop: Stop::Completed,
+        t: 0.0,
+        max_roll: 0.0,
+        max_pitch: 0.0,
+    };
     let fail = |outcome: &mut RunOutcome, t: f64, e: RunError| {
         outcome.stop = Stop::Failed(e);
         outcome.t = t;
@@ -106,11 +116,25 @@ where
             outcome.max_roll = outcome.max_roll.max(roll.abs());
             outcome.max_pitch = outcome.max_pitch.max(pitch.abs());
             if let Err(e) = sys.rhs(t, y, &mut scratch) {
-                fail(&mut outcome, t, RunError::Integration { t, message: e.to_string() });
+                fail(
+                    &mut outcome,
+                    t,
+                    RunError::Integration {
+                        t,
+                        message: e.to_string(),
+                    },
+                );
                 return outcome;
             }
             if let Err(e) = output(&OutputRow { t, y, system: sys }) {
-                fail(&mut outcome, t, RunError::Output { t, message: e.to_string() });
+                fail(
+                    &mut outcome,
+                    t,
+                    RunError::Output {
+                        t,
+                        message: e.to_string(),
+                    },
+                );
                 return outcome;
             }
             k_out += 1;
@@ -137,7 +161,14 @@ where
         }
         if let Err(e) = integ.advance(sys, &mut t, y, target) {
             let te = e.time().unwrap_or(t);
-            fail(&mut outcome, te, RunError::Integration { t: te, message: e.to_string() });
+            fail(
+                &mut outcome,
+                te,
+                RunError::Integration {
+                    t: te,
+                    message: e.to_string(),
+                },
+            );
             return outcome;
         }
         if at_break {

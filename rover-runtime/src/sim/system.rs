@@ -80,22 +80,37 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         self.plant.wheels(x, w, &self.steer, &mut self.wheels);
         match &mut self.ground {
             Some(g) => {
-                g.find_contacts(&self.wheels, &mut self.normals).map_err(SimError::OffMap)?;
-                self.control.torques(t, w, z[0], &self.normals, &mut self.torques);
-                g.loads(&self.wheels, &self.torques, &mut self.loads, &mut self.reports);
+                g.find_contacts(&self.wheels, &mut self.normals)
+                    .map_err(SimError::OffMap)?;
+                self.control
+                    .torques(t, w, z[0], &self.normals, &mut self.torques);
+                g.loads(
+                    &self.wheels,
+                    &self.torques,
+                    &mut self.loads,
+                    &mut self.reports,
+                );
             }
             None => {
                 self.normals.iter_mut().for_each(|v| *v = 0.0);
-                self.control.torques(t, w, z[0], &self.normals, &mut self.torques);
-                self.loads.iter_mut().for_each(|l| *l = WheelLoad::default());
+                self.control
+                    .torques(t, w, z[0], &self.normals, &mut self.torques);
+                self.loads
+                    .iter_mut()
+                    .for_each(|l| *l = WheelLoad::default());
                 for (r, s) in self.reports.iter_mut().zip(&self.wheels) {
-                    *r = WheelReport { point: s.centre, ..Default::default() };
+                    *r = WheelReport {
+                        point: s.centre,
+                        ..Default::default()
+                    };
                 }
             }
         }
         let (xd, rest) = dy.split_at_mut(n);
         let (wd, zd) = rest.split_at_mut(n);
-        self.plant.derivatives(x, w, &self.loads, xd, wd).map_err(SimError::Plant)?;
+        self.plant
+            .derivatives(x, w, &self.loads, xd, wd)
+            .map_err(SimError::Plant)?;
         zd[0] = self.control.integral_rate(t, w, z[0]);
         Ok(())
     }
@@ -116,7 +131,12 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
         self.n
     }
 
-    fn position_rates(&mut self, _t: f64, y: &[f64], dx: &mut [f64]) -> Option<Result<(), SimError>> {
+    fn position_rates(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        dx: &mut [f64],
+    ) -> Option<Result<(), SimError>> {
         let n = self.n;
         position_rates(&y[..n], &y[n..2 * n], dx);
         Some(Ok(()))

@@ -89,7 +89,9 @@ impl Header {
 
 /// Parses ESRI ASCII grid `text`; `path` names the file in errors.
 pub fn parse_asc(text: &str, path: &Path) -> Result<Grid, TerrainError> {
-    let err = |line: usize, problem: String, help: &str| FileError::at(path, Place::Line(line), problem, help);
+    let err = |line: usize, problem: String, help: &str| {
+        FileError::at(path, Place::Line(line), problem, help)
+    };
     let mut lines = text
         .lines()
         .enumerate()

@@ -283,9 +283,12 @@ impl TerrainConfig {
     pub fn build(&self, base_dir: &Path) -> Result<Terrain, TerrainError> {
         Ok(match self {
             TerrainConfig::Flat(c) => Terrain::Flat(Flat::new(c.height)?),
-            TerrainConfig::Slope(c) => {
-                Terrain::Slope(Slope::new(c.angle_deg, c.direction_deg, c.origin, c.height)?)
-            }
+            TerrainConfig::Slope(c) => Terrain::Slope(Slope::new(
+                c.angle_deg,
+                c.direction_deg,
+                c.origin,
+                c.height,
+            )?),
             TerrainConfig::Bump(c) => Terrain::Bump(Bump::new(
                 c.height,
                 c.width,

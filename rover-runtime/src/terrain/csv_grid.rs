@@ -78,7 +78,10 @@ pub fn parse_csv(
         let first = line.split(',').next().unwrap_or("").trim();
         if first.parse::<f64>().is_err() {
             lines.next();
-            let keys: Vec<String> = line.split(',').map(|k| k.trim().to_ascii_lowercase()).collect();
+            let keys: Vec<String> = line
+                .split(',')
+                .map(|k| k.trim().to_ascii_lowercase())
+                .collect();
             let mut order = [usize::MAX; 4];
             for (position, key) in keys.iter().enumerate() {
                 let Some(k) = KEYS.iter().position(|name| name == key) else {
@@ -115,7 +118,10 @@ pub fn parse_csv(
             if values.len() != 4 {
                 return Err(err(
                     value_line,
-                    format!("the header has 4 keys but this line has {} values", values.len()),
+                    format!(
+                        "the header has 4 keys but this line has {} values",
+                        values.len()
+                    ),
                     "give x0, y0, dx and dy, in the order of the header line",
                 ));
             }
@@ -127,7 +133,10 @@ pub fn parse_csv(
                     _ => {
                         return Err(err(
                             value_line,
-                            format!("the value of `{}` is `{word}`, not a finite number", KEYS[k]),
+                            format!(
+                                "the value of `{}` is `{word}`, not a finite number",
+                                KEYS[k]
+                            ),
                             "give x0, y0, dx and dy as numbers in metres",
                         ));
                     }
@@ -222,5 +231,11 @@ pub fn parse_csv(
             "give at least two rows of at least two heights",
         ));
     }
-    Grid::new(georeference.origin, georeference.spacing, ncols, nrows, heights)
+    Grid::new(
+        georeference.origin,
+        georeference.spacing,
+        ncols,
+        nrows,
+        heights,
+    )
 }

@@ -7,8 +7,8 @@ use serde::{Deserialize, Serialize};
 use super::asc::read_asc;
 use super::csv_grid::read_csv;
 use super::error::TerrainError;
-use super::geotiff::read_geotiff;
 use super::georeference::Georeference;
+use super::geotiff::read_geotiff;
 use super::grid::Grid;
 use super::png_map::{SampleScale, read_png};
 

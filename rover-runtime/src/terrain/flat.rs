@@ -1,7 +1,7 @@
 //! Flat horizontal ground.
 
-use super::height_field::{HeightField, OffMap, finite_point};
 use super::error::TerrainError;
+use super::height_field::{HeightField, OffMap, finite_point};
 use super::param::finite;
 
 /// Horizontal ground at a constant height: `Z_G = z0`. Unbounded.

@@ -85,8 +85,10 @@ pub fn decode_geotiff(
     }
 
     // Georeference.
-    let doubles = |decoder: &mut Decoder<Cursor<&[u8]>>, tag: Tag, which: (&'static str, u16)| {
-        match decoder.find_tag(tag) {
+    let doubles =
+        |decoder: &mut Decoder<Cursor<&[u8]>>, tag: Tag, which: (&'static str, u16)| match decoder
+            .find_tag(tag)
+        {
             Ok(Some(value)) => value.into_f64_vec().map(Some).map_err(|e| {
                 tag_error(
                     which,
@@ -96,8 +98,7 @@ pub fn decode_geotiff(
             }),
             Ok(None) => Ok(None),
             Err(e) => Err(corrupt(e)),
-        }
-    };
+        };
     let pixel_scale = doubles(&mut decoder, Tag::ModelPixelScaleTag, PIXEL_SCALE)?;
     let tiepoint = doubles(&mut decoder, Tag::ModelTiepointTag, TIEPOINT)?;
     let Some(pixel_scale) = pixel_scale else {
@@ -163,7 +164,11 @@ pub fn decode_geotiff(
                 .chunks_exact(4)
                 .find(|k| k[0] == RASTER_TYPE_KEY && k[1] == 0)
                 .map(|k| k[3]);
-            if raster_type == Some(PIXEL_IS_POINT) { 0.0 } else { 0.5 }
+            if raster_type == Some(PIXEL_IS_POINT) {
+                0.0
+            } else {
+                0.5
+            }
         }
         Ok(None) => 0.5,
         Err(e) => return Err(corrupt(e)),

@@ -232,7 +232,13 @@ impl Grid {
     /// `[0, 1]`, and whether the coordinate was clamped (then the derivative
     /// along this axis is zero). `None` when off the map.
     #[inline]
-    fn locate(&self, value: f64, origin: f64, spacing: f64, n: usize) -> Option<(usize, f64, bool)> {
+    fn locate(
+        &self,
+        value: f64,
+        origin: f64,
+        spacing: f64,
+        n: usize,
+    ) -> Option<(usize, f64, bool)> {
         let last = (n - 1) as f64;
         let mut u = (value - origin) / spacing;
         let mut clamped = false;

@@ -90,7 +90,10 @@ impl Ghost for f64 {
 impl Ghost for [f64; 2] {
     #[inline]
     fn quadratic(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> [f64; 2] {
-        [f64::quadratic(a[0], b[0], c[0]), f64::quadratic(a[1], b[1], c[1])]
+        [
+            f64::quadratic(a[0], b[0], c[0]),
+            f64::quadratic(a[1], b[1], c[1]),
+        ]
     }
     #[inline]
     fn linear(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {

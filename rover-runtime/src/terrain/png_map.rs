@@ -35,7 +35,10 @@ impl SampleScale {
         if !(self.scale.is_finite() && self.scale != 0.0) {
             return Err(TerrainError::parameter(
                 "scale",
-                format!("must be a finite, non-zero number of metres per count, got {}", self.scale),
+                format!(
+                    "must be a finite, non-zero number of metres per count, got {}",
+                    self.scale
+                ),
                 "e.g. scale = 0.001 maps sample 1000 to 1 m above offset",
             ));
         }
@@ -111,7 +114,13 @@ pub fn decode_png(
             heights[j * width + i] = scale.offset + scale.scale * f64::from(k);
         }
     }
-    Grid::new(georeference.origin, georeference.spacing, width, height, heights)
+    Grid::new(
+        georeference.origin,
+        georeference.spacing,
+        width,
+        height,
+        heights,
+    )
 }
 
 /// Writes `grid` as a 16-bit grayscale PNG, each height quantized to

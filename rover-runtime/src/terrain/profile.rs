@@ -55,10 +55,7 @@ impl Profile {
         if top >= base {
             return Err(TerrainError::parameter(
                 names[2],
-                format!(
-                    "must be smaller than {} ({base} m), got {top} m",
-                    names[1]
-                ),
+                format!("must be smaller than {} ({base} m), got {top} m", names[1]),
                 format!(
                     "{} is the full width at the base, {} the flat part; the flanks take the rest",
                     names[1], names[2]

@@ -36,9 +36,7 @@ impl TerrainStatistics {
         for j in 0..ny {
             for i in 0..nx {
                 // Nodes lie on the grid, so the query cannot be off the map.
-                if let Ok((_, g)) =
-                    grid.height_gradient(x0 + i as f64 * dx, y0 + j as f64 * dy)
-                {
+                if let Ok((_, g)) = grid.height_gradient(x0 + i as f64 * dx, y0 + j as f64 * dy) {
                     let s2 = g[0] * g[0] + g[1] * g[1];
                     slope_sq += s2;
                     max_slope = max_slope.max(s2.sqrt());

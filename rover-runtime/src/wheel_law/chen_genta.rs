@@ -24,7 +24,9 @@ fn default_v_eps() -> f64 {
 
 impl Default for ChenGenta {
     fn default() -> Self {
-        Self { v_eps: default_v_eps() }
+        Self {
+            v_eps: default_v_eps(),
+        }
     }
 }
 
@@ -54,6 +56,10 @@ impl WheelLaw for ChenGenta {
         }
         let drawbar = drawbar_pull(tyre, motion, normal);
         let lateral = cornering_force(tyre, normal, sideslip(motion, self.v_eps));
-        PatchForces { normal, drawbar, lateral: combined(lateral, drawbar, tyre, normal) }
+        PatchForces {
+            normal,
+            drawbar,
+            lateral: combined(lateral, drawbar, tyre, normal),
+        }
     }
 }

@@ -33,7 +33,11 @@ fn default_v_eps() -> f64 {
 
 impl Default for MagicFormula {
     fn default() -> Self {
-        Self { shape: default_shape(), curvature: 0.0, v_eps: default_v_eps() }
+        Self {
+            shape: default_shape(),
+            curvature: 0.0,
+            v_eps: default_v_eps(),
+        }
     }
 }
 
@@ -49,6 +53,10 @@ impl WheelLaw for MagicFormula {
         let b = tyre.cornering_stiffness / (self.shape * d);
         let ba = b * alpha;
         let lateral = -d * (self.shape * (ba - self.curvature * (ba - ba.atan())).atan()).sin();
-        PatchForces { normal, drawbar, lateral: combined(lateral, drawbar, tyre, normal) }
+        PatchForces {
+            normal,
+            drawbar,
+            lateral: combined(lateral, drawbar, tyre, normal),
+        }
     }
 }

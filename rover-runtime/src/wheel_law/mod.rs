@@ -5,5 +5,7 @@ mod law;
 mod magic_formula;
 
 pub use chen_genta::ChenGenta;
-pub use law::{PatchForces, PatchMotion, Tyre, WheelLaw, WheelLawConfig, normal_force as normal_force_of};
+pub use law::{
+    PatchForces, PatchMotion, Tyre, WheelLaw, WheelLawConfig, normal_force as normal_force_of,
+};
 pub use magic_formula::MagicFormula;
