@@ -4,3 +4,4 @@ mod support;
 
 mod dynamics;
 mod free_flight;
+mod ground;
