@@ -1,2 +1,59 @@
-//! The built-in rovers.
+//! The built-in rovers, as TOML descriptions (read them with
+//! `rover_spec::load_str(text, path)`):
+//!
+//! - `exomars`: the paper's Example 1 (6 wheels, two longitudinal rockers and
+//!   a transversal rocker, 9 DOF);
+//! - `swing4`: the paper's Example 2 (4 wheels on longitudinal swing arms,
+//!   10 DOF);
+//! - `mer`: a MER-type rocker-bogie 6-wheeler (9 DOF);
+//! - `lrv`: an LRV-type rover on four double wishbones (10 DOF).
 #![warn(missing_docs)]
+
+/// The names of the built-in rovers.
+pub const NAMES: &[&str] = &["exomars", "swing4", "mer", "lrv"];
+
+/// The TOML text of a built-in rover.
+pub fn builtin(name: &str) -> Option<&'static str> {
+    match name {
+        "exomars" => Some(include_str!("../exomars.toml")),
+        "swing4" => Some(include_str!("../swing4.toml")),
+        "mer" => Some(include_str!("../mer.toml")),
+        "lrv" => Some(include_str!("../lrv.toml")),
+        _ => None,
+    }
+}
+
+/// The path of a built-in rover's file, relative to the workspace root
+/// (for messages).
+pub fn builtin_path(name: &str) -> Option<&'static str> {
+    match name {
+        "exomars" => Some("models/exomars.toml"),
+        "swing4" => Some("models/swing4.toml"),
+        "mer" => Some("models/mer.toml"),
+        "lrv" => Some("models/lrv.toml"),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_has_text_and_path() {
+        for name in NAMES {
+            let text = builtin(name).expect("text");
+            assert!(text.contains(&format!("name = \"{name}\"")));
+            let path = builtin_path(name).expect("path");
+            let on_disk = std::fs::read_to_string(
+                std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("..")
+                    .join(path),
+            )
+            .expect("file");
+            assert_eq!(on_disk, text);
+        }
+        assert_eq!(builtin("nope"), None);
+        assert_eq!(builtin_path("nope"), None);
+    }
+}

@@ -1,0 +1,93 @@
+//! One located message, for parser errors and semantic errors alike, and
+//! its rustc-style rendering (STYLE.md §3).
+
+use std::ops::Range;
+
+use annotate_snippets::{AnnotationKind, Level, Renderer, Snippet};
+
+/// A problem with a description: where, what, and how to fix it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    /// The field path (`wheel[2].radius`); empty for the whole document.
+    pub path: String,
+    /// The bytes of the source it points at, once located.
+    pub span: Option<Range<usize>>,
+    /// What is wrong, with the numbers.
+    pub message: String,
+    /// A short label under the caret.
+    pub label: String,
+    /// How to fix it.
+    pub help: String,
+}
+
+impl Diagnostic {
+    /// A diagnostic at a field path (located later against the source).
+    pub fn at(
+        path: impl Into<String>,
+        message: impl Into<String>,
+        help: impl Into<String>,
+    ) -> Self {
+        Diagnostic {
+            path: path.into(),
+            span: None,
+            message: message.into(),
+            label: String::new(),
+            help: help.into(),
+        }
+    }
+
+    /// Set the caret label.
+    pub fn label(mut self, label: impl Into<String>) -> Self {
+        self.label = label.into();
+        self
+    }
+
+    /// Render it: `error: path: message`, then ` --> origin:line:col`, the
+    /// source line with a caret and `= help: …`. Without source (a
+    /// description built in Rust) the location is the origin and the path.
+    pub fn render(&self, origin: &str, source: Option<&str>) -> String {
+        let title = if self.path.is_empty() {
+            self.message.clone()
+        } else {
+            format!("{}: {}", self.path, self.message)
+        };
+        let renderer = Renderer::plain();
+        match (source, &self.span) {
+            (Some(text), Some(span)) => {
+                let span = clamp(text, span.clone());
+                let report = &[Level::ERROR
+                    .primary_title(&title)
+                    .element(
+                        Snippet::source(text)
+                            .path(origin)
+                            .annotation(AnnotationKind::Primary.span(span).label(&self.label)),
+                    )
+                    .element(Level::HELP.message(&self.help))];
+                renderer.render(report).to_string()
+            }
+            _ => {
+                let report = &[Level::ERROR
+                    .primary_title(format!("{origin}: {title}"))
+                    .element(Level::HELP.message(&self.help))];
+                renderer.render(report).to_string()
+            }
+        }
+    }
+}
+
+/// Keep a span inside the text and on char boundaries; point at the first
+/// line of a multi-line span (a table), so the caret sits on its header.
+fn clamp(text: &str, span: Range<usize>) -> Range<usize> {
+    let mut start = span.start.min(text.len());
+    while !text.is_char_boundary(start) {
+        start -= 1;
+    }
+    let mut end = span.end.clamp(start, text.len());
+    if let Some(nl) = text[start..end].find('\n') {
+        end = start + nl;
+    }
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    start..end
+}

@@ -1,0 +1,118 @@
+//! Text → [`Description`] → [`Spec`], with every error located.
+
+use std::path::Path;
+
+use crate::description::Description;
+use crate::diagnostic::Diagnostic;
+use crate::document::Document;
+use crate::error::SpecError;
+use crate::spec::Spec;
+
+/// Load and validate a description file.
+pub fn load_file(path: &Path) -> Result<Spec, SpecError> {
+    let origin = path.display().to_string();
+    match std::fs::read_to_string(path) {
+        Ok(text) => load_str(&text, &origin),
+        Err(e) => Err(SpecError::new(
+            &origin,
+            None,
+            vec![Diagnostic::at(
+                "",
+                format!("cannot read the file: {e}"),
+                "check the path (or give a built-in rover's name)",
+            )],
+        )),
+    }
+}
+
+/// Load and validate a description held in memory; `origin` names it in
+/// messages (a path, a built-in's name).
+pub fn load_str(text: &str, origin: &str) -> Result<Spec, SpecError> {
+    let desc = parse_str(text, origin)?;
+    crate::validate::validate(&desc).map_err(|d| SpecError::new(origin, Some(text), d))
+}
+
+/// Validate a description built in Rust (no source to point into: the
+/// messages name the field paths).
+pub fn from_description(desc: &Description, origin: &str) -> Result<Spec, SpecError> {
+    crate::validate::validate(desc).map_err(|d| SpecError::new(origin, None, d))
+}
+
+/// Parse TOML text into a [`Description`] without validating it.
+pub fn parse_str(text: &str, origin: &str) -> Result<Description, SpecError> {
+    let (_, syntax) = toml::de::DeTable::parse_recoverable(text);
+    if !syntax.is_empty() {
+        let diags = syntax
+            .iter()
+            .map(|e| parser_diagnostic(e, &Document::parse(""), text))
+            .collect();
+        return Err(SpecError::new(origin, Some(text), diags));
+    }
+    toml::from_str::<Description>(text).map_err(|e| {
+        let doc = Document::parse(text);
+        SpecError::new(origin, Some(text), vec![parser_diagnostic(&e, &doc, text)])
+    })
+}
+
+/// A parser or serde error as a [`Diagnostic`], with its field path and a hint.
+fn parser_diagnostic(e: &toml::de::Error, doc: &Document, text: &str) -> Diagnostic {
+    let message = e.message().trim().to_string();
+    let span = e.span();
+    let mut path = span.as_ref().map(|s| doc.path_at(s)).unwrap_or_default();
+    let label;
+    let help = if let Some(rest) = message.strip_prefix("unknown field `") {
+        let field = rest.split('`').next().unwrap_or_default();
+        // The span is the key; the innermost value holding it is the table.
+        if let Some(s) = &span
+            && text
+                .get(s.clone())
+                .is_some_and(|k| k.trim_matches('"') == field)
+            && !path.ends_with(field)
+        {
+            path = if path.is_empty() {
+                field.to_string()
+            } else {
+                format!("{path}.{field}")
+            };
+        }
+        label = "unknown field".to_string();
+        "remove it or fix its spelling (docs/DESCRIPTION.md lists every field)".to_string()
+    } else if let Some(rest) = message.strip_prefix("missing field `") {
+        let field = rest.split('`').next().unwrap_or_default();
+        label = format!("this table has no `{field}`");
+        format!("add `{field} = …` here (docs/DESCRIPTION.md lists every field, with units)")
+    } else if message.starts_with("unknown variant") {
+        label = "unknown value".to_string();
+        "use one of the values listed above".to_string()
+    } else if message.starts_with("invalid type")
+        || message.starts_with("invalid length")
+        || message.starts_with("invalid value")
+    {
+        label = "wrong value".to_string();
+        "write the value in the form the message expects (docs/DESCRIPTION.md)".to_string()
+    } else if path.is_empty() && doc_is_empty(doc) {
+        label = "here".to_string();
+        "fix the TOML syntax here (https://toml.io/en/v1.0.0)".to_string()
+    } else {
+        label = "here".to_string();
+        "see docs/DESCRIPTION.md for the expected form".to_string()
+    };
+    let mut d = Diagnostic::at(path, first_line(&message), help).label(label);
+    d.span = span;
+    d
+}
+
+/// Whether the document has no parsed tree (a syntax error).
+fn doc_is_empty(doc: &Document) -> bool {
+    doc.locate("").is_none()
+}
+
+/// serde messages may span lines; keep them on one.
+fn first_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
+}

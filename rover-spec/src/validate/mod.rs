@@ -1,0 +1,10 @@
+//! Description → [`crate::Spec`]: every check, each with a located message.
+
+mod body;
+mod coordinate;
+mod names;
+mod rover;
+mod suspension;
+mod wheel;
+
+pub use rover::validate;

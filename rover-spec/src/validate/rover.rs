@@ -1,0 +1,605 @@
+//! The whole description: every field, then the relations between them
+//! (names, references, fits), then the numeric model.
+
+use std::collections::BTreeMap;
+
+use rover_dynamics::Model;
+use rover_dynamics::model::{CarriedBody, Coordinate, RigidBody, Spring};
+
+use super::body::check_inertia;
+use super::names::check_unique;
+use super::suspension::{Built, Source, build};
+use super::wheel::check_wheel;
+use crate::checks::{Ctx, coord_value, non_finite, num};
+use crate::description::{Description, MassDesc};
+use crate::diagnostic::Diagnostic;
+use crate::fit::FitFailure;
+use crate::linkage::{FitMethod, FittedPoint};
+use crate::point_fit::fit_point;
+use crate::spec::{BodyFit, Spec, SuspensionInfo};
+
+/// Effective inertia used for the critical bump-stop damping of a
+/// coordinate that moves no mass at rest [kg·m² or kg]: small, so the stop
+/// damping stays small, but not zero.
+pub const MIN_STOP_INERTIA: f64 = 1e-3;
+/// Bump-stop stiffness of a coordinate without spring [N·m/rad or N/m].
+pub const FREE_STOP_STIFFNESS: f64 = 100.0;
+/// Bump-stop stiffness as a multiple of the spring's stiffness.
+pub const STOP_STIFFNESS_FACTOR: f64 = 100.0;
+
+/// Where a carried body sits.
+#[derive(Clone, Debug, PartialEq)]
+enum Place {
+    /// A named point.
+    Point(String),
+    /// A member, at a rest position.
+    Member(usize, [f64; 3]),
+}
+
+/// A carried body before fitting.
+struct Carried {
+    name: String,
+    suspension: usize,
+    place: Place,
+    at: String,
+    mass: f64,
+    inertia: Option<([[f64; 3]; 3], String)>,
+}
+
+/// Check a description and build its [`Spec`], or return every problem.
+pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
+    let mut ctx = Ctx::default();
+    if let Ok(value) = toml::Value::try_from(desc) {
+        non_finite(&mut ctx, &value, "");
+    }
+    let gravity = ctx.positive(
+        "gravity",
+        desc.gravity,
+        "g is in m/s² and acts along −Z: Moon 1.62, Mars 3.71, Earth 9.81",
+    );
+    let body_mass = ctx.positive(
+        "body.mass",
+        desc.body.mass,
+        "the body mass is in kg and positive",
+    );
+    let body_inertia = check_inertia(&mut ctx, "body.inertia", &desc.body.inertia);
+
+    // Names.
+    let suspension_names: Vec<(String, String, &str)> = desc
+        .suspensions
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            (
+                s.name().to_string(),
+                format!("suspension[{i}].name"),
+                "suspension",
+            )
+        })
+        .collect();
+    check_unique(&mut ctx, &suspension_names);
+    let mut body_names: Vec<(String, String, &str)> = desc
+        .wheels
+        .iter()
+        .enumerate()
+        .map(|(i, w)| (w.name.clone(), format!("wheel[{i}].name"), "wheel"))
+        .collect();
+    for (i, s) in desc.suspensions.iter().enumerate() {
+        for (k, b) in s.bodies().iter().enumerate() {
+            body_names.push((
+                b.name.clone(),
+                format!("suspension[{i}].bodies[{k}].name"),
+                "carried body",
+            ));
+        }
+    }
+    check_unique(&mut ctx, &body_names);
+
+    // Suspensions and their coordinates.
+    let mut built: Vec<Option<Built>> = Vec::new();
+    let mut first = 0;
+    for (i, s) in desc.suspensions.iter().enumerate() {
+        let b = build(&mut ctx, i, s, first);
+        if let Some(b) = &b {
+            first += b.coords.len();
+        }
+        built.push(b);
+    }
+    let coord_names: Vec<(String, String, &str)> = built
+        .iter()
+        .flatten()
+        .flat_map(|b| b.coords.iter())
+        .map(|c| (c.name.clone(), format!("{}.name", c.path), "coordinate"))
+        .collect();
+    check_unique(&mut ctx, &coord_names);
+
+    // Wheels and masses, tied to their suspension points.
+    let defaults = desc.wheel_defaults.clone().unwrap_or_default();
+    let mut carried = Vec::new();
+    let mut wheels = Vec::new();
+    for (i, w) in desc.wheels.iter().enumerate() {
+        let checked = check_wheel(&mut ctx, i, w, &defaults);
+        let place = find_suspension(
+            &mut ctx,
+            &format!("wheel[{i}].suspension"),
+            &w.suspension,
+            desc,
+            &built,
+        )
+        .and_then(|s| {
+            wheel_point(&mut ctx, i, w.point.as_deref(), s, built[s].as_ref()?).map(|p| (s, p))
+        });
+        if let (Some(c), Some((s, point))) = (checked, place) {
+            carried.push(Carried {
+                name: w.name.clone(),
+                suspension: s,
+                place: Place::Point(point.clone()),
+                at: point,
+                mass: c.mass,
+                inertia: c.inertia.clone(),
+            });
+            wheels.push(c);
+        }
+    }
+    check_points_used_once(&mut ctx, &carried, desc);
+    for (i, s) in desc.suspensions.iter().enumerate() {
+        let Some(b) = built[i].as_ref() else { continue };
+        for (k, m) in s.bodies().iter().enumerate() {
+            if let Some(c) = mass_place(&mut ctx, &format!("suspension[{i}].bodies[{k}]"), m, i, b)
+            {
+                carried.push(c);
+            }
+        }
+    }
+
+    // Fits.
+    let mut cache: BTreeMap<(usize, String), FittedPoint> = BTreeMap::new();
+    let mut fitted = Vec::new();
+    for c in &carried {
+        let Some(b) = built[c.suspension].as_ref() else {
+            continue;
+        };
+        let key = (c.suspension, format!("{:?}", c.place));
+        let point = match cache.get(&key) {
+            Some(p) => Some(p.clone()),
+            None => {
+                let p = fit_carried(&mut ctx, b, &c.place, global_of(&built, c.suspension));
+                if let Some(p) = &p {
+                    cache.insert(key, p.clone());
+                }
+                p
+            }
+        };
+        if let (Some(p), Some((_, path))) = (&point, &c.inertia)
+            && p.member.len() > 1
+        {
+            ctx.error(
+                path.clone(),
+                format!("`{}` turns with {} coordinates, so its inertia cannot be carried", c.name, p.member.len()),
+                "give inertia only to bodies on a member that turns with one coordinate, or omit it",
+            );
+        }
+        fitted.push(point);
+    }
+
+    if !ctx.diags.is_empty() {
+        return Err(ctx.diags);
+    }
+    let built: Vec<Built> = built.into_iter().flatten().collect();
+    let fitted: Vec<FittedPoint> = fitted.into_iter().flatten().collect();
+    let (Some(gravity), Some(body_mass), Some(body_inertia)) = (gravity, body_mass, body_inertia)
+    else {
+        return Err(vec![Diagnostic::at(
+            "",
+            "the description is invalid",
+            "see the other messages",
+        )]);
+    };
+
+    // The numeric model.
+    let bodies: Vec<CarriedBody> = carried
+        .iter()
+        .zip(&fitted)
+        .map(|(c, p)| CarriedBody {
+            mass: c.mass,
+            inertia: c.inertia.as_ref().map(|i| i.0),
+            position: p.position.clone(),
+            member: p.member.clone(),
+        })
+        .collect();
+    let mut model_wheels = Vec::new();
+    for (j, w) in wheels.into_iter().enumerate() {
+        let mut wheel = w.wheel;
+        wheel.body = j;
+        wheel.camber = fitted[j].camber.clone();
+        wheel.toe = fitted[j].toe.clone();
+        model_wheels.push(wheel);
+    }
+    let mut coordinates = Vec::new();
+    let mut coordinate_names = Vec::new();
+    let mut coordinate_linear = Vec::new();
+    for c in built.iter().flat_map(|b| b.coords.iter()) {
+        let i = coordinates.len();
+        let k_ref = match &c.spring {
+            Spring::Linear { stiffness } => *stiffness,
+            Spring::Table { deflection, force } => deflection
+                .windows(2)
+                .zip(force.windows(2))
+                .map(|(d, f)| ((f[1] - f[0]) / (d[1] - d[0])).abs())
+                .fold(0.0, f64::max),
+            Spring::None => 0.0,
+        };
+        let stop_stiffness = c.stop_stiffness.unwrap_or(if k_ref > 0.0 {
+            STOP_STIFFNESS_FACTOR * k_ref
+        } else {
+            FREE_STOP_STIFFNESS
+        });
+        let inertia = effective_inertia(&bodies, i);
+        let inertia = if inertia > 0.0 {
+            inertia
+        } else {
+            MIN_STOP_INERTIA
+        };
+        coordinates.push(Coordinate {
+            rest: c.range.rest,
+            neutral: c.neutral,
+            spring: c.spring.clone(),
+            damping: c.damping,
+            min: c.range.min,
+            max: c.range.max,
+            stop_stiffness,
+            stop_damping: c
+                .stop_damping
+                .unwrap_or(2.0 * (stop_stiffness * inertia).sqrt()),
+        });
+        coordinate_names.push(c.name.clone());
+        coordinate_linear.push(c.linear);
+    }
+    let rest = coordinates.iter().map(|c| c.rest).collect::<Vec<_>>();
+    let rest_wheel_centres = model_wheels
+        .iter()
+        .map(|w| bodies[w.body].position.value(&rest))
+        .collect();
+    let mut first = 0;
+    let suspensions = built
+        .iter()
+        .map(|b| {
+            let info = SuspensionInfo {
+                name: b.name.clone(),
+                kind: b.kind,
+                coordinates: (first..first + b.coords.len()).collect(),
+                fit: match &b.source {
+                    Source::Library { options, .. } => Some(*options),
+                    Source::Polynomial { .. } => None,
+                },
+            };
+            first += b.coords.len();
+            info
+        })
+        .collect();
+    let suspension_index = |name: &str| built.iter().position(|b| b.name == name).unwrap_or(0);
+    let fits = carried
+        .iter()
+        .zip(&fitted)
+        .map(|(c, p)| BodyFit {
+            suspension: suspension_index(desc.suspensions[c.suspension].name()),
+            at: c.at.clone(),
+            shares: p.shares.clone(),
+            max_position_error: p.max_position_error,
+            max_angle_error: p.max_angle_error,
+        })
+        .collect();
+    Ok(Spec {
+        name: desc.name.clone(),
+        model: Model {
+            gravity,
+            body: RigidBody {
+                mass: body_mass,
+                inertia: body_inertia,
+            },
+            coordinates,
+            bodies,
+            wheels: model_wheels,
+        },
+        coordinate_names,
+        coordinate_linear,
+        body_names: carried.iter().map(|c| c.name.clone()).collect(),
+        wheel_names: desc.wheels.iter().map(|w| w.name.clone()).collect(),
+        suspensions,
+        fits,
+        rest_wheel_centres,
+        description: desc.clone(),
+    })
+}
+
+/// Σ_j m_j·|∂u_j/∂y_i|² at rest: the inertia the coordinate's bump stop
+/// moves (MODEL.md §3, "critically damped").
+fn effective_inertia(bodies: &[CarriedBody], i: usize) -> f64 {
+    bodies
+        .iter()
+        .map(|b| {
+            let slope: f64 = b
+                .position
+                .terms
+                .iter()
+                .filter(|t| t.coord == i)
+                .filter_map(|t| t.coeffs.get(1))
+                .map(|c| c[0] * c[0] + c[1] * c[1] + c[2] * c[2])
+                .sum();
+            b.mass * slope
+        })
+        .sum()
+}
+
+/// Global coordinate indices of a suspension's local coordinates.
+fn global_of(built: &[Option<Built>], s: usize) -> Vec<usize> {
+    let first: usize = built[..s].iter().flatten().map(|b| b.coords.len()).sum();
+    let n = built[s].as_ref().map_or(0, |b| b.coords.len());
+    (first..first + n).collect()
+}
+
+/// The suspension a wheel names.
+fn find_suspension(
+    ctx: &mut Ctx,
+    path: &str,
+    name: &str,
+    desc: &Description,
+    built: &[Option<Built>],
+) -> Option<usize> {
+    match desc.suspensions.iter().position(|s| s.name() == name) {
+        Some(s) => built[s].is_some().then_some(s),
+        None => {
+            let names: Vec<String> = desc
+                .suspensions
+                .iter()
+                .map(|s| format!("`{}`", s.name()))
+                .collect();
+            let help = if names.is_empty() {
+                "this rover has no `[[suspension]]` yet: add one".to_string()
+            } else {
+                format!("the suspensions are {}", names.join(", "))
+            };
+            ctx.error(path, format!("there is no suspension named `{name}`"), help);
+            None
+        }
+    }
+}
+
+/// Names of a suspension's points.
+fn point_names(b: &Built) -> Vec<String> {
+    match &b.source {
+        Source::Library { points, .. } => points.iter().map(|p| p.name.clone()).collect(),
+        Source::Polynomial { points } => points.iter().map(|p| p.0.clone()).collect(),
+    }
+}
+
+/// The point a wheel sits on.
+fn wheel_point(
+    ctx: &mut Ctx,
+    i: usize,
+    point: Option<&str>,
+    s: usize,
+    b: &Built,
+) -> Option<String> {
+    let names = point_names(b);
+    let list = names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let _ = s;
+    match point {
+        Some(p) if names.iter().any(|n| n == p) => Some(p.to_string()),
+        Some(p) => {
+            ctx.error(
+                format!("wheel[{i}].point"),
+                format!("suspension `{}` has no point named `{p}`", b.name),
+                format!("its points are {list}"),
+            );
+            None
+        }
+        None if names.len() == 1 => Some(names[0].clone()),
+        None => {
+            ctx.error(
+                format!("wheel[{i}]"),
+                format!("suspension `{}` has several points, and this wheel does not say which it sits on", b.name),
+                format!("add `point = …`, one of {list}"),
+            );
+            None
+        }
+    }
+}
+
+/// No two wheels on one point.
+fn check_points_used_once(ctx: &mut Ctx, carried: &[Carried], desc: &Description) {
+    for (k, c) in carried.iter().enumerate() {
+        if let Some(first) = carried[..k]
+            .iter()
+            .find(|o| o.suspension == c.suspension && o.place == c.place)
+        {
+            let i = desc
+                .wheels
+                .iter()
+                .position(|w| w.name == c.name)
+                .unwrap_or(0);
+            ctx.error(
+                format!("wheel[{i}].point"),
+                format!(
+                    "wheel `{}` sits on point `{}` of `{}`, which wheel `{}` already uses",
+                    c.name,
+                    c.at,
+                    desc.suspensions[c.suspension].name(),
+                    first.name
+                ),
+                "each point carries one wheel: choose another point",
+            );
+        }
+    }
+}
+
+/// Where a carried mass sits.
+fn mass_place(
+    ctx: &mut Ctx,
+    path: &str,
+    m: &MassDesc,
+    suspension: usize,
+    b: &Built,
+) -> Option<Carried> {
+    let mass = ctx.non_negative(&format!("{path}.mass"), m.mass, "the mass is in kg, ≥ 0");
+    let inertia = match &m.inertia {
+        Some(i) => Some((
+            check_inertia(ctx, &format!("{path}.inertia"), i)?,
+            format!("{path}.inertia"),
+        )),
+        None => None,
+    };
+    let place = match (&m.point, &m.member, &m.position) {
+        (Some(p), None, None) => {
+            if !point_names(b).iter().any(|n| n == p) {
+                let list = point_names(b)
+                    .iter()
+                    .map(|n| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                ctx.error(
+                    format!("{path}.point"),
+                    format!("suspension `{}` has no point named `{p}`", b.name),
+                    format!("its points are {list}"),
+                );
+                return None;
+            }
+            (Place::Point(p.clone()), p.clone())
+        }
+        (None, Some(member), Some(pos)) => {
+            let Source::Library { members, .. } = &b.source else {
+                ctx.error(
+                    format!("{path}.member"),
+                    "a raw polynomial suspension has no members",
+                    "place the mass at one of its points with `point = …`",
+                );
+                return None;
+            };
+            let Some(k) = members.iter().position(|x| x.name == member) else {
+                let list = members
+                    .iter()
+                    .map(|n| format!("`{}`", n.name))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                ctx.error(
+                    format!("{path}.member"),
+                    format!("suspension `{}` has no member named `{member}`", b.name),
+                    format!("its members are {list}"),
+                );
+                return None;
+            };
+            if !pos.iter().all(|v| v.is_finite()) {
+                return None;
+            }
+            (Place::Member(k, *pos), member.clone())
+        }
+        _ => {
+            ctx.error(
+                path,
+                "a carried body needs either `point`, or `member` and `position`",
+                "give `point = \"…\"` to put it at a named point, or `member = \"…\"` and `position = [x, y, z]` (its centre at rest)",
+            );
+            return None;
+        }
+    };
+    Some(Carried {
+        name: m.name.clone(),
+        suspension,
+        place: place.0,
+        at: place.1,
+        mass: mass?,
+        inertia,
+    })
+}
+
+/// Fit the polynomials of a carried body, checking the tolerance.
+fn fit_carried(ctx: &mut Ctx, b: &Built, place: &Place, global: Vec<usize>) -> Option<FittedPoint> {
+    let (kin, members, points, options, fit_path) = match &b.source {
+        Source::Polynomial { points } => {
+            let Place::Point(p) = place else { return None };
+            return points.iter().find(|q| &q.0 == p).map(|q| q.1.clone());
+        }
+        Source::Library {
+            kin,
+            members,
+            points,
+            options,
+            fit_path,
+        } => (kin, members, points, options, fit_path),
+    };
+    let (member, rest, label) = match place {
+        Place::Point(p) => {
+            let d = points.iter().find(|q| &q.name == p)?;
+            (d.member, d.rest, format!("point `{p}`"))
+        }
+        Place::Member(m, pos) => (*m, *pos, format!("a body on member `{}`", members[*m].name)),
+    };
+    let ranges: Vec<_> = b.coords.iter().map(|c| c.range).collect();
+    match fit_point(kin, member, rest, &ranges, &global, options) {
+        Err((local, FitFailure::CannotAssemble { at })) => {
+            let c = &b.coords[local];
+            ctx.error(
+                c.path.clone(),
+                format!(
+                    "the linkage cannot assemble at {} = {}, inside the travel range [{}, {}]: the fit cannot cover this range",
+                    c.name,
+                    coord_value(at, c.linear),
+                    coord_value(c.range.min, c.linear),
+                    coord_value(c.range.max, c.linear)
+                ),
+                "narrow the travel range (`min`/`max`) to where the linkage assembles, or check the pivots and lengths",
+            );
+            None
+        }
+        Ok(fit) => {
+            let method = match options.method {
+                FitMethod::Taylor => "Taylor",
+                FitMethod::LeastSquares => "least-squares",
+            };
+            let alternative = match options.method {
+                FitMethod::Taylor => ", or use `method = \"least_squares\"`",
+                FitMethod::LeastSquares => "",
+            };
+            for s in &fit.shares {
+                let local = s.coord - global[0];
+                let c = &b.coords[local];
+                let (what, error, at, tol, unit) = if s.position > options.tolerance {
+                    (
+                        "position",
+                        s.position,
+                        s.position_at,
+                        options.tolerance,
+                        "m",
+                    )
+                } else if s.angle > options.angle_tolerance {
+                    ("angle", s.angle, s.angle_at, options.angle_tolerance, "rad")
+                } else {
+                    continue;
+                };
+                ctx.error(
+                    fit_path.clone(),
+                    format!(
+                        "the {method} fit (k = {}) of {label} has a {what} error of {} {unit} at {} = {}, over the tolerance {} {unit}",
+                        options.terms,
+                        num(error),
+                        c.name,
+                        coord_value(at, c.linear),
+                        num(tol)
+                    ),
+                    format!(
+                        "narrow the travel range of `{}` ([{}, {}]), raise `terms`{alternative}, or raise `tolerance`",
+                        c.name,
+                        coord_value(c.range.min, c.linear),
+                        coord_value(c.range.max, c.linear)
+                    ),
+                );
+            }
+            let _ = members;
+            Some(fit)
+        }
+    }
+}

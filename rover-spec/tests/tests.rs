@@ -1,0 +1,3 @@
+//! Integration tests of rover-spec (one binary).
+
+mod models;
