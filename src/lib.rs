@@ -1,1 +1,5 @@
-//! The `rover` command line.
+//! The `rover` command line as a library: every subcommand is a function a
+//! test can call (`rover::cli::simulate(&SimulateArgs)`).
+
+pub mod cli;
+pub mod rover_source;

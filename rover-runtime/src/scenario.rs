@@ -117,7 +117,7 @@ pub struct InitialState {
 }
 
 /// The `[contact]` table.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactConfig {
     /// `"meridional"` (default) or `"tracked"`.
@@ -133,6 +133,16 @@ pub struct ContactConfig {
 
 fn default_samples() -> usize {
     RimSampling::default().samples
+}
+
+impl Default for ContactConfig {
+    fn default() -> Self {
+        Self {
+            method: ContactMethod::default(),
+            samples: default_samples(),
+            law: WheelLawConfig::default(),
+        }
+    }
 }
 
 impl ContactConfig {

@@ -33,7 +33,8 @@ pub struct Summary {
     pub duration: f64,
     /// Time reached [s].
     pub t_end: f64,
-    /// Final state, by CSV column name.
+    /// Final state, by CSV column name (a JSON object in column order).
+    #[serde(serialize_with = "as_map")]
     pub final_state: Vec<(String, f64)>,
     /// Largest |roll| at output instants [deg].
     pub max_roll_deg: f64,
@@ -59,4 +60,8 @@ pub struct Summary {
     pub steps: u64,
     /// Rejected steps.
     pub rejected_steps: u64,
+}
+
+fn as_map<S: serde::Serializer>(v: &[(String, f64)], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(v.iter().map(|(k, x)| (k, x)))
 }

@@ -1,0 +1,65 @@
+//! Subcommands.
+
+mod check;
+mod simulate;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+pub use check::{CheckArgs, check};
+pub use simulate::{SimulateArgs, SimulateReport, simulate};
+
+/// Simulate wheeled planetary rovers on rough terrain (Chen & Genta 2012).
+#[derive(Debug, Parser)]
+#[command(name = "rover", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Validate a rover and print its coordinates, bodies, fitted polynomials and rest geometry.
+    Check(CheckArgs),
+    /// Run a scenario: CSV time histories, plots and a summary.
+    Simulate(SimulateArgs),
+}
+
+/// Errors a subcommand reports; printed once by `main`.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// The rover description is invalid (the rendered diagnostics).
+    #[error("{0}")]
+    Spec(#[from] rover_spec::SpecError),
+    /// The scenario file is invalid.
+    #[error("{0}")]
+    Scenario(#[from] rover_runtime::scenario::ScenarioError),
+    /// The run could not start.
+    #[error("{0}")]
+    Setup(#[from] rover_runtime::simulate::SetupError),
+    /// Something else, with its message.
+    #[error("{0}")]
+    Other(String),
+}
+
+/// Run a parsed command line; the exit code says how it went (0 success,
+/// 1 a run that stopped early, 2 bad input).
+pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
+    match cli.command {
+        Command::Check(a) => {
+            print!("{}", check(&a)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Simulate(a) => {
+            let report = simulate(&a)?;
+            Ok(if report.summary.complete {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
+        }
+    }
+}

@@ -1,0 +1,138 @@
+//! `rover simulate <rover> --scenario <file> --out <dir>`.
+
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rover_runtime::GenericPlant;
+use rover_runtime::output::{Status, Summary};
+use rover_runtime::scenario::Scenario;
+
+use crate::rover_source::{builtin_names, load_rover};
+
+use super::CliError;
+
+/// Arguments of `rover simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// A built-in rover (exomars, swing4, mer, lrv) or a description file;
+    /// overrides the scenario's `rover`.
+    pub rover: Option<String>,
+    /// The scenario file (TOML).
+    #[arg(long)]
+    pub scenario: PathBuf,
+    /// Output directory (created if missing).
+    #[arg(long, default_value = "out")]
+    pub out: PathBuf,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// What a run produced.
+#[derive(Debug)]
+pub struct SimulateReport {
+    /// The summary (also written as `summary.json`).
+    pub summary: Summary,
+    /// Every file written.
+    pub files: Vec<PathBuf>,
+}
+
+/// The Ctrl-C flag, installed once per process.
+fn interrupt_flag() -> Arc<AtomicBool> {
+    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+    FLAG.get_or_init(|| {
+        let flag = Arc::new(AtomicBool::new(false));
+        let f = flag.clone();
+        // A second handler cannot be installed (tests call this repeatedly
+        // in one process); the first one serves them all.
+        let _ = ctrlc::set_handler(move || f.store(true, Ordering::Relaxed));
+        flag
+    })
+    .clone()
+}
+
+fn io_err(path: &Path, e: std::io::Error) -> CliError {
+    CliError::Other(format!("{}: {e}", path.display()))
+}
+
+/// Run the scenario and write `run.csv` and `summary.json` into `args.out`.
+pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
+    let scenario = Scenario::load(&args.scenario)?;
+    let base = args
+        .scenario
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let rover = args.rover.clone().or_else(|| scenario.rover.clone()).ok_or_else(|| {
+        CliError::Other(format!(
+            "no rover: give one on the command line or as `rover = \"...\"` in {} (built-in: {})",
+            args.scenario.display(),
+            builtin_names()
+        ))
+    })?;
+    let spec = load_rover(&rover, Some(&base))?;
+    std::fs::create_dir_all(&args.out).map_err(|e| io_err(&args.out, e))?;
+    let csv_path = args.out.join("run.csv");
+    let summary_path = args.out.join("summary.json");
+    // A summary saying "running" first: a run killed hard leaves no
+    // summary that claims completion.
+    std::fs::write(
+        &summary_path,
+        "{\"status\": \"running\", \"complete\": false}\n",
+    )
+    .map_err(|e| io_err(&summary_path, e))?;
+    let csv = BufWriter::new(File::create(&csv_path).map_err(|e| io_err(&csv_path, e))?);
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr())
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {percent}% ({elapsed} / ~{eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message(format!("{} t = 0 s", spec.name));
+    let duration = scenario.duration;
+    let plant =
+        GenericPlant::new(spec.model.clone()).map_err(|e| CliError::Other(e.to_string()))?;
+    let flag = interrupt_flag();
+    let summary = rover_runtime::simulate::simulate(
+        plant,
+        &spec.model,
+        &spec.name,
+        &scenario,
+        &base,
+        csv,
+        &flag,
+        |t| {
+            bar.set_position((1000.0 * t / duration) as u64);
+        },
+    )?;
+    bar.finish_and_clear();
+    let json =
+        serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
+    std::fs::write(&summary_path, json + "\n").map_err(|e| io_err(&summary_path, e))?;
+    let files = vec![csv_path, summary_path];
+    bar.suspend(|| match summary.status {
+        Status::Completed => eprintln!(
+            "{}: {:.1} s simulated in {:.2} s (real-time factor {:.1}); outputs in {}",
+            spec.name,
+            summary.t_end,
+            summary.wall_time_s,
+            summary.real_time_factor,
+            args.out.display()
+        ),
+        _ => eprintln!(
+            "{}: run incomplete at t = {:.3} s: {}; the CSV holds what was computed (marked incomplete in summary.json)",
+            spec.name,
+            summary.t_end,
+            summary.error.as_deref().unwrap_or("stopped")
+        ),
+    });
+    Ok(SimulateReport { summary, files })
+}
