@@ -5,3 +5,4 @@ mod support;
 mod dynamics;
 mod free_flight;
 mod ground;
+mod models;
