@@ -140,7 +140,8 @@ fn bicubic_gradient_is_continuous_across_cell_edges_and_bilinear_is_not() {
             for k in 0..2 {
                 assert_close(left[k], right[k], 1e-6, "bicubic gradient across X edge");
             }
-            bilinear_jump = bilinear_jump.max((hg(&lin, x - eps, y).1[0] - hg(&lin, x + eps, y).1[0]).abs());
+            bilinear_jump =
+                bilinear_jump.max((hg(&lin, x - eps, y).1[0] - hg(&lin, x + eps, y).1[0]).abs());
         }
     }
     for j in 1..g.ny() - 1 {
@@ -151,7 +152,10 @@ fn bicubic_gradient_is_continuous_across_cell_edges_and_bilinear_is_not() {
             assert_close(below[k], above[k], 1e-6, "bicubic gradient across Y edge");
         }
     }
-    assert!(bilinear_jump > 0.1, "bilinear gradient should jump, max jump {bilinear_jump}");
+    assert!(
+        bilinear_jump > 0.1,
+        "bilinear gradient should jump, max jump {bilinear_jump}"
+    );
 }
 
 #[test]
@@ -179,11 +183,31 @@ fn leaving_the_map_is_an_off_map_error_with_a_clear_message() {
     for (x, y) in [(-0.001, 0.0), (10.001, 0.0), (5.0, -5.001), (5.0, 5.001)] {
         let e = g.height(x, y).unwrap_err();
         assert_eq!((e.x, e.y), (x, y));
-        assert_eq!(e.bounds, Bounds { x_min: 0.0, x_max: 10.0, y_min: -5.0, y_max: 5.0 });
+        assert_eq!(
+            e.bounds,
+            Bounds {
+                x_min: 0.0,
+                x_max: 10.0,
+                y_min: -5.0,
+                y_max: 5.0
+            }
+        );
         assert_eq!(g.height_gradient(x, y).unwrap_err(), e);
     }
-    // The edges themselves are on the map.
+    // The edges themselves are on the map, as `bounds()` reports them.
     assert_close(h(&g, 10.0, 5.0), 15.0, 1e-12, "corner height");
+    // (−1.3 + 24·0.1 + 1.3)/0.1 = 24.000000000000004 in floating point.
+    let odd = Grid::from_fn([-1.3, 0.7], [0.1, 0.07], 25, 23, |x, y| x - y).unwrap();
+    let b = odd.bounds();
+    for (x, y) in [
+        (b.x_min, b.y_min),
+        (b.x_max, b.y_max),
+        (b.x_max, b.y_min),
+        (b.x_min, b.y_max),
+    ] {
+        assert_close(h(&odd, x, y), x - y, 1e-12, "corner of an odd grid");
+    }
+    assert!(odd.height(b.x_max + 1e-6, b.y_max).is_err());
     assert_eq!(
         g.height(12.5, 0.0).unwrap_err().to_string(),
         "point (X = 12.5 m, Y = 0 m) is off the terrain map, which covers X from 0 m to 10 m \
@@ -233,7 +257,13 @@ fn grid_constructor_rejects_bad_grids() {
          node, south row first, west to east"
     );
     assert_eq!(
-        message(Grid::new([0.0, 0.0], [1.0, 1.0], 2, 2, vec![0.0, 1.0, f64::NAN, 0.0])),
+        message(Grid::new(
+            [0.0, 0.0],
+            [1.0, 1.0],
+            2,
+            2,
+            vec![0.0, 1.0, f64::NAN, 0.0]
+        )),
         "terrain.grid: the height at node (i = 0, j = 1) is NaN, not a finite number\n  = \
          help: every node needs a finite height in metres"
     );
@@ -283,14 +313,24 @@ fn library_terrains_have_their_documented_heights() {
     assert_eq!(h(&t, 1.3, 0.0), 0.0);
     assert_eq!(h(&t, 0.6, 0.0), 0.0);
     let steepest = 0.1 * std::f64::consts::PI / 0.6;
-    assert_close(hg(&t, 1.15, 0.0).1[0], -steepest, 1e-14, "bump steepest slope");
+    assert_close(
+        hg(&t, 1.15, 0.0).1[0],
+        -steepest,
+        1e-14,
+        "bump steepest slope",
+    );
     // With a flat top of 0.2 m.
     let t = Bump::new(0.1, 0.6, 0.2, [0.0, 0.0], 90.0, Footprint::Ridge).unwrap();
     assert_close(h(&t, 5.0, 0.099), 0.1, 0.0, "bump top");
     assert_close(h(&t, 5.0, -0.2), 0.05, 1e-15, "flanked bump mid-flank");
     // Round: a function of the distance from the centre.
     let t = Bump::new(0.2, 1.0, 0.0, [1.0, 1.0], 0.0, Footprint::Round).unwrap();
-    assert_close(h(&t, 1.0 + 0.25 * 0.6, 1.0 + 0.25 * 0.8), 0.1, 1e-15, "round bump");
+    assert_close(
+        h(&t, 1.0 + 0.25 * 0.6, 1.0 + 0.25 * 0.8),
+        0.1,
+        1e-15,
+        "round bump",
+    );
     assert_eq!(hg(&t, 1.0, 1.0), (0.2, [0.0, 0.0]));
 
     // Ditch: 0.08 m deep, 0.5 m wide at the top, 0.1 m floor, along 0°.
@@ -305,7 +345,12 @@ fn library_terrains_have_their_documented_heights() {
     assert_eq!(h(&t, 0.98, 4.0), 0.0);
     assert_close(h(&t, 1.0, 4.0), 0.025, 1e-15, "step middle");
     assert_eq!(h(&t, 1.011, 4.0), 0.05);
-    assert_close(hg(&t, 1.0, 0.0).1[0], 0.05 * std::f64::consts::PI / 0.04, 1e-12, "step slope");
+    assert_close(
+        hg(&t, 1.0, 0.0).1[0],
+        0.05 * std::f64::consts::PI / 0.04,
+        1e-12,
+        "step slope",
+    );
     // Kept sharp: the upper value from the line on, zero slope both sides.
     let t = Step::new(0.05, [1.0, 0.0], 0.0, 0.0).unwrap();
     assert_eq!(hg(&t, 1.0, 0.0), (0.05, [0.0, 0.0]));
@@ -333,7 +378,12 @@ fn library_gradients_match_finite_differences() {
             assert_eq!(z, h(&t, x, y));
             let fd = fd_gradient(&t, x, y, 1e-7);
             for k in 0..2 {
-                assert_close(grad[k], fd[k], 2e-6, &format!("{t:?} gradient {k} at ({x}, {y})"));
+                assert_close(
+                    grad[k],
+                    fd[k],
+                    2e-6,
+                    &format!("{t:?} gradient {k} at ({x}, {y})"),
+                );
             }
         }
     }
@@ -356,7 +406,14 @@ fn library_rejects_bad_parameters() {
          is the full width at the base, bottom_width the flat part; the flanks take the rest"
     );
     assert_eq!(
-        message(Ditch::new(-0.1, 0.5, 0.0, [0.0, 0.0], 0.0, Footprint::Ridge)),
+        message(Ditch::new(
+            -0.1,
+            0.5,
+            0.0,
+            [0.0, 0.0],
+            0.0,
+            Footprint::Ridge
+        )),
         "terrain.depth: must be > 0 m, got -0.1\n  = help: give the depth below the \
          surrounding ground as a positive number of metres"
     );
@@ -382,7 +439,10 @@ fn random_node_values_are_the_same_bits_on_every_machine() {
     let f = RandomField::default();
     assert_eq!(f.node_value(0, 0), -0.10895322283652042);
     assert_eq!(f.node_value(-3, 7), -0.2964626827657312);
-    let f = RandomField { seed: 42, ..RandomField::default() };
+    let f = RandomField {
+        seed: 42,
+        ..RandomField::default()
+    };
     assert_eq!(f.node_value(100, -100), 0.14612136578728663);
 }
 
@@ -404,13 +464,21 @@ fn random_node_values_are_uniform_in_plus_minus_the_amplitude() {
     let var = sum_sq / f64::from(n) - mean * mean;
     assert_close(mean, 0.0, 0.005, "node mean");
     assert_close(var, 0.25 / 3.0, 0.002, "node variance a²/3");
-    assert!(min >= -0.5 && max < 0.5 && min < -0.499 && max > 0.499, "{min} {max}");
+    assert!(
+        min >= -0.5 && max < 0.5 && min < -0.499 && max > 0.499,
+        "{min} {max}"
+    );
 }
 
 fn small_field(seed: u64) -> RandomField {
     RandomField {
         seed,
-        extent: Bounds { x_min: -2.0, x_max: 3.0, y_min: -1.5, y_max: 1.5 },
+        extent: Bounds {
+            x_min: -2.0,
+            x_max: 3.0,
+            y_min: -1.5,
+            y_max: 1.5,
+        },
         ..RandomField::default()
     }
 }
@@ -420,11 +488,23 @@ fn random_terrain_is_deterministic_per_seed_and_differs_across_seeds() {
     let a = small_field(1).grid().unwrap();
     let b = small_field(1).grid().unwrap();
     assert_eq!(a, b);
-    assert_eq!((a.nx(), a.ny(), a.origin(), a.spacing()), (101, 61, [-2.0, -1.5], [0.05, 0.05]));
+    assert_eq!(
+        (a.nx(), a.ny(), a.origin(), a.spacing()),
+        (101, 61, [-2.0, -1.5], [0.05, 0.05])
+    );
     let c = small_field(2).grid().unwrap();
-    let differing = a.heights().iter().zip(c.heights()).filter(|(p, q)| p != q).count();
+    let differing = a
+        .heights()
+        .iter()
+        .zip(c.heights())
+        .filter(|(p, q)| p != q)
+        .count();
     // Only the flat patch (about π·0.8² m² of 15 m²) agrees.
-    assert!(differing > a.heights().len() * 8 / 10, "{differing} of {}", a.heights().len());
+    assert!(
+        differing > a.heights().len() * 8 / 10,
+        "{differing} of {}",
+        a.heights().len()
+    );
 }
 
 #[test]
@@ -450,9 +530,19 @@ fn random_terrain_has_a_flat_start_patch_and_scales_with_z_r() {
         }
     }
     assert!(inside > 100 && outside > 5000, "{inside} {outside}");
-    assert_close(field.patch_weight(0.55, 0.0), 0.5, 1e-15, "mid-blend weight");
+    assert_close(
+        field.patch_weight(0.55, 0.0),
+        0.5,
+        1e-15,
+        "mid-blend weight",
+    );
     // Z_G = Z_R·Z_ran: doubling Z_R doubles every height.
-    let double = RandomField { z_r: 0.4, ..field.clone() }.grid().unwrap();
+    let double = RandomField {
+        z_r: 0.4,
+        ..field.clone()
+    }
+    .grid()
+    .unwrap();
     for (a, b) in g.heights().iter().zip(double.heights()) {
         assert_close(*b, 2.0 * a, 1e-15, "Z_R scaling");
     }
@@ -462,12 +552,22 @@ fn random_terrain_has_a_flat_start_patch_and_scales_with_z_r() {
 fn random_terrain_does_not_depend_on_its_extent() {
     let small = small_field(9);
     let large = RandomField {
-        extent: Bounds { x_min: -4.0, x_max: 6.0, y_min: -3.0, y_max: 2.0 },
+        extent: Bounds {
+            x_min: -4.0,
+            x_max: 6.0,
+            y_min: -3.0,
+            y_max: 2.0,
+        },
         ..small.clone()
     };
     let (a, b) = (small.grid().unwrap(), large.grid().unwrap());
     for (x, y) in [(-1.9, 1.4), (2.95, -1.45), (0.123, 0.987), (1.0, 1.0)] {
-        assert_close(h(&a, x, y), h(&b, x, y), 1e-12, "same ground on a larger map");
+        assert_close(
+            h(&a, x, y),
+            h(&b, x, y),
+            1e-12,
+            "same ground on a larger map",
+        );
     }
     assert!(a.height(3.5, 0.0).is_err());
     assert!(b.height(3.5, 0.0).is_ok());
@@ -483,11 +583,21 @@ fn random_terrain_has_the_documented_statistics() {
         (1.0, 0.2349, 1.109, 47.9, 71.2),
     ];
     for (z_r, rms_height, rms_slope, rms_slope_deg, max_slope_deg) in table {
-        let s = RandomField { z_r, ..RandomField::default() }.statistics().unwrap();
+        let s = RandomField {
+            z_r,
+            ..RandomField::default()
+        }
+        .statistics()
+        .unwrap();
         assert_eq!(s.samples, 801 * 801);
         assert_close(s.rms_height, rms_height, 0.00005, "RMS height");
         assert_close(s.rms_slope, rms_slope, 0.0005, "RMS slope");
-        assert_close(s.rms_slope.atan().to_degrees(), rms_slope_deg, 0.05, "RMS slope angle");
+        assert_close(
+            s.rms_slope.atan().to_degrees(),
+            rms_slope_deg,
+            0.05,
+            "RMS slope angle",
+        );
         assert_close(s.max_slope_deg, max_slope_deg, 0.05, "max slope");
         let [lx, ly] = s.correlation_length;
         assert_close(lx.unwrap(), 0.390, 0.0005, "correlation length X");
@@ -496,13 +606,24 @@ fn random_terrain_has_the_documented_statistics() {
     // And the closed forms of the random_field docs, for three seeds (the
     // 40 m × 40 m map holds 6400 independent nodes: a few % of scatter).
     for seed in [1, 2, 3] {
-        let s = RandomField { z_r: 1.0, seed, ..RandomField::default() }.statistics().unwrap();
+        let s = RandomField {
+            z_r: 1.0,
+            seed,
+            ..RandomField::default()
+        }
+        .statistics()
+        .unwrap();
         let rms_height = 0.5 / 3f64.sqrt() * 57.0 / 70.0;
         let rms_slope = (2.0 * 7.0 / 3.0 * 57.0 / 70.0 / 3.0f64).sqrt();
         assert_close(s.rms_height / rms_height, 1.0, 0.03, "RMS height vs theory");
         assert_close(s.rms_slope / rms_slope, 1.0, 0.03, "RMS slope vs theory");
         for l in s.correlation_length {
-            assert_close(l.unwrap() / (0.784 * 0.5), 1.0, 0.03, "correlation length vs theory");
+            assert_close(
+                l.unwrap() / (0.784 * 0.5),
+                1.0,
+                0.03,
+                "correlation length vs theory",
+            );
         }
     }
 }
@@ -513,24 +634,52 @@ fn statistics_of_known_surfaces() {
     // max slope atan(2πA/λ); never drops below 1/e? It does, at
     // cos(2πτ/λ) = 1/e, τ = λ·acos(1/e)/(2π).
     let t = Sinusoid::new(0.1, 1.0, 0.0, 0.0).unwrap();
-    let bounds = Bounds { x_min: 0.0, x_max: 20.0, y_min: 0.0, y_max: 1.0 };
+    let bounds = Bounds {
+        x_min: 0.0,
+        x_max: 20.0,
+        y_min: 0.0,
+        y_max: 1.0,
+    };
     let s = TerrainStatistics::sample(&t, bounds, [0.01, 0.5]).unwrap();
     let k = 2.0 * std::f64::consts::PI;
     assert_close(s.rms_height, 0.1 / 2f64.sqrt(), 1e-4, "sinusoid RMS height");
-    assert_close(s.rms_slope, 0.1 * k / 2f64.sqrt(), 1e-3, "sinusoid RMS slope");
-    assert_close(s.max_slope_deg, (0.1 * k).atan().to_degrees(), 1e-6, "sinusoid max slope");
+    assert_close(
+        s.rms_slope,
+        0.1 * k / 2f64.sqrt(),
+        1e-3,
+        "sinusoid RMS slope",
+    );
+    assert_close(
+        s.max_slope_deg,
+        (0.1 * k).atan().to_degrees(),
+        1e-6,
+        "sinusoid max slope",
+    );
     let lx = s.correlation_length[0].unwrap();
-    assert_close(lx, (-1f64).exp().acos() / k, 2e-3, "sinusoid correlation length");
+    assert_close(
+        lx,
+        (-1f64).exp().acos() / k,
+        2e-3,
+        "sinusoid correlation length",
+    );
     assert_eq!(s.correlation_length[1], None);
     let flat = TerrainStatistics::sample(&Flat::default(), bounds, [0.5, 0.5]).unwrap();
-    assert_eq!((flat.rms_height, flat.rms_slope, flat.max_slope_deg), (0.0, 0.0, 0.0));
+    assert_eq!(
+        (flat.rms_height, flat.rms_slope, flat.max_slope_deg),
+        (0.0, 0.0, 0.0)
+    );
     assert_eq!(flat.correlation_length, [None, None]);
 }
 
 #[test]
 fn random_field_rejects_bad_parameters() {
     let bad = RandomField {
-        extent: Bounds { x_min: 1.0, x_max: -1.0, y_min: 0.0, y_max: 1.0 },
+        extent: Bounds {
+            x_min: 1.0,
+            x_max: -1.0,
+            y_min: 0.0,
+            y_max: 1.0,
+        },
         ..RandomField::default()
     };
     assert_eq!(
@@ -538,13 +687,19 @@ fn random_field_rejects_bad_parameters() {
         "terrain.extent: [x_min, x_max, y_min, y_max] must have x_max > x_min and y_max > \
          y_min, got [1, -1, 0, 1]\n  = help: give the area the rover may reach, in metres"
     );
-    let bad = RandomField { z_r: -0.2, ..RandomField::default() };
+    let bad = RandomField {
+        z_r: -0.2,
+        ..RandomField::default()
+    };
     assert_eq!(
         message(bad.grid()),
         "terrain.z_r: must be ≥ 0 (dimensionless), got -0.2\n  = help: give a non-negative \
          value in (dimensionless)"
     );
-    let bad = RandomField { grid_spacing: 1e-5, ..RandomField::default() };
+    let bad = RandomField {
+        grid_spacing: 1e-5,
+        ..RandomField::default()
+    };
     assert_eq!(
         message(bad.grid()),
         "terrain.grid_spacing: 0.00001 m is too fine for the extent (more than 50000000 \
@@ -564,18 +719,27 @@ fn asc(name: &str, text: &str) -> (PathBuf, Result<Grid, TerrainError>) {
 /// Pins the whole message of a corrupt .asc file: `{path}:{line}: {rest}`.
 fn bad_asc(name: &str, text: &str, line: usize, rest: &str) {
     let (path, grid) = asc(name, text);
-    assert_eq!(message(grid), format!("{}:{line}: {rest}", path.display()), "case {name}");
+    assert_eq!(
+        message(grid),
+        format!("{}:{line}: {rest}", path.display()),
+        "case {name}"
+    );
 }
 
 #[test]
 fn asc_round_trips() {
     for (name, grid) in [
-        ("round_square.asc", bumpy_grid(5, 4).with_interpolation(Interpolation::Bicubic)),
+        (
+            "round_square.asc",
+            bumpy_grid(5, 4).with_interpolation(Interpolation::Bicubic),
+        ),
         ("round_rect.asc", bumpy_grid(3, 7)),
         (
             "round_square_cells.asc",
-            Grid::from_fn([-0.1, 1e3], [0.05, 0.05], 4, 3, |x, y| 1e-3 * x * y + 1.0 / 3.0)
-                .unwrap(),
+            Grid::from_fn([-0.1, 1e3], [0.05, 0.05], 4, 3, |x, y| {
+                1e-3 * x * y + 1.0 / 3.0
+            })
+            .unwrap(),
         ),
     ] {
         let path = scratch(name);
@@ -590,7 +754,10 @@ fn asc_reads_corners_any_key_case_and_rows_north_to_south() {
                 NODATA_value -9999\r\n\r\n1 2 3\r\n4\t5 6\r\n";
     let (_, grid) = asc("corner.asc", text);
     let grid = grid.unwrap();
-    assert_eq!((grid.origin(), grid.spacing(), grid.nx(), grid.ny()), ([10.25, -3.75], [0.5, 0.5], 3, 2));
+    assert_eq!(
+        (grid.origin(), grid.spacing(), grid.nx(), grid.ny()),
+        ([10.25, -3.75], [0.5, 0.5], 3, 2)
+    );
     // The first row of the file is the north row (j = 1).
     assert_eq!(grid.heights(), &[4.0, 5.0, 6.0, 1.0, 2.0, 3.0]);
     assert_eq!(h(&grid, 10.25, -3.25), 1.0);
@@ -769,7 +936,10 @@ fn bad_csv(name: &str, text: &str, georeference: Option<Georeference>, line: usi
     );
 }
 
-const PLACE: Georeference = Georeference { origin: [1.0, 2.0], spacing: [0.5, 0.25] };
+const PLACE: Georeference = Georeference {
+    origin: [1.0, 2.0],
+    spacing: [0.5, 0.25],
+};
 
 #[test]
 fn csv_round_trips_and_reads_rows_south_to_north() {
@@ -779,9 +949,15 @@ fn csv_round_trips_and_reads_rows_south_to_north() {
     assert_eq!(read_csv(&path, None).unwrap(), grid);
 
     // Header keys in any order and case; comments and blank lines anywhere.
-    let path = file("order.csv", "# a test grid\nDY, dx ,y0,X0\n0.25,0.5,2,1\n\n1,2,3\n# north\n4,5,6\n");
+    let path = file(
+        "order.csv",
+        "# a test grid\nDY, dx ,y0,X0\n0.25,0.5,2,1\n\n1,2,3\n# north\n4,5,6\n",
+    );
     let grid = read_csv(&path, None).unwrap();
-    assert_eq!((grid.origin(), grid.spacing(), grid.nx(), grid.ny()), ([1.0, 2.0], [0.5, 0.25], 3, 2));
+    assert_eq!(
+        (grid.origin(), grid.spacing(), grid.nx(), grid.ny()),
+        ([1.0, 2.0], [0.5, 0.25], 3, 2)
+    );
     assert_eq!(grid.heights(), &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
     assert_eq!(h(&grid, 1.0, 2.25), 4.0);
 
@@ -887,9 +1063,18 @@ fn csv_corrupt_files_each_say_what_and_where() {
 
 // ---------------------------------------------------------------- PNG height maps
 
-const PNG_SCALE: SampleScale = SampleScale { scale: 0.001, offset: -10.0 };
+const PNG_SCALE: SampleScale = SampleScale {
+    scale: 0.001,
+    offset: -10.0,
+};
 
-fn png_bytes(width: u32, height: u32, color: png::ColorType, depth: png::BitDepth, data: &[u8]) -> Vec<u8> {
+fn png_bytes(
+    width: u32,
+    height: u32,
+    color: png::ColorType,
+    depth: png::BitDepth,
+    data: &[u8],
+) -> Vec<u8> {
     let mut out = Vec::new();
     let mut encoder = png::Encoder::new(&mut out, width, height);
     encoder.set_color(color);
@@ -922,13 +1107,37 @@ fn png_round_trips_and_reads_the_top_row_as_north() {
 
     // 2 × 2 samples, big-endian: top row 1, 2; bottom row 256, 65535.
     let data = [0, 1, 0, 2, 1, 0, 255, 255];
-    let path = file("tiny.png", png_bytes(2, 2, png::ColorType::Grayscale, png::BitDepth::Sixteen, &data));
-    let grid = read_png(&path, PLACE, SampleScale { scale: 0.5, offset: 1.0 }).unwrap();
+    let path = file(
+        "tiny.png",
+        png_bytes(
+            2,
+            2,
+            png::ColorType::Grayscale,
+            png::BitDepth::Sixteen,
+            &data,
+        ),
+    );
+    let grid = read_png(
+        &path,
+        PLACE,
+        SampleScale {
+            scale: 0.5,
+            offset: 1.0,
+        },
+    )
+    .unwrap();
     assert_eq!(grid.heights(), &[129.0, 32768.5, 1.5, 2.0]);
 
     // Heights that do not fit the 16-bit range are refused on writing.
     assert_eq!(
-        message(write_png(&grid, &scratch("unfit.png"), SampleScale { scale: 0.001, offset: 0.0 })),
+        message(write_png(
+            &grid,
+            &scratch("unfit.png"),
+            SampleScale {
+                scale: 0.001,
+                offset: 0.0
+            }
+        )),
         "terrain.scale: the height 129 m at node (i = 0, j = 0) maps to sample 129000, outside \
          0 … 65535\n  = help: choose offset below the lowest height and scale so that the \
          highest fits"
@@ -941,15 +1150,29 @@ fn png_corrupt_files_each_say_what_and_where() {
                levels; colour has no single height per pixel)";
     bad_png(
         "eight_bit.png",
-        &png_bytes(2, 2, png::ColorType::Grayscale, png::BitDepth::Eight, &[1, 2, 3, 4]),
-        &format!("the image is 8-bit Grayscale; a height map must be 16-bit Grayscale\n  = help: {fix}"),
+        &png_bytes(
+            2,
+            2,
+            png::ColorType::Grayscale,
+            png::BitDepth::Eight,
+            &[1, 2, 3, 4],
+        ),
+        &format!(
+            "the image is 8-bit Grayscale; a height map must be 16-bit Grayscale\n  = help: {fix}"
+        ),
     );
     bad_png(
         "rgb.png",
         &png_bytes(2, 2, png::ColorType::Rgb, png::BitDepth::Sixteen, &[0; 24]),
         &format!("the image is 16-bit Rgb; a height map must be 16-bit Grayscale\n  = help: {fix}"),
     );
-    let good = png_bytes(16, 16, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[7; 512]);
+    let good = png_bytes(
+        16,
+        16,
+        png::ColorType::Grayscale,
+        png::BitDepth::Sixteen,
+        &[7; 512],
+    );
     bad_png(
         "truncated.png",
         &good[..good.len() - 30],
@@ -964,7 +1187,13 @@ fn png_corrupt_files_each_say_what_and_where() {
     );
     bad_png(
         "one_row.png",
-        &png_bytes(3, 1, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[0; 6]),
+        &png_bytes(
+            3,
+            1,
+            png::ColorType::Grayscale,
+            png::BitDepth::Sixteen,
+            &[0; 6],
+        ),
         "the image is 3 × 1 pixels; a grid needs at least 2 × 2\n  = help: give a height map \
          of at least two rows and two columns",
     );
@@ -982,8 +1211,13 @@ fn i16_geotiff(width: u32, height: u32, data: &[i16], nodata: Option<&str>) -> V
         let mut encoder = TiffEncoder::new(&mut out).unwrap();
         let mut image = encoder.new_image::<GrayI16>(width, height).unwrap();
         let tags = image.encoder();
-        tags.write_tag(Tag::ModelPixelScaleTag, &[2.0, 3.0, 0.0][..]).unwrap();
-        tags.write_tag(Tag::ModelTiepointTag, &[0.0, 0.0, 0.0, 100.0, 500.0, 0.0][..]).unwrap();
+        tags.write_tag(Tag::ModelPixelScaleTag, &[2.0, 3.0, 0.0][..])
+            .unwrap();
+        tags.write_tag(
+            Tag::ModelTiepointTag,
+            &[0.0, 0.0, 0.0, 100.0, 500.0, 0.0][..],
+        )
+        .unwrap();
         if let Some(nodata) = nodata {
             tags.write_tag(Tag::GdalNodata, nodata).unwrap();
         }
@@ -1009,15 +1243,24 @@ fn geotiff_round_trips_and_places_pixel_is_area_rasters() {
     assert_eq!(read_geotiff(&path, 1.0, 0.0).unwrap(), grid);
 
     // PixelIsArea: top-left corner at (100, 500), pixels 2 m × 3 m.
-    let path = file("area.tif", i16_geotiff(3, 2, &[1, 2, 3, -4, -5, -6], Some("-32768")));
+    let path = file(
+        "area.tif",
+        i16_geotiff(3, 2, &[1, 2, 3, -4, -5, -6], Some("-32768")),
+    );
     let grid = read_geotiff(&path, 0.5, 10.0).unwrap();
-    assert_eq!((grid.origin(), grid.spacing()), ([101.0, 495.5], [2.0, 3.0]));
+    assert_eq!(
+        (grid.origin(), grid.spacing()),
+        ([101.0, 495.5], [2.0, 3.0])
+    );
     assert_eq!(grid.heights(), &[8.0, 7.5, 7.0, 10.5, 11.0, 11.5]);
 }
 
 #[test]
 fn geotiff_corrupt_files_each_say_what_and_where() {
-    let path = file("hole.tif", i16_geotiff(3, 2, &[1, 2, 3, 4, -9999, 6], Some("-9999 ")));
+    let path = file(
+        "hole.tif",
+        i16_geotiff(3, 2, &[1, 2, 3, 4, -9999, 6], Some("-9999 ")),
+    );
     assert_eq!(
         message(read_geotiff(&path, 1.0, 0.0)),
         format!(
@@ -1071,4 +1314,284 @@ fn geotiff_corrupt_files_each_say_what_and_where() {
         "not a readable TIFF image (format error: TIFF signature not found)\n  = help: check \
          that the file is a complete GeoTIFF (re-export or re-copy it)",
     );
+}
+
+// ---------------------------------------------------------------- scenario config
+
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Scenario {
+    #[serde(default)]
+    terrain: TerrainConfig,
+}
+
+fn config(toml_text: &str) -> Result<TerrainConfig, toml::de::Error> {
+    toml::from_str::<Scenario>(toml_text).map(|s| s.terrain)
+}
+
+fn build(toml_text: &str, base_dir: &Path) -> Result<Terrain, TerrainError> {
+    config(toml_text).expect("valid TOML").build(base_dir)
+}
+
+#[test]
+fn config_builds_every_kind() {
+    let here = Path::new(".");
+    assert_eq!(config("").unwrap(), TerrainConfig::default());
+    let t = build("[terrain]\nkind = \"flat\"\nheight = -1.5\n", here).unwrap();
+    assert_eq!(h(&t, 3.0, 4.0), -1.5);
+    let t = build(
+        "[terrain]\nkind = \"slope\"\nangle_deg = 45\ndirection_deg = 180\n",
+        here,
+    )
+    .unwrap();
+    assert_close(h(&t, -2.0, 7.0), 2.0, 1e-15, "45° slope rising towards -X");
+    let t = build(
+        "[terrain]\nkind = \"bump\"\nheight = 0.1\nwidth = 0.4\ncenter = [2.0, 0.0]\n\
+         footprint = \"round\"\n",
+        here,
+    )
+    .unwrap();
+    assert_close(h(&t, 2.0, 0.1), 0.05, 1e-15, "round bump mid-flank");
+    let t = build(
+        "[terrain]\nkind = \"ditch\"\ndepth = 0.2\nwidth = 1.0\nbottom_width = 0.5\n\
+         center = [0.0, 3.0]\ndirection_deg = 90\n",
+        here,
+    )
+    .unwrap();
+    assert_eq!(h(&t, 9.0, 3.2), -0.2);
+    let t = build(
+        "[terrain]\nkind = \"step\"\nheight = 0.1\nposition = [1.0, 0.0]\n",
+        here,
+    )
+    .unwrap();
+    assert_close(h(&t, 1.0, 0.0), 0.05, 1e-15, "default 1 cm ramp, middle");
+    assert_eq!(h(&t, 1.005, 0.0), 0.1);
+    let t = build(
+        "[terrain]\nkind = \"sinusoid\"\namplitude = 0.02\nwavelength = 2.0\n",
+        here,
+    )
+    .unwrap();
+    assert_close(h(&t, 0.5, 0.0), 0.02, 1e-17, "sinusoid crest");
+    let t = build(
+        "[terrain]\nkind = \"random\"\nz_r = 0.2\nseed = 3\nextent = [-1.0, 2.0, -1.0, 1.0]\n\
+         interpolation = \"bilinear\"\nedge = \"clamp\"\n",
+        here,
+    )
+    .unwrap();
+    let Terrain::Grid(grid) = &t else {
+        panic!("random terrain is a grid: {t:?}")
+    };
+    let expected = RandomField {
+        seed: 3,
+        extent: Bounds {
+            x_min: -1.0,
+            x_max: 2.0,
+            y_min: -1.0,
+            y_max: 1.0,
+        },
+        interpolation: Interpolation::Bilinear,
+        edge: EdgePolicy::Clamp,
+        ..RandomField::default()
+    };
+    assert_eq!(grid, &expected.grid().unwrap());
+    assert!(t.height(50.0, 0.0).is_ok());
+}
+
+#[test]
+fn config_loads_files_relative_to_the_scenario() {
+    let dir = scratch("scenario");
+    std::fs::create_dir_all(dir.join("maps")).unwrap();
+    let grid = bumpy_grid(4, 4);
+    write_asc(&grid, &dir.join("maps/site.ASC")).unwrap();
+    write_geotiff(&grid, &dir.join("maps/site.tiff")).unwrap();
+    std::fs::write(dir.join("maps/site.txt"), "1,2\n3,4\n").unwrap();
+    let t = build(
+        "[terrain]\nkind = \"file\"\npath = \"maps/site.ASC\"\nedge = \"clamp\"\n",
+        &dir,
+    )
+    .unwrap();
+    assert_eq!(
+        t,
+        Terrain::Grid(grid.clone().with_edge_policy(EdgePolicy::Clamp))
+    );
+    let t = build(
+        "[terrain]\nkind = \"file\"\npath = \"maps/site.tiff\"\n",
+        &dir,
+    )
+    .unwrap();
+    assert_eq!(t, Terrain::Grid(grid.clone()));
+    // scale and offset apply to every format.
+    let t = build(
+        "[terrain]\nkind = \"file\"\npath = \"maps/site.txt\"\nformat = \"csv\"\n\
+         origin = [0.0, 0.0]\nspacing = [1.0, 1.0]\nscale = 0.5\noffset = 10\n",
+        &dir,
+    )
+    .unwrap();
+    assert_eq!(h(&t, 1.0, 1.0), 12.0);
+}
+
+#[test]
+fn config_errors_name_the_parameter() {
+    let dir = scratch("scenario_errors");
+    std::fs::create_dir_all(&dir).unwrap();
+    write_asc(&bumpy_grid(3, 3), &dir.join("a.asc")).unwrap();
+    write_png(
+        &Grid::new([0.0, 0.0], [1.0, 1.0], 2, 2, vec![0.0; 4]).unwrap(),
+        &dir.join("a.png"),
+        SampleScale {
+            scale: 1.0,
+            offset: 0.0,
+        },
+    )
+    .unwrap();
+    let cases = [
+        (
+            "kind = \"file\"\npath = \"a.png\"\norigin = [0.0, 0.0]\nspacing = [1.0, 1.0]\n",
+            "terrain.scale: a PNG height map needs scale (metres per count)\n  = help: set scale \
+             (and offset, the height of sample 0), e.g. scale = 0.001",
+        ),
+        (
+            "kind = \"file\"\npath = \"a.png\"\nscale = 0.01\n",
+            "terrain.origin: a PNG height map needs origin and spacing\n  = help: set origin = \
+             [x, y] (centre of the bottom-left pixel) and spacing = [dx, dy] in metres",
+        ),
+        (
+            "kind = \"file\"\npath = \"a.png\"\nscale = 0.01\norigin = [0.0, 0.0]\n",
+            "terrain.spacing: origin is given without spacing\n  = help: give both origin = [x, \
+             y] and spacing = [dx, dy], or neither",
+        ),
+        (
+            "kind = \"file\"\npath = \"a.png\"\nscale = 0.01\norigin = [0.0, 0.0]\nspacing = [0.0, 1.0]\n",
+            "terrain.spacing[0]: must be > 0 m, got 0\n  = help: give a positive value in m",
+        ),
+        (
+            "kind = \"file\"\npath = \"a.asc\"\norigin = [0.0, 0.0]\nspacing = [1.0, 1.0]\n",
+            "terrain.origin: ESRI ASCII grid files carry their own origin and spacing\n  = help: \
+             remove origin and spacing from [terrain]",
+        ),
+        (
+            "kind = \"file\"\npath = \"a.dem\"\n",
+            &format!(
+                "terrain.format: cannot tell the format of `{}` from its extension\n  = help: set \
+                 format = \"asc\", \"csv\", \"png\" or \"geotiff\"",
+                dir.join("a.dem").display()
+            ),
+        ),
+        (
+            "kind = \"bump\"\nheight = 0.1\nwidth = 0.0\ncenter = [0.0, 0.0]\n",
+            "terrain.width: must be > 0 m, got 0\n  = help: give a positive value in m",
+        ),
+        (
+            "kind = \"random\"\nz_r = 0.2\npatch_radius = -1\n",
+            "terrain.patch_radius: must be ≥ 0 m, got -1\n  = help: give a non-negative value in m",
+        ),
+    ];
+    for (body, expected) in cases {
+        let result = build(&format!("[terrain]\n{body}"), &dir);
+        assert_eq!(message(result), expected, "case:\n{body}");
+    }
+}
+
+#[test]
+fn config_rejects_unknown_keys_and_kinds() {
+    for (body, needle) in [
+        (
+            "kind = \"random\"\nz_r = 0.2\nsede = 4\n",
+            "unknown field `sede`",
+        ),
+        (
+            "kind = \"bump\"\nheight = 0.1\nwidth = 1\ncenter = [0, 0]\nradius = 2\n",
+            "unknown field `radius`",
+        ),
+        ("kind = \"flat\"\nheigth = 1\n", "unknown field `heigth`"),
+        ("kind = \"hills\"\n", "unknown variant `hills`"),
+        ("kind = \"random\"\n", "missing field `z_r`"),
+        (
+            "kind = \"file\"\npath = \"a.asc\"\nformat = \"tif\"\n",
+            "unknown variant `tif`",
+        ),
+        (
+            "kind = \"random\"\nz_r = 0.1\nedge = \"wrap\"\n",
+            "unknown variant `wrap`",
+        ),
+    ] {
+        let error = config(&format!("[terrain]\n{body}"))
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains(needle), "case:\n{body}\ngot: {error}");
+    }
+}
+
+#[test]
+fn config_serializes_back_to_the_same_table() {
+    for body in [
+        "kind = \"flat\"\n",
+        "kind = \"random\"\nz_r = 0.5\nseed = 9\nnode_spacing = 0.25\n",
+        "kind = \"file\"\npath = \"x.png\"\nscale = 0.001\norigin = [1.0, 2.0]\nspacing = [0.1, 0.1]\n",
+        "kind = \"step\"\nheight = 0.1\nposition = [1.0, 0.0]\nramp_width = 0.0\n",
+    ] {
+        let c = config(&format!("[terrain]\n{body}")).unwrap();
+        let text = toml::to_string(&c).unwrap();
+        let back: TerrainConfig = toml::from_str(&text).unwrap();
+        assert_eq!(back, c, "{text}");
+    }
+}
+
+// ---------------------------------------------------------------- robustness
+
+/// Mutated and truncated files never panic a reader: they load or they error.
+#[test]
+fn readers_never_panic_on_damaged_files() {
+    let grid = bumpy_grid(7, 5);
+    let samples: Vec<(&str, Vec<u8>)> = vec![
+        ("asc", asc::format_asc(&grid).into_bytes()),
+        ("csv", csv_grid::format_csv(&grid).into_bytes()),
+        (
+            "png",
+            png_map::encode_png(
+                &Grid::new([0.0, 0.0], [1.0, 1.0], 7, 5, vec![1.0; 35]).unwrap(),
+                SampleScale {
+                    scale: 0.01,
+                    offset: 0.0,
+                },
+            )
+            .unwrap(),
+        ),
+        ("tif", geotiff::encode_geotiff(&grid).unwrap()),
+    ];
+    let path = Path::new("damaged");
+    let mut r = prng::SplitMix64::new(99);
+    let mut outcomes = [0usize; 2];
+    for (kind, original) in &samples {
+        for round in 0..400 {
+            let mut bytes = original.clone();
+            match round % 4 {
+                0 => bytes.truncate((r.next_u64() % bytes.len() as u64) as usize),
+                1 => {
+                    for _ in 0..1 + r.next_u64() % 4 {
+                        let k = (r.next_u64() % bytes.len() as u64) as usize;
+                        bytes[k] = r.next_u64() as u8;
+                    }
+                }
+                2 => {
+                    let k = (r.next_u64() % bytes.len() as u64) as usize;
+                    let printable = b"0123456789-.eE \n,#naifNAIF";
+                    bytes[k] = printable[(r.next_u64() % printable.len() as u64) as usize];
+                }
+                _ => {
+                    let k = (r.next_u64() % bytes.len() as u64) as usize;
+                    bytes.insert(k, r.next_u64() as u8);
+                }
+            }
+            let ok = match *kind {
+                "asc" => asc::parse_asc(&String::from_utf8_lossy(&bytes), path).is_ok(),
+                "csv" => csv_grid::parse_csv(&String::from_utf8_lossy(&bytes), path, None).is_ok(),
+                "png" => png_map::decode_png(&bytes, path, PLACE, PNG_SCALE).is_ok(),
+                _ => geotiff::decode_geotiff(&bytes, path, 1.0, 0.0).is_ok(),
+            };
+            outcomes[usize::from(ok)] += 1;
+        }
+    }
+    // Both outcomes happen: the damage is sometimes harmless, often fatal.
+    assert!(outcomes[0] > 100 && outcomes[1] > 10, "{outcomes:?}");
 }
