@@ -1595,3 +1595,20 @@ fn readers_never_panic_on_damaged_files() {
     // Both outcomes happen: the damage is sometimes harmless, often fatal.
     assert!(outcomes[0] > 100 && outcomes[1] > 10, "{outcomes:?}");
 }
+
+/// A header claiming a huge grid gets an error, not a huge allocation.
+#[test]
+fn huge_headers_do_not_allocate_their_claims() {
+    let (path, grid) = asc(
+        "huge.asc",
+        "ncols 100000000\nnrows 100000000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n",
+    );
+    assert_eq!(
+        message(grid),
+        format!(
+            "{}:6: row 1 has 3 values, expected ncols = 100000000\n  = help: each line holds one \
+             whole row of the grid; check for a missing or extra value",
+            path.display()
+        )
+    );
+}
