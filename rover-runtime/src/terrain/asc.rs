@@ -236,7 +236,8 @@ pub fn parse_asc(text: &str, path: &Path) -> Result<Grid, TerrainError> {
                 "make nrows match the number of rows, or remove the extra lines",
             ));
         }
-        let mut row = Vec::with_capacity(ncols);
+        // Not sized from the header: a corrupt ncols must not reserve gigabytes.
+        let mut row = Vec::new();
         for (c, word) in line.split_whitespace().enumerate() {
             let c = c + 1;
             let Ok(z) = word.parse::<f64>() else {

@@ -4,7 +4,8 @@ use super::error::TerrainError;
 use super::height_field::{HeightField, OffMap, finite_point};
 use super::profile::{Footprint, Profile};
 
-/// A bump of `height` on flat ground at Z = 0: a flat top of `top_width`
+/// A bump of `height` on flat ground at Z = 0 (MODEL.md §6, the terrain
+/// library): a flat top of `top_width`
 /// (0 for a pointed cosine bump) and raised-cosine flanks, full base `width`:
 /// ```text
 /// Z_G = h·p(s),  p as in the profile: 1 on the top, (1 + cos(π·(|s| − top/2)/r))/2

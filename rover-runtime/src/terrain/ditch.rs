@@ -4,7 +4,8 @@ use super::error::TerrainError;
 use super::height_field::{HeightField, OffMap, finite_point};
 use super::profile::{Footprint, Profile};
 
-/// A ditch `depth` deep in flat ground at Z = 0: the negative of a bump,
+/// A ditch `depth` deep in flat ground at Z = 0 (MODEL.md §6, the terrain
+/// library): the negative of a bump,
 /// i.e. a trapezoidal trench whose walls are raised-cosine ramps (so the
 /// surface stays C1, with no corner at the rim or the floor):
 /// ```text

@@ -4,7 +4,8 @@ use super::error::TerrainError;
 use super::height_field::{HeightField, OffMap, finite_point};
 use super::param::finite;
 
-/// Horizontal ground at a constant height: `Z_G = z0`. Unbounded.
+/// Horizontal ground at a constant height: `Z_G = z0`. Unbounded
+/// (MODEL.md §6, the terrain library).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Flat {
     height: f64,

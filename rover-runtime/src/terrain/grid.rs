@@ -8,6 +8,9 @@ use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap};
 use super::kernel::{catmull_rom, stencil};
 
+/// Tolerance, in cells, for a query on the map's edge.
+const EDGE_SLACK: f64 = 1e-9;
+
 /// How heights between grid nodes are computed (MODEL.md §6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -242,6 +245,13 @@ impl Grid {
         let last = (n - 1) as f64;
         let mut u = (value - origin) / spacing;
         let mut clamped = false;
+        // A point on the edge, as `bounds()` computes it, may land a rounding
+        // error outside: accept 1e-9 of a cell and snap it in.
+        if (-EDGE_SLACK..0.0).contains(&u) {
+            u = 0.0;
+        } else if u > last && u <= last + EDGE_SLACK {
+            u = last;
+        }
         if !(u >= 0.0 && u <= last) {
             match self.edge {
                 EdgePolicy::Error => return None,

@@ -186,6 +186,8 @@ impl RandomField {
 
     /// The unscaled field `Z_ran` [m] at (`x`, `y`) (no patch, no `Z_R`),
     /// evaluated from the lattice directly (the terrain grid samples this).
+    /// Builds the lattice over the extent on every call: for many points,
+    /// use [`RandomField::grid`].
     pub fn z_ran(&self, x: f64, y: f64) -> Result<f64, TerrainError> {
         self.check()?;
         Ok(self.lattice()?.height(x, y)?)

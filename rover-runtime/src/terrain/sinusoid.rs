@@ -4,7 +4,8 @@ use super::error::TerrainError;
 use super::height_field::{HeightField, OffMap, finite_point};
 use super::param::{finite, positive, unit_vector};
 
-/// Straight sinusoidal waves travelling along `direction_deg`:
+/// Straight sinusoidal waves along `direction_deg` (MODEL.md §6, the
+/// terrain library):
 /// ```text
 /// Z_G = A·sin(2π·s/λ + φ),  s = X·cos ψ + Y·sin ψ
 /// ```

@@ -4,7 +4,8 @@ use super::error::TerrainError;
 use super::height_field::{HeightField, OffMap, finite_point};
 use super::param::{finite, unit_vector};
 
-/// A plane rising at `angle_deg` towards the azimuth `direction_deg`:
+/// A plane rising at `angle_deg` towards the azimuth `direction_deg`
+/// (MODEL.md §6, the terrain library):
 /// ```text
 /// Z_G = z0 + tan(α)·((X − X0)·cos ψ + (Y − Y0)·sin ψ)
 /// ```

@@ -4,7 +4,8 @@ use super::error::TerrainError;
 use super::height_field::{HeightField, OffMap, finite_point};
 use super::param::{finite, non_negative, unit_vector};
 
-/// A straight step of `height` across the line through `position`
+/// A straight step (MODEL.md §6, the terrain library) of `height` across
+/// the line through `position`
 /// perpendicular to `direction_deg`; the ground is at 0 behind the line and at
 /// `height` beyond it (walking along `direction_deg`; a negative height is a
 /// step down). With `s = (X − X_p)·cos ψ + (Y − Y_p)·sin ψ` and ramp width `w`:
