@@ -135,8 +135,8 @@ impl IntegratorConfig {
             Self::SemiImplicitEuler(c) => {
                 AnyIntegrator::SemiImplicitEuler(SemiImplicitEuler::new(dim, c)?)
             }
-            Self::Dopri5(c) => AnyIntegrator::Dopri5(Dopri5::new(dim, c)?),
-            Self::Bdf(c) => AnyIntegrator::Bdf(Bdf::new(dim, c)?),
+            Self::Dopri5(c) => AnyIntegrator::Dopri5(Box::new(Dopri5::new(dim, c)?)),
+            Self::Bdf(c) => AnyIntegrator::Bdf(Box::new(Bdf::new(dim, c)?)),
         })
     }
 }
