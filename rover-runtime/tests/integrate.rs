@@ -108,6 +108,26 @@ impl OdeSystem for StiffLinear {
     }
 }
 
+/// [`StiffLinear`] with its exact Jacobian, counting the calls.
+struct StiffLinearExact {
+    jacobian_calls: u64,
+}
+
+impl OdeSystem for StiffLinearExact {
+    type Error = Infallible;
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Infallible> {
+        StiffLinear.rhs(t, y, dy)
+    }
+    fn jacobian(&mut self, _t: f64, _y: &[f64], jac: &mut [f64]) -> Option<Result<(), Infallible>> {
+        self.jacobian_calls += 1;
+        jac.copy_from_slice(&[-500.5, 499.5, 499.5, -500.5]);
+        Some(Ok(()))
+    }
+}
+
 /// Robertson's chemical kinetics (Hairer & Wanner II, §IV.1, eq. 1.4), y(0) = (1, 0, 0);
 /// `y1 + y2 + y3 = 1` for all t.
 struct Robertson;
@@ -495,6 +515,21 @@ fn bdf_takes_far_fewer_steps_than_dopri5_on_a_stiff_problem() {
 }
 
 #[test]
+fn bdf_uses_the_systems_exact_jacobian_when_it_has_one() {
+    let targets = outputs(1.0, 10);
+    let mut sys = StiffLinearExact { jacobian_calls: 0 };
+    let (states, stats) = run(&bdf(1e-6, 1e-9), &mut sys, &[2.0, 0.0], &targets);
+    for (t, y) in targets.iter().zip(&states) {
+        assert!(max_abs_diff(y, &StiffLinear::exact(*t)) < 1e-5, "t = {t}");
+    }
+    assert!(sys.jacobian_calls >= 1);
+    assert_eq!(sys.jacobian_calls, stats.jacobian_evals);
+    // No finite differences: per step at most one predictor and a few Newton evaluations.
+    let (_, by_differences) = run(&bdf(1e-6, 1e-9), &mut StiffLinear, &[2.0, 0.0], &targets);
+    assert!(stats.rhs_evals + 2 * stats.jacobian_evals <= by_differences.rhs_evals + 2);
+}
+
+#[test]
 fn bdf_solves_robertson_like_a_tight_explicit_reference() {
     let targets = [0.4, 4.0, 40.0];
     let y0 = [1.0, 0.0, 0.0];
@@ -822,6 +857,31 @@ fn bad_calls_are_reported_not_panicked_on() {
         err.to_string(),
         "the integrator was built for dimension 2, but the system has dimension 3 and the \
          state vector length 3"
+    );
+    /// Declares more positions than it has entries.
+    struct BadSplit;
+    impl OdeSystem for BadSplit {
+        type Error = Infallible;
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, _y: &[f64], dy: &mut [f64]) -> Result<(), Infallible> {
+            dy.fill(0.0);
+            Ok(())
+        }
+        fn split(&self) -> usize {
+            3
+        }
+    }
+    let err = euler(0.1)
+        .build(2)
+        .unwrap()
+        .advance(&mut BadSplit, &mut 0.0, &mut [0.0, 0.0], 1.0)
+        .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "the system declares 3 position entries but has dimension 2: `split` must be at \
+         most `dim`"
     );
     // t_target == t: nothing to do, no evaluation.
     let mut y = [1.0, 0.0];

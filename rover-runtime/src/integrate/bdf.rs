@@ -45,6 +45,12 @@ const SIDE_LANDING_RATIO: f64 = 0.999;
 /// one size, compare the errors the orders k − 1, k, k + 1 would make and take the order that
 /// allows the largest step (Shampine & Reichelt, §2.3).
 ///
+/// A step that has to be much shorter than wanted to land on a target is taken from a copy of
+/// the history ("side landing"): the caller gets the solution at the target, while the history
+/// stays on its regular grid and continues from there when the next call resumes from exactly
+/// that solution. Committing the short step instead would let the next step-size change
+/// amplify its Newton error by `(h/h_landing)^k` (frequent outputs then cost accuracy).
+///
 /// For stiff runs (a stiff tyre contact), where an explicit method's step is capped by
 /// stability rather than accuracy. The workspace, including the dense Jacobian and its LU
 /// factors (`dim²` each), is allocated in [`Bdf::new`]; steps allocate nothing.
@@ -131,7 +137,7 @@ impl Bdf {
         self.hist.order
     }
 
-    /// The step size the controller will try next [s] (0 before the first step).
+    /// The step size the controller will try next \[s\] (0 before the first step).
     pub fn next_step(&self) -> f64 {
         self.h
     }

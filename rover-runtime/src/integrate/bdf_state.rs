@@ -19,7 +19,7 @@ pub(crate) struct BdfHistory {
     d: Vec<f64>,
     /// Current order k, 1..=5.
     pub order: usize,
-    /// Step of the grid the differences refer to [s].
+    /// Step of the grid the differences refer to \[s\].
     pub h: f64,
     /// Steps taken at this step size since the last change.
     pub equal_steps: usize,

@@ -43,7 +43,7 @@ impl Rk4 {
         })
     }
 
-    /// The configured step [s].
+    /// The configured step \[s\].
     pub fn step(&self) -> f64 {
         self.step
     }
