@@ -10,10 +10,10 @@ pub enum AnyIntegrator {
     Rk4(Rk4),
     /// Fixed-step semi-implicit Euler.
     SemiImplicitEuler(SemiImplicitEuler),
-    /// Adaptive Dormand–Prince 5(4).
-    Dopri5(Dopri5),
-    /// Variable-order NDF/BDF.
-    Bdf(Bdf),
+    /// Adaptive Dormand–Prince 5(4) (boxed: its workspace handles are larger).
+    Dopri5(Box<Dopri5>),
+    /// Variable-order NDF/BDF (boxed: its workspace handles are larger).
+    Bdf(Box<Bdf>),
 }
 
 impl Integrator for AnyIntegrator {

@@ -23,6 +23,9 @@ const MIN_INCREASE: f64 = 1.2;
 const NEWTON_FAILURE_FACTOR: f64 = 0.5;
 /// Step reduction after a candidate state that is not finite.
 const NON_FINITE_FACTOR: f64 = 0.25;
+/// A step landing on a target that is shorter than this fraction of the wanted step is taken
+/// from a copy of the history (see `advance`).
+const SIDE_LANDING_RATIO: f64 = 0.999;
 
 /// Variable-order (1–5), variable-step numerical differentiation formulas (NDF) or backward
 /// differentiation formulas (BDF) in backward-difference form, after Shampine & Reichelt
@@ -42,6 +45,12 @@ const NON_FINITE_FACTOR: f64 = 0.25;
 /// one size, compare the errors the orders k − 1, k, k + 1 would make and take the order that
 /// allows the largest step (Shampine & Reichelt, §2.3).
 ///
+/// A step that has to be much shorter than wanted to land on a target is taken from a copy of
+/// the history ("side landing"): the caller gets the solution at the target, while the history
+/// stays on its regular grid and continues from there when the next call resumes from exactly
+/// that solution. Committing the short step instead would let the next step-size change
+/// amplify its Newton error by `(h/h_landing)^k` (frequent outputs then cost accuracy).
+///
 /// For stiff runs (a stiff tyre contact), where an explicit method's step is capped by
 /// stability rather than accuracy. The workspace, including the dense Jacobian and its LU
 /// factors (`dim²` each), is allocated in [`Bdf::new`]; steps allocate nothing.
@@ -51,6 +60,10 @@ pub struct Bdf {
     dim: usize,
     kappa: [f64; BDF_MAX_ORDER + 1],
     hist: BdfHistory,
+    /// Time of the history's last point (behind the caller's time after a side landing).
+    t_hist: f64,
+    /// Room for a copy of the history, for side landings.
+    spare: BdfHistory,
     jac: Vec<f64>,
     jac_scratch: JacobianScratch,
     /// A Jacobian has been computed (it survives restarts as a first approximation).
@@ -97,6 +110,8 @@ impl Bdf {
                 [0.0; BDF_MAX_ORDER + 1]
             },
             hist: BdfHistory::new(dim),
+            t_hist: 0.0,
+            spare: BdfHistory::new(dim),
             jac: vec![0.0; dim * dim],
             jac_scratch: JacobianScratch::new(dim),
             have_jac: false,
@@ -122,7 +137,7 @@ impl Bdf {
         self.hist.order
     }
 
-    /// The step size the controller will try next [s] (0 before the first step).
+    /// The step size the controller will try next \[s\] (0 before the first step).
     pub fn next_step(&self) -> f64 {
         self.h
     }
@@ -354,6 +369,7 @@ impl Integrator for Bdf {
         }
         if !self.resume.matches(*t, y) {
             self.start(sys, *t, y)?;
+            self.t_hist = *t;
         }
         self.resume.invalidate();
         let BdfConfig {
@@ -363,6 +379,8 @@ impl Integrator for Bdf {
             ..
         } = self.config;
         let mut attempts = 0u64;
+        // The history may lag the caller's time after a side landing (see below); the loop
+        // runs on the history's time and reports accepted points past the caller's time.
         while *t < t_target {
             if attempts >= max_steps {
                 return Err(IntegrateError::TooManySteps {
@@ -375,23 +393,47 @@ impl Integrator for Bdf {
             let h_wanted = self.h.min(max_step);
             if h_wanted < min_step {
                 return Err(IntegrateError::StepTooSmall {
-                    t: *t,
+                    t: self.t_hist,
                     h: h_wanted,
                     min_step,
                 });
             }
-            let (h, lands) = clamp_to_target(*t, h_wanted, t_target);
+            let (h, lands) = clamp_to_target(self.t_hist, h_wanted, t_target);
+            // A landing step much shorter than the step the history is scaled for would, once
+            // committed, have its Newton and rounding errors amplified by (h_wanted/h)^k when
+            // the next step re-scales the differences back up. Such a step is taken from a
+            // copy of the history instead ("side landing"): the caller gets the solution at
+            // the target, the history stays at the last regular point and continues from
+            // there when the next call resumes from exactly that solution.
+            let side = lands && h < SIDE_LANDING_RATIO * h_wanted;
+            if side {
+                self.spare.copy_from(&self.hist);
+                std::mem::swap(&mut self.hist, &mut self.spare);
+            }
             if h != self.hist.h {
                 self.hist.change_step(h / self.hist.h);
             }
-            let t_new = if lands { t_target } else { *t + h };
-            match self.attempt(sys, t_new)? {
-                Attempt::Accepted { err } => {
-                    self.hist.commit(&self.d);
+            let t_new = if lands { t_target } else { self.t_hist + h };
+            let attempt = self.attempt(sys, t_new);
+            let accepted = matches!(attempt, Ok(Attempt::Accepted { .. }));
+            if accepted {
+                self.stats.steps += 1;
+                self.jac_current = false;
+                self.hist.commit(&self.d);
+                if t_new > *t {
                     *t = t_new;
                     y.copy_from_slice(self.hist.row(0));
-                    self.stats.steps += 1;
-                    self.jac_current = false;
+                }
+            }
+            if side {
+                std::mem::swap(&mut self.hist, &mut self.spare);
+                if accepted {
+                    break;
+                }
+            }
+            match attempt? {
+                Attempt::Accepted { err } => {
+                    self.t_hist = t_new;
                     let (order, factor) = self.select_order(err);
                     self.hist.order = order;
                     self.h = next_after_landing(h, h_wanted, factor);

@@ -19,7 +19,7 @@ pub(crate) struct BdfHistory {
     d: Vec<f64>,
     /// Current order k, 1..=5.
     pub order: usize,
-    /// Step of the grid the differences refer to [s].
+    /// Step of the grid the differences refer to \[s\].
     pub h: f64,
     /// Steps taken at this step size since the last change.
     pub equal_steps: usize,
@@ -35,6 +35,14 @@ impl BdfHistory {
             h: 0.0,
             equal_steps: 0,
         }
+    }
+
+    /// Becomes a copy of `other` (same dimension), without allocating.
+    pub(crate) fn copy_from(&mut self, other: &Self) {
+        self.d.copy_from_slice(&other.d);
+        self.order = other.order;
+        self.h = other.h;
+        self.equal_steps = other.equal_steps;
     }
 
     /// `∇^j y_n`.
@@ -71,8 +79,8 @@ impl BdfHistory {
     /// `ψ = (1/α_k)·Σ_{m=1..k} γ_m·D_m`, the known part of the corrector equation.
     pub(crate) fn psi(&self, alpha: f64, out: &mut [f64]) {
         out.fill(0.0);
-        for m in 1..=self.order {
-            let g = BDF_GAMMA[m] / alpha;
+        for (m, gamma) in BDF_GAMMA.iter().enumerate().take(self.order + 1).skip(1) {
+            let g = gamma / alpha;
             for (o, dm) in out.iter_mut().zip(self.row(m)) {
                 *o += g * dm;
             }
@@ -84,6 +92,7 @@ impl BdfHistory {
     /// are `Rᵀ(r)·D`, and since `U = R(1)` satisfies `U² = I` the new differences are
     /// `D' = (R(r)·U)ᵀ·D` (Shampine & Reichelt 1997, §2.1). Rows above k are left as they are
     /// (stale until `k + 1` steps at the new size refresh them; order selection waits for that).
+    #[allow(clippy::needless_range_loop)] // index notation mirrors the formulas
     pub(crate) fn change_step(&mut self, factor: f64) {
         let k = self.order;
         let r = resample_matrix(k, factor);
@@ -113,9 +122,11 @@ impl BdfHistory {
     pub(crate) fn commit(&mut self, d: &[f64]) {
         let k = self.order;
         let n = self.n;
-        for c in 0..n {
-            self.d[(k + 2) * n + c] = d[c] - self.d[(k + 1) * n + c];
-            self.d[(k + 1) * n + c] = d[c];
+        let (low, high) = self.d.split_at_mut((k + 2) * n);
+        let next = &mut low[(k + 1) * n..];
+        for ((top, nx), dc) in high[..n].iter_mut().zip(next.iter_mut()).zip(d) {
+            *top = dc - *nx;
+            *nx = *dc;
         }
         for j in (0..=k).rev() {
             for c in 0..n {
@@ -127,6 +138,7 @@ impl BdfHistory {
 }
 
 /// `R_ij(r) = Π_{l=1..i} (l − 1 − r·j)/l` for i, j = 0..=k.
+#[allow(clippy::needless_range_loop)] // index notation mirrors the formula
 fn resample_matrix(k: usize, r: f64) -> [[f64; BDF_MAX_ORDER + 1]; BDF_MAX_ORDER + 1] {
     let mut m = [[0.0; BDF_MAX_ORDER + 1]; BDF_MAX_ORDER + 1];
     for j in 0..=k {

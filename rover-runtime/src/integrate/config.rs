@@ -37,7 +37,7 @@ pub enum IntegratorConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FixedStepConfig {
-    /// Step size [s]. The last step before a target is shortened to land on it.
+    /// Step size \[s\]. The last step before a target is shortened to land on it.
     pub step: f64,
 }
 
@@ -49,9 +49,9 @@ pub struct AdaptiveConfig {
     pub rtol: f64,
     /// Absolute tolerance of the local error, in the state's SI units (default 1e-9).
     pub atol: f64,
-    /// Largest step [s] (default: unbounded, `inf` in TOML).
+    /// Largest step \[s\] (default: unbounded, `inf` in TOML).
     pub max_step: f64,
-    /// Smallest step the controller may ask for before the run stops [s] (default 1e-10 s,
+    /// Smallest step the controller may ask for before the run stops \[s\] (default 1e-10 s,
     /// far below the fastest rover time scale, a tyre's vertical mode at a few ms).
     pub min_step: f64,
     /// Step attempts allowed in one `advance` call (default 100 000).
@@ -84,9 +84,9 @@ pub struct BdfConfig {
     /// Numerical differentiation formulas (Klopfenstein–Shampine NDF, ode15s' default) when
     /// true (default), plain BDF when false.
     pub ndf: bool,
-    /// Largest step [s] (default: unbounded).
+    /// Largest step \[s\] (default: unbounded).
     pub max_step: f64,
-    /// Smallest step the controller may ask for before the run stops [s] (default 1e-10 s).
+    /// Smallest step the controller may ask for before the run stops \[s\] (default 1e-10 s).
     pub min_step: f64,
     /// Step attempts allowed in one `advance` call (default 100 000).
     pub max_steps: u64,
@@ -135,8 +135,8 @@ impl IntegratorConfig {
             Self::SemiImplicitEuler(c) => {
                 AnyIntegrator::SemiImplicitEuler(SemiImplicitEuler::new(dim, c)?)
             }
-            Self::Dopri5(c) => AnyIntegrator::Dopri5(Dopri5::new(dim, c)?),
-            Self::Bdf(c) => AnyIntegrator::Bdf(Bdf::new(dim, c)?),
+            Self::Dopri5(c) => AnyIntegrator::Dopri5(Box::new(Dopri5::new(dim, c)?)),
+            Self::Bdf(c) => AnyIntegrator::Bdf(Box::new(Bdf::new(dim, c)?)),
         })
     }
 }

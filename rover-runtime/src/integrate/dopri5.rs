@@ -71,7 +71,7 @@ impl Dopri5 {
         })
     }
 
-    /// The step size the controller will try next [s] (0 before the first step).
+    /// The step size the controller will try next \[s\] (0 before the first step).
     pub fn next_step(&self) -> f64 {
         self.h
     }

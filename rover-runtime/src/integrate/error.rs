@@ -7,34 +7,34 @@ use std::fmt;
 /// `advance` then holds the last accepted step (at the time `t` left in the caller's variable).
 #[derive(Debug, Clone, PartialEq)]
 pub enum IntegrateError<E> {
-    /// The right-hand side (or Jacobian) returned an error when evaluated at time `t` [s].
+    /// The right-hand side (or Jacobian) returned an error when evaluated at time `t` \[s\].
     Rhs {
-        /// Time of the failing evaluation [s] (a stage time, not necessarily a step end).
+        /// Time of the failing evaluation \[s\] (a stage time, not necessarily a step end).
         t: f64,
         /// The system's error.
         source: E,
     },
     /// The step-size controller asked for a step below the configured minimum.
     StepTooSmall {
-        /// Time at which the step was to start [s].
+        /// Time at which the step was to start \[s\].
         t: f64,
-        /// The step the controller asked for [s].
+        /// The step the controller asked for \[s\].
         h: f64,
-        /// The configured minimum [s].
+        /// The configured minimum \[s\].
         min_step: f64,
     },
     /// The configured number of step attempts per `advance` call was used up.
     TooManySteps {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
-        /// Target of the call [s].
+        /// Target of the call \[s\].
         t_target: f64,
         /// The configured limit.
         max_steps: u64,
     },
     /// A state component became NaN or infinite.
     NonFinite {
-        /// Time of the offending state [s].
+        /// Time of the offending state \[s\].
         t: f64,
         /// Index of the first non-finite component in `y`.
         component: usize,
@@ -59,9 +59,9 @@ pub enum IntegrateError<E> {
     },
     /// The target time is not finite or lies before the current time (integration runs forward).
     BadTarget {
-        /// Current time [s].
+        /// Current time \[s\].
         t: f64,
-        /// Requested target [s].
+        /// Requested target \[s\].
         t_target: f64,
     },
 }

@@ -66,6 +66,7 @@ impl Lu {
     }
 
     /// Solves `A·x = b` with the factors, `b` overwritten by `x`.
+    #[allow(clippy::needless_range_loop)] // index notation mirrors the algorithm
     pub(crate) fn solve(&self, b: &mut [f64]) {
         let n = self.n;
         for k in 0..n {

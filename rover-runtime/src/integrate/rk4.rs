@@ -43,7 +43,7 @@ impl Rk4 {
         })
     }
 
-    /// The configured step [s].
+    /// The configured step \[s\].
     pub fn step(&self) -> f64 {
         self.step
     }
@@ -65,8 +65,9 @@ impl Rk4 {
         axpy(&mut self.stage, y, h, &self.k3);
         eval(sys, t + h, &self.stage, &mut self.k4, &mut self.stats)?;
         let sixth = h / 6.0;
-        for i in 0..self.dim {
-            y[i] += sixth * (self.k1[i] + 2.0 * (self.k2[i] + self.k3[i]) + self.k4[i]);
+        let stages = self.k1.iter().zip(&self.k2).zip(&self.k3).zip(&self.k4);
+        for (yi, (((k1, k2), k3), k4)) in y.iter_mut().zip(stages) {
+            *yi += sixth * (k1 + 2.0 * (k2 + k3) + k4);
         }
         Ok(())
     }

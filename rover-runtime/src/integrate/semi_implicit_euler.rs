@@ -37,7 +37,7 @@ impl SemiImplicitEuler {
         })
     }
 
-    /// The configured step [s].
+    /// The configured step \[s\].
     pub fn step(&self) -> f64 {
         self.step
     }

@@ -28,7 +28,7 @@ pub(crate) struct StartingStep {
     pub atol: f64,
     /// Order `q` of the local error estimate (the error behaves like `h^(q+1)`).
     pub order: u32,
-    /// Largest step allowed [s].
+    /// Largest step allowed \[s\].
     pub max_step: f64,
 }
 
