@@ -119,9 +119,27 @@ impl MeridionalContact {
         } else {
             None
         };
+        // A dip between samples: a local minimum of the sampled clearance
+        // that is shallow enough to hide a crossing is refined, so a patch
+        // is born with zero deflection instead of appearing at the depth
+        // the next sample would have shown (a force jump that stalls
+        // step-size control). Smooth ground cannot hide more than the rim's
+        // sagitta over one interval, R·Δβ²/2; four times that is searched.
+        let hidden = 2.0 * radius * step * step;
+        let mut prev2 = f64::NAN;
         for i in 1..n {
             let b = beta(i);
             let h = clearance(terrain, &frame, b)?;
+            if prev >= 0.0 && h >= 0.0 && prev < prev2 && prev < h && prev < hidden {
+                let (lo, hi) = (beta(i - 2), b);
+                let (bm, hm) = dip_minimum(terrain, &frame, lo, hi)?;
+                if hm < 0.0 {
+                    let a = crossing(terrain, &frame, lo, prev2, bm, hm, tol)?;
+                    let e = crossing(terrain, &frame, bm, hm, hi, h, tol)?;
+                    contact.push(frame.patch(a, e));
+                }
+            }
+            prev2 = prev;
             if prev >= 0.0 && h < 0.0 {
                 start = Some(crossing(terrain, &frame, beta(i - 1), prev, b, h, tol)?);
             } else if prev < 0.0 && h >= 0.0 {
@@ -138,4 +156,30 @@ impl MeridionalContact {
         }
         Ok(contact)
     }
+}
+
+/// Minimum of the clearance on [lo, hi] by golden-section search (the
+/// bracket holds one sampled local minimum).
+fn dip_minimum<H: HeightField + ?Sized>(terrain: &H, frame: &RimFrame, mut lo: f64, mut hi: f64) -> Result<(f64, f64), OffMap> {
+    const G: f64 = 0.618_033_988_749_894_8;
+    let mut c = hi - G * (hi - lo);
+    let mut d = lo + G * (hi - lo);
+    let mut hc = clearance(terrain, frame, c)?;
+    let mut hd = clearance(terrain, frame, d)?;
+    for _ in 0..30 {
+        if hc < hd {
+            hi = d;
+            d = c;
+            hd = hc;
+            c = hi - G * (hi - lo);
+            hc = clearance(terrain, frame, c)?;
+        } else {
+            lo = c;
+            c = d;
+            hc = hd;
+            d = lo + G * (hi - lo);
+            hd = clearance(terrain, frame, d)?;
+        }
+    }
+    Ok(if hc < hd { (c, hc) } else { (d, hd) })
 }
