@@ -149,6 +149,57 @@ impl<'a> Document<'a> {
     }
 }
 
+impl Document<'_> {
+    /// Where an unknown key `key` sits: the first table (in file order)
+    /// holding it whose other keys are all in `expected` (the table serde
+    /// was reading). Gives the key's path and the key's span.
+    pub fn find_unknown_key(&self, key: &str, expected: &[&str]) -> Option<(String, Range<usize>)> {
+        let root = self.root.as_ref()?;
+        let mut found: Option<(String, Range<usize>)> = None;
+        let mut stack: Vec<(Vec<Segment>, DeNode)> =
+            vec![(Vec::new(), DeNode::Table(root.get_ref()))];
+        while let Some((path, node)) = stack.pop() {
+            match node {
+                DeNode::Table(t) => {
+                    let holds = t.iter().find(|(k, _)| k.get_ref().as_ref() == key);
+                    let fits = t.iter().all(|(k, _)| {
+                        let k = k.get_ref().as_ref();
+                        k == key || k == "kind" || expected.contains(&k)
+                    });
+                    if let (Some((k, _)), true) = (holds, fits)
+                        && found.as_ref().is_none_or(|f| k.span().start < f.1.start)
+                    {
+                        let mut p = path.clone();
+                        p.push(Segment::Key(key.to_string()));
+                        found = Some((join(&p), k.span()));
+                    }
+                    for (k, v) in t.iter() {
+                        let mut p = path.clone();
+                        p.push(Segment::Key(k.get_ref().to_string()));
+                        match v.get_ref() {
+                            DeValue::Table(t) => stack.push((p, DeNode::Table(t))),
+                            DeValue::Array(a) => stack.push((p, DeNode::Array(a))),
+                            _ => {}
+                        }
+                    }
+                }
+                DeNode::Array(a) => {
+                    for (i, v) in a.iter().enumerate() {
+                        let mut p = path.clone();
+                        p.push(Segment::Index(i));
+                        match v.get_ref() {
+                            DeValue::Table(t) => stack.push((p, DeNode::Table(t))),
+                            DeValue::Array(a) => stack.push((p, DeNode::Array(a))),
+                            _ => {}
+                        }
+                    }
+                }
+            }
+        }
+        found
+    }
+}
+
 /// A container while walking the tree.
 #[derive(Clone, Copy)]
 enum DeNode<'d, 'a> {

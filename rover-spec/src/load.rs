@@ -57,23 +57,32 @@ pub fn parse_str(text: &str, origin: &str) -> Result<Description, SpecError> {
 /// A parser or serde error as a [`Diagnostic`], with its field path and a hint.
 fn parser_diagnostic(e: &toml::de::Error, doc: &Document, text: &str) -> Diagnostic {
     let message = e.message().trim().to_string();
-    let span = e.span();
+    let mut span = e.span();
     let mut path = span.as_ref().map(|s| doc.path_at(s)).unwrap_or_default();
     let label;
     let help = if let Some(rest) = message.strip_prefix("unknown field `") {
         let field = rest.split('`').next().unwrap_or_default();
-        // The span is the key; the innermost value holding it is the table.
-        if let Some(s) = &span
-            && text
-                .get(s.clone())
-                .is_some_and(|k| k.trim_matches('"') == field)
-            && !path.ends_with(field)
-        {
-            path = if path.is_empty() {
-                field.to_string()
-            } else {
-                format!("{path}.{field}")
-            };
+        let expected: Vec<&str> = message
+            .split_once("expected")
+            .map(|(_, list)| list.split('`').skip(1).step_by(2).collect())
+            .unwrap_or_default();
+        let on_key = span
+            .as_ref()
+            .and_then(|s| text.get(s.clone()))
+            .is_some_and(|k| k.trim_matches('"') == field);
+        if on_key {
+            // The span is the key; the innermost value holding it is the table.
+            if !path.ends_with(field) {
+                path = if path.is_empty() {
+                    field.to_string()
+                } else {
+                    format!("{path}.{field}")
+                };
+            }
+        } else if let Some((p, s)) = doc.find_unknown_key(field, &expected) {
+            // Tagged tables (suspensions) lose the key's span in serde.
+            path = p;
+            span = Some(s);
         }
         label = "unknown field".to_string();
         "remove it or fix its spelling (docs/DESCRIPTION.md lists every field)".to_string()

@@ -84,6 +84,18 @@ pub fn check_coordinate(
         );
         return None;
     }
+    if !linear && max - min > 2.0 * std::f64::consts::PI {
+        ctx.error(
+            Ctx::angle_path(path, "max", c.max_deg.is_some()),
+            format!(
+                "the travel [{}, {}] spans more than a full turn",
+                coord_value(min, linear),
+                coord_value(max, linear)
+            ),
+            "angles without `_deg` are in radians: check the unit, and give the range the suspension can really travel",
+        );
+        return None;
+    }
     if rest < min || rest > max {
         let rest_path = if c.rest.is_some() || c.rest_deg.is_some() {
             Ctx::angle_path(path, "rest", c.rest_deg.is_some())
