@@ -109,7 +109,9 @@ impl<'a> Document<'a> {
         span.map(|s| (s, true))
     }
 
-    /// The path of the innermost value whose span holds `span`.
+    /// The path of the innermost value whose span holds `span`. (The span
+    /// of a `[[table]]` covers only its header, so a value is searched for
+    /// through its children too.)
     pub fn path_at(&self, span: &Range<usize>) -> String {
         let Some(root) = self.root.as_ref() else {
             return String::new();
@@ -117,23 +119,24 @@ impl<'a> Document<'a> {
         let mut path = Vec::new();
         let mut node = DeNode::Table(root.get_ref());
         'walk: loop {
-            let children: Vec<(Segment, &Spanned<DeValue>)> = match node {
+            let children: Vec<(Segment, Option<Range<usize>>, &Spanned<DeValue>)> = match node {
                 DeNode::Table(t) => t
                     .iter()
-                    .map(|(k, v)| (Segment::Key(k.get_ref().to_string()), v))
+                    .map(|(k, v)| (Segment::Key(k.get_ref().to_string()), Some(k.span()), v))
                     .collect(),
                 DeNode::Array(a) => a
                     .iter()
                     .enumerate()
-                    .map(|(i, v)| (Segment::Index(i), v))
+                    .map(|(i, v)| (Segment::Index(i), None, v))
                     .collect(),
             };
-            for (seg, child) in children {
-                let s = child.span();
-                // A key's own bytes come just before its value; an error on
-                // the key (unknown field) lands there.
-                let holds = s.start <= span.start && span.end <= s.end;
-                if holds {
+            for (seg, key, child) in children {
+                // An error on a key (unknown field) points at the key itself.
+                if key.is_some_and(|k| k.start <= span.start && span.end <= k.end) {
+                    path.push(seg);
+                    break 'walk;
+                }
+                if holds(child, span) {
                     path.push(seg);
                     match child.get_ref() {
                         DeValue::Table(t) => node = DeNode::Table(t),
@@ -197,6 +200,22 @@ impl Document<'_> {
             }
         }
         found
+    }
+}
+
+/// Whether `value` or anything inside it spans `span`.
+fn holds(value: &Spanned<DeValue>, span: &Range<usize>) -> bool {
+    let s = value.span();
+    if s.start <= span.start && span.end <= s.end {
+        return true;
+    }
+    match value.get_ref() {
+        DeValue::Table(t) => t.iter().any(|(k, v)| {
+            let k = k.span();
+            (k.start <= span.start && span.end <= k.end) || holds(v, span)
+        }),
+        DeValue::Array(a) => a.iter().any(|v| holds(v, span)),
+        _ => false,
     }
 }
 

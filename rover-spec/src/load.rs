@@ -50,8 +50,47 @@ pub fn parse_str(text: &str, origin: &str) -> Result<Description, SpecError> {
     }
     toml::from_str::<Description>(text).map_err(|e| {
         let doc = Document::parse(text);
+        let e = refine_tagged(text, &e).unwrap_or(e);
         SpecError::new(origin, Some(text), vec![parser_diagnostic(&e, &doc, text)])
     })
+}
+
+/// serde reads a `kind`-tagged `[[suspension]]` table through a buffer that
+/// loses the spans inside it, so its errors point at the whole table. Read
+/// the table that holds the error again, straight into its kind's struct,
+/// to get the precise error (the key, the value).
+fn refine_tagged(text: &str, error: &toml::de::Error) -> Option<toml::de::Error> {
+    use serde::de::DeserializeOwned;
+    use toml::de::{DeTable, DeValue, ValueDeserializer};
+
+    use crate::description as d;
+
+    fn read<T: DeserializeOwned>(value: toml::Spanned<DeValue<'_>>) -> Option<toml::de::Error> {
+        T::deserialize(ValueDeserializer::from(value)).err()
+    }
+
+    let span = error.span()?;
+    let root = DeTable::parse(text).ok()?.into_inner();
+    let suspensions = root.get("suspension")?.get_ref().as_array()?;
+    let entry = suspensions
+        .iter()
+        .find(|s| s.span().start <= span.start && span.end <= s.span().end)?;
+    let DeValue::Table(table) = entry.get_ref() else {
+        return None;
+    };
+    let mut table = table.clone();
+    let kind = table.remove("kind")?;
+    let value = toml::Spanned::new(entry.span(), DeValue::Table(table));
+    match kind.get_ref().as_str()? {
+        "longitudinal_swing_arm" => read::<d::SwingArmDesc>(value),
+        "transversal_swing_arm" => read::<d::TransversalSwingArmDesc>(value),
+        "double_wishbone" => read::<d::DoubleWishboneDesc>(value),
+        "longitudinal_rocker" | "transversal_rocker" => read::<d::RockerDesc>(value),
+        "rocker_bogie" => read::<d::RockerBogieDesc>(value),
+        "polynomial" => read::<d::PolynomialDesc>(value),
+        _ => None,
+    }
+    .filter(|e| e.span().is_some())
 }
 
 /// A parser or serde error as a [`Diagnostic`], with its field path and a hint.

@@ -280,3 +280,13 @@ fn unreadable_file() {
         "{e}"
     );
 }
+
+#[test]
+fn missing_field_in_suspension() {
+    insta::assert_snapshot!(bad("length = 0.2\n", ""));
+}
+
+#[test]
+fn wrong_type_in_suspension() {
+    insta::assert_snapshot!(bad("length = 0.2", "length = \"short\""));
+}
