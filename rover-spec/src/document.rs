@@ -119,7 +119,7 @@ impl<'a> Document<'a> {
         let mut path = Vec::new();
         let mut node = DeNode::Table(root.get_ref());
         'walk: loop {
-            let children: Vec<(Segment, Option<Range<usize>>, &Spanned<DeValue>)> = match node {
+            let children: Vec<Child> = match node {
                 DeNode::Table(t) => t
                     .iter()
                     .map(|(k, v)| (Segment::Key(k.get_ref().to_string()), Some(k.span()), v))
@@ -218,6 +218,10 @@ fn holds(value: &Spanned<DeValue>, span: &Range<usize>) -> bool {
         _ => false,
     }
 }
+
+/// A child while walking the tree: its path step, its key's span (tables)
+/// and its value.
+type Child<'d, 'a> = (Segment, Option<Range<usize>>, &'d Spanned<DeValue<'a>>);
 
 /// A container while walking the tree.
 #[derive(Clone, Copy)]
