@@ -32,11 +32,11 @@ pub enum FitFailure {
 pub struct ShareFit {
     /// `coeffs[p] = [Δu_x, Δu_y, Δu_z, θ]` coefficient of ξ^p.
     pub coeffs: Vec<[f64; 4]>,
-    /// Largest |Δu_fit − Δu_exact| (Euclidean) [m].
+    /// Largest |Δu_fit − Δu_exact| (Euclidean) \[m\].
     pub position_error: f64,
     /// Where it occurs.
     pub position_error_at: f64,
-    /// Largest |θ_fit − θ_exact| [rad].
+    /// Largest |θ_fit − θ_exact| \[rad\].
     pub angle_error: f64,
     /// Where it occurs.
     pub angle_error_at: f64,

@@ -3,6 +3,7 @@
 mod errors;
 mod fig1;
 mod fuzz;
+mod jet;
 mod library;
 mod models;
 mod roundtrip;

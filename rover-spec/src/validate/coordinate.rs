@@ -14,7 +14,7 @@ pub struct CheckedCoord {
     pub name: String,
     /// Field path of its table.
     pub path: String,
-    /// Length [m] rather than angle [rad].
+    /// Length \[m\] rather than angle \[rad\].
     pub linear: bool,
     /// Rest and travel.
     pub range: CoordRange,

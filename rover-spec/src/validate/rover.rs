@@ -193,6 +193,13 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         fitted.push(point);
     }
 
+    if ctx.diags.is_empty() && fitted.iter().any(Option::is_none) {
+        ctx.error(
+            "",
+            "a carried body could not be placed on its suspension",
+            "this is a bug in rover-spec: please report it with the file",
+        );
+    }
     if !ctx.diags.is_empty() {
         return Err(ctx.diags);
     }
