@@ -22,7 +22,17 @@ pub fn num(v: f64) -> String {
         let s = s.trim_end_matches('0').trim_end_matches('.');
         s.to_string()
     } else {
-        format!("{v:.4e}")
+        // Four significant digits, without trailing zeros: 1e-4, 1.2346e-5.
+        let s = format!("{v:.4e}");
+        match s.split_once('e') {
+            Some((mantissa, exp)) if mantissa.contains('.') => {
+                format!(
+                    "{}e{exp}",
+                    mantissa.trim_end_matches('0').trim_end_matches('.')
+                )
+            }
+            _ => s,
+        }
     }
 }
 

@@ -109,7 +109,9 @@ impl<'a> Document<'a> {
         span.map(|s| (s, true))
     }
 
-    /// The path of the innermost value whose span holds `span`.
+    /// The path of the innermost value whose span holds `span`. (The span
+    /// of a `[[table]]` covers only its header, so a value is searched for
+    /// through its children too.)
     pub fn path_at(&self, span: &Range<usize>) -> String {
         let Some(root) = self.root.as_ref() else {
             return String::new();
@@ -117,23 +119,24 @@ impl<'a> Document<'a> {
         let mut path = Vec::new();
         let mut node = DeNode::Table(root.get_ref());
         'walk: loop {
-            let children: Vec<(Segment, &Spanned<DeValue>)> = match node {
+            let children: Vec<Child> = match node {
                 DeNode::Table(t) => t
                     .iter()
-                    .map(|(k, v)| (Segment::Key(k.get_ref().to_string()), v))
+                    .map(|(k, v)| (Segment::Key(k.get_ref().to_string()), Some(k.span()), v))
                     .collect(),
                 DeNode::Array(a) => a
                     .iter()
                     .enumerate()
-                    .map(|(i, v)| (Segment::Index(i), v))
+                    .map(|(i, v)| (Segment::Index(i), None, v))
                     .collect(),
             };
-            for (seg, child) in children {
-                let s = child.span();
-                // A key's own bytes come just before its value; an error on
-                // the key (unknown field) lands there.
-                let holds = s.start <= span.start && span.end <= s.end;
-                if holds {
+            for (seg, key, child) in children {
+                // An error on a key (unknown field) points at the key itself.
+                if key.is_some_and(|k| k.start <= span.start && span.end <= k.end) {
+                    path.push(seg);
+                    break 'walk;
+                }
+                if holds(child, span) {
                     path.push(seg);
                     match child.get_ref() {
                         DeValue::Table(t) => node = DeNode::Table(t),
@@ -148,6 +151,77 @@ impl<'a> Document<'a> {
         join(&path)
     }
 }
+
+impl Document<'_> {
+    /// Where an unknown key `key` sits: the first table (in file order)
+    /// holding it whose other keys are all in `expected` (the table serde
+    /// was reading). Gives the key's path and the key's span.
+    pub fn find_unknown_key(&self, key: &str, expected: &[&str]) -> Option<(String, Range<usize>)> {
+        let root = self.root.as_ref()?;
+        let mut found: Option<(String, Range<usize>)> = None;
+        let mut stack: Vec<(Vec<Segment>, DeNode)> =
+            vec![(Vec::new(), DeNode::Table(root.get_ref()))];
+        while let Some((path, node)) = stack.pop() {
+            match node {
+                DeNode::Table(t) => {
+                    let holds = t.iter().find(|(k, _)| k.get_ref().as_ref() == key);
+                    let fits = t.iter().all(|(k, _)| {
+                        let k = k.get_ref().as_ref();
+                        k == key || k == "kind" || expected.contains(&k)
+                    });
+                    if let (Some((k, _)), true) = (holds, fits)
+                        && found.as_ref().is_none_or(|f| k.span().start < f.1.start)
+                    {
+                        let mut p = path.clone();
+                        p.push(Segment::Key(key.to_string()));
+                        found = Some((join(&p), k.span()));
+                    }
+                    for (k, v) in t.iter() {
+                        let mut p = path.clone();
+                        p.push(Segment::Key(k.get_ref().to_string()));
+                        match v.get_ref() {
+                            DeValue::Table(t) => stack.push((p, DeNode::Table(t))),
+                            DeValue::Array(a) => stack.push((p, DeNode::Array(a))),
+                            _ => {}
+                        }
+                    }
+                }
+                DeNode::Array(a) => {
+                    for (i, v) in a.iter().enumerate() {
+                        let mut p = path.clone();
+                        p.push(Segment::Index(i));
+                        match v.get_ref() {
+                            DeValue::Table(t) => stack.push((p, DeNode::Table(t))),
+                            DeValue::Array(a) => stack.push((p, DeNode::Array(a))),
+                            _ => {}
+                        }
+                    }
+                }
+            }
+        }
+        found
+    }
+}
+
+/// Whether `value` or anything inside it spans `span`.
+fn holds(value: &Spanned<DeValue>, span: &Range<usize>) -> bool {
+    let s = value.span();
+    if s.start <= span.start && span.end <= s.end {
+        return true;
+    }
+    match value.get_ref() {
+        DeValue::Table(t) => t.iter().any(|(k, v)| {
+            let k = k.span();
+            (k.start <= span.start && span.end <= k.end) || holds(v, span)
+        }),
+        DeValue::Array(a) => a.iter().any(|v| holds(v, span)),
+        _ => false,
+    }
+}
+
+/// A child while walking the tree: its path step, its key's span (tables)
+/// and its value.
+type Child<'d, 'a> = (Segment, Option<Range<usize>>, &'d Spanned<DeValue<'a>>);
 
 /// A container while walking the tree.
 #[derive(Clone, Copy)]

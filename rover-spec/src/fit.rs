@@ -18,7 +18,8 @@ const REFINE_STEPS: usize = 40;
 /// Why a share cannot be fitted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FitFailure {
-    /// The linkage does not assemble at this coordinate value.
+    /// The linkage does not assemble at this coordinate value (the one
+    /// nearest the rest value among the failing samples).
     CannotAssemble {
         /// The coordinate value.
         at: f64,
@@ -31,11 +32,11 @@ pub enum FitFailure {
 pub struct ShareFit {
     /// `coeffs[p] = [Δu_x, Δu_y, Δu_z, θ]` coefficient of ξ^p.
     pub coeffs: Vec<[f64; 4]>,
-    /// Largest |Δu_fit − Δu_exact| (Euclidean) [m].
+    /// Largest |Δu_fit − Δu_exact| (Euclidean) \[m\].
     pub position_error: f64,
     /// Where it occurs.
     pub position_error_at: f64,
-    /// Largest |θ_fit − θ_exact| [rad].
+    /// Largest |θ_fit − θ_exact| \[rad\].
     pub angle_error: f64,
     /// Where it occurs.
     pub angle_error_at: f64,
@@ -60,12 +61,18 @@ pub fn fit_share(
     range: CoordRange,
     options: &FitOptions,
 ) -> Result<ShareFit, FitFailure> {
+    // Report the failing value nearest the rest value: where the linkage
+    // stops assembling.
+    let mut failure: Option<f64> = None;
     for i in 0..=ASSEMBLY_SAMPLES {
         let y = range.min + (range.max - range.min) * i as f64 / ASSEMBLY_SAMPLES as f64;
-        match exact(y) {
-            Some(v) if v.iter().all(|x| x.is_finite()) => {}
-            _ => return Err(FitFailure::CannotAssemble { at: y }),
+        let assembles = exact(y).is_some_and(|v| v.iter().all(|x| x.is_finite()));
+        if !assembles && failure.is_none_or(|f| (y - range.rest).abs() < (f - range.rest).abs()) {
+            failure = Some(y);
         }
+    }
+    if let Some(at) = failure {
+        return Err(FitFailure::CannotAssemble { at });
     }
     let terms = options.terms.clamp(2, MAX_TERMS);
     let coeffs = match options.method {

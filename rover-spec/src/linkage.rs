@@ -48,9 +48,9 @@ pub struct FitOptions {
     pub method: FitMethod,
     /// Number of terms k per coordinate (powers ξ⁰ … ξ^(k−1)); default 5.
     pub terms: usize,
-    /// Largest accepted position error over the range [m].
+    /// Largest accepted position error over the range \[m\].
     pub tolerance: f64,
-    /// Largest accepted angle error over the range [rad].
+    /// Largest accepted angle error over the range \[rad\].
     pub angle_tolerance: f64,
 }
 
@@ -82,11 +82,11 @@ pub struct MemberShare {
 pub struct Member {
     /// Its name (`arm`, `rocker_left`, `upright`, …).
     pub name: &'static str,
-    /// Its pivot at rest, body components [m].
+    /// Its pivot at rest, body components \[m\].
     pub pivot: [f64; 3],
     /// Its shares, at most one with an axis.
     pub shares: Vec<MemberShare>,
-    /// Camber of a wheel on it at rest [rad].
+    /// Camber of a wheel on it at rest \[rad\].
     pub camber_rest: f64,
 }
 
@@ -97,7 +97,7 @@ pub struct PointDef {
     pub name: String,
     /// The member carrying it.
     pub member: usize,
-    /// Its position at rest, body components [m].
+    /// Its position at rest, body components \[m\].
     pub rest: [f64; 3],
     /// Whether a wheel may sit on it.
     pub wheel: bool,
@@ -148,11 +148,11 @@ pub fn point_share<L: Linkage, R: Real>(
 pub struct ShareError {
     /// The coordinate (global index).
     pub coord: usize,
-    /// Largest |u_fit − u_exact| [m].
+    /// Largest |u_fit − u_exact| \[m\].
     pub position: f64,
     /// Where it occurs.
     pub position_at: f64,
-    /// Largest |θ_fit − θ_exact| [rad].
+    /// Largest |θ_fit − θ_exact| \[rad\].
     pub angle: f64,
     /// Where it occurs.
     pub angle_at: f64,
@@ -162,18 +162,18 @@ pub struct ShareError {
 /// coordinates, with the fit's maximum errors over the declared range.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FittedPoint {
-    /// u_j(y), body components [m].
+    /// u_j(y), body components \[m\].
     pub position: PolyVec,
     /// The member's rotations (one per coordinate it turns with).
     pub member: Vec<MemberRotation>,
-    /// Camber γ(y) [rad] (zero for the longitudinal kinds).
+    /// Camber γ(y) \[rad\] (zero for the longitudinal kinds).
     pub camber: ScalarPoly,
-    /// Suspension-induced steer ε(y) [rad].
+    /// Suspension-induced steer ε(y) \[rad\].
     pub toe: ScalarPoly,
     /// Bound on |u_fit − u_exact| anywhere in the travel box: the sum of
-    /// the shares' maxima [m].
+    /// the shares' maxima \[m\].
     pub max_position_error: f64,
-    /// Same for the member, camber and steer angles [rad].
+    /// Same for the member, camber and steer angles \[rad\].
     pub max_angle_error: f64,
     /// Per coordinate.
     pub shares: Vec<ShareError>,

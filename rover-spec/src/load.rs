@@ -50,30 +50,78 @@ pub fn parse_str(text: &str, origin: &str) -> Result<Description, SpecError> {
     }
     toml::from_str::<Description>(text).map_err(|e| {
         let doc = Document::parse(text);
+        let e = refine_tagged(text, &e).unwrap_or(e);
         SpecError::new(origin, Some(text), vec![parser_diagnostic(&e, &doc, text)])
     })
+}
+
+/// serde reads a `kind`-tagged `[[suspension]]` table through a buffer that
+/// loses the spans inside it, so its errors point at the whole table. Read
+/// the table that holds the error again, straight into its kind's struct,
+/// to get the precise error (the key, the value).
+fn refine_tagged(text: &str, error: &toml::de::Error) -> Option<toml::de::Error> {
+    use serde::de::DeserializeOwned;
+    use toml::de::{DeTable, DeValue, ValueDeserializer};
+
+    use crate::description as d;
+
+    fn read<T: DeserializeOwned>(value: toml::Spanned<DeValue<'_>>) -> Option<toml::de::Error> {
+        T::deserialize(ValueDeserializer::from(value)).err()
+    }
+
+    let span = error.span()?;
+    let root = DeTable::parse(text).ok()?.into_inner();
+    let suspensions = root.get("suspension")?.get_ref().as_array()?;
+    let entry = suspensions
+        .iter()
+        .find(|s| s.span().start <= span.start && span.end <= s.span().end)?;
+    let DeValue::Table(table) = entry.get_ref() else {
+        return None;
+    };
+    let mut table = table.clone();
+    let kind = table.remove("kind")?;
+    let value = toml::Spanned::new(entry.span(), DeValue::Table(table));
+    match kind.get_ref().as_str()? {
+        "longitudinal_swing_arm" => read::<d::SwingArmDesc>(value),
+        "transversal_swing_arm" => read::<d::TransversalSwingArmDesc>(value),
+        "double_wishbone" => read::<d::DoubleWishboneDesc>(value),
+        "longitudinal_rocker" | "transversal_rocker" => read::<d::RockerDesc>(value),
+        "rocker_bogie" => read::<d::RockerBogieDesc>(value),
+        "polynomial" => read::<d::PolynomialDesc>(value),
+        _ => None,
+    }
+    .filter(|e| e.span().is_some())
 }
 
 /// A parser or serde error as a [`Diagnostic`], with its field path and a hint.
 fn parser_diagnostic(e: &toml::de::Error, doc: &Document, text: &str) -> Diagnostic {
     let message = e.message().trim().to_string();
-    let span = e.span();
+    let mut span = e.span();
     let mut path = span.as_ref().map(|s| doc.path_at(s)).unwrap_or_default();
     let label;
     let help = if let Some(rest) = message.strip_prefix("unknown field `") {
         let field = rest.split('`').next().unwrap_or_default();
-        // The span is the key; the innermost value holding it is the table.
-        if let Some(s) = &span
-            && text
-                .get(s.clone())
-                .is_some_and(|k| k.trim_matches('"') == field)
-            && !path.ends_with(field)
-        {
-            path = if path.is_empty() {
-                field.to_string()
-            } else {
-                format!("{path}.{field}")
-            };
+        let expected: Vec<&str> = message
+            .split_once("expected")
+            .map(|(_, list)| list.split('`').skip(1).step_by(2).collect())
+            .unwrap_or_default();
+        let on_key = span
+            .as_ref()
+            .and_then(|s| text.get(s.clone()))
+            .is_some_and(|k| k.trim_matches('"') == field);
+        if on_key {
+            // The span is the key; the innermost value holding it is the table.
+            if !path.ends_with(field) {
+                path = if path.is_empty() {
+                    field.to_string()
+                } else {
+                    format!("{path}.{field}")
+                };
+            }
+        } else if let Some((p, s)) = doc.find_unknown_key(field, &expected) {
+            // Tagged tables (suspensions) lose the key's span in serde.
+            path = p;
+            span = Some(s);
         }
         label = "unknown field".to_string();
         "remove it or fix its spelling (docs/DESCRIPTION.md lists every field)".to_string()

@@ -181,7 +181,7 @@ pub fn check_report(spec: &Spec) -> String {
             }
             let _ = writeln!(out);
             for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                let row: Vec<String> = t.coeffs.iter().map(|c| format!("{:+.6e}", c[k])).collect();
+                let row: Vec<String> = t.coeffs.iter().map(|c| coefficient(c[k])).collect();
                 let _ = writeln!(out, "      {axis}: [{}]", row.join(", "));
             }
         }
@@ -191,7 +191,7 @@ pub fn check_report(spec: &Spec) -> String {
                 .terms
                 .iter()
                 .flat_map(|t| t.coeffs.iter())
-                .map(|c| format!("{c:+.6e}"))
+                .map(|c| coefficient(*c))
                 .collect();
             let _ = writeln!(
                 out,
@@ -220,4 +220,9 @@ pub fn check_report(spec: &Spec) -> String {
         );
     }
     out
+}
+
+/// A polynomial coefficient, signed, 7 significant digits (−0 shown as +0).
+fn coefficient(c: f64) -> String {
+    format!("{:+.6e}", c + 0.0)
 }

@@ -14,7 +14,7 @@ pub struct Spec {
     pub model: Model,
     /// Names of y_1 … y_m.
     pub coordinate_names: Vec<String>,
-    /// Whether each coordinate is a length [m] (else an angle [rad]).
+    /// Whether each coordinate is a length \[m\] (else an angle \[rad\]).
     pub coordinate_linear: Vec<bool>,
     /// Names of the carried bodies j (wheels first, in wheel order).
     pub body_names: Vec<String>,
@@ -24,7 +24,7 @@ pub struct Spec {
     pub suspensions: Vec<SuspensionInfo>,
     /// How each carried body's polynomials were obtained, index j.
     pub fits: Vec<BodyFit>,
-    /// Wheel centres at rest u_j(y_c), body components [m], wheel order.
+    /// Wheel centres at rest u_j(y_c), body components \[m\], wheel order.
     pub rest_wheel_centres: Vec<[f64; 3]>,
     /// The description it came from.
     pub description: Description,
@@ -52,8 +52,8 @@ pub struct BodyFit {
     pub at: String,
     /// Per coordinate: the fit's maximum errors and where.
     pub shares: Vec<ShareError>,
-    /// Bound on the position error over the travel box [m].
+    /// Bound on the position error over the travel box \[m\].
     pub max_position_error: f64,
-    /// Bound on the angle errors [rad].
+    /// Bound on the angle errors \[rad\].
     pub max_angle_error: f64,
 }

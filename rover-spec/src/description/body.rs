@@ -8,7 +8,7 @@ use super::Inertia;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodyDesc {
-    /// Mass m_B [kg], > 0.
+    /// Mass m_B \[kg\], > 0.
     pub mass: f64,
     /// Inertia J_B about G [kg·m²].
     pub inertia: Inertia,
@@ -22,7 +22,7 @@ pub struct BodyDesc {
 pub struct MassDesc {
     /// Name, unique in the rover.
     pub name: String,
-    /// Mass [kg], ≥ 0.
+    /// Mass \[kg\], ≥ 0.
     pub mass: f64,
     /// Inertia about its centre [kg·m²], in the member's frame at rest.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -30,7 +30,7 @@ pub struct MassDesc {
     /// The member it moves with (e.g. `arm`, `rocker`, `bogie_left`, `upright`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub member: Option<String>,
-    /// Its centre at rest, body components [m] (with `member`).
+    /// Its centre at rest, body components \[m\] (with `member`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub position: Option<[f64; 3]>,
     /// A named point of the suspension (instead of `member` + `position`).

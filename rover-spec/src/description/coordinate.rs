@@ -10,32 +10,32 @@ pub struct CoordinateDesc {
     /// Name (default: derived from the suspension's name).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
-    /// A linear coordinate [m] instead of an angle (raw polynomial suspensions only).
+    /// A linear coordinate \[m\] instead of an angle (raw polynomial suspensions only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub linear: Option<bool>,
     /// Rest value y_c [rad or m] (default 0): the initial value and the
     /// centre of the polynomial expansions.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rest: Option<f64>,
-    /// Rest value [deg].
+    /// Rest value \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rest_deg: Option<f64>,
     /// Spring neutral value y_0 [rad or m] (default: the rest value).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub neutral: Option<f64>,
-    /// Spring neutral value [deg].
+    /// Spring neutral value \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub neutral_deg: Option<f64>,
     /// Lower travel limit [rad or m] (required, here or as `min_deg`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min: Option<f64>,
-    /// Lower travel limit [deg].
+    /// Lower travel limit \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_deg: Option<f64>,
     /// Upper travel limit [rad or m].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max: Option<f64>,
-    /// Upper travel limit [deg].
+    /// Upper travel limit \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_deg: Option<f64>,
     /// Linear spring stiffness k [N·m/rad or N/m], ≥ 0 (no spring if absent).
@@ -65,7 +65,7 @@ pub struct SpringTableDesc {
     /// Deflections [rad or m], strictly increasing, through 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub deflection: Option<Vec<f64>>,
-    /// Deflections [deg].
+    /// Deflections \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub deflection_deg: Option<Vec<f64>>,
     /// Force at each deflection [N·m or N]; positive pushes y up; 0 at 0.

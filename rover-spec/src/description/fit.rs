@@ -12,10 +12,10 @@ pub struct FitDesc {
     /// Number of terms k, 2 … 12 (default 5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub terms: Option<usize>,
-    /// Largest accepted position error over the travel [m] (default 1e-3).
+    /// Largest accepted position error over the travel \[m\] (default 1e-3).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
-    /// Largest accepted error of member, camber and steer angles [rad]
+    /// Largest accepted error of member, camber and steer angles \[rad\]
     /// (default 1e-3).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angle_tolerance: Option<f64>,

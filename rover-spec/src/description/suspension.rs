@@ -87,9 +87,9 @@ impl SuspensionDesc {
 pub struct SwingArmDesc {
     /// Name, unique in the rover.
     pub name: String,
-    /// Pivot A, body components [m].
+    /// Pivot A, body components \[m\].
     pub pivot: [f64; 3],
-    /// Arm length l from pivot to wheel centre [m], > 0.
+    /// Arm length l from pivot to wheel centre \[m\], > 0.
     pub length: f64,
     /// The arm angle y (0 = arm hanging straight down; positive swings the
     /// wheel backwards).
@@ -108,11 +108,11 @@ pub struct SwingArmDesc {
 pub struct TransversalSwingArmDesc {
     /// Name, unique in the rover.
     pub name: String,
-    /// Pivot A, body components [m].
+    /// Pivot A, body components \[m\].
     pub pivot: [f64; 3],
-    /// Arm length l [m], > 0.
+    /// Arm length l \[m\], > 0.
     pub length: f64,
-    /// Angle y_ref at which the wheel is vertical [rad] (default: rest).
+    /// Angle y_ref at which the wheel is vertical \[rad\] (default: rest).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camber_reference: Option<f64>,
     /// Same in degrees.
@@ -135,20 +135,20 @@ pub struct TransversalSwingArmDesc {
 pub struct DoubleWishboneDesc {
     /// Name, unique in the rover.
     pub name: String,
-    /// Longitudinal position of the linkage's plane [m].
+    /// Longitudinal position of the linkage's plane \[m\].
     pub x: f64,
-    /// Lower arm's inner pivot (y, z) [m]; its sign of y is the side.
+    /// Lower arm's inner pivot (y, z) \[m\]; its sign of y is the side.
     pub lower_pivot: [f64; 2],
-    /// Lower arm length, inner pivot to ball joint [m].
+    /// Lower arm length, inner pivot to ball joint \[m\].
     pub lower_length: f64,
-    /// Upper arm's inner pivot (y, z) [m].
+    /// Upper arm's inner pivot (y, z) \[m\].
     pub upper_pivot: [f64; 2],
-    /// Upper arm length [m].
+    /// Upper arm length \[m\].
     pub upper_length: f64,
-    /// Upright length, lower to upper ball joint [m].
+    /// Upright length, lower to upper ball joint \[m\].
     pub upright_length: f64,
     /// Wheel centre in the upright frame: along the upright (from the lower
-    /// ball joint towards the upper) and across it (outboard) [m].
+    /// ball joint towards the upper) and across it (outboard) \[m\].
     pub wheel_offset: [f64; 2],
     /// Lower arm angle y about e_x.
     pub coordinate: CoordinateDesc,
@@ -167,12 +167,12 @@ pub struct DoubleWishboneDesc {
 pub struct ArmDesc {
     /// The point's name (wheels refer to it).
     pub name: String,
-    /// Length l_k [m], > 0.
+    /// Length l_k \[m\], > 0.
     pub length: f64,
-    /// β_k [rad].
+    /// β_k \[rad\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angle: Option<f64>,
-    /// β_k [deg].
+    /// β_k \[deg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub angle_deg: Option<f64>,
 }
@@ -183,7 +183,7 @@ pub struct ArmDesc {
 pub struct RockerDesc {
     /// Name, unique in the rover.
     pub name: String,
-    /// Pivot A, body components [m].
+    /// Pivot A, body components \[m\].
     pub pivot: [f64; 3],
     /// The arms, one point each.
     pub arms: Vec<ArmDesc>,
@@ -205,15 +205,15 @@ pub struct RockerDesc {
 pub struct RockerBogieDesc {
     /// Name, unique in the rover.
     pub name: String,
-    /// Left rocker pivot (on the differential axis) [m].
+    /// Left rocker pivot (on the differential axis) \[m\].
     pub pivot: [f64; 3],
-    /// Left front wheel centre at rest [m].
+    /// Left front wheel centre at rest \[m\].
     pub front_wheel: [f64; 3],
-    /// Left bogie pivot on the rocker, at rest [m].
+    /// Left bogie pivot on the rocker, at rest \[m\].
     pub bogie_pivot: [f64; 3],
-    /// Left middle wheel centre at rest [m].
+    /// Left middle wheel centre at rest \[m\].
     pub middle_wheel: [f64; 3],
-    /// Left rear wheel centre at rest [m].
+    /// Left rear wheel centre at rest \[m\].
     pub rear_wheel: [f64; 3],
     /// Rocker angle y_r about e_y (left side).
     pub rocker: CoordinateDesc,
@@ -252,7 +252,7 @@ pub struct PolynomialDesc {
 pub struct PolyPointDesc {
     /// The point's name.
     pub name: String,
-    /// Constant part c_j, body components [m].
+    /// Constant part c_j, body components \[m\].
     pub position: [f64; 3],
     /// Per-coordinate terms (the columns of Z_ij).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -260,10 +260,10 @@ pub struct PolyPointDesc {
     /// Rotations of the member carrying the point.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub member: Vec<MemberDesc>,
-    /// Camber γ(y) [rad].
+    /// Camber γ(y) \[rad\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camber: Option<ScalarPolyDesc>,
-    /// Suspension-induced steer ε(y) [rad].
+    /// Suspension-induced steer ε(y) \[rad\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub toe: Option<ScalarPolyDesc>,
 }
@@ -286,7 +286,7 @@ pub struct MemberDesc {
     pub coordinate: String,
     /// Axis in body components (normalised on load).
     pub axis: [f64; 3],
-    /// Coefficients of ξ⁰, ξ¹, … of the angle [rad]; the first must be 0.
+    /// Coefficients of ξ⁰, ξ¹, … of the angle \[rad\]; the first must be 0.
     pub angle: Vec<f64>,
 }
 
@@ -294,7 +294,7 @@ pub struct MemberDesc {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ScalarPolyDesc {
-    /// Constant part [rad] (default 0).
+    /// Constant part \[rad\] (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub constant: Option<f64>,
     /// Per-coordinate terms.

@@ -27,13 +27,13 @@ pub struct WheelDesc {
     /// suspension has a single wheel point).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub point: Option<String>,
-    /// Wheel mass [kg] ≥ 0, radius [m] > 0, tyre, motor and steering.
+    /// Wheel mass \[kg\] ≥ 0, radius \[m\] > 0, tyre, motor and steering.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mass: Option<f64>,
     /// Inertia about the wheel centre [kg·m²] (no spin energy), optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inertia: Option<Inertia>,
-    /// Radius R_w [m], > 0.
+    /// Radius R_w \[m\], > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<f64>,
     /// Radial stiffness k_w [N/m], > 0.
@@ -67,13 +67,13 @@ pub struct WheelDesc {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WheelFields {
-    /// Wheel mass [kg].
+    /// Wheel mass \[kg\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mass: Option<f64>,
     /// Inertia about the wheel centre [kg·m²].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inertia: Option<Inertia>,
-    /// Radius [m].
+    /// Radius \[m\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<f64>,
     /// Radial stiffness [N/m].

@@ -18,21 +18,21 @@ use crate::real::Real;
 /// least squares over the travel (or Taylor on request).
 #[derive(Clone, Debug, PartialEq)]
 pub struct DoubleWishbone {
-    /// Plane position x [m].
+    /// Plane position x \[m\].
     pub x: f64,
-    /// Lower inner pivot L (y, z) [m].
+    /// Lower inner pivot L (y, z) \[m\].
     pub lower_pivot: [f64; 2],
-    /// Lower arm length l_L [m].
+    /// Lower arm length l_L \[m\].
     pub lower_length: f64,
-    /// Upper inner pivot U (y, z) [m].
+    /// Upper inner pivot U (y, z) \[m\].
     pub upper_pivot: [f64; 2],
-    /// Upper arm length l_U [m].
+    /// Upper arm length l_U \[m\].
     pub upper_length: f64,
-    /// Upright length h [m].
+    /// Upright length h \[m\].
     pub upright_length: f64,
-    /// Wheel centre (along, across) the upright [m].
+    /// Wheel centre (along, across) the upright \[m\].
     pub wheel_offset: [f64; 2],
-    /// Rest angle y_c [rad].
+    /// Rest angle y_c \[rad\].
     pub rest: f64,
     /// Assembly branch ±1, chosen at rest.
     pub branch: f64,

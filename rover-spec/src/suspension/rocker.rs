@@ -11,13 +11,13 @@ use crate::real::{Real, rotate};
 /// rocker's wheels camber with it (γ = y).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rocker {
-    /// Pivot A [m].
+    /// Pivot A \[m\].
     pub pivot: [f64; 3],
-    /// Arms: point name, length l_k [m], angle β_k [rad].
+    /// Arms: point name, length l_k \[m\], angle β_k \[rad\].
     pub arms: Vec<(String, f64, f64)>,
     /// 1 for longitudinal (e_y), 0 for transversal (e_x).
     pub axis: usize,
-    /// Rest angle y_c [rad].
+    /// Rest angle y_c \[rad\].
     pub rest: f64,
 }
 

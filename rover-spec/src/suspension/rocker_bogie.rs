@@ -15,17 +15,17 @@ use crate::real::{Real, rotate};
 /// one-coordinate terms; 6 wheels, 3 coordinates.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RockerBogie {
-    /// Left rocker pivot A [m].
+    /// Left rocker pivot A \[m\].
     pub pivot: [f64; 3],
-    /// Left front wheel at rest [m].
+    /// Left front wheel at rest \[m\].
     pub front: [f64; 3],
-    /// Left bogie pivot at rest [m].
+    /// Left bogie pivot at rest \[m\].
     pub bogie_pivot: [f64; 3],
-    /// Left middle wheel at rest [m].
+    /// Left middle wheel at rest \[m\].
     pub middle: [f64; 3],
-    /// Left rear wheel at rest [m].
+    /// Left rear wheel at rest \[m\].
     pub rear: [f64; 3],
-    /// Rest values of y_r, left bogie, right bogie [rad].
+    /// Rest values of y_r, left bogie, right bogie \[rad\].
     pub rest: [f64; 3],
 }
 

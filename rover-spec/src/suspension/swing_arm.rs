@@ -11,15 +11,15 @@ use crate::real::{Real, rotate};
 /// Member angle `y − y_c` about the axis.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SwingArm {
-    /// Pivot A [m].
+    /// Pivot A \[m\].
     pub pivot: [f64; 3],
-    /// Arm length l [m].
+    /// Arm length l \[m\].
     pub length: f64,
     /// 1 for longitudinal (e_y), 0 for transversal (e_x).
     pub axis: usize,
-    /// Rest angle y_c [rad].
+    /// Rest angle y_c \[rad\].
     pub rest: f64,
-    /// Camber at rest, `y_c − y_ref` (transversal), else 0 [rad].
+    /// Camber at rest, `y_c − y_ref` (transversal), else 0 \[rad\].
     pub camber_rest: f64,
 }
 

@@ -14,7 +14,7 @@ pub struct CheckedCoord {
     pub name: String,
     /// Field path of its table.
     pub path: String,
-    /// Length [m] rather than angle [rad].
+    /// Length \[m\] rather than angle \[rad\].
     pub linear: bool,
     /// Rest and travel.
     pub range: CoordRange,
@@ -81,6 +81,18 @@ pub fn check_coordinate(
                 coord_value(min, linear)
             ),
             "give min < max",
+        );
+        return None;
+    }
+    if !linear && max - min > 2.0 * std::f64::consts::PI {
+        ctx.error(
+            Ctx::angle_path(path, "max", c.max_deg.is_some()),
+            format!(
+                "the travel [{}, {}] spans more than a full turn",
+                coord_value(min, linear),
+                coord_value(max, linear)
+            ),
+            "angles without `_deg` are in radians: check the unit, and give the range the suspension can really travel",
         );
         return None;
     }

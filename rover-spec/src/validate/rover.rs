@@ -154,6 +154,17 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
 
     // Fits.
     let mut cache: BTreeMap<(usize, String), FittedPoint> = BTreeMap::new();
+    // Every named point is fitted, used or not: a linkage that cannot
+    // cover its travel is an error even before a wheel sits on it.
+    for (s, b) in built.iter().enumerate() {
+        let Some(b) = b else { continue };
+        for name in point_names(b) {
+            let place = Place::Point(name);
+            if let Some(p) = fit_carried(&mut ctx, b, &place, global_of(&built, s)) {
+                cache.insert((s, format!("{place:?}")), p);
+            }
+        }
+    }
     let mut fitted = Vec::new();
     for c in &carried {
         let Some(b) = built[c.suspension].as_ref() else {
@@ -182,6 +193,13 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         fitted.push(point);
     }
 
+    if ctx.diags.is_empty() && fitted.iter().any(Option::is_none) {
+        ctx.error(
+            "",
+            "a carried body could not be placed on its suspension",
+            "this is a bug in rover-spec: please report it with the file",
+        );
+    }
     if !ctx.diags.is_empty() {
         return Err(ctx.diags);
     }
@@ -254,6 +272,47 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         });
         coordinate_names.push(c.name.clone());
         coordinate_linear.push(c.linear);
+    }
+    // Huge inputs can overflow what is derived from them (1e308 kg times a
+    // slope): nothing non-finite leaves this function.
+    let mut ctx = Ctx::default();
+    for (c, checked) in coordinates
+        .iter()
+        .zip(built.iter().flat_map(|b| b.coords.iter()))
+    {
+        let numbers = [
+            c.stop_stiffness,
+            c.stop_damping,
+            c.rest,
+            c.min,
+            c.max,
+            c.neutral,
+        ];
+        if numbers.iter().any(|v| !v.is_finite()) {
+            ctx.error(
+                checked.path.clone(),
+                "a number derived from this coordinate (its bump stop) is not finite: an input is too large",
+                "check the magnitudes of the coordinate, its spring and the masses it moves (SI units)",
+            );
+        }
+    }
+    for (c, b) in carried.iter().zip(&bodies) {
+        let poly = b
+            .position
+            .terms
+            .iter()
+            .flat_map(|t| t.coeffs.iter().flatten())
+            .chain(&b.position.constant);
+        if !b.mass.is_finite() || poly.clone().any(|v| !v.is_finite()) {
+            ctx.error(
+                format!("suspension[{}]", c.suspension),
+                format!("the polynomials of `{}` are not finite: an input is too large", c.name),
+                "check the magnitudes of this suspension's lengths and positions (SI units: metres)",
+            );
+        }
+    }
+    if !ctx.diags.is_empty() {
+        return Err(ctx.diags);
     }
     let rest = coordinates.iter().map(|c| c.rest).collect::<Vec<_>>();
     let rest_wheel_centres = model_wheels
@@ -545,7 +604,7 @@ fn fit_carried(ctx: &mut Ctx, b: &Built, place: &Place, global: Vec<usize>) -> O
             ctx.error(
                 c.path.clone(),
                 format!(
-                    "the linkage cannot assemble at {} = {}, inside the travel range [{}, {}]: the fit cannot cover this range",
+                    "the linkage cannot assemble beyond {} = {}, inside the travel range [{}, {}]: the fit cannot cover this range",
                     c.name,
                     coord_value(at, c.linear),
                     coord_value(c.range.min, c.linear),
@@ -567,7 +626,8 @@ fn fit_carried(ctx: &mut Ctx, b: &Built, place: &Place, global: Vec<usize>) -> O
             for s in &fit.shares {
                 let local = s.coord - global[0];
                 let c = &b.coords[local];
-                let (what, error, at, tol, unit) = if s.position > options.tolerance {
+                let over = |e: f64, tol: f64| e.is_nan() || e > tol;
+                let (what, error, at, tol, unit) = if over(s.position, options.tolerance) {
                     (
                         "position",
                         s.position,
@@ -575,7 +635,7 @@ fn fit_carried(ctx: &mut Ctx, b: &Built, place: &Place, global: Vec<usize>) -> O
                         options.tolerance,
                         "m",
                     )
-                } else if s.angle > options.angle_tolerance {
+                } else if over(s.angle, options.angle_tolerance) {
                     ("angle", s.angle, s.angle_at, options.angle_tolerance, "rad")
                 } else {
                     continue;

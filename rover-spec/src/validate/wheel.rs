@@ -9,7 +9,7 @@ use crate::description::{MotorMountDesc, WheelDesc, WheelFields};
 
 /// A checked wheel, before it is tied to its suspension point.
 pub struct CheckedWheel {
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass: f64,
     /// Inertia, if given, with the path it came from.
     pub inertia: Option<([[f64; 3]; 3], String)>,
