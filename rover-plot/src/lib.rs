@@ -29,7 +29,7 @@
 //!   show the body at a few instants (the convex hull of the wheel centres
 //!   and a cross at G), evenly spaced from the end of settling to the end of
 //!   the run; a dot marks the start and a grey circle G at the end of
-//!   settling. The legend sits in its own column and never hides data.
+//!   settling.
 //! - `coordinates`, as in Figs. 9, 14 and 15: one small panel per
 //!   generalized coordinate — X, Y, Z of G in m; roll φ, pitch θ and yaw ψ in
 //!   degrees; each suspension coordinate in degrees if [`PlotMeta::angular`]
@@ -41,6 +41,7 @@
 //! - `forces`: the normal force `Fn{j}` of each wheel, N (zero when the wheel
 //!   is off the ground).
 //!
+//! Legends sit in their own column right of the chart and never hide data.
 //! Every time history shows a dashed vertical marker labelled "settled" at
 //! [`PlotMeta::settle_time`] when it falls inside the run. Runs longer than
 //! 4000 samples are thinned for drawing: time histories keep each bucket's
@@ -67,12 +68,14 @@ mod error;
 mod figure;
 mod font;
 mod labels;
+mod legend;
 mod meta;
 mod plot_run;
 mod render;
 mod run_data;
 mod speed;
 mod style;
+mod tick_label;
 mod time_panel;
 mod trajectory;
 mod wheel_histories;

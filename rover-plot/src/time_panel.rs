@@ -9,8 +9,10 @@ use plotters::prelude::*;
 use crate::axis_range::{bounds, padded};
 use crate::decimate::{MAX_POINTS, min_max};
 use crate::font::FAMILY;
+use crate::legend::{LEGEND_WIDTH, LegendEntry, draw_legend};
 use crate::render::{DrawResult, failed};
 use crate::style::{AXIS_DESC_SIZE, CAPTION_SIZE, LABEL_SIZE, LINE_WIDTH, MARKER};
+use crate::tick_label::tick_label;
 
 /// One line of a panel.
 pub(crate) struct Line<'a> {
@@ -46,7 +48,15 @@ pub(crate) fn draw_time_panel<DB: DrawingBackend>(
 ) -> DrawResult {
     let (lo, hi) = bounds(panel.lines.iter().flat_map(|l| l.values.iter())).unwrap_or((0.0, 0.0));
     let y_axis = padded(lo, hi);
-    let mut builder = ChartBuilder::on(area);
+    let labelled = panel.lines.iter().any(|l| l.label.is_some());
+    let (chart_area, legend_area) = if labelled {
+        let (w, _) = area.dim_in_pixel();
+        let (chart_area, legend_area) = area.split_horizontally(w.saturating_sub(LEGEND_WIDTH));
+        (chart_area, Some(legend_area))
+    } else {
+        (area.clone(), None)
+    };
+    let mut builder = ChartBuilder::on(&chart_area);
     builder
         .margin(8)
         .x_label_area_size(40)
@@ -63,6 +73,9 @@ pub(crate) fn draw_time_panel<DB: DrawingBackend>(
         .y_desc(panel.y_desc.as_str())
         .x_labels(6)
         .y_labels(5)
+        .x_label_formatter(&tick_label)
+        .y_label_formatter(&tick_label)
+        .max_light_lines(4)
         .label_style((FAMILY, LABEL_SIZE))
         .axis_desc_style((FAMILY, AXIS_DESC_SIZE))
         .light_line_style(RGBColor(235, 235, 235))
@@ -88,41 +101,29 @@ pub(crate) fn draw_time_panel<DB: DrawingBackend>(
             .map_err(failed)?;
     }
 
-    let mut labelled = false;
+    let mut legend = Vec::new();
     for line in &panel.lines {
         let points = min_max(line.t, &line.values, MAX_POINTS);
         let style = line.colour.stroke_width(LINE_WIDTH);
-        let legend_style = style;
-        let dashed = line.dashed;
-        let annotation = if line.dashed {
+        if line.dashed {
             chart
                 .draw_series(DashedLineSeries::new(points, 8, 5, style))
-                .map_err(failed)?
+                .map_err(failed)?;
         } else {
             chart
                 .draw_series(LineSeries::new(points, style))
-                .map_err(failed)?
-        };
+                .map_err(failed)?;
+        }
         if let Some(label) = &line.label {
-            labelled = true;
-            // Two segments: touching for a solid line, with a gap for a dashed one.
-            let (end, start) = if dashed { (8, 12) } else { (10, 10) };
-            annotation.label(label.as_str()).legend(move |(x, y)| {
-                EmptyElement::at((x, y))
-                    + PathElement::new(vec![(0, 0), (end, 0)], legend_style)
-                    + PathElement::new(vec![(start, 0), (20, 0)], legend_style)
+            legend.push(if line.dashed {
+                LegendEntry::dashed(label.as_str(), line.colour, LINE_WIDTH)
+            } else {
+                LegendEntry::solid(label.as_str(), line.colour)
             });
         }
     }
-    if labelled {
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160))
-            .label_font((FAMILY, LABEL_SIZE))
-            .draw()
-            .map_err(failed)?;
+    match legend_area {
+        Some(legend_area) => draw_legend(&legend_area, &legend, 30),
+        None => Ok(()),
     }
-    Ok(())
 }

@@ -6,21 +6,19 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::axis_range::{bounds, equal_scale};
 use crate::convex_hull::convex_hull;
 use crate::decimate::{MAX_POINTS, stride_indices};
 use crate::font::FAMILY;
 use crate::labels::Labels;
+use crate::legend::{LEGEND_WIDTH, LegendEntry, draw_legend};
 use crate::render::{DrawResult, failed};
 use crate::run_data::RunData;
 use crate::style::{
     AXIS_DESC_SIZE, BODY, LABEL_SIZE, LINE_WIDTH, MARKER, TITLE_SIZE, wheel_colour,
 };
-
-/// Width of the legend column right of the chart, px.
-const LEGEND_WIDTH: u32 = 210;
+use crate::tick_label::tick_label;
 
 /// Which plane the trajectories are projected on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,13 +45,6 @@ impl Projection {
             Projection::Xy => ("top view (xy plane)", "X [m]", "Y [m]"),
         }
     }
-}
-
-/// One legend entry.
-struct LegendEntry {
-    label: String,
-    colour: RGBColor,
-    dashed: bool,
 }
 
 /// Row indices at which the body outline is sketched: `count` instants evenly
@@ -132,6 +123,9 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
+        .x_label_formatter(&tick_label)
+        .y_label_formatter(&tick_label)
+        .max_light_lines(4)
         .label_style((FAMILY, LABEL_SIZE))
         .axis_desc_style((FAMILY, AXIS_DESC_SIZE))
         .light_line_style(RGBColor(235, 235, 235))
@@ -154,16 +148,17 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
         Vec::new()
     };
     for &row in &outlines {
-        let corners: Vec<(f64, f64)> = data
+        let g = (data.g[a][row], data.g[b][row]);
+        let mut corners: Vec<(f64, f64)> = data
             .wheels
             .iter()
             .map(|wheel| (wheel.centre[a][row], wheel.centre[b][row]))
             .collect();
+        corners.push(g);
         let mut hull = convex_hull(&corners);
         if let Some(&first) = hull.first() {
             hull.push(first);
         }
-        let g = (data.g[a][row], data.g[b][row]);
         chart
             .draw_series(std::iter::once(PathElement::new(
                 hull,
@@ -176,9 +171,8 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
     }
     if !outlines.is_empty() {
         legend.push(LegendEntry {
-            label: format!("body at {} instants", outlines.len()),
-            colour: MARKER,
-            dashed: false,
+            width: 1,
+            ..LegendEntry::solid(format!("body at {} instants", outlines.len()), MARKER)
         });
     }
 
@@ -198,16 +192,12 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
                 colour.stroke_width(LINE_WIDTH),
             ))
             .map_err(failed)?;
-        legend.push(LegendEntry {
-            label: format!("{name} wheel centre"),
+        legend.push(LegendEntry::solid(format!("{name} wheel centre"), colour));
+        legend.push(LegendEntry::dashed(
+            format!("{name} contact point"),
             colour,
-            dashed: false,
-        });
-        legend.push(LegendEntry {
-            label: format!("{name} contact point"),
-            colour,
-            dashed: true,
-        });
+            1,
+        ));
     }
 
     chart
@@ -216,14 +206,7 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
             BODY.stroke_width(LINE_WIDTH),
         ))
         .map_err(failed)?;
-    legend.insert(
-        0,
-        LegendEntry {
-            label: "G (centre of mass)".to_string(),
-            colour: BODY,
-            dashed: false,
-        },
-    );
+    legend.insert(0, LegendEntry::solid("G (centre of mass)", BODY));
 
     let start = (data.g[a][0], data.g[b][0]);
     chart
@@ -242,39 +225,16 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
             .draw_series(std::iter::once(
                 EmptyElement::at(g)
                     + Circle::new((0, 0), 5, MARKER.stroke_width(2))
-                    + Text::new(format!("settled, t = {ts} s"), (7, -16), text),
+                    + Text::new(
+                        format!("settled, t = {} s", tick_label(&ts)),
+                        (7, -16),
+                        text,
+                    ),
             ))
             .map_err(failed)?;
     }
 
-    draw_legend(&legend_area, &legend)
-}
-
-/// Draws the legend entries top-down in their own column.
-fn draw_legend<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    entries: &[LegendEntry],
-) -> DrawResult {
-    let text =
-        TextStyle::from((FAMILY, LABEL_SIZE).into_font()).pos(Pos::new(HPos::Left, VPos::Center));
-    for (i, entry) in entries.iter().enumerate() {
-        let y = 30 + 22 * i as i32;
-        let style = entry
-            .colour
-            .stroke_width(if entry.dashed { 1 } else { LINE_WIDTH });
-        let segments: &[(i32, i32)] = if entry.dashed {
-            &[(10, 17), (21, 28), (32, 39)]
-        } else {
-            &[(10, 39)]
-        };
-        for &(x0, x1) in segments {
-            area.draw(&PathElement::new(vec![(x0, y), (x1, y)], style))
-                .map_err(failed)?;
-        }
-        area.draw(&Text::new(entry.label.as_str(), (46, y), text.clone()))
-            .map_err(failed)?;
-    }
-    Ok(())
+    draw_legend(&legend_area, &legend, 30)
 }
 
 #[cfg(test)]
