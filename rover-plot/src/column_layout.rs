@@ -46,7 +46,7 @@ impl ColumnLayout {
     /// that needs it.
     pub(crate) fn from_header(path: &Path, header: &[&str]) -> Result<Self, PlotError> {
         let mut by_name: BTreeMap<&str, usize> = BTreeMap::new();
-        for (index, name) in header.iter().enumerate() {
+        for (index, name) in header.iter().enumerate().filter(|(_, n)| !n.is_empty()) {
             if let Some(first) = by_name.insert(name, index) {
                 return Err(PlotError::DuplicateColumn {
                     path: path.to_path_buf(),

@@ -1,8 +1,11 @@
 //! Thinning long runs before drawing, so that a run of a million samples
 //! gives a plot of a sensible file size; short runs are drawn sample by sample.
 
-/// Most points drawn per line.
+/// Most points drawn per time-history line.
 pub(crate) const MAX_POINTS: usize = 4000;
+
+/// Most points drawn per trajectory path (a figure holds `2n + 1` of them).
+pub(crate) const MAX_PATH_POINTS: usize = 2000;
 
 /// Indices of the samples to draw out of `n`: all of them when `n <= max`,
 /// else evenly strided, always with the first and the last.
@@ -49,9 +52,37 @@ pub(crate) fn min_max(t: &[f64], y: &[f64], max: usize) -> Vec<(f64, f64)> {
     points
 }
 
+/// `points` without the interior points of flat stretches (equal value
+/// before and after): a constant set-point becomes a few points. Drawing is
+/// unchanged.
+pub(crate) fn drop_flat(points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    let n = points.len();
+    let keep = |i: usize| {
+        i == 0 || i + 1 == n || points[i - 1].1 != points[i].1 || points[i + 1].1 != points[i].1
+    };
+    (0..n).filter(|&i| keep(i)).map(|i| points[i]).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn flat_stretches_keep_their_ends() {
+        let p = vec![
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, 1.0),
+            (4.0, 1.0),
+            (5.0, 1.0),
+        ];
+        assert_eq!(
+            drop_flat(p),
+            vec![(0.0, 0.0), (2.0, 0.0), (3.0, 1.0), (5.0, 1.0)]
+        );
+        assert_eq!(drop_flat(vec![(0.0, 2.0)]), vec![(0.0, 2.0)]);
+    }
 
     #[test]
     fn short_series_are_kept_whole() {

@@ -22,8 +22,9 @@
 //!
 //! - `trajectory_xz` (side view) and `trajectory_xy` (top view), as in the
 //!   paper's Figs. 8, 13 and 16: the path of the centre of mass G (black), of
-//!   each wheel centre (solid, one colour per wheel) and of its contact point
-//!   (dashed, same colour; it joins the centre while the wheel is airborne),
+//!   each wheel centre (thick, one colour per wheel) and of its contact point
+//!   (thin, a lighter shade of the same colour; it joins the centre while the
+//!   wheel is airborne),
 //!   projected on the plane, with **equal scales** on both axes so that
 //!   heights and lateral offsets are seen in true proportion. Grey sketches
 //!   show the body at a few instants (the convex hull of the wheel centres
@@ -45,7 +46,8 @@
 //! Every time history shows a dashed vertical marker labelled "settled" at
 //! [`PlotMeta::settle_time`] when it falls inside the run. Runs longer than
 //! 4000 samples are thinned for drawing: time histories keep each bucket's
-//! minimum and maximum (no peak is lost), trajectories an even stride.
+//! minimum and maximum of 4000 (no peak is lost), trajectories an even
+//! stride of 2000 points.
 //!
 //! # Deterministic, and no system libraries
 //!

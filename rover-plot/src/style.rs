@@ -22,6 +22,17 @@ pub(crate) fn wheel_colour(j: usize) -> RGBColor {
     PALETTE[j % PALETTE.len()]
 }
 
+/// A lighter shade of `colour` (halfway to white): contact-point paths,
+/// drawn thin beside their wheel centre's path.
+pub(crate) fn tint(colour: RGBColor) -> RGBColor {
+    let half_to_white = |c: u8| c + (255 - c) / 2;
+    RGBColor(
+        half_to_white(colour.0),
+        half_to_white(colour.1),
+        half_to_white(colour.2),
+    )
+}
+
 /// Colour of the body (G) path and of set-points.
 pub(crate) const BODY: RGBColor = RGBColor(0, 0, 0);
 /// Colour of the body outlines and of the settling marker.

@@ -7,7 +7,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::axis_range::{bounds, padded};
-use crate::decimate::{MAX_POINTS, min_max};
+use crate::decimate::{MAX_POINTS, drop_flat, min_max};
 use crate::font::FAMILY;
 use crate::legend::{LEGEND_WIDTH, LegendEntry, draw_legend};
 use crate::render::{DrawResult, failed};
@@ -103,7 +103,7 @@ pub(crate) fn draw_time_panel<DB: DrawingBackend>(
 
     let mut legend = Vec::new();
     for line in &panel.lines {
-        let points = min_max(line.t, &line.values, MAX_POINTS);
+        let points = drop_flat(min_max(line.t, &line.values, MAX_POINTS));
         let style = line.colour.stroke_width(LINE_WIDTH);
         if line.dashed {
             chart

@@ -9,14 +9,14 @@ use plotters::prelude::*;
 
 use crate::axis_range::{bounds, equal_scale};
 use crate::convex_hull::convex_hull;
-use crate::decimate::{MAX_POINTS, stride_indices};
+use crate::decimate::{MAX_PATH_POINTS, stride_indices};
 use crate::font::FAMILY;
 use crate::labels::Labels;
 use crate::legend::{LEGEND_WIDTH, LegendEntry, draw_legend};
 use crate::render::{DrawResult, failed};
 use crate::run_data::RunData;
 use crate::style::{
-    AXIS_DESC_SIZE, BODY, LABEL_SIZE, LINE_WIDTH, MARKER, TITLE_SIZE, wheel_colour,
+    AXIS_DESC_SIZE, BODY, LABEL_SIZE, LINE_WIDTH, MARKER, TITLE_SIZE, tint, wheel_colour,
 };
 use crate::tick_label::tick_label;
 
@@ -133,7 +133,7 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
         .draw()
         .map_err(failed)?;
 
-    let rows = stride_indices(data.len(), MAX_POINTS);
+    let rows = stride_indices(data.len(), MAX_PATH_POINTS);
     let project = |xs: &[f64], ys: &[f64]| rows.iter().map(|&i| (xs[i], ys[i])).collect::<Vec<_>>();
     let mut legend = Vec::new();
 
@@ -172,18 +172,22 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
     if !outlines.is_empty() {
         legend.push(LegendEntry {
             width: 1,
-            ..LegendEntry::solid(format!("body at {} instants", outlines.len()), MARKER)
+            ..LegendEntry::solid(
+                match outlines.len() {
+                    1 => "body at the end".to_string(),
+                    k => format!("body at {k} instants"),
+                },
+                MARKER,
+            )
         });
     }
 
     for (j, (wheel, name)) in data.wheels.iter().zip(&labels.wheel_names).enumerate() {
         let colour = wheel_colour(j);
         chart
-            .draw_series(DashedLineSeries::new(
+            .draw_series(LineSeries::new(
                 project(&wheel.contact[a], &wheel.contact[b]),
-                6,
-                4,
-                colour.stroke_width(1),
+                tint(colour).stroke_width(1),
             ))
             .map_err(failed)?;
         chart
@@ -193,11 +197,10 @@ pub(crate) fn draw_trajectory<DB: DrawingBackend>(
             ))
             .map_err(failed)?;
         legend.push(LegendEntry::solid(format!("{name} wheel centre"), colour));
-        legend.push(LegendEntry::dashed(
-            format!("{name} contact point"),
-            colour,
-            1,
-        ));
+        legend.push(LegendEntry {
+            width: 1,
+            ..LegendEntry::solid(format!("{name} contact point"), tint(colour))
+        });
     }
 
     chart

@@ -324,6 +324,26 @@ fn columns_are_found_by_name_and_extra_columns_are_ignored() {
     }
 }
 
+#[test]
+fn windows_line_ends_a_byte_order_mark_and_spaces_are_accepted() {
+    let dir = test_dir("crlf_bom");
+    let text = run_csv(20);
+    let unix = write_csv(&dir, &text);
+    let windows = dir.join("windows.csv");
+    let spaced = text.replacen("t,X,", " t ,X,", 1).replace("\n", "\r\n");
+    std::fs::write(&windows, format!("\u{feff}{spaced}")).unwrap();
+    let a = plot_run(&unix, &dir.join("unix"), &meta()).unwrap();
+    let b = plot_run(&windows, &dir.join("windows"), &meta()).unwrap();
+    for (a, b) in a.iter().zip(&b) {
+        assert_eq!(
+            std::fs::read(a).unwrap(),
+            std::fs::read(b).unwrap(),
+            "{}",
+            a.display()
+        );
+    }
+}
+
 /// Plots `text` and returns the error message, with the directory replaced by `DIR`.
 fn error_for(name: &str, text: &str, meta: &PlotMeta) -> String {
     let dir = test_dir(name);
@@ -445,4 +465,20 @@ fn metadata_that_does_not_fit_the_csv_is_refused() {
         error_for("meta_settle", &run_csv(5), &m),
         "plot metadata for DIR/run.csv: settle_time must be a finite time >= 0 s, got NaN"
     );
+}
+
+#[test]
+fn a_long_run_is_thinned_to_a_bounded_file_size() {
+    // 20 000 samples: drawn whole, the trajectories and coordinates SVGs
+    // would hold 9 and 10 polylines of 20 000 points (about 3 MB each).
+    let dir = test_dir("long_run");
+    let csv = write_csv(&dir, &run_csv(20_000));
+    let written = plot_run(&csv, &dir.join("plots"), &meta()).unwrap();
+    for path in written
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "svg"))
+    {
+        let size = std::fs::metadata(path).unwrap().len();
+        assert!(size < 1_000_000, "{}: {size} bytes", path.display());
+    }
 }
