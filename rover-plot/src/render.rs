@@ -1,0 +1,64 @@
+//! Drawing a figure on both back ends: SVG text and PNG bytes, in memory,
+//! before anything is written.
+
+use plotters::prelude::*;
+
+use crate::PlotError;
+use crate::figure::Figure;
+use crate::labels::Labels;
+use crate::run_data::RunData;
+
+/// What a drawing step returns: the plotting library's message on failure.
+pub(crate) type DrawResult = Result<(), String>;
+
+/// Turns a plotting-library error into its message.
+pub(crate) fn failed<E: std::fmt::Display>(error: E) -> String {
+    error.to_string()
+}
+
+/// The SVG document of `figure`.
+pub(crate) fn render_svg(
+    figure: Figure,
+    data: &RunData,
+    labels: &Labels,
+) -> Result<String, PlotError> {
+    let draw_error = |message| PlotError::Draw {
+        figure: figure.stem(),
+        message,
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, figure.size()).into_drawing_area();
+        figure.draw(&root, data, labels).map_err(draw_error)?;
+        root.present().map_err(|e| draw_error(e.to_string()))?;
+    }
+    Ok(svg)
+}
+
+/// The PNG file of `figure` (8-bit RGB).
+pub(crate) fn render_png(
+    figure: Figure,
+    data: &RunData,
+    labels: &Labels,
+) -> Result<Vec<u8>, PlotError> {
+    let draw_error = |message| PlotError::Draw {
+        figure: figure.stem(),
+        message,
+    };
+    let (w, h) = figure.size();
+    let mut rgb = vec![255u8; 3 * w as usize * h as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        figure.draw(&root, data, labels).map_err(draw_error)?;
+        root.present().map_err(|e| draw_error(e.to_string()))?;
+    }
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, w, h);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let png_error = |e: png::EncodingError| draw_error(format!("PNG encoding: {e}"));
+    let mut writer = encoder.write_header().map_err(png_error)?;
+    writer.write_image_data(&rgb).map_err(png_error)?;
+    writer.finish().map_err(png_error)?;
+    Ok(bytes)
+}
