@@ -31,6 +31,9 @@ pub struct SimulateArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Skip the PNG/SVG plots.
+    #[arg(long)]
+    pub no_plots: bool,
 }
 
 /// What a run produced.
@@ -117,7 +120,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     let json =
         serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
     std::fs::write(&summary_path, json + "\n").map_err(|e| io_err(&summary_path, e))?;
-    let files = vec![csv_path, summary_path];
+    let mut files = vec![csv_path.clone(), summary_path];
+    if !args.no_plots {
+        files.extend(plots(&csv_path, &args.out, &spec, scenario.settle)?);
+    }
     bar.suspend(|| match summary.status {
         Status::Completed => eprintln!(
             "{}: {:.1} s simulated in {:.2} s (real-time factor {:.1}); outputs in {}",
@@ -135,4 +141,33 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         ),
     });
     Ok(SimulateReport { summary, files })
+}
+
+/// The run's plots (PNG and SVG), when built with the `plots` feature.
+#[cfg(feature = "plots")]
+fn plots(
+    csv: &Path,
+    out: &Path,
+    spec: &rover_spec::Spec,
+    settle: f64,
+) -> Result<Vec<PathBuf>, CliError> {
+    let meta = rover_plot::PlotMeta {
+        title: spec.name.clone(),
+        coordinate_names: spec.coordinate_names.clone(),
+        angular: spec.coordinate_linear.iter().map(|l| !l).collect(),
+        wheel_names: spec.wheel_names.clone(),
+        settle_time: settle,
+        ..Default::default()
+    };
+    rover_plot::plot_run(csv, out, &meta).map_err(|e| CliError::Other(e.to_string()))
+}
+
+#[cfg(not(feature = "plots"))]
+fn plots(
+    _csv: &Path,
+    _out: &Path,
+    _spec: &rover_spec::Spec,
+    _settle: f64,
+) -> Result<Vec<PathBuf>, CliError> {
+    Ok(Vec::new())
 }

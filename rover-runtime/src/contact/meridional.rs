@@ -160,7 +160,12 @@ impl MeridionalContact {
 
 /// Minimum of the clearance on [lo, hi] by golden-section search (the
 /// bracket holds one sampled local minimum).
-fn dip_minimum<H: HeightField + ?Sized>(terrain: &H, frame: &RimFrame, mut lo: f64, mut hi: f64) -> Result<(f64, f64), OffMap> {
+fn dip_minimum<H: HeightField + ?Sized>(
+    terrain: &H,
+    frame: &RimFrame,
+    mut lo: f64,
+    mut hi: f64,
+) -> Result<(f64, f64), OffMap> {
     const G: f64 = 0.618_033_988_749_894_8;
     let mut c = hi - G * (hi - lo);
     let mut d = lo + G * (hi - lo);
