@@ -3,3 +3,4 @@
 pub mod hand_models;
 pub mod lagrange;
 pub mod rng;
+pub mod run;

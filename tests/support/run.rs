@@ -1,0 +1,68 @@
+//! Running scenarios from TOML text in tests, and reading their CSV.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use rover_runtime::GenericPlant;
+use rover_runtime::output::Summary;
+use rover_runtime::scenario::Scenario;
+
+/// A finished run: its summary and its CSV as columns by name.
+pub struct Run {
+    pub summary: Summary,
+    pub header: Vec<String>,
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Run {
+    /// The column named `name`.
+    pub fn col(&self, name: &str) -> Vec<f64> {
+        let k = self
+            .header
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("no column {name}"));
+        self.rows.iter().map(|r| r[k]).collect()
+    }
+    /// Rows with t ≥ t0.
+    pub fn after(&self, name: &str, t0: f64) -> Vec<f64> {
+        let t = self.col("t");
+        self.col(name)
+            .into_iter()
+            .zip(t)
+            .filter(|(_, t)| *t >= t0)
+            .map(|(v, _)| v)
+            .collect()
+    }
+}
+
+/// Run the built-in `rover` on the scenario `toml` (generic plant).
+pub fn run(rover: &str, toml: &str) -> Run {
+    let scenario = Scenario::parse(toml, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let spec = rover_spec::load_str(rover_models::builtin(rover).unwrap(), rover).unwrap();
+    let plant = GenericPlant::new(spec.model.clone()).unwrap();
+    let mut csv = Vec::new();
+    let stop = AtomicBool::new(false);
+    let summary = rover_runtime::simulate::simulate(
+        plant,
+        &spec.model,
+        rover,
+        &scenario,
+        Path::new("."),
+        &mut csv,
+        &stop,
+        |_| {},
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let text = String::from_utf8(csv).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    Run {
+        summary,
+        header,
+        rows,
+    }
+}
