@@ -135,7 +135,10 @@ fn paper_rovers_settle_to_static_equilibrium_on_flat_ground() {
 /// Largest horizontal distance of G from its start over the run.
 fn max_drift(r: &crate::support::run::Run) -> f64 {
     let (x, y) = (r.col("X"), r.col("Y"));
-    x.iter().zip(&y).map(|(a, b)| ((a - x[0]).powi(2) + (b - y[0]).powi(2)).sqrt()).fold(0.0, f64::max)
+    x.iter()
+        .zip(&y)
+        .map(|(a, b)| ((a - x[0]).powi(2) + (b - y[0]).powi(2)).sqrt())
+        .fold(0.0, f64::max)
 }
 
 fn on_slope(angle_deg: f64) -> crate::support::run::Run {
@@ -160,7 +163,10 @@ fn rover_holds_on_a_slope_below_the_friction_angle_and_slides_above() {
     assert!(d < 0.01, "on 15° the rover moved {d} m (limit 1 cm)");
     let slid = on_slope(32.0);
     let d = max_drift(&slid);
-    assert!(d > 0.2, "on 32° the rover moved only {d} m: it should slide");
+    assert!(
+        d > 0.2,
+        "on 32° the rover moved only {d} m: it should slide"
+    );
     let x = slid.col("X");
     assert!(x[x.len() - 1] < x[0], "it slides downhill (towards −X)");
 }
@@ -171,7 +177,8 @@ fn contact_follows_a_bump_and_both_methods_agree() {
     use rover_runtime::contact::{MeridionalContact, TrackedContact};
     use rover_runtime::terrain::{HeightField, TerrainConfig};
     // A raised-cosine ridge across X, 5 cm high and 0.6 m wide, at X = 1 m.
-    let config: TerrainConfig = toml::from_str("kind = \"bump\"\nheight = 0.05\nwidth = 0.6\ncenter = [1.0, 0.0]").unwrap();
+    let config: TerrainConfig =
+        toml::from_str("kind = \"bump\"\nheight = 0.05\nwidth = 0.6\ncenter = [1.0, 0.0]").unwrap();
     let bump = config.build(std::path::Path::new(".")).unwrap();
     let radius = 0.09;
     let depth = 1e-4;
@@ -189,24 +196,45 @@ fn contact_follows_a_bump_and_both_methods_agree() {
                     let z = bump.height(x, 0.0).unwrap();
                     (((x - cx).powi(2) + (z - cz).powi(2)).sqrt(), x, z)
                 })
-                .fold((f64::INFINITY, 0.0, 0.0), |a, b| if b.0 < a.0 { b } else { a })
+                .fold(
+                    (f64::INFINITY, 0.0, 0.0),
+                    |a, b| if b.0 < a.0 { b } else { a },
+                )
         };
         let (mut lo, mut hi) = (0.0, 0.5);
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
-            if dist(xs, mid).0 < radius - depth { lo = mid } else { hi = mid }
+            if dist(xs, mid).0 < radius - depth {
+                lo = mid
+            } else {
+                hi = mid
+            }
         }
         let cz = 0.5 * (lo + hi);
         let (_, px, pz) = dist(xs, cz);
-        let state = WheelState { centre: [xs, 0.0, cz], velocity: [0.0; 3], spin_axis: [0.0, 1.0, 0.0] };
-        let c = meridional.find(&bump, state.centre, state.spin_axis, radius).unwrap();
+        let state = WheelState {
+            centre: [xs, 0.0, cz],
+            velocity: [0.0; 3],
+            spin_axis: [0.0, 1.0, 0.0],
+        };
+        let c = meridional
+            .find(&bump, state.centre, state.spin_axis, radius)
+            .unwrap();
         assert_eq!(c.count, 1, "one patch at x = {xs}");
         let p = c.patches[0];
         // The contact point is the closest surface point (to the chord's
         // sagitta, O(depth)), the normal points from it to the centre.
-        assert!((p.point[0] - px).abs() < 2e-3 && (p.point[2] - pz).abs() < 2e-3, "x = {xs}: H = {:?}, surface point ({px}, {pz})", p.point);
+        assert!(
+            (p.point[0] - px).abs() < 2e-3 && (p.point[2] - pz).abs() < 2e-3,
+            "x = {xs}: H = {:?}, surface point ({px}, {pz})",
+            p.point
+        );
         let (nx, nz) = ((xs - px) / radius, (cz - pz) / radius);
-        assert!((p.normal[0] - nx).abs() < 0.03 && (p.normal[2] - nz).abs() < 0.03, "x = {xs}: n = {:?} vs ({nx}, {nz})", p.normal);
+        assert!(
+            (p.normal[0] - nx).abs() < 0.03 && (p.normal[2] - nz).abs() < 0.03,
+            "x = {xs}: n = {:?} vs ({nx}, {nz})",
+            p.normal
+        );
         // The model's own definition, computed by brute force: the rim's
         // crossings with the ground from 200 001 samples, H their midpoint,
         // Δ = R − |G_jH|.
@@ -215,19 +243,34 @@ fn contact_follows_a_bump_and_both_methods_agree() {
             let (x, z) = rim(b);
             z < bump.height(x, 0.0).unwrap()
         };
-        let betas: Vec<f64> = (0..=200_000).map(|i| -1.5 + 3.0 * i as f64 / 200_000.0).collect();
+        let betas: Vec<f64> = (0..=200_000)
+            .map(|i| -1.5 + 3.0 * i as f64 / 200_000.0)
+            .collect();
         let a = betas.iter().copied().find(|&b| below(b)).unwrap();
         let e = betas.iter().rev().copied().find(|&b| below(b)).unwrap();
         let (ra, re) = (rim(a), rim(e));
         let h = (0.5 * (ra.0 + re.0), 0.5 * (ra.1 + re.1));
         let expected = radius - ((xs - h.0).powi(2) + (cz - h.1).powi(2)).sqrt();
-        assert!((p.deflection - expected).abs() < 1e-7, "x = {xs}: deflection {} vs brute force {expected}", p.deflection);
-        assert!((p.point[0] - h.0).abs() < 1e-5 && (p.point[2] - h.1).abs() < 1e-5, "x = {xs}: H {:?} vs brute force {h:?}", p.point);
+        assert!(
+            (p.deflection - expected).abs() < 1e-7,
+            "x = {xs}: deflection {} vs brute force {expected}",
+            p.deflection
+        );
+        assert!(
+            (p.point[0] - h.0).abs() < 1e-5 && (p.point[2] - h.1).abs() < 1e-5,
+            "x = {xs}: H {:?} vs brute force {h:?}",
+            p.point
+        );
         // Tracking from the previous position gives the same patch.
-        let t = tracked.find(&bump, state.centre, state.spin_axis, radius).unwrap();
+        let t = tracked
+            .find(&bump, state.centre, state.spin_axis, radius)
+            .unwrap();
         assert_eq!(t.count, 1);
         // Normal forces (k_w·Δ) within 1 % (MODEL.md §6).
         let (a, b) = (t.patches[0].deflection, p.deflection);
-        assert!((a - b).abs() <= 0.01 * b, "x = {xs}: tracked Δ = {a} vs meridional {b}");
+        assert!(
+            (a - b).abs() <= 0.01 * b,
+            "x = {xs}: tracked Δ = {a} vs meridional {b}"
+        );
     }
 }

@@ -157,10 +157,12 @@ impl ContactConfig {
 
 /// A scenario file that cannot be used: the file, where, what, how to fix.
 #[derive(Debug, thiserror::Error)]
-#[error("{}: {message}", file.display())]
+#[error("{}{}: {message}", file.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
 pub struct ScenarioError {
     /// The scenario file.
     pub file: PathBuf,
+    /// The line of a semantic error (parse errors carry their own location).
+    pub line: Option<usize>,
     /// What is wrong (with line and column when known) and how to fix it.
     pub message: String,
 }
@@ -170,6 +172,7 @@ impl Scenario {
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
             file: path.to_path_buf(),
+            line: None,
             message: format!("cannot read the scenario file: {e}"),
         })?;
         Self::parse(&text, path)
@@ -177,29 +180,26 @@ impl Scenario {
 
     /// Parse and check scenario text; `path` names it in messages.
     pub fn parse(text: &str, path: &Path) -> Result<Self, ScenarioError> {
-        let bad = |message: String| ScenarioError {
+        let s: Scenario = toml::from_str(text).map_err(|e| ScenarioError {
             file: path.to_path_buf(),
+            line: None,
+            message: locate(text, &e),
+        })?;
+        s.check().map_err(|(field, message)| ScenarioError {
+            file: path.to_path_buf(),
+            line: line_of_field(text, field),
             message,
-        };
-        let s: Scenario = toml::from_str(text).map_err(|e| bad(locate(text, &e)))?;
-        s.check(text).map_err(bad)?;
+        })?;
         Ok(s)
     }
 
-    fn check(&self, text: &str) -> Result<(), String> {
-        let at = |key: &str| {
-            line_of(text, key)
-                .map(|l| format!("line {l}: "))
-                .unwrap_or_default()
-        };
-        let positive = |key: &str, v: f64, help: &str| {
+    /// Checks that need no rover; the error names the field.
+    fn check(&self) -> Result<(), (&'static str, String)> {
+        let positive = |key: &'static str, v: f64, help: &str| {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(format!(
-                    "{}{key} must be > 0, got {v}\n  = help: {help}",
-                    at(key)
-                ))
+                Err((key, format!("{key} must be > 0, got {v}\n  = help: {help}")))
             }
         };
         positive(
@@ -213,38 +213,40 @@ impl Scenario {
             "output rows per second, e.g. output_rate = 20.0",
         )?;
         if !(self.settle.is_finite() && self.settle >= 0.0 && self.settle <= self.duration) {
-            return Err(format!(
-                "{}settle must lie in [0, duration] = [0, {}] s, got {}\n  = help: the settling time is part of the run",
-                at("settle"),
-                self.duration,
-                self.settle
+            return Err((
+                "settle",
+                format!(
+                    "settle must lie in [0, duration] = [0, {}] s, got {}\n  = help: the settling time is part of the run",
+                    self.duration, self.settle
+                ),
             ));
         }
         if !(self.rollover_limit_deg > 0.0 && self.rollover_limit_deg < 90.0) {
-            return Err(format!(
-                "{}rollover_limit_deg must lie in (0, 90), got {}\n  = help: the attitude is singular at 90° of roll (MODEL.md §1)",
-                at("rollover_limit_deg"),
-                self.rollover_limit_deg
+            return Err((
+                "rollover_limit_deg",
+                format!(
+                    "rollover_limit_deg must lie in (0, 90), got {}\n  = help: the attitude is singular at 90° of roll (MODEL.md §1)",
+                    self.rollover_limit_deg
+                ),
             ));
         }
         if self.contact.samples < 3 {
-            return Err(format!(
-                "{}contact.samples must be ≥ 3, got {}",
-                at("samples"),
-                self.contact.samples
+            return Err((
+                "contact.samples",
+                format!("contact.samples must be ≥ 3, got {}", self.contact.samples),
             ));
         }
         let i = &self.initial;
-        let finite =
+        let mut numbers =
             i.xy.iter()
                 .chain(&i.attitude_deg)
                 .chain(&i.velocity)
                 .chain(&i.angular_velocity)
                 .chain(i.z.iter());
-        if finite.clone().any(|v| !v.is_finite()) {
-            return Err(format!(
-                "{}initial: every number must be finite",
-                at("[initial]")
+        if numbers.any(|v| !v.is_finite()) {
+            return Err((
+                "initial",
+                "initial: every number must be finite".to_string(),
             ));
         }
         Ok(())
@@ -256,9 +258,41 @@ fn locate(_text: &str, e: &toml::de::Error) -> String {
     e.to_string().trim_end().to_string()
 }
 
-/// 1-based line of the first line starting with `key` (for semantic errors).
-fn line_of(text: &str, key: &str) -> Option<usize> {
-    text.lines()
-        .position(|l| l.trim_start().starts_with(key))
-        .map(|i| i + 1)
+/// 1-based line where the dotted field `path` (e.g. `control.speed.kp`,
+/// `terrain.angle_deg`) is written: the key inside its table, else the
+/// deepest table header of the path. None when the field is not in the text
+/// (a default).
+pub fn line_of_field(text: &str, path: &str) -> Option<usize> {
+    let parts: Vec<&str> = path.split('.').collect();
+    let mut table: Vec<String> = Vec::new();
+    let mut best: Option<(usize, usize)> = None; // (matched depth, line)
+    for (i, raw) in text.lines().enumerate() {
+        let line = raw.split('#').next().unwrap_or("").trim();
+        if let Some(h) = line.strip_prefix('[').and_then(|l| l.strip_suffix(']')) {
+            table = h
+                .trim_matches(|c| c == '[' || c == ']')
+                .split('.')
+                .map(|p| p.trim().to_string())
+                .collect();
+            let depth = table
+                .iter()
+                .zip(&parts)
+                .take_while(|(a, b)| a == *b)
+                .count();
+            if depth == table.len() && depth > best.map_or(0, |b| b.0) {
+                best = Some((depth, i + 1));
+            }
+            continue;
+        }
+        let Some((key, _)) = line.split_once('=') else {
+            continue;
+        };
+        let mut full: Vec<&str> = table.iter().map(String::as_str).collect();
+        full.extend(key.trim().split('.').map(str::trim));
+        let depth = full.iter().zip(&parts).take_while(|(a, b)| a == b).count();
+        if depth == full.len() && depth > best.map_or(0, |b| b.0) {
+            best = Some((depth, i + 1));
+        }
+    }
+    best.map(|b| b.1)
 }

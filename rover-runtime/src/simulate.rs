@@ -48,6 +48,21 @@ pub enum SetupError {
     Io(#[from] std::io::Error),
 }
 
+impl SetupError {
+    /// The scenario field the error is about, as a dotted path, when it has one.
+    pub fn field_path(&self) -> Option<String> {
+        match self {
+            SetupError::Terrain(crate::terrain::TerrainError::Parameter { name, .. }) => {
+                Some(format!("terrain.{name}"))
+            }
+            SetupError::Control(e) => Some(format!("control.{}", e.field)),
+            SetupError::Integrator(e) => Some(format!("integrator.{}.{}", e.method, e.field)),
+            SetupError::Initial { field, .. } => Some(format!("initial.{field}")),
+            _ => None,
+        }
+    }
+}
+
 /// The initial state y = [x; w; ζ] of a scenario for a model, on `terrain`
 /// (None: free flight).
 pub fn initial_state(

@@ -37,9 +37,14 @@ pub enum CliError {
     /// The scenario file is invalid.
     #[error("{0}")]
     Scenario(#[from] rover_runtime::scenario::ScenarioError),
-    /// The run could not start.
-    #[error("{0}")]
-    Setup(#[from] rover_runtime::simulate::SetupError),
+    /// The run could not start: the scenario does not fit the rover.
+    #[error("{}{}", location, source)]
+    Setup {
+        /// `file:line: ` of the offending field, when known.
+        location: String,
+        /// The error.
+        source: rover_runtime::simulate::SetupError,
+    },
     /// Something else, with its message.
     #[error("{0}")]
     Other(String),

@@ -115,7 +115,18 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         |t| {
             bar.set_position((1000.0 * t / duration) as u64);
         },
-    )?;
+    )
+    .map_err(|source| {
+        let text = std::fs::read_to_string(&args.scenario).unwrap_or_default();
+        let line = source
+            .field_path()
+            .and_then(|f| rover_runtime::scenario::line_of_field(&text, &f));
+        let location = match line {
+            Some(l) => format!("{}:{l}: ", args.scenario.display()),
+            None => format!("{}: ", args.scenario.display()),
+        };
+        CliError::Setup { location, source }
+    })?;
     bar.finish_and_clear();
     let json =
         serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;

@@ -6,7 +6,10 @@ use serde::{Deserialize, Serialize};
 /// piecewise constant (`"step"`, the default: commands change at instants)
 /// or interpolated linearly (`"linear"`, ramps).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a number, or a table { points = [[t, value], …], interpolation = \"step\" | \"linear\" }"
+)]
 pub enum Profile {
     /// The same value at all times.
     Constant(f64),

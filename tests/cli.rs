@@ -1,0 +1,152 @@
+//! The command line end to end (issue 5): every output file of both paper
+//! rovers, located errors for bad scenario files, exit codes.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use rover::cli::{CheckArgs, SimulateArgs, check, simulate};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("cli")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn simulate_writes_every_output_for_both_paper_rovers() {
+    for rover in ["exomars", "swing4"] {
+        let dir = scratch(rover);
+        let scenario = write(
+            &dir,
+            "s.toml",
+            "duration = 3.0\nsettle = 1.0\n[control.speed]\nspeed = 0.05\n[integrator.bdf]\nrtol = 1e-5\n",
+        );
+        let out = dir.join("out");
+        let args = SimulateArgs {
+            rover: Some(rover.into()),
+            scenario,
+            out: out.clone(),
+            quiet: true,
+            no_plots: false,
+        };
+        let report = simulate(&args).unwrap();
+        assert!(report.summary.complete);
+        let mut expected = vec!["run.csv".to_string(), "summary.json".to_string()];
+        for stem in [
+            "trajectory_xz",
+            "trajectory_xy",
+            "coordinates",
+            "torques",
+            "speed",
+            "forces",
+        ] {
+            expected.push(format!("{stem}.png"));
+            expected.push(format!("{stem}.svg"));
+        }
+        for f in &expected {
+            let p = out.join(f);
+            assert!(
+                p.metadata().map(|m| m.len() > 0).unwrap_or(false),
+                "{rover}: {f} missing or empty"
+            );
+        }
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["status"], "completed");
+        assert_eq!(summary["final_state"]["t"], 3.0);
+        let csv = std::fs::read_to_string(out.join("run.csv")).unwrap();
+        assert_eq!(
+            csv.lines().count(),
+            1 + 61,
+            "{rover}: header + 61 rows at 20 Hz over 3 s"
+        );
+    }
+}
+
+fn bad_scenario(text: &str) -> String {
+    let dir = scratch("bad");
+    let scenario = write(&dir, "bad.toml", text);
+    let args = SimulateArgs {
+        rover: Some("swing4".into()),
+        scenario,
+        out: dir.join("out"),
+        quiet: true,
+        no_plots: true,
+    };
+    let e = simulate(&args).expect_err("the scenario is bad");
+    e.to_string().replace(&dir.display().to_string(), "<dir>")
+}
+
+#[test]
+fn bad_scenario_files_get_located_errors() {
+    insta::assert_snapshot!(
+        "unknown_field",
+        bad_scenario("duration = 5.0\nsettel = 1.0\n")
+    );
+    insta::assert_snapshot!(
+        "wrong_type",
+        bad_scenario("duration = 5.0\n[control.speed]\nspeed = \"fast\"\n")
+    );
+    insta::assert_snapshot!("negative_duration", bad_scenario("duration = -5.0\n"));
+    insta::assert_snapshot!(
+        "suspension_length",
+        bad_scenario("duration = 5.0\n[initial]\nsuspension = [0.1, 0.2]\n")
+    );
+    insta::assert_snapshot!(
+        "terrain_parameter",
+        bad_scenario("duration = 5.0\n[terrain]\nkind = \"slope\"\nangle_deg = 95.0\n")
+    );
+    insta::assert_snapshot!(
+        "ackermann_without_steerable_wheels",
+        bad_scenario("duration = 5.0\n[control.steering]\nkind = \"ackermann\"\nradius = 2.0\n")
+    );
+    insta::assert_snapshot!(
+        "integrator_step",
+        bad_scenario("duration = 5.0\n[integrator.rk4]\nstep = 0.0\n")
+    );
+    insta::assert_snapshot!(
+        "malformed_toml",
+        bad_scenario("duration = 5.0\n[terrain\nkind = \"flat\"\n")
+    );
+}
+
+#[test]
+fn check_prints_the_rover_and_bad_files_exit_with_status_2() {
+    let report = check(&CheckArgs {
+        rover: "swing4".into(),
+    })
+    .unwrap();
+    assert!(report.contains("10 DOF"), "{report}");
+    let dir = scratch("check");
+    let bad = write(
+        &dir,
+        "bad.toml",
+        "name = \"x\"\ngravity = 1.62\n[body]\nmass = -3.0\ninertia = [1.0, 1.0, 1.0]\n",
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_rover"))
+        .arg("check")
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.toml:4:8") && err.contains("mass"),
+        "{err}"
+    );
+    let ok = Command::new(env!("CARGO_BIN_EXE_rover"))
+        .args(["check", "exomars"])
+        .output()
+        .unwrap();
+    assert_eq!(ok.status.code(), Some(0));
+}
