@@ -5,6 +5,8 @@ mod support;
 mod cli;
 mod control;
 mod dynamics;
+mod failures;
 mod free_flight;
 mod ground;
 mod models;
+mod wheel_law;

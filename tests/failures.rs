@@ -1,0 +1,101 @@
+//! Runs that cannot finish (issues 3 and 5): they stop with an error naming
+//! the time and the cause, keep the rows computed so far, and say so.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use rover_runtime::GenericPlant;
+use rover_runtime::output::Status;
+use rover_runtime::scenario::Scenario;
+
+use crate::support::run::run;
+
+#[test]
+fn a_rover_that_rolls_over_stops_with_the_time_and_the_cause() {
+    let r = run(
+        "swing4",
+        "duration = 5.0\nfree_flight = true\noutput_rate = 100.0\n[initial]\nz = 1.0\nangular_velocity = [3.0, 0.0, 0.0]\n\
+         [integrator.dopri5]\nrtol = 1e-8\n",
+    );
+    let s = &r.summary;
+    assert_eq!(s.status, Status::Failed);
+    assert!(!s.complete);
+    let e = s.error.as_deref().unwrap();
+    assert!(e.starts_with("the rover rolled over at t = 0.4"), "{e}");
+    assert!(e.contains("(limit 80°)"), "{e}");
+    // The CSV holds every row before the failure, and nothing past it.
+    let t = r.col("t");
+    assert!(
+        t.len() > 40 && *t.last().unwrap() < s.t_end,
+        "{} rows up to {}",
+        t.len(),
+        t.last().unwrap()
+    );
+    assert!(r.col("phi").iter().all(|p| p.abs() <= 80f64.to_radians()));
+}
+
+#[test]
+fn leaving_the_terrain_map_stops_the_run_naming_the_wheel() {
+    // A 2 m × 2 m grid around the start; the rover drives out at 0.5 m/s.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("offmap");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut asc = String::from("ncols 41\nnrows 41\nxllcenter -1\nyllcenter -1\ncellsize 0.05\n");
+    for _ in 0..41 {
+        asc += &vec!["0"; 41].join(" ");
+        asc += "\n";
+    }
+    std::fs::write(dir.join("small.asc"), asc).unwrap();
+    let text = "duration = 10.0\n[terrain]\nkind = \"file\"\npath = \"small.asc\"\n\
+                [initial]\nvelocity = [0.5, 0.0, 0.0]\n[control.speed]\nspeed = 0.5\n[integrator.bdf]\nrtol = 1e-5\n";
+    let scenario = Scenario::parse(text, &dir.join("s.toml")).unwrap();
+    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
+    let mut csv = Vec::new();
+    let summary = rover_runtime::simulate::simulate(
+        GenericPlant::new(spec.model.clone()).unwrap(),
+        &spec.model,
+        "swing4",
+        &scenario,
+        &dir,
+        &mut csv,
+        &AtomicBool::new(false),
+        |_| {},
+    )
+    .unwrap();
+    assert_eq!(summary.status, Status::Failed);
+    let e = summary.error.unwrap();
+    assert!(
+        e.contains("wheel 1 left the terrain") || e.contains("wheel 2 left the terrain"),
+        "{e}"
+    );
+    assert!(e.contains("is off the terrain map"), "{e}");
+    assert!(
+        summary.t_end > 1.0 && summary.t_end < 3.0,
+        "left at t = {}",
+        summary.t_end
+    );
+}
+
+#[test]
+fn an_interrupted_run_keeps_what_was_computed_marked_partial() {
+    let scenario = Scenario::parse("duration = 10.0\n", Path::new("s.toml")).unwrap();
+    let spec = rover_spec::load_str(rover_models::builtin("exomars").unwrap(), "exomars").unwrap();
+    let mut csv = Vec::new();
+    let summary = rover_runtime::simulate::simulate(
+        GenericPlant::new(spec.model.clone()).unwrap(),
+        &spec.model,
+        "exomars",
+        &scenario,
+        Path::new("."),
+        &mut csv,
+        &AtomicBool::new(true),
+        |_| {},
+    )
+    .unwrap();
+    assert_eq!(summary.status, Status::Interrupted);
+    assert!(!summary.complete);
+    assert_eq!(
+        String::from_utf8(csv).unwrap().lines().count(),
+        2,
+        "header and the t = 0 row"
+    );
+}
