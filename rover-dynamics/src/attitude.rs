@@ -18,6 +18,12 @@ pub struct Attitude<S> {
     pub spsi: S,
     /// cos ψ.
     pub cpsi: S,
+    /// Roll φ and pitch θ themselves (used by the linearized form).
+    pub phi: S,
+    /// Pitch θ.
+    pub theta: S,
+    /// First order in φ and θ (MODEL.md §9, level 3).
+    pub linear: bool,
 }
 
 impl<S: Scalar> Attitude<S> {
@@ -30,6 +36,18 @@ impl<S: Scalar> Attitude<S> {
             cth: theta.cos(),
             spsi: psi.sin(),
             cpsi: psi.cos(),
+            phi,
+            theta,
+            linear: false,
+        }
+    }
+
+    /// The linearized attitude of MODEL.md §9 (level 3): roll and pitch small,
+    /// `R ≈ Rz(ψ)·(I + skew([φ, θ, 0]))`, `E⁻¹` to first order, exact in ψ.
+    pub fn linear(phi: S, theta: S, psi: S) -> Self {
+        Self {
+            linear: true,
+            ..Self::new(phi, theta, psi)
         }
     }
 
@@ -61,6 +79,9 @@ impl<S: Scalar> Attitude<S> {
 
     /// `Rᵀ·e_Z`: the inertial vertical in body components (third row of R).
     pub fn up_in_body(&self) -> [S; 3] {
+        if self.linear {
+            return [-self.theta, self.phi, S::one()];
+        }
         [-(self.cphi * self.sth), self.sphi, self.cphi * self.cth]
     }
 
@@ -68,6 +89,14 @@ impl<S: Scalar> Attitude<S> {
     /// `φ̇ = cθ·Ωx + sθ·Ωz`, `ψ̇ = (−sθ·Ωx + cθ·Ωz)/cφ`, `θ̇ = Ωy − sφ·ψ̇`.
     /// Returns `[φ̇, θ̇, ψ̇]`.
     pub fn rates(&self, omega: [S; 3]) -> [S; 3] {
+        if self.linear {
+            // φ̇ = Ωx + θ·Ωz, θ̇ = Ωy − φ·Ωz, ψ̇ = Ωz − θ·Ωx
+            return [
+                omega[0] + self.theta * omega[2],
+                omega[1] - self.phi * omega[2],
+                omega[2] - self.theta * omega[0],
+            ];
+        }
         let phid = self.cth * omega[0] + self.sth * omega[2];
         let psid = (self.cth * omega[2] - self.sth * omega[0]) / self.cphi;
         let thd = omega[1] - self.sphi * psid;

@@ -43,6 +43,8 @@ pub mod bias;
 #[cfg(feature = "alloc")]
 pub mod eom;
 #[cfg(feature = "alloc")]
+pub mod fidelity;
+#[cfg(feature = "alloc")]
 pub mod forces;
 #[cfg(feature = "alloc")]
 pub mod kinematics;

@@ -10,6 +10,12 @@ use crate::scalar::Scalar;
 /// caller's positive-definiteness check (a generic scalar cannot be compared
 /// here).
 pub fn ldlt_solve<S: Scalar>(a: &mut [S], b: &mut [S], n: usize) {
+    ldlt_factor(a, n);
+    ldlt_substitute(a, b, n);
+}
+
+/// Factor the row-major N×N symmetric matrix `a` in place into LDLᵀ.
+pub fn ldlt_factor<S: Scalar>(a: &mut [S], n: usize) {
     for j in 0..n {
         let mut d = a[j * n + j];
         for k in 0..j {
@@ -25,6 +31,10 @@ pub fn ldlt_solve<S: Scalar>(a: &mut [S], b: &mut [S], n: usize) {
             a[i * n + j] = v * inv;
         }
     }
+}
+
+/// Solve `a·x = b` in place in `b` with the factors of [`ldlt_factor`].
+pub fn ldlt_substitute<S: Scalar>(a: &[S], b: &mut [S], n: usize) {
     // L·z = b
     for i in 0..n {
         for k in 0..i {

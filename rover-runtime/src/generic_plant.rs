@@ -4,6 +4,7 @@
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::eom::derivatives;
+use rover_dynamics::fidelity::{Fidelity, Frozen, linear_wheel_kinematics, reduced_derivatives};
 use rover_dynamics::forces::Load;
 use rover_dynamics::kinematics::{body_kinematics, wheel_kinematics};
 use rover_dynamics::mass::{MAX_DOF, mass_matrix};
@@ -21,6 +22,8 @@ pub struct GenericPlant {
     ws: Workspace<f64>,
     neutral: Vec<f64>,
     loads: Vec<Load<f64>>,
+    level: Fidelity,
+    frozen: Option<Frozen<f64>>,
 }
 
 /// The model is larger than the dense buffers support.
@@ -55,7 +58,24 @@ impl GenericPlant {
             ws,
             neutral,
             loads,
+            level: Fidelity::Full,
+            frozen: None,
         })
+    }
+
+    /// A plant for `model` at a fidelity level (MODEL.md §9).
+    pub fn with_fidelity(model: Model, level: Fidelity) -> Result<Self, TooLarge> {
+        let mut p = Self::new(model)?;
+        p.level = level;
+        if level != Fidelity::Full {
+            p.frozen = Some(Frozen::new(&p.model));
+        }
+        Ok(p)
+    }
+
+    /// The fidelity level.
+    pub fn fidelity(&self) -> Fidelity {
+        self.level
     }
 
     /// The model this plant runs.
@@ -79,6 +99,18 @@ impl Plant for GenericPlant {
     }
 
     fn wheels(&mut self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]) {
+        if let (Fidelity::Linearized, Some(frozen)) = (self.level, &self.frozen) {
+            for (k, o) in out.iter_mut().enumerate() {
+                let steer_k = steer.get(k).copied().unwrap_or(0.0);
+                let wk = linear_wheel_kinematics(&self.model, frozen, x, w, k, steer_k);
+                *o = WheelState {
+                    centre: wk.centre,
+                    velocity: wk.velocity,
+                    spin_axis: wk.spin_axis,
+                };
+            }
+            return;
+        }
         let ws = &mut self.ws;
         body_kinematics(&self.model, &x[6..], ws);
         let att = Attitude::new(x[3], x[4], x[5]);
@@ -118,6 +150,11 @@ impl Plant for GenericPlant {
                 stator_torque: src.stator_torque,
             };
         }
+        if let Some(frozen) = &mut self.frozen {
+            let (model, neutral, loads) = (&self.model, &self.neutral, &self.loads);
+            reduced_derivatives(model, self.level, frozen, neutral, x, w, loads, xdot, wdot);
+            return Ok(());
+        }
         derivatives(
             &self.model,
             &mut self.ws,
@@ -139,6 +176,10 @@ impl Plant for GenericPlant {
     }
 
     fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {
+        if let Some(frozen) = &self.frozen {
+            out.copy_from_slice(&frozen.ws.mass);
+            return;
+        }
         body_kinematics(&self.model, &x[6..], &mut self.ws);
         mass_matrix(&self.model, &mut self.ws);
         out.copy_from_slice(&self.ws.mass);

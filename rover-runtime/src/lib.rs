@@ -9,6 +9,7 @@ pub mod generic_plant;
 pub mod ground;
 pub mod integrate;
 pub mod output;
+pub mod quasi_static;
 pub mod scenario;
 pub mod sim;
 pub mod simulate;

@@ -70,6 +70,42 @@ pub struct Scenario {
     /// |roll| or |pitch| beyond this stops the run as a roll-over [deg].
     #[serde(default = "default_rollover")]
     pub rollover_limit_deg: f64,
+    /// Model fidelity (MODEL.md §9): `"full"` (default), `"simplified"`,
+    /// `"linearized"` or `"quasi_static"`.
+    #[serde(default)]
+    pub fidelity: FidelityLevel,
+    /// Quasi-static runs with slip steering follow a path: the CSV of
+    /// another run (relative to this file) whose X, Y, ψ are imposed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path_from: Option<PathBuf>,
+}
+
+/// The four fidelity levels of MODEL.md §9.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FidelityLevel {
+    /// Level 1: the full nonlinear model.
+    #[default]
+    Full,
+    /// Level 2: T_j frozen at rest, M constant.
+    Simplified,
+    /// Level 3: linear kinematics, small roll and pitch, no f1.
+    Linearized,
+    /// Level 4: static equilibrium along an imposed path.
+    QuasiStatic,
+}
+
+impl FidelityLevel {
+    /// The dynamic level, None for quasi-static.
+    pub fn dynamic(self) -> Option<rover_dynamics::fidelity::Fidelity> {
+        use rover_dynamics::fidelity::Fidelity;
+        match self {
+            FidelityLevel::Full => Some(Fidelity::Full),
+            FidelityLevel::Simplified => Some(Fidelity::Simplified),
+            FidelityLevel::Linearized => Some(Fidelity::Linearized),
+            FidelityLevel::QuasiStatic => None,
+        }
+    }
 }
 
 fn default_rate() -> f64 {

@@ -15,7 +15,7 @@ use crate::control::Controller;
 use crate::ground::Ground;
 use crate::integrate::{Integrator, OdeSystem};
 use crate::output::{CsvWriter, Status, Summary, fit_circle, header};
-use crate::scenario::Scenario;
+use crate::scenario::{FidelityLevel, Scenario};
 use crate::sim::{RoverSystem, RunOptions, Stop, run};
 use crate::terrain::{HeightField, Terrain};
 
@@ -46,6 +46,9 @@ pub enum SetupError {
     /// The CSV could not be started.
     #[error("cannot write the CSV: {0}")]
     Io(#[from] std::io::Error),
+    /// A quasi-static run has no path to follow.
+    #[error("path_from: {0}")]
+    Path(String),
 }
 
 impl SetupError {
@@ -152,6 +155,9 @@ pub fn simulate<P: Plant, W: Write>(
     interrupt: &AtomicBool,
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
+    if scenario.fidelity == FidelityLevel::QuasiStatic {
+        return quasi_static_run(model, name, scenario, base_dir, csv, interrupt, progress);
+    }
     let terrain = if scenario.free_flight {
         None
     } else {
@@ -253,5 +259,214 @@ pub fn simulate<P: Plant, W: Write>(
         rhs_evals: stats.rhs_evals,
         steps: stats.steps,
         rejected_steps: stats.rejected_steps,
+    })
+}
+
+/// The horizontal motion a quasi-static run imposes: (t, X, Y, ψ) samples.
+fn imposed_path(
+    model: &Model,
+    scenario: &Scenario,
+    base_dir: &Path,
+    y0: &[f64],
+    times: &[f64],
+) -> Result<Vec<[f64; 3]>, SetupError> {
+    if let Some(file) = &scenario.path_from {
+        let path = base_dir.join(file);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| SetupError::Path(format!("{}: {e}", path.display())))?;
+        let mut lines = text.lines();
+        let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+        let col = |name: &str| {
+            header
+                .iter()
+                .position(|h| *h == name)
+                .ok_or_else(|| SetupError::Path(format!("{}: no column `{name}`", path.display())))
+        };
+        let (ct, cx, cy, cp) = (col("t")?, col("X")?, col("Y")?, col("psi")?);
+        let mut rows: Vec<[f64; 4]> = Vec::new();
+        for (i, l) in lines.enumerate() {
+            let v: Vec<f64> = l
+                .split(',')
+                .map(|c| c.parse().unwrap_or(f64::NAN))
+                .collect();
+            let r = [ct, cx, cy, cp].map(|c| v.get(c).copied().unwrap_or(f64::NAN));
+            if r.iter().any(|x| !x.is_finite()) {
+                return Err(SetupError::Path(format!(
+                    "{}:{}: not a number in t, X, Y or psi",
+                    path.display(),
+                    i + 2
+                )));
+            }
+            rows.push(r);
+        }
+        if rows.len() < 2 {
+            return Err(SetupError::Path(format!(
+                "{}: fewer than two rows",
+                path.display()
+            )));
+        }
+        return Ok(times
+            .iter()
+            .map(|&t| {
+                let k = rows.partition_point(|r| r[0] <= t).clamp(1, rows.len() - 1);
+                let (a, b) = (rows[k - 1], rows[k]);
+                let s = ((t - a[0]) / (b[0] - a[0])).clamp(0.0, 1.0);
+                [
+                    a[1] + s * (b[1] - a[1]),
+                    a[2] + s * (b[2] - a[2]),
+                    a[3] + s * (b[3] - a[3]),
+                ]
+            })
+            .collect());
+    }
+    if matches!(
+        scenario.control.steering,
+        crate::control::Steering::Slip { .. }
+    ) {
+        return Err(SetupError::Path(
+            "a quasi-static run with slip steering needs `path_from = \"<run.csv>\"`: the path of a dynamic run of the same scenario".into(),
+        ));
+    }
+    // The kinematic path: G moves with body velocity [V, −ω·x_c], ω = κ·V.
+    let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
+    let mut pose = [y0[0], y0[1], y0[5]];
+    let mut out = Vec::with_capacity(times.len());
+    let mut t = 0.0;
+    for &target in times {
+        while t < target - 1e-12 {
+            let h = (target - t).min(1e-3);
+            let rate = |t: f64, p: [f64; 3]| {
+                let v = control.speed_setpoint(t);
+                let (kappa, xc) = control.curvature(t);
+                let om = kappa * v;
+                let (s, c) = p[2].sin_cos();
+                [c * v + s * om * xc, s * v - c * om * xc, om]
+            };
+            let k1 = rate(t, pose);
+            let mid = [0, 1, 2].map(|i| pose[i] + 0.5 * h * k1[i]);
+            let k2 = rate(t + 0.5 * h, mid);
+            pose = [0, 1, 2].map(|i| pose[i] + h * k2[i]);
+            t += h;
+        }
+        out.push(pose);
+    }
+    Ok(out)
+}
+
+/// Level 4: static equilibria along the imposed path, one per output instant.
+fn quasi_static_run<W: Write>(
+    model: &Model,
+    name: &str,
+    scenario: &Scenario,
+    base_dir: &Path,
+    csv: W,
+    interrupt: &AtomicBool,
+    mut progress: impl FnMut(f64),
+) -> Result<Summary, SetupError> {
+    let terrain = scenario.terrain.build(base_dir)?;
+    let y0 = initial_state(model, scenario, Some(&terrain))?;
+    let n = model.dof();
+    let k = model.wheels.len();
+    let steps = (scenario.duration * scenario.output_rate).round() as usize;
+    let times: Vec<f64> = (0..=steps)
+        .map(|i| (i as f64 / scenario.output_rate).min(scenario.duration))
+        .collect();
+    let poses = imposed_path(model, scenario, base_dir, &y0, &times)?;
+    let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
+    let kinematic_radius = control.kinematic_radius(scenario.duration);
+    let mut q0 = vec![y0[2], y0[3], y0[4]];
+    q0.extend_from_slice(&y0[6..n]);
+    let mut solver = crate::quasi_static::QuasiStatic::new(
+        model,
+        &terrain,
+        crate::contact::MeridionalContact {
+            sampling: scenario.contact.sampling(),
+        },
+        q0,
+    );
+    let cols = header(model.m(), k);
+    let mut writer = CsvWriter::new(csv, &cols)?;
+    let started = Instant::now();
+    let (mut max_roll, mut max_pitch) = (0.0f64, 0.0f64);
+    let mut path = Vec::new();
+    let mut last = Vec::new();
+    let mut stop = (Status::Completed, None, scenario.duration);
+    let mut normals = vec![0.0; k];
+    let mut wheels = vec![rover_dynamics::plant::WheelState::default(); k];
+    let mut plant =
+        crate::GenericPlant::new(model.clone()).map_err(|e| SetupError::Path(e.to_string()))?;
+    let zeros = vec![0.0; n];
+    for (&t, &pose) in times.iter().zip(&poses) {
+        if interrupt.load(std::sync::atomic::Ordering::Relaxed) {
+            stop = (
+                Status::Interrupted,
+                Some(format!("interrupted by the user at t = {t:.3} s")),
+                t,
+            );
+            break;
+        }
+        if let Err(e) = solver
+            .solve(pose)
+            .and_then(|_| solver.normal_forces(pose, &mut normals))
+        {
+            stop = (Status::Failed, Some(format!("t = {t:.3} s: {e}")), t);
+            break;
+        }
+        let x = solver.coordinates(pose, &solver.q);
+        max_roll = max_roll.max(x[3].abs());
+        max_pitch = max_pitch.max(x[4].abs());
+        use rover_dynamics::plant::Plant;
+        plant.wheels(&x, &zeros, &vec![0.0; k], &mut wheels);
+        let v = writer.row();
+        v.push(t);
+        v.extend_from_slice(&x);
+        v.extend_from_slice(&zeros);
+        for w in &wheels {
+            v.extend_from_slice(&w.centre);
+        }
+        for (w, (fz, wheel)) in wheels.iter().zip(normals.iter().zip(&model.wheels)) {
+            v.extend_from_slice(&[w.centre[0], w.centre[1], w.centre[2] - wheel.radius]);
+            v.extend_from_slice(&[*fz, 0.0, 0.0]);
+        }
+        v.extend(std::iter::repeat_n(0.0, 2 * k));
+        v.push(control.speed_setpoint(t));
+        last.clone_from(v);
+        if t >= scenario.settle {
+            path.push([x[0], x[1]]);
+        }
+        progress(t);
+        writer.finish_row()?;
+    }
+    writer.into_inner()?;
+    let wall = started.elapsed().as_secs_f64();
+    let (status, error, t_end) = stop;
+    Ok(Summary {
+        rover: name.to_string(),
+        complete: status == Status::Completed,
+        status,
+        error,
+        duration: scenario.duration,
+        t_end,
+        final_state: cols
+            .iter()
+            .cloned()
+            .zip(last.iter().copied())
+            .take(1 + 2 * n)
+            .collect(),
+        max_roll_deg: max_roll.to_degrees(),
+        max_pitch_deg: max_pitch.to_degrees(),
+        turning_circle: fit_circle(&path),
+        kinematic_radius,
+        deep_penetration_wheels: Vec::new(),
+        wall_time_s: wall,
+        real_time_factor: if wall > 0.0 {
+            t_end / wall
+        } else {
+            f64::INFINITY
+        },
+        integrator: "quasi-static newton".into(),
+        rhs_evals: solver.residual_evals,
+        steps: solver.iterations,
+        rejected_steps: 0,
     })
 }

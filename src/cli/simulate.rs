@@ -101,8 +101,9 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     );
     bar.set_message(format!("{} t = 0 s", spec.name));
     let duration = scenario.duration;
-    let plant =
-        GenericPlant::new(spec.model.clone()).map_err(|e| CliError::Other(e.to_string()))?;
+    let level = scenario.fidelity.dynamic().unwrap_or_default();
+    let plant = GenericPlant::with_fidelity(spec.model.clone(), level)
+        .map_err(|e| CliError::Other(e.to_string()))?;
     let flag = interrupt_flag();
     let summary = rover_runtime::simulate::simulate(
         plant,

@@ -265,6 +265,33 @@ impl Controller {
         }
     }
 
+    /// Commanded path curvature κ = 1/R at time t (Ackermann; 0 otherwise or
+    /// while settling), and the turn centre's body x, x_c.
+    pub fn curvature(&self, t: f64) -> (f64, f64) {
+        let Steering::Ackermann(a) = &self.config.steering else {
+            return (0.0, 0.0);
+        };
+        if t < self.settle {
+            return (0.0, self.centre_x);
+        }
+        let tc = t - self.settle;
+        let kappa = match (&a.radius, &a.front_left_deg) {
+            (Some(r), _) => {
+                let r = r.at(tc);
+                if r == 0.0 { 0.0 } else { 1.0 / r }
+            }
+            (None, Some(d)) => match self.steerable.iter().position(|&s| s) {
+                Some(k) => {
+                    let (x1, y1) = self.rest_xy[k];
+                    curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x)
+                }
+                None => 0.0,
+            },
+            (None, None) => 0.0,
+        };
+        (kappa, self.centre_x)
+    }
+
     /// Kinematic turning radius R_k = sqrt(x_c² + R²) at time t, when steering
     /// kinematically with a non-zero curvature.
     pub fn kinematic_radius(&self, t: f64) -> Option<f64> {

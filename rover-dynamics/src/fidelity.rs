@@ -1,0 +1,168 @@
+//! The reduced fidelity levels of MODEL.md §9 (paper §6) that keep an ODE:
+//! level 2, simplified, and level 3, linearized. (Level 4, quasi-static, has
+//! no dynamics and lives in the runtime.)
+//!
+//! Both freeze T_j — so ũ_j, S_j and the member rates — at the rest
+//! configuration y_c in M, in the gravity term and in the mapping of the
+//! wheel loads: M is constant (factored once), Ṁ = 0, f2 = 0.
+//!
+//! ```text
+//! simplified:  M_c·ẇ = −f1 + Q(x, w; T_c),                      ẋ = B(x)·w
+//! linearized:  M_c·ẇ = Q(x_lin, w; T_c),  R ≈ Rz(ψ)·(I + skew([φ, θ, 0])),
+//!              ẋ = B_lin(x)·w,  wheel centres from u_c + S_c·(y − y_c)
+//! ```
+//! Dropping f1 drops the centripetal term Ω × p, which the paper accepts
+//! for slow rovers.
+
+use crate::attitude::Attitude;
+use crate::forces::{Load, add_gravity, add_suspension, add_wheel_loads};
+use crate::kinematics::{WheelKinematics, body_kinematics, position_rates};
+use crate::linalg::{V3, add, cross, mul, scale};
+use crate::mass::mass_matrix;
+use crate::model::Model;
+use crate::scalar::Scalar;
+use crate::solve::{ldlt_factor, ldlt_substitute};
+use crate::workspace::Workspace;
+
+/// How much of the model a run keeps.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Fidelity {
+    /// Level 1: everything (MODEL.md §2–§7).
+    #[default]
+    Full,
+    /// Level 2: T_j frozen at rest; M constant, Ṁ = f2 = 0.
+    Simplified,
+    /// Level 3: as level 2, plus u_j tangent at rest, R and E⁻¹ to first
+    /// order in roll and pitch, f1 = 0.
+    Linearized,
+}
+
+/// The frozen kinematics and the factored constant mass matrix.
+#[derive(Clone, Debug)]
+pub struct Frozen<S> {
+    /// u_j(y_c), S_j(y_c), member rates at rest; second derivatives zero.
+    pub ws: Workspace<S>,
+    /// LDLᵀ factors of M(y_c).
+    pub factor: alloc::vec::Vec<S>,
+}
+
+impl<S: Scalar> Frozen<S> {
+    /// Freeze `model` at its rest configuration.
+    pub fn new(model: &Model) -> Self {
+        let mut ws = Workspace::new(model);
+        let rest: alloc::vec::Vec<S> = model.coordinates.iter().map(|c| S::cst(c.rest)).collect();
+        body_kinematics(model, &rest, &mut ws);
+        for v in ws.h.iter_mut().chain(ws.da.iter_mut()) {
+            *v = [S::zero(); 3];
+        }
+        for r in ws.inertia_rate.iter_mut() {
+            *r = None;
+        }
+        mass_matrix(model, &mut ws);
+        let mut factor = ws.mass.clone();
+        ldlt_factor(&mut factor, ws.dof);
+        Self { ws, factor }
+    }
+}
+
+/// The attitude of a level.
+pub fn attitude<S: Scalar>(level: Fidelity, x: &[S]) -> Attitude<S> {
+    match level {
+        Fidelity::Linearized => Attitude::linear(x[3], x[4], x[5]),
+        _ => Attitude::new(x[3], x[4], x[5]),
+    }
+}
+
+/// `ẋ` and `ẇ` for levels 2 and 3 (for level 1 use [`crate::eom::derivatives`]).
+pub fn reduced_derivatives<S: Scalar>(
+    model: &Model,
+    level: Fidelity,
+    frozen: &mut Frozen<S>,
+    neutral: &[S],
+    x: &[S],
+    w: &[S],
+    loads: &[Load<S>],
+    xdot: &mut [S],
+    wdot: &mut [S],
+) {
+    let n = frozen.ws.dof;
+    let att = attitude(level, x);
+    let ws = &mut frozen.ws;
+    let mut rhs = core::mem::take(&mut ws.rhs);
+    for v in rhs.iter_mut() {
+        *v = S::zero();
+    }
+    if level == Fidelity::Simplified {
+        // −f1 with p = M_c·w.
+        crate::mass::momentum(ws, w);
+        let omega = [w[3], w[4], w[5]];
+        let vel = [w[0], w[1], w[2]];
+        let pv = [ws.p[0], ws.p[1], ws.p[2]];
+        let pw = [ws.p[3], ws.p[4], ws.p[5]];
+        let f1v = cross(omega, pv);
+        let f1w = add(cross(vel, pv), cross(omega, pw));
+        for k in 0..3 {
+            rhs[k] -= f1v[k];
+            rhs[3 + k] -= f1w[k];
+        }
+    }
+    add_gravity(model, ws, &att, &mut rhs);
+    add_suspension(model, neutral, &x[6..], &w[6..], &mut rhs);
+    add_wheel_loads(model, ws, &att, loads, &mut rhs);
+    ldlt_substitute(&frozen.factor, &mut rhs, n);
+    wdot.copy_from_slice(&rhs);
+    frozen.ws.rhs = rhs;
+    match level {
+        Fidelity::Linearized => {
+            let vel = mul(&att.rotation(), [w[0], w[1], w[2]]);
+            let rates = att.rates([w[3], w[4], w[5]]);
+            xdot[..3].copy_from_slice(&vel);
+            xdot[3..6].copy_from_slice(&rates);
+            xdot[6..].copy_from_slice(&w[6..]);
+        }
+        _ => position_rates(x, w, xdot),
+    }
+}
+
+/// Wheel-centre kinematics of level 3: `u_j ≈ u_j(y_c) + S_j(y_c)·(y − y_c)`
+/// with the linearized attitude (orientation polynomials kept exact).
+pub fn linear_wheel_kinematics<S: Scalar>(
+    model: &Model,
+    frozen: &Frozen<S>,
+    x: &[S],
+    w: &[S],
+    k: usize,
+    steer: S,
+) -> WheelKinematics<S> {
+    let ws = &frozen.ws;
+    let m = ws.m;
+    let wheel = &model.wheels[k];
+    let j = wheel.body;
+    let y = &x[6..];
+    let mut u: V3<S> = ws.u[j];
+    let mut rel = [S::zero(); 3];
+    for i in 0..m {
+        u = add(
+            u,
+            scale(y[i] - S::cst(model.coordinates[i].rest), ws.s[j * m + i]),
+        );
+        rel = add(rel, scale(w[6 + i], ws.s[j * m + i]));
+    }
+    let att = Attitude::linear(x[3], x[4], x[5]);
+    let r = att.rotation();
+    let centre = add([x[0], x[1], x[2]], mul(&r, u));
+    let body_vel = add(add([w[0], w[1], w[2]], cross([w[3], w[4], w[5]], u)), rel);
+    let velocity = mul(&r, body_vel);
+    let steer = if wheel.steerable { steer } else { S::zero() };
+    let camber = wheel.camber.value(y);
+    let heading = steer + wheel.toe.value(y);
+    let (sh, ch) = (heading.sin(), heading.cos());
+    let (sg, cg) = (camber.sin(), camber.cos());
+    let spin_axis = mul(&r, [-(sh * cg), ch * cg, sg]);
+
+    WheelKinematics {
+        centre,
+        velocity,
+        spin_axis,
+    }
+}

@@ -1,0 +1,259 @@
+//! Level 4 of MODEL.md §9: the quasi-static model. No inertia, no damping:
+//! at each output instant the horizontal motion (X, Y, ψ) is imposed and the
+//! static equilibrium of the rest is solved by Newton–Raphson from the
+//! previous solution.
+//!
+//! ```text
+//! unknowns  q = [Z, φ, θ, y1 … ym]
+//! equations Q_gravity + Q_springs + Q_wheels = 0 along the inertial
+//!           vertical force, the moments about the inertial X and Y axes
+//!           through G, and the m suspension rows
+//! wheels    F_j = (F_nj / n_z)·e_Z at G_j,  F_nj = k_w·Δ_j
+//! ```
+
+use rover_dynamics::Model;
+use rover_dynamics::attitude::Attitude;
+use rover_dynamics::forces::{Load, add_gravity, add_suspension, add_wheel_loads};
+use rover_dynamics::kinematics::{body_kinematics, wheel_kinematics};
+use rover_dynamics::workspace::Workspace;
+
+use crate::contact::MeridionalContact;
+use crate::terrain::{HeightField, OffMap};
+
+/// Why an equilibrium could not be found.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum QuasiStaticError {
+    /// Newton–Raphson did not converge.
+    #[error(
+        "the quasi-static equilibrium did not converge at X = {x:.3} m, Y = {y:.3} m after {iterations} iterations \
+         (residual {residual:.3e} N): the rover may have lost contact or tipped; use a dynamic fidelity level here"
+    )]
+    NoConvergence {
+        /// Imposed X [m].
+        x: f64,
+        /// Imposed Y [m].
+        y: f64,
+        /// Iterations made.
+        iterations: usize,
+        /// Largest residual left [N or N·m].
+        residual: f64,
+    },
+    /// A wheel left the terrain map.
+    #[error("wheel {} left the terrain: {off}", wheel + 1)]
+    OffMap {
+        /// Wheel (0-based).
+        wheel: usize,
+        /// The query.
+        off: OffMap,
+    },
+}
+
+/// The equilibrium solver with its scratch storage.
+pub struct QuasiStatic<'a, H> {
+    model: &'a Model,
+    terrain: &'a H,
+    ws: Workspace<f64>,
+    search: MeridionalContact,
+    neutral: Vec<f64>,
+    loads: Vec<Load<f64>>,
+    /// The current solution [Z, φ, θ, y…].
+    pub q: Vec<f64>,
+    /// Residual evaluations so far.
+    pub residual_evals: u64,
+    /// Newton iterations so far.
+    pub iterations: u64,
+}
+
+/// Largest Newton iterations per instant.
+const MAX_ITERATIONS: usize = 50;
+
+impl<'a, H: HeightField> QuasiStatic<'a, H> {
+    /// A solver starting from `q0` = [Z, φ, θ, y…].
+    /// The first guess is lowered by the static tyre deflection W/Σk_w.
+    pub fn new(
+        model: &'a Model,
+        terrain: &'a H,
+        search: MeridionalContact,
+        mut q0: Vec<f64>,
+    ) -> Self {
+        let stiffness: f64 = model.wheels.iter().map(|w| w.stiffness).sum();
+        q0[0] -= model.total_mass() * model.gravity / stiffness;
+        let zero = Load {
+            force: [0.0; 3],
+            moment: [0.0; 3],
+            stator_torque: [0.0; 3],
+        };
+        Self {
+            model,
+            terrain,
+            ws: Workspace::new(model),
+            search,
+            neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
+            loads: vec![zero; model.wheels.len()],
+            q: q0,
+            residual_evals: 0,
+            iterations: 0,
+        }
+    }
+
+    /// The full coordinates x for a pose (X, Y, ψ) and unknowns q.
+    pub fn coordinates(&self, pose: [f64; 3], q: &[f64]) -> Vec<f64> {
+        let mut x = vec![pose[0], pose[1], q[0], q[1], q[2], pose[2]];
+        x.extend_from_slice(&q[3..]);
+        x
+    }
+
+    /// Normal force on each wheel at the current solution, for a pose.
+    pub fn normal_forces(
+        &mut self,
+        pose: [f64; 3],
+        out: &mut [f64],
+    ) -> Result<(), QuasiStaticError> {
+        let q = self.q.clone();
+        let mut r = vec![0.0; q.len()];
+        self.residual(pose, &q, &mut r)?;
+        for (o, l) in out.iter_mut().zip(&self.loads) {
+            *o = l.force[2];
+        }
+        Ok(())
+    }
+
+    /// Equilibrium residual at pose (X, Y, ψ) and unknowns q.
+    fn residual(
+        &mut self,
+        pose: [f64; 3],
+        q: &[f64],
+        r: &mut [f64],
+    ) -> Result<(), QuasiStaticError> {
+        self.residual_evals += 1;
+        let model = self.model;
+        let x = self.coordinates(pose, q);
+        let n = model.dof();
+        let zeros = vec![0.0; n];
+        body_kinematics(model, &x[6..], &mut self.ws);
+        let att = Attitude::new(x[3], x[4], x[5]);
+        for (k, wheel) in model.wheels.iter().enumerate() {
+            let wk = wheel_kinematics(model, &self.ws, &att, &x, &zeros, k, 0.0);
+            let contact = self
+                .search
+                .find(self.terrain, wk.centre, wk.spin_axis, wheel.radius)
+                .map_err(|off| QuasiStaticError::OffMap { wheel: k, off })?;
+            let mut fz = 0.0;
+            for p in contact.patches() {
+                let fn_ = (wheel.stiffness * p.deflection).max(0.0);
+                fz += fn_ / p.normal[2].max(1e-6);
+            }
+            self.loads[k].force = [0.0, 0.0, fz];
+        }
+        let mut gq = vec![0.0; n];
+        add_gravity(model, &self.ws, &att, &mut gq);
+        add_suspension(model, &self.neutral, &x[6..], &zeros[6..], &mut gq);
+        add_wheel_loads(model, &self.ws, &att, &self.loads, &mut gq);
+        let rot = att.rotation();
+        let world =
+            |v: [f64; 3]| [0, 1, 2].map(|i| rot[i][0] * v[0] + rot[i][1] * v[1] + rot[i][2] * v[2]);
+        let f = world([gq[0], gq[1], gq[2]]);
+        let m = world([gq[3], gq[4], gq[5]]);
+        r[0] = f[2];
+        r[1] = m[0];
+        r[2] = m[1];
+        r[3..].copy_from_slice(&gq[6..]);
+        Ok(())
+    }
+
+    /// Solve the equilibrium at pose (X, Y, ψ) from the previous solution;
+    /// returns the iterations used.
+    pub fn solve(&mut self, pose: [f64; 3]) -> Result<usize, QuasiStaticError> {
+        let k = self.q.len();
+        let weight = self.model.total_mass() * self.model.gravity;
+        let tol = 1e-9 * weight.max(1e-12);
+        let mut r = vec![0.0; k];
+        let mut trial = vec![0.0; k];
+        let mut r_trial = vec![0.0; k];
+        let mut jac = vec![0.0; k * k];
+        let mut q = self.q.clone();
+        self.residual(pose, &q, &mut r)?;
+        let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        for it in 0..MAX_ITERATIONS {
+            if norm(&r) <= tol {
+                self.q = q;
+                self.iterations += it as u64;
+                return Ok(it);
+            }
+            // Forward-difference Jacobian.
+            for c in 0..k {
+                let h = 1e-7 * (1.0 + q[c].abs());
+                trial.copy_from_slice(&q);
+                trial[c] += h;
+                self.residual(pose, &trial, &mut r_trial)?;
+                for row in 0..k {
+                    jac[row * k + c] = (r_trial[row] - r[row]) / h;
+                }
+            }
+            let mut step: Vec<f64> = r.iter().map(|v| -v).collect();
+            if !gauss_solve(&mut jac, &mut step, k) {
+                // No wheel in contact (a singular Jacobian): lower the rover
+                // by a millimetre and try again.
+                q[0] -= 1e-3;
+                self.residual(pose, &q, &mut r)?;
+                continue;
+            }
+            // Backtracking (Armijo) on ½|r|².
+            let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
+            let base = sq(&r);
+            let mut lambda = 1.0;
+            loop {
+                for i in 0..k {
+                    trial[i] = q[i] + lambda * step[i];
+                }
+                self.residual(pose, &trial, &mut r_trial)?;
+                if sq(&r_trial) <= (1.0 - 1e-4 * lambda) * base || lambda < 1e-3 {
+                    break;
+                }
+                lambda *= 0.5;
+            }
+            q.copy_from_slice(&trial);
+            r.copy_from_slice(&r_trial);
+        }
+        if norm(&r) <= tol {
+            self.q = q;
+            return Ok(MAX_ITERATIONS);
+        }
+        Err(QuasiStaticError::NoConvergence {
+            x: pose[0],
+            y: pose[1],
+            iterations: MAX_ITERATIONS,
+            residual: norm(&r),
+        })
+    }
+}
+
+/// Gaussian elimination with partial pivoting; false if singular.
+fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    for c in 0..n {
+        let p = (c..n)
+            .max_by(|&i, &j| a[i * n + c].abs().total_cmp(&a[j * n + c].abs()))
+            .unwrap_or(c);
+        if a[p * n + c].abs() < 1e-300 || !a[p * n + c].is_finite() {
+            return false;
+        }
+        if p != c {
+            for k in 0..n {
+                a.swap(c * n + k, p * n + k);
+            }
+            b.swap(c, p);
+        }
+        for r in c + 1..n {
+            let f = a[r * n + c] / a[c * n + c];
+            for k in c..n {
+                a[r * n + k] -= f * a[c * n + k];
+            }
+            b[r] -= f * b[c];
+        }
+    }
+    for c in (0..n).rev() {
+        let s: f64 = (c + 1..n).map(|k| a[c * n + k] * b[k]).sum();
+        b[c] = (b[c] - s) / a[c * n + c];
+    }
+    true
+}
