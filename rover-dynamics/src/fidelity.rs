@@ -44,13 +44,22 @@ pub struct Frozen<S> {
     pub ws: Workspace<S>,
     /// LDLᵀ factors of M(y_c).
     pub factor: alloc::vec::Vec<S>,
+    /// The configuration frozen at, y_ref.
+    pub y_ref: alloc::vec::Vec<S>,
 }
 
 impl<S: Scalar> Frozen<S> {
-    /// Freeze `model` at its rest configuration.
+    /// Freeze `model` at its rest configuration y_c.
     pub fn new(model: &Model) -> Self {
+        let rest: alloc::vec::Vec<f64> = model.coordinates.iter().map(|c| c.rest).collect();
+        Self::at(model, &rest)
+    }
+
+    /// Freeze `model` at the configuration `y_ref` — for a loaded rover,
+    /// its static equilibrium, about which it actually moves.
+    pub fn at(model: &Model, y_ref: &[f64]) -> Self {
         let mut ws = Workspace::new(model);
-        let rest: alloc::vec::Vec<S> = model.coordinates.iter().map(|c| S::cst(c.rest)).collect();
+        let rest: alloc::vec::Vec<S> = y_ref.iter().map(|&v| S::cst(v)).collect();
         body_kinematics(model, &rest, &mut ws);
         for v in ws.h.iter_mut().chain(ws.da.iter_mut()) {
             *v = [S::zero(); 3];
@@ -61,7 +70,7 @@ impl<S: Scalar> Frozen<S> {
         mass_matrix(model, &mut ws);
         let mut factor = ws.mass.clone();
         ldlt_factor(&mut factor, ws.dof);
-        Self { ws, factor }
+        Self { ws, factor, y_ref: rest }
     }
 }
 

@@ -63,12 +63,19 @@ impl GenericPlant {
         })
     }
 
-    /// A plant for `model` at a fidelity level (MODEL.md §9).
+    /// A plant for `model` at a fidelity level (MODEL.md §9), reduced
+    /// levels frozen at the rest values y_c.
     pub fn with_fidelity(model: Model, level: Fidelity) -> Result<Self, TooLarge> {
+        let rest = model.rest();
+        Self::with_fidelity_at(model, level, &rest)
+    }
+
+    /// As [`GenericPlant::with_fidelity`], reduced levels frozen at `y_ref`.
+    pub fn with_fidelity_at(model: Model, level: Fidelity, y_ref: &[f64]) -> Result<Self, TooLarge> {
         let mut p = Self::new(model)?;
         p.level = level;
         if level != Fidelity::Full {
-            p.frozen = Some(Frozen::new(&p.model));
+            p.frozen = Some(Frozen::at(&p.model, y_ref));
         }
         Ok(p)
     }

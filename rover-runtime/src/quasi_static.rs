@@ -257,3 +257,23 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
     }
     true
 }
+
+/// The suspension coordinates of the rover's static equilibrium on flat
+/// ground, level and at rest: the configuration the reduced fidelity levels
+/// freeze at (a loaded rover moves about it, not about its unloaded rest).
+pub fn flat_ground_equilibrium(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
+    let flat = crate::terrain::Terrain::default();
+    let rest = model.rest();
+    let mut ws = Workspace::<f64>::new(model);
+    body_kinematics(model, &rest, &mut ws);
+    let lowest = model
+        .wheels
+        .iter()
+        .map(|w| ws.u[w.body][2] - w.radius)
+        .fold(f64::INFINITY, f64::min);
+    let mut q0 = vec![-lowest, 0.0, 0.0];
+    q0.extend_from_slice(&rest);
+    let mut solver = QuasiStatic::new(model, &flat, MeridionalContact::default(), q0);
+    solver.solve([0.0; 3])?;
+    Ok(solver.q[3..].to_vec())
+}

@@ -102,8 +102,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     bar.set_message(format!("{} t = 0 s", spec.name));
     let duration = scenario.duration;
     let level = scenario.fidelity.dynamic().unwrap_or_default();
-    let plant = GenericPlant::with_fidelity(spec.model.clone(), level)
-        .map_err(|e| CliError::Other(e.to_string()))?;
+    let plant = build_plant(&spec.model, level)?;
     let flag = interrupt_flag();
     let summary = rover_runtime::simulate::simulate(
         plant,
@@ -182,4 +181,18 @@ fn plots(
     _settle: f64,
 ) -> Result<Vec<PathBuf>, CliError> {
     Ok(Vec::new())
+}
+
+/// The generic plant at a fidelity level; reduced levels are frozen at the
+/// loaded static equilibrium on flat ground (docs/FIDELITY.md says why).
+pub fn build_plant(
+    model: &rover_dynamics::Model,
+    level: rover_dynamics::fidelity::Fidelity,
+) -> Result<GenericPlant, CliError> {
+    let y_ref = match level {
+        rover_dynamics::fidelity::Fidelity::Full => model.rest(),
+        _ => rover_runtime::quasi_static::flat_ground_equilibrium(model)
+            .map_err(|e| CliError::Other(format!("cannot find the reference configuration: {e}")))?,
+    };
+    GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).map_err(|e| CliError::Other(e.to_string()))
 }
