@@ -10,3 +10,4 @@ mod free_flight;
 mod ground;
 mod models;
 mod wheel_law;
+mod fidelity;

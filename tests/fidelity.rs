@@ -1,0 +1,107 @@
+//! The four fidelity levels (issue 7, MODEL.md §9).
+
+use rover_dynamics::fidelity::Fidelity;
+use rover_dynamics::plant::{Plant, WheelLoad};
+use rover_runtime::GenericPlant;
+use rover_runtime::quasi_static::flat_ground_equilibrium;
+
+use crate::support::rng::Rng;
+use crate::support::run::{Run, run};
+
+#[test]
+fn reduced_levels_equal_the_full_model_at_their_reference_state() {
+    // At the reference configuration, level, with only a forward velocity,
+    // nothing the reduced levels drop is present: same accelerations.
+    let mut rng = Rng::new(21);
+    for name in ["exomars", "swing4", "mer", "lrv"] {
+        let spec = rover_spec::load_str(rover_models::builtin(name).unwrap(), name).unwrap();
+        let model = spec.model;
+        let y_ref = flat_ground_equilibrium(&model).unwrap();
+        let n = model.dof();
+        let mut x = vec![1.0, -2.0, 0.3, 0.0, 0.0, 0.7];
+        x.extend_from_slice(&y_ref);
+        let mut w = vec![0.0; n];
+        w[0] = 0.2;
+        let loads: Vec<WheelLoad> = (0..model.wheels.len())
+            .map(|_| WheelLoad { force: [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(0.0, 30.0)], ..Default::default() })
+            .collect();
+        let mut out = Vec::new();
+        for level in [Fidelity::Full, Fidelity::Simplified, Fidelity::Linearized] {
+            let mut p = GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).unwrap();
+            let (mut xd, mut wd) = (vec![0.0; n], vec![0.0; n]);
+            p.derivatives(&x, &w, &loads, &mut xd, &mut wd).unwrap();
+            out.push((xd, wd));
+        }
+        for (k, (xd, wd)) in out.iter().enumerate().skip(1) {
+            for a in 0..n {
+                assert!((wd[a] - out[0].1[a]).abs() < 1e-9 * (1.0 + out[0].1[a].abs()), "{name} level {}: ẇ[{a}]", k + 1);
+                assert!((xd[a] - out[0].0[a]).abs() < 1e-12, "{name} level {}: ẋ[{a}]", k + 1);
+            }
+        }
+        // Away from it they differ (the test above is not vacuous).
+        x[4] = 0.2;
+        x[6] += 0.2;
+        w[4] = 0.3;
+        let mut full = GenericPlant::with_fidelity_at(model.clone(), Fidelity::Full, &y_ref).unwrap();
+        let mut lin = GenericPlant::with_fidelity_at(model.clone(), Fidelity::Linearized, &y_ref).unwrap();
+        let (mut xd, mut a, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        full.derivatives(&x, &w, &loads, &mut xd, &mut a).unwrap();
+        lin.derivatives(&x, &w, &loads, &mut xd, &mut b).unwrap();
+        assert!(a.iter().zip(&b).any(|(u, v)| (u - v).abs() > 1e-3), "{name}: levels 1 and 3 differ off the reference");
+    }
+}
+
+fn fig12(level: &str, path_from: Option<&std::path::Path>) -> Run {
+    let extra = path_from.map(|p| format!("path_from = \"{}\"\n", p.display())).unwrap_or_default();
+    run(
+        "swing4",
+        &format!(
+            "duration = 40.0\nsettle = 6.0\noutput_rate = 10.0\nfidelity = \"{level}\"\n{extra}\
+             [terrain]\nkind = \"random\"\nz_r = 0.1\nseed = 1\npatch_radius = 0.6\n\
+             [control.speed]\nspeed = 0.1\n[control.steering]\nkind = \"slip\"\ndelta_tau = 0.2\n\
+             [integrator.bdf]\nrtol = 1e-6\natol = 1e-8\nmax_order = 2\n"
+        ),
+    )
+}
+
+fn deviation(a: &Run, b: &Run, col: &str) -> (f64, f64) {
+    let (u, v) = (a.col(col), b.col(col));
+    let d: Vec<f64> = u.iter().zip(&v).map(|(p, q)| (p - q).abs()).collect();
+    (d.iter().fold(0.0, |m, x| m.max(*x)), (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt())
+}
+
+#[test]
+fn the_four_levels_agree_closely_on_gentle_ground_quasi_static_least() {
+    // Paper Fig. 12: Example 2, Z_R = 0.1, V = 0.1 m/s, Δτ = 0.2 N·m.
+    let full = fig12("full", None);
+    assert!(full.summary.complete);
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("fig12");
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("full.csv");
+    let mut text = full.header.join(",") + "\n";
+    for r in &full.rows {
+        text += &r.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(",");
+        text += "\n";
+    }
+    std::fs::write(&csv, text).unwrap();
+    let travelled = full.col("X").last().unwrap() - full.col("X")[0];
+    let mut attitude_rms = Vec::new();
+    for level in ["simplified", "linearized", "quasi_static"] {
+        let r = fig12(level, (level == "quasi_static").then_some(csv.as_path()));
+        assert!(r.summary.complete, "{level}: {:?}", r.summary.error);
+        // The path: within 5 % of the distance travelled.
+        for c in ["X", "Y"] {
+            let (max, _) = deviation(&full, &r, c);
+            assert!(max < 0.05 * travelled, "{level}: {c} deviates by {max} m over {travelled} m");
+        }
+        // Roll and pitch: within 3°.
+        let mut rms = 0.0;
+        for c in ["phi", "theta"] {
+            let (max, r) = deviation(&full, &r, c);
+            assert!(max < 3f64.to_radians(), "{level}: {c} deviates by {:.2}°", max.to_degrees());
+            rms += r;
+        }
+        attitude_rms.push(rms);
+    }
+    assert!(attitude_rms[2] > attitude_rms[0], "quasi-static agrees least in attitude: {attitude_rms:?}");
+}
