@@ -11,3 +11,4 @@ mod ground;
 mod models;
 mod wheel_law;
 mod fidelity;
+mod reproduction;

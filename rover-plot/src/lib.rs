@@ -62,6 +62,7 @@
 #![warn(missing_docs)]
 
 mod axis_range;
+mod chart;
 mod column_layout;
 mod convex_hull;
 mod coordinates;
@@ -82,6 +83,7 @@ mod time_panel;
 mod trajectory;
 mod wheel_histories;
 
+pub use chart::{Series, line_chart};
 pub use error::PlotError;
 pub use figure::Figure;
 pub use meta::PlotMeta;

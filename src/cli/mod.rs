@@ -1,6 +1,8 @@
 //! Subcommands.
 
 mod check;
+#[cfg(feature = "reproduce")]
+mod reproduce;
 mod simulate;
 
 use std::process::ExitCode;
@@ -8,7 +10,9 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 pub use check::{CheckArgs, check};
-pub use simulate::{SimulateArgs, SimulateReport, simulate};
+#[cfg(feature = "reproduce")]
+pub use reproduce::{ReproduceArgs, reproduce};
+pub use simulate::{SimulateArgs, SimulateReport, build_plant, simulate};
 
 /// Simulate wheeled planetary rovers on rough terrain (Chen & Genta 2012).
 #[derive(Debug, Parser)]
@@ -26,6 +30,9 @@ pub enum Command {
     Check(CheckArgs),
     /// Run a scenario: CSV time histories, plots and a summary.
     Simulate(SimulateArgs),
+    /// Rerun the paper's figures and write docs/REPRODUCTION.md.
+    #[cfg(feature = "reproduce")]
+    Reproduce(ReproduceArgs),
 }
 
 /// Errors a subcommand reports; printed once by `main`.
@@ -56,6 +63,12 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
     match cli.command {
         Command::Check(a) => {
             print!("{}", check(&a)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        #[cfg(feature = "reproduce")]
+        Command::Reproduce(a) => {
+            let out = reproduce(&a)?;
+            eprintln!("wrote {}", out.display());
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate(a) => {
