@@ -23,7 +23,14 @@ fn reduced_levels_equal_the_full_model_at_their_reference_state() {
         let mut w = vec![0.0; n];
         w[0] = 0.2;
         let loads: Vec<WheelLoad> = (0..model.wheels.len())
-            .map(|_| WheelLoad { force: [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(0.0, 30.0)], ..Default::default() })
+            .map(|_| WheelLoad {
+                force: [
+                    rng.uniform(-2.0, 2.0),
+                    rng.uniform(-2.0, 2.0),
+                    rng.uniform(0.0, 30.0),
+                ],
+                ..Default::default()
+            })
             .collect();
         let mut out = Vec::new();
         for level in [Fidelity::Full, Fidelity::Simplified, Fidelity::Linearized] {
@@ -34,25 +41,40 @@ fn reduced_levels_equal_the_full_model_at_their_reference_state() {
         }
         for (k, (xd, wd)) in out.iter().enumerate().skip(1) {
             for a in 0..n {
-                assert!((wd[a] - out[0].1[a]).abs() < 1e-9 * (1.0 + out[0].1[a].abs()), "{name} level {}: ẇ[{a}]", k + 1);
-                assert!((xd[a] - out[0].0[a]).abs() < 1e-12, "{name} level {}: ẋ[{a}]", k + 1);
+                assert!(
+                    (wd[a] - out[0].1[a]).abs() < 1e-9 * (1.0 + out[0].1[a].abs()),
+                    "{name} level {}: ẇ[{a}]",
+                    k + 1
+                );
+                assert!(
+                    (xd[a] - out[0].0[a]).abs() < 1e-12,
+                    "{name} level {}: ẋ[{a}]",
+                    k + 1
+                );
             }
         }
         // Away from it they differ (the test above is not vacuous).
         x[4] = 0.2;
         x[6] += 0.2;
         w[4] = 0.3;
-        let mut full = GenericPlant::with_fidelity_at(model.clone(), Fidelity::Full, &y_ref).unwrap();
-        let mut lin = GenericPlant::with_fidelity_at(model.clone(), Fidelity::Linearized, &y_ref).unwrap();
+        let mut full =
+            GenericPlant::with_fidelity_at(model.clone(), Fidelity::Full, &y_ref).unwrap();
+        let mut lin =
+            GenericPlant::with_fidelity_at(model.clone(), Fidelity::Linearized, &y_ref).unwrap();
         let (mut xd, mut a, mut b) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         full.derivatives(&x, &w, &loads, &mut xd, &mut a).unwrap();
         lin.derivatives(&x, &w, &loads, &mut xd, &mut b).unwrap();
-        assert!(a.iter().zip(&b).any(|(u, v)| (u - v).abs() > 1e-3), "{name}: levels 1 and 3 differ off the reference");
+        assert!(
+            a.iter().zip(&b).any(|(u, v)| (u - v).abs() > 1e-3),
+            "{name}: levels 1 and 3 differ off the reference"
+        );
     }
 }
 
 fn fig12(level: &str, path_from: Option<&std::path::Path>) -> Run {
-    let extra = path_from.map(|p| format!("path_from = \"{}\"\n", p.display())).unwrap_or_default();
+    let extra = path_from
+        .map(|p| format!("path_from = \"{}\"\n", p.display()))
+        .unwrap_or_default();
     run(
         "swing4",
         &format!(
@@ -67,7 +89,10 @@ fn fig12(level: &str, path_from: Option<&std::path::Path>) -> Run {
 fn deviation(a: &Run, b: &Run, col: &str) -> (f64, f64) {
     let (u, v) = (a.col(col), b.col(col));
     let d: Vec<f64> = u.iter().zip(&v).map(|(p, q)| (p - q).abs()).collect();
-    (d.iter().fold(0.0, |m, x| m.max(*x)), (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt())
+    (
+        d.iter().fold(0.0, |m, x| m.max(*x)),
+        (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt(),
+    )
 }
 
 #[test]
@@ -80,7 +105,11 @@ fn the_four_levels_agree_closely_on_gentle_ground_quasi_static_least() {
     let csv = dir.join("full.csv");
     let mut text = full.header.join(",") + "\n";
     for r in &full.rows {
-        text += &r.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(",");
+        text += &r
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(",");
         text += "\n";
     }
     std::fs::write(&csv, text).unwrap();
@@ -92,16 +121,26 @@ fn the_four_levels_agree_closely_on_gentle_ground_quasi_static_least() {
         // The path: within 5 % of the distance travelled.
         for c in ["X", "Y"] {
             let (max, _) = deviation(&full, &r, c);
-            assert!(max < 0.05 * travelled, "{level}: {c} deviates by {max} m over {travelled} m");
+            assert!(
+                max < 0.05 * travelled,
+                "{level}: {c} deviates by {max} m over {travelled} m"
+            );
         }
         // Roll and pitch: within 3°.
         let mut rms = 0.0;
         for c in ["phi", "theta"] {
             let (max, r) = deviation(&full, &r, c);
-            assert!(max < 3f64.to_radians(), "{level}: {c} deviates by {:.2}°", max.to_degrees());
+            assert!(
+                max < 3f64.to_radians(),
+                "{level}: {c} deviates by {:.2}°",
+                max.to_degrees()
+            );
             rms += r;
         }
         attitude_rms.push(rms);
     }
-    assert!(attitude_rms[2] > attitude_rms[0], "quasi-static agrees least in attitude: {attitude_rms:?}");
+    assert!(
+        attitude_rms[2] > attitude_rms[0],
+        "quasi-static agrees least in attitude: {attitude_rms:?}"
+    );
 }

@@ -4,7 +4,9 @@
 use crate::support::run::run;
 
 fn turn(z_r: f64, speed: f64) -> Option<f64> {
-    let terrain = format!("[terrain]\nkind = \"random\"\nz_r = {z_r}\nseed = 1\nnode_amplitude = 0.25\npatch_radius = 0.6\n");
+    let terrain = format!(
+        "[terrain]\nkind = \"random\"\nz_r = {z_r}\nseed = 1\nnode_amplitude = 0.25\npatch_radius = 0.6\n"
+    );
     let r = run(
         "exomars",
         &format!(
@@ -26,7 +28,10 @@ fn kinematic_steering_holds_on_moderate_ground_and_fails_on_very_rough() {
     for (z_r, v) in [(0.1, 0.05), (0.1, 0.1)] {
         let ratio = turn(z_r, v).expect("the run completes");
         // "0.95–0.99, or closer": at most 5 % from the kinematic radius.
-        assert!((ratio - 1.0).abs() <= 0.05, "Z_R = {z_r}, V = {v}: R/R_k = {ratio}");
+        assert!(
+            (ratio - 1.0).abs() <= 0.05,
+            "Z_R = {z_r}, V = {v}: R/R_k = {ratio}"
+        );
     }
     // Z_R = 1: clearly worse (or the run does not even finish).
     if let Some(ratio) = turn(1.0, 0.05) {
@@ -55,8 +60,17 @@ fn active_suspension_keeps_example_2_flat_where_the_passive_one_pitches() {
     let passive = example2(false, 60.0);
     let active = example2(true, 60.0);
     assert!(passive.complete && active.complete);
-    assert!(passive.max_pitch_deg > 3.0, "passive pitch only {}°", passive.max_pitch_deg);
-    assert!(active.max_pitch_deg < 1.0 && active.max_roll_deg < 1.0, "active: roll {}°, pitch {}°", active.max_roll_deg, active.max_pitch_deg);
+    assert!(
+        passive.max_pitch_deg > 3.0,
+        "passive pitch only {}°",
+        passive.max_pitch_deg
+    );
+    assert!(
+        active.max_pitch_deg < 1.0 && active.max_roll_deg < 1.0,
+        "active: roll {}°, pitch {}°",
+        active.max_roll_deg,
+        active.max_pitch_deg
+    );
 }
 
 #[test]
@@ -72,10 +86,24 @@ fn active_suspension_levels_the_body_on_a_slope_and_stays_level() {
          [integrator.bdf]\nrtol = 1e-6\natol = 1e-8\nmax_order = 2\n",
     );
     assert!(r.summary.complete, "{:?}", r.summary.error);
-    let early = r.after("theta", 0.5).first().copied().unwrap().abs().max(r.after("phi", 0.5).first().copied().unwrap().abs());
-    assert!(early > 1.5f64.to_radians(), "the body starts tilted ({}°)", early.to_degrees());
+    let early = r
+        .after("theta", 0.5)
+        .first()
+        .copied()
+        .unwrap()
+        .abs()
+        .max(r.after("phi", 0.5).first().copied().unwrap().abs());
+    assert!(
+        early > 1.5f64.to_radians(),
+        "the body starts tilted ({}°)",
+        early.to_degrees()
+    );
     for c in ["phi", "theta"] {
         let late = r.after(c, 15.0).iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        assert!(late < 0.1f64.to_radians(), "{c} still {}° after 15 s", late.to_degrees());
+        assert!(
+            late < 0.1f64.to_radians(),
+            "{c} still {}° after 15 s",
+            late.to_degrees()
+        );
     }
 }

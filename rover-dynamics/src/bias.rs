@@ -27,13 +27,11 @@ use crate::model::Model;
 use crate::scalar::Scalar;
 use crate::workspace::Workspace;
 
-/// Add `−Ṁ·w − f1 + f2` to `out` (length N). `mass_matrix` must have run.
-pub fn add_bias<S: Scalar>(model: &Model, ws: &mut Workspace<S>, w: &[S], out: &mut [S]) {
-    let m = ws.m;
+/// Subtract the gyroscopic and transport terms (eq. 27) from `out`:
+/// `f1 = [Ω̃·p_v; ṽ·p_v + Ω̃·p_Ω; 0]`, `p = M·w` (M in `ws.mass`).
+pub fn sub_f1<S: Scalar>(ws: &mut Workspace<S>, w: &[S], out: &mut [S]) {
     let omega: V3<S> = [w[3], w[4], w[5]];
     let vel: V3<S> = [w[0], w[1], w[2]];
-    let yd = &w[6..];
-    // −f1
     momentum(ws, w);
     let pv = [ws.p[0], ws.p[1], ws.p[2]];
     let pw = [ws.p[3], ws.p[4], ws.p[5]];
@@ -43,6 +41,14 @@ pub fn add_bias<S: Scalar>(model: &Model, ws: &mut Workspace<S>, w: &[S], out: &
         out[k] -= f1v[k];
         out[3 + k] -= f1w[k];
     }
+}
+
+/// Add `−Ṁ·w − f1 + f2` to `out` (length N). `mass_matrix` must have run.
+pub fn add_bias<S: Scalar>(model: &Model, ws: &mut Workspace<S>, w: &[S], out: &mut [S]) {
+    let m = ws.m;
+    let omega: V3<S> = [w[3], w[4], w[5]];
+    let yd = &w[6..];
+    sub_f1(ws, w, out);
     for (j, body) in model.bodies.iter().enumerate() {
         if body.mass != 0.0 {
             let mj = S::cst(body.mass);

@@ -70,7 +70,11 @@ impl<S: Scalar> Frozen<S> {
         mass_matrix(model, &mut ws);
         let mut factor = ws.mass.clone();
         ldlt_factor(&mut factor, ws.dof);
-        Self { ws, factor, y_ref: rest }
+        Self {
+            ws,
+            factor,
+            y_ref: rest,
+        }
     }
 }
 
@@ -103,17 +107,7 @@ pub fn reduced_derivatives<S: Scalar>(
     }
     if level == Fidelity::Simplified {
         // −f1 with p = M_c·w.
-        crate::mass::momentum(ws, w);
-        let omega = [w[3], w[4], w[5]];
-        let vel = [w[0], w[1], w[2]];
-        let pv = [ws.p[0], ws.p[1], ws.p[2]];
-        let pw = [ws.p[3], ws.p[4], ws.p[5]];
-        let f1v = cross(omega, pv);
-        let f1w = add(cross(vel, pv), cross(omega, pw));
-        for k in 0..3 {
-            rhs[k] -= f1v[k];
-            rhs[3 + k] -= f1w[k];
-        }
+        crate::bias::sub_f1(ws, w, &mut rhs);
     }
     add_gravity(model, ws, &att, &mut rhs);
     add_suspension(model, neutral, &x[6..], &w[6..], &mut rhs);
@@ -162,12 +156,7 @@ pub fn linear_wheel_kinematics<S: Scalar>(
     let centre = add([x[0], x[1], x[2]], mul(&r, u));
     let body_vel = add(add([w[0], w[1], w[2]], cross([w[3], w[4], w[5]], u)), rel);
     let velocity = mul(&r, body_vel);
-    let steer = if wheel.steerable { steer } else { S::zero() };
-    let camber = wheel.camber.value(y);
-    let heading = steer + wheel.toe.value(y);
-    let (sh, ch) = (heading.sin(), heading.cos());
-    let (sg, cg) = (camber.sin(), camber.cos());
-    let spin_axis = mul(&r, [-(sh * cg), ch * cg, sg]);
+    let spin_axis = crate::kinematics::spin_axis(wheel, &r, y, steer);
 
     WheelKinematics {
         centre,

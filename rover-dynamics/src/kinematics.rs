@@ -108,19 +108,29 @@ pub fn wheel_kinematics<S: Scalar>(
 ) -> WheelKinematics<S> {
     let wheel = &model.wheels[k];
     let j = wheel.body;
-    let steer = if wheel.steerable { steer } else { S::zero() };
-    let y = &x[6..];
     let r = att.rotation();
     let centre = add([x[0], x[1], x[2]], mul(&r, ws.u[j]));
     let velocity = mul(&r, body_velocity(ws, j, w));
-    let camber = wheel.camber.value(y);
-    let heading = steer + wheel.toe.value(y);
-    let (sh, ch) = (heading.sin(), heading.cos());
-    let (sg, cg) = (camber.sin(), camber.cos());
-    let spin_axis = mul(&r, [-(sh * cg), ch * cg, sg]);
+    let spin_axis = spin_axis(wheel, &r, &x[6..], steer);
     WheelKinematics {
         centre,
         velocity,
         spin_axis,
     }
+}
+
+/// Unit spin axis of a wheel, inertial: `a_w = R·Rz(δ + ε(y))·Rx(γ(y))·e_y`
+/// (MODEL.md §3); δ is ignored for a wheel that is not steerable.
+pub fn spin_axis<S: Scalar>(
+    wheel: &crate::model::Wheel,
+    r: &crate::linalg::M3<S>,
+    y: &[S],
+    steer: S,
+) -> V3<S> {
+    let steer = if wheel.steerable { steer } else { S::zero() };
+    let camber = wheel.camber.value(y);
+    let heading = steer + wheel.toe.value(y);
+    let (sh, ch) = (heading.sin(), heading.cos());
+    let (sg, cg) = (camber.sin(), camber.cos());
+    mul(r, [-(sh * cg), ch * cg, sg])
 }

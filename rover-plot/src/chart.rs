@@ -24,11 +24,24 @@ pub struct Series {
 const SIZE: (u32, u32) = (900, 600);
 
 /// Draw `series` into `<stem>.png` and `<stem>.svg`; returns both paths.
-pub fn line_chart(stem: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<Vec<PathBuf>, PlotError> {
+pub fn line_chart(
+    stem: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<Vec<PathBuf>, PlotError> {
     register_embedded_font();
     let name: &'static str = "chart";
-    let draw_error = |message: String| PlotError::Draw { figure: name, message };
-    let finite: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).filter(|(x, y)| x.is_finite() && y.is_finite()).collect();
+    let draw_error = |message: String| PlotError::Draw {
+        figure: name,
+        message,
+    };
+    let finite: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect();
     if finite.is_empty() {
         return Err(draw_error(format!("{title}: no finite point to draw")));
     }
@@ -36,8 +49,14 @@ pub fn line_chart(stem: &Path, title: &str, x_label: &str, y_label: &str, series
         let span = (hi - lo).abs().max(1e-9 * (1.0 + hi.abs()));
         (lo - 0.05 * span, hi + 0.05 * span)
     };
-    let (x0, x1) = pad(finite.iter().map(|p| p.0).fold(f64::INFINITY, f64::min), finite.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max));
-    let (y0, y1) = pad(finite.iter().map(|p| p.1).fold(f64::INFINITY, f64::min), finite.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max));
+    let (x0, x1) = pad(
+        finite.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
+        finite.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
+    );
+    let (y0, y1) = pad(
+        finite.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
+        finite.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
+    );
     fn draw<DB: DrawingBackend>(
         root: DrawingArea<DB, plotters::coord::Shift>,
         title: &str,
@@ -62,13 +81,24 @@ pub fn line_chart(stem: &Path, title: &str, x_label: &str, y_label: &str, series
             .map_err(|e| e.to_string())?;
         for (i, s) in series.iter().enumerate() {
             let colour = PALETTE[i % PALETTE.len()];
-            let pts: Vec<(f64, f64)> = s.points.iter().copied().filter(|(x, y)| x.is_finite() && y.is_finite()).collect();
+            let pts: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .copied()
+                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .collect();
             let anno = if s.markers {
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, 5, colour.filled()))).map_err(|e| e.to_string())?
+                chart
+                    .draw_series(pts.iter().map(|&p| Circle::new(p, 5, colour.filled())))
+                    .map_err(|e| e.to_string())?
             } else {
-                chart.draw_series(LineSeries::new(pts, colour.stroke_width(2))).map_err(|e| e.to_string())?
+                chart
+                    .draw_series(LineSeries::new(pts, colour.stroke_width(2)))
+                    .map_err(|e| e.to_string())?
             };
-            anno.label(s.name.clone()).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
+            anno.label(s.name.clone()).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3))
+            });
         }
         chart
             .configure_series_labels()
@@ -81,9 +111,23 @@ pub fn line_chart(stem: &Path, title: &str, x_label: &str, y_label: &str, series
     }
     let ranges = ((x0, x1), (y0, y1));
     let mut svg = String::new();
-    draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(), title, (x_label, y_label), ranges, series).map_err(draw_error)?;
+    draw(
+        SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
+        title,
+        (x_label, y_label),
+        ranges,
+        series,
+    )
+    .map_err(draw_error)?;
     let mut rgb = vec![255u8; 3 * (SIZE.0 * SIZE.1) as usize];
-    draw(BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area(), title, (x_label, y_label), ranges, series).map_err(draw_error)?;
+    draw(
+        BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area(),
+        title,
+        (x_label, y_label),
+        ranges,
+        series,
+    )
+    .map_err(draw_error)?;
     let mut png_bytes = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut png_bytes, SIZE.0, SIZE.1);
@@ -96,7 +140,12 @@ pub fn line_chart(stem: &Path, title: &str, x_label: &str, y_label: &str, series
     }
     let svg_path = stem.with_extension("svg");
     let png_path = stem.with_extension("png");
-    let write = |p: &Path, bytes: &[u8]| std::fs::write(p, bytes).map_err(|source| PlotError::Write { path: p.to_path_buf(), source });
+    let write = |p: &Path, bytes: &[u8]| {
+        std::fs::write(p, bytes).map_err(|source| PlotError::Write {
+            path: p.to_path_buf(),
+            source,
+        })
+    };
     write(&png_path, &png_bytes)?;
     write(&svg_path, svg.as_bytes())?;
     Ok(vec![png_path, svg_path])

@@ -71,7 +71,11 @@ impl GenericPlant {
     }
 
     /// As [`GenericPlant::with_fidelity`], reduced levels frozen at `y_ref`.
-    pub fn with_fidelity_at(model: Model, level: Fidelity, y_ref: &[f64]) -> Result<Self, TooLarge> {
+    pub fn with_fidelity_at(
+        model: Model,
+        level: Fidelity,
+        y_ref: &[f64],
+    ) -> Result<Self, TooLarge> {
         let mut p = Self::new(model)?;
         p.level = level;
         if level != Fidelity::Full {

@@ -14,7 +14,7 @@ use rover_dynamics::plant::Plant;
 use crate::control::Controller;
 use crate::ground::Ground;
 use crate::integrate::{Integrator, OdeSystem};
-use crate::output::{CsvWriter, Status, Summary, fit_circle, header};
+use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::sim::{RoverSystem, RunOptions, Stop, run};
 use crate::terrain::{HeightField, Terrain};
@@ -186,9 +186,7 @@ pub fn simulate<P: Plant, W: Write>(
         output_step: 1.0 / scenario.output_rate,
         rollover_limit: scenario.rollover_limit_deg.to_radians(),
     };
-    let mut path = Vec::new();
-    let mut deep = vec![false; k];
-    let mut last = Vec::new();
+    let mut log = RunLog::new(scenario.settle, k);
     let started = Instant::now();
     let outcome = run(&mut sys, &mut integ, &mut y, &opts, interrupt, |row| {
         let s = row.system;
@@ -205,13 +203,7 @@ pub fn simulate<P: Plant, W: Write>(
         v.extend_from_slice(s.torques());
         v.extend_from_slice(s.steering());
         v.push(s.control.speed_setpoint(row.t));
-        last.clone_from(v);
-        for (d, r) in deep.iter_mut().zip(s.reports()) {
-            *d |= r.deep;
-        }
-        if row.t >= scenario.settle {
-            path.push([row.y[0], row.y[1]]);
-        }
+        log.record(v, s.reports().iter().map(|r| r.deep));
         progress(row.t);
         writer.finish_row()
     });
@@ -226,40 +218,23 @@ pub fn simulate<P: Plant, W: Write>(
         Stop::Failed(e) => (Status::Failed, Some(e.to_string())),
     };
     let stats = integ.stats();
-    Ok(Summary {
-        rover: name.to_string(),
-        complete: status == Status::Completed,
-        status,
-        error,
-        duration: scenario.duration,
-        t_end: outcome.t,
-        final_state: cols
-            .iter()
-            .cloned()
-            .zip(last.iter().copied())
-            .take(1 + 2 * n)
-            .collect(),
-        max_roll_deg: outcome.max_roll.to_degrees(),
-        max_pitch_deg: outcome.max_pitch.to_degrees(),
-        turning_circle: fit_circle(&path),
-        kinematic_radius,
-        deep_penetration_wheels: deep
-            .iter()
-            .enumerate()
-            .filter(|(_, d)| **d)
-            .map(|(i, _)| i + 1)
-            .collect(),
-        wall_time_s: wall,
-        real_time_factor: if wall > 0.0 {
-            outcome.t / wall
-        } else {
-            f64::INFINITY
+    Ok(log.summary(
+        &cols,
+        n,
+        RunEnd {
+            rover: name.to_string(),
+            status,
+            error,
+            duration: scenario.duration,
+            t_end: outcome.t,
+            kinematic_radius,
+            wall_time_s: wall,
+            integrator: integ.name().to_string(),
+            rhs_evals: stats.rhs_evals,
+            steps: stats.steps,
+            rejected_steps: stats.rejected_steps,
         },
-        integrator: integ.name().to_string(),
-        rhs_evals: stats.rhs_evals,
-        steps: stats.steps,
-        rejected_steps: stats.rejected_steps,
-    })
+    ))
 }
 
 /// The horizontal motion a quasi-static run imposes: (t, X, Y, ψ) samples.
@@ -387,9 +362,7 @@ fn quasi_static_run<W: Write>(
     let cols = header(model.m(), k);
     let mut writer = CsvWriter::new(csv, &cols)?;
     let started = Instant::now();
-    let (mut max_roll, mut max_pitch) = (0.0f64, 0.0f64);
-    let mut path = Vec::new();
-    let mut last = Vec::new();
+    let mut log = RunLog::new(scenario.settle, k);
     let mut stop = (Status::Completed, None, scenario.duration);
     let mut normals = vec![0.0; k];
     let mut wheels = vec![rover_dynamics::plant::WheelState::default(); k];
@@ -413,8 +386,6 @@ fn quasi_static_run<W: Write>(
             break;
         }
         let x = solver.coordinates(pose, &solver.q);
-        max_roll = max_roll.max(x[3].abs());
-        max_pitch = max_pitch.max(x[4].abs());
         use rover_dynamics::plant::Plant;
         plant.wheels(&x, &zeros, &vec![0.0; k], &mut wheels);
         let v = writer.row();
@@ -430,43 +401,28 @@ fn quasi_static_run<W: Write>(
         }
         v.extend(std::iter::repeat_n(0.0, 2 * k));
         v.push(control.speed_setpoint(t));
-        last.clone_from(v);
-        if t >= scenario.settle {
-            path.push([x[0], x[1]]);
-        }
+        log.record(v, std::iter::empty());
         progress(t);
         writer.finish_row()?;
     }
     writer.into_inner()?;
     let wall = started.elapsed().as_secs_f64();
     let (status, error, t_end) = stop;
-    Ok(Summary {
-        rover: name.to_string(),
-        complete: status == Status::Completed,
-        status,
-        error,
-        duration: scenario.duration,
-        t_end,
-        final_state: cols
-            .iter()
-            .cloned()
-            .zip(last.iter().copied())
-            .take(1 + 2 * n)
-            .collect(),
-        max_roll_deg: max_roll.to_degrees(),
-        max_pitch_deg: max_pitch.to_degrees(),
-        turning_circle: fit_circle(&path),
-        kinematic_radius,
-        deep_penetration_wheels: Vec::new(),
-        wall_time_s: wall,
-        real_time_factor: if wall > 0.0 {
-            t_end / wall
-        } else {
-            f64::INFINITY
+    Ok(log.summary(
+        &cols,
+        n,
+        RunEnd {
+            rover: name.to_string(),
+            status,
+            error,
+            duration: scenario.duration,
+            t_end,
+            kinematic_radius,
+            wall_time_s: wall,
+            integrator: "quasi-static newton".into(),
+            rhs_evals: solver.residual_evals,
+            steps: solver.iterations,
+            rejected_steps: 0,
         },
-        integrator: "quasi-static newton".into(),
-        rhs_evals: solver.residual_evals,
-        steps: solver.iterations,
-        rejected_steps: 0,
-    })
+    ))
 }

@@ -191,8 +191,10 @@ pub fn build_plant(
 ) -> Result<GenericPlant, CliError> {
     let y_ref = match level {
         rover_dynamics::fidelity::Fidelity::Full => model.rest(),
-        _ => rover_runtime::quasi_static::flat_ground_equilibrium(model)
-            .map_err(|e| CliError::Other(format!("cannot find the reference configuration: {e}")))?,
+        _ => rover_runtime::quasi_static::flat_ground_equilibrium(model).map_err(|e| {
+            CliError::Other(format!("cannot find the reference configuration: {e}"))
+        })?,
     };
-    GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).map_err(|e| CliError::Other(e.to_string()))
+    GenericPlant::with_fidelity_at(model.clone(), level, &y_ref)
+        .map_err(|e| CliError::Other(e.to_string()))
 }

@@ -6,4 +6,4 @@ mod summary;
 
 pub use circle_fit::{Circle, fit_circle};
 pub use csv_writer::{CsvWriter, header};
-pub use summary::{Status, Summary};
+pub use summary::{RunEnd, RunLog, Status, Summary};
