@@ -6,3 +6,4 @@ mod dynamics;
 mod free_flight;
 mod ground;
 mod models;
+mod codegen;

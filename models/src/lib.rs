@@ -7,7 +7,18 @@
 //!   10 DOF);
 //! - `mer`: a MER-type rocker-bogie 6-wheeler (9 DOF);
 //! - `lrv`: an LRV-type rover on four double wishbones (10 DOF).
+//!
+//! Each also has a generated plant (straight-line code written by
+//! `rover-codegen` from the same file, `no_std`, no heap): [`Exomars`],
+//! [`Swing4`], [`Mer`], [`Lrv`]. [`plant`] gives one by name.
 #![warn(missing_docs)]
+
+mod generated;
+
+pub use generated::exomars::Exomars;
+pub use generated::lrv::Lrv;
+pub use generated::mer::Mer;
+pub use generated::swing4::Swing4;
 
 /// The names of the built-in rovers.
 pub const NAMES: &[&str] = &["exomars", "swing4", "mer", "lrv"];
@@ -19,6 +30,17 @@ pub fn builtin(name: &str) -> Option<&'static str> {
         "swing4" => Some(include_str!("../swing4.toml")),
         "mer" => Some(include_str!("../mer.toml")),
         "lrv" => Some(include_str!("../lrv.toml")),
+        _ => None,
+    }
+}
+
+/// The generated plant of a built-in rover, boxed (`None` for other names).
+pub fn plant(name: &str) -> Option<Box<dyn rover_dynamics::Plant + Send>> {
+    match name {
+        "exomars" => Some(Box::new(Exomars::new())),
+        "swing4" => Some(Box::new(Swing4::new())),
+        "mer" => Some(Box::new(Mer::new())),
+        "lrv" => Some(Box::new(Lrv::new())),
         _ => None,
     }
 }
