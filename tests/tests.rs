@@ -7,3 +7,4 @@ mod free_flight;
 mod ground;
 mod models;
 mod codegen;
+mod no_std;
