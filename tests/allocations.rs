@@ -69,6 +69,9 @@ fn ten_thousand_rk4_steps_with_a_generated_plant_allocate_nothing() {
     );
     assert!(y.iter().all(|v| v.is_finite()));
     let normal: f64 = sys.reports().iter().map(|r| r.normal).sum();
-    assert!(normal > 0.0, "the wheels touch the ground: ΣF_n = {normal} N");
+    assert!(
+        normal > 0.0,
+        "the wheels touch the ground: ΣF_n = {normal} N"
+    );
     assert!((t - (steps + 1) as f64 * step).abs() < 1e-12);
 }

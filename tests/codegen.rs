@@ -28,7 +28,10 @@ fn spec(name: &str) -> rover_spec::Spec {
 fn rel(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
     let scale = a.iter().chain(b).fold(0.0f64, |m, v| m.max(v.abs()));
-    let diff = a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    let diff = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
     if scale == 0.0 { diff } else { diff / scale }
 }
 
@@ -66,7 +69,11 @@ fn random_state(model: &Model, rng: &mut Rng) -> State {
             stator_torque: v3(2.0),
         })
         .collect();
-    let steer = model.wheels.iter().map(|_| rng.uniform(-0.5, 0.5)).collect();
+    let steer = model
+        .wheels
+        .iter()
+        .map(|_| rng.uniform(-0.5, 0.5))
+        .collect();
     let neutral = model
         .coordinates
         .iter()
@@ -89,7 +96,7 @@ fn flat(states: &[WheelState], k: usize) -> [Vec<f64>; 3] {
     ]
 }
 
-fn compare(name: &str, mut generated: Box<dyn Plant + Send>, seed: u64) {
+fn compare(name: &str, mut generated: impl Plant, seed: u64) {
     let model = spec(name).model;
     let mut generic = GenericPlant::new(model.clone()).unwrap();
     let (n, k) = (model.dof(), model.wheels.len());
@@ -111,7 +118,10 @@ fn compare(name: &str, mut generated: Box<dyn Plant + Send>, seed: u64) {
         worst[0] = worst[0].max(e);
         assert!(e <= TOL, "{name} state {trial}: M differs by {e:e}");
         // Wheel kinematics
-        let (mut wa, mut wb) = (vec![WheelState::default(); k], vec![WheelState::default(); k]);
+        let (mut wa, mut wb) = (
+            vec![WheelState::default(); k],
+            vec![WheelState::default(); k],
+        );
         generated.wheels(&s.x, &s.w, &s.steer, &mut wa);
         generic.wheels(&s.x, &s.w, &s.steer, &mut wb);
         for j in 0..k {
@@ -121,7 +131,10 @@ fn compare(name: &str, mut generated: Box<dyn Plant + Send>, seed: u64) {
             {
                 let e = rel(a, b);
                 worst[1] = worst[1].max(e);
-                assert!(e <= TOL, "{name} state {trial}: wheel {j} {what} differs by {e:e}");
+                assert!(
+                    e <= TOL,
+                    "{name} state {trial}: wheel {j} {what} differs by {e:e}"
+                );
             }
         }
         // ẋ, ẇ under the loads
@@ -148,7 +161,10 @@ fn compare(name: &str, mut generated: Box<dyn Plant + Send>, seed: u64) {
         let db: Vec<f64> = wdb.iter().zip(wb0.iter()).map(|(a, b)| a - b).collect();
         let e = rel(&da, &db);
         worst[4] = worst[4].max(e);
-        assert!(e <= TOL, "{name} state {trial}: Δẇ of the loads differs by {e:e}");
+        assert!(
+            e <= TOL,
+            "{name} state {trial}: Δẇ of the loads differs by {e:e}"
+        );
     }
     eprintln!(
         "{name}: worst relative differences M {:e}, wheels {:e}, ẋ {:e}, ẇ {:e}, Δẇ {:e}",
@@ -158,22 +174,27 @@ fn compare(name: &str, mut generated: Box<dyn Plant + Send>, seed: u64) {
 
 #[test]
 fn generated_exomars_equals_generic() {
-    compare("exomars", Box::new(rover_models::Exomars::new()), 61);
+    compare("exomars", rover_models::Exomars::new(), 61);
 }
 
 #[test]
 fn generated_swing4_equals_generic() {
-    compare("swing4", Box::new(rover_models::Swing4::new()), 62);
+    compare("swing4", rover_models::Swing4::new(), 62);
 }
 
 #[test]
 fn generated_mer_equals_generic() {
-    compare("mer", Box::new(rover_models::Mer::new()), 63);
+    compare("mer", rover_models::Mer::new(), 63);
 }
 
 #[test]
 fn generated_lrv_equals_generic() {
-    compare("lrv", Box::new(rover_models::Lrv::new()), 64);
+    compare("lrv", rover_models::Lrv::new(), 64);
+}
+
+#[test]
+fn the_run_time_choice_of_a_builtin_is_the_same_plant() {
+    compare("mer", rover_models::plant("mer").unwrap(), 66);
 }
 
 #[test]
@@ -221,7 +242,13 @@ fn wrong_slice_lengths_give_nan_not_a_panic() {
 /// ∂(ẋ, ẇ)/∂(x, w) through the generic equations with duals, column `col`.
 fn dual_column(model: &Model, s: &State, col: usize) -> Vec<f64> {
     let n = model.dof();
-    let d = |v: f64, k: usize| if k == col { Dual::var(v) } else { Dual::lift(v) };
+    let d = |v: f64, k: usize| {
+        if k == col {
+            Dual::var(v)
+        } else {
+            Dual::lift(v)
+        }
+    };
     let x: Vec<Dual<f64>> = (0..n).map(|k| d(s.x[k], k)).collect();
     let w: Vec<Dual<f64>> = (0..n).map(|k| d(s.w[k], n + k)).collect();
     let lift = |v: [f64; 3]| v.map(Dual::lift);
@@ -260,7 +287,10 @@ fn generated_jacobian_is_the_exact_derivative() {
             let expect = dual_column(&model, &s, col);
             let got: Vec<f64> = (0..2 * n).map(|row| jac[row][col]).collect();
             let e = rel(&got, &expect);
-            assert!(e <= TOL, "state {trial}: Jacobian column {col} differs by {e:e}");
+            assert!(
+                e <= TOL,
+                "state {trial}: Jacobian column {col} differs by {e:e}"
+            );
         }
     }
 }

@@ -2,9 +2,9 @@
 
 mod support;
 
+mod codegen;
 mod dynamics;
 mod free_flight;
 mod ground;
 mod models;
-mod codegen;
 mod no_std;

@@ -73,10 +73,7 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
             };
             let path = base.join(&rel);
             let text = std::fs::read_to_string(&path).map_err(|e| {
-                syn::Error::new(
-                    span,
-                    format!("cannot read `{}`: {e}", path.display()),
-                )
+                syn::Error::new(span, format!("cannot read `{}`: {e}", path.display()))
             })?;
             let spec = rover_spec::load_str(&text, &rel)
                 .map_err(|e| file_errors(&e, &rel, &text, span))?;

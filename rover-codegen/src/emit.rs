@@ -257,7 +257,10 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
     let owner_ref = &owner;
     let order: Vec<usize> = (0..top)
         .filter(|&k| owner[k] == Owner::Many)
-        .chain((0..f.groups.len()).flat_map(|grp| (0..top).filter(move |&k| owner_ref[k] == Owner::One(grp))))
+        .chain(
+            (0..f.groups.len())
+                .flat_map(|grp| (0..top).filter(move |&k| owner_ref[k] == Owner::One(grp))),
+        )
         .collect();
     let mut counter = 0;
     for &k in &order {
@@ -283,9 +286,41 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
         names,
         path: libm,
     };
+    // sin and cos of one angle in the same block: one `sincos` call.
+    let mut partner: Vec<Option<usize>> = vec![None; top];
+    for k in 0..top {
+        if let Node::Sin(a) = g.node(Id(k as u32))
+            && bound[k]
+            && let Some(c) = g.find(Node::Cos(a)).map(|c| c.0 as usize)
+            && c < top
+            && bound[c]
+            && owner[c] == owner[k]
+        {
+            partner[k] = Some(c);
+            partner[c] = Some(k);
+        }
+    }
     let let_line = |k: usize| -> Option<String> {
         let node = g.node(Id(k as u32));
         let name = printer.names[k].as_ref()?;
+        if let Some(other) = partner[k] {
+            if other < k {
+                return None;
+            }
+            let other_name = printer.names[other].as_ref()?;
+            let (Node::Sin(a) | Node::Cos(a)) = node else {
+                return None;
+            };
+            let (s, c) = if matches!(node, Node::Sin(_)) {
+                (name, other_name)
+            } else {
+                (other_name, name)
+            };
+            return Some(format!(
+                "let ({s}, {c}) = {libm}::sincos({});",
+                printer.expr(a).0
+            ));
+        }
         match node {
             Node::Const(_) => None,
             Node::Input(i) => Some(format!("let {name} = {};", f.inputs[i as usize].access)),
@@ -298,7 +333,9 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
         .filter_map(let_line)
         .collect();
     let shared: Vec<String> = (0..top)
-        .filter(|&k| owner[k] == Owner::Many && bound[k] && !matches!(g.node(Id(k as u32)), Node::Input(_)))
+        .filter(|&k| {
+            owner[k] == Owner::Many && bound[k] && !matches!(g.node(Id(k as u32)), Node::Input(_))
+        })
         .filter_map(let_line)
         .collect();
     let grouped = f.groups.len() > 1;
@@ -394,7 +431,7 @@ mod tests {
                 "let b = x[1];",
                 "let t1 = a + b;",
                 "out[0] = a - t1;",
-                "out[1] = a / (0.25 * t1) - 2.0;",
+                "out[1] = a / (t1 * 0.25) - 2.0;",
             ]
         );
         assert_eq!(ops.add, 3);
@@ -417,8 +454,7 @@ mod tests {
             blocks[0].lines,
             vec![
                 "let phi = x[2];",
-                "let s_phi = libm::sin(phi);",
-                "let c_phi = libm::cos(phi);",
+                "let (s_phi, c_phi) = libm::sincos(phi);",
                 "out[0] = s_phi * c_phi;",
                 "out[1] = -s_phi;",
             ]

@@ -105,6 +105,11 @@ impl Graph {
         self.nodes[id.0 as usize]
     }
 
+    /// The node's index if the graph holds it.
+    pub fn find(&self, node: Node) -> Option<Id> {
+        self.index.get(&node).copied()
+    }
+
     /// The constant value of `id`, if it is a constant.
     pub fn value(&self, id: Id) -> Option<f64> {
         match self.node(id) {

@@ -98,10 +98,7 @@ pub fn parse_entries(tokens: TokenStream) -> syn::Result<Vec<Entry>> {
             None => {}
             Some(TokenTree::Punct(p)) if p.as_char() == ',' => i += 1,
             Some(t) => {
-                return Err(err(
-                    t.span(),
-                    "expected `,` between fields: `a = 1, b = 2`",
-                ));
+                return Err(err(t.span(), "expected `,` between fields: `a = 1, b = 2`"));
             }
         }
     }
@@ -123,7 +120,9 @@ fn parse_value(trees: &[TokenTree], i: &mut usize, before: Span) -> syn::Result<
             Some(TokenTree::Literal(lit)) => {
                 *i += 1;
                 literal(lit, true).map(|v| match v {
-                    Value::Number(s, _) => Value::Number(s, p.span().join(lit.span()).unwrap_or(lit.span())),
+                    Value::Number(s, _) => {
+                        Value::Number(s, p.span().join(lit.span()).unwrap_or(lit.span()))
+                    }
                     v => v,
                 })
             }
@@ -160,9 +159,10 @@ fn literal(lit: &proc_macro2::Literal, negative: bool) -> syn::Result<Value> {
     let sign = if negative { "-" } else { "" };
     match syn::Lit::new(lit.clone()) {
         syn::Lit::Str(s) if !negative => Ok(Value::Str(s.value(), lit.span())),
-        syn::Lit::Int(n) if n.suffix().is_empty() => {
-            Ok(Value::Number(format!("{sign}{}", n.base10_digits()), lit.span()))
-        }
+        syn::Lit::Int(n) if n.suffix().is_empty() => Ok(Value::Number(
+            format!("{sign}{}", n.base10_digits()),
+            lit.span(),
+        )),
         syn::Lit::Float(f) if f.suffix().is_empty() => {
             let digits = f.base10_digits();
             // TOML wants a digit after the point: `1.` → `1.0`.
@@ -293,7 +293,10 @@ mod tests {
     #[test]
     fn token_mistakes_are_errors_with_a_hint() {
         let e = parse_entries(quote! { name: "toy" }).unwrap_err();
-        assert_eq!(e.to_string(), "expected `=` after `name`: write `name = <value>`");
+        assert_eq!(
+            e.to_string(),
+            "expected `=` after `name`: write `name = <value>`"
+        );
         let e = parse_entries(quote! { mass = 30.0f64 }).unwrap_err();
         assert!(e.to_string().starts_with("remove the type suffix"));
         let e = parse_entries(quote! { a = 1 b = 2 }).unwrap_err();

@@ -144,8 +144,14 @@ fn state_inputs(coords: &[String], inputs: &mut Vec<InputVar>) {
 pub fn trace_spec(spec: &Spec, with_jacobian: bool) -> Traced {
     let model = &spec.model;
     let mut taken: Vec<String> = POSE.iter().chain(&TWIST).map(|s| s.to_string()).collect();
-    let coords = unique(spec.coordinate_names.iter().map(|n| ident(n)).collect(), &mut taken);
-    let wheels = unique(spec.wheel_names.iter().map(|n| ident(n)).collect(), &mut taken);
+    let coords = unique(
+        spec.coordinate_names.iter().map(|n| ident(n)).collect(),
+        &mut taken,
+    );
+    let wheels = unique(
+        spec.wheel_names.iter().map(|n| ident(n)).collect(),
+        &mut taken,
+    );
     let derivatives = trace_derivatives(model, &coords, &wheels);
     let jacobian = with_jacobian.then(|| jacobian_of(&derivatives, model.dof()));
     Traced {
@@ -293,7 +299,12 @@ fn trace_mass(model: &Model, coords: &[String]) -> Function {
     }
 }
 
-fn trace_wheels(model: &Model, coords: &[String], wheels: &[String], titles: &[String]) -> Function {
+fn trace_wheels(
+    model: &Model,
+    coords: &[String],
+    wheels: &[String],
+    titles: &[String],
+) -> Function {
     let n = model.dof();
     let mut inputs = Vec::new();
     state_inputs(coords, &mut inputs);

@@ -303,12 +303,9 @@ impl Exomars {
             + 0.6 * (0.04000000000000001 + t130) + 0.6 * (t136 + 0.09)
             + 0.6 * (0.09 + t148);
         let t157 = -(0.6 * (t79 * 0.3)) - 0.6 * (t97 * 0.3);
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t158 = vx * 33.60000000000001 + omega_y * t138 + omega_z * t140
             + yd_y1 * t116 + yd_y2 * t125;
         let t159 = vy * 33.60000000000001 + omega_x * t141 + omega_z * t142
@@ -965,12 +962,9 @@ impl Exomars {
         let t2 = y2 * 0.00736569563735987;
         let t3 = y3 * 0.008332132393777648;
         let t4 = y3 * 0.00737164803640008;
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t5 = s_phi * s_theta;
         let t6 = s_phi * c_theta;
         let t7 = c_phi * s_theta;
@@ -991,8 +985,7 @@ impl Exomars {
         let t22 = t7 * 0.3;
         let t23 = omega_z * 0.3;
         let t24 = omega_y * 0.3;
-        let s_y3 = ::libm::sin(y3);
-        let c_y3 = ::libm::cos(y3);
+        let (s_y3, c_y3) = ::libm::sincos(y3);
         let t25 = t11 * s_y3;
         let t26 = t14 * s_y3;
         let t27 = t8 * s_y3;
@@ -1010,8 +1003,7 @@ impl Exomars {
             + yd_y1 * (t30 + y1 * (t29 + y1 * (t1 + t28)));
         let t38 = vz + (t19 - omega_y * t31)
             + yd_y1 * (t34 + y1 * (t33 + y1 * (t32 - t1)));
-        let s_delta_front_left = ::libm::sin(delta_front_left);
-        let c_delta_front_left = ::libm::cos(delta_front_left);
+        let (s_delta_front_left, c_delta_front_left) = ::libm::sincos(delta_front_left);
         out[0].centre[0] = pos_x + (t31 * t9 - t15 + t35 * t11);
         out[0].centre[1] = pos_y + (t31 * t12 + t16 + t35 * t14);
         out[0].centre[2] = pos_z + (t17 - t31 * t7 + t35 * t8);
@@ -1035,8 +1027,9 @@ impl Exomars {
             + yd_y2 * (t41 + y2 * (t40 + y2 * (t2 + t39)));
         let t49 = vz + (-t19 - omega_y * t42)
             + yd_y2 * (t45 + y2 * (t44 + y2 * (t43 - t2)));
-        let s_delta_front_right = ::libm::sin(delta_front_right);
-        let c_delta_front_right = ::libm::cos(delta_front_right);
+        let (s_delta_front_right, c_delta_front_right) = ::libm::sincos(
+            delta_front_right,
+        );
         out[1].centre[0] = pos_x + (t15 + t42 * t9 + t46 * t11);
         out[1].centre[1] = pos_y + (t42 * t12 - t16 + t46 * t14);
         out[1].centre[2] = pos_z + (-(t42 * t7) - t17 + t46 * t8);
@@ -1108,8 +1101,7 @@ impl Exomars {
             + yd_y3 * (t76 + y3 * (t75 + y3 * (t3 + t74)));
         let t84 = vz + (omega_x * t77 + t24)
             + yd_y3 * (t80 + y3 * (t79 + y3 * (t78 - t4)));
-        let s_delta_rear_left = ::libm::sin(delta_rear_left);
-        let c_delta_rear_left = ::libm::cos(delta_rear_left);
+        let (s_delta_rear_left, c_delta_rear_left) = ::libm::sincos(delta_rear_left);
         let t85 = s_delta_rear_left * c_y3;
         let t86 = c_delta_rear_left * c_y3;
         out[4].centre[0] = pos_x + (-t20 - t77 * t10 + t81 * t11);
@@ -1135,8 +1127,7 @@ impl Exomars {
             + yd_y3 * (t89 + y3 * (t88 + y3 * (t87 - t3)));
         let t97 = vz + (t24 + omega_x * t90)
             + yd_y3 * (t93 + y3 * (t92 + y3 * (t91 - t4)));
-        let s_delta_rear_right = ::libm::sin(delta_rear_right);
-        let c_delta_rear_right = ::libm::cos(delta_rear_right);
+        let (s_delta_rear_right, c_delta_rear_right) = ::libm::sincos(delta_rear_right);
         let t98 = c_y3 * s_delta_rear_right;
         let t99 = c_y3 * c_delta_rear_right;
         out[5].centre[0] = pos_x + (-t20 - t90 * t10 + t94 * t11);
@@ -1442,12 +1433,9 @@ impl Exomars {
             + 0.6 * (0.09 + t189);
         let t200 = 0.6 * (t110 * 0.3);
         let t201 = -t175 - t200;
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t202 = vx * 33.60000000000001;
         let t203 = omega_y * t177;
         let t204 = omega_z * t179;

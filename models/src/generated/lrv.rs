@@ -281,12 +281,9 @@ impl Lrv {
         let t133 = 561.6 + 10.0 * (t94 + 1.306449) + 10.0 * (1.306449 + t103)
             + 10.0 * (1.306449 + t112) + 10.0 * (1.306449 + t125);
         let t134 = 10.0 * (1.143 * t74);
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t135 = vx * 700.0 + omega_y * t117 + omega_z * t119;
         let t136 = vy * 700.0 + omega_x * t120 + yd_front_left * t91
             + yd_front_right * t100 + yd_rear_left * t109 + yd_rear_right * t121;
@@ -906,12 +903,9 @@ impl Lrv {
         let delta_rear_left_2 = steer[2];
         let delta_rear_right_2 = steer[3];
         // terms shared by the wheels
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t1 = s_phi * s_theta;
         let t2 = s_phi * c_theta;
         let t3 = c_phi * s_theta;
@@ -947,10 +941,10 @@ impl Lrv {
             + yd_front_left * (t19 + front_left * (t18 + front_left * (t16 + t17)));
         let t29 = vz + (omega_x * t20 - t15)
             + yd_front_left * (t24 + front_left * (t23 + front_left * (t21 + t22)));
-        let s_delta_front_left_2 = ::libm::sin(delta_front_left_2);
-        let c_delta_front_left_2 = ::libm::cos(delta_front_left_2);
-        let t30 = ::libm::sin(t26);
-        let t31 = ::libm::cos(t26);
+        let (s_delta_front_left_2, c_delta_front_left_2) = ::libm::sincos(
+            delta_front_left_2,
+        );
+        let (t30, t31) = ::libm::sincos(t26);
         let t32 = s_delta_front_left_2 * t31;
         let t33 = c_delta_front_left_2 * t31;
         out[0].centre[0] = pos_x + (t11 - t20 * t6 + t25 * t7);
@@ -983,10 +977,10 @@ impl Lrv {
             + yd_front_right * (t37 + front_right * (t36 + front_right * (t35 - t34)));
         let t47 = vz + (omega_x * t38 - t15)
             + yd_front_right * (t42 + front_right * (t41 + front_right * (t39 + t40)));
-        let s_delta_front_right_2 = ::libm::sin(delta_front_right_2);
-        let c_delta_front_right_2 = ::libm::cos(delta_front_right_2);
-        let t48 = ::libm::sin(t44);
-        let t49 = ::libm::cos(t44);
+        let (s_delta_front_right_2, c_delta_front_right_2) = ::libm::sincos(
+            delta_front_right_2,
+        );
+        let (t48, t49) = ::libm::sincos(t44);
         let t50 = s_delta_front_right_2 * t49;
         let t51 = c_delta_front_right_2 * t49;
         out[1].centre[0] = pos_x + (t11 - t38 * t6 + t43 * t7);
@@ -1020,10 +1014,10 @@ impl Lrv {
             + yd_rear_left * (t55 + rear_left * (t54 + rear_left * (t52 + t53)));
         let t65 = vz + (t15 + omega_x * t56)
             + yd_rear_left * (t60 + rear_left * (t59 + rear_left * (t57 + t58)));
-        let s_delta_rear_left_2 = ::libm::sin(delta_rear_left_2);
-        let c_delta_rear_left_2 = ::libm::cos(delta_rear_left_2);
-        let t66 = ::libm::sin(t62);
-        let t67 = ::libm::cos(t62);
+        let (s_delta_rear_left_2, c_delta_rear_left_2) = ::libm::sincos(
+            delta_rear_left_2,
+        );
+        let (t66, t67) = ::libm::sincos(t62);
         let t68 = s_delta_rear_left_2 * t67;
         let t69 = c_delta_rear_left_2 * t67;
         out[2].centre[0] = pos_x + (-t11 - t56 * t6 + t61 * t7);
@@ -1057,10 +1051,10 @@ impl Lrv {
             + yd_rear_right * (t73 + rear_right * (t72 + rear_right * (t71 - t70)));
         let t83 = vz + (t15 + omega_x * t74)
             + yd_rear_right * (t78 + rear_right * (t77 + rear_right * (t75 + t76)));
-        let s_delta_rear_right_2 = ::libm::sin(delta_rear_right_2);
-        let c_delta_rear_right_2 = ::libm::cos(delta_rear_right_2);
-        let t84 = ::libm::sin(t80);
-        let t85 = ::libm::cos(t80);
+        let (s_delta_rear_right_2, c_delta_rear_right_2) = ::libm::sincos(
+            delta_rear_right_2,
+        );
+        let (t84, t85) = ::libm::sincos(t80);
         let t86 = s_delta_rear_right_2 * t85;
         let t87 = c_delta_rear_right_2 * t85;
         out[3].centre[0] = pos_x + (-t11 - t74 * t6 + t79 * t7);
@@ -1315,12 +1309,9 @@ impl Lrv {
         let t165 = 561.6 + 10.0 * (t118 + 1.306449) + 10.0 * (1.306449 + t129)
             + 10.0 * (1.306449 + t140) + 10.0 * (1.306449 + t155);
         let t166 = 10.0 * (1.143 * t94);
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t167 = vx * 700.0;
         let t168 = omega_y * t147;
         let t169 = omega_z * t149;

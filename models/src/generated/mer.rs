@@ -497,12 +497,9 @@ impl Mer {
             - 3.0 * (0.55 * t160) + 3.0 * (0.55 * t178) - 3.0 * (t44 * 0.58)
             + 3.0 * (t84 * 0.58);
         let t317 = 2.0 * (0.6 * t102) + 2.0 * (0.6 * t142) + 3.0 * (0.58 * t230);
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t318 = vx * 174.0 + omega_y * t295 + yd_rocker * t296 + yd_bogie_left * t286
             + yd_bogie_right * t297;
         let t319 = vy * 174.0 + omega_x * t298 + omega_z * t300;
@@ -1493,12 +1490,9 @@ impl Mer {
         let t18 = rocker * t17 + 0.049997808708252794;
         let t19 = rocker * t18 - 0.4499577920625732;
         let t20 = rocker * t19 - 0.32;
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t21 = s_phi * s_theta;
         let t22 = s_phi * c_theta;
         let t23 = c_phi * s_theta;
@@ -1534,8 +1528,7 @@ impl Mer {
             + yd_rocker * (t43 + rocker * (t42 + rocker * (t40 + t41)));
         let t52 = vz + (t35 - omega_y * t44)
             + yd_rocker * (t48 + rocker * (t47 + rocker * (t46 - t45)));
-        let s_delta_front_left = ::libm::sin(delta_front_left);
-        let c_delta_front_left = ::libm::cos(delta_front_left);
+        let (s_delta_front_left, c_delta_front_left) = ::libm::sincos(delta_front_left);
         out[0].centre[0] = pos_x + (t44 * t25 - t31 + t49 * t27);
         out[0].centre[1] = pos_y + (t44 * t28 + t32 + t49 * t30);
         out[0].centre[2] = pos_z + (t33 - t44 * t23 + t49 * t24);
@@ -1561,8 +1554,9 @@ impl Mer {
             + yd_rocker * (t56 + rocker * (t55 + rocker * (t53 + t54)));
         let t65 = vz + (-t35 - omega_y * t57)
             + yd_rocker * (t61 + rocker * (t60 + rocker * (t59 - t58)));
-        let s_delta_front_right = ::libm::sin(delta_front_right);
-        let c_delta_front_right = ::libm::cos(delta_front_right);
+        let (s_delta_front_right, c_delta_front_right) = ::libm::sincos(
+            delta_front_right,
+        );
         out[1].centre[0] = pos_x + (t31 + t57 * t25 + t62 * t27);
         out[1].centre[1] = pos_y + (t57 * t28 - t32 + t62 * t30);
         out[1].centre[2] = pos_z + (-(t57 * t23) - t33 + t62 * t24);
@@ -1638,8 +1632,7 @@ impl Mer {
             + yd_bogie_left * (t95 + bogie_left * (t94 + bogie_left * (t93 - t92)));
         let t104 = t37 + (vz + (t35 - omega_y * t96))
             + yd_bogie_left * (t100 + bogie_left * (t99 + bogie_left * (t98 - t97)));
-        let s_delta_rear_left = ::libm::sin(delta_rear_left);
-        let c_delta_rear_left = ::libm::cos(delta_rear_left);
+        let (s_delta_rear_left, c_delta_rear_left) = ::libm::sincos(delta_rear_left);
         out[4].centre[0] = pos_x + (t96 * t25 - t31 + t101 * t27);
         out[4].centre[1] = pos_y + (t32 + t96 * t28 + t101 * t30);
         out[4].centre[2] = pos_z + (t33 - t96 * t23 + t101 * t24);
@@ -1667,8 +1660,7 @@ impl Mer {
         let t117 = t39 + (vz + (-t35 - omega_y * t109))
             + yd_bogie_right
                 * (t113 + bogie_right * (t112 + bogie_right * (t111 - t110)));
-        let s_delta_rear_right = ::libm::sin(delta_rear_right);
-        let c_delta_rear_right = ::libm::cos(delta_rear_right);
+        let (s_delta_rear_right, c_delta_rear_right) = ::libm::sincos(delta_rear_right);
         out[5].centre[0] = pos_x + (t31 + t109 * t25 + t114 * t27);
         out[5].centre[1] = pos_y + (t109 * t28 - t32 + t114 * t30);
         out[5].centre[2] = pos_z + (-t33 - t109 * t23 + t114 * t24);
@@ -2227,12 +2219,9 @@ impl Mer {
             - 3.0 * (0.55 * t198) + 3.0 * (0.55 * t220) - 3.0 * (t54 * 0.58)
             + 3.0 * (t104 * 0.58);
         let t441 = 2.0 * (0.6 * t126) + 2.0 * (0.6 * t176) + 3.0 * (0.58 * t284);
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t442 = vx * 174.0;
         let t443 = omega_y * t409;
         let t444 = t442 + t443 + yd_rocker * t411 + yd_bogie_left * t392

@@ -257,12 +257,9 @@ impl Swing4 {
             + 0.6 * (0.04000000000000001 + t92) + 0.6 * (0.04000000000000001 + t101)
             + 0.6 * (0.04000000000000001 + t117);
         let t122 = 0.6 * (0.2 * t66);
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t123 = vx * 32.400000000000006 + omega_y * t105 + yd_y1 * t78 + yd_y2 * t87
             + yd_y3 * t96 + yd_y4 * t106;
         let t124 = vy * 32.400000000000006 + omega_x * t107 + omega_z * t109;
@@ -856,12 +853,9 @@ impl Swing4 {
         let yd_y3 = w[8];
         let yd_y4 = w[9];
         // terms shared by the wheels
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t1 = s_phi * s_theta;
         let t2 = s_phi * c_theta;
         let t3 = c_phi * s_theta;
@@ -1206,12 +1200,9 @@ impl Swing4 {
             + 0.6 * (0.04000000000000001 + t110) + 0.6 * (0.04000000000000001 + t121)
             + 0.6 * (0.04000000000000001 + t139);
         let t146 = 0.6 * (0.2 * t80);
-        let s_phi = ::libm::sin(phi);
-        let c_phi = ::libm::cos(phi);
-        let s_theta = ::libm::sin(theta);
-        let c_theta = ::libm::cos(theta);
-        let s_psi = ::libm::sin(psi);
-        let c_psi = ::libm::cos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
         let t147 = vx * 32.400000000000006;
         let t148 = omega_y * t127;
         let t149 = t147 + t148 + yd_y1 * t94 + yd_y2 * t105 + yd_y3 * t116
