@@ -112,6 +112,13 @@ impl Printer<'_> {
         (format!("{}::{f}({})", self.path, a.join(", ")), ATOM)
     }
 
+    /// A method of `f64` in `core` (inlined, unlike a libm call): same
+    /// IEEE semantics as libm's `fmax`, `fmin`, `fabs`, `copysign`.
+    fn core(&self, f: &str, args: &[Id]) -> (String, u8) {
+        let a: Vec<String> = args.iter().map(|&i| self.expr(i).0).collect();
+        (format!("f64::{f}({})", a.join(", ")), ATOM)
+    }
+
     /// The defining expression of `id`, ignoring its own name.
     fn body(&self, id: Id) -> (String, u8) {
         let g = self.graph;
@@ -155,11 +162,11 @@ impl Printer<'_> {
             Node::Cos(a) => self.call("cos", &[a]),
             Node::Sqrt(a) => self.call("sqrt", &[a]),
             Node::Exp(a) => self.call("exp", &[a]),
-            Node::Abs(a) => self.call("fabs", &[a]),
+            Node::Abs(a) => self.core("abs", &[a]),
             Node::Atan2(a, b) => self.call("atan2", &[a, b]),
-            Node::Max(a, b) => self.call("fmax", &[a, b]),
-            Node::Min(a, b) => self.call("fmin", &[a, b]),
-            Node::Copysign(a, b) => self.call("copysign", &[a, b]),
+            Node::Max(a, b) => self.core("max", &[a, b]),
+            Node::Min(a, b) => self.core("min", &[a, b]),
+            Node::Copysign(a, b) => self.core("copysign", &[a, b]),
             Node::Ge(a, b) => (
                 format!(
                     "if {} >= {} {{ 1.0 }} else {{ 0.0 }}",

@@ -157,7 +157,7 @@ impl {name} {{
         wdot: &mut [f64; {n}],
     ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
         {deriv}
-        if {LIBM}::fabs(cos_roll) < Self::MIN_COS_ROLL {{
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {{
             return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
         }}
         let pivots = [{pivots}];

@@ -382,33 +382,24 @@ impl Exomars {
         let t225 = 0.2 * t221;
         let t226 = 0.3 * t223;
         let t227 = 0.3 * t222;
-        let t228 = ::libm::fmax(y1 - 0.5235987755982988, 0.0);
-        let t229 = ::libm::fmax(-0.5235987755982988 - y1, 0.0);
-        let t230 = ::libm::fmin(10000.0 * t228, 1.0);
-        let t231 = ::libm::fmin(
-            -(100.0 * t228) - yd_y1 * (5.477225575051661 * t230),
-            0.0,
-        );
-        let t232 = ::libm::fmin(10000.0 * t229, 1.0);
-        let t233 = ::libm::fmax(100.0 * t229 - yd_y1 * (5.477225575051661 * t232), 0.0);
-        let t234 = ::libm::fmax(y2 - 0.5235987755982988, 0.0);
-        let t235 = ::libm::fmax(-0.5235987755982988 - y2, 0.0);
-        let t236 = ::libm::fmin(10000.0 * t234, 1.0);
-        let t237 = ::libm::fmin(
-            -(100.0 * t234) - yd_y2 * (5.477225575051661 * t236),
-            0.0,
-        );
-        let t238 = ::libm::fmin(10000.0 * t235, 1.0);
-        let t239 = ::libm::fmax(100.0 * t235 - yd_y2 * (5.477225575051661 * t238), 0.0);
-        let t240 = ::libm::fmax(y3 - 0.5235987755982988, 0.0);
-        let t241 = ::libm::fmax(-0.5235987755982988 - y3, 0.0);
-        let t242 = ::libm::fmin(10000.0 * t240, 1.0);
-        let t243 = ::libm::fmin(
-            -(100.0 * t240) - yd_y3 * (5.849676914155174 * t242),
-            0.0,
-        );
-        let t244 = ::libm::fmin(10000.0 * t241, 1.0);
-        let t245 = ::libm::fmax(100.0 * t241 - yd_y3 * (5.849676914155174 * t244), 0.0);
+        let t228 = f64::max(y1 - 0.5235987755982988, 0.0);
+        let t229 = f64::max(-0.5235987755982988 - y1, 0.0);
+        let t230 = f64::min(10000.0 * t228, 1.0);
+        let t231 = f64::min(-(100.0 * t228) - yd_y1 * (5.477225575051661 * t230), 0.0);
+        let t232 = f64::min(10000.0 * t229, 1.0);
+        let t233 = f64::max(100.0 * t229 - yd_y1 * (5.477225575051661 * t232), 0.0);
+        let t234 = f64::max(y2 - 0.5235987755982988, 0.0);
+        let t235 = f64::max(-0.5235987755982988 - y2, 0.0);
+        let t236 = f64::min(10000.0 * t234, 1.0);
+        let t237 = f64::min(-(100.0 * t234) - yd_y2 * (5.477225575051661 * t236), 0.0);
+        let t238 = f64::min(10000.0 * t235, 1.0);
+        let t239 = f64::max(100.0 * t235 - yd_y2 * (5.477225575051661 * t238), 0.0);
+        let t240 = f64::max(y3 - 0.5235987755982988, 0.0);
+        let t241 = f64::max(-0.5235987755982988 - y3, 0.0);
+        let t242 = f64::min(10000.0 * t240, 1.0);
+        let t243 = f64::min(-(100.0 * t240) - yd_y3 * (5.849676914155174 * t242), 0.0);
+        let t244 = f64::min(10000.0 * t241, 1.0);
+        let t245 = f64::max(100.0 * t241 - yd_y3 * (5.849676914155174 * t244), 0.0);
         let t246 = s_phi * s_theta;
         let t247 = s_phi * c_theta;
         let t248 = c_theta * c_psi - s_psi * t246;
@@ -703,7 +694,7 @@ impl Exomars {
         wdot[6] = t325;
         wdot[7] = t324;
         wdot[8] = t323;
-        if ::libm::fabs(cos_roll) < Self::MIN_COS_ROLL {
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
             return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
                 roll: x[3],
             });
@@ -1603,47 +1594,47 @@ impl Exomars {
         let t363 = t111 * t356;
         let t364 = t111 * t354;
         let t365 = y1 - 0.5235987755982988;
-        let t366 = ::libm::fmax(t365, 0.0);
+        let t366 = f64::max(t365, 0.0);
         let t367 = -0.5235987755982988 - y1;
-        let t368 = ::libm::fmax(t367, 0.0);
+        let t368 = f64::max(t367, 0.0);
         let t369 = 10000.0 * t366;
-        let t370 = ::libm::fmin(t369, 1.0);
+        let t370 = f64::min(t369, 1.0);
         let t371 = 5.477225575051661 * t370;
         let t372 = -(100.0 * t366) - yd_y1 * t371;
-        let t373 = ::libm::fmin(t372, 0.0);
+        let t373 = f64::min(t372, 0.0);
         let t374 = 10000.0 * t368;
-        let t375 = ::libm::fmin(t374, 1.0);
+        let t375 = f64::min(t374, 1.0);
         let t376 = 5.477225575051661 * t375;
         let t377 = 100.0 * t368 - yd_y1 * t376;
-        let t378 = ::libm::fmax(t377, 0.0);
+        let t378 = f64::max(t377, 0.0);
         let t379 = y2 - 0.5235987755982988;
-        let t380 = ::libm::fmax(t379, 0.0);
+        let t380 = f64::max(t379, 0.0);
         let t381 = -0.5235987755982988 - y2;
-        let t382 = ::libm::fmax(t381, 0.0);
+        let t382 = f64::max(t381, 0.0);
         let t383 = 10000.0 * t380;
-        let t384 = ::libm::fmin(t383, 1.0);
+        let t384 = f64::min(t383, 1.0);
         let t385 = 5.477225575051661 * t384;
         let t386 = -(100.0 * t380) - yd_y2 * t385;
-        let t387 = ::libm::fmin(t386, 0.0);
+        let t387 = f64::min(t386, 0.0);
         let t388 = 10000.0 * t382;
-        let t389 = ::libm::fmin(t388, 1.0);
+        let t389 = f64::min(t388, 1.0);
         let t390 = 5.477225575051661 * t389;
         let t391 = 100.0 * t382 - yd_y2 * t390;
-        let t392 = ::libm::fmax(t391, 0.0);
+        let t392 = f64::max(t391, 0.0);
         let t393 = y3 - 0.5235987755982988;
-        let t394 = ::libm::fmax(t393, 0.0);
+        let t394 = f64::max(t393, 0.0);
         let t395 = -0.5235987755982988 - y3;
-        let t396 = ::libm::fmax(t395, 0.0);
+        let t396 = f64::max(t395, 0.0);
         let t397 = 10000.0 * t394;
-        let t398 = ::libm::fmin(t397, 1.0);
+        let t398 = f64::min(t397, 1.0);
         let t399 = 5.849676914155174 * t398;
         let t400 = -(100.0 * t394) - yd_y3 * t399;
-        let t401 = ::libm::fmin(t400, 0.0);
+        let t401 = f64::min(t400, 0.0);
         let t402 = 10000.0 * t396;
-        let t403 = ::libm::fmin(t402, 1.0);
+        let t403 = f64::min(t402, 1.0);
         let t404 = 5.849676914155174 * t403;
         let t405 = 100.0 * t396 - yd_y3 * t404;
-        let t406 = ::libm::fmax(t405, 0.0);
+        let t406 = f64::max(t405, 0.0);
         let t407 = s_phi * s_theta;
         let t408 = s_phi * c_theta;
         let t409 = c_theta * c_psi - s_psi * t407;

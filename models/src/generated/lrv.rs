@@ -343,51 +343,51 @@ impl Lrv {
         let t183 = t180 * 16.200000000000003;
         let t184 = 1.143 * t183;
         let t185 = 1.143 * t182;
-        let t186 = ::libm::fmax(front_left - 0.3490658503988659, 0.0);
-        let t187 = ::libm::fmax(-0.3490658503988659 - front_left, 0.0);
-        let t188 = ::libm::fmin(10000.0 * t186, 1.0);
-        let t189 = ::libm::fmin(
+        let t186 = f64::max(front_left - 0.3490658503988659, 0.0);
+        let t187 = f64::max(-0.3490658503988659 - front_left, 0.0);
+        let t188 = f64::min(10000.0 * t186, 1.0);
+        let t189 = f64::min(
             -(70000.0 * t186) - yd_front_left * (617.2846305501084 * t188),
             0.0,
         );
-        let t190 = ::libm::fmin(10000.0 * t187, 1.0);
-        let t191 = ::libm::fmax(
+        let t190 = f64::min(10000.0 * t187, 1.0);
+        let t191 = f64::max(
             70000.0 * t187 - yd_front_left * (617.2846305501084 * t190),
             0.0,
         );
-        let t192 = ::libm::fmax(front_right - 0.3490658503988659, 0.0);
-        let t193 = ::libm::fmax(-0.3490658503988659 - front_right, 0.0);
-        let t194 = ::libm::fmin(10000.0 * t192, 1.0);
-        let t195 = ::libm::fmin(
+        let t192 = f64::max(front_right - 0.3490658503988659, 0.0);
+        let t193 = f64::max(-0.3490658503988659 - front_right, 0.0);
+        let t194 = f64::min(10000.0 * t192, 1.0);
+        let t195 = f64::min(
             -(70000.0 * t192) - yd_front_right * (617.2846305501082 * t194),
             0.0,
         );
-        let t196 = ::libm::fmin(10000.0 * t193, 1.0);
-        let t197 = ::libm::fmax(
+        let t196 = f64::min(10000.0 * t193, 1.0);
+        let t197 = f64::max(
             70000.0 * t193 - yd_front_right * (617.2846305501082 * t196),
             0.0,
         );
-        let t198 = ::libm::fmax(rear_left - 0.3490658503988659, 0.0);
-        let t199 = ::libm::fmax(-0.3490658503988659 - rear_left, 0.0);
-        let t200 = ::libm::fmin(10000.0 * t198, 1.0);
-        let t201 = ::libm::fmin(
+        let t198 = f64::max(rear_left - 0.3490658503988659, 0.0);
+        let t199 = f64::max(-0.3490658503988659 - rear_left, 0.0);
+        let t200 = f64::min(10000.0 * t198, 1.0);
+        let t201 = f64::min(
             -(70000.0 * t198) - yd_rear_left * (617.2846305501084 * t200),
             0.0,
         );
-        let t202 = ::libm::fmin(10000.0 * t199, 1.0);
-        let t203 = ::libm::fmax(
+        let t202 = f64::min(10000.0 * t199, 1.0);
+        let t203 = f64::max(
             70000.0 * t199 - yd_rear_left * (617.2846305501084 * t202),
             0.0,
         );
-        let t204 = ::libm::fmax(rear_right - 0.3490658503988659, 0.0);
-        let t205 = ::libm::fmax(-0.3490658503988659 - rear_right, 0.0);
-        let t206 = ::libm::fmin(10000.0 * t204, 1.0);
-        let t207 = ::libm::fmin(
+        let t204 = f64::max(rear_right - 0.3490658503988659, 0.0);
+        let t205 = f64::max(-0.3490658503988659 - rear_right, 0.0);
+        let t206 = f64::min(10000.0 * t204, 1.0);
+        let t207 = f64::min(
             -(70000.0 * t204) - yd_rear_right * (617.2846305501082 * t206),
             0.0,
         );
-        let t208 = ::libm::fmin(10000.0 * t205, 1.0);
-        let t209 = ::libm::fmax(
+        let t208 = f64::min(10000.0 * t205, 1.0);
+        let t209 = f64::max(
             70000.0 * t205 - yd_rear_right * (617.2846305501082 * t208),
             0.0,
         );
@@ -664,7 +664,7 @@ impl Lrv {
         wdot[7] = t294;
         wdot[8] = t293;
         wdot[9] = t292;
-        if ::libm::fabs(cos_roll) < Self::MIN_COS_ROLL {
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
             return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
                 roll: x[3],
             });
@@ -1441,61 +1441,61 @@ impl Lrv {
         let t287 = t95 * t278;
         let t288 = t95 * t276;
         let t289 = front_left - 0.3490658503988659;
-        let t290 = ::libm::fmax(t289, 0.0);
+        let t290 = f64::max(t289, 0.0);
         let t291 = -0.3490658503988659 - front_left;
-        let t292 = ::libm::fmax(t291, 0.0);
+        let t292 = f64::max(t291, 0.0);
         let t293 = 10000.0 * t290;
-        let t294 = ::libm::fmin(t293, 1.0);
+        let t294 = f64::min(t293, 1.0);
         let t295 = 617.2846305501084 * t294;
         let t296 = -(70000.0 * t290) - yd_front_left * t295;
-        let t297 = ::libm::fmin(t296, 0.0);
+        let t297 = f64::min(t296, 0.0);
         let t298 = 10000.0 * t292;
-        let t299 = ::libm::fmin(t298, 1.0);
+        let t299 = f64::min(t298, 1.0);
         let t300 = 617.2846305501084 * t299;
         let t301 = 70000.0 * t292 - yd_front_left * t300;
-        let t302 = ::libm::fmax(t301, 0.0);
+        let t302 = f64::max(t301, 0.0);
         let t303 = front_right - 0.3490658503988659;
-        let t304 = ::libm::fmax(t303, 0.0);
+        let t304 = f64::max(t303, 0.0);
         let t305 = -0.3490658503988659 - front_right;
-        let t306 = ::libm::fmax(t305, 0.0);
+        let t306 = f64::max(t305, 0.0);
         let t307 = 10000.0 * t304;
-        let t308 = ::libm::fmin(t307, 1.0);
+        let t308 = f64::min(t307, 1.0);
         let t309 = 617.2846305501082 * t308;
         let t310 = -(70000.0 * t304) - yd_front_right * t309;
-        let t311 = ::libm::fmin(t310, 0.0);
+        let t311 = f64::min(t310, 0.0);
         let t312 = 10000.0 * t306;
-        let t313 = ::libm::fmin(t312, 1.0);
+        let t313 = f64::min(t312, 1.0);
         let t314 = 617.2846305501082 * t313;
         let t315 = 70000.0 * t306 - yd_front_right * t314;
-        let t316 = ::libm::fmax(t315, 0.0);
+        let t316 = f64::max(t315, 0.0);
         let t317 = rear_left - 0.3490658503988659;
-        let t318 = ::libm::fmax(t317, 0.0);
+        let t318 = f64::max(t317, 0.0);
         let t319 = -0.3490658503988659 - rear_left;
-        let t320 = ::libm::fmax(t319, 0.0);
+        let t320 = f64::max(t319, 0.0);
         let t321 = 10000.0 * t318;
-        let t322 = ::libm::fmin(t321, 1.0);
+        let t322 = f64::min(t321, 1.0);
         let t323 = 617.2846305501084 * t322;
         let t324 = -(70000.0 * t318) - yd_rear_left * t323;
-        let t325 = ::libm::fmin(t324, 0.0);
+        let t325 = f64::min(t324, 0.0);
         let t326 = 10000.0 * t320;
-        let t327 = ::libm::fmin(t326, 1.0);
+        let t327 = f64::min(t326, 1.0);
         let t328 = 617.2846305501084 * t327;
         let t329 = 70000.0 * t320 - yd_rear_left * t328;
-        let t330 = ::libm::fmax(t329, 0.0);
+        let t330 = f64::max(t329, 0.0);
         let t331 = rear_right - 0.3490658503988659;
-        let t332 = ::libm::fmax(t331, 0.0);
+        let t332 = f64::max(t331, 0.0);
         let t333 = -0.3490658503988659 - rear_right;
-        let t334 = ::libm::fmax(t333, 0.0);
+        let t334 = f64::max(t333, 0.0);
         let t335 = 10000.0 * t332;
-        let t336 = ::libm::fmin(t335, 1.0);
+        let t336 = f64::min(t335, 1.0);
         let t337 = 617.2846305501082 * t336;
         let t338 = -(70000.0 * t332) - yd_rear_right * t337;
-        let t339 = ::libm::fmin(t338, 0.0);
+        let t339 = f64::min(t338, 0.0);
         let t340 = 10000.0 * t334;
-        let t341 = ::libm::fmin(t340, 1.0);
+        let t341 = f64::min(t340, 1.0);
         let t342 = 617.2846305501082 * t341;
         let t343 = 70000.0 * t334 - yd_rear_right * t342;
-        let t344 = ::libm::fmax(t343, 0.0);
+        let t344 = f64::max(t343, 0.0);
         let t345 = s_phi * s_theta;
         let t346 = s_phi * c_theta;
         let t347 = c_theta * c_psi - s_psi * t345;

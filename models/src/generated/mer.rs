@@ -651,39 +651,36 @@ impl Mer {
         let t460 = 0.55 * t456;
         let t461 = 0.58 * t458;
         let t462 = 0.58 * t456;
-        let t463 = ::libm::fmax(rocker - 0.4363323129985824, 0.0);
-        let t464 = ::libm::fmax(-0.4363323129985824 - rocker, 0.0);
-        let t465 = ::libm::fmin(10000.0 * t463, 1.0);
-        let t466 = ::libm::fmin(
+        let t463 = f64::max(rocker - 0.4363323129985824, 0.0);
+        let t464 = f64::max(-0.4363323129985824 - rocker, 0.0);
+        let t465 = f64::min(10000.0 * t463, 1.0);
+        let t466 = f64::min(
             -(100.0 * t463) - yd_rocker * (43.7067683346622 * t465),
             0.0,
         );
-        let t467 = ::libm::fmin(10000.0 * t464, 1.0);
-        let t468 = ::libm::fmax(
-            100.0 * t464 - yd_rocker * (43.7067683346622 * t467),
-            0.0,
-        );
-        let t469 = ::libm::fmax(bogie_left - 0.6108652381980153, 0.0);
-        let t470 = ::libm::fmax(-0.6108652381980153 - bogie_left, 0.0);
-        let t471 = ::libm::fmin(10000.0 * t469, 1.0);
-        let t472 = ::libm::fmin(
+        let t467 = f64::min(10000.0 * t464, 1.0);
+        let t468 = f64::max(100.0 * t464 - yd_rocker * (43.7067683346622 * t467), 0.0);
+        let t469 = f64::max(bogie_left - 0.6108652381980153, 0.0);
+        let t470 = f64::max(-0.6108652381980153 - bogie_left, 0.0);
+        let t471 = f64::min(10000.0 * t469, 1.0);
+        let t472 = f64::min(
             -(100.0 * t469) - yd_bogie_left * (15.102203414474054 * t471),
             0.0,
         );
-        let t473 = ::libm::fmin(10000.0 * t470, 1.0);
-        let t474 = ::libm::fmax(
+        let t473 = f64::min(10000.0 * t470, 1.0);
+        let t474 = f64::max(
             100.0 * t470 - yd_bogie_left * (15.102203414474054 * t473),
             0.0,
         );
-        let t475 = ::libm::fmax(bogie_right - 0.6108652381980153, 0.0);
-        let t476 = ::libm::fmax(-0.6108652381980153 - bogie_right, 0.0);
-        let t477 = ::libm::fmin(10000.0 * t475, 1.0);
-        let t478 = ::libm::fmin(
+        let t475 = f64::max(bogie_right - 0.6108652381980153, 0.0);
+        let t476 = f64::max(-0.6108652381980153 - bogie_right, 0.0);
+        let t477 = f64::min(10000.0 * t475, 1.0);
+        let t478 = f64::min(
             -(100.0 * t475) - yd_bogie_right * (15.102203414474054 * t477),
             0.0,
         );
-        let t479 = ::libm::fmin(10000.0 * t476, 1.0);
-        let t480 = ::libm::fmax(
+        let t479 = f64::min(10000.0 * t476, 1.0);
+        let t480 = f64::max(
             100.0 * t476 - yd_bogie_right * (15.102203414474054 * t479),
             0.0,
         );
@@ -1070,7 +1067,7 @@ impl Mer {
         wdot[6] = t564;
         wdot[7] = t563;
         wdot[8] = t562;
-        if ::libm::fabs(cos_roll) < Self::MIN_COS_ROLL {
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
             return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
                 roll: x[3],
             });
@@ -2544,47 +2541,47 @@ impl Mer {
         let t756 = 0.58 * t753;
         let t757 = 0.58 * t751;
         let t758 = rocker - 0.4363323129985824;
-        let t759 = ::libm::fmax(t758, 0.0);
+        let t759 = f64::max(t758, 0.0);
         let t760 = -0.4363323129985824 - rocker;
-        let t761 = ::libm::fmax(t760, 0.0);
+        let t761 = f64::max(t760, 0.0);
         let t762 = 10000.0 * t759;
-        let t763 = ::libm::fmin(t762, 1.0);
+        let t763 = f64::min(t762, 1.0);
         let t764 = 43.7067683346622 * t763;
         let t765 = -(100.0 * t759) - yd_rocker * t764;
-        let t766 = ::libm::fmin(t765, 0.0);
+        let t766 = f64::min(t765, 0.0);
         let t767 = 10000.0 * t761;
-        let t768 = ::libm::fmin(t767, 1.0);
+        let t768 = f64::min(t767, 1.0);
         let t769 = 43.7067683346622 * t768;
         let t770 = 100.0 * t761 - yd_rocker * t769;
-        let t771 = ::libm::fmax(t770, 0.0);
+        let t771 = f64::max(t770, 0.0);
         let t772 = bogie_left - 0.6108652381980153;
-        let t773 = ::libm::fmax(t772, 0.0);
+        let t773 = f64::max(t772, 0.0);
         let t774 = -0.6108652381980153 - bogie_left;
-        let t775 = ::libm::fmax(t774, 0.0);
+        let t775 = f64::max(t774, 0.0);
         let t776 = 10000.0 * t773;
-        let t777 = ::libm::fmin(t776, 1.0);
+        let t777 = f64::min(t776, 1.0);
         let t778 = 15.102203414474054 * t777;
         let t779 = -(100.0 * t773) - yd_bogie_left * t778;
-        let t780 = ::libm::fmin(t779, 0.0);
+        let t780 = f64::min(t779, 0.0);
         let t781 = 10000.0 * t775;
-        let t782 = ::libm::fmin(t781, 1.0);
+        let t782 = f64::min(t781, 1.0);
         let t783 = 15.102203414474054 * t782;
         let t784 = 100.0 * t775 - yd_bogie_left * t783;
-        let t785 = ::libm::fmax(t784, 0.0);
+        let t785 = f64::max(t784, 0.0);
         let t786 = bogie_right - 0.6108652381980153;
-        let t787 = ::libm::fmax(t786, 0.0);
+        let t787 = f64::max(t786, 0.0);
         let t788 = -0.6108652381980153 - bogie_right;
-        let t789 = ::libm::fmax(t788, 0.0);
+        let t789 = f64::max(t788, 0.0);
         let t790 = 10000.0 * t787;
-        let t791 = ::libm::fmin(t790, 1.0);
+        let t791 = f64::min(t790, 1.0);
         let t792 = 15.102203414474054 * t791;
         let t793 = -(100.0 * t787) - yd_bogie_right * t792;
-        let t794 = ::libm::fmin(t793, 0.0);
+        let t794 = f64::min(t793, 0.0);
         let t795 = 10000.0 * t789;
-        let t796 = ::libm::fmin(t795, 1.0);
+        let t796 = f64::min(t795, 1.0);
         let t797 = 15.102203414474054 * t796;
         let t798 = 100.0 * t789 - yd_bogie_right * t797;
-        let t799 = ::libm::fmax(t798, 0.0);
+        let t799 = f64::max(t798, 0.0);
         let t800 = s_phi * s_theta;
         let t801 = s_phi * c_theta;
         let t802 = c_theta * c_psi - s_psi * t800;
