@@ -33,6 +33,7 @@ pub mod emit;
 pub mod error;
 pub mod graph;
 pub mod module;
+pub mod ordered_solve;
 pub mod plant_source;
 pub mod sym;
 pub mod tokens;

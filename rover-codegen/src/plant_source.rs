@@ -87,7 +87,11 @@ pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
         .iter()
         .map(|c| crate::emit::literal(c.neutral))
         .collect();
-    let pivot_list: Vec<String> = (0..n).map(|r| format!("pivot_{r}")).collect();
+    let pivot_list: Vec<String> = traced
+        .pivot_rows
+        .iter()
+        .map(|r| format!("({r}, pivot_{r})"))
+        .collect();
     let steer_used = model.wheels.iter().any(|w| w.steerable);
     let steer_param = if steer_used { "steer" } else { "_steer" };
     let coords_doc: Vec<String> = spec
@@ -146,7 +150,9 @@ impl {name} {{
     /// `ẋ = B·w` and `ẇ = M⁻¹·(−Ṁ·w − f1 + f2 + Q)` (MODEL.md §5) on
     /// fixed-size arrays. The outputs are written in any case; the error says
     /// the attitude is singular (|cos φ| < 1e-6) or M is not positive
-    /// definite (an LDLᵀ pivot not > 0), as the generic plant does.
+    /// definite (an LDLᵀ pivot not > 0), as the generic plant does; the
+    /// suspension rows are eliminated first, so a failing pivot is checked
+    /// in that order and reported with its row of M.
     #[inline]
     pub fn derivatives_fixed(
         &self,
@@ -161,7 +167,7 @@ impl {name} {{
             return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
         }}
         let pivots = [{pivots}];
-        for (row, &pivot) in pivots.iter().enumerate() {{
+        for (row, pivot) in pivots {{
             if pivot.is_nan() || pivot <= 0.0 {{
                 return Err({PLANT}::PlantError::SingularMass {{ row, pivot }});
             }}

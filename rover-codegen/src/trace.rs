@@ -9,9 +9,9 @@
 
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
-use rover_dynamics::eom::derivatives;
-use rover_dynamics::forces::Load;
-use rover_dynamics::kinematics::{body_kinematics, wheel_kinematics};
+use rover_dynamics::bias::add_bias;
+use rover_dynamics::forces::{Load, add_gravity, add_suspension, add_wheel_loads};
+use rover_dynamics::kinematics::{body_kinematics, position_rates, wheel_kinematics};
 use rover_dynamics::mass::mass_matrix;
 use rover_dynamics::workspace::Workspace;
 use rover_dynamics::{Scalar, model::Spring};
@@ -19,6 +19,7 @@ use rover_spec::Spec;
 
 use crate::diff::derivative;
 use crate::graph::{Graph, Id};
+use crate::ordered_solve::{ordered_ldlt_solve, suspension_first};
 use crate::sym::{Sym, trace};
 
 /// An input of a traced function: its name in the generated code and the
@@ -60,6 +61,8 @@ pub struct Function {
 pub struct Traced {
     /// ẋ, ẇ and the LDLᵀ pivots from x, w, the wheel loads and the spring neutrals.
     pub derivatives: Function,
+    /// The row of M of each pivot, in elimination order.
+    pub pivot_rows: Vec<usize>,
     /// The upper triangle of M(y).
     pub mass_matrix: Function,
     /// Wheel-centre kinematics from x, w and the steering angles, one block per wheel.
@@ -156,6 +159,7 @@ pub fn trace_spec(spec: &Spec, with_jacobian: bool) -> Traced {
     let jacobian = with_jacobian.then(|| jacobian_of(&derivatives, model.dof()));
     Traced {
         derivatives,
+        pivot_rows: suspension_first(model.dof()),
         mass_matrix: trace_mass(model, &coords),
         wheels: trace_wheels(model, &coords, &wheels, &spec.wheel_names),
         jacobian,
@@ -187,6 +191,7 @@ fn trace_derivatives(model: &Model, coords: &[String], wheels: &[String]) -> Fun
         });
     }
     let k = model.wheels.len();
+    let order = suspension_first(n);
     let ((xdot, wdot, pivots, cos_roll), graph) = trace(|| {
         let x: Vec<Sym> = (0..n).map(Sym::input).collect();
         let w: Vec<Sym> = (n..2 * n).map(Sym::input).collect();
@@ -209,13 +214,21 @@ fn trace_derivatives(model: &Model, coords: &[String], wheels: &[String]) -> Fun
                 _ => Sym::input(neutral_base + i),
             })
             .collect();
+        // rover_dynamics::eom::derivatives, with the solve eliminating the
+        // suspension coordinates first (see `ordered_solve`).
         let mut ws = Workspace::<Sym>::new(model);
+        let y = &x[6..];
+        body_kinematics(model, y, &mut ws);
+        mass_matrix(model, &mut ws);
+        let att = Attitude::new(x[3], x[4], x[5]);
+        let mut rhs = vec![Sym::zero(); n];
+        add_bias(model, &mut ws, &w, &mut rhs);
+        add_gravity(model, &ws, &att, &mut rhs);
+        add_suspension(model, &neutral, y, &w[6..], &mut rhs);
+        add_wheel_loads(model, &ws, &att, &loads, &mut rhs);
+        let (wdot, pivots) = ordered_ldlt_solve(&ws.mass, &rhs, &order);
         let mut xdot = vec![Sym::zero(); n];
-        let mut wdot = vec![Sym::zero(); n];
-        derivatives(
-            model, &mut ws, &neutral, &x, &w, &loads, &mut xdot, &mut wdot,
-        );
-        let pivots: Vec<Sym> = (0..n).map(|r| ws.mass[r * n + r]).collect();
+        position_rates(&x, &w, &mut xdot);
         (xdot, wdot, pivots, x[3].cos())
     });
     let mut outputs = vec![OutputVar {
@@ -223,7 +236,7 @@ fn trace_derivatives(model: &Model, coords: &[String], wheels: &[String]) -> Fun
         place: "let cos_roll =".into(),
         group: 0,
     }];
-    for (r, p) in pivots.iter().enumerate() {
+    for (&r, p) in order.iter().zip(&pivots) {
         outputs.push(OutputVar {
             id: p.0,
             place: format!("let pivot_{r} ="),
