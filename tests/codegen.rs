@@ -59,14 +59,17 @@ fn random_state(model: &Model, rng: &mut Rng) -> State {
         x.push(rng.uniform(c.min - pad, c.max + pad));
     }
     let w: Vec<f64> = (0..n).map(|_| rng.uniform(-1.0, 1.0)).collect();
+    // Loads of the order of each wheel's share of the weight (on Earth, so
+    // that a light rover on the Moon still sees forces that matter).
+    let f = model.total_mass() * 9.81 / model.wheels.len() as f64;
     let mut v3 = |s: f64| [0, 1, 2].map(|_| rng.uniform(-s, s));
     let loads = model
         .wheels
         .iter()
-        .map(|_| WheelLoad {
-            force: v3(50.0),
-            moment: v3(5.0),
-            stator_torque: v3(2.0),
+        .map(|w| WheelLoad {
+            force: v3(f),
+            moment: v3(f * w.radius),
+            stator_torque: v3(w.max_torque),
         })
         .collect();
     let steer = model
