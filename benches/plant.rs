@@ -1,6 +1,6 @@
 //! Generated vs generic plant (issue 6): per built-in rover, the plant's
 //! right-hand side alone, plant + contact through `RoverSystem::rhs` on flat
-//! ground, and the mass matrix alone; and whole 40 s runs of swing4 on flat
+//! ground (meridional and tracked contact), and the mass matrix alone; and whole 40 s runs of swing4 on flat
 //! ground with RK4. Same seeded states for both back ends, setup outside
 //! the timing. `cargo bench --bench plant -- --warm-up-time 1 --measurement-time 3`.
 
@@ -72,12 +72,16 @@ fn samples(model: &Model, count: usize) -> Vec<Sample> {
 }
 
 /// The rover on flat ground, wheels just touching, driving at 0.1 m/s.
-fn system<P: Plant>(model: &Model, plant: P) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+fn system<P: Plant>(
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
     let n = model.dof();
     let ground = Ground::new(
         Terrain::default(),
         model,
-        ContactMethod::Meridional,
+        method,
         RimSampling::default(),
         WheelLawConfig::default(),
     );
@@ -137,11 +141,16 @@ fn bench_contact<P: Plant>(
     id: &str,
     model: &Model,
     plant: P,
+    method: ContactMethod,
 ) {
-    let (mut sys, y) = system(model, plant);
+    let (mut sys, y) = system(model, plant, method);
     let mut dy = vec![0.0; y.len()];
     sys.rhs(0.0, &y, &mut dy).unwrap();
-    group.bench_function(BenchmarkId::new("rhs_contact", id), |b| {
+    let what = match method {
+        ContactMethod::Meridional => "rhs_contact",
+        ContactMethod::Tracked => "rhs_contact_tracked",
+    };
+    group.bench_function(BenchmarkId::new(what, id), |b| {
         b.iter(|| {
             sys.rhs(0.0, black_box(&y), &mut dy).unwrap();
             black_box(&dy);
@@ -156,8 +165,10 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
     let mut generic = GenericPlant::new(model.clone()).unwrap();
     bench_plant(&mut group, "generated", &mut generated.clone(), &samples);
     bench_plant(&mut group, "generic", &mut generic, &samples);
-    bench_contact(&mut group, "generated", &model, generated);
-    bench_contact(&mut group, "generic", &model, generic);
+    for method in [ContactMethod::Meridional, ContactMethod::Tracked] {
+        bench_contact(&mut group, "generated", &model, generated.clone(), method);
+        bench_contact(&mut group, "generic", &model, generic.clone(), method);
+    }
     group.finish();
 }
 
@@ -175,7 +186,7 @@ fn whole_runs(c: &mut Criterion) {
     let mut group = c.benchmark_group("swing4_run_40s");
     group.sample_size(10);
     fn run<P: Plant + Clone>(model: &Model, plant: P) -> f64 {
-        let (mut sys, mut y) = system(model, plant);
+        let (mut sys, mut y) = system(model, plant, ContactMethod::Meridional);
         let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
         let mut t = 0.0;
         rk4.advance(&mut sys, &mut t, &mut y, 40.0).unwrap();

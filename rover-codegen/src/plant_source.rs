@@ -40,12 +40,19 @@ pub struct PlantSource {
     pub ops: Vec<(&'static str, OpCount)>,
 }
 
+/// Text from the description made safe for a one-line comment.
+fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect()
+}
+
 /// Statements of blocks, with their headings as comment markers.
 fn body(blocks: &[Block], comments: bool) -> String {
     let mut s = String::new();
     for b in blocks {
         if comments && let Some(t) = &b.title {
-            let t = t.replace(['"', '\\'], "'");
+            let t = one_line(t).replace(['"', '\\'], "'");
             let _ = writeln!(s, "__rover_comment!(\"{t}\");");
         }
         for l in &b.lines {
@@ -197,9 +204,9 @@ impl {name} {{
         out
     }}
 "#,
-        rover = spec.name,
-        coords = coords_doc.join(", "),
-        wheel_list = spec.wheel_names.join(", "),
+        rover = one_line(&spec.name),
+        coords = one_line(&coords_doc.join(", ")),
+        wheel_list = one_line(&spec.wheel_names.join(", ")),
         coords_list = str_list(&spec.coordinate_names),
         wheel_list_q = str_list(&spec.wheel_names),
         neutrals = neutrals.join(", "),
