@@ -97,6 +97,9 @@ mod tests {
             // The product of the pivots is det(A) in every order.
             dets.push(d.iter().product::<f64>());
         }
-        assert!(dets.iter().all(|v| (v - dets[0]).abs() < 1e-12 * dets[0]), "{dets:?}");
+        assert!(
+            dets.iter().all(|v| (v - dets[0]).abs() < 1e-12 * dets[0]),
+            "{dets:?}"
+        );
     }
 }
