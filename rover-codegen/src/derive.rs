@@ -293,3 +293,49 @@ fn stub(input: &syn::DeriveInput) -> TokenStream {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn expand_str(src: &str) -> String {
+        let input: syn::DeriveInput = syn::parse_str(src).unwrap();
+        let base = Path::new(env!("CARGO_MANIFEST_DIR"));
+        expand_derive_in(&input, base).to_string()
+    }
+
+    #[test]
+    fn a_file_becomes_a_companion_plant_and_an_include() {
+        let out = expand_str(r#"#[rover(file = "tests/data/toy.toml")] pub struct Toy;"#);
+        assert!(out.contains("pub struct ToyPlant"), "{out}");
+        assert!(out.contains("include_str !"), "{out}");
+        assert!(out.contains("impl :: rover_dynamics :: plant :: Plant for ToyPlant"));
+        assert!(!out.contains("compile_error"));
+        assert!(!out.contains("jacobian_fixed"));
+    }
+
+    #[test]
+    fn errors_come_with_a_stub_and_name_the_problem() {
+        let out =
+            expand_str(r#"#[rover(name = "x", gravity = -1.0, jacobian = true)] struct Bad;"#);
+        assert!(out.contains("compile_error"), "{out}");
+        assert!(out.contains("missing field `body`"), "{out}");
+        // The stub keeps `Bad::plant()` and `BadPlant` resolvable.
+        assert!(out.contains("struct BadPlant"), "{out}");
+        let out = expand_str(r#"#[rover(jacobian = 1)] struct Bad;"#);
+        assert!(out.contains("`jacobian` takes `true` or `false`"), "{out}");
+    }
+
+    #[test]
+    fn file_errors_quote_the_line() {
+        let toy = include_str!("../tests/data/toy.toml");
+        let text = toy.replace("gravity = 1.62", "gravity = -1.0");
+        let e = rover_spec::load_str(&text, "x.toml").unwrap_err();
+        let msg = file_errors(&e, "x.toml", &text, Span::call_site()).to_string();
+        assert!(
+            msg.starts_with("x.toml:4:11: gravity: must be > 0"),
+            "{msg}"
+        );
+        assert!(msg.contains("\n  4 | gravity = -1.0\n"), "{msg}");
+    }
+}
