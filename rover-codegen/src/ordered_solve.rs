@@ -58,7 +58,7 @@ pub fn ordered_ldlt_solve<S: Scalar>(a: &[S], b: &[S], order: &[usize]) -> (Vec<
         }
     }
     for i in 0..n {
-        z[i] = z[i] * inv[i];
+        z[i] *= inv[i];
     }
     for i in (0..n).rev() {
         for k in i + 1..n {
