@@ -8,7 +8,7 @@
 //! order, common subexpressions shared on construction);
 //! [`trace::trace_spec`] runs the equations with it for one rover, with the
 //! rover's numbers as constants; [`emit`] prints the graph as straight-line
-//! Rust; [`plant_source`] wraps it in a type implementing
+//! Rust; [`plant_source()`] wraps it in a type implementing
 //! [`rover_dynamics::Plant`]; [`diff`] differentiates the graph for the
 //! exact Jacobian.
 //!
