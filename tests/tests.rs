@@ -3,6 +3,7 @@
 mod support;
 
 mod cli;
+mod codegen;
 mod control;
 mod dynamics;
 mod failures;
@@ -10,5 +11,6 @@ mod fidelity;
 mod free_flight;
 mod ground;
 mod models;
+mod no_std;
 mod reproduction;
 mod wheel_law;

@@ -7,7 +7,20 @@
 //!   10 DOF);
 //! - `mer`: a MER-type rocker-bogie 6-wheeler (9 DOF);
 //! - `lrv`: an LRV-type rover on four double wishbones (10 DOF).
+//!
+//! Each also has a generated plant (straight-line code written by
+//! `rover-codegen` from the same file, `no_std`, no heap): [`Exomars`],
+//! [`Swing4`], [`Mer`], [`Lrv`]. [`plant`] gives one by name.
 #![warn(missing_docs)]
+
+mod generated;
+
+use rover_dynamics::plant::{Plant, PlantError, WheelLoad, WheelState};
+
+pub use generated::exomars::Exomars;
+pub use generated::lrv::Lrv;
+pub use generated::mer::Mer;
+pub use generated::swing4::Swing4;
 
 /// The names of the built-in rovers.
 pub const NAMES: &[&str] = &["exomars", "swing4", "mer", "lrv"];
@@ -20,6 +33,71 @@ pub fn builtin(name: &str) -> Option<&'static str> {
         "mer" => Some(include_str!("../mer.toml")),
         "lrv" => Some(include_str!("../lrv.toml")),
         _ => None,
+    }
+}
+
+/// The generated plant of a built-in rover, by name (`None` for other
+/// names): what the CLI runs for built-in rovers.
+pub fn plant(name: &str) -> Option<BuiltinPlant> {
+    match name {
+        "exomars" => Some(BuiltinPlant::Exomars(Exomars::new())),
+        "swing4" => Some(BuiltinPlant::Swing4(Swing4::new())),
+        "mer" => Some(BuiltinPlant::Mer(Mer::new())),
+        "lrv" => Some(BuiltinPlant::Lrv(Lrv::new())),
+        _ => None,
+    }
+}
+
+/// One of the generated plants, chosen at run time; each call dispatches
+/// with a `match` (no allocation, no virtual call).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BuiltinPlant {
+    /// The paper's Example 1.
+    Exomars(Exomars),
+    /// The paper's Example 2.
+    Swing4(Swing4),
+    /// The MER-type rocker-bogie.
+    Mer(Mer),
+    /// The LRV-type rover.
+    Lrv(Lrv),
+}
+
+macro_rules! dispatch {
+    ($self:ident, $p:ident => $e:expr) => {
+        match $self {
+            BuiltinPlant::Exomars($p) => $e,
+            BuiltinPlant::Swing4($p) => $e,
+            BuiltinPlant::Mer($p) => $e,
+            BuiltinPlant::Lrv($p) => $e,
+        }
+    };
+}
+
+impl Plant for BuiltinPlant {
+    fn dof(&self) -> usize {
+        dispatch!(self, p => p.dof())
+    }
+    fn wheel_count(&self) -> usize {
+        dispatch!(self, p => p.wheel_count())
+    }
+    fn wheels(&mut self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]) {
+        dispatch!(self, p => p.wheels(x, w, steer, out))
+    }
+    fn derivatives(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[WheelLoad],
+        xdot: &mut [f64],
+        wdot: &mut [f64],
+    ) -> Result<(), PlantError> {
+        dispatch!(self, p => p.derivatives(x, w, loads, xdot, wdot))
+    }
+    fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {
+        dispatch!(self, p => p.mass_matrix(x, out))
+    }
+    fn set_spring_neutral(&mut self, coord: usize, neutral: f64) {
+        dispatch!(self, p => p.set_spring_neutral(coord, neutral))
     }
 }
 

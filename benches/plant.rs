@@ -1,0 +1,206 @@
+//! Generated vs generic plant (issue 6): per built-in rover, the plant's
+//! right-hand side alone, plant + contact through `RoverSystem::rhs` on flat
+//! ground (meridional and tracked contact), and the mass matrix alone; and whole 40 s runs of swing4 on flat
+//! ground with RK4. Same seeded states for both back ends, setup outside
+//! the timing. `cargo bench --bench plant -- --warm-up-time 1 --measurement-time 3`.
+
+use std::hint::black_box;
+
+use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use rover_dynamics::Model;
+use rover_dynamics::plant::{Plant, WheelLoad};
+use rover_runtime::GenericPlant;
+use rover_runtime::contact::RimSampling;
+use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
+use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
+use rover_runtime::sim::RoverSystem;
+use rover_runtime::terrain::Terrain;
+use rover_runtime::wheel_law::WheelLawConfig;
+
+/// A small deterministic generator (xorshift64*), so the states are seeded.
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let u = (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64;
+        lo + (hi - lo) * u
+    }
+}
+
+struct Sample {
+    x: Vec<f64>,
+    w: Vec<f64>,
+    loads: Vec<WheelLoad>,
+}
+
+fn model(name: &str) -> Model {
+    rover_spec::load_str(rover_models::builtin(name).unwrap(), name)
+        .unwrap()
+        .model
+}
+
+fn samples(model: &Model, count: usize) -> Vec<Sample> {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let n = model.dof();
+    (0..count)
+        .map(|_| {
+            let mut x: Vec<f64> = (0..6).map(|_| rng.uniform(-0.3, 0.3)).collect();
+            for c in &model.coordinates {
+                x.push(rng.uniform(c.min, c.max));
+            }
+            let w = (0..n).map(|_| rng.uniform(-0.5, 0.5)).collect();
+            let loads = model
+                .wheels
+                .iter()
+                .map(|_| WheelLoad {
+                    force: [
+                        rng.uniform(-5.0, 5.0),
+                        rng.uniform(-5.0, 5.0),
+                        rng.uniform(0.0, 20.0),
+                    ],
+                    moment: [rng.uniform(-0.5, 0.5), 0.0, rng.uniform(-0.5, 0.5)],
+                    stator_torque: [0.0, rng.uniform(-1.0, 1.0), 0.0],
+                })
+                .collect();
+            Sample { x, w, loads }
+        })
+        .collect()
+}
+
+/// The rover on flat ground, wheels just touching, driving at 0.1 m/s.
+fn system<P: Plant>(
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+    let n = model.dof();
+    let ground = Ground::new(
+        Terrain::default(),
+        model,
+        method,
+        RimSampling::default(),
+        WheelLawConfig::default(),
+    );
+    let config = ControllerConfig {
+        speed: Some(SpeedConfig {
+            speed: Profile::Constant(0.1),
+            ..Default::default()
+        }),
+        ..Default::default()
+    };
+    let control = Controller::new(config, model, 0.0).unwrap();
+    let sys = RoverSystem::new(plant, Some(ground), control);
+    let mut y = vec![0.0; 2 * n + 1];
+    let rest = model.rest();
+    y[6..n].copy_from_slice(&rest);
+    let lowest = model
+        .wheels
+        .iter()
+        .map(|w| model.bodies[w.body].position.value(&rest)[2] - w.radius)
+        .fold(f64::INFINITY, f64::min);
+    // 2 mm into the ground: every wheel in contact.
+    y[2] = -lowest - 2e-3;
+    (sys, y)
+}
+
+fn bench_plant<P: Plant>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: &str,
+    plant: &mut P,
+    samples: &[Sample],
+) {
+    let n = plant.dof();
+    let (mut xd, mut wd) = (vec![0.0; n], vec![0.0; n]);
+    let mut k = 0;
+    group.bench_function(BenchmarkId::new("rhs_plant", id), |b| {
+        b.iter(|| {
+            let s = &samples[k % samples.len()];
+            k += 1;
+            let r = plant.derivatives(black_box(&s.x), black_box(&s.w), &s.loads, &mut xd, &mut wd);
+            black_box(&r);
+            black_box(&wd);
+        })
+    });
+    let mut m = vec![0.0; n * n];
+    group.bench_function(BenchmarkId::new("mass_matrix", id), |b| {
+        b.iter(|| {
+            let s = &samples[k % samples.len()];
+            k += 1;
+            plant.mass_matrix(black_box(&s.x), &mut m);
+            black_box(&m);
+        })
+    });
+}
+
+fn bench_contact<P: Plant>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    id: &str,
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+) {
+    let (mut sys, y) = system(model, plant, method);
+    let mut dy = vec![0.0; y.len()];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
+    let what = match method {
+        ContactMethod::Meridional => "rhs_contact",
+        ContactMethod::Tracked => "rhs_contact_tracked",
+    };
+    group.bench_function(BenchmarkId::new(what, id), |b| {
+        b.iter(|| {
+            sys.rhs(0.0, black_box(&y), &mut dy).unwrap();
+            black_box(&dy);
+        })
+    });
+}
+
+fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
+    let model = model(name);
+    let samples = samples(&model, 64);
+    let mut group = c.benchmark_group(name);
+    let mut generic = GenericPlant::new(model.clone()).unwrap();
+    bench_plant(&mut group, "generated", &mut generated.clone(), &samples);
+    bench_plant(&mut group, "generic", &mut generic, &samples);
+    for method in [ContactMethod::Meridional, ContactMethod::Tracked] {
+        bench_contact(&mut group, "generated", &model, generated.clone(), method);
+        bench_contact(&mut group, "generic", &model, generic.clone(), method);
+    }
+    group.finish();
+}
+
+fn per_model(c: &mut Criterion) {
+    one_model(c, "exomars", rover_models::Exomars::new());
+    one_model(c, "swing4", rover_models::Swing4::new());
+    one_model(c, "mer", rover_models::Mer::new());
+    one_model(c, "lrv", rover_models::Lrv::new());
+}
+
+/// 40 s of swing4 on flat ground at 0.1 m/s, RK4 with a 1 ms step
+/// (160,000 right-hand sides).
+fn whole_runs(c: &mut Criterion) {
+    let model = model("swing4");
+    let mut group = c.benchmark_group("swing4_run_40s");
+    group.sample_size(10);
+    fn run<P: Plant + Clone>(model: &Model, plant: P) -> f64 {
+        let (mut sys, mut y) = system(model, plant, ContactMethod::Meridional);
+        let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
+        let mut t = 0.0;
+        rk4.advance(&mut sys, &mut t, &mut y, 40.0).unwrap();
+        y[0]
+    }
+    group.bench_function(BenchmarkId::new("rk4", "generated"), |b| {
+        b.iter(|| black_box(run(&model, rover_models::Swing4::new())))
+    });
+    let generic = GenericPlant::new(model.clone()).unwrap();
+    group.bench_function(BenchmarkId::new("rk4", "generic"), |b| {
+        b.iter(|| black_box(run(&model, generic.clone())))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, per_model, whole_runs);
+criterion_main!(benches);

@@ -1,0 +1,341 @@
+//! `#[derive(Rover)]`: everything the proc-macro crate does, as an ordinary
+//! function (STYLE.md §2): parse the `#[rover(…)]` attribute, load and
+//! validate the description, emit the plant, or errors at the culprit.
+//!
+//! ```text
+//! #[derive(Rover)]
+//! #[rover(file = "models/toy.toml")]         // relative to CARGO_MANIFEST_DIR
+//! struct Toy;                                // → ToyPlant
+//!
+//! #[derive(Rover)]
+//! #[rover(name = "toy", gravity = 1.62, body = { mass = 30.0, … }, …)]
+//! struct Toy;                                // the same fields as Rust tokens
+//! ```
+//! A derive cannot add fields to the struct it is put on, and a plant keeps
+//! state (the spring neutrals that active suspension moves), so the plant
+//! is a companion type `<Name>Plant` with the struct's visibility;
+//! `<Name>::plant()` makes one. `jacobian = true` in the attribute adds the
+//! exact Jacobian.
+
+use std::path::{Path, PathBuf};
+
+use proc_macro2::{Span, TokenStream};
+use quote::{format_ident, quote};
+
+use crate::plant_source::{Options, plant_source};
+use crate::tokens::{Entry, Value, parse_entries, span_at, to_toml};
+
+/// Expand `#[derive(Rover)]` on `input`, reading files relative to the
+/// `CARGO_MANIFEST_DIR` of the crate being compiled.
+pub fn expand_derive(input: &syn::DeriveInput) -> TokenStream {
+    let base = std::env::var_os("CARGO_MANIFEST_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_default();
+    expand_derive_in(input, &base)
+}
+
+/// [`expand_derive`] with an explicit base directory (for tests).
+pub fn expand_derive_in(input: &syn::DeriveInput, base: &Path) -> TokenStream {
+    match expand(input, base) {
+        Ok(tokens) => tokens,
+        Err(e) => {
+            let mut out = e.to_compile_error();
+            out.extend(stub(input));
+            out
+        }
+    }
+}
+
+fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
+    check_shape(input)?;
+    let attr = rover_attribute(input)?;
+    let list = attr.meta.require_list()?;
+    let mut entries = parse_entries(list.tokens.clone())?;
+    let jacobian = take_bool(&mut entries, "jacobian")?.unwrap_or(false);
+    let file = entries.iter().position(|e| e.key == "file");
+    let (spec, include) = match file {
+        Some(k) => {
+            let entry = entries.remove(k);
+            if let Some(other) = entries.first() {
+                return Err(syn::Error::new(
+                    other.key_span,
+                    format!(
+                        "`{}` cannot be combined with `file`: write it in the file",
+                        other.key
+                    ),
+                ));
+            }
+            let Value::Str(rel, span) = entry.value else {
+                return Err(syn::Error::new(
+                    entry.value.span(),
+                    "`file` takes a string: the path of the TOML description, relative to the crate's Cargo.toml",
+                ));
+            };
+            let path = base.join(&rel);
+            let text = std::fs::read_to_string(&path).map_err(|e| {
+                syn::Error::new(span, format!("cannot read `{}`: {e}", path.display()))
+            })?;
+            let spec = rover_spec::load_str(&text, &rel)
+                .map_err(|e| file_errors(&e, &rel, &text, span))?;
+            let abs = path.display().to_string();
+            (spec, Some(quote! { const _: &str = include_str!(#abs); }))
+        }
+        None => {
+            if entries.is_empty() {
+                return Err(syn::Error::new(
+                    list.delimiter.span().join(),
+                    "empty description: write `#[rover(file = \"….toml\")]` or the description's fields",
+                ));
+            }
+            let (text, spans) = to_toml(&entries);
+            let spec = rover_spec::load_str(&text, "<inline>")
+                .map_err(|e| inline_errors(&e, &spans, attr_span(attr)))?;
+            (spec, None)
+        }
+    };
+    let name = &input.ident;
+    let plant = format_ident!("{}Plant", name);
+    let vis = &input.vis;
+    let source = plant_source(
+        &spec,
+        &Options {
+            type_name: plant.to_string(),
+            jacobian,
+            comments: false,
+            visibility: quote!(#vis).to_string(),
+        },
+    );
+    let items: TokenStream = source.code.parse().map_err(|e| {
+        syn::Error::new(
+            Span::call_site(),
+            format!("internal error of rover-codegen: generated code does not parse ({e})"),
+        )
+    })?;
+    let doc = format!("A [`{plant}`] with the description's spring neutrals.");
+    Ok(quote! {
+        #include
+        #items
+        impl #name {
+            #[doc = #doc]
+            pub const fn plant() -> #plant {
+                #plant::new()
+            }
+        }
+    })
+}
+
+fn attr_span(attr: &syn::Attribute) -> Span {
+    attr.meta
+        .require_list()
+        .map(|l| l.delimiter.span().join())
+        .unwrap_or_else(|_| Span::call_site())
+}
+
+/// Only a unit struct without generics: the plant is a companion type.
+fn check_shape(input: &syn::DeriveInput) -> syn::Result<()> {
+    if let Some(p) = input.generics.params.first() {
+        return Err(syn::Error::new_spanned(
+            p,
+            "#[derive(Rover)] takes no generic parameters",
+        ));
+    }
+    match &input.data {
+        syn::Data::Struct(s) if matches!(s.fields, syn::Fields::Unit) => Ok(()),
+        syn::Data::Struct(s) => Err(syn::Error::new_spanned(
+            &s.fields,
+            format!(
+                "#[derive(Rover)] goes on a unit struct (`struct {};`): the plant with its state is generated as `{}Plant`",
+                input.ident, input.ident
+            ),
+        )),
+        _ => Err(syn::Error::new(
+            input.ident.span(),
+            format!(
+                "#[derive(Rover)] goes on a unit struct (`struct {};`)",
+                input.ident
+            ),
+        )),
+    }
+}
+
+fn rover_attribute(input: &syn::DeriveInput) -> syn::Result<&syn::Attribute> {
+    let mut found = input.attrs.iter().filter(|a| a.path().is_ident("rover"));
+    let first = found.next().ok_or_else(|| {
+        syn::Error::new(
+            input.ident.span(),
+            "missing #[rover(…)]: add `#[rover(file = \"my_rover.toml\")]` (relative to Cargo.toml) or the description's fields as `#[rover(name = \"…\", …)]`",
+        )
+    })?;
+    if let Some(second) = found.next() {
+        return Err(syn::Error::new_spanned(
+            second,
+            "more than one #[rover(…)]: give the whole description in one attribute",
+        ));
+    }
+    Ok(first)
+}
+
+fn take_bool(entries: &mut Vec<Entry>, key: &str) -> syn::Result<Option<bool>> {
+    let Some(k) = entries.iter().position(|e| e.key == key) else {
+        return Ok(None);
+    };
+    match entries.remove(k).value {
+        Value::Bool(b, _) => Ok(Some(b)),
+        v => Err(syn::Error::new(
+            v.span(),
+            format!("`{key}` takes `true` or `false`"),
+        )),
+    }
+}
+
+/// Line and column (1-based, in characters) of byte `at` of `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let at = at.min(text.len());
+    let before = text.get(..at).unwrap_or("");
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+    (line, col)
+}
+
+/// One compile error per diagnostic, at the `file = "…"` literal, quoting
+/// the file's line: `path:line:col: field: message`, the line, `help:`.
+fn file_errors(e: &rover_spec::SpecError, rel: &str, text: &str, span: Span) -> syn::Error {
+    let mut errors = e.diagnostics.iter().map(|d| {
+        let title = if d.path.is_empty() {
+            d.message.clone()
+        } else {
+            format!("{}: {}", d.path, d.message)
+        };
+        let msg = match &d.span {
+            Some(s) => {
+                let (line, col) = line_col(text, s.start);
+                let quoted = text.lines().nth(line - 1).unwrap_or("");
+                format!(
+                    "{rel}:{line}:{col}: {title}\n  {line} | {quoted}\n  = help: {}",
+                    d.help
+                )
+            }
+            None => format!("{rel}: {title}\n  = help: {}", d.help),
+        };
+        syn::Error::new(span, msg)
+    });
+    let mut first = errors
+        .next()
+        .unwrap_or_else(|| syn::Error::new(span, e.to_string()));
+    for more in errors {
+        first.combine(more);
+    }
+    first
+}
+
+/// One compile error per diagnostic, at the token that wrote the value.
+fn inline_errors(
+    e: &rover_spec::SpecError,
+    spans: &[(std::ops::Range<usize>, Span)],
+    whole: Span,
+) -> syn::Error {
+    let mut errors = e.diagnostics.iter().map(|d| {
+        let at = d
+            .span
+            .as_ref()
+            .and_then(|s| span_at(spans, s.start))
+            .unwrap_or(whole);
+        let title = if d.path.is_empty() {
+            d.message.clone()
+        } else {
+            format!("{}: {}", d.path, d.message)
+        };
+        syn::Error::new(at, format!("{title}\n  = help: {}", d.help))
+    });
+    let mut first = errors
+        .next()
+        .unwrap_or_else(|| syn::Error::new(whole, e.to_string()));
+    for more in errors {
+        first.combine(more);
+    }
+    first
+}
+
+/// A minimal companion type and impls next to the errors, so the user sees
+/// our message and not a cascade of "cannot find type" (it never runs: the
+/// crate does not compile).
+fn stub(input: &syn::DeriveInput) -> TokenStream {
+    let name = &input.ident;
+    let plant = format_ident!("{}Plant", name);
+    let vis = &input.vis;
+    quote! {
+        #[derive(Clone, Copy, Debug, Default, PartialEq)]
+        #vis struct #plant;
+        impl #plant {
+            /// Stub.
+            pub const fn new() -> Self { #plant }
+        }
+        impl #name {
+            /// Stub.
+            pub const fn plant() -> #plant { #plant }
+        }
+        impl ::rover_dynamics::plant::Plant for #plant {
+            fn dof(&self) -> usize { 0 }
+            fn wheel_count(&self) -> usize { 0 }
+            fn wheels(&mut self, _: &[f64], _: &[f64], _: &[f64], _: &mut [::rover_dynamics::plant::WheelState]) {}
+            fn derivatives(
+                &mut self,
+                _: &[f64],
+                _: &[f64],
+                _: &[::rover_dynamics::plant::WheelLoad],
+                _: &mut [f64],
+                _: &mut [f64],
+            ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+                Ok(())
+            }
+            fn mass_matrix(&mut self, _: &[f64], _: &mut [f64]) {}
+            fn set_spring_neutral(&mut self, _: usize, _: f64) {}
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn expand_str(src: &str) -> String {
+        let input: syn::DeriveInput = syn::parse_str(src).unwrap();
+        let base = Path::new(env!("CARGO_MANIFEST_DIR"));
+        expand_derive_in(&input, base).to_string()
+    }
+
+    #[test]
+    fn a_file_becomes_a_companion_plant_and_an_include() {
+        let out = expand_str(r#"#[rover(file = "tests/data/toy.toml")] pub struct Toy;"#);
+        assert!(out.contains("pub struct ToyPlant"), "{out}");
+        assert!(out.contains("include_str !"), "{out}");
+        assert!(out.contains("impl :: rover_dynamics :: plant :: Plant for ToyPlant"));
+        assert!(!out.contains("compile_error"));
+        assert!(!out.contains("jacobian_fixed"));
+    }
+
+    #[test]
+    fn errors_come_with_a_stub_and_name_the_problem() {
+        let out =
+            expand_str(r#"#[rover(name = "x", gravity = -1.0, jacobian = true)] struct Bad;"#);
+        assert!(out.contains("compile_error"), "{out}");
+        assert!(out.contains("missing field `body`"), "{out}");
+        // The stub keeps `Bad::plant()` and `BadPlant` resolvable.
+        assert!(out.contains("struct BadPlant"), "{out}");
+        let out = expand_str(r#"#[rover(jacobian = 1)] struct Bad;"#);
+        assert!(out.contains("`jacobian` takes `true` or `false`"), "{out}");
+    }
+
+    #[test]
+    fn file_errors_quote_the_line() {
+        let toy = include_str!("../tests/data/toy.toml");
+        let text = toy.replace("gravity = 1.62", "gravity = -1.0");
+        let e = rover_spec::load_str(&text, "x.toml").unwrap_err();
+        let msg = file_errors(&e, "x.toml", &text, Span::call_site()).to_string();
+        assert!(
+            msg.starts_with("x.toml:4:11: gravity: must be > 0"),
+            "{msg}"
+        );
+        assert!(msg.contains("\n  4 | gravity = -1.0\n"), "{msg}");
+    }
+}

@@ -1,0 +1,478 @@
+//! Straight-line Rust from a traced [`Function`]: inputs unpacked once,
+//! every temporary assigned once, constants as literals, one block per
+//! group (wheel) after the terms the groups share.
+//!
+//! A node gets a `let` when it is used more than once or is a call
+//! (`sin`, `sqrt`, …); a node used once is written inline into its user.
+//! `sin`/`cos` of an input are named after it (`s_phi`, `c_phi`), other
+//! temporaries `tN`. Operands are parenthesized wherever Rust's
+//! left-associative parsing would group them differently from the graph,
+//! so the printed code evaluates exactly the traced operations.
+
+use std::fmt::Write;
+
+use crate::graph::{Graph, Id, Node};
+use crate::trace::Function;
+
+/// Operation counts of emitted code (every evaluated node, inlined or not).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OpCount {
+    /// Additions and subtractions.
+    pub add: usize,
+    /// Multiplications.
+    pub mul: usize,
+    /// Divisions.
+    pub div: usize,
+    /// Negations.
+    pub neg: usize,
+    /// sin and cos.
+    pub trig: usize,
+    /// Square roots.
+    pub sqrt: usize,
+    /// Other calls (exp, atan2, abs, min, max, copysign, comparisons).
+    pub other: usize,
+}
+
+impl std::ops::AddAssign for OpCount {
+    fn add_assign(&mut self, o: OpCount) {
+        self.add += o.add;
+        self.mul += o.mul;
+        self.div += o.div;
+        self.neg += o.neg;
+        self.trig += o.trig;
+        self.sqrt += o.sqrt;
+        self.other += o.other;
+    }
+}
+
+impl std::fmt::Display for OpCount {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} mul, {} add, {} div, {} neg, {} sin/cos, {} sqrt, {} other",
+            self.mul, self.add, self.div, self.neg, self.trig, self.sqrt, self.other
+        )
+    }
+}
+
+/// A block of statements under a title (`None`: the shared terms).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Block {
+    /// The block's heading comment.
+    pub title: Option<String>,
+    /// The statements, each a complete Rust statement.
+    pub lines: Vec<String>,
+}
+
+/// Which groups use a node.
+#[derive(Clone, Copy, PartialEq)]
+enum Owner {
+    None,
+    One(usize),
+    Many,
+}
+
+impl Owner {
+    fn join(self, o: Owner) -> Owner {
+        match (self, o) {
+            (Owner::None, x) | (x, Owner::None) => x,
+            (Owner::One(a), Owner::One(b)) if a == b => Owner::One(a),
+            _ => Owner::Many,
+        }
+    }
+}
+
+const ADD: u8 = 1;
+const MUL: u8 = 2;
+const UNARY: u8 = 3;
+const ATOM: u8 = 4;
+
+struct Printer<'a> {
+    graph: &'a Graph,
+    names: Vec<Option<String>>,
+    path: &'a str,
+}
+
+impl Printer<'_> {
+    /// The expression of node `id` and its precedence.
+    fn expr(&self, id: Id) -> (String, u8) {
+        if let Some(n) = &self.names[id.0 as usize] {
+            return (n.clone(), ATOM);
+        }
+        self.body(id)
+    }
+
+    fn wrap(&self, id: Id, min: u8) -> String {
+        let (s, p) = self.expr(id);
+        if p < min { format!("({s})") } else { s }
+    }
+
+    fn call(&self, f: &str, args: &[Id]) -> (String, u8) {
+        let a: Vec<String> = args.iter().map(|&i| self.expr(i).0).collect();
+        (format!("{}::{f}({})", self.path, a.join(", ")), ATOM)
+    }
+
+    /// A method of `f64` in `core` (inlined, unlike a libm call): same
+    /// IEEE semantics as libm's `fmax`, `fmin`, `fabs`, `copysign`.
+    fn core(&self, f: &str, args: &[Id]) -> (String, u8) {
+        let a: Vec<String> = args.iter().map(|&i| self.expr(i).0).collect();
+        (format!("f64::{f}({})", a.join(", ")), ATOM)
+    }
+
+    /// The defining expression of `id`, ignoring its own name.
+    fn body(&self, id: Id) -> (String, u8) {
+        let g = self.graph;
+        match g.node(id) {
+            Node::Const(bits) => {
+                let v = f64::from_bits(bits);
+                (literal(v), if v < 0.0 { UNARY } else { ATOM })
+            }
+            Node::Input(k) => (format!("input_{k}"), ATOM),
+            Node::Add(a, b) => {
+                let neg_of = |i: Id| match g.node(i) {
+                    Node::Neg(x) if self.names[i.0 as usize].is_none() => Some(x),
+                    _ => None,
+                };
+                let (l, r, op) = if let Some(y) = neg_of(b) {
+                    (a, y, "-")
+                } else if let Some(x) = neg_of(a) {
+                    (b, x, "-")
+                } else if let Some(c) = g.value(b).filter(|c| *c < 0.0) {
+                    return (format!("{} - {}", self.wrap(a, ADD), literal(-c)), ADD);
+                } else if let Some(c) = g.value(a).filter(|c| *c < 0.0) {
+                    return (format!("{} - {}", self.wrap(b, ADD), literal(-c)), ADD);
+                } else {
+                    (a, b, "+")
+                };
+                (
+                    format!("{} {op} {}", self.wrap(l, ADD), self.wrap(r, MUL)),
+                    ADD,
+                )
+            }
+            Node::Mul(a, b) => (
+                format!("{} * {}", self.wrap(a, MUL), self.wrap(b, UNARY)),
+                MUL,
+            ),
+            Node::Div(a, b) => (
+                format!("{} / {}", self.wrap(a, MUL), self.wrap(b, UNARY)),
+                MUL,
+            ),
+            Node::Neg(a) => (format!("-{}", self.wrap(a, ATOM)), UNARY),
+            Node::Sin(a) => self.call("sin", &[a]),
+            Node::Cos(a) => self.call("cos", &[a]),
+            Node::Sqrt(a) => self.call("sqrt", &[a]),
+            Node::Exp(a) => self.call("exp", &[a]),
+            Node::Abs(a) => self.core("abs", &[a]),
+            Node::Atan2(a, b) => self.call("atan2", &[a, b]),
+            Node::Max(a, b) => self.core("max", &[a, b]),
+            Node::Min(a, b) => self.core("min", &[a, b]),
+            Node::Copysign(a, b) => self.core("copysign", &[a, b]),
+            Node::Ge(a, b) => (
+                format!(
+                    "if {} >= {} {{ 1.0 }} else {{ 0.0 }}",
+                    self.wrap(a, ADD),
+                    self.wrap(b, ADD)
+                ),
+                ATOM,
+            ),
+        }
+    }
+}
+
+/// A float literal that reads back to the same bits.
+pub fn literal(v: f64) -> String {
+    let s = format!("{v:?}");
+    if s.contains('.') || s.contains('e') || s.contains("inf") || s.contains("NaN") {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+/// Emit `f`: the input unpacking, the shared terms, one block per group.
+/// `libm` is the path of the libm crate in the generated code.
+pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
+    let g = &f.graph;
+    let top = f
+        .outputs
+        .iter()
+        .map(|o| o.id.0 as usize + 1)
+        .max()
+        .unwrap_or(0);
+    // Uses (parents and outputs) of every reachable node.
+    let mut uses = vec![0usize; top];
+    let mut reach = vec![false; top];
+    let mut owner = vec![Owner::None; top];
+    for o in &f.outputs {
+        uses[o.id.0 as usize] += 1;
+        reach[o.id.0 as usize] = true;
+        owner[o.id.0 as usize] = owner[o.id.0 as usize].join(Owner::One(o.group));
+    }
+    for k in (0..top).rev() {
+        if !reach[k] {
+            continue;
+        }
+        for c in g.node(Id(k as u32)).children() {
+            let c = c.0 as usize;
+            uses[c] += 1;
+            reach[c] = true;
+            owner[c] = owner[c].join(owner[k]);
+        }
+    }
+    let mut names: Vec<Option<String>> = vec![None; top];
+    let mut ops = OpCount::default();
+    let mut bound = vec![false; top];
+    for k in 0..top {
+        if !reach[k] {
+            continue;
+        }
+        let node = g.node(Id(k as u32));
+        match node {
+            Node::Const(_) => continue,
+            Node::Input(i) => {
+                names[k] = f.inputs.get(i as usize).map(|v| v.name.clone());
+                bound[k] = true;
+                continue;
+            }
+            Node::Add(..) => ops.add += 1,
+            Node::Mul(..) => ops.mul += 1,
+            Node::Div(..) => ops.div += 1,
+            Node::Neg(..) => ops.neg += 1,
+            Node::Sin(..) | Node::Cos(..) => ops.trig += 1,
+            Node::Sqrt(..) => ops.sqrt += 1,
+            _ => ops.other += 1,
+        }
+        let call = !matches!(
+            node,
+            Node::Add(..) | Node::Mul(..) | Node::Div(..) | Node::Neg(..)
+        );
+        bound[k] = uses[k] > 1 || call;
+    }
+    // A negation is never a temporary: `-t6` costs nothing where it is
+    // used; its operand is named instead when the negation is shared.
+    for k in 0..top {
+        if let Node::Neg(a) = g.node(Id(k as u32))
+            && bound[k]
+        {
+            bound[k] = false;
+            if !matches!(g.node(a), Node::Const(_) | Node::Input(_)) {
+                bound[a.0 as usize] = true;
+            }
+        }
+    }
+    // Name the temporaries in emission order: shared terms, then each group.
+    let owner_ref = &owner;
+    let order: Vec<usize> = (0..top)
+        .filter(|&k| owner[k] == Owner::Many)
+        .chain(
+            (0..f.groups.len())
+                .flat_map(|grp| (0..top).filter(move |&k| owner_ref[k] == Owner::One(grp))),
+        )
+        .collect();
+    let mut counter = 0;
+    for &k in &order {
+        if !bound[k] || names[k].is_some() {
+            continue;
+        }
+        let input_name = |a: Id| match g.node(a) {
+            Node::Input(i) => f.inputs.get(i as usize).map(|v| v.name.clone()),
+            _ => None,
+        };
+        names[k] = match g.node(Id(k as u32)) {
+            Node::Sin(a) => input_name(a).map(|n| format!("s_{n}")),
+            Node::Cos(a) => input_name(a).map(|n| format!("c_{n}")),
+            _ => None,
+        }
+        .or_else(|| {
+            counter += 1;
+            Some(format!("t{counter}"))
+        });
+    }
+    let printer = Printer {
+        graph: g,
+        names,
+        path: libm,
+    };
+    // sin and cos of one angle in the same block: one `sincos` call.
+    let mut partner: Vec<Option<usize>> = vec![None; top];
+    for k in 0..top {
+        if let Node::Sin(a) = g.node(Id(k as u32))
+            && bound[k]
+            && let Some(c) = g.find(Node::Cos(a)).map(|c| c.0 as usize)
+            && c < top
+            && bound[c]
+            && owner[c] == owner[k]
+        {
+            partner[k] = Some(c);
+            partner[c] = Some(k);
+        }
+    }
+    let let_line = |k: usize| -> Option<String> {
+        let node = g.node(Id(k as u32));
+        let name = printer.names[k].as_ref()?;
+        if let Some(other) = partner[k] {
+            if other < k {
+                return None;
+            }
+            let other_name = printer.names[other].as_ref()?;
+            let (Node::Sin(a) | Node::Cos(a)) = node else {
+                return None;
+            };
+            let (s, c) = if matches!(node, Node::Sin(_)) {
+                (name, other_name)
+            } else {
+                (other_name, name)
+            };
+            return Some(format!(
+                "let ({s}, {c}) = {libm}::sincos({});",
+                printer.expr(a).0
+            ));
+        }
+        match node {
+            Node::Const(_) => None,
+            Node::Input(i) => Some(format!("let {name} = {};", f.inputs[i as usize].access)),
+            _ => Some(format!("let {name} = {};", printer.body(Id(k as u32)).0)),
+        }
+    };
+    let mut blocks = Vec::new();
+    let inputs: Vec<String> = (0..top)
+        .filter(|&k| reach[k] && matches!(g.node(Id(k as u32)), Node::Input(_)))
+        .filter_map(let_line)
+        .collect();
+    let shared: Vec<String> = (0..top)
+        .filter(|&k| {
+            owner[k] == Owner::Many && bound[k] && !matches!(g.node(Id(k as u32)), Node::Input(_))
+        })
+        .filter_map(let_line)
+        .collect();
+    let grouped = f.groups.len() > 1;
+    let mut head = inputs;
+    if grouped {
+        blocks.push(Block {
+            title: Some("inputs".into()),
+            lines: head,
+        });
+        head = Vec::new();
+        if !shared.is_empty() {
+            blocks.push(Block {
+                title: Some("terms shared by the wheels".into()),
+                lines: shared,
+            });
+        }
+    } else {
+        head.extend(shared);
+    }
+    for (grp, title) in f.groups.iter().enumerate() {
+        let mut lines = std::mem::take(&mut head);
+        lines.extend(
+            (0..top)
+                .filter(|&k| {
+                    owner[k] == Owner::One(grp)
+                        && bound[k]
+                        && !matches!(g.node(Id(k as u32)), Node::Input(_))
+                })
+                .filter_map(let_line),
+        );
+        for o in f.outputs.iter().filter(|o| o.group == grp) {
+            let mut s = String::new();
+            let _ = write!(s, "{} {};", o.place, printer.expr(o.id).0);
+            lines.push(s);
+        }
+        blocks.push(Block {
+            title: Some(title.clone()),
+            lines,
+        });
+    }
+    (blocks, ops)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::trace::{InputVar, OutputVar};
+
+    fn function(build: impl FnOnce(&mut Graph) -> Vec<Id>) -> Function {
+        let mut graph = Graph::new();
+        let outs = build(&mut graph);
+        Function {
+            graph,
+            inputs: ["a", "b", "phi"]
+                .iter()
+                .enumerate()
+                .map(|(k, n)| InputVar {
+                    name: n.to_string(),
+                    access: format!("x[{k}]"),
+                })
+                .collect(),
+            outputs: outs
+                .into_iter()
+                .enumerate()
+                .map(|(k, id)| OutputVar {
+                    id,
+                    place: format!("out[{k}] ="),
+                    group: 0,
+                })
+                .collect(),
+            groups: vec!["all".into()],
+        }
+    }
+
+    #[test]
+    fn parenthesizes_exactly_where_the_graph_groups_differently() {
+        let f = function(|g| {
+            let (a, b) = (g.input(0), g.input(1));
+            let s = g.add(a, b);
+            let d = g.sub(a, s); // a − (a + b)
+            let c = g.cst(0.25);
+            let p = g.mul(c, s); // 0.25·(a + b)
+            let q = g.div(a, p); // a / (0.25·(a + b))
+            let h = g.cst(-2.0);
+            let r = g.add(q, h);
+            vec![d, r]
+        });
+        let (blocks, ops) = emit(&f, "libm");
+        assert_eq!(
+            blocks[0].lines,
+            vec![
+                "let a = x[0];",
+                "let b = x[1];",
+                "let t1 = a + b;",
+                "out[0] = a - t1;",
+                "out[1] = a / (t1 * 0.25) - 2.0;",
+            ]
+        );
+        assert_eq!(ops.add, 3);
+        assert_eq!(ops.mul, 1);
+        assert_eq!(ops.div, 1);
+    }
+
+    #[test]
+    fn trig_of_an_input_is_named_after_it_and_computed_once() {
+        let f = function(|g| {
+            let phi = g.input(2);
+            let s = g.sin(phi);
+            let c = g.cos(phi);
+            let p = g.mul(s, c);
+            let n = g.neg(s);
+            vec![p, n]
+        });
+        let (blocks, _) = emit(&f, "libm");
+        assert_eq!(
+            blocks[0].lines,
+            vec![
+                "let phi = x[2];",
+                "let (s_phi, c_phi) = libm::sincos(phi);",
+                "out[0] = s_phi * c_phi;",
+                "out[1] = -s_phi;",
+            ]
+        );
+    }
+
+    #[test]
+    fn literals_read_back_exactly() {
+        for v in [0.1, 30.0, 1e-5, 1.0 / 3.0, 6.02e23, -0.5] {
+            assert_eq!(literal(v).parse::<f64>().unwrap(), v);
+        }
+        assert_eq!(literal(2.0), "2.0");
+    }
+}

@@ -1,0 +1,317 @@
+//! The Rust source of a generated plant type: the struct, its constants,
+//! the fast fixed-size methods and the `rover_dynamics::Plant` impl.
+//!
+//! Written as text (then parsed, so a mistake here is a parse error, not
+//! wrong code): straight-line bodies from [`crate::emit`], with block
+//! headings as `__rover_comment!("…");` markers that the standalone module
+//! turns into `//` comments and the derive drops.
+
+use std::fmt::Write;
+
+use rover_spec::Spec;
+
+use crate::emit::{Block, OpCount, emit};
+use crate::trace::{Function, Traced, trace_spec};
+
+/// The path of `rover_dynamics::plant` in generated code.
+const PLANT: &str = "::rover_dynamics::plant";
+/// The path of libm in generated code.
+const LIBM: &str = "::libm";
+
+/// What to generate.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Name of the plant type.
+    pub type_name: String,
+    /// Whether to emit the exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` as `jacobian_fixed`.
+    pub jacobian: bool,
+    /// Whether block headings are kept (as comment markers).
+    pub comments: bool,
+    /// Visibility of the generated items (`pub`, `pub(crate)`, empty).
+    pub visibility: String,
+}
+
+/// The generated source and its operation counts.
+#[derive(Clone, Debug)]
+pub struct PlantSource {
+    /// The items, unformatted Rust.
+    pub code: String,
+    /// Counts per function: derivatives, mass matrix, wheels, Jacobian.
+    pub ops: Vec<(&'static str, OpCount)>,
+}
+
+/// Text from the description made safe for a one-line comment.
+fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect()
+}
+
+/// Statements of blocks, with their headings as comment markers.
+fn body(blocks: &[Block], comments: bool) -> String {
+    let mut s = String::new();
+    for b in blocks {
+        if comments && let Some(t) = &b.title {
+            let t = one_line(t).replace(['"', '\\'], "'");
+            let _ = writeln!(s, "__rover_comment!(\"{t}\");");
+        }
+        for l in &b.lines {
+            s.push_str(l);
+            s.push('\n');
+        }
+    }
+    s
+}
+
+fn emit_fn(f: &Function, comments: bool) -> (String, OpCount) {
+    let (blocks, ops) = emit(f, LIBM);
+    (body(&blocks, comments), ops)
+}
+
+fn str_list(items: &[String]) -> String {
+    let quoted: Vec<String> = items.iter().map(|s| format!("{s:?}")).collect();
+    quoted.join(", ")
+}
+
+/// The plant type for `spec`.
+pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
+    let traced: Traced = trace_spec(spec, options.jacobian);
+    let model = &spec.model;
+    let (n, m, k) = (model.dof(), model.m(), model.wheels.len());
+    let name = &options.type_name;
+    let vis = &options.visibility;
+    let c = options.comments;
+    let (deriv, deriv_ops) = emit_fn(&traced.derivatives, c);
+    let (mass, mass_ops) = emit_fn(&traced.mass_matrix, c);
+    let (wheels, wheel_ops) = emit_fn(&traced.wheels, c);
+    let mut ops = vec![
+        ("derivatives", deriv_ops),
+        ("mass_matrix", mass_ops),
+        ("wheels", wheel_ops),
+    ];
+    let neutrals: Vec<String> = model
+        .coordinates
+        .iter()
+        .map(|c| crate::emit::literal(c.neutral))
+        .collect();
+    let pivot_list: Vec<String> = traced
+        .pivot_rows
+        .iter()
+        .map(|r| format!("({r}, pivot_{r})"))
+        .collect();
+    let steer_used = model.wheels.iter().any(|w| w.steerable);
+    let steer_param = if steer_used { "steer" } else { "_steer" };
+    let coords_doc: Vec<String> = spec
+        .coordinate_names
+        .iter()
+        .enumerate()
+        .map(|(i, c)| format!("y{} `{c}`", i + 1))
+        .collect();
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        r#"
+/// The `{rover}` rover as a generated plant: {n} degrees of freedom
+/// (X, Y, Z, φ, θ, ψ, {coords}), {k} wheels ({wheel_list}).
+///
+/// Straight-line code traced from the equations of `rover-dynamics` with
+/// this rover's constants folded in; no heap, no panics, `no_std`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+{vis} struct {name} {{
+    neutral: [f64; {m}],
+}}
+
+impl ::core::default::Default for {name} {{
+    fn default() -> Self {{
+        Self::new()
+    }}
+}}
+
+#[allow(clippy::all, clippy::pedantic, unused_variables)]
+impl {name} {{
+    /// The rover's name in its description.
+    pub const NAME: &'static str = {rover:?};
+    /// Number of generalized coordinates N = 6 + m.
+    pub const DOF: usize = {n};
+    /// Number of wheels.
+    pub const WHEELS: usize = {k};
+    /// Names of the suspension coordinates y1 … ym.
+    pub const COORDINATES: [&'static str; {m}] = [{coords_list}];
+    /// Names of the wheels, in the description's order.
+    pub const WHEEL_NAMES: [&'static str; {k}] = [{wheel_list_q}];
+    /// The description's spring neutrals y_0.
+    pub const SPRING_NEUTRALS: [f64; {m}] = [{neutrals}];
+    /// Smallest |cos φ| accepted before the attitude is singular (as the generic plant).
+    pub const MIN_COS_ROLL: f64 = 1e-6;
+
+    /// The plant with the description's spring neutrals.
+    pub const fn new() -> Self {{
+        Self {{ neutral: Self::SPRING_NEUTRALS }}
+    }}
+
+    /// The current spring neutrals y_0.
+    pub fn spring_neutrals(&self) -> &[f64; {m}] {{
+        &self.neutral
+    }}
+
+    /// `ẋ = B·w` and `ẇ = M⁻¹·(−Ṁ·w − f1 + f2 + Q)` (MODEL.md §5) on
+    /// fixed-size arrays. The outputs are written in any case; the error says
+    /// the attitude is singular (|cos φ| < 1e-6) or M is not positive
+    /// definite (an LDLᵀ pivot not > 0), as the generic plant does; the
+    /// suspension rows are eliminated first, so a failing pivot is checked
+    /// in that order and reported with its row of M.
+    #[inline]
+    pub fn derivatives_fixed(
+        &self,
+        x: &[f64; {n}],
+        w: &[f64; {n}],
+        loads: &[{PLANT}::WheelLoad; {k}],
+        xdot: &mut [f64; {n}],
+        wdot: &mut [f64; {n}],
+    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
+        {deriv}
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {{
+            return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
+        }}
+        let pivots = [{pivots}];
+        for (row, pivot) in pivots {{
+            if pivot.is_nan() || pivot <= 0.0 {{
+                return Err({PLANT}::PlantError::SingularMass {{ row, pivot }});
+            }}
+        }}
+        Ok(())
+    }}
+
+    /// The mass matrix M(y) (MODEL.md §4); structural zeros are not computed.
+    #[inline]
+    pub fn mass_matrix_fixed(&self, x: &[f64; {n}]) -> [[f64; {n}]; {n}] {{
+        let mut m = [[0.0; {n}]; {n}];
+        {mass}
+        m
+    }}
+
+    /// Wheel-centre kinematics for the steering angles `steer` (ignored for
+    /// wheels that are not steerable), MODEL.md §3.
+    #[inline]
+    pub fn wheels_fixed(
+        &self,
+        x: &[f64; {n}],
+        w: &[f64; {n}],
+        {steer_param}: &[f64; {k}],
+    ) -> [{PLANT}::WheelState; {k}] {{
+        let mut out = [{PLANT}::WheelState {{ centre: [0.0; 3], velocity: [0.0; 3], spin_axis: [0.0; 3] }}; {k}];
+        {wheels}
+        out
+    }}
+"#,
+        rover = one_line(&spec.name),
+        coords = one_line(&coords_doc.join(", ")),
+        wheel_list = one_line(&spec.wheel_names.join(", ")),
+        coords_list = str_list(&spec.coordinate_names),
+        wheel_list_q = str_list(&spec.wheel_names),
+        neutrals = neutrals.join(", "),
+        pivots = pivot_list.join(", "),
+    );
+    if let Some(jac) = &traced.jacobian {
+        let (code, jac_ops) = emit_fn(jac, c);
+        ops.push(("jacobian", jac_ops));
+        let two_n = 2 * n;
+        let _ = write!(
+            s,
+            r#"
+    /// The exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` at fixed wheel loads,
+    /// `jac[i][j] = ∂f_i/∂s_j` with `f = [ẋ; ẇ]`, `s = [x; w]`
+    /// (symbolic differentiation of the traced equations).
+    #[inline]
+    pub fn jacobian_fixed(
+        &self,
+        x: &[f64; {n}],
+        w: &[f64; {n}],
+        loads: &[{PLANT}::WheelLoad; {k}],
+    ) -> [[f64; {two_n}]; {two_n}] {{
+        let mut jac = [[0.0; {two_n}]; {two_n}];
+        {code}
+        jac
+    }}
+"#
+        );
+    }
+    s.push_str("}\n");
+    let _ = write!(
+        s,
+        r#"
+/// Slices of the wrong length are not a panic: the outputs are filled with
+/// NaN (the runtime's finiteness check then stops the run). Missing
+/// steering angles and wheel loads count as zero, as in the generic plant.
+impl {PLANT}::Plant for {name} {{
+    fn dof(&self) -> usize {{
+        {n}
+    }}
+
+    fn wheel_count(&self) -> usize {{
+        {k}
+    }}
+
+    fn wheels(&mut self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [{PLANT}::WheelState]) {{
+        let (Ok(x), Ok(w)) = (<&[f64; {n}]>::try_from(x), <&[f64; {n}]>::try_from(w)) else {{
+            let nan = [f64::NAN; 3];
+            for o in out.iter_mut() {{
+                *o = {PLANT}::WheelState {{ centre: nan, velocity: nan, spin_axis: nan }};
+            }}
+            return;
+        }};
+        let mut angles = [0.0; {k}];
+        for (a, s) in angles.iter_mut().zip(steer) {{
+            *a = *s;
+        }}
+        for (o, s) in out.iter_mut().zip(self.wheels_fixed(x, w, &angles)) {{
+            *o = s;
+        }}
+    }}
+
+    fn derivatives(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[{PLANT}::WheelLoad],
+        xdot: &mut [f64],
+        wdot: &mut [f64],
+    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
+        let (Ok(x), Ok(w), Ok(xdot), Ok(wdot)) = (
+            <&[f64; {n}]>::try_from(x),
+            <&[f64; {n}]>::try_from(w),
+            <&mut [f64; {n}]>::try_from(&mut *xdot),
+            <&mut [f64; {n}]>::try_from(&mut *wdot),
+        ) else {{
+            xdot.iter_mut().chain(wdot.iter_mut()).for_each(|v| *v = f64::NAN);
+            return Ok(());
+        }};
+        let zero = {PLANT}::WheelLoad {{ force: [0.0; 3], moment: [0.0; 3], stator_torque: [0.0; 3] }};
+        let mut fixed = [zero; {k}];
+        for (f, l) in fixed.iter_mut().zip(loads) {{
+            *f = *l;
+        }}
+        self.derivatives_fixed(x, w, &fixed, xdot, wdot)
+    }}
+
+    fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {{
+        let Ok(x) = <&[f64; {n}]>::try_from(x) else {{
+            out.iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        }};
+        let m = self.mass_matrix_fixed(x);
+        for (o, v) in out.iter_mut().zip(m.iter().flatten()) {{
+            *o = *v;
+        }}
+    }}
+
+    fn set_spring_neutral(&mut self, coord: usize, neutral: f64) {{
+        if let Some(n) = self.neutral.get_mut(coord) {{
+            *n = neutral;
+        }}
+    }}
+}}
+"#
+    );
+    PlantSource { code: s, ops }
+}

@@ -1,0 +1,32 @@
+//! The checked-in generated plants of models/ are what the generator
+//! writes today (STYLE.md §6, golden files). `ROVER_BLESS=1 cargo test -p
+//! rover-codegen --test golden` rewrites them; commit that on its own.
+
+use std::path::PathBuf;
+
+#[test]
+fn checked_in_model_plants_are_up_to_date() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
+    let bless = std::env::var_os("ROVER_BLESS").is_some_and(|v| v == "1");
+    let mut stale = Vec::new();
+    for name in rover_models::NAMES {
+        let source = rover_models::builtin_path(name).unwrap();
+        let spec = rover_spec::load_str(rover_models::builtin(name).unwrap(), source).unwrap();
+        let module = rover_codegen::generate_module(&spec, source).unwrap();
+        let path = root.join("models/src/generated").join(format!("{name}.rs"));
+        let on_disk = std::fs::read_to_string(&path).unwrap_or_default();
+        if on_disk != module {
+            if bless {
+                std::fs::write(&path, &module).unwrap();
+            } else {
+                stale.push(path.display().to_string());
+            }
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "generated plants differ from the generator's output: {stale:?}\n\
+         run `ROVER_BLESS=1 cargo test -p rover-codegen --test golden` to rewrite them, \
+         review the diff and commit it on its own"
+    );
+}

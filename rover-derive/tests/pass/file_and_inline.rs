@@ -1,0 +1,38 @@
+use rover_derive::Rover;
+use rover_dynamics::plant::{Plant, WheelLoad};
+
+#[derive(Rover)]
+#[rover(file = "../../../../rover-derive/tests/ui/good.toml")]
+struct FromFile;
+
+#[derive(Rover)]
+#[rover(
+    name = "ui",
+    gravity = 1.62,
+    body = { mass = 10.0, inertia = [0.2, 0.3, 0.4] },
+    wheel_defaults = { mass = 0.5, radius = 0.1, stiffness = 3000.0, damping = 100.0, mu_x = 0.5, mu_y = 0.5, cornering_stiffness = 40.0, max_torque = 1.0 },
+    suspension = [{ name = "left", kind = "longitudinal_swing_arm", pivot = [0.1, 0.2, 0.0], length = 0.15,
+        coordinate = { rest_deg = -20.0, min_deg = -40.0, max_deg = 0.0, stiffness = 4.0 }, fit = { method = "taylor", terms = 4 } }],
+    wheel = [{ name = "left", suspension = "left" }],
+    jacobian = true,
+)]
+pub struct Inline;
+
+fn main() {
+    let (mut a, mut b) = (FromFile::plant(), Inline::plant());
+    assert_eq!(FromFilePlant::DOF, 7);
+    assert_eq!(a.dof(), b.dof());
+    let mut x = [0.0; 7];
+    x[3] = 0.1;
+    x[6] = -0.3;
+    let w = [0.1; 7];
+    let loads = [WheelLoad { force: [1.0, 2.0, 30.0], ..Default::default() }];
+    let (mut xa, mut wa, mut xb, mut wb) = ([0.0; 7], [0.0; 7], [0.0; 7], [0.0; 7]);
+    a.derivatives(&x, &w, &loads, &mut xa, &mut wa).unwrap();
+    b.derivatives(&x, &w, &loads, &mut xb, &mut wb).unwrap();
+    assert_eq!(wa, wb);
+    assert!(wa[2] != 0.0);
+    let jac = b.jacobian_fixed(&x, &w, &loads);
+    // ∂Ẋ/∂v_x = R[0][0] = 1 at θ = ψ = 0.
+    assert_eq!(jac[0][7], 1.0);
+}

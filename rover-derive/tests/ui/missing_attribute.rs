@@ -1,0 +1,6 @@
+use rover_derive::Rover;
+
+#[derive(Rover)]
+struct NoDescription;
+
+fn main() {}

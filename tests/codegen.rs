@@ -1,0 +1,321 @@
+//! Generated == generic (issue 6): the checked-in generated plants of
+//! models/ against the generic plant on the same rover, on 1000 random
+//! states each, to 1e-12 relative; the generated exact Jacobian against
+//! forward-mode duals through the generic equations.
+//!
+//! "Relative" is norm-wise: for each output (M, ẋ, ẇ, a wheel's centre,
+//! velocity and spin axis, the generalized force of the loads) the largest
+//! entry difference over the largest entry magnitude.
+
+use rover_dynamics::Model;
+use rover_dynamics::dual::Dual;
+use rover_dynamics::eom::derivatives;
+use rover_dynamics::forces::Load;
+use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
+use rover_dynamics::workspace::Workspace;
+use rover_runtime::GenericPlant;
+
+use crate::support::rng::Rng;
+
+const TOL: f64 = 1e-12;
+const STATES: usize = 1000;
+
+fn spec(name: &str) -> rover_spec::Spec {
+    rover_spec::load_str(rover_models::builtin(name).unwrap(), name).unwrap()
+}
+
+/// Largest |a − b| over the largest |a|, |b| (0 when both are 0).
+fn rel(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().chain(b).fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    if scale == 0.0 { diff } else { diff / scale }
+}
+
+struct State {
+    x: Vec<f64>,
+    w: Vec<f64>,
+    steer: Vec<f64>,
+    loads: Vec<WheelLoad>,
+    neutral: Vec<f64>,
+}
+
+fn random_state(model: &Model, rng: &mut Rng) -> State {
+    let n = model.dof();
+    let mut x = vec![
+        rng.uniform(-5.0, 5.0),
+        rng.uniform(-5.0, 5.0),
+        rng.uniform(-1.0, 1.0),
+        rng.uniform(-0.6, 0.6),
+        rng.uniform(-0.6, 0.6),
+        rng.uniform(-3.1, 3.1),
+    ];
+    for c in &model.coordinates {
+        // A little beyond the travel too: the bump stops.
+        let pad = 0.05 * (c.max - c.min);
+        x.push(rng.uniform(c.min - pad, c.max + pad));
+    }
+    let w: Vec<f64> = (0..n).map(|_| rng.uniform(-1.0, 1.0)).collect();
+    // Loads of the order of each wheel's share of the weight (on Earth, so
+    // that a light rover on the Moon still sees forces that matter).
+    let f = model.total_mass() * 9.81 / model.wheels.len() as f64;
+    let mut v3 = |s: f64| [0, 1, 2].map(|_| rng.uniform(-s, s));
+    let loads = model
+        .wheels
+        .iter()
+        .map(|w| WheelLoad {
+            force: v3(f),
+            moment: v3(f * w.radius),
+            stator_torque: v3(w.max_torque),
+        })
+        .collect();
+    let steer = model
+        .wheels
+        .iter()
+        .map(|_| rng.uniform(-0.5, 0.5))
+        .collect();
+    let neutral = model
+        .coordinates
+        .iter()
+        .map(|c| rng.uniform(c.min, c.max))
+        .collect();
+    State {
+        x,
+        w,
+        steer,
+        loads,
+        neutral,
+    }
+}
+
+fn flat(states: &[WheelState], k: usize) -> [Vec<f64>; 3] {
+    [
+        states[k].centre.to_vec(),
+        states[k].velocity.to_vec(),
+        states[k].spin_axis.to_vec(),
+    ]
+}
+
+fn compare(name: &str, mut generated: impl Plant, seed: u64) {
+    let model = spec(name).model;
+    let mut generic = GenericPlant::new(model.clone()).unwrap();
+    let (n, k) = (model.dof(), model.wheels.len());
+    assert_eq!(generated.dof(), n, "{name}: dof");
+    assert_eq!(generated.wheel_count(), k, "{name}: wheel count");
+    let mut rng = Rng::new(seed);
+    let mut worst = [0.0f64; 5];
+    for trial in 0..STATES {
+        let s = random_state(&model, &mut rng);
+        for (i, &y0) in s.neutral.iter().enumerate() {
+            generated.set_spring_neutral(i, y0);
+            generic.set_spring_neutral(i, y0);
+        }
+        // M
+        let (mut ma, mut mb) = (vec![0.0; n * n], vec![0.0; n * n]);
+        generated.mass_matrix(&s.x, &mut ma);
+        generic.mass_matrix(&s.x, &mut mb);
+        let e = rel(&ma, &mb);
+        worst[0] = worst[0].max(e);
+        assert!(e <= TOL, "{name} state {trial}: M differs by {e:e}");
+        // Wheel kinematics
+        let (mut wa, mut wb) = (
+            vec![WheelState::default(); k],
+            vec![WheelState::default(); k],
+        );
+        generated.wheels(&s.x, &s.w, &s.steer, &mut wa);
+        generic.wheels(&s.x, &s.w, &s.steer, &mut wb);
+        for j in 0..k {
+            for (what, (a, b)) in ["centre", "velocity", "spin axis"]
+                .iter()
+                .zip(flat(&wa, j).iter().zip(flat(&wb, j).iter()))
+            {
+                let e = rel(a, b);
+                worst[1] = worst[1].max(e);
+                assert!(
+                    e <= TOL,
+                    "{name} state {trial}: wheel {j} {what} differs by {e:e}"
+                );
+            }
+        }
+        // ẋ, ẇ under the loads
+        let mut out = [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        let [xa, wda, xb, wdb] = &mut out;
+        let ra = generated.derivatives(&s.x, &s.w, &s.loads, xa, wda);
+        let rb = generic.derivatives(&s.x, &s.w, &s.loads, xb, wdb);
+        assert_eq!(ra, rb, "{name} state {trial}: outcome");
+        let e = rel(xa, xb);
+        worst[2] = worst[2].max(e);
+        assert!(e <= TOL, "{name} state {trial}: ẋ differs by {e:e}");
+        assert!(wdb.iter().any(|v| *v != 0.0), "{name}: ẇ all zero");
+        let e = rel(wda, wdb);
+        worst[3] = worst[3].max(e);
+        assert!(e <= TOL, "{name} state {trial}: ẇ differs by {e:e}");
+        // Generalized force of the loads: M·(ẇ(loads) − ẇ(0)) = Q_loads,
+        // compared through Δẇ.
+        let zero = vec![WheelLoad::default(); k];
+        let mut out0 = [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        let [xa0, wa0, xb0, wb0] = &mut out0;
+        generated.derivatives(&s.x, &s.w, &zero, xa0, wa0).unwrap();
+        generic.derivatives(&s.x, &s.w, &zero, xb0, wb0).unwrap();
+        let da: Vec<f64> = wda.iter().zip(wa0.iter()).map(|(a, b)| a - b).collect();
+        let db: Vec<f64> = wdb.iter().zip(wb0.iter()).map(|(a, b)| a - b).collect();
+        let e = rel(&da, &db);
+        worst[4] = worst[4].max(e);
+        assert!(
+            e <= TOL,
+            "{name} state {trial}: Δẇ of the loads differs by {e:e}"
+        );
+    }
+    eprintln!(
+        "{name}: worst relative differences M {:e}, wheels {:e}, ẋ {:e}, ẇ {:e}, Δẇ {:e}",
+        worst[0], worst[1], worst[2], worst[3], worst[4]
+    );
+}
+
+#[test]
+fn generated_exomars_equals_generic() {
+    compare("exomars", rover_models::Exomars::new(), 61);
+}
+
+#[test]
+fn generated_swing4_equals_generic() {
+    compare("swing4", rover_models::Swing4::new(), 62);
+}
+
+#[test]
+fn generated_mer_equals_generic() {
+    compare("mer", rover_models::Mer::new(), 63);
+}
+
+#[test]
+fn generated_lrv_equals_generic() {
+    compare("lrv", rover_models::Lrv::new(), 64);
+}
+
+#[test]
+fn the_run_time_choice_of_a_builtin_is_the_same_plant() {
+    compare("mer", rover_models::plant("mer").unwrap(), 66);
+}
+
+#[test]
+fn every_builtin_has_a_generated_plant() {
+    for name in rover_models::NAMES {
+        let plant = rover_models::plant(name).unwrap();
+        assert_eq!(plant.dof(), spec(name).model.dof(), "{name}");
+    }
+    assert!(rover_models::plant("nope").is_none());
+}
+
+#[test]
+fn a_rolled_over_state_is_the_generic_error() {
+    let model = spec("swing4").model;
+    let n = model.dof();
+    let mut x = vec![0.0; n];
+    x[6..].copy_from_slice(&model.rest());
+    x[3] = std::f64::consts::FRAC_PI_2;
+    let w = vec![0.0; n];
+    let loads = vec![WheelLoad::default(); 4];
+    let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+    let mut generated = rover_models::Swing4::new();
+    let err = generated.derivatives(&x, &w, &loads, &mut a, &mut b);
+    let mut generic = GenericPlant::new(model).unwrap();
+    let expect = generic.derivatives(&x, &w, &loads, &mut a, &mut b);
+    assert!(matches!(
+        expect,
+        Err(rover_dynamics::plant::PlantError::AttitudeSingular { .. })
+    ));
+    assert_eq!(err, expect);
+}
+
+#[test]
+fn wrong_slice_lengths_give_nan_not_a_panic() {
+    let mut p = rover_models::Swing4::new();
+    let (mut xd, mut wd) = (vec![0.0; 10], vec![0.0; 10]);
+    let r = p.derivatives(&[0.0; 3], &[0.0; 10], &[], &mut xd, &mut wd);
+    assert_eq!(r, Ok(()));
+    assert!(xd.iter().chain(&wd).all(|v| v.is_nan()));
+    let mut m = vec![0.0; 4];
+    p.mass_matrix(&[0.0; 2], &mut m);
+    assert!(m.iter().all(|v| v.is_nan()));
+}
+
+/// ∂(ẋ, ẇ)/∂(x, w) through the generic equations with duals, column `col`.
+fn dual_column(model: &Model, s: &State, col: usize) -> Vec<f64> {
+    let n = model.dof();
+    let d = |v: f64, k: usize| {
+        if k == col {
+            Dual::var(v)
+        } else {
+            Dual::lift(v)
+        }
+    };
+    let x: Vec<Dual<f64>> = (0..n).map(|k| d(s.x[k], k)).collect();
+    let w: Vec<Dual<f64>> = (0..n).map(|k| d(s.w[k], n + k)).collect();
+    let lift = |v: [f64; 3]| v.map(Dual::lift);
+    let loads: Vec<Load<Dual<f64>>> = s
+        .loads
+        .iter()
+        .map(|l| Load {
+            force: lift(l.force),
+            moment: lift(l.moment),
+            stator_torque: lift(l.stator_torque),
+        })
+        .collect();
+    let neutral: Vec<Dual<f64>> = s.neutral.iter().map(|&v| Dual::lift(v)).collect();
+    let mut ws = Workspace::<Dual<f64>>::new(model);
+    let (mut xd, mut wd) = (vec![Dual::lift(0.0); n], vec![Dual::lift(0.0); n]);
+    derivatives(model, &mut ws, &neutral, &x, &w, &loads, &mut xd, &mut wd);
+    xd.iter().chain(&wd).map(|v| v.eps).collect()
+}
+
+/// The generated Jacobian of `name` against duals, on 20 random states.
+/// `jac(plant_neutrals, x, w, loads)` returns the 2N×2N matrix row-major.
+fn check_jacobian(name: &str, seed: u64, jac: impl Fn(&State) -> Vec<f64>) {
+    let model = spec(name).model;
+    let n = model.dof();
+    let mut rng = Rng::new(seed);
+    for trial in 0..20 {
+        let s = random_state(&model, &mut rng);
+        let got = jac(&s);
+        for col in 0..2 * n {
+            let expect = dual_column(&model, &s, col);
+            let column: Vec<f64> = (0..2 * n).map(|row| got[row * 2 * n + col]).collect();
+            let e = rel(&column, &expect);
+            assert!(
+                e <= TOL,
+                "{name} state {trial}: Jacobian column {col} differs by {e:e}"
+            );
+        }
+    }
+}
+
+macro_rules! jacobian_of {
+    ($ty:ty, $n:expr, $k:expr) => {
+        |s: &State| {
+            let mut plant = <$ty>::new();
+            for (i, &y0) in s.neutral.iter().enumerate() {
+                plant.set_spring_neutral(i, y0);
+            }
+            let x: [f64; $n] = s.x.clone().try_into().unwrap();
+            let w: [f64; $n] = s.w.clone().try_into().unwrap();
+            let loads: [WheelLoad; $k] = s.loads.clone().try_into().unwrap();
+            plant
+                .jacobian_fixed(&x, &w, &loads)
+                .iter()
+                .flatten()
+                .copied()
+                .collect()
+        }
+    };
+}
+
+#[test]
+fn generated_jacobians_are_the_exact_derivatives() {
+    check_jacobian("exomars", 71, jacobian_of!(rover_models::Exomars, 9, 6));
+    check_jacobian("swing4", 72, jacobian_of!(rover_models::Swing4, 10, 4));
+    check_jacobian("mer", 73, jacobian_of!(rover_models::Mer, 9, 6));
+    check_jacobian("lrv", 74, jacobian_of!(rover_models::Lrv, 10, 4));
+}
