@@ -37,6 +37,7 @@ fn simulate_writes_every_output_for_both_paper_rovers() {
             out: out.clone(),
             quiet: true,
             no_plots: false,
+            generic: false,
         };
         let report = simulate(&args).unwrap();
         assert!(report.summary.complete);
@@ -64,6 +65,10 @@ fn simulate_writes_every_output_for_both_paper_rovers() {
                 .unwrap();
         assert_eq!(summary["status"], "completed");
         assert_eq!(summary["final_state"]["t"], 3.0);
+        assert!(
+            summary["plant"].as_str().unwrap().starts_with("generated"),
+            "built-in rovers run their generated plant"
+        );
         let csv = std::fs::read_to_string(out.join("run.csv")).unwrap();
         assert_eq!(
             csv.lines().count(),
@@ -82,6 +87,7 @@ fn bad_scenario(text: &str) -> String {
         out: dir.join("out"),
         quiet: true,
         no_plots: true,
+        generic: false,
     };
     let e = simulate(&args).expect_err("the scenario is bad");
     e.to_string().replace(&dir.display().to_string(), "<dir>")
@@ -149,4 +155,28 @@ fn check_prints_the_rover_and_bad_files_exit_with_status_2() {
         .output()
         .unwrap();
     assert_eq!(ok.status.code(), Some(0));
+}
+
+#[test]
+fn codegen_writes_a_module_that_names_its_source() {
+    let dir = scratch("codegen");
+    let out = dir.join("swing4_plant.rs");
+    let text = rover::cli::codegen(&rover::cli::CodegenArgs {
+        rover: "swing4".into(),
+        out: Some(out.clone()),
+    })
+    .unwrap();
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), text);
+    assert!(
+        text.contains("models/swing4.toml"),
+        "the header names the source"
+    );
+    assert!(
+        text.contains("impl") && text.contains("Plant for"),
+        "it implements the plant trait"
+    );
+    assert!(
+        !text.contains("Vec<") && !text.contains("unwrap()"),
+        "no heap, no panics"
+    );
 }

@@ -62,6 +62,18 @@ pub enum BuiltinPlant {
     Lrv(Lrv),
 }
 
+impl BuiltinPlant {
+    /// The generated type's path, for summaries and messages.
+    pub fn name(&self) -> &'static str {
+        match self {
+            BuiltinPlant::Exomars(_) => "rover_models::Exomars",
+            BuiltinPlant::Swing4(_) => "rover_models::Swing4",
+            BuiltinPlant::Mer(_) => "rover_models::Mer",
+            BuiltinPlant::Lrv(_) => "rover_models::Lrv",
+        }
+    }
+}
+
 macro_rules! dispatch {
     ($self:ident, $p:ident => $e:expr) => {
         match $self {

@@ -1,6 +1,8 @@
 //! Subcommands.
 
 mod check;
+#[cfg(feature = "codegen")]
+mod codegen;
 #[cfg(feature = "reproduce")]
 mod reproduce;
 mod simulate;
@@ -10,6 +12,8 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 pub use check::{CheckArgs, check};
+#[cfg(feature = "codegen")]
+pub use codegen::{CodegenArgs, codegen};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, reproduce};
 pub use simulate::{SimulateArgs, SimulateReport, build_plant, simulate};
@@ -30,6 +34,9 @@ pub enum Command {
     Check(CheckArgs),
     /// Run a scenario: CSV time histories, plots and a summary.
     Simulate(SimulateArgs),
+    /// Write a rover's generated, allocation-free plant as a standalone Rust module.
+    #[cfg(feature = "codegen")]
+    Codegen(CodegenArgs),
     /// Rerun the paper's figures and write docs/REPRODUCTION.md.
     #[cfg(feature = "reproduce")]
     Reproduce(ReproduceArgs),
@@ -63,6 +70,11 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
     match cli.command {
         Command::Check(a) => {
             print!("{}", check(&a)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        #[cfg(feature = "codegen")]
+        Command::Codegen(a) => {
+            codegen(&a)?;
             Ok(ExitCode::SUCCESS)
         }
         #[cfg(feature = "reproduce")]

@@ -34,6 +34,10 @@ pub struct SimulateArgs {
     /// Skip the PNG/SVG plots.
     #[arg(long)]
     pub no_plots: bool,
+    /// Use the generic (interpreted) plant even for a built-in rover, whose
+    /// generated plant is used by default at full fidelity.
+    #[arg(long)]
+    pub generic: bool,
 }
 
 /// What a run produced.
@@ -102,21 +106,30 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     bar.set_message(format!("{} t = 0 s", spec.name));
     let duration = scenario.duration;
     let level = scenario.fidelity.dynamic().unwrap_or_default();
-    let plant = build_plant(&spec.model, level)?;
     let flag = interrupt_flag();
-    let summary = rover_runtime::simulate::simulate(
-        plant,
-        &spec.model,
-        &spec.name,
-        &scenario,
-        &base,
-        csv,
-        &flag,
-        |t| {
-            bar.set_position((1000.0 * t / duration) as u64);
-        },
-    )
-    .map_err(|source| {
+    let progress = |t: f64| bar.set_position((1000.0 * t / duration) as u64);
+    // Built-in rovers at full fidelity run their generated plant.
+    let generated = match level {
+        rover_dynamics::fidelity::Fidelity::Full if !args.generic => rover_models::plant(&rover),
+        _ => None,
+    };
+    let run = Run {
+        spec: &spec,
+        scenario: &scenario,
+        base: &base,
+        flag: &flag,
+    };
+    let (result, backend) = match generated {
+        Some(p) => (
+            run.go(p, csv, progress),
+            format!("generated ({})", p.name()),
+        ),
+        None => (
+            run.go(build_plant(&spec.model, level)?, csv, progress),
+            "generic".to_string(),
+        ),
+    };
+    let mut summary = result.map_err(|source| {
         let text = std::fs::read_to_string(&args.scenario).unwrap_or_default();
         let line = source
             .field_path()
@@ -127,6 +140,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         };
         CliError::Setup { location, source }
     })?;
+    summary.plant = backend;
     bar.finish_and_clear();
     let json =
         serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
@@ -197,4 +211,33 @@ pub fn build_plant(
     };
     GenericPlant::with_fidelity_at(model.clone(), level, &y_ref)
         .map_err(|e| CliError::Other(e.to_string()))
+}
+
+/// What every run of `simulate` shares, whichever the plant.
+struct Run<'a> {
+    spec: &'a rover_spec::Spec,
+    scenario: &'a Scenario,
+    base: &'a Path,
+    flag: &'a AtomicBool,
+}
+
+impl Run<'_> {
+    fn go<P: rover_dynamics::plant::Plant>(
+        &self,
+        plant: P,
+        csv: BufWriter<File>,
+        progress: impl FnMut(f64),
+    ) -> Result<Summary, rover_runtime::simulate::SetupError> {
+        let s = self.spec;
+        rover_runtime::simulate::simulate(
+            plant,
+            &s.model,
+            &s.name,
+            self.scenario,
+            self.base,
+            csv,
+            self.flag,
+            progress,
+        )
+    }
 }

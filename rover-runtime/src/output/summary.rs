@@ -54,6 +54,8 @@ pub struct Summary {
     pub real_time_factor: f64,
     /// Integrator name.
     pub integrator: String,
+    /// The plant back end: `generic`, or the generated type's name (set by the caller).
+    pub plant: String,
     /// Right-hand-side evaluations.
     pub rhs_evals: u64,
     /// Accepted steps.
@@ -163,6 +165,7 @@ impl RunLog {
                 f64::INFINITY
             },
             integrator: end.integrator,
+            plant: "generic".into(),
             rhs_evals: end.rhs_evals,
             steps: end.steps,
             rejected_steps: end.rejected_steps,
