@@ -202,5 +202,33 @@ fn whole_runs(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, per_model, whole_runs);
+/// The right-hand side of swing4 at the three dynamic fidelity levels
+/// (MODEL.md §9), generic plant, the reduced levels frozen at the loaded
+/// static equilibrium: plant alone, and with the tracked contact.
+fn fidelity_levels(c: &mut Criterion) {
+    use rover_dynamics::fidelity::Fidelity;
+    let model = model("swing4");
+    let samples = samples(&model, 64);
+    let y_ref = rover_runtime::quasi_static::flat_ground_equilibrium(&model).unwrap();
+    let mut group = c.benchmark_group("swing4_fidelity");
+    for (label, level) in [("full", Fidelity::Full), ("simplified", Fidelity::Simplified), ("linearized", Fidelity::Linearized)] {
+        let mut plant = GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).unwrap();
+        let n = plant.dof();
+        let (mut xd, mut wd) = (vec![0.0; n], vec![0.0; n]);
+        let mut k = 0;
+        group.bench_function(BenchmarkId::new("rhs_plant", label), |b| {
+            b.iter(|| {
+                let s = &samples[k % samples.len()];
+                k += 1;
+                let r = plant.derivatives(black_box(&s.x), black_box(&s.w), &s.loads, &mut xd, &mut wd);
+                black_box(&r);
+                black_box(&wd);
+            })
+        });
+        bench_contact(&mut group, label, &model, plant, ContactMethod::Tracked);
+    }
+    group.finish();
+}
+
+criterion_group!(benches, per_model, whole_runs, fidelity_levels);
 criterion_main!(benches);
