@@ -99,9 +99,13 @@ fn flat(states: &[WheelState], k: usize) -> [Vec<f64>; 3] {
     ]
 }
 
-fn compare(name: &str, mut generated: impl Plant, seed: u64) {
+fn compare(name: &str, generated: impl Plant, seed: u64) {
+    let generic = GenericPlant::new(spec(name).model).unwrap();
+    compare_with(name, generated, generic, seed);
+}
+
+fn compare_with(name: &str, mut generated: impl Plant, mut generic: GenericPlant, seed: u64) {
     let model = spec(name).model;
-    let mut generic = GenericPlant::new(model.clone()).unwrap();
     let (n, k) = (model.dof(), model.wheels.len());
     assert_eq!(generated.dof(), n, "{name}: dof");
     assert_eq!(generated.wheel_count(), k, "{name}: wheel count");
@@ -318,4 +322,26 @@ fn generated_jacobians_are_the_exact_derivatives() {
     check_jacobian("swing4", 72, jacobian_of!(rover_models::Swing4, 10, 4));
     check_jacobian("mer", 73, jacobian_of!(rover_models::Mer, 9, 6));
     check_jacobian("lrv", 74, jacobian_of!(rover_models::Lrv, 10, 4));
+}
+
+#[test]
+fn generated_reduced_fidelity_levels_equal_generic() {
+    // MODEL.md §9 levels 2 and 3, both back ends frozen at the same loaded
+    // static equilibrium (docs/FIDELITY.md).
+    use rover_dynamics::fidelity::Fidelity;
+    let model = spec("swing4").model;
+    let y_ref = rover_runtime::quasi_static::flat_ground_equilibrium(&model).unwrap();
+    let generic = |level| GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).unwrap();
+    compare_with(
+        "swing4",
+        rover_models::Swing4Simplified::new(),
+        generic(Fidelity::Simplified),
+        67,
+    );
+    compare_with(
+        "swing4",
+        rover_models::Swing4Linearized::new(),
+        generic(Fidelity::Linearized),
+        68,
+    );
 }

@@ -21,6 +21,10 @@ pub use generated::exomars::Exomars;
 pub use generated::lrv::Lrv;
 pub use generated::mer::Mer;
 pub use generated::swing4::Swing4;
+/// Example 2 at fidelity level 3 (MODEL.md §9), frozen at its loaded equilibrium.
+pub use generated::swing4_linearized::Swing4Linearized;
+/// Example 2 at fidelity level 2 (MODEL.md §9), frozen at its loaded equilibrium.
+pub use generated::swing4_simplified::Swing4Simplified;
 
 /// The names of the built-in rovers.
 pub const NAMES: &[&str] = &["exomars", "swing4", "mer", "lrv"];

@@ -103,6 +103,7 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
             jacobian,
             comments: false,
             visibility: quote!(#vis).to_string(),
+            level: None,
         },
     );
     let items: TokenStream = source.code.parse().map_err(|e| {

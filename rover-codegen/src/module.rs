@@ -13,12 +13,14 @@ use crate::plant_source::{Options, plant_source};
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// How to write the module.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ModuleOptions {
     /// Name of the plant type; `None`: the rover's name in UpperCamelCase.
     pub type_name: Option<String>,
     /// Emit the exact Jacobian `jacobian_fixed`.
     pub jacobian: bool,
+    /// A reduced fidelity level (MODEL.md §9), or `None` for the full model.
+    pub level: Option<crate::trace::Level>,
 }
 
 impl Default for ModuleOptions {
@@ -26,6 +28,7 @@ impl Default for ModuleOptions {
         Self {
             type_name: None,
             jacobian: true,
+            level: None,
         }
     }
 }
@@ -83,6 +86,7 @@ pub fn generate_module_with(
             jacobian: options.jacobian,
             comments: true,
             visibility: "pub".into(),
+            level: options.level.clone(),
         },
     );
     let file: syn::File =
@@ -98,6 +102,13 @@ pub fn generate_module_with(
         out,
         "// Do not edit. Regenerate: rover codegen {source_name} > <this file>"
     );
+    if let Some(level) = &options.level {
+        let _ = writeln!(
+            out,
+            "// Fidelity: {:?} (MODEL.md §9), frozen at y_ref = {:?}",
+            level.fidelity, level.y_ref
+        );
+    }
     for (f, ops) in &source.ops {
         let _ = writeln!(out, "// ops {f}: {ops}");
     }

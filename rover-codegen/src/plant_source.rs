@@ -11,7 +11,7 @@ use std::fmt::Write;
 use rover_spec::Spec;
 
 use crate::emit::{Block, OpCount, emit};
-use crate::trace::{Function, Traced, trace_spec};
+use crate::trace::{Function, Traced, trace_spec_at};
 
 /// The path of `rover_dynamics::plant` in generated code.
 const PLANT: &str = "::rover_dynamics::plant";
@@ -19,7 +19,7 @@ const PLANT: &str = "::rover_dynamics::plant";
 const LIBM: &str = "::libm";
 
 /// What to generate.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Options {
     /// Name of the plant type.
     pub type_name: String,
@@ -29,6 +29,8 @@ pub struct Options {
     pub comments: bool,
     /// Visibility of the generated items (`pub`, `pub(crate)`, empty).
     pub visibility: String,
+    /// A reduced fidelity level, or `None` for the full model.
+    pub level: Option<crate::trace::Level>,
 }
 
 /// The generated source and its operation counts.
@@ -75,7 +77,7 @@ fn str_list(items: &[String]) -> String {
 
 /// The plant type for `spec`.
 pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
-    let traced: Traced = trace_spec(spec, options.jacobian);
+    let traced: Traced = trace_spec_at(spec, options.jacobian, options.level.as_ref());
     let model = &spec.model;
     let (n, m, k) = (model.dof(), model.m(), model.wheels.len());
     let name = &options.type_name;
@@ -173,7 +175,7 @@ impl {name} {{
         if f64::abs(cos_roll) < Self::MIN_COS_ROLL {{
             return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
         }}
-        let pivots = [{pivots}];
+        let pivots: [(usize, f64); {n}] = [{pivots}];
         for (row, pivot) in pivots {{
             if pivot.is_nan() || pivot <= 0.0 {{
                 return Err({PLANT}::PlantError::SingularMass {{ row, pivot }});

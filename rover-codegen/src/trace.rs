@@ -10,6 +10,7 @@
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::bias::add_bias;
+use rover_dynamics::fidelity::{Fidelity, Frozen, linear_wheel_kinematics, reduced_derivatives};
 use rover_dynamics::forces::{Load, add_gravity, add_suspension, add_wheel_loads};
 use rover_dynamics::kinematics::{body_kinematics, position_rates, wheel_kinematics};
 use rover_dynamics::mass::mass_matrix;
@@ -143,8 +144,24 @@ fn state_inputs(coords: &[String], inputs: &mut Vec<InputVar>) {
     }
 }
 
-/// Trace every function of the plant of `spec`.
+/// A reduced fidelity level (MODEL.md §9) and the configuration y_ref its
+/// kinematics are frozen at (docs/FIDELITY.md).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Level {
+    /// Simplified or linearized (`Full` traces the full model).
+    pub fidelity: Fidelity,
+    /// The frozen configuration, one value per suspension coordinate.
+    pub y_ref: Vec<f64>,
+}
+
+/// Trace every function of the plant of `spec` (full fidelity).
 pub fn trace_spec(spec: &Spec, with_jacobian: bool) -> Traced {
+    trace_spec_at(spec, with_jacobian, None)
+}
+
+/// Trace every function of the plant of `spec` at a fidelity level.
+pub fn trace_spec_at(spec: &Spec, with_jacobian: bool, level: Option<&Level>) -> Traced {
+    let level = level.filter(|l| l.fidelity != Fidelity::Full);
     let model = &spec.model;
     let mut taken: Vec<String> = POSE.iter().chain(&TWIST).map(|s| s.to_string()).collect();
     let coords = unique(
@@ -155,20 +172,25 @@ pub fn trace_spec(spec: &Spec, with_jacobian: bool) -> Traced {
         spec.wheel_names.iter().map(|n| ident(n)).collect(),
         &mut taken,
     );
-    let derivatives = trace_derivatives(model, &coords, &wheels);
+    let derivatives = trace_derivatives(model, &coords, &wheels, level);
     let jacobian = with_jacobian.then(|| jacobian_of(&derivatives, model.dof()));
     Traced {
         derivatives,
         pivot_rows: suspension_first(model.dof()),
-        mass_matrix: trace_mass(model, &coords),
-        wheels: trace_wheels(model, &coords, &wheels, &spec.wheel_names),
+        mass_matrix: trace_mass(model, &coords, level),
+        wheels: trace_wheels(model, &coords, &wheels, &spec.wheel_names, level),
         jacobian,
         coordinate_idents: coords,
         wheel_idents: wheels,
     }
 }
 
-fn trace_derivatives(model: &Model, coords: &[String], wheels: &[String]) -> Function {
+fn trace_derivatives(
+    model: &Model,
+    coords: &[String],
+    wheels: &[String],
+    level: Option<&Level>,
+) -> Function {
     let n = model.dof();
     let m = model.m();
     let mut inputs = Vec::new();
@@ -214,6 +236,31 @@ fn trace_derivatives(model: &Model, coords: &[String], wheels: &[String]) -> Fun
                 _ => Sym::input(neutral_base + i),
             })
             .collect();
+        if let Some(level) = level {
+            // rover_dynamics::fidelity::reduced_derivatives: M constant,
+            // factored at generation time; the pivots are constants.
+            let mut frozen = Frozen::<Sym>::at(model, &level.y_ref);
+            let mut xdot = vec![Sym::zero(); n];
+            let mut wdot = vec![Sym::zero(); n];
+            reduced_derivatives(
+                model,
+                level.fidelity,
+                &mut frozen,
+                &neutral,
+                &x,
+                &w,
+                &loads,
+                &mut xdot,
+                &mut wdot,
+            );
+            let pivots: Vec<Sym> = order.iter().map(|&r| frozen.factor[r * n + r]).collect();
+            let cos_roll = match level.fidelity {
+                // The linearized attitude has no cos φ: never singular.
+                Fidelity::Linearized => Sym::one(),
+                _ => x[3].cos(),
+            };
+            return (xdot, wdot, pivots, cos_roll);
+        }
         // rover_dynamics::eom::derivatives, with the solve eliminating the
         // suspension coordinates first (see `ordered_solve`).
         let mut ws = Workspace::<Sym>::new(model);
@@ -265,18 +312,26 @@ fn trace_derivatives(model: &Model, coords: &[String], wheels: &[String]) -> Fun
     }
 }
 
-fn trace_mass(model: &Model, coords: &[String]) -> Function {
+fn trace_mass(model: &Model, coords: &[String], level: Option<&Level>) -> Function {
     let n = model.dof();
     let m = model.m();
-    let inputs: Vec<InputVar> = coords
-        .iter()
-        .enumerate()
-        .map(|(i, c)| InputVar {
-            name: c.clone(),
-            access: format!("x[{}]", 6 + i),
-        })
-        .collect();
+    // A reduced level's M is constant: no coordinate is read.
+    let inputs: Vec<InputVar> = if level.is_some() {
+        Vec::new()
+    } else {
+        coords
+            .iter()
+            .enumerate()
+            .map(|(i, c)| InputVar {
+                name: c.clone(),
+                access: format!("x[{}]", 6 + i),
+            })
+            .collect()
+    };
     let (mass, graph) = trace(|| {
+        if let Some(level) = level {
+            return Frozen::<Sym>::at(model, &level.y_ref).ws.mass;
+        }
         let y: Vec<Sym> = (0..m).map(Sym::input).collect();
         let mut ws = Workspace::<Sym>::new(model);
         body_kinematics(model, &y, &mut ws);
@@ -317,6 +372,7 @@ fn trace_wheels(
     coords: &[String],
     wheels: &[String],
     titles: &[String],
+    level: Option<&Level>,
 ) -> Function {
     let n = model.dof();
     let mut inputs = Vec::new();
@@ -333,6 +389,9 @@ fn trace_wheels(
         let mut ws = Workspace::<Sym>::new(model);
         body_kinematics(model, &x[6..], &mut ws);
         let att = Attitude::new(x[3], x[4], x[5]);
+        let linear = level
+            .filter(|l| l.fidelity == Fidelity::Linearized)
+            .map(|l| Frozen::<Sym>::at(model, &l.y_ref));
         (0..model.wheels.len())
             .map(|k| {
                 let steer = if model.wheels[k].steerable {
@@ -340,7 +399,10 @@ fn trace_wheels(
                 } else {
                     Sym::zero()
                 };
-                wheel_kinematics(model, &ws, &att, &x, &w, k, steer)
+                match &linear {
+                    Some(frozen) => linear_wheel_kinematics(model, frozen, &x, &w, k, steer),
+                    None => wheel_kinematics(model, &ws, &att, &x, &w, k, steer),
+                }
             })
             .collect::<Vec<_>>()
     });

@@ -10,6 +10,7 @@ fn toy_rover_module() {
     let options = rover_codegen::ModuleOptions {
         type_name: None,
         jacobian: false,
+        level: None,
     };
     let module =
         rover_codegen::generate_module_with(&spec, "tests/data/toy.toml", &options).unwrap();

@@ -5,3 +5,5 @@ pub mod exomars;
 pub mod lrv;
 pub mod mer;
 pub mod swing4;
+pub mod swing4_linearized;
+pub mod swing4_simplified;
