@@ -211,7 +211,11 @@ fn fidelity_levels(c: &mut Criterion) {
     let samples = samples(&model, 64);
     let y_ref = rover_runtime::quasi_static::flat_ground_equilibrium(&model).unwrap();
     let mut group = c.benchmark_group("swing4_fidelity");
-    for (label, level) in [("full", Fidelity::Full), ("simplified", Fidelity::Simplified), ("linearized", Fidelity::Linearized)] {
+    for (label, level) in [
+        ("full", Fidelity::Full),
+        ("simplified", Fidelity::Simplified),
+        ("linearized", Fidelity::Linearized),
+    ] {
         let mut plant = GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).unwrap();
         let n = plant.dof();
         let (mut xd, mut wd) = (vec![0.0; n], vec![0.0; n]);
@@ -220,7 +224,8 @@ fn fidelity_levels(c: &mut Criterion) {
             b.iter(|| {
                 let s = &samples[k % samples.len()];
                 k += 1;
-                let r = plant.derivatives(black_box(&s.x), black_box(&s.w), &s.loads, &mut xd, &mut wd);
+                let r =
+                    plant.derivatives(black_box(&s.x), black_box(&s.w), &s.loads, &mut xd, &mut wd);
                 black_box(&r);
                 black_box(&wd);
             })

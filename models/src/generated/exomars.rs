@@ -718,7 +718,7 @@ impl Exomars {
                 roll: x[3],
             });
         }
-        let pivots = [
+        let pivots: [(usize, f64); 9] = [
             (6, pivot_6),
             (7, pivot_7),
             (8, pivot_8),

@@ -690,7 +690,7 @@ impl Lrv {
                 roll: x[3],
             });
         }
-        let pivots = [
+        let pivots: [(usize, f64); 10] = [
             (6, pivot_6),
             (7, pivot_7),
             (8, pivot_8),
