@@ -180,3 +180,41 @@ fn codegen_writes_a_module_that_names_its_source() {
         "no heap, no panics"
     );
 }
+
+#[test]
+fn reduced_levels_of_example_2_run_their_generated_plant_and_match_the_generic_one() {
+    let dir = scratch("levels");
+    let scenario = write(
+        &dir,
+        "s.toml",
+        "duration = 4.0\nsettle = 1.0\nfidelity = \"simplified\"\n[control.speed]\nspeed = 0.1\n\
+         [control.steering]\nkind = \"slip\"\ndelta_tau = 0.2\n[integrator.bdf]\nrtol = 1e-8\natol = 1e-10\n",
+    );
+    let run = |generic: bool| {
+        let out = dir.join(if generic { "generic" } else { "generated" });
+        let args = SimulateArgs {
+            rover: Some("swing4".into()),
+            scenario: scenario.clone(),
+            out,
+            quiet: true,
+            no_plots: true,
+            generic,
+        };
+        simulate(&args).unwrap().summary
+    };
+    let (generated, generic) = (run(false), run(true));
+    assert_eq!(
+        generated.plant,
+        "generated (rover_models::Swing4Simplified)"
+    );
+    assert_eq!(generic.plant, "generic");
+    let state = |s: &rover_runtime::output::Summary| {
+        s.final_state.iter().map(|(_, v)| *v).collect::<Vec<f64>>()
+    };
+    for (a, b) in state(&generated).iter().zip(state(&generic)) {
+        assert!(
+            (a - b).abs() < 1e-6 * (1.0 + b.abs()),
+            "final states differ: {a} vs {b}"
+        );
+    }
+}

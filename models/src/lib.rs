@@ -52,6 +52,17 @@ pub fn plant(name: &str) -> Option<BuiltinPlant> {
     }
 }
 
+/// The generated plant of a built-in rover at a reduced fidelity level
+/// (`"simplified"` or `"linearized"`, MODEL.md §9), where one is generated
+/// (Example 2); `None` otherwise.
+pub fn plant_at(name: &str, level: &str) -> Option<BuiltinPlant> {
+    match (name, level) {
+        ("swing4", "simplified") => Some(BuiltinPlant::Swing4Simplified(Swing4Simplified::new())),
+        ("swing4", "linearized") => Some(BuiltinPlant::Swing4Linearized(Swing4Linearized::new())),
+        _ => None,
+    }
+}
+
 /// One of the generated plants, chosen at run time; each call dispatches
 /// with a `match` (no allocation, no virtual call).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,6 +75,10 @@ pub enum BuiltinPlant {
     Mer(Mer),
     /// The LRV-type rover.
     Lrv(Lrv),
+    /// Example 2, fidelity level 2.
+    Swing4Simplified(Swing4Simplified),
+    /// Example 2, fidelity level 3.
+    Swing4Linearized(Swing4Linearized),
 }
 
 impl BuiltinPlant {
@@ -74,6 +89,8 @@ impl BuiltinPlant {
             BuiltinPlant::Swing4(_) => "rover_models::Swing4",
             BuiltinPlant::Mer(_) => "rover_models::Mer",
             BuiltinPlant::Lrv(_) => "rover_models::Lrv",
+            BuiltinPlant::Swing4Simplified(_) => "rover_models::Swing4Simplified",
+            BuiltinPlant::Swing4Linearized(_) => "rover_models::Swing4Linearized",
         }
     }
 }
@@ -85,6 +102,8 @@ macro_rules! dispatch {
             BuiltinPlant::Swing4($p) => $e,
             BuiltinPlant::Mer($p) => $e,
             BuiltinPlant::Lrv($p) => $e,
+            BuiltinPlant::Swing4Simplified($p) => $e,
+            BuiltinPlant::Swing4Linearized($p) => $e,
         }
     };
 }

@@ -35,7 +35,8 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub no_plots: bool,
     /// Use the generic (interpreted) plant even for a built-in rover, whose
-    /// generated plant is used by default at full fidelity.
+    /// generated plant is used by default (full fidelity; swing4 also at the
+    /// simplified and linearized levels).
     #[arg(long)]
     pub generic: bool,
 }
@@ -108,10 +109,13 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     let level = scenario.fidelity.dynamic().unwrap_or_default();
     let flag = interrupt_flag();
     let progress = |t: f64| bar.set_position((1000.0 * t / duration) as u64);
-    // Built-in rovers at full fidelity run their generated plant.
+    // Built-in rovers run their generated plant where one exists for the level.
+    use rover_dynamics::fidelity::Fidelity;
     let generated = match level {
-        rover_dynamics::fidelity::Fidelity::Full if !args.generic => rover_models::plant(&rover),
-        _ => None,
+        _ if args.generic => None,
+        Fidelity::Full => rover_models::plant(&rover),
+        Fidelity::Simplified => rover_models::plant_at(&rover, "simplified"),
+        Fidelity::Linearized => rover_models::plant_at(&rover, "linearized"),
     };
     let run = Run {
         spec: &spec,
