@@ -154,3 +154,35 @@ fn integrators_agree_on_a_smooth_run() {
         }
     }
 }
+
+#[test]
+fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
+    use rover_runtime::control::{Controller, ControllerConfig};
+    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
+    let model = spec.model;
+    let loads = rover_runtime::quasi_static::flat_ground_loads(&model).unwrap();
+    let weight = model.total_mass() * model.gravity;
+    assert!(
+        (loads.iter().sum::<f64>() - weight).abs() < 1e-6 * weight,
+        "the static loads carry the weight: {loads:?}"
+    );
+    let config: ControllerConfig =
+        toml::from_str("[speed]\nspeed = 0.1\nkp = 2.0\ndistribution = \"static_load\"").unwrap();
+    let mut control = Controller::new(config, &model, 0.0).unwrap();
+    let n = model.dof();
+    let w = vec![0.0; n];
+    let mut tau = vec![0.0; 4];
+    // Measured loads are ignored: the static ones decide.
+    control.torques(1.0, &w, 0.0, &[1.0, 0.0, 0.0, 0.0], &mut tau);
+    let tau0 = 2.0 * 0.1;
+    for (t, l) in tau.iter().zip(&loads) {
+        assert!(
+            (t - tau0 * 4.0 * l / weight).abs() < 1e-12,
+            "τ {tau:?} against loads {loads:?}"
+        );
+    }
+    assert!(
+        (loads[0] - loads[2]).abs() > 0.01 * weight,
+        "front and rear loads differ on Example 2: {loads:?}"
+    );
+}

@@ -262,6 +262,17 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 /// ground, level and at rest: the configuration the reduced fidelity levels
 /// freeze at (a loaded rover moves about it, not about its unloaded rest).
 pub fn flat_ground_equilibrium(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
+    Ok(flat_ground_solution(model)?.0)
+}
+
+/// Each wheel's vertical load [N] in the static equilibrium on flat ground
+/// (the weights of a torque distribution "by static load", MODEL.md §8).
+pub fn flat_ground_loads(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
+    Ok(flat_ground_solution(model)?.1)
+}
+
+/// Suspension coordinates and wheel loads of the flat-ground equilibrium.
+fn flat_ground_solution(model: &Model) -> Result<(Vec<f64>, Vec<f64>), QuasiStaticError> {
     let flat = crate::terrain::Terrain::default();
     let rest = model.rest();
     let mut ws = Workspace::<f64>::new(model);
@@ -275,5 +286,7 @@ pub fn flat_ground_equilibrium(model: &Model) -> Result<Vec<f64>, QuasiStaticErr
     q0.extend_from_slice(&rest);
     let mut solver = QuasiStatic::new(model, &flat, MeridionalContact::default(), q0);
     solver.solve([0.0; 3])?;
-    Ok(solver.q[3..].to_vec())
+    let mut loads = vec![0.0; model.wheels.len()];
+    solver.normal_forces([0.0; 3], &mut loads)?;
+    Ok((solver.q[3..].to_vec(), loads))
 }

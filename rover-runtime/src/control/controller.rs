@@ -147,7 +147,17 @@ impl Controller {
             steerable,
             max_torque: model.wheels.iter().map(|w| w.max_torque).collect(),
             centre_x,
-            static_weights: None,
+            static_weights: match &config.speed {
+                Some(s) if s.distribution == Distribution::StaticLoad => {
+                    Some(crate::quasi_static::flat_ground_loads(model).map_err(|e| {
+                        err(
+                            "speed.distribution",
+                            format!("cannot find the static loads: {e}"),
+                        )
+                    })?)
+                }
+                _ => None,
+            },
             active,
             neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
             lo: model.coordinates.iter().map(|c| c.min).collect(),
@@ -203,12 +213,6 @@ impl Controller {
             out.iter_mut().for_each(|o| *o = 0.0);
             return;
         };
-        if self.static_weights.is_none()
-            && s.distribution == Distribution::StaticLoad
-            && t >= self.settle
-        {
-            self.static_weights = Some(normals.to_vec());
-        }
         let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * integral;
         match s.distribution {
             Distribution::Even => out.iter_mut().for_each(|o| *o = tau0),

@@ -9,9 +9,9 @@ pub enum Distribution {
     /// w_j = 1: every wheel gets τ_0.
     #[default]
     Even,
-    /// w_j = the wheel's static normal load, measured at the end of settling
-    /// (the rover then stands in static equilibrium on flat ground), or at
-    /// the first evaluation when there is no settling.
+    /// w_j = the wheel's load in the rover's static equilibrium on flat
+    /// ground, solved once when the controller is built (the quasi-static
+    /// solver of MODEL.md §9).
     StaticLoad,
     /// w_j = the wheel's normal load now (from the same right-hand-side
     /// evaluation): wheels in the air get no torque.
