@@ -175,9 +175,10 @@ fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
     // Measured loads are ignored: the static ones decide.
     control.torques(1.0, &w, 0.0, &[1.0, 0.0, 0.0, 0.0], &mut tau);
     let tau0 = 2.0 * 0.1;
+    let total: f64 = loads.iter().sum();
     for (t, l) in tau.iter().zip(&loads) {
         assert!(
-            (t - tau0 * 4.0 * l / weight).abs() < 1e-12,
+            (t - tau0 * 4.0 * l / total).abs() < 1e-12,
             "τ {tau:?} against loads {loads:?}"
         );
     }
