@@ -105,3 +105,26 @@ fn magic_formula_has_slope_c_at_zero_and_saturates_at_mu_fn() {
         .fold(0.0, f64::max);
     assert!((peak - 0.5 * fnorm).abs() < 1e-3, "peak {peak}");
 }
+
+#[test]
+fn normal_force_is_continuous_at_touchdown_and_exact_beyond_the_ramp() {
+    let law = ChenGenta::default();
+    let landing = 0.2; // Δ̇ [m/s]
+    // At the first touch the force starts from zero, not from c_w·Δ̇ = 60 N.
+    let first = law
+        .forces(&TYRE, &motion(1e-9, landing, 0.1, 0.0, 0.0))
+        .normal;
+    assert!(first < 1e-3, "F_n at Δ = 1 nm is {first} N");
+    // Beyond the 0.1 mm ramp, eq. 37 exactly.
+    let d = 2e-4;
+    let f = law.forces(&TYRE, &motion(d, landing, 0.1, 0.0, 0.0)).normal;
+    assert!((f - (4000.0 * d + 300.0 * landing)).abs() < 1e-12);
+    // Continuous through the ramp.
+    let mut prev = 0.0;
+    for i in 1..=200 {
+        let d = i as f64 * 1e-6;
+        let f = law.forces(&TYRE, &motion(d, landing, 0.1, 0.0, 0.0)).normal;
+        assert!(f - prev < 1.0, "jump of {} N at Δ = {d}", f - prev);
+        prev = f;
+    }
+}

@@ -368,10 +368,10 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
          and speed are moderate; kinematic steering unacceptable at Z_R = 0.5…1. \
          Ours: within 5 % of R_k up to Z_R = 0.1 (and 0.93 at 0.2), then clearly worse (0.83 at 0.5, 0.72 at 1), \
          R < R_k as in the paper. Against speed at Z_R = 0.3 ours does not degrade monotonically: at 0.05 m/s the \
-         rover drifts down side slopes (0.89), from 0.1 m/s its momentum carries it over them (≈ 1.0); the 1 m/s run \
-         stalls the integrator on the rough ground: there the front wheels leave the ground (F_n of wheel 2 falls from \
-         8 N to 0 at t = 7.81 s) and, landing, the linear tyre damper of eq. 37 makes the normal force jump to c_w·Δ̇ at the \
-         first touch — the likely cause; a damper proportional to the deflection (Hunt–Crossley) would remove the jump.\n",
+         rover drifts down side slopes (0.89), from 0.1 m/s its momentum carries it over them (≈ 1.0); at 1 m/s it slides out of the \
+         turn (R ≈ 8·R_k). There the front wheels hop; their landings made eq. 37's damper jump to c_w·Δ̇ at the first touch and stalled the \
+         integrator until the damper was made to ramp in over the first 0.1 mm of deflection \
+         (`wheel_law::DAMPING_RAMP`, docs in the code).\n",
     );
 
     // Figs. 8–9.

@@ -55,9 +55,19 @@ pub trait WheelLaw {
     fn forces(&self, tyre: &Tyre, motion: &PatchMotion) -> PatchForces;
 }
 
-/// Normal force (eq. 36–37): `F_n = max(0, k_w·Δ + c_w·Δ̇)` — the ground never pulls.
+/// Depth over which the tyre damper ramps in [m]. Eq. 37's damper acting in
+/// full at the first touch makes the normal force jump from 0 to c_w·Δ̇ when
+/// a wheel lands, a discontinuity that stalls step-size control (a rover
+/// hopping at 1 m/s on rough ground did). Ramping the damper in over the
+/// first 0.1 mm — 1/20 of the paper rovers' static deflection (≈ 2.2 mm) —
+/// keeps the force continuous and leaves eq. 37 exact beyond it.
+pub const DAMPING_RAMP: f64 = 1e-4;
+
+/// Normal force (eq. 36–37): `F_n = max(0, k_w·Δ + c_w·Δ̇·min(1, Δ/Δ_c))` —
+/// the ground never pulls; Δ_c = [`DAMPING_RAMP`].
 pub fn normal_force(tyre: &Tyre, motion: &PatchMotion) -> f64 {
-    (tyre.stiffness * motion.deflection + tyre.damping * motion.deflection_rate).max(0.0)
+    let ramp = (motion.deflection / DAMPING_RAMP).clamp(0.0, 1.0);
+    (tyre.stiffness * motion.deflection + tyre.damping * motion.deflection_rate * ramp).max(0.0)
 }
 
 /// Drawbar pull (eq. 38–39): `F_d = τ/|G_jH|`, saturated at `|F_d| ≤ μx_max·F_n`.
