@@ -97,13 +97,8 @@ fn system<P: Plant>(
     let mut y = vec![0.0; 2 * n + 1];
     let rest = model.rest();
     y[6..n].copy_from_slice(&rest);
-    let lowest = model
-        .wheels
-        .iter()
-        .map(|w| model.bodies[w.body].position.value(&rest)[2] - w.radius)
-        .fold(f64::INFINITY, f64::min);
     // 2 mm into the ground: every wheel in contact.
-    y[2] = -lowest - 2e-3;
+    y[2] = model.touchdown_height() - 2e-3;
     (sys, y)
 }
 

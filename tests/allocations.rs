@@ -40,12 +40,7 @@ fn ten_thousand_rk4_steps_with_a_generated_plant_allocate_nothing() {
     let rest = model.rest();
     y[6..n].copy_from_slice(&rest);
     // Wheels 1 mm into the ground: contact from the first step.
-    let lowest = model
-        .wheels
-        .iter()
-        .map(|w| model.bodies[w.body].position.value(&rest)[2] - w.radius)
-        .fold(f64::INFINITY, f64::min);
-    y[2] = -lowest - 1e-3;
+    y[2] = model.touchdown_height() - 1e-3;
     let step = 2e-5;
     let mut rk4 = Rk4::new(2 * n + 1, &FixedStepConfig { step }).unwrap();
     let mut t = 0.0;

@@ -168,7 +168,7 @@ fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
     );
     let config: ControllerConfig =
         toml::from_str("[speed]\nspeed = 0.1\nkp = 2.0\ndistribution = \"static_load\"").unwrap();
-    let mut control = Controller::new(config, &model, 0.0).unwrap();
+    let control = Controller::new(config, &model, 0.0).unwrap();
     let n = model.dof();
     let w = vec![0.0; n];
     let mut tau = vec![0.0; 4];

@@ -30,12 +30,7 @@ fn settle(model: &Model, seconds: f64) -> (RoverSystem<GenericPlant, Terrain>, V
     let rest = model.rest();
     y[6..n].copy_from_slice(&rest);
     // Lowest wheel just touching.
-    let lowest = model
-        .wheels
-        .iter()
-        .map(|w| model.bodies[w.body].position.value(&rest)[2] - w.radius)
-        .fold(f64::INFINITY, f64::min);
-    y[2] = -lowest;
+    y[2] = model.touchdown_height();
     // Stiff: at standstill the regularized cornering law (v_ε = 1e-3 m/s) is
     // a lateral damper of C/v_ε = 5e4 N·s/m per wheel, so BDF, as the paper's ode15s.
     let mut integ = IntegratorConfig::Bdf(BdfConfig {

@@ -167,4 +167,16 @@ impl Model {
     pub fn rest(&self) -> Vec<f64> {
         self.coordinates.iter().map(|c| c.rest).collect()
     }
+
+    /// Height Z of G at which the rover, level and at rest, has its lowest
+    /// wheel just touching flat ground at Z = 0 [m].
+    pub fn touchdown_height(&self) -> f64 {
+        let rest = self.rest();
+        let lowest = self
+            .wheels
+            .iter()
+            .map(|w| self.bodies[w.body].position.value(&rest)[2] - w.radius)
+            .fold(f64::INFINITY, f64::min);
+        -lowest
+    }
 }

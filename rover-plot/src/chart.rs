@@ -128,16 +128,7 @@ pub fn line_chart(
         series,
     )
     .map_err(draw_error)?;
-    let mut png_bytes = Vec::new();
-    {
-        let mut encoder = png::Encoder::new(&mut png_bytes, SIZE.0, SIZE.1);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        let png_error = |e: png::EncodingError| draw_error(format!("PNG encoding: {e}"));
-        let mut writer = encoder.write_header().map_err(png_error)?;
-        writer.write_image_data(&rgb).map_err(png_error)?;
-        writer.finish().map_err(png_error)?;
-    }
+    let png_bytes = crate::render::encode_png(&rgb, SIZE).map_err(draw_error)?;
     let svg_path = stem.with_extension("svg");
     let png_path = stem.with_extension("png");
     let write = |p: &Path, bytes: &[u8]| {

@@ -52,13 +52,18 @@ pub(crate) fn render_png(
         figure.draw(&root, data, labels).map_err(draw_error)?;
         root.present().map_err(|e| draw_error(e.to_string()))?;
     }
+    encode_png(&rgb, (w, h)).map_err(draw_error)
+}
+
+/// An 8-bit RGB buffer as PNG file bytes (the message on failure).
+pub(crate) fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, String> {
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, w, h);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
-    let png_error = |e: png::EncodingError| draw_error(format!("PNG encoding: {e}"));
+    let png_error = |e: png::EncodingError| format!("PNG encoding: {e}");
     let mut writer = encoder.write_header().map_err(png_error)?;
-    writer.write_image_data(&rgb).map_err(png_error)?;
+    writer.write_image_data(rgb).map_err(png_error)?;
     writer.finish().map_err(png_error)?;
     Ok(bytes)
 }

@@ -56,6 +56,10 @@ pub struct QuasiStatic<'a, H> {
     search: MeridionalContact,
     neutral: Vec<f64>,
     loads: Vec<Load<f64>>,
+    // Scratch of a residual evaluation: coordinates, zero rates, Q.
+    x: Vec<f64>,
+    zeros: Vec<f64>,
+    gq: Vec<f64>,
     /// The current solution [Z, φ, θ, y…].
     pub q: Vec<f64>,
     /// Residual evaluations so far.
@@ -90,6 +94,9 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             search,
             neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
             loads: vec![zero; model.wheels.len()],
+            x: Vec::with_capacity(model.dof()),
+            zeros: vec![0.0; model.dof()],
+            gq: vec![0.0; model.dof()],
             q: q0,
             residual_evals: 0,
             iterations: 0,
@@ -127,13 +134,15 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
     ) -> Result<(), QuasiStaticError> {
         self.residual_evals += 1;
         let model = self.model;
-        let x = self.coordinates(pose, q);
-        let n = model.dof();
-        let zeros = vec![0.0; n];
+        let mut x = core::mem::take(&mut self.x);
+        x.clear();
+        x.extend_from_slice(&[pose[0], pose[1], q[0], q[1], q[2], pose[2]]);
+        x.extend_from_slice(&q[3..]);
+        let zeros = &self.zeros;
         body_kinematics(model, &x[6..], &mut self.ws);
         let att = Attitude::new(x[3], x[4], x[5]);
         for (k, wheel) in model.wheels.iter().enumerate() {
-            let wk = wheel_kinematics(model, &self.ws, &att, &x, &zeros, k, 0.0);
+            let wk = wheel_kinematics(model, &self.ws, &att, &x, zeros, k, 0.0);
             let contact = self
                 .search
                 .find(self.terrain, wk.centre, wk.spin_axis, wheel.radius)
@@ -145,10 +154,11 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             }
             self.loads[k].force = [0.0, 0.0, fz];
         }
-        let mut gq = vec![0.0; n];
-        add_gravity(model, &self.ws, &att, &mut gq);
-        add_suspension(model, &self.neutral, &x[6..], &zeros[6..], &mut gq);
-        add_wheel_loads(model, &self.ws, &att, &self.loads, &mut gq);
+        let gq = &mut self.gq;
+        gq.iter_mut().for_each(|v| *v = 0.0);
+        add_gravity(model, &self.ws, &att, gq);
+        add_suspension(model, &self.neutral, &x[6..], &zeros[6..], gq);
+        add_wheel_loads(model, &self.ws, &att, &self.loads, gq);
         let rot = att.rotation();
         let world =
             |v: [f64; 3]| [0, 1, 2].map(|i| rot[i][0] * v[0] + rot[i][1] * v[1] + rot[i][2] * v[2]);
@@ -158,6 +168,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         r[1] = m[0];
         r[2] = m[1];
         r[3..].copy_from_slice(&gq[6..]);
+        self.x = x;
         Ok(())
     }
 
@@ -274,16 +285,8 @@ pub fn flat_ground_loads(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
 /// Suspension coordinates and wheel loads of the flat-ground equilibrium.
 fn flat_ground_solution(model: &Model) -> Result<(Vec<f64>, Vec<f64>), QuasiStaticError> {
     let flat = crate::terrain::Terrain::default();
-    let rest = model.rest();
-    let mut ws = Workspace::<f64>::new(model);
-    body_kinematics(model, &rest, &mut ws);
-    let lowest = model
-        .wheels
-        .iter()
-        .map(|w| ws.u[w.body][2] - w.radius)
-        .fold(f64::INFINITY, f64::min);
-    let mut q0 = vec![-lowest, 0.0, 0.0];
-    q0.extend_from_slice(&rest);
+    let mut q0 = vec![model.touchdown_height(), 0.0, 0.0];
+    q0.extend_from_slice(&model.rest());
     let mut solver = QuasiStatic::new(model, &flat, MeridionalContact::default(), q0);
     solver.solve([0.0; 3])?;
     let mut loads = vec![0.0; model.wheels.len()];

@@ -369,6 +369,7 @@ fn quasi_static_run<W: Write>(
     let mut plant =
         crate::GenericPlant::new(model.clone()).map_err(|e| SetupError::Path(e.to_string()))?;
     let zeros = vec![0.0; n];
+    let no_steer = vec![0.0; k];
     for (&t, &pose) in times.iter().zip(&poses) {
         if interrupt.load(std::sync::atomic::Ordering::Relaxed) {
             stop = (
@@ -387,7 +388,7 @@ fn quasi_static_run<W: Write>(
         }
         let x = solver.coordinates(pose, &solver.q);
         use rover_dynamics::plant::Plant;
-        plant.wheels(&x, &zeros, &vec![0.0; k], &mut wheels);
+        plant.wheels(&x, &zeros, &no_steer, &mut wheels);
         let v = writer.row();
         v.push(t);
         v.extend_from_slice(&x);

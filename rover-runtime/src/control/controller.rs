@@ -208,7 +208,7 @@ impl Controller {
 
     /// Motor torques per wheel [N·m] from the forward speed `w[0]`, the
     /// integral state and the wheels' normal loads `normals` (this evaluation).
-    pub fn torques(&mut self, t: f64, w: &[f64], integral: f64, normals: &[f64], out: &mut [f64]) {
+    pub fn torques(&self, t: f64, w: &[f64], integral: f64, normals: &[f64], out: &mut [f64]) {
         let Some(s) = &self.config.speed else {
             out.iter_mut().for_each(|o| *o = 0.0);
             return;
