@@ -293,6 +293,7 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
         names,
         path: libm,
     };
+    let rank = use_order(g, f, top);
     // sin and cos of one angle in the same block: one `sincos` call.
     let mut partner: Vec<Option<usize>> = vec![None; top];
     for k in 0..top {
@@ -311,7 +312,7 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
         let node = g.node(Id(k as u32));
         let name = printer.names[k].as_ref()?;
         if let Some(other) = partner[k] {
-            if other < k {
+            if rank[other] < rank[k] {
                 return None;
             }
             let other_name = printer.names[other].as_ref()?;
@@ -335,17 +336,32 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
         }
     };
     let mut blocks = Vec::new();
-    let inputs: Vec<String> = (0..top)
-        .filter(|&k| reach[k] && matches!(g.node(Id(k as u32)), Node::Input(_)))
-        .filter_map(let_line)
-        .collect();
-    let shared: Vec<String> = (0..top)
-        .filter(|&k| {
-            owner[k] == Owner::Many && bound[k] && !matches!(g.node(Id(k as u32)), Node::Input(_))
-        })
-        .filter_map(let_line)
-        .collect();
+    let by_rank = |mut ks: Vec<usize>| {
+        ks.sort_by_key(|&k| rank[k]);
+        ks
+    };
     let grouped = f.groups.len() > 1;
+    let is_input = |k: usize| matches!(g.node(Id(k as u32)), Node::Input(_));
+    // Ungrouped code is one block in use order: inputs are read where
+    // they are first needed, which keeps fewer values live.
+    let inputs: Vec<String> = by_rank(
+        (0..top)
+            .filter(|&k| reach[k] && is_input(k) && grouped)
+            .collect(),
+    )
+    .into_iter()
+    .filter_map(let_line)
+    .collect();
+    let shared: Vec<String> = by_rank(
+        (0..top)
+            .filter(|&k| {
+                owner[k] == Owner::Many && bound[k] && (!is_input(k) || !grouped) && reach[k]
+            })
+            .collect(),
+    )
+    .into_iter()
+    .filter_map(let_line)
+    .collect();
     let mut head = inputs;
     if grouped {
         blocks.push(Block {
@@ -365,13 +381,15 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
     for (grp, title) in f.groups.iter().enumerate() {
         let mut lines = std::mem::take(&mut head);
         lines.extend(
-            (0..top)
-                .filter(|&k| {
-                    owner[k] == Owner::One(grp)
-                        && bound[k]
-                        && !matches!(g.node(Id(k as u32)), Node::Input(_))
-                })
-                .filter_map(let_line),
+            by_rank(
+                (0..top)
+                    .filter(|&k| {
+                        owner[k] == Owner::One(grp) && bound[k] && (!is_input(k) || !grouped)
+                    })
+                    .collect(),
+            )
+            .into_iter()
+            .filter_map(let_line),
         );
         for o in f.outputs.iter().filter(|o| o.group == grp) {
             let mut s = String::new();
@@ -384,6 +402,37 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
         });
     }
     (blocks, ops)
+}
+
+/// Every reachable node's position in a depth-first post-order from the
+/// outputs, taken in order: a term is computed just before the first
+/// expression that needs it, so fewer values are live at once and the
+/// compiler spills fewer registers than with the tracing order.
+fn use_order(g: &Graph, f: &Function, top: usize) -> Vec<usize> {
+    let mut rank = vec![usize::MAX; top];
+    let mut next = 0;
+    let mut stack: Vec<(usize, bool)> = Vec::new();
+    for o in &f.outputs {
+        stack.push((o.id.0 as usize, false));
+        while let Some((k, expanded)) = stack.pop() {
+            if rank[k] != usize::MAX {
+                continue;
+            }
+            if expanded {
+                rank[k] = next;
+                next += 1;
+                continue;
+            }
+            stack.push((k, true));
+            let children: Vec<Id> = g.node(Id(k as u32)).children().collect();
+            for c in children.into_iter().rev() {
+                if rank[c.0 as usize] == usize::MAX {
+                    stack.push((c.0 as usize, false));
+                }
+            }
+        }
+    }
+    rank
 }
 
 #[cfg(test)]

@@ -70,369 +70,354 @@ impl Exomars {
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
         // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
         let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
-        let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_middle_left_x = loads[2].force[0];
-        let f_middle_left_y = loads[2].force[1];
-        let f_middle_left_z = loads[2].force[2];
-        let mu_middle_left_x = loads[2].moment[0];
-        let mu_middle_left_y = loads[2].moment[1];
-        let mu_middle_left_z = loads[2].moment[2];
-        let tau_middle_left_x = loads[2].stator_torque[0];
-        let tau_middle_left_y = loads[2].stator_torque[1];
-        let tau_middle_left_z = loads[2].stator_torque[2];
-        let f_middle_right_x = loads[3].force[0];
-        let f_middle_right_y = loads[3].force[1];
-        let f_middle_right_z = loads[3].force[2];
-        let mu_middle_right_x = loads[3].moment[0];
-        let mu_middle_right_y = loads[3].moment[1];
-        let mu_middle_right_z = loads[3].moment[2];
-        let tau_middle_right_x = loads[3].stator_torque[0];
-        let tau_middle_right_y = loads[3].stator_torque[1];
-        let tau_middle_right_z = loads[3].stator_torque[2];
-        let f_rear_left_x = loads[4].force[0];
-        let f_rear_left_y = loads[4].force[1];
-        let f_rear_left_z = loads[4].force[2];
-        let mu_rear_left_x = loads[4].moment[0];
-        let mu_rear_left_y = loads[4].moment[1];
-        let mu_rear_left_z = loads[4].moment[2];
-        let tau_rear_left_x = loads[4].stator_torque[0];
-        let tau_rear_left_y = loads[4].stator_torque[1];
-        let tau_rear_left_z = loads[4].stator_torque[2];
-        let f_rear_right_x = loads[5].force[0];
-        let f_rear_right_y = loads[5].force[1];
-        let f_rear_right_z = loads[5].force[2];
-        let mu_rear_right_x = loads[5].moment[0];
-        let mu_rear_right_y = loads[5].moment[1];
-        let mu_rear_right_z = loads[5].moment[2];
-        let tau_rear_right_x = loads[5].stator_torque[0];
-        let tau_rear_right_y = loads[5].stator_torque[1];
-        let tau_rear_right_z = loads[5].stator_torque[2];
         let t1 = y1 * 0.00736569563735987;
         let t2 = t1 + 0.02946278254943948;
-        let t3 = t1 + t2;
         let t4 = y1 * t2 - 0.08838834764831845;
-        let t5 = y1 * 0.01473139127471974;
-        let t6 = t4 + y1 * t3;
         let t7 = y1 * t4 - 0.1767766952966369;
-        let t8 = y1 * (t5 + 2.0 * t3) + 2.0 * t6;
+        let t3 = t1 + t2;
+        let t6 = t4 + y1 * t3;
         let t9 = t7 + y1 * t6;
-        let t10 = 0.3267766952966369 + y1 * t7;
         let t11 = 0.02946278254943948 - t1;
-        let t12 = t11 - t1;
         let t13 = y1 * t11 + 0.08838834764831845;
-        let t14 = t13 + y1 * t12;
         let t15 = y1 * t13 - 0.1767766952966369;
-        let t16 = y1 * (2.0 * t12 - t5) + 2.0 * t14;
+        let t12 = t11 - t1;
+        let t14 = t13 + y1 * t12;
         let t17 = t15 + y1 * t14;
-        let t18 = y1 * t15 - 0.1867766952966369;
-        let t19 = y2 * 0.00736569563735987;
-        let t20 = 0.02946278254943948 + t19;
-        let t21 = t19 + t20;
-        let t22 = y2 * t20 - 0.08838834764831845;
-        let t23 = y2 * 0.01473139127471974;
-        let t24 = t22 + y2 * t21;
-        let t25 = y2 * t22 - 0.1767766952966369;
-        let t26 = y2 * (t23 + 2.0 * t21) + 2.0 * t24;
-        let t27 = t25 + y2 * t24;
-        let t28 = 0.3267766952966369 + y2 * t25;
-        let t29 = 0.02946278254943948 - t19;
-        let t30 = t29 - t19;
-        let t31 = 0.08838834764831845 + y2 * t29;
-        let t32 = t31 + y2 * t30;
-        let t33 = y2 * t31 - 0.1767766952966369;
-        let t34 = y2 * (2.0 * t30 - t23) + 2.0 * t32;
-        let t35 = t33 + y2 * t32;
-        let t36 = y2 * t33 - 0.1867766952966369;
         let t37 = y1 * 0.007365695637359869;
         let t38 = 0.02946278254943948 - t37;
-        let t39 = t38 - t37;
         let t40 = y1 * t38 + 0.08838834764831843;
-        let t41 = t40 + y1 * t39;
         let t42 = y1 * t40 - 0.1767766952966369;
-        let t43 = y1 * (2.0 * t39 - y1 * 0.014731391274719738) + 2.0 * t41;
+        let t39 = t38 - t37;
+        let t41 = t40 + y1 * t39;
         let t44 = t42 + y1 * t41;
-        let t45 = y1 * t42 - 0.02677669529663687;
         let t46 = -0.029462782549439476 - t1;
-        let t47 = t46 - t1;
         let t48 = 0.08838834764831845 + y1 * t46;
-        let t49 = t48 + y1 * t47;
         let t50 = y1 * t48 + 0.17677669529663687;
-        let t51 = y1 * (2.0 * t47 - t5) + 2.0 * t49;
+        let t47 = t46 - t1;
+        let t49 = t48 + y1 * t47;
         let t52 = t50 + y1 * t49;
-        let t53 = y1 * t50 - 0.1867766952966369;
+        let t124 = 0.6 * (t9 * t9 + t17 * t17) + 0.6 * (t44 * t44 + t52 * t52);
+        let y2 = x[7];
+        let t19 = y2 * 0.00736569563735987;
+        let t20 = 0.02946278254943948 + t19;
+        let t22 = y2 * t20 - 0.08838834764831845;
+        let t25 = y2 * t22 - 0.1767766952966369;
+        let t21 = t19 + t20;
+        let t24 = t22 + y2 * t21;
+        let t27 = t25 + y2 * t24;
+        let t29 = 0.02946278254943948 - t19;
+        let t31 = 0.08838834764831845 + y2 * t29;
+        let t33 = y2 * t31 - 0.1767766952966369;
+        let t30 = t29 - t19;
+        let t32 = t31 + y2 * t30;
+        let t35 = t33 + y2 * t32;
         let t54 = y2 * 0.007365695637359869;
         let t55 = 0.02946278254943948 - t54;
-        let t56 = t55 - t54;
         let t57 = 0.08838834764831843 + y2 * t55;
-        let t58 = t57 + y2 * t56;
         let t59 = y2 * t57 - 0.1767766952966369;
-        let t60 = y2 * (2.0 * t56 - y2 * 0.014731391274719738) + 2.0 * t58;
+        let t56 = t55 - t54;
+        let t58 = t57 + y2 * t56;
         let t61 = t59 + y2 * t58;
-        let t62 = y2 * t59 - 0.02677669529663687;
         let t63 = -0.029462782549439476 - t19;
-        let t64 = t63 - t19;
         let t65 = 0.08838834764831845 + y2 * t63;
-        let t66 = t65 + y2 * t64;
         let t67 = 0.17677669529663687 + y2 * t65;
-        let t68 = y2 * (2.0 * t64 - t23) + 2.0 * t66;
+        let t64 = t63 - t19;
+        let t66 = t65 + y2 * t64;
         let t69 = t67 + y2 * t66;
-        let t70 = y2 * t67 - 0.1867766952966369;
+        let t134 = 0.6 * (t27 * t27 + t35 * t35) + 0.6 * (t61 * t61 + t69 * t69);
+        let y3 = x[8];
         let t71 = y3 * 0.008332132393777648;
         let t72 = t71 - 0.02948659214560032;
-        let t73 = t71 + t72;
         let t74 = y3 * t72 - 0.09998558872533178;
-        let t75 = y3 * 0.016664264787555297;
-        let t76 = t74 + y3 * t73;
         let t77 = y3 * t74 + 0.17691955287360192;
-        let t78 = y3 * (t75 + 2.0 * t73) + 2.0 * t76;
+        let t73 = t71 + t72;
+        let t76 = t74 + y3 * t73;
         let t79 = t77 + y3 * t76;
-        let t80 = 0.19997117745066356 + y3 * t77;
         let t81 = y3 * 0.00737164803640008;
         let t82 = -0.033328529575110594 - t81;
-        let t83 = t82 - t81;
         let t84 = y3 * t82 + 0.08845977643680096;
-        let t85 = y3 * 0.01474329607280016;
-        let t86 = t84 + y3 * t83;
         let t87 = 0.19997117745066356 + y3 * t84;
-        let t88 = y3 * (2.0 * t83 - t85) + 2.0 * t86;
+        let t83 = t82 - t81;
+        let t86 = t84 + y3 * t83;
         let t89 = t87 + y3 * t86;
-        let t90 = y3 * t87 - 0.18691955287360193;
         let t91 = -0.02948659214560032 - t71;
-        let t92 = t91 - t71;
         let t93 = y3 * t91 + 0.09998558872533178;
-        let t94 = t93 + y3 * t92;
         let t95 = 0.17691955287360192 + y3 * t93;
-        let t96 = y3 * (2.0 * t92 - t75) + 2.0 * t94;
+        let t92 = t91 - t71;
+        let t94 = t93 + y3 * t92;
         let t97 = t95 + y3 * t94;
-        let t98 = y3 * t95 - 0.19997117745066356;
         let t99 = 0.033328529575110594 - t81;
-        let t100 = t99 - t81;
         let t101 = 0.08845977643680096 + y3 * t99;
-        let t102 = t101 + y3 * t100;
         let t103 = y3 * t101 - 0.19997117745066356;
-        let t104 = y3 * (2.0 * t100 - t85) + 2.0 * t102;
+        let t100 = t99 - t81;
+        let t102 = t101 + y3 * t100;
         let t105 = t103 + y3 * t102;
-        let t106 = y3 * t103 - 0.18691955287360193;
-        let t107 = t18 * 0.6;
-        let t108 = t10 * 0.6;
-        let t109 = t18 * t18;
-        let t110 = t10 * t10;
-        let t111 = t36 * 0.6;
-        let t112 = t28 * 0.6;
-        let t113 = t36 * t36;
-        let t114 = t28 * t28;
-        let t115 = t53 * 0.6;
+        let t160 = 0.6 * (t79 * t79 + t89 * t89) + 0.6 * (t97 * t97 + t105 * t105);
         let t116 = t9 * 0.6 + t44 * 0.6;
-        let t117 = t45 * 0.6;
-        let t118 = t17 * 0.6 + t52 * 0.6;
-        let t119 = t53 * t53;
-        let t120 = 0.6 * (0.2 * t17) + 0.6 * (0.2 * t52);
-        let t121 = t45 * t45;
-        let t122 = 0.6 * (t9 * t18 - t10 * t17) + 0.6 * (t44 * t53 - t45 * t52);
-        let t123 = -(0.6 * (0.2 * t9)) - 0.6 * (0.2 * t44);
-        let t124 = 0.6 * (t9 * t9 + t17 * t17) + 0.6 * (t44 * t44 + t52 * t52);
-        let t125 = t70 * 0.6;
+        let t284 = 1.0 / t124;
+        let t285 = t116 * t284;
+        let t302 = t124 * t285;
         let t126 = t27 * 0.6 + t61 * 0.6;
-        let t127 = t62 * 0.6;
-        let t128 = t35 * 0.6 + t69 * 0.6;
-        let t129 = t70 * t70;
-        let t130 = -(0.6 * (0.2 * t35)) - 0.6 * (0.2 * t69);
-        let t131 = t62 * t62;
-        let t132 = 0.6 * (t27 * t36 - t28 * t35) + 0.6 * (t61 * t70 - t62 * t69);
-        let t133 = 0.6 * (0.2 * t27) + 0.6 * (0.2 * t61);
-        let t134 = 0.6 * (t27 * t27 + t35 * t35) + 0.6 * (t61 * t61 + t69 * t69);
-        let t135 = t90 * 0.6;
-        let t136 = t80 * 0.6;
-        let t137 = t90 * t90;
-        let t138 = t80 * t80;
-        let t139 = t106 * 0.6;
-        let t140 = t107 + t111 + t115 + t125 + t135 + t139;
-        let t141 = t98 * 0.6;
-        let t142 = -t136 - t141;
-        let t143 = -t107 - t111 - t115 - t125 - t135 - t139;
-        let t144 = t108 + t112 + t117 + t127 - 0.18 - 0.18;
+        let t290 = 1.0 / t134;
+        let t291 = t126 * t290;
+        let t303 = t134 * t291;
+        let t304 = 33.60000000000001 - t285 * t302 - t291 * t303;
         let t145 = t79 * 0.6 + t97 * 0.6;
-        let t146 = t136 + t141;
-        let t147 = 0.18 + (-t108 - t112 - t117 - t127 + 0.18);
+        let t296 = 1.0 / t160;
+        let t297 = t145 * t296;
+        let t310 = t160 * t297;
+        let t311 = 33.60000000000001 - t297 * t310;
+        let t118 = t17 * 0.6 + t52 * 0.6;
+        let t286 = t118 * t284;
+        let t317 = t124 * t286;
+        let t128 = t35 * 0.6 + t69 * 0.6;
+        let t292 = t128 * t290;
+        let t318 = t134 * t292;
         let t148 = t89 * 0.6 + t105 * 0.6;
+        let t298 = t148 * t296;
+        let t319 = t160 * t298;
+        let t305 = 1.0 / t304;
+        let t306 = t305 * (-(t286 * t302) - t292 * t303);
+        let t320 = t304 * t306;
+        let t312 = 1.0 / t311;
+        let t313 = t312 * (t298 * t310);
+        let t321 = t311 * t313;
+        let t322 = 33.60000000000001 - t286 * t317 - t292 * t318 - t298 * t319
+            - t306 * t320 - t313 * t321;
+        let t18 = y1 * t15 - 0.1867766952966369;
+        let t109 = t18 * t18;
+        let t36 = y2 * t33 - 0.1867766952966369;
+        let t113 = t36 * t36;
+        let t53 = y1 * t50 - 0.1867766952966369;
+        let t119 = t53 * t53;
+        let t70 = y2 * t67 - 0.1867766952966369;
+        let t129 = t70 * t70;
+        let t90 = y3 * t87 - 0.18691955287360193;
+        let t137 = t90 * t90;
+        let t80 = 0.19997117745066356 + y3 * t77;
+        let t138 = t80 * t80;
+        let t106 = y3 * t103 - 0.18691955287360193;
         let t149 = t106 * t106;
+        let t98 = y3 * t95 - 0.19997117745066356;
         let t150 = t98 * t98;
         let t151 = 0.7 + 0.6 * (t109 + 0.04000000000000001)
             + 0.6 * (0.04000000000000001 + t113) + 0.6 * (0.04000000000000001 + t119)
             + 0.6 * (0.04000000000000001 + t129) + 0.6 * (t137 + t138)
             + 0.6 * (t149 + t150);
-        let t152 = 0.6 * (0.2 * t28) - 0.6 * (0.2 * t10) - 0.6 * (0.2 * t45)
-            + 0.6 * (0.2 * t62) + 0.6 * (t80 * 0.3) + 0.6 * (t98 * 0.3);
-        let t153 = -(0.6 * (t10 * t18)) - 0.6 * (t28 * t36) - 0.6 * (t45 * t53)
-            - 0.6 * (t62 * t70) + 0.6 * (t90 * 0.3) + 0.6 * (t106 * 0.3);
+        let t120 = 0.6 * (0.2 * t17) + 0.6 * (0.2 * t52);
+        let t287 = t120 * t284;
+        let t327 = t124 * t287;
+        let t130 = -(0.6 * (0.2 * t35)) - 0.6 * (0.2 * t69);
+        let t293 = t130 * t290;
+        let t328 = t134 * t293;
         let t154 = 0.6 * (t80 * t89 - t79 * t90) + 0.6 * (t98 * t105 - t97 * t106);
+        let t299 = t154 * t296;
+        let t329 = t160 * t299;
+        let t307 = t305 * (-(t287 * t302) - t293 * t303);
+        let t330 = t304 * t307;
+        let t107 = t18 * 0.6;
+        let t111 = t36 * 0.6;
+        let t115 = t53 * 0.6;
+        let t125 = t70 * 0.6;
+        let t135 = t90 * 0.6;
+        let t139 = t106 * 0.6;
+        let t143 = -t107 - t111 - t115 - t125 - t135 - t139;
+        let t314 = t312 * (t143 - t299 * t310);
+        let t331 = t311 * t314;
+        let t323 = 1.0 / t322;
+        let t136 = t80 * 0.6;
+        let t141 = t98 * 0.6;
+        let t146 = t136 + t141;
+        let t324 = t323
+            * (t146 - t287 * t317 - t293 * t318 - t299 * t319 - t307 * t320
+                + t314 * t321);
+        let t332 = t322 * t324;
+        let t333 = t151 - t287 * t327 - t293 * t328 - t299 * t329 - t307 * t330
+            - t314 * t331 - t324 * t332;
+        let t10 = 0.3267766952966369 + y1 * t7;
+        let t110 = t10 * t10;
+        let t28 = 0.3267766952966369 + y2 * t25;
+        let t114 = t28 * t28;
+        let t45 = y1 * t42 - 0.02677669529663687;
+        let t121 = t45 * t45;
+        let t62 = y2 * t59 - 0.02677669529663687;
+        let t131 = t62 * t62;
         let t155 = 0.9 + 0.6 * (t109 + t110) + 0.6 * (t113 + t114) + 0.6 * (t119 + t121)
             + 0.6 * (t129 + t131) + 0.6 * (t137 + 0.09) + 0.6 * (0.09 + t149);
-        let t156 = 0.6 * (0.2 * t36) - 0.6 * (0.2 * t18) - 0.6 * (0.2 * t53)
-            + 0.6 * (0.2 * t70) - 0.6 * (t80 * t90) - 0.6 * (t98 * t106);
+        let t122 = 0.6 * (t9 * t18 - t10 * t17) + 0.6 * (t44 * t53 - t45 * t52);
+        let t288 = t122 * t284;
+        let t337 = t124 * t288;
+        let t132 = 0.6 * (t27 * t36 - t28 * t35) + 0.6 * (t61 * t70 - t62 * t69);
+        let t294 = t132 * t290;
+        let t338 = t134 * t294;
         let t157 = 0.6 * (t89 * 0.3) + 0.6 * (t105 * 0.3);
+        let t300 = t157 * t296;
+        let t339 = t160 * t300;
+        let t140 = t107 + t111 + t115 + t125 + t135 + t139;
+        let t308 = t305 * (t140 - t288 * t302 - t294 * t303);
+        let t340 = t304 * t308;
+        let t315 = t312 * (t300 * t310);
+        let t341 = t311 * t315;
+        let t108 = t10 * 0.6;
+        let t112 = t28 * 0.6;
+        let t117 = t45 * 0.6;
+        let t127 = t62 * 0.6;
+        let t147 = 0.18 + (-t108 - t112 - t117 - t127 + 0.18);
+        let t325 = t323
+            * (t147 - t288 * t317 - t294 * t318 - t300 * t319 - t308 * t320
+                - t315 * t321);
+        let t342 = t322 * t325;
+        let t334 = 1.0 / t333;
+        let t152 = 0.6 * (0.2 * t28) - 0.6 * (0.2 * t10) - 0.6 * (0.2 * t45)
+            + 0.6 * (0.2 * t62) + 0.6 * (t80 * 0.3) + 0.6 * (t98 * 0.3);
+        let t335 = t334
+            * (t152 - t288 * t327 - t294 * t328 - t300 * t329 - t308 * t330 + t315 * t331
+                - t325 * t332);
+        let t343 = t333 * t335;
+        let t344 = t155 - t288 * t337 - t294 * t338 - t300 * t339 - t308 * t340
+            - t315 * t341 - t325 * t342 - t335 * t343;
         let t158 = 1.5 + 0.6 * (0.04000000000000001 + t110)
             + 0.6 * (0.04000000000000001 + t114) + 0.6 * (0.04000000000000001 + t121)
             + 0.6 * (0.04000000000000001 + t131) + 0.6 * (t138 + 0.09)
             + 0.6 * (0.09 + t150);
+        let t123 = -(0.6 * (0.2 * t9)) - 0.6 * (0.2 * t44);
+        let t289 = t123 * t284;
+        let t133 = 0.6 * (0.2 * t27) + 0.6 * (0.2 * t61);
+        let t295 = t133 * t290;
         let t159 = -(0.6 * (t79 * 0.3)) - 0.6 * (t97 * 0.3);
-        let t160 = 0.6 * (t79 * t79 + t89 * t89) + 0.6 * (t97 * t97 + t105 * t105);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let t301 = t159 * t296;
+        let t142 = -t136 - t141;
+        let t309 = t305 * (t142 - t289 * t302 - t295 * t303);
+        let t144 = t108 + t112 + t117 + t127 - 0.18 - 0.18;
+        let t316 = t312 * (t144 - t301 * t310);
+        let t326 = t323
+            * (-(t289 * t317) - t295 * t318 - t301 * t319 - t309 * t320 + t316 * t321);
+        let t153 = -(0.6 * (t10 * t18)) - 0.6 * (t28 * t36) - 0.6 * (t45 * t53)
+            - 0.6 * (t62 * t70) + 0.6 * (t90 * 0.3) + 0.6 * (t106 * 0.3);
+        let t336 = t334
+            * (t153 - t289 * t327 - t295 * t328 - t301 * t329 - t309 * t330 - t316 * t331
+                - t326 * t332);
+        let t345 = 1.0 / t344;
+        let t156 = 0.6 * (0.2 * t36) - 0.6 * (0.2 * t18) - 0.6 * (0.2 * t53)
+            + 0.6 * (0.2 * t70) - 0.6 * (t80 * t90) - 0.6 * (t98 * t106);
+        let t346 = t345
+            * (t156 - t289 * t337 - t295 * t338 - t301 * t339 - t309 * t340 + t316 * t341
+                - t326 * t342 - t336 * t343);
+        let t347 = t158 - t289 * (t124 * t289) - t295 * (t134 * t295)
+            - t301 * (t160 * t301) - t309 * (t304 * t309) - t316 * (t311 * t316)
+            - t326 * (t322 * t326) - t336 * (t333 * t336) - t346 * (t344 * t346);
+        let vx = w[0];
+        let theta = x[4];
         let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
         let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t161 = vx * 33.60000000000001 + omega_y * t140 + omega_z * t142
-            + yd_y1 * t116 + yd_y2 * t126;
-        let t162 = vy * 33.60000000000001 + omega_x * t143 + omega_z * t144
-            + yd_y3 * t145;
-        let t163 = vz * 33.60000000000001 + omega_x * t146 + omega_y * t147
-            + yd_y1 * t118 + yd_y2 * t128 + yd_y3 * t148;
-        let t164 = vy * t143 + vz * t146 + omega_x * t151 + omega_y * t152
-            + omega_z * t153 + yd_y1 * t120 + yd_y2 * t130 + yd_y3 * t154;
-        let t165 = vx * t140 + vz * t147 + omega_x * t152 + omega_y * t155
-            + omega_z * t156 + yd_y1 * t122 + yd_y2 * t132 + yd_y3 * t157;
-        let t166 = vx * t142 + vy * t144 + omega_x * t153 + omega_y * t156
-            + omega_z * t158 + yd_y1 * t123 + yd_y2 * t133 + yd_y3 * t159;
-        let t167 = omega_z * 0.2;
-        let t168 = omega_x * 0.2;
-        let t169 = vy + (omega_z * t10 - omega_x * t18);
-        let t170 = yd_y1 * t9;
-        let t171 = yd_y1 * t17;
-        let t172 = vx + (omega_y * t18 - t167) + t170;
-        let t173 = vz + (t168 - omega_y * t10) + t171;
-        let t174 = yd_y1 * yd_y1;
-        let t175 = yd_y2 * yd_y2;
-        let t176 = yd_y3 * yd_y3;
-        let t177 = omega_x * t171 - omega_z * t170;
-        let t178 = t8 * t174 + omega_y * t171;
-        let t179 = t16 * t174 - omega_y * t170;
-        let t180 = vy + (omega_z * t28 - omega_x * t36);
-        let t181 = yd_y2 * t27;
-        let t182 = yd_y2 * t35;
-        let t183 = vx + (t167 + omega_y * t36) + t181;
-        let t184 = vz + (-t168 - omega_y * t28) + t182;
-        let t185 = omega_x * t182 - omega_z * t181;
-        let t186 = t26 * t175 + omega_y * t182;
-        let t187 = t34 * t175 - omega_y * t181;
-        let t188 = vy + (omega_z * t45 - omega_x * t53);
-        let t189 = yd_y1 * t44;
-        let t190 = yd_y1 * t52;
-        let t191 = vx + (omega_y * t53 - t167) + t189;
-        let t192 = vz + (t168 - omega_y * t45) + t190;
-        let t193 = omega_x * t190 - omega_z * t189;
-        let t194 = t43 * t174 + omega_y * t190;
-        let t195 = t51 * t174 - omega_y * t189;
-        let t196 = vy + (omega_z * t62 - omega_x * t70);
-        let t197 = yd_y2 * t61;
-        let t198 = yd_y2 * t69;
-        let t199 = vx + (t167 + omega_y * t70) + t197;
-        let t200 = vz + (-t168 - omega_y * t62) + t198;
-        let t201 = omega_x * t198 - omega_z * t197;
-        let t202 = t60 * t175 + omega_y * t198;
-        let t203 = t68 * t175 - omega_y * t197;
-        let t204 = omega_z * 0.3;
-        let t205 = omega_y * 0.3;
-        let t206 = vx + (omega_y * t90 - omega_z * t80);
-        let t207 = yd_y3 * t79;
-        let t208 = yd_y3 * t89;
-        let t209 = vy + (-t204 - omega_x * t90) + t207;
-        let t210 = vz + (omega_x * t80 + t205) + t208;
-        let t211 = omega_z * t207 - omega_y * t208;
-        let t212 = t78 * t176 - omega_x * t208;
-        let t213 = t88 * t176 + omega_x * t207;
-        let t214 = vx + (omega_y * t106 - omega_z * t98);
-        let t215 = yd_y3 * t97;
-        let t216 = yd_y3 * t105;
-        let t217 = vy + (-t204 - omega_x * t106) + t215;
-        let t218 = vz + (t205 + omega_x * t98) + t216;
-        let t219 = omega_z * t215 - omega_y * t216;
-        let t220 = t96 * t176 - omega_x * t216;
-        let t221 = t104 * t176 + omega_x * t215;
-        let t222 = c_phi * s_theta;
-        let t223 = c_phi * c_theta;
-        let t224 = t222 * 0.972;
-        let t225 = s_phi * 0.972;
-        let t226 = t223 * 0.972;
-        let t227 = 0.2 * t226;
-        let t228 = 0.2 * t224;
-        let t229 = 0.3 * t226;
-        let t230 = 0.3 * t225;
-        let t231 = f64::max(y1 - 0.5235987755982988, 0.0);
-        let t232 = f64::max(-0.5235987755982988 - y1, 0.0);
-        let t233 = f64::min(10000.0 * t231, 1.0);
-        let t234 = f64::min(-(100.0 * t231) - yd_y1 * (5.477225575051661 * t233), 0.0);
-        let t235 = f64::min(10000.0 * t232, 1.0);
-        let t236 = f64::max(100.0 * t232 - yd_y1 * (5.477225575051661 * t235), 0.0);
-        let t237 = f64::max(y2 - 0.5235987755982988, 0.0);
-        let t238 = f64::max(-0.5235987755982988 - y2, 0.0);
-        let t239 = f64::min(10000.0 * t237, 1.0);
-        let t240 = f64::min(-(100.0 * t237) - yd_y2 * (5.477225575051661 * t239), 0.0);
-        let t241 = f64::min(10000.0 * t238, 1.0);
-        let t242 = f64::max(100.0 * t238 - yd_y2 * (5.477225575051661 * t241), 0.0);
-        let t243 = f64::max(y3 - 0.5235987755982988, 0.0);
-        let t244 = f64::max(-0.5235987755982988 - y3, 0.0);
-        let t245 = f64::min(10000.0 * t243, 1.0);
-        let t246 = f64::min(-(100.0 * t243) - yd_y3 * (5.849676914155174 * t245), 0.0);
-        let t247 = f64::min(10000.0 * t244, 1.0);
-        let t248 = f64::max(100.0 * t244 - yd_y3 * (5.849676914155174 * t247), 0.0);
         let t249 = s_phi * s_theta;
-        let t250 = s_phi * c_theta;
         let t251 = c_theta * c_psi - s_psi * t249;
+        let vy = w[1];
         let t252 = c_phi * s_psi;
+        let vz = w[2];
+        let t250 = s_phi * c_theta;
         let t253 = s_theta * c_psi + s_psi * t250;
         let t254 = c_theta * s_psi + c_psi * t249;
         let t255 = c_phi * c_psi;
         let t256 = s_theta * s_psi - c_psi * t250;
+        let t222 = c_phi * s_theta;
+        let t223 = c_phi * c_theta;
+        let omega_x = w[3];
+        let omega_z = w[5];
+        let omega_y = w[4];
+        let t359 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let yd_y1 = w[6];
+        let yd_y2 = w[7];
+        let yd_y3 = w[8];
+        let t224 = t222 * 0.972;
+        let t163 = vz * 33.60000000000001 + omega_x * t146 + omega_y * t147
+            + yd_y1 * t118 + yd_y2 * t128 + yd_y3 * t148;
+        let t162 = vy * 33.60000000000001 + omega_x * t143 + omega_z * t144
+            + yd_y3 * t145;
+        let t5 = y1 * 0.01473139127471974;
+        let t8 = y1 * (t5 + 2.0 * t3) + 2.0 * t6;
+        let t174 = yd_y1 * yd_y1;
+        let t171 = yd_y1 * t17;
+        let t178 = t8 * t174 + omega_y * t171;
+        let t23 = y2 * 0.01473139127471974;
+        let t26 = y2 * (t23 + 2.0 * t21) + 2.0 * t24;
+        let t175 = yd_y2 * yd_y2;
+        let t182 = yd_y2 * t35;
+        let t186 = t26 * t175 + omega_y * t182;
+        let t43 = y1 * (2.0 * t39 - y1 * 0.014731391274719738) + 2.0 * t41;
+        let t190 = yd_y1 * t52;
+        let t194 = t43 * t174 + omega_y * t190;
+        let t60 = y2 * (2.0 * t56 - y2 * 0.014731391274719738) + 2.0 * t58;
+        let t198 = yd_y2 * t69;
+        let t202 = t60 * t175 + omega_y * t198;
+        let t207 = yd_y3 * t79;
+        let t208 = yd_y3 * t89;
+        let t211 = omega_z * t207 - omega_y * t208;
+        let t215 = yd_y3 * t97;
+        let t216 = yd_y3 * t105;
+        let t219 = omega_z * t215 - omega_y * t216;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
         let t257 = f_front_left_x * t251 + f_front_left_y * t254 - f_front_left_z * t222;
-        let t258 = f_front_left_y * t255 - f_front_left_x * t252
-            + f_front_left_z * s_phi;
-        let t259 = f_front_left_x * t253 + f_front_left_y * t256 + f_front_left_z * t223;
-        let t260 = mu_front_left_y * t255 - mu_front_left_x * t252
-            + mu_front_left_z * s_phi;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
         let t261 = f_front_right_x * t251 + f_front_right_y * t254
             - f_front_right_z * t222;
-        let t262 = f_front_right_y * t255 - f_front_right_x * t252
-            + f_front_right_z * s_phi;
-        let t263 = f_front_right_x * t253 + f_front_right_y * t256
-            + f_front_right_z * t223;
-        let t264 = mu_front_right_y * t255 - mu_front_right_x * t252
-            + mu_front_right_z * s_phi;
+        let f_middle_left_x = loads[2].force[0];
+        let f_middle_left_y = loads[2].force[1];
+        let f_middle_left_z = loads[2].force[2];
         let t265 = f_middle_left_x * t251 + f_middle_left_y * t254
             - f_middle_left_z * t222;
-        let t266 = f_middle_left_y * t255 - f_middle_left_x * t252
-            + f_middle_left_z * s_phi;
+        let f_middle_right_x = loads[3].force[0];
+        let f_middle_right_y = loads[3].force[1];
+        let f_middle_right_z = loads[3].force[2];
+        let t270 = f_middle_right_x * t251 + f_middle_right_y * t254
+            - f_middle_right_z * t222;
+        let f_rear_left_x = loads[4].force[0];
+        let f_rear_left_y = loads[4].force[1];
+        let f_rear_left_z = loads[4].force[2];
+        let t275 = f_rear_left_x * t251 + f_rear_left_y * t254 - f_rear_left_z * t222;
+        let f_rear_right_x = loads[5].force[0];
+        let f_rear_right_y = loads[5].force[1];
+        let f_rear_right_z = loads[5].force[2];
+        let t279 = f_rear_right_x * t251 + f_rear_right_y * t254 - f_rear_right_z * t222;
+        let t167 = omega_z * 0.2;
+        let t170 = yd_y1 * t9;
+        let t172 = vx + (omega_y * t18 - t167) + t170;
+        let t169 = vy + (omega_z * t10 - omega_x * t18);
+        let t168 = omega_x * 0.2;
+        let t173 = vz + (t168 - omega_y * t10) + t171;
+        let t16 = y1 * (2.0 * t12 - t5) + 2.0 * t14;
+        let t179 = t16 * t174 - omega_y * t170;
+        let t189 = yd_y1 * t44;
+        let t191 = vx + (omega_y * t53 - t167) + t189;
+        let t188 = vy + (omega_z * t45 - omega_x * t53);
+        let t192 = vz + (t168 - omega_y * t45) + t190;
+        let t51 = y1 * (2.0 * t47 - t5) + 2.0 * t49;
+        let t195 = t51 * t174 - omega_y * t189;
+        let t226 = t223 * 0.972;
+        let t231 = f64::max(y1 - 0.5235987755982988, 0.0);
+        let t233 = f64::min(10000.0 * t231, 1.0);
+        let t234 = f64::min(-(100.0 * t231) - yd_y1 * (5.477225575051661 * t233), 0.0);
+        let t232 = f64::max(-0.5235987755982988 - y1, 0.0);
+        let t235 = f64::min(10000.0 * t232, 1.0);
+        let t236 = f64::max(100.0 * t232 - yd_y1 * (5.477225575051661 * t235), 0.0);
+        let t259 = f_front_left_x * t253 + f_front_left_y * t256 + f_front_left_z * t223;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
+        let t260 = mu_front_left_y * t255 - mu_front_left_x * t252
+            + mu_front_left_z * s_phi;
         let t267 = f_middle_left_x * t253 + f_middle_left_y * t256
             + f_middle_left_z * t223;
+        let mu_middle_left_x = loads[2].moment[0];
+        let mu_middle_left_y = loads[2].moment[1];
+        let mu_middle_left_z = loads[2].moment[2];
         let t268 = mu_middle_left_y * t255 - mu_middle_left_x * t252
             + mu_middle_left_z * s_phi;
         let t269 = 0.6
@@ -447,12 +432,36 @@ impl Exomars {
                     - (yd_y1 * (t43 * t191 + t51 * t192) + (t44 * t194 + t52 * t195)))
             + (t9 * t224 - t17 * t226) + (t44 * t224 - t52 * t226) + (t234 + t236)
             + (t9 * t257 + t17 * t259) + t260 + (t44 * t265 + t52 * t267) + t268;
-        let t270 = f_middle_right_x * t251 + f_middle_right_y * t254
-            - f_middle_right_z * t222;
-        let t271 = f_middle_right_y * t255 - f_middle_right_x * t252
-            + f_middle_right_z * s_phi;
+        let t181 = yd_y2 * t27;
+        let t183 = vx + (t167 + omega_y * t36) + t181;
+        let t180 = vy + (omega_z * t28 - omega_x * t36);
+        let t184 = vz + (-t168 - omega_y * t28) + t182;
+        let t34 = y2 * (2.0 * t30 - t23) + 2.0 * t32;
+        let t187 = t34 * t175 - omega_y * t181;
+        let t197 = yd_y2 * t61;
+        let t199 = vx + (t167 + omega_y * t70) + t197;
+        let t196 = vy + (omega_z * t62 - omega_x * t70);
+        let t200 = vz + (-t168 - omega_y * t62) + t198;
+        let t68 = y2 * (2.0 * t64 - t23) + 2.0 * t66;
+        let t203 = t68 * t175 - omega_y * t197;
+        let t237 = f64::max(y2 - 0.5235987755982988, 0.0);
+        let t239 = f64::min(10000.0 * t237, 1.0);
+        let t240 = f64::min(-(100.0 * t237) - yd_y2 * (5.477225575051661 * t239), 0.0);
+        let t238 = f64::max(-0.5235987755982988 - y2, 0.0);
+        let t241 = f64::min(10000.0 * t238, 1.0);
+        let t242 = f64::max(100.0 * t238 - yd_y2 * (5.477225575051661 * t241), 0.0);
+        let t263 = f_front_right_x * t253 + f_front_right_y * t256
+            + f_front_right_z * t223;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
+        let t264 = mu_front_right_y * t255 - mu_front_right_x * t252
+            + mu_front_right_z * s_phi;
         let t272 = f_middle_right_x * t253 + f_middle_right_y * t256
             + f_middle_right_z * t223;
+        let mu_middle_right_x = loads[3].moment[0];
+        let mu_middle_right_y = loads[3].moment[1];
+        let mu_middle_right_z = loads[3].moment[2];
         let t273 = mu_middle_right_y * t255 - mu_middle_right_x * t252
             + mu_middle_right_z * s_phi;
         let t274 = 0.6
@@ -467,14 +476,55 @@ impl Exomars {
                     - (yd_y2 * (t60 * t199 + t68 * t200) + (t61 * t202 + t69 * t203)))
             + (t27 * t224 - t35 * t226) + (t61 * t224 - t69 * t226) + (t240 + t242)
             + (t27 * t261 + t35 * t263) + t264 + (t61 * t270 + t69 * t272) + t273;
-        let t275 = f_rear_left_x * t251 + f_rear_left_y * t254 - f_rear_left_z * t222;
-        let t276 = f_rear_left_y * t255 - f_rear_left_x * t252 + f_rear_left_z * s_phi;
+        let t348 = t224
+            + (t224
+                + (t224
+                    + (t224
+                        + (t224
+                            + (-(omega_y * t163 - omega_z * t162) - 0.6 * t178
+                                - 0.6 * t186 - 0.6 * t194 - 0.6 * t202 + 0.6 * t211
+                                + 0.6 * t219 + t222 * 48.6 + t224))))) + t257 + t261 + t265
+            + t270 + t275 + t279 - t269 * t285 - t274 * t291;
+        let t161 = vx * 33.60000000000001 + omega_y * t140 + omega_z * t142
+            + yd_y1 * t116 + yd_y2 * t126;
+        let t85 = y3 * 0.01474329607280016;
+        let t88 = y3 * (2.0 * t83 - t85) + 2.0 * t86;
+        let t176 = yd_y3 * yd_y3;
+        let t213 = t88 * t176 + omega_x * t207;
+        let t104 = y3 * (2.0 * t100 - t85) + 2.0 * t102;
+        let t221 = t104 * t176 + omega_x * t215;
         let t277 = f_rear_left_x * t253 + f_rear_left_y * t256 + f_rear_left_z * t223;
+        let t281 = f_rear_right_x * t253 + f_rear_right_y * t256 + f_rear_right_z * t223;
+        let t206 = vx + (omega_y * t90 - omega_z * t80);
+        let t204 = omega_z * 0.3;
+        let t209 = vy + (-t204 - omega_x * t90) + t207;
+        let t75 = y3 * 0.016664264787555297;
+        let t78 = y3 * (t75 + 2.0 * t73) + 2.0 * t76;
+        let t205 = omega_y * 0.3;
+        let t210 = vz + (omega_x * t80 + t205) + t208;
+        let t212 = t78 * t176 - omega_x * t208;
+        let t214 = vx + (omega_y * t106 - omega_z * t98);
+        let t217 = vy + (-t204 - omega_x * t106) + t215;
+        let t96 = y3 * (2.0 * t92 - t75) + 2.0 * t94;
+        let t218 = vz + (t205 + omega_x * t98) + t216;
+        let t220 = t96 * t176 - omega_x * t216;
+        let t225 = s_phi * 0.972;
+        let t243 = f64::max(y3 - 0.5235987755982988, 0.0);
+        let t245 = f64::min(10000.0 * t243, 1.0);
+        let t246 = f64::min(-(100.0 * t243) - yd_y3 * (5.849676914155174 * t245), 0.0);
+        let t244 = f64::max(-0.5235987755982988 - y3, 0.0);
+        let t247 = f64::min(10000.0 * t244, 1.0);
+        let t248 = f64::max(100.0 * t244 - yd_y3 * (5.849676914155174 * t247), 0.0);
+        let t276 = f_rear_left_y * t255 - f_rear_left_x * t252 + f_rear_left_z * s_phi;
+        let mu_rear_left_x = loads[4].moment[0];
+        let mu_rear_left_y = loads[4].moment[1];
+        let mu_rear_left_z = loads[4].moment[2];
         let t278 = mu_rear_left_x * t251 + mu_rear_left_y * t254 - mu_rear_left_z * t222;
-        let t279 = f_rear_right_x * t251 + f_rear_right_y * t254 - f_rear_right_z * t222;
         let t280 = f_rear_right_y * t255 - f_rear_right_x * t252
             + f_rear_right_z * s_phi;
-        let t281 = f_rear_right_x * t253 + f_rear_right_y * t256 + f_rear_right_z * t223;
+        let mu_rear_right_x = loads[5].moment[0];
+        let mu_rear_right_y = loads[5].moment[1];
+        let mu_rear_right_z = loads[5].moment[2];
         let t282 = mu_rear_right_x * t251 + mu_rear_right_y * t254
             - mu_rear_right_z * t222;
         let t283 = 0.6
@@ -490,95 +540,18 @@ impl Exomars {
             + (-(t79 * t225) - t89 * t226) + (-(t97 * t225) - t105 * t226)
             + (t246 + t248) + (t79 * t276 + t89 * t277) + t278
             + (t97 * t280 + t105 * t281) + t282;
-        let t284 = 1.0 / t124;
-        let t285 = t116 * t284;
-        let t286 = t118 * t284;
-        let t287 = t120 * t284;
-        let t288 = t122 * t284;
-        let t289 = t123 * t284;
-        let t290 = 1.0 / t134;
-        let t291 = t126 * t290;
-        let t292 = t128 * t290;
-        let t293 = t130 * t290;
-        let t294 = t132 * t290;
-        let t295 = t133 * t290;
-        let t296 = 1.0 / t160;
-        let t297 = t145 * t296;
-        let t298 = t148 * t296;
-        let t299 = t154 * t296;
-        let t300 = t157 * t296;
-        let t301 = t159 * t296;
-        let t302 = t124 * t285;
-        let t303 = t134 * t291;
-        let t304 = 33.60000000000001 - t285 * t302 - t291 * t303;
-        let t305 = 1.0 / t304;
-        let t306 = t305 * (-(t286 * t302) - t292 * t303);
-        let t307 = t305 * (-(t287 * t302) - t293 * t303);
-        let t308 = t305 * (t140 - t288 * t302 - t294 * t303);
-        let t309 = t305 * (t142 - t289 * t302 - t295 * t303);
-        let t310 = t160 * t297;
-        let t311 = 33.60000000000001 - t297 * t310;
-        let t312 = 1.0 / t311;
-        let t313 = t312 * (t298 * t310);
-        let t314 = t312 * (t143 - t299 * t310);
-        let t315 = t312 * (t300 * t310);
-        let t316 = t312 * (t144 - t301 * t310);
-        let t317 = t124 * t286;
-        let t318 = t134 * t292;
-        let t319 = t160 * t298;
-        let t320 = t304 * t306;
-        let t321 = t311 * t313;
-        let t322 = 33.60000000000001 - t286 * t317 - t292 * t318 - t298 * t319
-            - t306 * t320 - t313 * t321;
-        let t323 = 1.0 / t322;
-        let t324 = t323
-            * (t146 - t287 * t317 - t293 * t318 - t299 * t319 - t307 * t320
-                + t314 * t321);
-        let t325 = t323
-            * (t147 - t288 * t317 - t294 * t318 - t300 * t319 - t308 * t320
-                - t315 * t321);
-        let t326 = t323
-            * (-(t289 * t317) - t295 * t318 - t301 * t319 - t309 * t320 + t316 * t321);
-        let t327 = t124 * t287;
-        let t328 = t134 * t293;
-        let t329 = t160 * t299;
-        let t330 = t304 * t307;
-        let t331 = t311 * t314;
-        let t332 = t322 * t324;
-        let t333 = t151 - t287 * t327 - t293 * t328 - t299 * t329 - t307 * t330
-            - t314 * t331 - t324 * t332;
-        let t334 = 1.0 / t333;
-        let t335 = t334
-            * (t152 - t288 * t327 - t294 * t328 - t300 * t329 - t308 * t330 + t315 * t331
-                - t325 * t332);
-        let t336 = t334
-            * (t153 - t289 * t327 - t295 * t328 - t301 * t329 - t309 * t330 - t316 * t331
-                - t326 * t332);
-        let t337 = t124 * t288;
-        let t338 = t134 * t294;
-        let t339 = t160 * t300;
-        let t340 = t304 * t308;
-        let t341 = t311 * t315;
-        let t342 = t322 * t325;
-        let t343 = t333 * t335;
-        let t344 = t155 - t288 * t337 - t294 * t338 - t300 * t339 - t308 * t340
-            - t315 * t341 - t325 * t342 - t335 * t343;
-        let t345 = 1.0 / t344;
-        let t346 = t345
-            * (t156 - t289 * t337 - t295 * t338 - t301 * t339 - t309 * t340 + t316 * t341
-                - t326 * t342 - t336 * t343);
-        let t347 = t158 - t289 * (t124 * t289) - t295 * (t134 * t295)
-            - t301 * (t160 * t301) - t309 * (t304 * t309) - t316 * (t311 * t316)
-            - t326 * (t322 * t326) - t336 * (t333 * t336) - t346 * (t344 * t346);
-        let t348 = t224
-            + (t224
-                + (t224
-                    + (t224
-                        + (t224
-                            + (-(omega_y * t163 - omega_z * t162) - 0.6 * t178
-                                - 0.6 * t186 - 0.6 * t194 - 0.6 * t202 + 0.6 * t211
-                                + 0.6 * t219 + t222 * 48.6 + t224))))) + t257 + t261 + t265
-            + t270 + t275 + t279 - t269 * t285 - t274 * t291;
+        let t177 = omega_x * t171 - omega_z * t170;
+        let t185 = omega_x * t182 - omega_z * t181;
+        let t193 = omega_x * t190 - omega_z * t189;
+        let t201 = omega_x * t198 - omega_z * t197;
+        let t258 = f_front_left_y * t255 - f_front_left_x * t252
+            + f_front_left_z * s_phi;
+        let t262 = f_front_right_y * t255 - f_front_right_x * t252
+            + f_front_right_z * s_phi;
+        let t266 = f_middle_left_y * t255 - f_middle_left_x * t252
+            + f_middle_left_z * s_phi;
+        let t271 = f_middle_right_y * t255 - f_middle_right_x * t252
+            + f_middle_right_z * s_phi;
         let t349 = 0.6 * t177 - (omega_z * t161 - omega_x * t163) + 0.6 * t185
             + 0.6 * t193 + 0.6 * t201 - 0.6 * t212 - 0.6 * t220 - s_phi * 48.6 - t225
             - t225 - t225 - t225 - t225 - t225 + t258 + t262 + t266 + t271 + t276 + t280
@@ -587,6 +560,29 @@ impl Exomars {
             - 0.6 * t195 - 0.6 * t203 - 0.6 * t213 - 0.6 * t221 - t223 * 48.6 - t226
             - t226 - t226 - t226 - t226 - t226 + t259 + t263 + t267 + t272 + t277 + t281
             - t269 * t286 - t274 * t292 - t283 * t298 - t306 * t348 + t313 * t349;
+        let t166 = vx * t142 + vy * t144 + omega_x * t153 + omega_y * t156
+            + omega_z * t158 + yd_y1 * t123 + yd_y2 * t133 + yd_y3 * t159;
+        let t165 = vx * t140 + vz * t147 + omega_x * t152 + omega_y * t155
+            + omega_z * t156 + yd_y1 * t122 + yd_y2 * t132 + yd_y3 * t157;
+        let t227 = 0.2 * t226;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
+        let tau_middle_left_x = loads[2].stator_torque[0];
+        let tau_middle_left_y = loads[2].stator_torque[1];
+        let tau_middle_left_z = loads[2].stator_torque[2];
+        let tau_middle_right_x = loads[3].stator_torque[0];
+        let tau_middle_right_y = loads[3].stator_torque[1];
+        let tau_middle_right_z = loads[3].stator_torque[2];
+        let tau_rear_left_x = loads[4].stator_torque[0];
+        let tau_rear_left_y = loads[4].stator_torque[1];
+        let tau_rear_left_z = loads[4].stator_torque[2];
+        let tau_rear_right_x = loads[5].stator_torque[0];
+        let tau_rear_right_y = loads[5].stator_torque[1];
+        let tau_rear_right_z = loads[5].stator_torque[2];
         let t351 = -(vy * t163 - vz * t162 + (omega_y * t166 - omega_z * t165))
             - 0.6 * (0.2 * t179 + t18 * t177 - t169 * t171)
             - 0.6 * (t36 * t185 - 0.2 * t187 - t180 * t182)
@@ -617,6 +613,9 @@ impl Exomars {
             + (tau_rear_right_x * t251 + tau_rear_right_y * t254
                 - tau_rear_right_z * t222) - t269 * t287 - t274 * t293 - t283 * t299
             - t307 * t348 - t314 * t349 - t324 * t350;
+        let t164 = vy * t143 + vz * t146 + omega_x * t151 + omega_y * t152
+            + omega_z * t153 + yd_y1 * t120 + yd_y2 * t130 + yd_y3 * t154;
+        let t229 = 0.3 * t226;
         let t352 = -(vz * t161 - vx * t163 + (omega_z * t164 - omega_x * t166))
             - 0.6 * (t171 * t172 - t170 * t173 + (t18 * t178 - t10 * t179))
             - 0.6 * (t182 * t183 - t181 * t184 + (t36 * t186 - t28 * t187))
@@ -642,6 +641,8 @@ impl Exomars {
             + (tau_rear_right_y * t255 - tau_rear_right_x * t252
                 + tau_rear_right_z * s_phi) - t269 * t288 - t274 * t294 - t283 * t300
             - t308 * t348 + t315 * t349 - t325 * t350 - t335 * t351;
+        let t228 = 0.2 * t224;
+        let t230 = 0.3 * t225;
         let t353 = 1.0 / t347
             * (-(vx * t162 - vy * t161 + (omega_x * t165 - omega_y * t164))
                 - 0.6 * (t169 * t170 + (-(t10 * t177) - 0.2 * t178))
@@ -679,9 +680,8 @@ impl Exomars {
         let t354 = t345 * t352 - t346 * t353;
         let t355 = t334 * t351 - t335 * t354 - t336 * t353;
         let t356 = t323 * t350 - t324 * t355 - t325 * t354 - t326 * t353;
-        let t357 = t312 * t349 + t313 * t356 - t314 * t355 + t315 * t354 - t316 * t353;
         let t358 = t305 * t348 - t306 * t356 - t307 * t355 - t308 * t354 - t309 * t353;
-        let t359 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let t357 = t312 * t349 + t313 * t356 - t314 * t355 + t315 * t354 - t316 * t353;
         let cos_roll = c_phi;
         let pivot_6 = t124;
         let pivot_7 = t134;
@@ -745,124 +745,124 @@ impl Exomars {
         let mut m = [[0.0; 9]; 9];
         // M(y), upper triangle mirrored (MODEL.md §4, eq. 11–19)
         let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
         let t1 = y1 * 0.00736569563735987;
+        let t7 = 0.02946278254943948 - t1;
+        let t8 = y1 * t7 + 0.08838834764831845;
+        let t9 = y1 * t8 - 0.1767766952966369;
+        let t11 = y1 * t9 - 0.1867766952966369;
+        let t67 = t11 * 0.6;
+        let y2 = x[7];
+        let t12 = y2 * 0.00736569563735987;
+        let t18 = 0.02946278254943948 - t12;
+        let t19 = 0.08838834764831845 + y2 * t18;
+        let t20 = y2 * t19 - 0.1767766952966369;
+        let t22 = y2 * t20 - 0.1867766952966369;
+        let t71 = t22 * 0.6;
+        let t29 = -0.029462782549439476 - t1;
+        let t30 = 0.08838834764831845 + y1 * t29;
+        let t31 = y1 * t30 + 0.17677669529663687;
+        let t33 = y1 * t31 - 0.1867766952966369;
+        let t75 = t33 * 0.6;
+        let t40 = -0.029462782549439476 - t12;
+        let t41 = 0.08838834764831845 + y2 * t40;
+        let t42 = 0.17677669529663687 + y2 * t41;
+        let t44 = y2 * t42 - 0.1867766952966369;
+        let t84 = t44 * 0.6;
+        let y3 = x[8];
+        let t51 = y3 * 0.00737164803640008;
+        let t52 = -0.033328529575110594 - t51;
+        let t53 = y3 * t52 + 0.08845977643680096;
+        let t54 = 0.19997117745066356 + y3 * t53;
+        let t56 = y3 * t54 - 0.18691955287360193;
+        let t93 = t56 * 0.6;
+        let t62 = 0.033328529575110594 - t51;
+        let t63 = 0.08845977643680096 + y3 * t62;
+        let t64 = y3 * t63 - 0.19997117745066356;
+        let t66 = y3 * t64 - 0.18691955287360193;
+        let t97 = t66 * 0.6;
+        let t98 = t67 + t71 + t75 + t84 + t93 + t97;
+        let t45 = y3 * 0.008332132393777648;
+        let t46 = t45 - 0.02948659214560032;
+        let t47 = y3 * t46 - 0.09998558872533178;
+        let t48 = y3 * t47 + 0.17691955287360192;
+        let t50 = 0.19997117745066356 + y3 * t48;
+        let t94 = t50 * 0.6;
+        let t57 = -0.02948659214560032 - t45;
+        let t58 = y3 * t57 + 0.09998558872533178;
+        let t59 = 0.17691955287360192 + y3 * t58;
+        let t61 = y3 * t59 - 0.19997117745066356;
+        let t99 = t61 * 0.6;
+        let t100 = -t94 - t99;
         let t2 = t1 + 0.02946278254943948;
         let t3 = y1 * t2 - 0.08838834764831845;
         let t4 = y1 * t3 - 0.1767766952966369;
         let t5 = t4 + y1 * (t3 + y1 * (t1 + t2));
-        let t6 = 0.3267766952966369 + y1 * t4;
-        let t7 = 0.02946278254943948 - t1;
-        let t8 = y1 * t7 + 0.08838834764831845;
-        let t9 = y1 * t8 - 0.1767766952966369;
-        let t10 = t9 + y1 * (t8 + y1 * (t7 - t1));
-        let t11 = y1 * t9 - 0.1867766952966369;
-        let t12 = y2 * 0.00736569563735987;
-        let t13 = 0.02946278254943948 + t12;
-        let t14 = y2 * t13 - 0.08838834764831845;
-        let t15 = y2 * t14 - 0.1767766952966369;
-        let t16 = t15 + y2 * (t14 + y2 * (t12 + t13));
-        let t17 = 0.3267766952966369 + y2 * t15;
-        let t18 = 0.02946278254943948 - t12;
-        let t19 = 0.08838834764831845 + y2 * t18;
-        let t20 = y2 * t19 - 0.1767766952966369;
-        let t21 = t20 + y2 * (t19 + y2 * (t18 - t12));
-        let t22 = y2 * t20 - 0.1867766952966369;
         let t23 = y1 * 0.007365695637359869;
         let t24 = 0.02946278254943948 - t23;
         let t25 = y1 * t24 + 0.08838834764831843;
         let t26 = y1 * t25 - 0.1767766952966369;
         let t27 = t26 + y1 * (t25 + y1 * (t24 - t23));
-        let t28 = y1 * t26 - 0.02677669529663687;
-        let t29 = -0.029462782549439476 - t1;
-        let t30 = 0.08838834764831845 + y1 * t29;
-        let t31 = y1 * t30 + 0.17677669529663687;
-        let t32 = t31 + y1 * (t30 + y1 * (t29 - t1));
-        let t33 = y1 * t31 - 0.1867766952966369;
+        let t76 = t5 * 0.6 + t27 * 0.6;
+        let t13 = 0.02946278254943948 + t12;
+        let t14 = y2 * t13 - 0.08838834764831845;
+        let t15 = y2 * t14 - 0.1767766952966369;
+        let t16 = t15 + y2 * (t14 + y2 * (t12 + t13));
         let t34 = y2 * 0.007365695637359869;
         let t35 = 0.02946278254943948 - t34;
         let t36 = 0.08838834764831843 + y2 * t35;
         let t37 = y2 * t36 - 0.1767766952966369;
         let t38 = t37 + y2 * (t36 + y2 * (t35 - t34));
-        let t39 = y2 * t37 - 0.02677669529663687;
-        let t40 = -0.029462782549439476 - t12;
-        let t41 = 0.08838834764831845 + y2 * t40;
-        let t42 = 0.17677669529663687 + y2 * t41;
-        let t43 = t42 + y2 * (t41 + y2 * (t40 - t12));
-        let t44 = y2 * t42 - 0.1867766952966369;
-        let t45 = y3 * 0.008332132393777648;
-        let t46 = t45 - 0.02948659214560032;
-        let t47 = y3 * t46 - 0.09998558872533178;
-        let t48 = y3 * t47 + 0.17691955287360192;
-        let t49 = t48 + y3 * (t47 + y3 * (t45 + t46));
-        let t50 = 0.19997117745066356 + y3 * t48;
-        let t51 = y3 * 0.00737164803640008;
-        let t52 = -0.033328529575110594 - t51;
-        let t53 = y3 * t52 + 0.08845977643680096;
-        let t54 = 0.19997117745066356 + y3 * t53;
-        let t55 = t54 + y3 * (t53 + y3 * (t52 - t51));
-        let t56 = y3 * t54 - 0.18691955287360193;
-        let t57 = -0.02948659214560032 - t45;
-        let t58 = y3 * t57 + 0.09998558872533178;
-        let t59 = 0.17691955287360192 + y3 * t58;
-        let t60 = t59 + y3 * (t58 + y3 * (t57 - t45));
-        let t61 = y3 * t59 - 0.19997117745066356;
-        let t62 = 0.033328529575110594 - t51;
-        let t63 = 0.08845977643680096 + y3 * t62;
-        let t64 = y3 * t63 - 0.19997117745066356;
-        let t65 = t64 + y3 * (t63 + y3 * (t62 - t51));
-        let t66 = y3 * t64 - 0.18691955287360193;
-        let t67 = t11 * 0.6;
-        let t68 = t6 * 0.6;
-        let t69 = t11 * t11;
-        let t70 = t6 * t6;
-        let t71 = t22 * 0.6;
-        let t72 = t17 * 0.6;
-        let t73 = t22 * t22;
-        let t74 = t17 * t17;
-        let t75 = t33 * 0.6;
-        let t76 = t5 * 0.6 + t27 * 0.6;
-        let t77 = t28 * 0.6;
-        let t78 = t10 * 0.6 + t32 * 0.6;
-        let t79 = t33 * t33;
-        let t80 = 0.6 * (0.2 * t10) + 0.6 * (0.2 * t32);
-        let t81 = t28 * t28;
-        let t82 = 0.6 * (t5 * t11 - t6 * t10) + 0.6 * (t27 * t33 - t28 * t32);
-        let t83 = -(0.6 * (0.2 * t5)) - 0.6 * (0.2 * t27);
-        let t84 = t44 * 0.6;
         let t85 = t16 * 0.6 + t38 * 0.6;
-        let t86 = t39 * 0.6;
-        let t87 = t21 * 0.6 + t43 * 0.6;
-        let t88 = t44 * t44;
-        let t89 = -(0.6 * (0.2 * t21)) - 0.6 * (0.2 * t43);
-        let t90 = t39 * t39;
-        let t91 = 0.6 * (t16 * t22 - t17 * t21) + 0.6 * (t38 * t44 - t39 * t43);
-        let t92 = 0.6 * (0.2 * t16) + 0.6 * (0.2 * t38);
-        let t93 = t56 * 0.6;
-        let t94 = t50 * 0.6;
-        let t95 = t56 * t56;
-        let t96 = t50 * t50;
-        let t97 = t66 * 0.6;
-        let t98 = t67 + t71 + t75 + t84 + t93 + t97;
-        let t99 = t61 * 0.6;
-        let t100 = -t94 - t99;
         let t101 = -t67 - t71 - t75 - t84 - t93 - t97;
+        let t6 = 0.3267766952966369 + y1 * t4;
+        let t68 = t6 * 0.6;
+        let t17 = 0.3267766952966369 + y2 * t15;
+        let t72 = t17 * 0.6;
+        let t28 = y1 * t26 - 0.02677669529663687;
+        let t77 = t28 * 0.6;
+        let t39 = y2 * t37 - 0.02677669529663687;
+        let t86 = t39 * 0.6;
         let t102 = t68 + t72 + t77 + t86 - 0.18 - 0.18;
+        let t49 = t48 + y3 * (t47 + y3 * (t45 + t46));
+        let t60 = t59 + y3 * (t58 + y3 * (t57 - t45));
         let t103 = t49 * 0.6 + t60 * 0.6;
         let t104 = t94 + t99;
         let t105 = 0.18 + (-t68 - t72 - t77 - t86 + 0.18);
+        let t10 = t9 + y1 * (t8 + y1 * (t7 - t1));
+        let t32 = t31 + y1 * (t30 + y1 * (t29 - t1));
+        let t78 = t10 * 0.6 + t32 * 0.6;
+        let t21 = t20 + y2 * (t19 + y2 * (t18 - t12));
+        let t43 = t42 + y2 * (t41 + y2 * (t40 - t12));
+        let t87 = t21 * 0.6 + t43 * 0.6;
+        let t55 = t54 + y3 * (t53 + y3 * (t52 - t51));
+        let t65 = t64 + y3 * (t63 + y3 * (t62 - t51));
         let t106 = t55 * 0.6 + t65 * 0.6;
+        let t69 = t11 * t11;
+        let t73 = t22 * t22;
+        let t79 = t33 * t33;
+        let t88 = t44 * t44;
+        let t95 = t56 * t56;
+        let t96 = t50 * t50;
         let t107 = t66 * t66;
         let t108 = t61 * t61;
         let t109 = 0.6 * (0.2 * t17) - 0.6 * (0.2 * t6) - 0.6 * (0.2 * t28)
             + 0.6 * (0.2 * t39) + 0.6 * (t50 * 0.3) + 0.6 * (t61 * 0.3);
         let t110 = -(0.6 * (t6 * t11)) - 0.6 * (t17 * t22) - 0.6 * (t28 * t33)
             - 0.6 * (t39 * t44) + 0.6 * (t56 * 0.3) + 0.6 * (t66 * 0.3);
+        let t80 = 0.6 * (0.2 * t10) + 0.6 * (0.2 * t32);
+        let t89 = -(0.6 * (0.2 * t21)) - 0.6 * (0.2 * t43);
         let t111 = 0.6 * (t50 * t55 - t49 * t56) + 0.6 * (t61 * t65 - t60 * t66);
+        let t70 = t6 * t6;
+        let t74 = t17 * t17;
+        let t81 = t28 * t28;
+        let t90 = t39 * t39;
         let t112 = 0.6 * (0.2 * t22) - 0.6 * (0.2 * t11) - 0.6 * (0.2 * t33)
             + 0.6 * (0.2 * t44) - 0.6 * (t50 * t56) - 0.6 * (t61 * t66);
+        let t82 = 0.6 * (t5 * t11 - t6 * t10) + 0.6 * (t27 * t33 - t28 * t32);
+        let t91 = 0.6 * (t16 * t22 - t17 * t21) + 0.6 * (t38 * t44 - t39 * t43);
         let t113 = 0.6 * (t55 * 0.3) + 0.6 * (t65 * 0.3);
+        let t83 = -(0.6 * (0.2 * t5)) - 0.6 * (0.2 * t27);
+        let t92 = 0.6 * (0.2 * t16) + 0.6 * (0.2 * t38);
         let t114 = -(0.6 * (t49 * 0.3)) - 0.6 * (t60 * 0.3);
         m[0][0] = 33.60000000000001;
         m[0][4] = t98;
@@ -946,51 +946,51 @@ impl Exomars {
         }; 6];
         // inputs
         let pos_x = x[0];
-        let pos_y = x[1];
-        let pos_z = x[2];
-        let phi = x[3];
+        let y1 = x[6];
         let theta = x[4];
         let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
+        let phi = x[3];
+        let pos_y = x[1];
+        let pos_z = x[2];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
         let omega_y = w[4];
         let omega_z = w[5];
         let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
+        let vy = w[1];
+        let omega_x = w[3];
+        let vz = w[2];
         let delta_front_left = steer[0];
+        let y2 = x[7];
+        let yd_y2 = w[7];
         let delta_front_right = steer[1];
+        let y3 = x[8];
+        let yd_y3 = w[8];
         let delta_rear_left = steer[4];
         let delta_rear_right = steer[5];
         // terms shared by the wheels
         let t1 = y1 * 0.00736569563735987;
-        let t2 = y2 * 0.00736569563735987;
-        let t3 = y3 * 0.008332132393777648;
-        let t4 = y3 * 0.00737164803640008;
-        let (s_phi, c_phi) = ::libm::sincos(phi);
         let (s_theta, c_theta) = ::libm::sincos(theta);
         let (s_psi, c_psi) = ::libm::sincos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let t5 = s_phi * s_theta;
-        let t6 = s_phi * c_theta;
-        let t7 = c_phi * s_theta;
-        let t8 = c_phi * c_theta;
         let t9 = c_theta * c_psi - s_psi * t5;
         let t10 = c_phi * s_psi;
+        let t15 = 0.2 * t10;
+        let t6 = s_phi * c_theta;
         let t11 = s_theta * c_psi + s_psi * t6;
         let t12 = c_theta * s_psi + c_psi * t5;
         let t13 = c_phi * c_psi;
-        let t14 = s_theta * s_psi - c_psi * t6;
-        let t15 = 0.2 * t10;
         let t16 = 0.2 * t13;
+        let t14 = s_theta * s_psi - c_psi * t6;
+        let t7 = c_phi * s_theta;
         let t17 = 0.2 * s_phi;
+        let t8 = c_phi * c_theta;
         let t18 = omega_z * 0.2;
         let t19 = omega_x * 0.2;
+        let t2 = y2 * 0.00736569563735987;
         let t20 = t9 * 0.3;
+        let t3 = y3 * 0.008332132393777648;
+        let t4 = y3 * 0.00737164803640008;
         let t21 = t12 * 0.3;
         let t22 = t7 * 0.3;
         let t23 = omega_z * 0.3;
@@ -1008,9 +1008,9 @@ impl Exomars {
         let t33 = y1 * t32 + 0.08838834764831845;
         let t34 = y1 * t33 - 0.1767766952966369;
         let t35 = y1 * t34 - 0.1867766952966369;
-        let t36 = vy + (omega_z * t31 - omega_x * t35);
         let t37 = vx + (omega_y * t35 - t18)
             + yd_y1 * (t30 + y1 * (t29 + y1 * (t1 + t28)));
+        let t36 = vy + (omega_z * t31 - omega_x * t35);
         let t38 = vz + (t19 - omega_y * t31)
             + yd_y1 * (t34 + y1 * (t33 + y1 * (t32 - t1)));
         let (s_delta_front_left, c_delta_front_left) = ::libm::sincos(delta_front_left);
@@ -1032,9 +1032,9 @@ impl Exomars {
         let t44 = 0.08838834764831845 + y2 * t43;
         let t45 = y2 * t44 - 0.1767766952966369;
         let t46 = y2 * t45 - 0.1867766952966369;
-        let t47 = vy + (omega_z * t42 - omega_x * t46);
         let t48 = vx + (t18 + omega_y * t46)
             + yd_y2 * (t41 + y2 * (t40 + y2 * (t2 + t39)));
+        let t47 = vy + (omega_z * t42 - omega_x * t46);
         let t49 = vz + (-t19 - omega_y * t42)
             + yd_y2 * (t45 + y2 * (t44 + y2 * (t43 - t2)));
         let (s_delta_front_right, c_delta_front_right) = ::libm::sincos(
@@ -1059,9 +1059,9 @@ impl Exomars {
         let t56 = 0.08838834764831845 + y1 * t55;
         let t57 = y1 * t56 + 0.17677669529663687;
         let t58 = y1 * t57 - 0.1867766952966369;
-        let t59 = vy + (omega_z * t54 - omega_x * t58);
         let t60 = vx + (omega_y * t58 - t18)
             + yd_y1 * (t53 + y1 * (t52 + y1 * (t51 - t50)));
+        let t59 = vy + (omega_z * t54 - omega_x * t58);
         let t61 = vz + (t19 - omega_y * t54)
             + yd_y1 * (t57 + y1 * (t56 + y1 * (t55 - t1)));
         out[2].centre[0] = pos_x + (t54 * t9 - t15 + t58 * t11);
@@ -1083,9 +1083,9 @@ impl Exomars {
         let t68 = 0.08838834764831845 + y2 * t67;
         let t69 = 0.17677669529663687 + y2 * t68;
         let t70 = y2 * t69 - 0.1867766952966369;
-        let t71 = vy + (omega_z * t66 - omega_x * t70);
         let t72 = vx + (t18 + omega_y * t70)
             + yd_y2 * (t65 + y2 * (t64 + y2 * (t63 - t62)));
+        let t71 = vy + (omega_z * t66 - omega_x * t70);
         let t73 = vz + (-t19 - omega_y * t66)
             + yd_y2 * (t69 + y2 * (t68 + y2 * (t67 - t2)));
         out[3].centre[0] = pos_x + (t15 + t66 * t9 + t70 * t11);
@@ -1163,678 +1163,303 @@ impl Exomars {
     ) -> [[f64; 18]; 18] {
         let mut jac = [[0.0; 18]; 18];
         // ∂(ẋ, ẇ)/∂(x, w) at fixed wheel loads
-        let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
         let vx = w[0];
+        let psi = x[5];
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let phi = x[3];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let theta = x[4];
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let t353 = c_phi * s_theta;
+        let t592 = s_psi * t353;
         let vy = w[1];
+        let t593 = s_phi * s_psi;
         let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
+        let t354 = c_phi * c_theta;
+        let t594 = s_psi * t354;
+        let t595 = c_psi * t353;
+        let t596 = s_phi * c_psi;
+        let t597 = c_psi * t354;
+        let t410 = s_phi * s_theta;
+        let t411 = s_phi * c_theta;
         let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
+        let omega_x = w[3];
+        let t583 = omega_z * c_theta - omega_x * s_theta;
+        let t584 = t583 / c_phi;
+        let t636 = s_phi * t584 / c_phi;
+        let y1 = x[6];
+        let t1 = y1 * 0.00736569563735987;
+        let t2 = t1 + 0.02946278254943948;
+        let t4 = y1 * t2 - 0.08838834764831845;
+        let t8 = y1 * t4 - 0.1767766952966369;
+        let t3 = t1 + t2;
+        let t7 = t4 + y1 * t3;
+        let t10 = t8 + y1 * t7;
+        let t122 = t10 * 0.6;
+        let t41 = y1 * 0.007365695637359869;
+        let t42 = 0.02946278254943948 - t41;
+        let t44 = y1 * t42 + 0.08838834764831843;
+        let t48 = y1 * t44 - 0.1767766952966369;
+        let t43 = t42 - t41;
+        let t47 = t44 + y1 * t43;
+        let t50 = t48 + y1 * t47;
+        let t140 = t50 * 0.6;
+        let t141 = t122 + t140;
+        let t12 = 0.02946278254943948 - t1;
+        let t14 = y1 * t12 + 0.08838834764831845;
+        let t17 = y1 * t14 - 0.1767766952966369;
+        let t13 = t12 - t1;
+        let t16 = t14 + y1 * t13;
+        let t19 = t17 + y1 * t16;
+        let t52 = -0.029462782549439476 - t1;
+        let t54 = 0.08838834764831845 + y1 * t52;
+        let t57 = y1 * t54 + 0.17677669529663687;
+        let t53 = t52 - t1;
+        let t56 = t54 + y1 * t53;
+        let t59 = t57 + y1 * t56;
+        let t153 = 0.6 * (t10 * t10 + t19 * t19) + 0.6 * (t50 * t50 + t59 * t59);
+        let t485 = 1.0 / t153;
+        let t486 = t141 * t485;
+        let t503 = t153 * t486;
+        let y2 = x[7];
+        let t21 = y2 * 0.00736569563735987;
+        let t22 = 0.02946278254943948 + t21;
+        let t24 = y2 * t22 - 0.08838834764831845;
+        let t28 = y2 * t24 - 0.1767766952966369;
+        let t23 = t21 + t22;
+        let t27 = t24 + y2 * t23;
+        let t30 = t28 + y2 * t27;
+        let t131 = t30 * 0.6;
+        let t61 = y2 * 0.007365695637359869;
+        let t62 = 0.02946278254943948 - t61;
+        let t64 = 0.08838834764831843 + y2 * t62;
+        let t68 = y2 * t64 - 0.1767766952966369;
+        let t63 = t62 - t61;
+        let t67 = t64 + y2 * t63;
+        let t70 = t68 + y2 * t67;
+        let t155 = t70 * 0.6;
+        let t156 = t131 + t155;
+        let t32 = 0.02946278254943948 - t21;
+        let t34 = 0.08838834764831845 + y2 * t32;
+        let t37 = y2 * t34 - 0.1767766952966369;
+        let t33 = t32 - t21;
+        let t36 = t34 + y2 * t33;
+        let t39 = t37 + y2 * t36;
+        let t72 = -0.029462782549439476 - t21;
+        let t74 = 0.08838834764831845 + y2 * t72;
+        let t77 = 0.17677669529663687 + y2 * t74;
+        let t73 = t72 - t21;
+        let t76 = t74 + y2 * t73;
+        let t79 = t77 + y2 * t76;
+        let t168 = 0.6 * (t30 * t30 + t39 * t39) + 0.6 * (t70 * t70 + t79 * t79);
+        let t491 = 1.0 / t168;
+        let t492 = t156 * t491;
+        let t504 = t168 * t492;
+        let t505 = 33.60000000000001 - t486 * t503 - t492 * t504;
+        let t506 = 1.0 / t505;
+        let t585 = 0.972 * t410;
         let f_front_left_x = loads[0].force[0];
         let f_front_left_y = loads[0].force[1];
         let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
+        let t598 = f_front_left_y * t595 - f_front_left_x * t592 + f_front_left_z * t410;
         let f_front_right_x = loads[1].force[0];
         let f_front_right_y = loads[1].force[1];
         let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
+        let t602 = f_front_right_y * t595 - f_front_right_x * t592
+            + f_front_right_z * t410;
         let f_middle_left_x = loads[2].force[0];
         let f_middle_left_y = loads[2].force[1];
         let f_middle_left_z = loads[2].force[2];
-        let mu_middle_left_x = loads[2].moment[0];
-        let mu_middle_left_y = loads[2].moment[1];
-        let mu_middle_left_z = loads[2].moment[2];
-        let tau_middle_left_x = loads[2].stator_torque[0];
-        let tau_middle_left_y = loads[2].stator_torque[1];
-        let tau_middle_left_z = loads[2].stator_torque[2];
+        let t606 = f_middle_left_y * t595 - f_middle_left_x * t592
+            + f_middle_left_z * t410;
         let f_middle_right_x = loads[3].force[0];
         let f_middle_right_y = loads[3].force[1];
         let f_middle_right_z = loads[3].force[2];
-        let mu_middle_right_x = loads[3].moment[0];
-        let mu_middle_right_y = loads[3].moment[1];
-        let mu_middle_right_z = loads[3].moment[2];
-        let tau_middle_right_x = loads[3].stator_torque[0];
-        let tau_middle_right_y = loads[3].stator_torque[1];
-        let tau_middle_right_z = loads[3].stator_torque[2];
+        let t611 = f_middle_right_y * t595 - f_middle_right_x * t592
+            + f_middle_right_z * t410;
         let f_rear_left_x = loads[4].force[0];
         let f_rear_left_y = loads[4].force[1];
         let f_rear_left_z = loads[4].force[2];
-        let mu_rear_left_x = loads[4].moment[0];
-        let mu_rear_left_y = loads[4].moment[1];
-        let mu_rear_left_z = loads[4].moment[2];
-        let tau_rear_left_x = loads[4].stator_torque[0];
-        let tau_rear_left_y = loads[4].stator_torque[1];
-        let tau_rear_left_z = loads[4].stator_torque[2];
+        let t616 = f_rear_left_y * t595 - f_rear_left_x * t592 + f_rear_left_z * t410;
         let f_rear_right_x = loads[5].force[0];
         let f_rear_right_y = loads[5].force[1];
         let f_rear_right_z = loads[5].force[2];
+        let t620 = f_rear_right_y * t595 - f_rear_right_x * t592 + f_rear_right_z * t410;
+        let t587 = 0.972 * t411;
+        let t600 = f_front_left_x * t594 - f_front_left_y * t597 - f_front_left_z * t411;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
+        let t601 = mu_front_left_x * t593 - mu_front_left_y * t596
+            + mu_front_left_z * c_phi;
+        let t608 = f_middle_left_x * t594 - f_middle_left_y * t597
+            - f_middle_left_z * t411;
+        let mu_middle_left_x = loads[2].moment[0];
+        let mu_middle_left_y = loads[2].moment[1];
+        let mu_middle_left_z = loads[2].moment[2];
+        let t609 = mu_middle_left_x * t593 - mu_middle_left_y * t596
+            + mu_middle_left_z * c_phi;
+        let t610 = t19 * t587 - t10 * t585 + (t59 * t587 - t50 * t585)
+            + (t10 * t598 + t19 * t600) + t601 + (t50 * t606 + t59 * t608) + t609;
+        let t604 = f_front_right_x * t594 - f_front_right_y * t597
+            - f_front_right_z * t411;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
+        let t605 = mu_front_right_x * t593 - mu_front_right_y * t596
+            + mu_front_right_z * c_phi;
+        let t613 = f_middle_right_x * t594 - f_middle_right_y * t597
+            - f_middle_right_z * t411;
+        let mu_middle_right_x = loads[3].moment[0];
+        let mu_middle_right_y = loads[3].moment[1];
+        let mu_middle_right_z = loads[3].moment[2];
+        let t614 = mu_middle_right_x * t593 - mu_middle_right_y * t596
+            + mu_middle_right_z * c_phi;
+        let t615 = t39 * t587 - t30 * t585 + (t79 * t587 - t70 * t585)
+            + (t30 * t602 + t39 * t604) + t605 + (t70 * t611 + t79 * t613) + t614;
+        let t625 = -(48.6 * t410) - t585 - t585 - t585 - t585 - t585 - t585 + t598 + t602
+            + t606 + t611 + t616 + t620 - t486 * t610 - t492 * t615;
+        let t124 = t19 * 0.6;
+        let t143 = t59 * 0.6;
+        let t144 = t124 + t143;
+        let t487 = t144 * t485;
+        let t133 = t39 * 0.6;
+        let t158 = t79 * 0.6;
+        let t159 = t133 + t158;
+        let t493 = t159 * t491;
+        let t507 = -(t487 * t503) - t493 * t504;
+        let t508 = t506 * t507;
+        let t526 = t153 * t487;
+        let t527 = t168 * t493;
+        let y3 = x[8];
+        let t92 = y3 * 0.00737164803640008;
+        let t93 = -0.033328529575110594 - t92;
+        let t95 = y3 * t93 + 0.08845977643680096;
+        let t99 = 0.19997117745066356 + y3 * t95;
+        let t94 = t93 - t92;
+        let t98 = t95 + y3 * t94;
+        let t101 = t99 + y3 * t98;
+        let t172 = t101 * 0.6;
+        let t112 = 0.033328529575110594 - t92;
+        let t114 = 0.08845977643680096 + y3 * t112;
+        let t117 = y3 * t114 - 0.19997117745066356;
+        let t113 = t112 - t92;
+        let t116 = t114 + y3 * t113;
+        let t119 = t117 + y3 * t116;
+        let t188 = t119 * 0.6;
+        let t189 = t172 + t188;
+        let t81 = y3 * 0.008332132393777648;
+        let t82 = t81 - 0.02948659214560032;
+        let t84 = y3 * t82 - 0.09998558872533178;
+        let t88 = y3 * t84 + 0.17691955287360192;
+        let t83 = t81 + t82;
+        let t87 = t84 + y3 * t83;
+        let t90 = t88 + y3 * t87;
+        let t103 = -0.02948659214560032 - t81;
+        let t105 = y3 * t103 + 0.09998558872533178;
+        let t108 = 0.17691955287360192 + y3 * t105;
+        let t104 = t103 - t81;
+        let t107 = t105 + y3 * t104;
+        let t110 = t108 + y3 * t107;
+        let t204 = 0.6 * (t90 * t90 + t101 * t101) + 0.6 * (t110 * t110 + t119 * t119);
+        let t497 = 1.0 / t204;
+        let t499 = t189 * t497;
+        let t528 = t204 * t499;
+        let t529 = t505 * t508;
+        let t171 = t90 * 0.6;
+        let t184 = t110 * 0.6;
+        let t185 = t171 + t184;
+        let t498 = t185 * t497;
+        let t515 = t204 * t498;
+        let t516 = 33.60000000000001 - t498 * t515;
+        let t517 = 1.0 / t516;
+        let t518 = t499 * t515;
+        let t519 = t517 * t518;
+        let t530 = t516 * t519;
+        let t531 = 33.60000000000001 - t487 * t526 - t493 * t527 - t499 * t528
+            - t508 * t529 - t519 * t530;
+        let t532 = 1.0 / t531;
+        let t618 = f_rear_left_x * t594 - f_rear_left_y * t597 - f_rear_left_z * t411;
+        let t622 = f_rear_right_x * t594 - f_rear_right_y * t597 - f_rear_right_z * t411;
+        let t586 = c_phi * 0.972;
+        let t617 = f_rear_left_x * t593 - f_rear_left_y * t596 + f_rear_left_z * c_phi;
+        let mu_rear_left_x = loads[4].moment[0];
+        let mu_rear_left_y = loads[4].moment[1];
+        let mu_rear_left_z = loads[4].moment[2];
+        let t619 = mu_rear_left_y * t595 - mu_rear_left_x * t592 + mu_rear_left_z * t410;
+        let t621 = f_rear_right_x * t593 - f_rear_right_y * t596
+            + f_rear_right_z * c_phi;
         let mu_rear_right_x = loads[5].moment[0];
         let mu_rear_right_y = loads[5].moment[1];
         let mu_rear_right_z = loads[5].moment[2];
-        let tau_rear_right_x = loads[5].stator_torque[0];
-        let tau_rear_right_y = loads[5].stator_torque[1];
-        let tau_rear_right_z = loads[5].stator_torque[2];
-        let t1 = y1 * 0.00736569563735987;
-        let t2 = t1 + 0.02946278254943948;
-        let t3 = t1 + t2;
-        let t4 = y1 * t2 - 0.08838834764831845;
-        let t5 = y1 * 0.01473139127471974;
-        let t6 = t5 + 2.0 * t3;
-        let t7 = t4 + y1 * t3;
-        let t8 = y1 * t4 - 0.1767766952966369;
-        let t9 = y1 * t6 + 2.0 * t7;
-        let t10 = t8 + y1 * t7;
-        let t11 = 0.3267766952966369 + y1 * t8;
-        let t12 = 0.02946278254943948 - t1;
-        let t13 = t12 - t1;
-        let t14 = y1 * t12 + 0.08838834764831845;
-        let t15 = 2.0 * t13 - t5;
-        let t16 = t14 + y1 * t13;
-        let t17 = y1 * t14 - 0.1767766952966369;
-        let t18 = y1 * t15 + 2.0 * t16;
-        let t19 = t17 + y1 * t16;
-        let t20 = y1 * t17 - 0.1867766952966369;
-        let t21 = y2 * 0.00736569563735987;
-        let t22 = 0.02946278254943948 + t21;
-        let t23 = t21 + t22;
-        let t24 = y2 * t22 - 0.08838834764831845;
-        let t25 = y2 * 0.01473139127471974;
-        let t26 = t25 + 2.0 * t23;
-        let t27 = t24 + y2 * t23;
-        let t28 = y2 * t24 - 0.1767766952966369;
-        let t29 = y2 * t26 + 2.0 * t27;
-        let t30 = t28 + y2 * t27;
-        let t31 = 0.3267766952966369 + y2 * t28;
-        let t32 = 0.02946278254943948 - t21;
-        let t33 = t32 - t21;
-        let t34 = 0.08838834764831845 + y2 * t32;
-        let t35 = 2.0 * t33 - t25;
-        let t36 = t34 + y2 * t33;
-        let t37 = y2 * t34 - 0.1767766952966369;
-        let t38 = y2 * t35 + 2.0 * t36;
-        let t39 = t37 + y2 * t36;
-        let t40 = y2 * t37 - 0.1867766952966369;
-        let t41 = y1 * 0.007365695637359869;
-        let t42 = 0.02946278254943948 - t41;
-        let t43 = t42 - t41;
-        let t44 = y1 * t42 + 0.08838834764831843;
-        let t45 = y1 * 0.014731391274719738;
-        let t46 = 2.0 * t43 - t45;
-        let t47 = t44 + y1 * t43;
-        let t48 = y1 * t44 - 0.1767766952966369;
-        let t49 = y1 * t46 + 2.0 * t47;
-        let t50 = t48 + y1 * t47;
-        let t51 = y1 * t48 - 0.02677669529663687;
-        let t52 = -0.029462782549439476 - t1;
-        let t53 = t52 - t1;
-        let t54 = 0.08838834764831845 + y1 * t52;
-        let t55 = 2.0 * t53 - t5;
-        let t56 = t54 + y1 * t53;
-        let t57 = y1 * t54 + 0.17677669529663687;
-        let t58 = y1 * t55 + 2.0 * t56;
-        let t59 = t57 + y1 * t56;
-        let t60 = y1 * t57 - 0.1867766952966369;
-        let t61 = y2 * 0.007365695637359869;
-        let t62 = 0.02946278254943948 - t61;
-        let t63 = t62 - t61;
-        let t64 = 0.08838834764831843 + y2 * t62;
-        let t65 = y2 * 0.014731391274719738;
-        let t66 = 2.0 * t63 - t65;
-        let t67 = t64 + y2 * t63;
-        let t68 = y2 * t64 - 0.1767766952966369;
-        let t69 = y2 * t66 + 2.0 * t67;
-        let t70 = t68 + y2 * t67;
-        let t71 = y2 * t68 - 0.02677669529663687;
-        let t72 = -0.029462782549439476 - t21;
-        let t73 = t72 - t21;
-        let t74 = 0.08838834764831845 + y2 * t72;
-        let t75 = 2.0 * t73 - t25;
-        let t76 = t74 + y2 * t73;
-        let t77 = 0.17677669529663687 + y2 * t74;
-        let t78 = y2 * t75 + 2.0 * t76;
-        let t79 = t77 + y2 * t76;
-        let t80 = y2 * t77 - 0.1867766952966369;
-        let t81 = y3 * 0.008332132393777648;
-        let t82 = t81 - 0.02948659214560032;
-        let t83 = t81 + t82;
-        let t84 = y3 * t82 - 0.09998558872533178;
-        let t85 = y3 * 0.016664264787555297;
-        let t86 = t85 + 2.0 * t83;
-        let t87 = t84 + y3 * t83;
-        let t88 = y3 * t84 + 0.17691955287360192;
-        let t89 = y3 * t86 + 2.0 * t87;
-        let t90 = t88 + y3 * t87;
+        let t623 = mu_rear_right_y * t595 - mu_rear_right_x * t592
+            + mu_rear_right_z * t410;
+        let t624 = t101 * t587 - t90 * t586 + (t119 * t587 - t110 * t586)
+            + (t90 * t617 + t101 * t618) + t619 + (t110 * t621 + t119 * t622) + t623;
+        let t599 = f_front_left_x * t593 - f_front_left_y * t596
+            + f_front_left_z * c_phi;
+        let t603 = f_front_right_x * t593 - f_front_right_y * t596
+            + f_front_right_z * c_phi;
+        let t607 = f_middle_left_x * t593 - f_middle_left_y * t596
+            + f_middle_left_z * c_phi;
+        let t612 = f_middle_right_x * t593 - f_middle_right_y * t596
+            + f_middle_right_z * c_phi;
+        let t626 = -(c_phi * 48.6) - t586 - t586 - t586 - t586 - t586 - t586 + t599
+            + t603 + t607 + t612 + t617 + t621 - t498 * t624;
+        let t627 = t587 + (t587 + (t587 + (t587 + (t587 + (48.6 * t411 + t587))))) + t600
+            + t604 + t608 + t613 + t618 + t622 - t487 * t610 - t493 * t615 - t499 * t624
+            - t508 * t625 + t519 * t626;
         let t91 = 0.19997117745066356 + y3 * t88;
-        let t92 = y3 * 0.00737164803640008;
-        let t93 = -0.033328529575110594 - t92;
-        let t94 = t93 - t92;
-        let t95 = y3 * t93 + 0.08845977643680096;
-        let t96 = y3 * 0.01474329607280016;
-        let t97 = 2.0 * t94 - t96;
-        let t98 = t95 + y3 * t94;
-        let t99 = 0.19997117745066356 + y3 * t95;
-        let t100 = y3 * t97 + 2.0 * t98;
-        let t101 = t99 + y3 * t98;
-        let t102 = y3 * t99 - 0.18691955287360193;
-        let t103 = -0.02948659214560032 - t81;
-        let t104 = t103 - t81;
-        let t105 = y3 * t103 + 0.09998558872533178;
-        let t106 = 2.0 * t104 - t85;
-        let t107 = t105 + y3 * t104;
-        let t108 = 0.17691955287360192 + y3 * t105;
-        let t109 = y3 * t106 + 2.0 * t107;
-        let t110 = t108 + y3 * t107;
+        let t170 = t91 * 0.6;
         let t111 = y3 * t108 - 0.19997117745066356;
-        let t112 = 0.033328529575110594 - t92;
-        let t113 = t112 - t92;
-        let t114 = 0.08845977643680096 + y3 * t112;
-        let t115 = 2.0 * t113 - t96;
-        let t116 = t114 + y3 * t113;
-        let t117 = y3 * t114 - 0.19997117745066356;
-        let t118 = y3 * t115 + 2.0 * t116;
-        let t119 = t117 + y3 * t116;
-        let t120 = y3 * t117 - 0.18691955287360193;
-        let t121 = t20 * 0.6;
-        let t122 = t10 * 0.6;
-        let t123 = t11 * 0.6;
-        let t124 = t19 * 0.6;
-        let t125 = t20 * t20;
+        let t180 = t111 * 0.6;
+        let t186 = t170 + t180;
         let t126 = 0.6 * (0.2 * t19);
-        let t127 = t11 * t11;
-        let t128 = t10 * t20;
-        let t129 = t11 * t19;
-        let t130 = t40 * 0.6;
-        let t131 = t30 * 0.6;
-        let t132 = t31 * 0.6;
-        let t133 = t39 * 0.6;
-        let t134 = t40 * t40;
-        let t135 = 0.6 * (0.2 * t39);
-        let t136 = t31 * t31;
-        let t137 = t30 * t40;
-        let t138 = t31 * t39;
-        let t139 = t60 * 0.6;
-        let t140 = t50 * 0.6;
-        let t141 = t122 + t140;
-        let t142 = t51 * 0.6;
-        let t143 = t59 * 0.6;
-        let t144 = t124 + t143;
-        let t145 = t60 * t60;
         let t146 = 0.6 * (0.2 * t59);
         let t147 = t126 + t146;
-        let t148 = t51 * t51;
-        let t149 = t50 * t60;
-        let t150 = t51 * t59;
-        let t151 = 0.6 * (t128 - t129) + 0.6 * (t149 - t150);
-        let t152 = -(0.6 * (0.2 * t10)) - 0.6 * (0.2 * t50);
-        let t153 = 0.6 * (t10 * t10 + t19 * t19) + 0.6 * (t50 * t50 + t59 * t59);
-        let t154 = t80 * 0.6;
-        let t155 = t70 * 0.6;
-        let t156 = t131 + t155;
-        let t157 = t71 * 0.6;
-        let t158 = t79 * 0.6;
-        let t159 = t133 + t158;
-        let t160 = t80 * t80;
+        let t488 = t147 * t485;
+        let t135 = 0.6 * (0.2 * t39);
         let t161 = 0.6 * (0.2 * t79);
         let t162 = -t135 - t161;
-        let t163 = t71 * t71;
-        let t164 = t70 * t80;
-        let t165 = t71 * t79;
-        let t166 = 0.6 * (t137 - t138) + 0.6 * (t164 - t165);
-        let t167 = 0.6 * (0.2 * t30) + 0.6 * (0.2 * t70);
-        let t168 = 0.6 * (t30 * t30 + t39 * t39) + 0.6 * (t70 * t70 + t79 * t79);
-        let t169 = t102 * 0.6;
-        let t170 = t91 * 0.6;
-        let t171 = t90 * 0.6;
-        let t172 = t101 * 0.6;
-        let t173 = t102 * t102;
-        let t174 = t91 * t91;
+        let t494 = t162 * t491;
+        let t102 = y3 * t99 - 0.18691955287360193;
         let t175 = t90 * t102;
         let t176 = t91 * t101;
-        let t177 = 0.6 * (t90 * 0.3);
+        let t120 = y3 * t117 - 0.18691955287360193;
+        let t195 = t110 * t120;
+        let t196 = t111 * t119;
+        let t197 = 0.6 * (t176 - t175) + 0.6 * (t196 - t195);
+        let t500 = t197 * t497;
+        let t509 = -(t488 * t503) - t494 * t504;
+        let t510 = t506 * t509;
+        let t20 = y1 * t17 - 0.1867766952966369;
+        let t121 = t20 * 0.6;
+        let t40 = y2 * t37 - 0.1867766952966369;
+        let t130 = t40 * 0.6;
+        let t60 = y1 * t57 - 0.1867766952966369;
+        let t139 = t60 * 0.6;
+        let t80 = y2 * t77 - 0.1867766952966369;
+        let t154 = t80 * 0.6;
+        let t169 = t102 * 0.6;
         let t178 = t120 * 0.6;
-        let t179 = t121 + t130 + t139 + t154 + t169 + t178;
-        let t180 = t111 * 0.6;
-        let t181 = -t170 - t180;
         let t182 = -t121 - t130 - t139 - t154 - t169 - t178;
-        let t183 = t123 + t132 + t142 + t157 - 0.18 - 0.18;
-        let t184 = t110 * 0.6;
-        let t185 = t171 + t184;
-        let t186 = t170 + t180;
-        let t187 = 0.18 + (-t123 - t132 - t142 - t157 + 0.18);
-        let t188 = t119 * 0.6;
-        let t189 = t172 + t188;
+        let t520 = t182 - t500 * t515;
+        let t521 = t517 * t520;
+        let t533 = t186 - t488 * t526 - t494 * t527 - t500 * t528 - t510 * t529
+            + t521 * t530;
+        let t534 = t532 * t533;
+        let t125 = t20 * t20;
+        let t134 = t40 * t40;
+        let t145 = t60 * t60;
+        let t160 = t80 * t80;
+        let t173 = t102 * t102;
+        let t174 = t91 * t91;
         let t190 = t120 * t120;
         let t191 = t111 * t111;
         let t192 = 0.7 + 0.6 * (t125 + 0.04000000000000001)
             + 0.6 * (0.04000000000000001 + t134) + 0.6 * (0.04000000000000001 + t145)
             + 0.6 * (0.04000000000000001 + t160) + 0.6 * (t173 + t174)
             + 0.6 * (t190 + t191);
-        let t193 = 0.6 * (0.2 * t31) - 0.6 * (0.2 * t11) - 0.6 * (0.2 * t51)
-            + 0.6 * (0.2 * t71) + 0.6 * (t91 * 0.3) + 0.6 * (t111 * 0.3);
-        let t194 = -(0.6 * (t11 * t20)) - 0.6 * (t31 * t40) - 0.6 * (t51 * t60)
-            - 0.6 * (t71 * t80) + 0.6 * (t102 * 0.3) + 0.6 * (t120 * 0.3);
-        let t195 = t110 * t120;
-        let t196 = t111 * t119;
-        let t197 = 0.6 * (t176 - t175) + 0.6 * (t196 - t195);
-        let t198 = 0.9 + 0.6 * (t125 + t127) + 0.6 * (t134 + t136) + 0.6 * (t145 + t148)
-            + 0.6 * (t160 + t163) + 0.6 * (t173 + 0.09) + 0.6 * (0.09 + t190);
-        let t199 = 0.6 * (0.2 * t40) - 0.6 * (0.2 * t20) - 0.6 * (0.2 * t60)
-            + 0.6 * (0.2 * t80) - 0.6 * (t91 * t102) - 0.6 * (t111 * t120);
-        let t200 = 0.6 * (t101 * 0.3) + 0.6 * (t119 * 0.3);
-        let t201 = 1.5 + 0.6 * (0.04000000000000001 + t127)
-            + 0.6 * (0.04000000000000001 + t136) + 0.6 * (0.04000000000000001 + t148)
-            + 0.6 * (0.04000000000000001 + t163) + 0.6 * (t174 + 0.09)
-            + 0.6 * (0.09 + t191);
-        let t202 = 0.6 * (t110 * 0.3);
-        let t203 = -t177 - t202;
-        let t204 = 0.6 * (t90 * t90 + t101 * t101) + 0.6 * (t110 * t110 + t119 * t119);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t205 = vx * 33.60000000000001;
-        let t206 = omega_y * t179;
-        let t207 = omega_z * t181;
-        let t208 = t205 + t206 + t207 + yd_y1 * t141 + yd_y2 * t156;
-        let t209 = vy * 33.60000000000001;
-        let t210 = omega_x * t182;
-        let t211 = omega_z * t183;
-        let t212 = t209 + t210 + t211 + yd_y3 * t185;
-        let t213 = vz * 33.60000000000001;
-        let t214 = omega_x * t186;
-        let t215 = omega_y * t187;
-        let t216 = t213 + t214 + t215 + yd_y1 * t144 + yd_y2 * t159 + yd_y3 * t189;
-        let t217 = omega_y * t193;
-        let t218 = omega_z * t194;
-        let t219 = vy * t182 + vz * t186 + omega_x * t192 + t217 + t218 + yd_y1 * t147
-            + yd_y2 * t162 + yd_y3 * t197;
-        let t220 = omega_x * t193;
-        let t221 = omega_z * t199;
-        let t222 = vx * t179 + vz * t187 + t220 + omega_y * t198 + t221 + yd_y1 * t151
-            + yd_y2 * t166 + yd_y3 * t200;
-        let t223 = omega_x * t194;
-        let t224 = omega_y * t199;
-        let t225 = vx * t181 + vy * t183 + t223 + t224 + omega_z * t201 + yd_y1 * t152
-            + yd_y2 * t167 + yd_y3 * t203;
-        let t226 = omega_z * 0.2;
-        let t227 = omega_x * 0.2;
-        let t228 = vy + (omega_z * t11 - omega_x * t20);
-        let t229 = yd_y1 * t10;
-        let t230 = yd_y1 * t19;
-        let t231 = vx + (omega_y * t20 - t226) + t229;
-        let t232 = vz + (t227 - omega_y * t11) + t230;
-        let t233 = yd_y1 * yd_y1;
-        let t234 = yd_y2 * yd_y2;
-        let t235 = yd_y3 * yd_y3;
-        let t236 = omega_x * t230 - omega_z * t229;
-        let t237 = t9 * t233 + omega_y * t230;
-        let t238 = t18 * t233 - omega_y * t229;
-        let t239 = t9 * t231;
-        let t240 = t18 * t232;
-        let t241 = t239 + t240;
-        let t242 = omega_y * t19;
-        let t243 = omega_x * t19;
-        let t244 = omega_z * t10;
-        let t245 = t243 - t244;
-        let t246 = omega_y * t10;
-        let t247 = yd_y1 * t9;
-        let t248 = yd_y1 * t18;
-        let t249 = t242 + t247;
-        let t250 = t248 - t246;
-        let t251 = vy + (omega_z * t31 - omega_x * t40);
-        let t252 = yd_y2 * t30;
-        let t253 = yd_y2 * t39;
-        let t254 = vx + (t226 + omega_y * t40) + t252;
-        let t255 = vz + (-t227 - omega_y * t31) + t253;
-        let t256 = omega_x * t253 - omega_z * t252;
-        let t257 = t29 * t234 + omega_y * t253;
-        let t258 = t38 * t234 - omega_y * t252;
-        let t259 = t29 * t254;
-        let t260 = t38 * t255;
-        let t261 = t259 + t260;
-        let t262 = omega_y * t39;
-        let t263 = omega_x * t39;
-        let t264 = omega_z * t30;
-        let t265 = t263 - t264;
-        let t266 = omega_y * t30;
-        let t267 = yd_y2 * t29;
-        let t268 = yd_y2 * t38;
-        let t269 = t262 + t267;
-        let t270 = t268 - t266;
-        let t271 = vy + (omega_z * t51 - omega_x * t60);
-        let t272 = yd_y1 * t50;
-        let t273 = yd_y1 * t59;
-        let t274 = vx + (omega_y * t60 - t226) + t272;
-        let t275 = vz + (t227 - omega_y * t51) + t273;
-        let t276 = omega_x * t273 - omega_z * t272;
-        let t277 = t49 * t233 + omega_y * t273;
-        let t278 = t58 * t233 - omega_y * t272;
-        let t279 = t49 * t274;
-        let t280 = t58 * t275;
-        let t281 = t279 + t280;
-        let t282 = omega_y * t59;
-        let t283 = omega_x * t59;
-        let t284 = omega_z * t50;
-        let t285 = t283 - t284;
-        let t286 = omega_y * t50;
-        let t287 = yd_y1 * t49;
-        let t288 = yd_y1 * t58;
-        let t289 = t282 + t287;
-        let t290 = t288 - t286;
-        let t291 = vy + (omega_z * t71 - omega_x * t80);
-        let t292 = yd_y2 * t70;
-        let t293 = yd_y2 * t79;
-        let t294 = vx + (t226 + omega_y * t80) + t292;
-        let t295 = vz + (-t227 - omega_y * t71) + t293;
-        let t296 = omega_x * t293 - omega_z * t292;
-        let t297 = t69 * t234 + omega_y * t293;
-        let t298 = t78 * t234 - omega_y * t292;
-        let t299 = t69 * t294;
-        let t300 = t78 * t295;
-        let t301 = t299 + t300;
-        let t302 = omega_y * t79;
-        let t303 = omega_x * t79;
-        let t304 = omega_z * t70;
-        let t305 = t303 - t304;
-        let t306 = omega_y * t70;
-        let t307 = yd_y2 * t69;
-        let t308 = yd_y2 * t78;
-        let t309 = t302 + t307;
-        let t310 = t308 - t306;
-        let t311 = omega_z * 0.3;
-        let t312 = omega_y * 0.3;
-        let t313 = vx + (omega_y * t102 - omega_z * t91);
-        let t314 = yd_y3 * t90;
-        let t315 = yd_y3 * t101;
-        let t316 = vy + (-t311 - omega_x * t102) + t314;
-        let t317 = vz + (omega_x * t91 + t312) + t315;
-        let t318 = omega_z * t314 - omega_y * t315;
-        let t319 = t89 * t235 - omega_x * t315;
-        let t320 = t100 * t235 + omega_x * t314;
-        let t321 = t89 * t316;
-        let t322 = t100 * t317;
-        let t323 = t321 + t322;
-        let t324 = omega_z * t90;
-        let t325 = omega_y * t101;
-        let t326 = t324 - t325;
-        let t327 = omega_x * t101;
-        let t328 = omega_x * t90;
-        let t329 = yd_y3 * t89;
-        let t330 = yd_y3 * t100;
-        let t331 = t329 - t327;
-        let t332 = t328 + t330;
-        let t333 = vx + (omega_y * t120 - omega_z * t111);
-        let t334 = yd_y3 * t110;
-        let t335 = yd_y3 * t119;
-        let t336 = vy + (-t311 - omega_x * t120) + t334;
-        let t337 = vz + (t312 + omega_x * t111) + t335;
-        let t338 = omega_z * t334 - omega_y * t335;
-        let t339 = t109 * t235 - omega_x * t335;
-        let t340 = t118 * t235 + omega_x * t334;
-        let t341 = t109 * t336;
-        let t342 = t118 * t337;
-        let t343 = t341 + t342;
-        let t344 = omega_z * t110;
-        let t345 = omega_y * t119;
-        let t346 = t344 - t345;
-        let t347 = omega_x * t119;
-        let t348 = omega_x * t110;
-        let t349 = yd_y3 * t109;
-        let t350 = yd_y3 * t118;
-        let t351 = t349 - t347;
-        let t352 = t348 + t350;
-        let t353 = c_phi * s_theta;
-        let t354 = c_phi * c_theta;
-        let t355 = t353 * 48.6;
-        let t356 = t354 * 48.6;
-        let t357 = t353 * 0.972;
-        let t358 = s_phi * 0.972;
-        let t359 = t354 * 0.972;
-        let t360 = 0.2 * t359;
-        let t361 = 0.2 * t357;
-        let t362 = t91 * t359;
-        let t363 = 0.3 * t359;
-        let t364 = 0.3 * t358;
-        let t365 = t91 * t357;
-        let t366 = t111 * t359;
-        let t367 = t111 * t357;
-        let t368 = y1 - 0.5235987755982988;
-        let t369 = f64::max(t368, 0.0);
-        let t370 = -0.5235987755982988 - y1;
-        let t371 = f64::max(t370, 0.0);
-        let t372 = 10000.0 * t369;
-        let t373 = f64::min(t372, 1.0);
-        let t374 = 5.477225575051661 * t373;
-        let t375 = -(100.0 * t369) - yd_y1 * t374;
-        let t376 = f64::min(t375, 0.0);
-        let t377 = 10000.0 * t371;
-        let t378 = f64::min(t377, 1.0);
-        let t379 = 5.477225575051661 * t378;
-        let t380 = 100.0 * t371 - yd_y1 * t379;
-        let t381 = f64::max(t380, 0.0);
-        let t382 = y2 - 0.5235987755982988;
-        let t383 = f64::max(t382, 0.0);
-        let t384 = -0.5235987755982988 - y2;
-        let t385 = f64::max(t384, 0.0);
-        let t386 = 10000.0 * t383;
-        let t387 = f64::min(t386, 1.0);
-        let t388 = 5.477225575051661 * t387;
-        let t389 = -(100.0 * t383) - yd_y2 * t388;
-        let t390 = f64::min(t389, 0.0);
-        let t391 = 10000.0 * t385;
-        let t392 = f64::min(t391, 1.0);
-        let t393 = 5.477225575051661 * t392;
-        let t394 = 100.0 * t385 - yd_y2 * t393;
-        let t395 = f64::max(t394, 0.0);
-        let t396 = y3 - 0.5235987755982988;
-        let t397 = f64::max(t396, 0.0);
-        let t398 = -0.5235987755982988 - y3;
-        let t399 = f64::max(t398, 0.0);
-        let t400 = 10000.0 * t397;
-        let t401 = f64::min(t400, 1.0);
-        let t402 = 5.849676914155174 * t401;
-        let t403 = -(100.0 * t397) - yd_y3 * t402;
-        let t404 = f64::min(t403, 0.0);
-        let t405 = 10000.0 * t399;
-        let t406 = f64::min(t405, 1.0);
-        let t407 = 5.849676914155174 * t406;
-        let t408 = 100.0 * t399 - yd_y3 * t407;
-        let t409 = f64::max(t408, 0.0);
-        let t410 = s_phi * s_theta;
-        let t411 = s_phi * c_theta;
-        let t412 = c_theta * c_psi - s_psi * t410;
-        let t413 = c_phi * s_psi;
-        let t414 = s_theta * c_psi;
-        let t415 = s_psi * t411;
-        let t416 = t414 + t415;
-        let t417 = c_theta * s_psi;
-        let t418 = c_psi * t410;
-        let t419 = t417 + t418;
-        let t420 = c_phi * c_psi;
-        let t421 = s_theta * s_psi;
-        let t422 = c_psi * t411;
-        let t423 = t421 - t422;
-        let t424 = f_front_left_x * t412 + f_front_left_y * t419 - f_front_left_z * t353;
-        let t425 = f_front_left_y * t420 - f_front_left_x * t413
-            + f_front_left_z * s_phi;
-        let t426 = f_front_left_z * t354;
-        let t427 = f_front_left_x * t416 + f_front_left_y * t423 + t426;
-        let t428 = 0.2 * t424;
-        let t429 = mu_front_left_x * t412 + mu_front_left_y * t419
-            - mu_front_left_z * t353;
-        let t430 = mu_front_left_y * t420 - mu_front_left_x * t413
-            + mu_front_left_z * s_phi;
-        let t431 = mu_front_left_z * t354;
-        let t432 = tau_front_left_x * t412 + tau_front_left_y * t419
-            - tau_front_left_z * t353;
-        let t433 = tau_front_left_z * t354;
-        let t434 = f_front_right_x * t412 + f_front_right_y * t419
-            - f_front_right_z * t353;
-        let t435 = f_front_right_y * t420 - f_front_right_x * t413
-            + f_front_right_z * s_phi;
-        let t436 = f_front_right_z * t354;
-        let t437 = f_front_right_x * t416 + f_front_right_y * t423 + t436;
-        let t438 = 0.2 * t434;
-        let t439 = mu_front_right_x * t412 + mu_front_right_y * t419
-            - mu_front_right_z * t353;
-        let t440 = mu_front_right_y * t420 - mu_front_right_x * t413
-            + mu_front_right_z * s_phi;
-        let t441 = mu_front_right_z * t354;
-        let t442 = tau_front_right_x * t412 + tau_front_right_y * t419
-            - tau_front_right_z * t353;
-        let t443 = tau_front_right_z * t354;
-        let t444 = f_middle_left_x * t412 + f_middle_left_y * t419
-            - f_middle_left_z * t353;
-        let t445 = f_middle_left_y * t420 - f_middle_left_x * t413
-            + f_middle_left_z * s_phi;
-        let t446 = f_middle_left_z * t354;
-        let t447 = f_middle_left_x * t416 + f_middle_left_y * t423 + t446;
-        let t448 = 0.2 * t444;
-        let t449 = mu_middle_left_x * t412 + mu_middle_left_y * t419
-            - mu_middle_left_z * t353;
-        let t450 = mu_middle_left_y * t420 - mu_middle_left_x * t413
-            + mu_middle_left_z * s_phi;
-        let t451 = mu_middle_left_z * t354;
-        let t452 = 0.6
-            * (t231 * t249 - t228 * t245 + t232 * t250
-                - (yd_y1 * t241 + (t10 * t237 + t19 * t238)))
-            + 0.6
-                * (t274 * t289 - t271 * t285 + t275 * t290
-                    - (yd_y1 * t281 + (t50 * t277 + t59 * t278)))
-            + (t10 * t357 - t19 * t359) + (t50 * t357 - t59 * t359) + (t376 + t381)
-            + (t10 * t424 + t19 * t427) + t430 + (t50 * t444 + t59 * t447) + t450;
-        let t453 = tau_middle_left_x * t412 + tau_middle_left_y * t419
-            - tau_middle_left_z * t353;
-        let t454 = tau_middle_left_z * t354;
-        let t455 = f_middle_right_x * t412 + f_middle_right_y * t419
-            - f_middle_right_z * t353;
-        let t456 = f_middle_right_y * t420 - f_middle_right_x * t413
-            + f_middle_right_z * s_phi;
-        let t457 = f_middle_right_z * t354;
-        let t458 = f_middle_right_x * t416 + f_middle_right_y * t423 + t457;
-        let t459 = 0.2 * t455;
-        let t460 = mu_middle_right_x * t412 + mu_middle_right_y * t419
-            - mu_middle_right_z * t353;
-        let t461 = mu_middle_right_y * t420 - mu_middle_right_x * t413
-            + mu_middle_right_z * s_phi;
-        let t462 = mu_middle_right_z * t354;
-        let t463 = 0.6
-            * (t254 * t269 - t251 * t265 + t255 * t270
-                - (yd_y2 * t261 + (t30 * t257 + t39 * t258)))
-            + 0.6
-                * (t294 * t309 - t291 * t305 + t295 * t310
-                    - (yd_y2 * t301 + (t70 * t297 + t79 * t298)))
-            + (t30 * t357 - t39 * t359) + (t70 * t357 - t79 * t359) + (t390 + t395)
-            + (t30 * t434 + t39 * t437) + t440 + (t70 * t455 + t79 * t458) + t461;
-        let t464 = tau_middle_right_x * t412 + tau_middle_right_y * t419
-            - tau_middle_right_z * t353;
-        let t465 = tau_middle_right_z * t354;
-        let t466 = f_rear_left_x * t412 + f_rear_left_y * t419 - f_rear_left_z * t353;
-        let t467 = f_rear_left_y * t420 - f_rear_left_x * t413 + f_rear_left_z * s_phi;
-        let t468 = f_rear_left_z * t354;
-        let t469 = f_rear_left_x * t416 + f_rear_left_y * t423 + t468;
-        let t470 = t91 * t466;
-        let t471 = mu_rear_left_x * t412 + mu_rear_left_y * t419 - mu_rear_left_z * t353;
-        let t472 = mu_rear_left_z * t354;
-        let t473 = tau_rear_left_x * t412 + tau_rear_left_y * t419
-            - tau_rear_left_z * t353;
-        let t474 = tau_rear_left_z * t354;
-        let t475 = f_rear_right_x * t412 + f_rear_right_y * t419 - f_rear_right_z * t353;
-        let t476 = f_rear_right_y * t420 - f_rear_right_x * t413
-            + f_rear_right_z * s_phi;
-        let t477 = f_rear_right_z * t354;
-        let t478 = f_rear_right_x * t416 + f_rear_right_y * t423 + t477;
-        let t479 = t111 * t475;
-        let t480 = mu_rear_right_x * t412 + mu_rear_right_y * t419
-            - mu_rear_right_z * t353;
-        let t481 = mu_rear_right_z * t354;
-        let t482 = 0.6
-            * (t316 * t331 - t313 * t326 + t317 * t332
-                - (yd_y3 * t323 + (t90 * t319 + t101 * t320)))
-            + 0.6
-                * (t336 * t351 - t333 * t346 + t337 * t352
-                    - (yd_y3 * t343 + (t110 * t339 + t119 * t340)))
-            + (-(t90 * t358) - t101 * t359) + (-(t110 * t358) - t119 * t359)
-            + (t404 + t409) + (t90 * t467 + t101 * t469) + t471
-            + (t110 * t476 + t119 * t478) + t480;
-        let t483 = tau_rear_right_x * t412 + tau_rear_right_y * t419
-            - tau_rear_right_z * t353;
-        let t484 = tau_rear_right_z * t354;
-        let t485 = 1.0 / t153;
-        let t486 = t141 * t485;
-        let t487 = t144 * t485;
-        let t488 = t147 * t485;
-        let t489 = t151 * t485;
-        let t490 = t152 * t485;
-        let t491 = 1.0 / t168;
-        let t492 = t156 * t491;
-        let t493 = t159 * t491;
-        let t494 = t162 * t491;
-        let t495 = t166 * t491;
-        let t496 = t167 * t491;
-        let t497 = 1.0 / t204;
-        let t498 = t185 * t497;
-        let t499 = t189 * t497;
-        let t500 = t197 * t497;
-        let t501 = t200 * t497;
-        let t502 = t203 * t497;
-        let t503 = t153 * t486;
-        let t504 = t168 * t492;
-        let t505 = 33.60000000000001 - t486 * t503 - t492 * t504;
-        let t506 = 1.0 / t505;
-        let t507 = -(t487 * t503) - t493 * t504;
-        let t508 = t506 * t507;
-        let t509 = -(t488 * t503) - t494 * t504;
-        let t510 = t506 * t509;
-        let t511 = t179 - t489 * t503 - t495 * t504;
-        let t512 = t506 * t511;
-        let t513 = t181 - t490 * t503 - t496 * t504;
-        let t514 = t506 * t513;
-        let t515 = t204 * t498;
-        let t516 = 33.60000000000001 - t498 * t515;
-        let t517 = 1.0 / t516;
-        let t518 = t499 * t515;
-        let t519 = t517 * t518;
-        let t520 = t182 - t500 * t515;
-        let t521 = t517 * t520;
-        let t522 = t501 * t515;
-        let t523 = t517 * t522;
-        let t524 = t183 - t502 * t515;
-        let t525 = t517 * t524;
-        let t526 = t153 * t487;
-        let t527 = t168 * t493;
-        let t528 = t204 * t499;
-        let t529 = t505 * t508;
-        let t530 = t516 * t519;
-        let t531 = 33.60000000000001 - t487 * t526 - t493 * t527 - t499 * t528
-            - t508 * t529 - t519 * t530;
-        let t532 = 1.0 / t531;
-        let t533 = t186 - t488 * t526 - t494 * t527 - t500 * t528 - t510 * t529
-            + t521 * t530;
-        let t534 = t532 * t533;
-        let t535 = t187 - t489 * t526 - t495 * t527 - t501 * t528 - t512 * t529
-            - t523 * t530;
-        let t536 = t532 * t535;
-        let t537 = -(t490 * t526) - t496 * t527 - t502 * t528 - t514 * t529
-            + t525 * t530;
-        let t538 = t532 * t537;
         let t539 = t153 * t488;
         let t540 = t168 * t494;
         let t541 = t204 * t500;
@@ -1844,194 +1469,25 @@ impl Exomars {
         let t545 = t192 - t488 * t539 - t494 * t540 - t500 * t541 - t510 * t542
             - t521 * t543 - t534 * t544;
         let t546 = 1.0 / t545;
-        let t547 = t193 - t489 * t539 - t495 * t540 - t501 * t541 - t512 * t542
-            + t523 * t543 - t536 * t544;
-        let t548 = t546 * t547;
-        let t549 = t194 - t490 * t539 - t496 * t540 - t502 * t541 - t514 * t542
-            - t525 * t543 - t538 * t544;
-        let t550 = t546 * t549;
-        let t551 = t153 * t489;
-        let t552 = t168 * t495;
-        let t553 = t204 * t501;
-        let t554 = t505 * t512;
-        let t555 = t516 * t523;
-        let t556 = t531 * t536;
-        let t557 = t545 * t548;
-        let t558 = t198 - t489 * t551 - t495 * t552 - t501 * t553 - t512 * t554
-            - t523 * t555 - t536 * t556 - t548 * t557;
-        let t559 = 1.0 / t558;
-        let t560 = t199 - t490 * t551 - t496 * t552 - t502 * t553 - t514 * t554
-            + t525 * t555 - t538 * t556 - t550 * t557;
-        let t561 = t559 * t560;
-        let t562 = t153 * t490;
-        let t563 = t168 * t496;
-        let t564 = t204 * t502;
-        let t565 = t505 * t514;
-        let t566 = t516 * t525;
-        let t567 = t531 * t538;
-        let t568 = t545 * t550;
-        let t569 = t558 * t561;
-        let t570 = t201 - t490 * t562 - t496 * t563 - t502 * t564 - t514 * t565
-            - t525 * t566 - t538 * t567 - t550 * t568 - t561 * t569;
-        let t571 = 1.0 / t570;
-        let t572 = t357
-            + (t357
-                + (t357
-                    + (t357
-                        + (t357
-                            + (-(omega_y * t216 - omega_z * t212) - 0.6 * t237
-                                - 0.6 * t257 - 0.6 * t277 - 0.6 * t297 + 0.6 * t318
-                                + 0.6 * t338 + t355 + t357))))) + t424 + t434 + t444 + t455
-            + t466 + t475 - t452 * t486 - t463 * t492;
-        let t573 = 0.6 * t236 - (omega_z * t208 - omega_x * t216) + 0.6 * t256
-            + 0.6 * t276 + 0.6 * t296 - 0.6 * t319 - 0.6 * t339 - s_phi * 48.6 - t358
-            - t358 - t358 - t358 - t358 - t358 + t425 + t435 + t445 + t456 + t467 + t476
-            - t482 * t498;
-        let t574 = -(omega_x * t212 - omega_y * t208) - 0.6 * t238 - 0.6 * t258
-            - 0.6 * t278 - 0.6 * t298 - 0.6 * t320 - 0.6 * t340 - t356 - t359 - t359
-            - t359 - t359 - t359 - t359 + t427 + t437 + t447 + t458 + t469 + t478
-            - t452 * t487 - t463 * t493 - t482 * t499 - t508 * t572 + t519 * t573;
-        let t575 = -(vy * t216 - vz * t212 + (omega_y * t225 - omega_z * t222))
-            - 0.6 * (0.2 * t238 + t20 * t236 - t228 * t230)
-            - 0.6 * (t40 * t256 - 0.2 * t258 - t251 * t253)
-            - 0.6 * (0.2 * t278 + t60 * t276 - t271 * t273)
-            - 0.6 * (t80 * t296 - 0.2 * t298 - t291 * t293)
-            - 0.6 * (t314 * t317 - t315 * t316 + (t91 * t320 - t102 * t319))
-            - 0.6 * (t334 * t337 - t335 * t336 + (t111 * t340 - t120 * t339))
-            + (t20 * t358 - t360) + (t360 + t40 * t358) + (t60 * t358 - t360)
-            + (t360 + t80 * t358) + (t102 * t358 - t362) + (t120 * t358 - t366)
-            + (0.2 * t427 - t20 * t425) + t429 + t432 + (-(0.2 * t437) - t40 * t435)
-            + t439 + t442 + (0.2 * t447 - t60 * t445) + t449 + t453
-            + (-(0.2 * t458) - t80 * t456) + t460 + t464 + (t91 * t469 - t102 * t467)
-            + t471 + t473 + (t111 * t478 - t120 * t476) + t480 + t483 - t452 * t488
-            - t463 * t494 - t482 * t500 - t510 * t572 - t521 * t573 - t534 * t574;
-        let t576 = -(vz * t208 - vx * t216 + (omega_z * t219 - omega_x * t225))
-            - 0.6 * (t230 * t231 - t229 * t232 + (t20 * t237 - t11 * t238))
-            - 0.6 * (t253 * t254 - t252 * t255 + (t40 * t257 - t31 * t258))
-            - 0.6 * (t273 * t274 - t272 * t275 + (t60 * t277 - t51 * t278))
-            - 0.6 * (t293 * t294 - t292 * t295 + (t80 * t297 - t71 * t298))
-            - 0.6 * (t313 * t315 + (0.3 * t320 - t102 * t318))
-            - 0.6 * (t333 * t335 + (0.3 * t340 - t120 * t338))
-            + (t20 * t357 + t11 * t359) + (t40 * t357 + t31 * t359)
-            + (t60 * t357 + t51 * t359) + (t80 * t357 + t71 * t359)
-            + (t102 * t357 - t363) + (t120 * t357 - t363) + (t20 * t424 - t11 * t427)
-            + t430
-            + (tau_front_left_y * t420 - tau_front_left_x * t413
-                + tau_front_left_z * s_phi) + (t40 * t434 - t31 * t437) + t440
-            + (tau_front_right_y * t420 - tau_front_right_x * t413
-                + tau_front_right_z * s_phi) + (t60 * t444 - t51 * t447) + t450
-            + (tau_middle_left_y * t420 - tau_middle_left_x * t413
-                + tau_middle_left_z * s_phi) + (t80 * t455 - t71 * t458) + t461
-            + (tau_middle_right_y * t420 - tau_middle_right_x * t413
-                + tau_middle_right_z * s_phi) + (t102 * t466 + 0.3 * t469)
-            + (mu_rear_left_y * t420 - mu_rear_left_x * t413 + mu_rear_left_z * s_phi)
-            + (tau_rear_left_y * t420 - tau_rear_left_x * t413 + tau_rear_left_z * s_phi)
-            + (t120 * t475 + 0.3 * t478)
-            + (mu_rear_right_y * t420 - mu_rear_right_x * t413 + mu_rear_right_z * s_phi)
-            + (tau_rear_right_y * t420 - tau_rear_right_x * t413
-                + tau_rear_right_z * s_phi) - t452 * t489 - t463 * t495 - t482 * t501
-            - t512 * t572 + t523 * t573 - t536 * t574 - t548 * t575;
-        let t577 = -(vx * t212 - vy * t208 + (omega_x * t222 - omega_y * t219))
-            - 0.6 * (t228 * t229 + (-(t11 * t236) - 0.2 * t237))
-            - 0.6 * (t251 * t252 + (0.2 * t257 - t31 * t256))
-            - 0.6 * (t271 * t272 + (-(t51 * t276) - 0.2 * t277))
-            - 0.6 * (t291 * t292 + (0.2 * t297 - t71 * t296))
-            - 0.6 * (t91 * t318 - 0.3 * t319 - t313 * t314)
-            - 0.6 * (t111 * t338 - 0.3 * t339 - t333 * t334) + (-(t11 * t358) - t361)
-            + (t361 - t31 * t358) + (-t361 - t51 * t358) + (t361 - t71 * t358)
-            + (t364 - t365) + (t364 - t367) + (t11 * t425 - t428)
-            + (mu_front_left_x * t416 + mu_front_left_y * t423 + t431)
-            + (tau_front_left_x * t416 + tau_front_left_y * t423 + t433)
-            + (t31 * t435 + t438)
-            + (mu_front_right_x * t416 + mu_front_right_y * t423 + t441)
-            + (tau_front_right_x * t416 + tau_front_right_y * t423 + t443)
-            + (t51 * t445 - t448)
-            + (mu_middle_left_x * t416 + mu_middle_left_y * t423 + t451)
-            + (tau_middle_left_x * t416 + tau_middle_left_y * t423 + t454)
-            + (t71 * t456 + t459)
-            + (mu_middle_right_x * t416 + mu_middle_right_y * t423 + t462)
-            + (tau_middle_right_x * t416 + tau_middle_right_y * t423 + t465)
-            + (-(0.3 * t467) - t470)
-            + (mu_rear_left_x * t416 + mu_rear_left_y * t423 + t472)
-            + (tau_rear_left_x * t416 + tau_rear_left_y * t423 + t474)
-            + (-(0.3 * t476) - t479)
-            + (mu_rear_right_x * t416 + mu_rear_right_y * t423 + t481)
-            + (tau_rear_right_x * t416 + tau_rear_right_y * t423 + t484) - t452 * t490
-            - t463 * t496 - t482 * t502 - t514 * t572 - t525 * t573 - t538 * t574
-            - t550 * t575 - t561 * t576;
-        let t578 = t571 * t577;
-        let t579 = t559 * t576 - t561 * t578;
-        let t580 = t546 * t575 - t548 * t579 - t550 * t578;
-        let t581 = t532 * t574 - t534 * t580 - t536 * t579 - t538 * t578;
-        let t582 = t506 * t572 - t508 * t581 - t510 * t580 - t512 * t579 - t514 * t578;
-        let t583 = omega_z * c_theta - omega_x * s_theta;
-        let t584 = t583 / c_phi;
-        let t585 = 0.972 * t410;
-        let t586 = c_phi * 0.972;
-        let t587 = 0.972 * t411;
         let t588 = 0.2 * t587;
-        let t589 = 0.2 * t585;
-        let t590 = 0.3 * t587;
-        let t591 = 0.3 * t586;
-        let t592 = s_psi * t353;
-        let t593 = s_phi * s_psi;
-        let t594 = s_psi * t354;
-        let t595 = c_psi * t353;
-        let t596 = s_phi * c_psi;
-        let t597 = c_psi * t354;
-        let t598 = f_front_left_y * t595 - f_front_left_x * t592 + f_front_left_z * t410;
-        let t599 = f_front_left_x * t593 - f_front_left_y * t596
-            + f_front_left_z * c_phi;
-        let t600 = f_front_left_x * t594 - f_front_left_y * t597 - f_front_left_z * t411;
-        let t601 = mu_front_left_x * t593 - mu_front_left_y * t596
-            + mu_front_left_z * c_phi;
-        let t602 = f_front_right_y * t595 - f_front_right_x * t592
-            + f_front_right_z * t410;
-        let t603 = f_front_right_x * t593 - f_front_right_y * t596
-            + f_front_right_z * c_phi;
-        let t604 = f_front_right_x * t594 - f_front_right_y * t597
-            - f_front_right_z * t411;
-        let t605 = mu_front_right_x * t593 - mu_front_right_y * t596
-            + mu_front_right_z * c_phi;
-        let t606 = f_middle_left_y * t595 - f_middle_left_x * t592
-            + f_middle_left_z * t410;
-        let t607 = f_middle_left_x * t593 - f_middle_left_y * t596
-            + f_middle_left_z * c_phi;
-        let t608 = f_middle_left_x * t594 - f_middle_left_y * t597
-            - f_middle_left_z * t411;
-        let t609 = mu_middle_left_x * t593 - mu_middle_left_y * t596
-            + mu_middle_left_z * c_phi;
-        let t610 = t19 * t587 - t10 * t585 + (t59 * t587 - t50 * t585)
-            + (t10 * t598 + t19 * t600) + t601 + (t50 * t606 + t59 * t608) + t609;
-        let t611 = f_middle_right_y * t595 - f_middle_right_x * t592
-            + f_middle_right_z * t410;
-        let t612 = f_middle_right_x * t593 - f_middle_right_y * t596
-            + f_middle_right_z * c_phi;
-        let t613 = f_middle_right_x * t594 - f_middle_right_y * t597
-            - f_middle_right_z * t411;
-        let t614 = mu_middle_right_x * t593 - mu_middle_right_y * t596
-            + mu_middle_right_z * c_phi;
-        let t615 = t39 * t587 - t30 * t585 + (t79 * t587 - t70 * t585)
-            + (t30 * t602 + t39 * t604) + t605 + (t70 * t611 + t79 * t613) + t614;
-        let t616 = f_rear_left_y * t595 - f_rear_left_x * t592 + f_rear_left_z * t410;
-        let t617 = f_rear_left_x * t593 - f_rear_left_y * t596 + f_rear_left_z * c_phi;
-        let t618 = f_rear_left_x * t594 - f_rear_left_y * t597 - f_rear_left_z * t411;
-        let t619 = mu_rear_left_y * t595 - mu_rear_left_x * t592 + mu_rear_left_z * t410;
-        let t620 = f_rear_right_y * t595 - f_rear_right_x * t592 + f_rear_right_z * t410;
-        let t621 = f_rear_right_x * t593 - f_rear_right_y * t596
-            + f_rear_right_z * c_phi;
-        let t622 = f_rear_right_x * t594 - f_rear_right_y * t597 - f_rear_right_z * t411;
-        let t623 = mu_rear_right_y * t595 - mu_rear_right_x * t592
-            + mu_rear_right_z * t410;
-        let t624 = t101 * t587 - t90 * t586 + (t119 * t587 - t110 * t586)
-            + (t90 * t617 + t101 * t618) + t619 + (t110 * t621 + t119 * t622) + t623;
-        let t625 = -(48.6 * t410) - t585 - t585 - t585 - t585 - t585 - t585 + t598 + t602
-            + t606 + t611 + t616 + t620 - t486 * t610 - t492 * t615;
-        let t626 = -(c_phi * 48.6) - t586 - t586 - t586 - t586 - t586 - t586 + t599
-            + t603 + t607 + t612 + t617 + t621 - t498 * t624;
-        let t627 = t587 + (t587 + (t587 + (t587 + (t587 + (48.6 * t411 + t587))))) + t600
-            + t604 + t608 + t613 + t618 + t622 - t487 * t610 - t493 * t615 - t499 * t624
-            - t508 * t625 + t519 * t626;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
+        let tau_middle_left_x = loads[2].stator_torque[0];
+        let tau_middle_left_y = loads[2].stator_torque[1];
+        let tau_middle_left_z = loads[2].stator_torque[2];
+        let tau_middle_right_x = loads[3].stator_torque[0];
+        let tau_middle_right_y = loads[3].stator_torque[1];
+        let tau_middle_right_z = loads[3].stator_torque[2];
+        let tau_rear_left_x = loads[4].stator_torque[0];
+        let tau_rear_left_y = loads[4].stator_torque[1];
+        let tau_rear_left_z = loads[4].stator_torque[2];
+        let tau_rear_right_x = loads[5].stator_torque[0];
+        let tau_rear_right_y = loads[5].stator_torque[1];
+        let tau_rear_right_z = loads[5].stator_torque[2];
         let t628 = t588 + t20 * t586 + (t40 * t586 - t588) + (t588 + t60 * t586)
             + (t80 * t586 - t588) + (t91 * t587 + t102 * t586)
             + (t111 * t587 + t120 * t586) + (0.2 * t600 - t20 * t599)
@@ -2055,6 +1511,59 @@ impl Exomars {
             + (tau_rear_right_y * t595 - tau_rear_right_x * t592
                 + tau_rear_right_z * t410) - t488 * t610 - t494 * t615 - t500 * t624
             - t510 * t625 - t521 * t626 - t534 * t627;
+        let t11 = 0.3267766952966369 + y1 * t8;
+        let t31 = 0.3267766952966369 + y2 * t28;
+        let t51 = y1 * t48 - 0.02677669529663687;
+        let t71 = y2 * t68 - 0.02677669529663687;
+        let t193 = 0.6 * (0.2 * t31) - 0.6 * (0.2 * t11) - 0.6 * (0.2 * t51)
+            + 0.6 * (0.2 * t71) + 0.6 * (t91 * 0.3) + 0.6 * (t111 * 0.3);
+        let t128 = t10 * t20;
+        let t129 = t11 * t19;
+        let t149 = t50 * t60;
+        let t150 = t51 * t59;
+        let t151 = 0.6 * (t128 - t129) + 0.6 * (t149 - t150);
+        let t489 = t151 * t485;
+        let t137 = t30 * t40;
+        let t138 = t31 * t39;
+        let t164 = t70 * t80;
+        let t165 = t71 * t79;
+        let t166 = 0.6 * (t137 - t138) + 0.6 * (t164 - t165);
+        let t495 = t166 * t491;
+        let t200 = 0.6 * (t101 * 0.3) + 0.6 * (t119 * 0.3);
+        let t501 = t200 * t497;
+        let t179 = t121 + t130 + t139 + t154 + t169 + t178;
+        let t511 = t179 - t489 * t503 - t495 * t504;
+        let t512 = t506 * t511;
+        let t522 = t501 * t515;
+        let t523 = t517 * t522;
+        let t123 = t11 * 0.6;
+        let t132 = t31 * 0.6;
+        let t142 = t51 * 0.6;
+        let t157 = t71 * 0.6;
+        let t187 = 0.18 + (-t123 - t132 - t142 - t157 + 0.18);
+        let t535 = t187 - t489 * t526 - t495 * t527 - t501 * t528 - t512 * t529
+            - t523 * t530;
+        let t536 = t532 * t535;
+        let t547 = t193 - t489 * t539 - t495 * t540 - t501 * t541 - t512 * t542
+            + t523 * t543 - t536 * t544;
+        let t548 = t546 * t547;
+        let t127 = t11 * t11;
+        let t136 = t31 * t31;
+        let t148 = t51 * t51;
+        let t163 = t71 * t71;
+        let t198 = 0.9 + 0.6 * (t125 + t127) + 0.6 * (t134 + t136) + 0.6 * (t145 + t148)
+            + 0.6 * (t160 + t163) + 0.6 * (t173 + 0.09) + 0.6 * (0.09 + t190);
+        let t551 = t153 * t489;
+        let t552 = t168 * t495;
+        let t553 = t204 * t501;
+        let t554 = t505 * t512;
+        let t555 = t516 * t523;
+        let t556 = t531 * t536;
+        let t557 = t545 * t548;
+        let t558 = t198 - t489 * t551 - t495 * t552 - t501 * t553 - t512 * t554
+            - t523 * t555 - t536 * t556 - t548 * t557;
+        let t559 = 1.0 / t558;
+        let t590 = 0.3 * t587;
         let t629 = -(t20 * t585) - t11 * t587 + (-(t40 * t585) - t31 * t587)
             + (-(t60 * t585) - t51 * t587) + (-(t80 * t585) - t71 * t587)
             + (t590 - t102 * t585) + (t590 - t120 * t585) + (t20 * t598 - t11 * t600)
@@ -2074,6 +1583,50 @@ impl Exomars {
             + (tau_rear_right_x * t593 - tau_rear_right_y * t596
                 + tau_rear_right_z * c_phi) - t489 * t610 - t495 * t615 - t501 * t624
             - t512 * t625 + t523 * t626 - t536 * t627 - t548 * t628;
+        let t199 = 0.6 * (0.2 * t40) - 0.6 * (0.2 * t20) - 0.6 * (0.2 * t60)
+            + 0.6 * (0.2 * t80) - 0.6 * (t91 * t102) - 0.6 * (t111 * t120);
+        let t152 = -(0.6 * (0.2 * t10)) - 0.6 * (0.2 * t50);
+        let t490 = t152 * t485;
+        let t167 = 0.6 * (0.2 * t30) + 0.6 * (0.2 * t70);
+        let t496 = t167 * t491;
+        let t177 = 0.6 * (t90 * 0.3);
+        let t202 = 0.6 * (t110 * 0.3);
+        let t203 = -t177 - t202;
+        let t502 = t203 * t497;
+        let t181 = -t170 - t180;
+        let t513 = t181 - t490 * t503 - t496 * t504;
+        let t514 = t506 * t513;
+        let t183 = t123 + t132 + t142 + t157 - 0.18 - 0.18;
+        let t524 = t183 - t502 * t515;
+        let t525 = t517 * t524;
+        let t537 = -(t490 * t526) - t496 * t527 - t502 * t528 - t514 * t529
+            + t525 * t530;
+        let t538 = t532 * t537;
+        let t194 = -(0.6 * (t11 * t20)) - 0.6 * (t31 * t40) - 0.6 * (t51 * t60)
+            - 0.6 * (t71 * t80) + 0.6 * (t102 * 0.3) + 0.6 * (t120 * 0.3);
+        let t549 = t194 - t490 * t539 - t496 * t540 - t502 * t541 - t514 * t542
+            - t525 * t543 - t538 * t544;
+        let t550 = t546 * t549;
+        let t560 = t199 - t490 * t551 - t496 * t552 - t502 * t553 - t514 * t554
+            + t525 * t555 - t538 * t556 - t550 * t557;
+        let t561 = t559 * t560;
+        let t201 = 1.5 + 0.6 * (0.04000000000000001 + t127)
+            + 0.6 * (0.04000000000000001 + t136) + 0.6 * (0.04000000000000001 + t148)
+            + 0.6 * (0.04000000000000001 + t163) + 0.6 * (t174 + 0.09)
+            + 0.6 * (0.09 + t191);
+        let t562 = t153 * t490;
+        let t563 = t168 * t496;
+        let t564 = t204 * t502;
+        let t565 = t505 * t514;
+        let t566 = t516 * t525;
+        let t567 = t531 * t538;
+        let t568 = t545 * t550;
+        let t569 = t558 * t561;
+        let t570 = t201 - t490 * t562 - t496 * t563 - t502 * t564 - t514 * t565
+            - t525 * t566 - t538 * t567 - t550 * t568 - t561 * t569;
+        let t571 = 1.0 / t570;
+        let t589 = 0.2 * t585;
+        let t591 = 0.3 * t586;
         let t630 = t571
             * (t589 - t11 * t586 + (-t589 - t31 * t586) + (t589 - t51 * t586)
                 + (-t589 - t71 * t586) + (t591 + t91 * t585) + (t591 + t111 * t585)
@@ -2105,37 +1658,65 @@ impl Exomars {
         let t631 = t559 * t629 - t561 * t630;
         let t632 = t546 * t628 - t548 * t631 - t550 * t630;
         let t633 = t532 * t627 - t534 * t632 - t536 * t631 - t538 * t630;
-        let t634 = t517 * t626 + t519 * t633 - t521 * t632 + t523 * t631 - t525 * t630;
         let t635 = t506 * t625 - t508 * t633 - t510 * t632 - t512 * t631 - t514 * t630;
-        let t636 = s_phi * t584 / c_phi;
-        let t637 = t10 * t359 + t19 * t357;
-        let t638 = t30 * t359 + t39 * t357;
-        let t639 = t50 * t359 + t59 * t357;
-        let t640 = t70 * t359 + t79 * t357;
-        let t641 = 0.3 * t357;
-        let t642 = t101 * t357;
-        let t643 = t119 * t357;
+        let t634 = t517 * t626 + t519 * t633 - t521 * t632 + t523 * t631 - t525 * t630;
+        let t415 = s_psi * t411;
+        let t414 = s_theta * c_psi;
         let t644 = -t415 - t414;
+        let t412 = c_theta * c_psi - s_psi * t410;
+        let t422 = c_psi * t411;
+        let t421 = s_theta * s_psi;
         let t645 = t422 - t421;
+        let t417 = c_theta * s_psi;
+        let t418 = c_psi * t410;
+        let t419 = t417 + t418;
+        let t674 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
+        let t359 = t354 * 0.972;
+        let t356 = t354 * 48.6;
+        let t426 = f_front_left_z * t354;
         let t646 = f_front_left_x * t644 + f_front_left_y * t645 - t426;
-        let t647 = t19 * t424;
+        let t436 = f_front_right_z * t354;
         let t648 = f_front_right_x * t644 + f_front_right_y * t645 - t436;
-        let t649 = t39 * t434;
+        let t446 = f_middle_left_z * t354;
         let t650 = f_middle_left_x * t644 + f_middle_left_y * t645 - t446;
+        let t457 = f_middle_right_z * t354;
+        let t653 = f_middle_right_x * t644 + f_middle_right_y * t645 - t457;
+        let t468 = f_rear_left_z * t354;
+        let t656 = f_rear_left_x * t644 + f_rear_left_y * t645 - t468;
+        let t477 = f_rear_right_z * t354;
+        let t659 = f_rear_right_x * t644 + f_rear_right_y * t645 - t477;
+        let t357 = t353 * 0.972;
+        let t637 = t10 * t359 + t19 * t357;
+        let t639 = t50 * t359 + t59 * t357;
+        let t424 = f_front_left_x * t412 + f_front_left_y * t419 - f_front_left_z * t353;
+        let t647 = t19 * t424;
+        let t444 = f_middle_left_x * t412 + f_middle_left_y * t419
+            - f_middle_left_z * t353;
         let t651 = t59 * t444;
         let t652 = t637 + t639 + (t10 * t646 + t647) + (t50 * t650 + t651);
-        let t653 = f_middle_right_x * t644 + f_middle_right_y * t645 - t457;
+        let t638 = t30 * t359 + t39 * t357;
+        let t640 = t70 * t359 + t79 * t357;
+        let t434 = f_front_right_x * t412 + f_front_right_y * t419
+            - f_front_right_z * t353;
+        let t649 = t39 * t434;
+        let t455 = f_middle_right_x * t412 + f_middle_right_y * t419
+            - f_middle_right_z * t353;
         let t654 = t79 * t455;
         let t655 = t638 + t640 + (t30 * t648 + t649) + (t70 * t653 + t654);
-        let t656 = f_rear_left_x * t644 + f_rear_left_y * t645 - t468;
-        let t657 = t101 * t466;
-        let t658 = mu_rear_left_x * t644 + mu_rear_left_y * t645 - t472;
-        let t659 = f_rear_right_x * t644 + f_rear_right_y * t645 - t477;
-        let t660 = t119 * t475;
-        let t661 = mu_rear_right_x * t644 + mu_rear_right_y * t645 - t481;
-        let t662 = t642 + t643 + t657 + t658 + t660 + t661;
         let t663 = t359 + (t359 + (t359 + (t359 + (t359 + (t356 + t359))))) + t646 + t648
             + t650 + t653 + t656 + t659 - t486 * t652 - t492 * t655;
+        let t475 = f_rear_right_x * t412 + f_rear_right_y * t419 - f_rear_right_z * t353;
+        let t466 = f_rear_left_x * t412 + f_rear_left_y * t419 - f_rear_left_z * t353;
+        let t355 = t353 * 48.6;
+        let t642 = t101 * t357;
+        let t643 = t119 * t357;
+        let t657 = t101 * t466;
+        let t472 = mu_rear_left_z * t354;
+        let t658 = mu_rear_left_x * t644 + mu_rear_left_y * t645 - t472;
+        let t660 = t119 * t475;
+        let t481 = mu_rear_right_z * t354;
+        let t661 = mu_rear_right_x * t644 + mu_rear_right_y * t645 - t481;
+        let t662 = t642 + t643 + t657 + t658 + t660 + t661;
         let t664 = t498 * t662;
         let t665 = t475
             + (t466
@@ -2146,6 +1727,24 @@ impl Exomars {
                                 + (t357
                                     + (t357 + (t357 + (t357 + (t357 + (t355 + t357)))))))))))
             - t487 * t652 - t493 * t655 - t499 * t662 - t508 * t663 - t519 * t664;
+        let t479 = t111 * t475;
+        let t470 = t91 * t466;
+        let t459 = 0.2 * t455;
+        let t448 = 0.2 * t444;
+        let t438 = 0.2 * t434;
+        let t428 = 0.2 * t424;
+        let t365 = t91 * t357;
+        let t367 = t111 * t357;
+        let t431 = mu_front_left_z * t354;
+        let t433 = tau_front_left_z * t354;
+        let t441 = mu_front_right_z * t354;
+        let t443 = tau_front_right_z * t354;
+        let t451 = mu_middle_left_z * t354;
+        let t454 = tau_middle_left_z * t354;
+        let t462 = mu_middle_right_z * t354;
+        let t465 = tau_middle_right_z * t354;
+        let t474 = tau_rear_left_z * t354;
+        let t484 = tau_rear_right_z * t354;
         let t666 = t479
             + (t470
                 + (t448
@@ -2162,6 +1761,7 @@ impl Exomars {
                 + t658 + (tau_rear_left_x * t644 + tau_rear_left_y * t645 - t474)) + t661
             + (tau_rear_right_x * t644 + tau_rear_right_y * t645 - t484) - t488 * t652
             - t494 * t655 - t500 * t662 - t510 * t663 + t521 * t664 - t534 * t665;
+        let t641 = 0.3 * t357;
         let t667 = t20 * t359 - t11 * t357 + (t40 * t359 - t31 * t357)
             + (t60 * t359 - t51 * t357) + (t80 * t359 - t71 * t357)
             + (t102 * t359 + t641) + (t641 + t120 * t359) + (t20 * t646 - t11 * t424)
@@ -2169,6 +1769,31 @@ impl Exomars {
             + (t80 * t653 - t71 * t455) + (t102 * t656 + 0.3 * t466)
             + (t120 * t659 + 0.3 * t475) - t489 * t652 - t495 * t655 - t501 * t662
             - t512 * t663 - t523 * t664 - t536 * t665 - t548 * t666;
+        let t483 = tau_rear_right_x * t412 + tau_rear_right_y * t419
+            - tau_rear_right_z * t353;
+        let t480 = mu_rear_right_x * t412 + mu_rear_right_y * t419
+            - mu_rear_right_z * t353;
+        let t473 = tau_rear_left_x * t412 + tau_rear_left_y * t419
+            - tau_rear_left_z * t353;
+        let t471 = mu_rear_left_x * t412 + mu_rear_left_y * t419 - mu_rear_left_z * t353;
+        let t464 = tau_middle_right_x * t412 + tau_middle_right_y * t419
+            - tau_middle_right_z * t353;
+        let t460 = mu_middle_right_x * t412 + mu_middle_right_y * t419
+            - mu_middle_right_z * t353;
+        let t453 = tau_middle_left_x * t412 + tau_middle_left_y * t419
+            - tau_middle_left_z * t353;
+        let t449 = mu_middle_left_x * t412 + mu_middle_left_y * t419
+            - mu_middle_left_z * t353;
+        let t442 = tau_front_right_x * t412 + tau_front_right_y * t419
+            - tau_front_right_z * t353;
+        let t439 = mu_front_right_x * t412 + mu_front_right_y * t419
+            - mu_front_right_z * t353;
+        let t432 = tau_front_left_x * t412 + tau_front_left_y * t419
+            - tau_front_left_z * t353;
+        let t429 = mu_front_left_x * t412 + mu_front_left_y * t419
+            - mu_front_left_z * t353;
+        let t362 = t91 * t359;
+        let t366 = t111 * t359;
         let t668 = t571
             * (t483
                 + (t480
@@ -2187,38 +1812,40 @@ impl Exomars {
         let t669 = t559 * t667 - t561 * t668;
         let t670 = t546 * t666 - t548 * t669 - t550 * t668;
         let t671 = t532 * t665 - t534 * t670 - t536 * t669 - t538 * t668;
-        let t672 = t519 * t671 - t517 * t664 - t521 * t670 + t523 * t669 - t525 * t668;
         let t673 = t506 * t663 - t508 * t671 - t510 * t670 - t512 * t669 - t514 * t668;
-        let t674 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
+        let t672 = t519 * t671 - t517 * t664 - t521 * t670 + t523 * t669 - t525 * t668;
         let t675 = -t418 - t417;
+        let t420 = c_phi * c_psi;
+        let t413 = c_phi * s_psi;
+        let t416 = t414 + t415;
         let t676 = f_front_left_x * t675 + f_front_left_y * t412;
-        let t677 = -(f_front_left_x * t420) - f_front_left_y * t413;
+        let t680 = f_front_right_x * t675 + f_front_right_y * t412;
+        let t684 = f_middle_left_x * t675 + f_middle_left_y * t412;
+        let t689 = f_middle_right_x * t675 + f_middle_right_y * t412;
+        let t694 = f_rear_left_x * t675 + f_rear_left_y * t412;
+        let t698 = f_rear_right_x * t675 + f_rear_right_y * t412;
         let t678 = f_front_left_x * t645 + f_front_left_y * t416;
         let t679 = -(mu_front_left_x * t420) - mu_front_left_y * t413;
-        let t680 = f_front_right_x * t675 + f_front_right_y * t412;
-        let t681 = -(f_front_right_x * t420) - f_front_right_y * t413;
-        let t682 = f_front_right_x * t645 + f_front_right_y * t416;
-        let t683 = -(mu_front_right_x * t420) - mu_front_right_y * t413;
-        let t684 = f_middle_left_x * t675 + f_middle_left_y * t412;
-        let t685 = -(f_middle_left_x * t420) - f_middle_left_y * t413;
         let t686 = f_middle_left_x * t645 + f_middle_left_y * t416;
         let t687 = -(mu_middle_left_x * t420) - mu_middle_left_y * t413;
         let t688 = t10 * t676 + t19 * t678 + t679 + (t50 * t684 + t59 * t686) + t687;
-        let t689 = f_middle_right_x * t675 + f_middle_right_y * t412;
-        let t690 = -(f_middle_right_x * t420) - f_middle_right_y * t413;
+        let t682 = f_front_right_x * t645 + f_front_right_y * t416;
+        let t683 = -(mu_front_right_x * t420) - mu_front_right_y * t413;
         let t691 = f_middle_right_x * t645 + f_middle_right_y * t416;
         let t692 = -(mu_middle_right_x * t420) - mu_middle_right_y * t413;
         let t693 = t30 * t680 + t39 * t682 + t683 + (t70 * t689 + t79 * t691) + t692;
-        let t694 = f_rear_left_x * t675 + f_rear_left_y * t412;
-        let t695 = -(f_rear_left_x * t420) - f_rear_left_y * t413;
+        let t703 = t676 + t680 + t684 + t689 + t694 + t698 - t486 * t688 - t492 * t693;
         let t696 = f_rear_left_x * t645 + f_rear_left_y * t416;
-        let t697 = mu_rear_left_x * t675 + mu_rear_left_y * t412;
-        let t698 = f_rear_right_x * t675 + f_rear_right_y * t412;
-        let t699 = -(f_rear_right_x * t420) - f_rear_right_y * t413;
         let t700 = f_rear_right_x * t645 + f_rear_right_y * t416;
+        let t695 = -(f_rear_left_x * t420) - f_rear_left_y * t413;
+        let t697 = mu_rear_left_x * t675 + mu_rear_left_y * t412;
+        let t699 = -(f_rear_right_x * t420) - f_rear_right_y * t413;
         let t701 = mu_rear_right_x * t675 + mu_rear_right_y * t412;
         let t702 = t90 * t695 + t101 * t696 + t697 + (t110 * t699 + t119 * t700) + t701;
-        let t703 = t676 + t680 + t684 + t689 + t694 + t698 - t486 * t688 - t492 * t693;
+        let t677 = -(f_front_left_x * t420) - f_front_left_y * t413;
+        let t681 = -(f_front_right_x * t420) - f_front_right_y * t413;
+        let t685 = -(f_middle_left_x * t420) - f_middle_left_y * t413;
+        let t690 = -(f_middle_right_x * t420) - f_middle_right_y * t413;
         let t704 = t677 + t681 + t685 + t690 + t695 + t699 - t498 * t702;
         let t705 = t678 + t682 + t686 + t691 + t696 + t700 - t487 * t688 - t493 * t693
             - t499 * t702 - t508 * t703 + t519 * t704;
@@ -2279,85 +1906,241 @@ impl Exomars {
         let t709 = t559 * t707 - t561 * t708;
         let t710 = t546 * t706 - t548 * t709 - t550 * t708;
         let t711 = t532 * t705 - t534 * t710 - t536 * t709 - t538 * t708;
-        let t712 = t517 * t704 + t519 * t711 - t521 * t710 + t523 * t709 - t525 * t708;
         let t713 = t506 * t703 - t508 * t711 - t510 * t710 - t512 * t709 - t514 * t708;
+        let t712 = t517 * t704 + t519 * t711 - t521 * t710 + t523 * t709 - t525 * t708;
+        let omega_y = w[4];
+        let t213 = vz * 33.60000000000001;
+        let t214 = omega_x * t186;
+        let t215 = omega_y * t187;
+        let yd_y1 = w[6];
+        let yd_y2 = w[7];
+        let yd_y3 = w[8];
+        let t216 = t213 + t214 + t215 + yd_y1 * t144 + yd_y2 * t159 + yd_y3 * t189;
+        let t209 = vy * 33.60000000000001;
+        let t210 = omega_x * t182;
+        let t211 = omega_z * t183;
+        let t212 = t209 + t210 + t211 + yd_y3 * t185;
+        let t5 = y1 * 0.01473139127471974;
+        let t6 = t5 + 2.0 * t3;
+        let t9 = y1 * t6 + 2.0 * t7;
+        let t233 = yd_y1 * yd_y1;
+        let t230 = yd_y1 * t19;
+        let t237 = t9 * t233 + omega_y * t230;
+        let t25 = y2 * 0.01473139127471974;
+        let t26 = t25 + 2.0 * t23;
+        let t29 = y2 * t26 + 2.0 * t27;
+        let t234 = yd_y2 * yd_y2;
+        let t253 = yd_y2 * t39;
+        let t257 = t29 * t234 + omega_y * t253;
+        let t45 = y1 * 0.014731391274719738;
+        let t46 = 2.0 * t43 - t45;
+        let t49 = y1 * t46 + 2.0 * t47;
+        let t273 = yd_y1 * t59;
+        let t277 = t49 * t233 + omega_y * t273;
+        let t65 = y2 * 0.014731391274719738;
+        let t66 = 2.0 * t63 - t65;
+        let t69 = y2 * t66 + 2.0 * t67;
+        let t293 = yd_y2 * t79;
+        let t297 = t69 * t234 + omega_y * t293;
+        let t314 = yd_y3 * t90;
+        let t315 = yd_y3 * t101;
+        let t318 = omega_z * t314 - omega_y * t315;
+        let t334 = yd_y3 * t110;
+        let t335 = yd_y3 * t119;
+        let t338 = omega_z * t334 - omega_y * t335;
+        let t226 = omega_z * 0.2;
+        let t229 = yd_y1 * t10;
+        let t231 = vx + (omega_y * t20 - t226) + t229;
+        let t242 = omega_y * t19;
+        let t247 = yd_y1 * t9;
+        let t249 = t242 + t247;
+        let t228 = vy + (omega_z * t11 - omega_x * t20);
+        let t243 = omega_x * t19;
+        let t244 = omega_z * t10;
+        let t245 = t243 - t244;
+        let t227 = omega_x * 0.2;
+        let t232 = vz + (t227 - omega_y * t11) + t230;
+        let t246 = omega_y * t10;
+        let t15 = 2.0 * t13 - t5;
+        let t18 = y1 * t15 + 2.0 * t16;
+        let t248 = yd_y1 * t18;
+        let t250 = t248 - t246;
+        let t239 = t9 * t231;
+        let t240 = t18 * t232;
+        let t241 = t239 + t240;
+        let t238 = t18 * t233 - omega_y * t229;
+        let t272 = yd_y1 * t50;
+        let t274 = vx + (omega_y * t60 - t226) + t272;
+        let t282 = omega_y * t59;
+        let t287 = yd_y1 * t49;
+        let t289 = t282 + t287;
+        let t271 = vy + (omega_z * t51 - omega_x * t60);
+        let t283 = omega_x * t59;
+        let t284 = omega_z * t50;
+        let t285 = t283 - t284;
+        let t275 = vz + (t227 - omega_y * t51) + t273;
+        let t286 = omega_y * t50;
+        let t55 = 2.0 * t53 - t5;
+        let t58 = y1 * t55 + 2.0 * t56;
+        let t288 = yd_y1 * t58;
+        let t290 = t288 - t286;
+        let t279 = t49 * t274;
+        let t280 = t58 * t275;
+        let t281 = t279 + t280;
+        let t278 = t58 * t233 - omega_y * t272;
+        let t368 = y1 - 0.5235987755982988;
+        let t369 = f64::max(t368, 0.0);
+        let t372 = 10000.0 * t369;
+        let t373 = f64::min(t372, 1.0);
+        let t374 = 5.477225575051661 * t373;
+        let t375 = -(100.0 * t369) - yd_y1 * t374;
+        let t376 = f64::min(t375, 0.0);
+        let t370 = -0.5235987755982988 - y1;
+        let t371 = f64::max(t370, 0.0);
+        let t377 = 10000.0 * t371;
+        let t378 = f64::min(t377, 1.0);
+        let t379 = 5.477225575051661 * t378;
+        let t380 = 100.0 * t371 - yd_y1 * t379;
+        let t381 = f64::max(t380, 0.0);
+        let t423 = t421 - t422;
+        let t427 = f_front_left_x * t416 + f_front_left_y * t423 + t426;
+        let t430 = mu_front_left_y * t420 - mu_front_left_x * t413
+            + mu_front_left_z * s_phi;
+        let t447 = f_middle_left_x * t416 + f_middle_left_y * t423 + t446;
+        let t450 = mu_middle_left_y * t420 - mu_middle_left_x * t413
+            + mu_middle_left_z * s_phi;
+        let t452 = 0.6
+            * (t231 * t249 - t228 * t245 + t232 * t250
+                - (yd_y1 * t241 + (t10 * t237 + t19 * t238)))
+            + 0.6
+                * (t274 * t289 - t271 * t285 + t275 * t290
+                    - (yd_y1 * t281 + (t50 * t277 + t59 * t278)))
+            + (t10 * t357 - t19 * t359) + (t50 * t357 - t59 * t359) + (t376 + t381)
+            + (t10 * t424 + t19 * t427) + t430 + (t50 * t444 + t59 * t447) + t450;
+        let t252 = yd_y2 * t30;
+        let t254 = vx + (t226 + omega_y * t40) + t252;
+        let t262 = omega_y * t39;
+        let t267 = yd_y2 * t29;
+        let t269 = t262 + t267;
+        let t251 = vy + (omega_z * t31 - omega_x * t40);
+        let t263 = omega_x * t39;
+        let t264 = omega_z * t30;
+        let t265 = t263 - t264;
+        let t255 = vz + (-t227 - omega_y * t31) + t253;
+        let t266 = omega_y * t30;
+        let t35 = 2.0 * t33 - t25;
+        let t38 = y2 * t35 + 2.0 * t36;
+        let t268 = yd_y2 * t38;
+        let t270 = t268 - t266;
+        let t259 = t29 * t254;
+        let t260 = t38 * t255;
+        let t261 = t259 + t260;
+        let t258 = t38 * t234 - omega_y * t252;
+        let t292 = yd_y2 * t70;
+        let t294 = vx + (t226 + omega_y * t80) + t292;
+        let t302 = omega_y * t79;
+        let t307 = yd_y2 * t69;
+        let t309 = t302 + t307;
+        let t291 = vy + (omega_z * t71 - omega_x * t80);
+        let t303 = omega_x * t79;
+        let t304 = omega_z * t70;
+        let t305 = t303 - t304;
+        let t295 = vz + (-t227 - omega_y * t71) + t293;
+        let t306 = omega_y * t70;
+        let t75 = 2.0 * t73 - t25;
+        let t78 = y2 * t75 + 2.0 * t76;
+        let t308 = yd_y2 * t78;
+        let t310 = t308 - t306;
+        let t299 = t69 * t294;
+        let t300 = t78 * t295;
+        let t301 = t299 + t300;
+        let t298 = t78 * t234 - omega_y * t292;
+        let t382 = y2 - 0.5235987755982988;
+        let t383 = f64::max(t382, 0.0);
+        let t386 = 10000.0 * t383;
+        let t387 = f64::min(t386, 1.0);
+        let t388 = 5.477225575051661 * t387;
+        let t389 = -(100.0 * t383) - yd_y2 * t388;
+        let t390 = f64::min(t389, 0.0);
+        let t384 = -0.5235987755982988 - y2;
+        let t385 = f64::max(t384, 0.0);
+        let t391 = 10000.0 * t385;
+        let t392 = f64::min(t391, 1.0);
+        let t393 = 5.477225575051661 * t392;
+        let t394 = 100.0 * t385 - yd_y2 * t393;
+        let t395 = f64::max(t394, 0.0);
+        let t437 = f_front_right_x * t416 + f_front_right_y * t423 + t436;
+        let t440 = mu_front_right_y * t420 - mu_front_right_x * t413
+            + mu_front_right_z * s_phi;
+        let t458 = f_middle_right_x * t416 + f_middle_right_y * t423 + t457;
+        let t461 = mu_middle_right_y * t420 - mu_middle_right_x * t413
+            + mu_middle_right_z * s_phi;
+        let t463 = 0.6
+            * (t254 * t269 - t251 * t265 + t255 * t270
+                - (yd_y2 * t261 + (t30 * t257 + t39 * t258)))
+            + 0.6
+                * (t294 * t309 - t291 * t305 + t295 * t310
+                    - (yd_y2 * t301 + (t70 * t297 + t79 * t298)))
+            + (t30 * t357 - t39 * t359) + (t70 * t357 - t79 * t359) + (t390 + t395)
+            + (t30 * t434 + t39 * t437) + t440 + (t70 * t455 + t79 * t458) + t461;
+        let t572 = t357
+            + (t357
+                + (t357
+                    + (t357
+                        + (t357
+                            + (-(omega_y * t216 - omega_z * t212) - 0.6 * t237
+                                - 0.6 * t257 - 0.6 * t277 - 0.6 * t297 + 0.6 * t318
+                                + 0.6 * t338 + t355 + t357))))) + t424 + t434 + t444 + t455
+            + t466 + t475 - t452 * t486 - t463 * t492;
         let t714 = t3 + (t3 + t5);
-        let t715 = y1 * 0.044194173824159216;
-        let t716 = t6 + t715 + 2.0 * t714;
         let t717 = t7 + (t7 + y1 * t714);
-        let t718 = t13 + (t13 - t5);
-        let t719 = t15 - t715 + 2.0 * t718;
-        let t720 = t16 + (t16 + y1 * t718);
         let t721 = t43 + (t43 - t45);
-        let t722 = t46 - t715 + 2.0 * t721;
         let t723 = t47 + (t47 + y1 * t721);
-        let t724 = t53 + (t53 - t5);
-        let t725 = t55 - t715 + 2.0 * t724;
-        let t726 = t56 + (t56 + y1 * t724);
-        let t727 = t19 * t20;
-        let t728 = t727 + t727;
-        let t729 = t10 * t11;
-        let t730 = t729 + t729;
-        let t731 = t10 * t19;
-        let t732 = t10 * t717;
-        let t733 = t19 * t720;
         let t734 = 0.6 * t717 + 0.6 * t723;
-        let t735 = -t124 - t143;
-        let t736 = -t122 - t140;
-        let t737 = 0.6 * t720 + 0.6 * t726;
-        let t738 = t59 * t60;
-        let t739 = t738 + t738;
-        let t740 = 0.6 * t728 + 0.6 * t739;
-        let t741 = -(0.6 * (t128 + t129)) - 0.6 * (t149 + t150);
-        let t742 = 0.6 * (0.2 * t720) + 0.6 * (0.2 * t726);
-        let t743 = t50 * t51;
-        let t744 = t743 + t743;
-        let t745 = 0.6 * (t728 + t730) + 0.6 * (t739 + t744);
-        let t746 = -t126 - t146;
-        let t747 = t50 * t59;
-        let t748 = 0.6 * (t20 * t717 + t731 - (t731 + t11 * t720))
-            + 0.6 * (t60 * t723 + t747 - (t747 + t51 * t726));
-        let t749 = 0.6 * t730 + 0.6 * t744;
-        let t750 = -(0.6 * (0.2 * t717)) - 0.6 * (0.2 * t723);
+        let t732 = t10 * t717;
+        let t718 = t13 + (t13 - t5);
+        let t720 = t16 + (t16 + y1 * t718);
+        let t733 = t19 * t720;
         let t751 = t50 * t723;
+        let t724 = t53 + (t53 - t5);
+        let t726 = t56 + (t56 + y1 * t724);
         let t752 = t59 * t726;
         let t753 = 0.6 * (t732 + t732 + (t733 + t733))
             + 0.6 * (t751 + t751 + (t752 + t752));
-        let t754 = omega_y * t144;
-        let t755 = t754 + yd_y1 * t734;
+        let t790 = t485 * t753 / t153;
+        let t791 = t485 * t734 - t141 * t790;
+        let t796 = t486 * t753 + t153 * t791;
+        let t797 = t503 * t791 + t486 * t796;
+        let t798 = t506 * t797 / t505;
+        let t736 = -t122 - t140;
+        let t737 = 0.6 * t720 + 0.6 * t726;
+        let t758 = omega_y * t736 + yd_y1 * t737;
+        let t735 = -t124 - t143;
         let t756 = omega_z * t141;
         let t757 = omega_x * t735 + t756;
-        let t758 = omega_y * t736 + yd_y1 * t737;
-        let t759 = omega_y * t152;
-        let t760 = vy * t735 + omega_x * t740 + t759 + omega_z * t741 + yd_y1 * t742;
-        let t761 = vx * t144;
-        let t762 = omega_x * t152;
-        let t763 = t761 + vz * t736 + t762 + omega_y * t745 + omega_z * t746
-            + yd_y1 * t748;
-        let t764 = vy * t141;
-        let t765 = t764 + omega_x * t741 + omega_y * t746 + omega_z * t749
-            + yd_y1 * t750;
-        let t766 = t244 - t243;
-        let t767 = yd_y1 * t717;
+        let t715 = y1 * 0.044194173824159216;
+        let t716 = t6 + t715 + 2.0 * t714;
         let t768 = yd_y1 * t720;
-        let t769 = t242 + t767;
-        let t770 = t768 - t246;
-        let t771 = omega_x * t768 - omega_z * t767;
         let t772 = t233 * t716 + omega_y * t768;
-        let t773 = t233 * t719 - omega_y * t767;
-        let t774 = t284 - t283;
-        let t775 = yd_y1 * t723;
+        let t722 = t46 - t715 + 2.0 * t721;
         let t776 = yd_y1 * t726;
-        let t777 = t282 + t775;
-        let t778 = t776 - t286;
-        let t779 = omega_x * t776 - omega_z * t775;
         let t780 = t233 * t722 + omega_y * t776;
+        let t767 = yd_y1 * t717;
+        let t769 = t242 + t767;
+        let t766 = t244 - t243;
+        let t770 = t768 - t246;
+        let t719 = t15 - t715 + 2.0 * t718;
+        let t773 = t233 * t719 - omega_y * t767;
+        let t775 = yd_y1 * t723;
+        let t777 = t282 + t775;
+        let t774 = t284 - t283;
+        let t778 = t776 - t286;
+        let t725 = t55 - t715 + 2.0 * t724;
         let t781 = t233 * t725 - omega_y * t775;
-        let t782 = 0.6 * t771 - (omega_z * t755 - omega_x * t758) + 0.6 * t779;
         let t783 = if t368 >= 0.0 { 1.0 } else { 0.0 };
-        let t784 = if t370 >= 0.0 { 1.0 } else { 0.0 };
         let t785 = if 1.0 >= t372 { 1.0 } else { 0.0 };
         let t786 = if 0.0 >= t375 { 1.0 } else { 0.0 };
+        let t784 = if t370 >= 0.0 { 1.0 } else { 0.0 };
         let t787 = if 1.0 >= t377 { 1.0 } else { 0.0 };
         let t788 = if t380 >= 0.0 { 1.0 } else { 0.0 };
         let t789 = 0.6
@@ -2377,34 +2160,221 @@ impl Exomars {
                 * t786
                 + (yd_y1 * (5.477225575051661 * (10000.0 * t784 * t787)) - 100.0 * t784)
                     * t788) + (t424 * t717 + t427 * t720) + (t444 * t723 + t447 * t726);
-        let t790 = t485 * t753 / t153;
-        let t791 = t485 * t734 - t141 * t790;
+        let t827 = -(omega_y * t758 - omega_z * t757) - 0.6 * t772 - 0.6 * t780
+            - (t486 * t789 + t452 * t791);
+        let t205 = vx * 33.60000000000001;
+        let t206 = omega_y * t179;
+        let t207 = omega_z * t181;
+        let t208 = t205 + t206 + t207 + yd_y1 * t141 + yd_y2 * t156;
+        let t96 = y3 * 0.01474329607280016;
+        let t97 = 2.0 * t94 - t96;
+        let t100 = y3 * t97 + 2.0 * t98;
+        let t235 = yd_y3 * yd_y3;
+        let t320 = t100 * t235 + omega_x * t314;
+        let t115 = 2.0 * t113 - t96;
+        let t118 = y3 * t115 + 2.0 * t116;
+        let t340 = t118 * t235 + omega_x * t334;
+        let t469 = f_rear_left_x * t416 + f_rear_left_y * t423 + t468;
+        let t478 = f_rear_right_x * t416 + f_rear_right_y * t423 + t477;
+        let t313 = vx + (omega_y * t102 - omega_z * t91);
+        let t324 = omega_z * t90;
+        let t325 = omega_y * t101;
+        let t326 = t324 - t325;
+        let t311 = omega_z * 0.3;
+        let t316 = vy + (-t311 - omega_x * t102) + t314;
+        let t327 = omega_x * t101;
+        let t85 = y3 * 0.016664264787555297;
+        let t86 = t85 + 2.0 * t83;
+        let t89 = y3 * t86 + 2.0 * t87;
+        let t329 = yd_y3 * t89;
+        let t331 = t329 - t327;
+        let t312 = omega_y * 0.3;
+        let t317 = vz + (omega_x * t91 + t312) + t315;
+        let t328 = omega_x * t90;
+        let t330 = yd_y3 * t100;
+        let t332 = t328 + t330;
+        let t321 = t89 * t316;
+        let t322 = t100 * t317;
+        let t323 = t321 + t322;
+        let t319 = t89 * t235 - omega_x * t315;
+        let t333 = vx + (omega_y * t120 - omega_z * t111);
+        let t344 = omega_z * t110;
+        let t345 = omega_y * t119;
+        let t346 = t344 - t345;
+        let t336 = vy + (-t311 - omega_x * t120) + t334;
+        let t347 = omega_x * t119;
+        let t106 = 2.0 * t104 - t85;
+        let t109 = y3 * t106 + 2.0 * t107;
+        let t349 = yd_y3 * t109;
+        let t351 = t349 - t347;
+        let t337 = vz + (t312 + omega_x * t111) + t335;
+        let t348 = omega_x * t110;
+        let t350 = yd_y3 * t118;
+        let t352 = t348 + t350;
+        let t341 = t109 * t336;
+        let t342 = t118 * t337;
+        let t343 = t341 + t342;
+        let t339 = t109 * t235 - omega_x * t335;
+        let t358 = s_phi * 0.972;
+        let t396 = y3 - 0.5235987755982988;
+        let t397 = f64::max(t396, 0.0);
+        let t400 = 10000.0 * t397;
+        let t401 = f64::min(t400, 1.0);
+        let t402 = 5.849676914155174 * t401;
+        let t403 = -(100.0 * t397) - yd_y3 * t402;
+        let t404 = f64::min(t403, 0.0);
+        let t398 = -0.5235987755982988 - y3;
+        let t399 = f64::max(t398, 0.0);
+        let t405 = 10000.0 * t399;
+        let t406 = f64::min(t405, 1.0);
+        let t407 = 5.849676914155174 * t406;
+        let t408 = 100.0 * t399 - yd_y3 * t407;
+        let t409 = f64::max(t408, 0.0);
+        let t467 = f_rear_left_y * t420 - f_rear_left_x * t413 + f_rear_left_z * s_phi;
+        let t476 = f_rear_right_y * t420 - f_rear_right_x * t413
+            + f_rear_right_z * s_phi;
+        let t482 = 0.6
+            * (t316 * t331 - t313 * t326 + t317 * t332
+                - (yd_y3 * t323 + (t90 * t319 + t101 * t320)))
+            + 0.6
+                * (t336 * t351 - t333 * t346 + t337 * t352
+                    - (yd_y3 * t343 + (t110 * t339 + t119 * t340)))
+            + (-(t90 * t358) - t101 * t359) + (-(t110 * t358) - t119 * t359)
+            + (t404 + t409) + (t90 * t467 + t101 * t469) + t471
+            + (t110 * t476 + t119 * t478) + t480;
+        let t236 = omega_x * t230 - omega_z * t229;
+        let t256 = omega_x * t253 - omega_z * t252;
+        let t276 = omega_x * t273 - omega_z * t272;
+        let t296 = omega_x * t293 - omega_z * t292;
+        let t425 = f_front_left_y * t420 - f_front_left_x * t413
+            + f_front_left_z * s_phi;
+        let t435 = f_front_right_y * t420 - f_front_right_x * t413
+            + f_front_right_z * s_phi;
+        let t445 = f_middle_left_y * t420 - f_middle_left_x * t413
+            + f_middle_left_z * s_phi;
+        let t456 = f_middle_right_y * t420 - f_middle_right_x * t413
+            + f_middle_right_z * s_phi;
+        let t573 = 0.6 * t236 - (omega_z * t208 - omega_x * t216) + 0.6 * t256
+            + 0.6 * t276 + 0.6 * t296 - 0.6 * t319 - 0.6 * t339 - s_phi * 48.6 - t358
+            - t358 - t358 - t358 - t358 - t358 + t425 + t435 + t445 + t456 + t467 + t476
+            - t482 * t498;
+        let t574 = -(omega_x * t212 - omega_y * t208) - 0.6 * t238 - 0.6 * t258
+            - 0.6 * t278 - 0.6 * t298 - 0.6 * t320 - 0.6 * t340 - t356 - t359 - t359
+            - t359 - t359 - t359 - t359 + t427 + t437 + t447 + t458 + t469 + t478
+            - t452 * t487 - t463 * t493 - t482 * t499 - t508 * t572 + t519 * t573;
+        let t223 = omega_x * t194;
+        let t224 = omega_y * t199;
+        let t225 = vx * t181 + vy * t183 + t223 + t224 + omega_z * t201 + yd_y1 * t152
+            + yd_y2 * t167 + yd_y3 * t203;
+        let t220 = omega_x * t193;
+        let t221 = omega_z * t199;
+        let t222 = vx * t179 + vz * t187 + t220 + omega_y * t198 + t221 + yd_y1 * t151
+            + yd_y2 * t166 + yd_y3 * t200;
+        let t360 = 0.2 * t359;
+        let t575 = -(vy * t216 - vz * t212 + (omega_y * t225 - omega_z * t222))
+            - 0.6 * (0.2 * t238 + t20 * t236 - t228 * t230)
+            - 0.6 * (t40 * t256 - 0.2 * t258 - t251 * t253)
+            - 0.6 * (0.2 * t278 + t60 * t276 - t271 * t273)
+            - 0.6 * (t80 * t296 - 0.2 * t298 - t291 * t293)
+            - 0.6 * (t314 * t317 - t315 * t316 + (t91 * t320 - t102 * t319))
+            - 0.6 * (t334 * t337 - t335 * t336 + (t111 * t340 - t120 * t339))
+            + (t20 * t358 - t360) + (t360 + t40 * t358) + (t60 * t358 - t360)
+            + (t360 + t80 * t358) + (t102 * t358 - t362) + (t120 * t358 - t366)
+            + (0.2 * t427 - t20 * t425) + t429 + t432 + (-(0.2 * t437) - t40 * t435)
+            + t439 + t442 + (0.2 * t447 - t60 * t445) + t449 + t453
+            + (-(0.2 * t458) - t80 * t456) + t460 + t464 + (t91 * t469 - t102 * t467)
+            + t471 + t473 + (t111 * t478 - t120 * t476) + t480 + t483 - t452 * t488
+            - t463 * t494 - t482 * t500 - t510 * t572 - t521 * t573 - t534 * t574;
+        let t217 = omega_y * t193;
+        let t218 = omega_z * t194;
+        let t219 = vy * t182 + vz * t186 + omega_x * t192 + t217 + t218 + yd_y1 * t147
+            + yd_y2 * t162 + yd_y3 * t197;
+        let t363 = 0.3 * t359;
+        let t576 = -(vz * t208 - vx * t216 + (omega_z * t219 - omega_x * t225))
+            - 0.6 * (t230 * t231 - t229 * t232 + (t20 * t237 - t11 * t238))
+            - 0.6 * (t253 * t254 - t252 * t255 + (t40 * t257 - t31 * t258))
+            - 0.6 * (t273 * t274 - t272 * t275 + (t60 * t277 - t51 * t278))
+            - 0.6 * (t293 * t294 - t292 * t295 + (t80 * t297 - t71 * t298))
+            - 0.6 * (t313 * t315 + (0.3 * t320 - t102 * t318))
+            - 0.6 * (t333 * t335 + (0.3 * t340 - t120 * t338))
+            + (t20 * t357 + t11 * t359) + (t40 * t357 + t31 * t359)
+            + (t60 * t357 + t51 * t359) + (t80 * t357 + t71 * t359)
+            + (t102 * t357 - t363) + (t120 * t357 - t363) + (t20 * t424 - t11 * t427)
+            + t430
+            + (tau_front_left_y * t420 - tau_front_left_x * t413
+                + tau_front_left_z * s_phi) + (t40 * t434 - t31 * t437) + t440
+            + (tau_front_right_y * t420 - tau_front_right_x * t413
+                + tau_front_right_z * s_phi) + (t60 * t444 - t51 * t447) + t450
+            + (tau_middle_left_y * t420 - tau_middle_left_x * t413
+                + tau_middle_left_z * s_phi) + (t80 * t455 - t71 * t458) + t461
+            + (tau_middle_right_y * t420 - tau_middle_right_x * t413
+                + tau_middle_right_z * s_phi) + (t102 * t466 + 0.3 * t469)
+            + (mu_rear_left_y * t420 - mu_rear_left_x * t413 + mu_rear_left_z * s_phi)
+            + (tau_rear_left_y * t420 - tau_rear_left_x * t413 + tau_rear_left_z * s_phi)
+            + (t120 * t475 + 0.3 * t478)
+            + (mu_rear_right_y * t420 - mu_rear_right_x * t413 + mu_rear_right_z * s_phi)
+            + (tau_rear_right_y * t420 - tau_rear_right_x * t413
+                + tau_rear_right_z * s_phi) - t452 * t489 - t463 * t495 - t482 * t501
+            - t512 * t572 + t523 * t573 - t536 * t574 - t548 * t575;
+        let t361 = 0.2 * t357;
+        let t364 = 0.3 * t358;
+        let t577 = -(vx * t212 - vy * t208 + (omega_x * t222 - omega_y * t219))
+            - 0.6 * (t228 * t229 + (-(t11 * t236) - 0.2 * t237))
+            - 0.6 * (t251 * t252 + (0.2 * t257 - t31 * t256))
+            - 0.6 * (t271 * t272 + (-(t51 * t276) - 0.2 * t277))
+            - 0.6 * (t291 * t292 + (0.2 * t297 - t71 * t296))
+            - 0.6 * (t91 * t318 - 0.3 * t319 - t313 * t314)
+            - 0.6 * (t111 * t338 - 0.3 * t339 - t333 * t334) + (-(t11 * t358) - t361)
+            + (t361 - t31 * t358) + (-t361 - t51 * t358) + (t361 - t71 * t358)
+            + (t364 - t365) + (t364 - t367) + (t11 * t425 - t428)
+            + (mu_front_left_x * t416 + mu_front_left_y * t423 + t431)
+            + (tau_front_left_x * t416 + tau_front_left_y * t423 + t433)
+            + (t31 * t435 + t438)
+            + (mu_front_right_x * t416 + mu_front_right_y * t423 + t441)
+            + (tau_front_right_x * t416 + tau_front_right_y * t423 + t443)
+            + (t51 * t445 - t448)
+            + (mu_middle_left_x * t416 + mu_middle_left_y * t423 + t451)
+            + (tau_middle_left_x * t416 + tau_middle_left_y * t423 + t454)
+            + (t71 * t456 + t459)
+            + (mu_middle_right_x * t416 + mu_middle_right_y * t423 + t462)
+            + (tau_middle_right_x * t416 + tau_middle_right_y * t423 + t465)
+            + (-(0.3 * t467) - t470)
+            + (mu_rear_left_x * t416 + mu_rear_left_y * t423 + t472)
+            + (tau_rear_left_x * t416 + tau_rear_left_y * t423 + t474)
+            + (-(0.3 * t476) - t479)
+            + (mu_rear_right_x * t416 + mu_rear_right_y * t423 + t481)
+            + (tau_rear_right_x * t416 + tau_rear_right_y * t423 + t484) - t452 * t490
+            - t463 * t496 - t482 * t502 - t514 * t572 - t525 * t573 - t538 * t574
+            - t550 * t575 - t561 * t576;
+        let t578 = t571 * t577;
+        let t579 = t559 * t576 - t561 * t578;
+        let t580 = t546 * t575 - t548 * t579 - t550 * t578;
+        let t581 = t532 * t574 - t534 * t580 - t536 * t579 - t538 * t578;
         let t792 = t485 * t737 - t144 * t790;
-        let t793 = t485 * t742 - t147 * t790;
-        let t794 = t485 * t748 - t151 * t790;
-        let t795 = t485 * t750 - t152 * t790;
-        let t796 = t486 * t753 + t153 * t791;
-        let t797 = t503 * t791 + t486 * t796;
-        let t798 = t506 * t797 / t505;
         let t799 = t507 * t798 - t506 * (t503 * t792 + t487 * t796);
-        let t800 = t509 * t798 - t506 * (t503 * t793 + t488 * t796);
-        let t801 = t511 * t798 + t506 * (t144 - (t503 * t794 + t489 * t796));
-        let t802 = t513 * t798 - t506 * (t503 * t795 + t490 * t796);
-        let t803 = t517 * t735;
-        let t804 = t141 * t517;
         let t805 = t487 * t753 + t153 * t792;
         let t806 = t505 * t799 - t508 * t797;
         let t807 = -(t526 * t792 + t487 * t805) - (t529 * t799 + t508 * t806);
         let t808 = t532 * t807 / t531;
+        let t754 = omega_y * t144;
+        let t755 = t754 + yd_y1 * t734;
+        let t771 = omega_x * t768 - omega_z * t767;
+        let t779 = omega_x * t776 - omega_z * t775;
+        let t782 = 0.6 * t771 - (omega_z * t755 - omega_x * t758) + 0.6 * t779;
+        let t828 = -(omega_x * t757 - omega_y * t755) - 0.6 * t773 - 0.6 * t781
+            - (t487 * t789 + t452 * t792) - (t572 * t799 + t508 * t827) + t519 * t782;
+        let t742 = 0.6 * (0.2 * t720) + 0.6 * (0.2 * t726);
+        let t793 = t485 * t742 - t147 * t790;
+        let t800 = t509 * t798 - t506 * (t503 * t793 + t488 * t796);
+        let t803 = t517 * t735;
         let t809 = t532
             * (-(t526 * t793 + t488 * t805) - (t529 * t800 + t510 * t806) + t530 * t803)
             - t533 * t808;
-        let t810 = t532
-            * (t736 - (t526 * t794 + t489 * t805) - (t529 * t801 + t512 * t806))
-            - t535 * t808;
-        let t811 = t532
-            * (-(t526 * t795 + t490 * t805) - (t529 * t802 + t514 * t806) + t530 * t804)
-            - t537 * t808;
+        let t727 = t19 * t20;
+        let t728 = t727 + t727;
+        let t738 = t59 * t60;
+        let t739 = t738 + t738;
+        let t740 = 0.6 * t728 + 0.6 * t739;
         let t812 = t488 * t753 + t153 * t793;
         let t813 = t505 * t800 - t510 * t797;
         let t814 = t516 * t803;
@@ -2412,28 +2382,26 @@ impl Exomars {
         let t816 = t740 - (t539 * t793 + t488 * t812) - (t542 * t800 + t510 * t813)
             - (t543 * t803 + t521 * t814) - (t544 * t809 + t534 * t815);
         let t817 = t546 * t816 / t545;
-        let t818 = t546
-            * (t152 - (t539 * t794 + t489 * t812) - (t542 * t801 + t512 * t813)
-                + t523 * t814 - (t544 * t810 + t536 * t815)) - t547 * t817;
-        let t819 = t546
-            * (t741 - (t539 * t795 + t490 * t812) - (t542 * t802 + t514 * t813)
-                - (t543 * t804 + t525 * t814) - (t544 * t811 + t538 * t815))
-            - t549 * t817;
-        let t820 = t489 * t753 + t153 * t794;
-        let t821 = t505 * t801 - t512 * t797;
-        let t822 = t536 * t807 + t531 * t810;
-        let t823 = t548 * t816 + t545 * t818;
-        let t824 = t745 - (t551 * t794 + t489 * t820) - (t554 * t801 + t512 * t821)
-            - (t556 * t810 + t536 * t822) - (t557 * t818 + t548 * t823);
-        let t825 = t559 * t824 / t558;
-        let t826 = t559
-            * (t746 - (t551 * t795 + t490 * t820) - (t554 * t802 + t514 * t821)
-                + t555 * t804 - (t556 * t811 + t538 * t822)
-                - (t557 * t819 + t550 * t823)) - t560 * t825;
-        let t827 = -(omega_y * t758 - omega_z * t757) - 0.6 * t772 - 0.6 * t780
-            - (t486 * t789 + t452 * t791);
-        let t828 = -(omega_x * t757 - omega_y * t755) - 0.6 * t773 - 0.6 * t781
-            - (t487 * t789 + t452 * t792) - (t572 * t799 + t508 * t827) + t519 * t782;
+        let t764 = vy * t141;
+        let t741 = -(0.6 * (t128 + t129)) - 0.6 * (t149 + t150);
+        let t746 = -t126 - t146;
+        let t729 = t10 * t11;
+        let t730 = t729 + t729;
+        let t743 = t50 * t51;
+        let t744 = t743 + t743;
+        let t749 = 0.6 * t730 + 0.6 * t744;
+        let t750 = -(0.6 * (0.2 * t717)) - 0.6 * (0.2 * t723);
+        let t765 = t764 + omega_x * t741 + omega_y * t746 + omega_z * t749
+            + yd_y1 * t750;
+        let t761 = vx * t144;
+        let t762 = omega_x * t152;
+        let t745 = 0.6 * (t728 + t730) + 0.6 * (t739 + t744);
+        let t731 = t10 * t19;
+        let t747 = t50 * t59;
+        let t748 = 0.6 * (t20 * t717 + t731 - (t731 + t11 * t720))
+            + 0.6 * (t60 * t723 + t747 - (t747 + t51 * t726));
+        let t763 = t761 + vz * t736 + t762 + omega_y * t745 + omega_z * t746
+            + yd_y1 * t748;
         let t829 = -(vy * t758 - vz * t757 + (omega_y * t765 - omega_z * t763))
             - 0.6
                 * (0.2 * t773 + (t19 * t236 + t20 * t771) - (t230 * t766 + t228 * t768))
@@ -2442,6 +2410,23 @@ impl Exomars {
             + t19 * t358 + t59 * t358 - t19 * t425 - t59 * t445
             - (t488 * t789 + t452 * t793) - (t572 * t800 + t510 * t827)
             - (t573 * t803 + t521 * t782) - (t574 * t809 + t534 * t828);
+        let t794 = t485 * t748 - t151 * t790;
+        let t801 = t511 * t798 + t506 * (t144 - (t503 * t794 + t489 * t796));
+        let t810 = t532
+            * (t736 - (t526 * t794 + t489 * t805) - (t529 * t801 + t512 * t806))
+            - t535 * t808;
+        let t818 = t546
+            * (t152 - (t539 * t794 + t489 * t812) - (t542 * t801 + t512 * t813)
+                + t523 * t814 - (t544 * t810 + t536 * t815)) - t547 * t817;
+        let t820 = t489 * t753 + t153 * t794;
+        let t821 = t505 * t801 - t512 * t797;
+        let t822 = t536 * t807 + t531 * t810;
+        let t823 = t548 * t816 + t545 * t818;
+        let t824 = t745 - (t551 * t794 + t489 * t820) - (t554 * t801 + t512 * t821)
+            - (t556 * t810 + t536 * t822) - (t557 * t818 + t548 * t823);
+        let t825 = t559 * t824 / t558;
+        let t759 = omega_y * t152;
+        let t760 = vy * t735 + omega_x * t740 + t759 + omega_z * t741 + yd_y1 * t742;
         let t830 = t639
             + (t637
                 + (-(vz * t755 - vx * t758 + (omega_z * t760 - omega_x * t765))
@@ -2454,6 +2439,20 @@ impl Exomars {
             + (t647 - t10 * t427) + (t651 - t50 * t447) - (t489 * t789 + t452 * t794)
             - (t572 * t801 + t512 * t827) + t523 * t782 - (t574 * t810 + t536 * t828)
             - (t575 * t818 + t548 * t829);
+        let t795 = t485 * t750 - t152 * t790;
+        let t802 = t513 * t798 - t506 * (t503 * t795 + t490 * t796);
+        let t804 = t141 * t517;
+        let t811 = t532
+            * (-(t526 * t795 + t490 * t805) - (t529 * t802 + t514 * t806) + t530 * t804)
+            - t537 * t808;
+        let t819 = t546
+            * (t741 - (t539 * t795 + t490 * t812) - (t542 * t802 + t514 * t813)
+                - (t543 * t804 + t525 * t814) - (t544 * t811 + t538 * t815))
+            - t549 * t817;
+        let t826 = t559
+            * (t746 - (t551 * t795 + t490 * t820) - (t554 * t802 + t514 * t821)
+                + t555 * t804 - (t556 * t811 + t538 * t822)
+                - (t557 * t819 + t550 * t823)) - t560 * t825;
         let t831 = t571
             * (-(vx * t757 - vy * t755 + (omega_x * t763 - omega_y * t760))
                 - 0.6
@@ -2479,88 +2478,61 @@ impl Exomars {
             - (t578 * t819 + t550 * t831);
         let t834 = t532 * t828 - t574 * t808 - (t580 * t809 + t534 * t833)
             - (t579 * t810 + t536 * t832) - (t578 * t811 + t538 * t831);
-        let t835 = t517 * t782 + t519 * t834 - (t580 * t803 + t521 * t833) + t523 * t832
-            - (t578 * t804 + t525 * t831);
         let t836 = t572 * t798 + t506 * t827 - (t581 * t799 + t508 * t834)
             - (t580 * t800 + t510 * t833) - (t579 * t801 + t512 * t832)
             - (t578 * t802 + t514 * t831);
+        let t835 = t517 * t782 + t519 * t834 - (t580 * t803 + t521 * t833) + t523 * t832
+            - (t578 * t804 + t525 * t831);
+        let t582 = t506 * t572 - t508 * t581 - t510 * t580 - t512 * t579 - t514 * t578;
         let t837 = t23 + (t23 + t25);
-        let t838 = y2 * 0.044194173824159216;
-        let t839 = t26 + t838 + 2.0 * t837;
         let t840 = t27 + (t27 + y2 * t837);
-        let t841 = t33 + (t33 - t25);
-        let t842 = t35 - t838 + 2.0 * t841;
-        let t843 = t36 + (t36 + y2 * t841);
         let t844 = t63 + (t63 - t65);
-        let t845 = t66 - t838 + 2.0 * t844;
         let t846 = t67 + (t67 + y2 * t844);
-        let t847 = t73 + (t73 - t25);
-        let t848 = t75 - t838 + 2.0 * t847;
-        let t849 = t76 + (t76 + y2 * t847);
-        let t850 = t39 * t40;
-        let t851 = t850 + t850;
-        let t852 = t30 * t31;
-        let t853 = t852 + t852;
-        let t854 = t30 * t39;
-        let t855 = t30 * t840;
-        let t856 = t39 * t843;
         let t857 = 0.6 * t840 + 0.6 * t846;
-        let t858 = -t133 - t158;
-        let t859 = -t131 - t155;
-        let t860 = 0.6 * t843 + 0.6 * t849;
-        let t861 = t79 * t80;
-        let t862 = t861 + t861;
-        let t863 = 0.6 * t851 + 0.6 * t862;
-        let t864 = -(0.6 * (t137 + t138)) - 0.6 * (t164 + t165);
-        let t865 = -(0.6 * (0.2 * t843)) - 0.6 * (0.2 * t849);
-        let t866 = t70 * t71;
-        let t867 = t866 + t866;
-        let t868 = 0.6 * (t851 + t853) + 0.6 * (t862 + t867);
-        let t869 = t135 + t161;
-        let t870 = t70 * t79;
-        let t871 = 0.6 * (t40 * t840 + t854 - (t854 + t31 * t843))
-            + 0.6 * (t80 * t846 + t870 - (t870 + t71 * t849));
-        let t872 = 0.6 * t853 + 0.6 * t867;
-        let t873 = 0.6 * (0.2 * t840) + 0.6 * (0.2 * t846);
+        let t855 = t30 * t840;
+        let t841 = t33 + (t33 - t25);
+        let t843 = t36 + (t36 + y2 * t841);
+        let t856 = t39 * t843;
         let t874 = t70 * t846;
+        let t847 = t73 + (t73 - t25);
+        let t849 = t76 + (t76 + y2 * t847);
         let t875 = t79 * t849;
         let t876 = 0.6 * (t855 + t855 + (t856 + t856))
             + 0.6 * (t874 + t874 + (t875 + t875));
-        let t877 = omega_y * t159;
-        let t878 = t877 + yd_y2 * t857;
+        let t913 = t491 * t876 / t168;
+        let t914 = t491 * t857 - t156 * t913;
+        let t919 = t492 * t876 + t168 * t914;
+        let t920 = t504 * t914 + t492 * t919;
+        let t921 = t506 * t920 / t505;
+        let t859 = -t131 - t155;
+        let t860 = 0.6 * t843 + 0.6 * t849;
+        let t881 = omega_y * t859 + yd_y2 * t860;
+        let t858 = -t133 - t158;
         let t879 = omega_z * t156;
         let t880 = omega_x * t858 + t879;
-        let t881 = omega_y * t859 + yd_y2 * t860;
-        let t882 = omega_y * t167;
-        let t883 = vy * t858 + omega_x * t863 + t882 + omega_z * t864 + yd_y2 * t865;
-        let t884 = vx * t159;
-        let t885 = omega_x * t167;
-        let t886 = t884 + vz * t859 + t885 + omega_y * t868 + omega_z * t869
-            + yd_y2 * t871;
-        let t887 = vy * t156;
-        let t888 = t887 + omega_x * t864 + omega_y * t869 + omega_z * t872
-            + yd_y2 * t873;
-        let t889 = t264 - t263;
-        let t890 = yd_y2 * t840;
+        let t838 = y2 * 0.044194173824159216;
+        let t839 = t26 + t838 + 2.0 * t837;
         let t891 = yd_y2 * t843;
-        let t892 = t262 + t890;
-        let t893 = t891 - t266;
-        let t894 = omega_x * t891 - omega_z * t890;
         let t895 = t234 * t839 + omega_y * t891;
-        let t896 = t234 * t842 - omega_y * t890;
-        let t897 = t304 - t303;
-        let t898 = yd_y2 * t846;
+        let t845 = t66 - t838 + 2.0 * t844;
         let t899 = yd_y2 * t849;
-        let t900 = t302 + t898;
-        let t901 = t899 - t306;
-        let t902 = omega_x * t899 - omega_z * t898;
         let t903 = t234 * t845 + omega_y * t899;
+        let t890 = yd_y2 * t840;
+        let t892 = t262 + t890;
+        let t889 = t264 - t263;
+        let t893 = t891 - t266;
+        let t842 = t35 - t838 + 2.0 * t841;
+        let t896 = t234 * t842 - omega_y * t890;
+        let t898 = yd_y2 * t846;
+        let t900 = t302 + t898;
+        let t897 = t304 - t303;
+        let t901 = t899 - t306;
+        let t848 = t75 - t838 + 2.0 * t847;
         let t904 = t234 * t848 - omega_y * t898;
-        let t905 = 0.6 * t894 - (omega_z * t878 - omega_x * t881) + 0.6 * t902;
         let t906 = if t382 >= 0.0 { 1.0 } else { 0.0 };
-        let t907 = if t384 >= 0.0 { 1.0 } else { 0.0 };
         let t908 = if 1.0 >= t386 { 1.0 } else { 0.0 };
         let t909 = if 0.0 >= t389 { 1.0 } else { 0.0 };
+        let t907 = if t384 >= 0.0 { 1.0 } else { 0.0 };
         let t910 = if 1.0 >= t391 { 1.0 } else { 0.0 };
         let t911 = if t394 >= 0.0 { 1.0 } else { 0.0 };
         let t912 = 0.6
@@ -2580,34 +2552,33 @@ impl Exomars {
                 * t909
                 + (yd_y2 * (5.477225575051661 * (10000.0 * t907 * t910)) - 100.0 * t907)
                     * t911) + (t434 * t840 + t437 * t843) + (t455 * t846 + t458 * t849);
-        let t913 = t491 * t876 / t168;
-        let t914 = t491 * t857 - t156 * t913;
+        let t950 = -(omega_y * t881 - omega_z * t880) - 0.6 * t895 - 0.6 * t903
+            - (t492 * t912 + t463 * t914);
         let t915 = t491 * t860 - t159 * t913;
-        let t916 = t491 * t865 - t162 * t913;
-        let t917 = t491 * t871 - t166 * t913;
-        let t918 = t491 * t873 - t167 * t913;
-        let t919 = t492 * t876 + t168 * t914;
-        let t920 = t504 * t914 + t492 * t919;
-        let t921 = t506 * t920 / t505;
         let t922 = t507 * t921 - t506 * (t504 * t915 + t493 * t919);
-        let t923 = t509 * t921 - t506 * (t504 * t916 + t494 * t919);
-        let t924 = t511 * t921 + t506 * (t159 - (t504 * t917 + t495 * t919));
-        let t925 = t513 * t921 - t506 * (t504 * t918 + t496 * t919);
-        let t926 = t517 * t858;
-        let t927 = t156 * t517;
         let t928 = t493 * t876 + t168 * t915;
         let t929 = t505 * t922 - t508 * t920;
         let t930 = -(t527 * t915 + t493 * t928) - (t529 * t922 + t508 * t929);
         let t931 = t532 * t930 / t531;
+        let t877 = omega_y * t159;
+        let t878 = t877 + yd_y2 * t857;
+        let t894 = omega_x * t891 - omega_z * t890;
+        let t902 = omega_x * t899 - omega_z * t898;
+        let t905 = 0.6 * t894 - (omega_z * t878 - omega_x * t881) + 0.6 * t902;
+        let t951 = -(omega_x * t880 - omega_y * t878) - 0.6 * t896 - 0.6 * t904
+            - (t493 * t912 + t463 * t915) - (t572 * t922 + t508 * t950) + t519 * t905;
+        let t865 = -(0.6 * (0.2 * t843)) - 0.6 * (0.2 * t849);
+        let t916 = t491 * t865 - t162 * t913;
+        let t923 = t509 * t921 - t506 * (t504 * t916 + t494 * t919);
+        let t926 = t517 * t858;
         let t932 = t532
             * (-(t527 * t916 + t494 * t928) - (t529 * t923 + t510 * t929) + t530 * t926)
             - t533 * t931;
-        let t933 = t532
-            * (t859 - (t527 * t917 + t495 * t928) - (t529 * t924 + t512 * t929))
-            - t535 * t931;
-        let t934 = t532
-            * (-(t527 * t918 + t496 * t928) - (t529 * t925 + t514 * t929) + t530 * t927)
-            - t537 * t931;
+        let t850 = t39 * t40;
+        let t851 = t850 + t850;
+        let t861 = t79 * t80;
+        let t862 = t861 + t861;
+        let t863 = 0.6 * t851 + 0.6 * t862;
         let t935 = t494 * t876 + t168 * t916;
         let t936 = t505 * t923 - t510 * t920;
         let t937 = t516 * t926;
@@ -2615,13 +2586,40 @@ impl Exomars {
         let t939 = t863 - (t540 * t916 + t494 * t935) - (t542 * t923 + t510 * t936)
             - (t543 * t926 + t521 * t937) - (t544 * t932 + t534 * t938);
         let t940 = t546 * t939 / t545;
+        let t887 = vy * t156;
+        let t864 = -(0.6 * (t137 + t138)) - 0.6 * (t164 + t165);
+        let t869 = t135 + t161;
+        let t852 = t30 * t31;
+        let t853 = t852 + t852;
+        let t866 = t70 * t71;
+        let t867 = t866 + t866;
+        let t872 = 0.6 * t853 + 0.6 * t867;
+        let t873 = 0.6 * (0.2 * t840) + 0.6 * (0.2 * t846);
+        let t888 = t887 + omega_x * t864 + omega_y * t869 + omega_z * t872
+            + yd_y2 * t873;
+        let t884 = vx * t159;
+        let t885 = omega_x * t167;
+        let t868 = 0.6 * (t851 + t853) + 0.6 * (t862 + t867);
+        let t854 = t30 * t39;
+        let t870 = t70 * t79;
+        let t871 = 0.6 * (t40 * t840 + t854 - (t854 + t31 * t843))
+            + 0.6 * (t80 * t846 + t870 - (t870 + t71 * t849));
+        let t886 = t884 + vz * t859 + t885 + omega_y * t868 + omega_z * t869
+            + yd_y2 * t871;
+        let t952 = -(vy * t881 - vz * t880 + (omega_y * t888 - omega_z * t886))
+            - 0.6 * (t39 * t256 + t40 * t894 - 0.2 * t896 - (t253 * t889 + t251 * t891))
+            - 0.6 * (t79 * t296 + t80 * t902 - 0.2 * t904 - (t293 * t897 + t291 * t899))
+            + t39 * t358 + t79 * t358 - t39 * t435 - t79 * t456
+            - (t494 * t912 + t463 * t916) - (t572 * t923 + t510 * t950)
+            - (t573 * t926 + t521 * t905) - (t574 * t932 + t534 * t951);
+        let t917 = t491 * t871 - t166 * t913;
+        let t924 = t511 * t921 + t506 * (t159 - (t504 * t917 + t495 * t919));
+        let t933 = t532
+            * (t859 - (t527 * t917 + t495 * t928) - (t529 * t924 + t512 * t929))
+            - t535 * t931;
         let t941 = t546
             * (t167 - (t540 * t917 + t495 * t935) - (t542 * t924 + t512 * t936)
                 + t523 * t937 - (t544 * t933 + t536 * t938)) - t547 * t940;
-        let t942 = t546
-            * (t864 - (t540 * t918 + t496 * t935) - (t542 * t925 + t514 * t936)
-                - (t543 * t927 + t525 * t937) - (t544 * t934 + t538 * t938))
-            - t549 * t940;
         let t943 = t495 * t876 + t168 * t917;
         let t944 = t505 * t924 - t512 * t920;
         let t945 = t536 * t930 + t531 * t933;
@@ -2629,20 +2627,8 @@ impl Exomars {
         let t947 = t868 - (t552 * t917 + t495 * t943) - (t554 * t924 + t512 * t944)
             - (t556 * t933 + t536 * t945) - (t557 * t941 + t548 * t946);
         let t948 = t559 * t947 / t558;
-        let t949 = t559
-            * (t869 - (t552 * t918 + t496 * t943) - (t554 * t925 + t514 * t944)
-                + t555 * t927 - (t556 * t934 + t538 * t945)
-                - (t557 * t942 + t550 * t946)) - t560 * t948;
-        let t950 = -(omega_y * t881 - omega_z * t880) - 0.6 * t895 - 0.6 * t903
-            - (t492 * t912 + t463 * t914);
-        let t951 = -(omega_x * t880 - omega_y * t878) - 0.6 * t896 - 0.6 * t904
-            - (t493 * t912 + t463 * t915) - (t572 * t922 + t508 * t950) + t519 * t905;
-        let t952 = -(vy * t881 - vz * t880 + (omega_y * t888 - omega_z * t886))
-            - 0.6 * (t39 * t256 + t40 * t894 - 0.2 * t896 - (t253 * t889 + t251 * t891))
-            - 0.6 * (t79 * t296 + t80 * t902 - 0.2 * t904 - (t293 * t897 + t291 * t899))
-            + t39 * t358 + t79 * t358 - t39 * t435 - t79 * t456
-            - (t494 * t912 + t463 * t916) - (t572 * t923 + t510 * t950)
-            - (t573 * t926 + t521 * t905) - (t574 * t932 + t534 * t951);
+        let t882 = omega_y * t167;
+        let t883 = vy * t858 + omega_x * t863 + t882 + omega_z * t864 + yd_y2 * t865;
         let t953 = t640
             + (t638
                 + (-(vz * t878 - vx * t881 + (omega_z * t883 - omega_x * t888))
@@ -2655,6 +2641,20 @@ impl Exomars {
             + (t649 - t30 * t437) + (t654 - t70 * t458) - (t495 * t912 + t463 * t917)
             - (t572 * t924 + t512 * t950) + t523 * t905 - (t574 * t933 + t536 * t951)
             - (t575 * t941 + t548 * t952);
+        let t918 = t491 * t873 - t167 * t913;
+        let t925 = t513 * t921 - t506 * (t504 * t918 + t496 * t919);
+        let t927 = t156 * t517;
+        let t934 = t532
+            * (-(t527 * t918 + t496 * t928) - (t529 * t925 + t514 * t929) + t530 * t927)
+            - t537 * t931;
+        let t942 = t546
+            * (t864 - (t540 * t918 + t496 * t935) - (t542 * t925 + t514 * t936)
+                - (t543 * t927 + t525 * t937) - (t544 * t934 + t538 * t938))
+            - t549 * t940;
+        let t949 = t559
+            * (t869 - (t552 * t918 + t496 * t943) - (t554 * t925 + t514 * t944)
+                + t555 * t927 - (t556 * t934 + t538 * t945)
+                - (t557 * t942 + t550 * t946)) - t560 * t948;
         let t954 = t571
             * (-(vx * t880 - vy * t878 + (omega_x * t886 - omega_y * t883))
                 - 0.6
@@ -2680,89 +2680,72 @@ impl Exomars {
             - (t578 * t942 + t550 * t954);
         let t957 = t532 * t951 - t574 * t931 - (t580 * t932 + t534 * t956)
             - (t579 * t933 + t536 * t955) - (t578 * t934 + t538 * t954);
-        let t958 = t517 * t905 + t519 * t957 - (t580 * t926 + t521 * t956) + t523 * t955
-            - (t578 * t927 + t525 * t954);
         let t959 = t572 * t921 + t506 * t950 - (t581 * t922 + t508 * t957)
             - (t580 * t923 + t510 * t956) - (t579 * t924 + t512 * t955)
             - (t578 * t925 + t514 * t954);
-        let t960 = t83 + (t83 + t85);
-        let t961 = y3 * 0.04999279436266589;
-        let t962 = t86 + t961 + 2.0 * t960;
-        let t963 = t87 + (t87 + y3 * t960);
+        let t958 = t517 * t905 + t519 * t957 - (t580 * t926 + t521 * t956) + t523 * t955
+            - (t578 * t927 + t525 * t954);
+        let t1004 = omega_x * t185;
         let t964 = t94 + (t94 - t96);
-        let t965 = y3 * 0.04422988821840048;
-        let t966 = t97 - t965 + 2.0 * t964;
         let t967 = t98 + (t98 + y3 * t964);
-        let t968 = t104 + (t104 - t85);
-        let t969 = t106 - t961 + 2.0 * t968;
-        let t970 = t107 + (t107 + y3 * t968);
         let t971 = t113 + (t113 - t96);
-        let t972 = t115 - t965 + 2.0 * t971;
         let t973 = t116 + (t116 + y3 * t971);
-        let t974 = t101 * t102;
-        let t975 = t974 + t974;
-        let t976 = t90 * t91;
-        let t977 = t976 + t976;
-        let t978 = t90 * t101;
+        let t984 = 0.6 * t967 + 0.6 * t973;
+        let t1005 = t1004 + yd_y3 * t984;
+        let t982 = -t172 - t188;
+        let t960 = t83 + (t83 + t85);
+        let t963 = t87 + (t87 + y3 * t960);
+        let t968 = t104 + (t104 - t85);
+        let t970 = t107 + (t107 + y3 * t968);
+        let t983 = 0.6 * t963 + 0.6 * t970;
+        let t1003 = omega_x * t982 + yd_y3 * t983;
+        let t1014 = yd_y3 * t963;
+        let t1015 = yd_y3 * t967;
+        let t1018 = omega_z * t1014 - omega_y * t1015;
+        let t1022 = yd_y3 * t970;
+        let t1023 = yd_y3 * t973;
+        let t1026 = omega_z * t1022 - omega_y * t1023;
+        let t1029 = 0.6 * t1018 - (omega_y * t1005 - omega_z * t1003) + 0.6 * t1026;
         let t979 = t90 * t963;
         let t980 = t101 * t967;
-        let t981 = -t171 - t184;
-        let t982 = -t172 - t188;
-        let t983 = 0.6 * t963 + 0.6 * t970;
-        let t984 = 0.6 * t967 + 0.6 * t973;
-        let t985 = t119 * t120;
-        let t986 = t985 + t985;
-        let t987 = t110 * t111;
-        let t988 = t987 + t987;
-        let t989 = 0.6 * (t975 + t977) + 0.6 * (t986 + t988);
-        let t990 = t177 + t202;
-        let t991 = t110 * t119;
-        let t992 = 0.6 * (t978 + t91 * t967 - (t102 * t963 + t978))
-            + 0.6 * (t991 + t111 * t973 - (t120 * t970 + t991));
-        let t993 = 0.6 * t975 + 0.6 * t986;
-        let t994 = -(0.6 * (t175 + t176)) - 0.6 * (t195 + t196);
-        let t995 = 0.6 * (0.3 * t967) + 0.6 * (0.3 * t973);
-        let t996 = 0.6 * t977 + 0.6 * t988;
-        let t997 = -(0.6 * (0.3 * t963)) - 0.6 * (0.3 * t970);
         let t998 = t110 * t970;
         let t999 = t119 * t973;
         let t1000 = 0.6 * (t979 + t979 + (t980 + t980))
             + 0.6 * (t998 + t998 + (t999 + t999));
+        let t1037 = t497 * t1000 / t204;
+        let t1039 = t497 * t984 - t189 * t1037;
+        let t1052 = t499 * t1000 + t204 * t1039;
+        let t1038 = t497 * t983 - t185 * t1037;
+        let t1045 = t498 * t1000 + t204 * t1038;
+        let t1046 = t515 * t1038 + t498 * t1045;
+        let t1047 = t517 * t1046 / t516;
+        let t1048 = t518 * t1047 + t517 * (t515 * t1039 + t499 * t1045);
+        let t1053 = t516 * t1048 - t519 * t1046;
+        let t1054 = -(t528 * t1039 + t499 * t1052) - (t530 * t1048 + t519 * t1053);
+        let t1055 = t532 * t1054 / t531;
         let t1001 = omega_y * t189;
+        let t981 = -t171 - t184;
         let t1002 = t1001 + omega_z * t981;
-        let t1003 = omega_x * t982 + yd_y3 * t983;
-        let t1004 = omega_x * t185;
-        let t1005 = t1004 + yd_y3 * t984;
-        let t1006 = vz * t185;
-        let t1007 = omega_z * t200;
-        let t1008 = vy * t982 + t1006 + omega_x * t989 + omega_y * t990 + t1007
-            + yd_y3 * t992;
-        let t1009 = vx * t189;
-        let t1010 = t1009 + omega_x * t990 + omega_y * t993 + omega_z * t994
-            + yd_y3 * t995;
-        let t1011 = omega_x * t200;
-        let t1012 = vx * t981 + t1011 + omega_y * t994 + omega_z * t996 + yd_y3 * t997;
-        let t1013 = t325 - t324;
-        let t1014 = yd_y3 * t963;
-        let t1015 = yd_y3 * t967;
-        let t1016 = t1014 - t327;
-        let t1017 = t328 + t1015;
-        let t1018 = omega_z * t1014 - omega_y * t1015;
-        let t1019 = t235 * t962 - omega_x * t1015;
+        let t965 = y3 * 0.04422988821840048;
+        let t966 = t97 - t965 + 2.0 * t964;
         let t1020 = t235 * t966 + omega_x * t1014;
-        let t1021 = t345 - t344;
-        let t1022 = yd_y3 * t970;
-        let t1023 = yd_y3 * t973;
-        let t1024 = t1022 - t347;
-        let t1025 = t348 + t1023;
-        let t1026 = omega_z * t1022 - omega_y * t1023;
-        let t1027 = t235 * t969 - omega_x * t1023;
+        let t972 = t115 - t965 + 2.0 * t971;
         let t1028 = t235 * t972 + omega_x * t1022;
-        let t1029 = 0.6 * t1018 - (omega_y * t1005 - omega_z * t1003) + 0.6 * t1026;
+        let t1013 = t325 - t324;
+        let t1016 = t1014 - t327;
+        let t961 = y3 * 0.04999279436266589;
+        let t962 = t86 + t961 + 2.0 * t960;
+        let t1017 = t328 + t1015;
+        let t1019 = t235 * t962 - omega_x * t1015;
+        let t1021 = t345 - t344;
+        let t1024 = t1022 - t347;
+        let t969 = t106 - t961 + 2.0 * t968;
+        let t1025 = t348 + t1023;
+        let t1027 = t235 * t969 - omega_x * t1023;
         let t1030 = if t396 >= 0.0 { 1.0 } else { 0.0 };
-        let t1031 = if t398 >= 0.0 { 1.0 } else { 0.0 };
         let t1032 = if 1.0 >= t400 { 1.0 } else { 0.0 };
         let t1033 = if 0.0 >= t403 { 1.0 } else { 0.0 };
+        let t1031 = if t398 >= 0.0 { 1.0 } else { 0.0 };
         let t1034 = if 1.0 >= t405 { 1.0 } else { 0.0 };
         let t1035 = if t408 >= 0.0 { 1.0 } else { 0.0 };
         let t1036 = 0.6
@@ -2784,66 +2767,46 @@ impl Exomars {
                 + (yd_y3 * (5.849676914155174 * (10000.0 * t1031 * t1034))
                     - 100.0 * t1031) * t1035) + (t467 * t963 + t469 * t967)
             + (t476 * t970 + t478 * t973);
-        let t1037 = t497 * t1000 / t204;
-        let t1038 = t497 * t983 - t185 * t1037;
-        let t1039 = t497 * t984 - t189 * t1037;
+        let t1074 = -(omega_z * t1002 - omega_x * t1005) - 0.6 * t1019 - 0.6 * t1027
+            - (t498 * t1036 + t482 * t1038);
+        let t1075 = -(omega_x * t1003 - omega_y * t1002) - 0.6 * t1020 - 0.6 * t1028
+            - (t499 * t1036 + t482 * t1039) - t508 * t1029
+            + (t573 * t1048 + t519 * t1074);
+        let t978 = t90 * t101;
+        let t991 = t110 * t119;
+        let t992 = 0.6 * (t978 + t91 * t967 - (t102 * t963 + t978))
+            + 0.6 * (t991 + t111 * t973 - (t120 * t970 + t991));
         let t1040 = t497 * t992 - t197 * t1037;
-        let t1041 = t497 * t995 - t200 * t1037;
-        let t1042 = t497 * t997 - t203 * t1037;
-        let t1043 = t189 * t506;
-        let t1044 = t506 * t981;
-        let t1045 = t498 * t1000 + t204 * t1038;
-        let t1046 = t515 * t1038 + t498 * t1045;
-        let t1047 = t517 * t1046 / t516;
-        let t1048 = t518 * t1047 + t517 * (t515 * t1039 + t499 * t1045);
         let t1049 = t520 * t1047 + t517 * (t982 - (t515 * t1040 + t500 * t1045));
-        let t1050 = t522 * t1047 + t517 * (t515 * t1041 + t501 * t1045);
-        let t1051 = t524 * t1047 - t517 * (t515 * t1042 + t502 * t1045);
-        let t1052 = t499 * t1000 + t204 * t1039;
-        let t1053 = t516 * t1048 - t519 * t1046;
-        let t1054 = -(t528 * t1039 + t499 * t1052) - (t530 * t1048 + t519 * t1053);
-        let t1055 = t532 * t1054 / t531;
         let t1056 = t532
             * (t185 - (t528 * t1040 + t500 * t1052) + (t530 * t1049 + t521 * t1053))
             - t533 * t1055;
-        let t1057 = t532
-            * (-(t528 * t1041 + t501 * t1052) - t529 * t1043
-                - (t530 * t1050 + t523 * t1053)) - t535 * t1055;
-        let t1058 = t532
-            * (-(t528 * t1042 + t502 * t1052) - t529 * t1044
-                + (t530 * t1051 + t525 * t1053)) - t537 * t1055;
+        let t974 = t101 * t102;
+        let t975 = t974 + t974;
+        let t976 = t90 * t91;
+        let t977 = t976 + t976;
+        let t985 = t119 * t120;
+        let t986 = t985 + t985;
+        let t987 = t110 * t111;
+        let t988 = t987 + t987;
+        let t989 = 0.6 * (t975 + t977) + 0.6 * (t986 + t988);
         let t1059 = t500 * t1000 + t204 * t1040;
         let t1060 = t516 * t1049 - t521 * t1046;
         let t1061 = t534 * t1054 + t531 * t1056;
         let t1062 = t989 - (t541 * t1040 + t500 * t1059) - (t543 * t1049 + t521 * t1060)
             - (t544 * t1056 + t534 * t1061);
         let t1063 = t546 * t1062 / t545;
-        let t1064 = t546
-            * (t990 - (t541 * t1041 + t501 * t1059) - t542 * t1043
-                + (t543 * t1050 + t523 * t1060) - (t544 * t1057 + t536 * t1061))
-            - t547 * t1063;
-        let t1065 = t546
-            * (t200 - (t541 * t1042 + t502 * t1059) - t542 * t1044
-                - (t543 * t1051 + t525 * t1060) - (t544 * t1058 + t538 * t1061))
-            - t549 * t1063;
-        let t1066 = t501 * t1000 + t204 * t1041;
-        let t1067 = t505 * t1043;
-        let t1068 = t516 * t1050 - t523 * t1046;
-        let t1069 = t536 * t1054 + t531 * t1057;
-        let t1070 = t548 * t1062 + t545 * t1064;
-        let t1071 = t993 - (t553 * t1041 + t501 * t1066) - (t554 * t1043 + t512 * t1067)
-            - (t555 * t1050 + t523 * t1068) - (t556 * t1057 + t536 * t1069)
-            - (t557 * t1064 + t548 * t1070);
-        let t1072 = t559 * t1071 / t558;
-        let t1073 = t559
-            * (t994 - (t553 * t1042 + t502 * t1066) - (t554 * t1044 + t514 * t1067)
-                + (t555 * t1051 + t525 * t1068) - (t556 * t1058 + t538 * t1069)
-                - (t557 * t1065 + t550 * t1070)) - t560 * t1072;
-        let t1074 = -(omega_z * t1002 - omega_x * t1005) - 0.6 * t1019 - 0.6 * t1027
-            - (t498 * t1036 + t482 * t1038);
-        let t1075 = -(omega_x * t1003 - omega_y * t1002) - 0.6 * t1020 - 0.6 * t1028
-            - (t499 * t1036 + t482 * t1039) - t508 * t1029
-            + (t573 * t1048 + t519 * t1074);
+        let t1011 = omega_x * t200;
+        let t994 = -(0.6 * (t175 + t176)) - 0.6 * (t195 + t196);
+        let t996 = 0.6 * t977 + 0.6 * t988;
+        let t997 = -(0.6 * (0.3 * t963)) - 0.6 * (0.3 * t970);
+        let t1012 = vx * t981 + t1011 + omega_y * t994 + omega_z * t996 + yd_y3 * t997;
+        let t1009 = vx * t189;
+        let t990 = t177 + t202;
+        let t993 = 0.6 * t975 + 0.6 * t986;
+        let t995 = 0.6 * (0.3 * t967) + 0.6 * (0.3 * t973);
+        let t1010 = t1009 + omega_x * t990 + omega_y * t993 + omega_z * t994
+            + yd_y3 * t995;
         let t1076 = -(vy * t1005 - vz * t1003 + (omega_y * t1012 - omega_z * t1010))
             - 0.6
                 * (t317 * t1014 + t314 * t1017 - (t316 * t1015 + t315 * t1016)
@@ -2855,6 +2818,29 @@ impl Exomars {
             + (t90 * t469 - t101 * t467) + (t110 * t478 - t119 * t476)
             - (t500 * t1036 + t482 * t1040) - t510 * t1029
             - (t573 * t1049 + t521 * t1074) - (t574 * t1056 + t534 * t1075);
+        let t1041 = t497 * t995 - t200 * t1037;
+        let t1043 = t189 * t506;
+        let t1050 = t522 * t1047 + t517 * (t515 * t1041 + t501 * t1045);
+        let t1057 = t532
+            * (-(t528 * t1041 + t501 * t1052) - t529 * t1043
+                - (t530 * t1050 + t523 * t1053)) - t535 * t1055;
+        let t1064 = t546
+            * (t990 - (t541 * t1041 + t501 * t1059) - t542 * t1043
+                + (t543 * t1050 + t523 * t1060) - (t544 * t1057 + t536 * t1061))
+            - t547 * t1063;
+        let t1066 = t501 * t1000 + t204 * t1041;
+        let t1067 = t505 * t1043;
+        let t1068 = t516 * t1050 - t523 * t1046;
+        let t1069 = t536 * t1054 + t531 * t1057;
+        let t1070 = t548 * t1062 + t545 * t1064;
+        let t1071 = t993 - (t553 * t1041 + t501 * t1066) - (t554 * t1043 + t512 * t1067)
+            - (t555 * t1050 + t523 * t1068) - (t556 * t1057 + t536 * t1069)
+            - (t557 * t1064 + t548 * t1070);
+        let t1072 = t559 * t1071 / t558;
+        let t1006 = vz * t185;
+        let t1007 = omega_z * t200;
+        let t1008 = vy * t982 + t1006 + omega_x * t989 + omega_y * t990 + t1007
+            + yd_y3 * t992;
         let t1077 = t660
             + (t657
                 + (t643
@@ -2870,6 +2856,20 @@ impl Exomars {
             - (t501 * t1036 + t482 * t1041) - (t572 * t1043 + t512 * t1029)
             + (t573 * t1050 + t523 * t1074) - (t574 * t1057 + t536 * t1075)
             - (t575 * t1064 + t548 * t1076);
+        let t1042 = t497 * t997 - t203 * t1037;
+        let t1044 = t506 * t981;
+        let t1051 = t524 * t1047 - t517 * (t515 * t1042 + t502 * t1045);
+        let t1058 = t532
+            * (-(t528 * t1042 + t502 * t1052) - t529 * t1044
+                + (t530 * t1051 + t525 * t1053)) - t537 * t1055;
+        let t1065 = t546
+            * (t200 - (t541 * t1042 + t502 * t1059) - t542 * t1044
+                - (t543 * t1051 + t525 * t1060) - (t544 * t1058 + t538 * t1061))
+            - t549 * t1063;
+        let t1073 = t559
+            * (t994 - (t553 * t1042 + t502 * t1066) - (t554 * t1044 + t514 * t1067)
+                + (t555 * t1051 + t525 * t1068) - (t556 * t1058 + t538 * t1069)
+                - (t557 * t1065 + t550 * t1070)) - t560 * t1072;
         let t1078 = t571
             * (-(vx * t1003 - vy * t1002 + (omega_x * t1010 - omega_y * t1008))
                 - 0.6
@@ -2895,37 +2895,37 @@ impl Exomars {
             - (t578 * t1065 + t550 * t1078);
         let t1081 = t532 * t1075 - t574 * t1055 - (t580 * t1056 + t534 * t1080)
             - (t579 * t1057 + t536 * t1079) - (t578 * t1058 + t538 * t1078);
+        let t1083 = t506 * t1029 - t508 * t1081 - t510 * t1080
+            - (t579 * t1043 + t512 * t1079) - (t578 * t1044 + t514 * t1078);
         let t1082 = t573 * t1047 + t517 * t1074 + (t581 * t1048 + t519 * t1081)
             - (t580 * t1049 + t521 * t1080) + (t579 * t1050 + t523 * t1079)
             - (t578 * t1051 + t525 * t1078);
-        let t1083 = t506 * t1029 - t508 * t1081 - t510 * t1080
-            - (t579 * t1043 + t512 * t1079) - (t578 * t1044 + t514 * t1078);
-        let t1084 = omega_z * 33.60000000000001;
-        let t1085 = omega_y * 33.60000000000001;
-        let t1086 = omega_y * t181;
-        let t1087 = omega_z * t179;
-        let t1088 = 0.6 * t230;
-        let t1089 = 0.6 * t253;
-        let t1090 = 0.6 * t273;
         let t1091 = 0.6 * (t249 - t247) + 0.6 * (t289 - t287);
-        let t1092 = 0.6 * t293;
         let t1093 = 0.6 * (t269 - t267) + 0.6 * (t309 - t307);
-        let t1094 = 0.6 * t315;
-        let t1095 = 0.6 * t314;
+        let t1101 = -(t486 * t1091) - t492 * t1093;
+        let t1085 = omega_y * 33.60000000000001;
         let t1096 = 0.6 * t326;
-        let t1097 = 0.6 * t335;
-        let t1098 = 0.6 * t334;
         let t1099 = 0.6 * t346;
         let t1100 = -t1096 - t1099;
-        let t1101 = -(t486 * t1091) - t492 * t1093;
+        let t1084 = omega_z * 33.60000000000001;
         let t1102 = -t1084 - t498 * t1100;
         let t1103 = t1085 - t487 * t1091 - t493 * t1093 - t499 * t1100 - t508 * t1101
             + t519 * t1102;
+        let t1086 = omega_y * t181;
+        let t1087 = omega_z * t179;
         let t1104 = -(t1086 - t1087) - t488 * t1091 - t494 * t1093 - t500 * t1100
             - t510 * t1101 - t521 * t1102 - t534 * t1103;
+        let t1088 = 0.6 * t230;
+        let t1089 = 0.6 * t253;
+        let t1090 = 0.6 * t273;
+        let t1092 = 0.6 * t293;
+        let t1094 = 0.6 * t315;
+        let t1097 = 0.6 * t335;
         let t1105 = -(t213 - t216 - omega_x * t181) - t1088 - t1089 - t1090 - t1092
             - t1094 - t1097 - t489 * t1091 - t495 * t1093 - t501 * t1100 - t512 * t1101
             + t523 * t1102 - t536 * t1103 - t548 * t1104;
+        let t1095 = 0.6 * t314;
+        let t1098 = 0.6 * t334;
         let t1106 = t571
             * (t1095 - (t212 - t209 + omega_x * t179) + t1098 - t490 * t1091
                 - t496 * t1093 - t502 * t1100 - t514 * t1101 - t525 * t1102
@@ -2933,25 +2933,19 @@ impl Exomars {
         let t1107 = t559 * t1105 - t561 * t1106;
         let t1108 = t546 * t1104 - t548 * t1107 - t550 * t1106;
         let t1109 = t532 * t1103 - t534 * t1108 - t536 * t1107 - t538 * t1106;
-        let t1110 = t517 * t1102 + t519 * t1109 - t521 * t1108 + t523 * t1107
-            - t525 * t1106;
         let t1111 = t506 * t1101 - t508 * t1109 - t510 * t1108 - t512 * t1107
             - t514 * t1106;
-        let t1112 = omega_x * 33.60000000000001;
-        let t1113 = omega_z * t182;
-        let t1114 = omega_x * t183;
-        let t1115 = 0.6 * t229;
+        let t1110 = t517 * t1102 + t519 * t1109 - t521 * t1108 + t523 * t1107
+            - t525 * t1106;
         let t1116 = 0.6 * t245;
-        let t1117 = 0.6 * t252;
-        let t1118 = 0.6 * t265;
-        let t1119 = 0.6 * t272;
         let t1120 = 0.6 * t285;
         let t1121 = -t1116 - t1120;
-        let t1122 = 0.6 * t292;
+        let t1118 = 0.6 * t265;
         let t1123 = 0.6 * t305;
         let t1124 = -t1118 - t1123;
-        let t1125 = 0.6 * (t331 - t329) + 0.6 * (t351 - t349);
         let t1126 = t1084 - t486 * t1121 - t492 * t1124;
+        let t1112 = omega_x * 33.60000000000001;
+        let t1125 = 0.6 * (t331 - t329) + 0.6 * (t351 - t349);
         let t1127 = t498 * t1125;
         let t1128 = -t1112 - t487 * t1121 - t493 * t1124 - t499 * t1125 - t508 * t1126
             - t519 * t1127;
@@ -2960,8 +2954,14 @@ impl Exomars {
                 + (t1092 + (t1090 + (t1089 + (t1088 - (t216 - t213 + omega_y * t183))))))
             - t488 * t1121 - t494 * t1124 - t500 * t1125 - t510 * t1126 + t521 * t1127
             - t534 * t1128;
+        let t1113 = omega_z * t182;
+        let t1114 = omega_x * t183;
         let t1130 = -(t1113 - t1114) - t489 * t1121 - t495 * t1124 - t501 * t1125
             - t512 * t1126 - t523 * t1127 - t536 * t1128 - t548 * t1129;
+        let t1115 = 0.6 * t229;
+        let t1117 = 0.6 * t252;
+        let t1119 = 0.6 * t272;
+        let t1122 = 0.6 * t292;
         let t1131 = t571
             * (-(t205 - t208 - omega_y * t182) - t1115 - t1117 - t1119 - t1122
                 - t490 * t1121 - t496 * t1124 - t502 * t1125 - t514 * t1126
@@ -2969,16 +2969,14 @@ impl Exomars {
         let t1132 = t559 * t1130 - t561 * t1131;
         let t1133 = t546 * t1129 - t548 * t1132 - t550 * t1131;
         let t1134 = t532 * t1128 - t534 * t1133 - t536 * t1132 - t538 * t1131;
-        let t1135 = t519 * t1134 - t517 * t1127 - t521 * t1133 + t523 * t1132
-            - t525 * t1131;
         let t1136 = t506 * t1126 - t508 * t1134 - t510 * t1133 - t512 * t1132
             - t514 * t1131;
-        let t1137 = omega_x * t187;
-        let t1138 = omega_y * t186;
+        let t1135 = t519 * t1134 - t517 * t1127 - t521 * t1133 + t523 * t1132
+            - t525 * t1131;
         let t1139 = 0.6 * (t250 - t248) + 0.6 * (t290 - t288);
         let t1140 = 0.6 * (t270 - t268) + 0.6 * (t310 - t308);
-        let t1141 = 0.6 * (t332 - t330) + 0.6 * (t352 - t350);
         let t1142 = -t1085 - t486 * t1139 - t492 * t1140;
+        let t1141 = 0.6 * (t332 - t330) + 0.6 * (t352 - t350);
         let t1143 = t1112 - t498 * t1141;
         let t1144 = -(t487 * t1139) - t493 * t1140 - t499 * t1141 - t508 * t1142
             + t519 * t1143;
@@ -2987,6 +2985,8 @@ impl Exomars {
         let t1146 = t1122 + (t1119 + (t1117 + (t1115 - (t208 - t205 + omega_z * t186))))
             - t489 * t1139 - t495 * t1140 - t501 * t1141 - t512 * t1142 + t523 * t1143
             - t536 * t1144 - t548 * t1145;
+        let t1137 = omega_x * t187;
+        let t1138 = omega_y * t186;
         let t1147 = t571
             * (-(t1137 - t1138) - t490 * t1139 - t496 * t1140 - t502 * t1141
                 - t514 * t1142 - t525 * t1143 - t538 * t1144 - t550 * t1145
@@ -2994,73 +2994,74 @@ impl Exomars {
         let t1148 = t559 * t1146 - t561 * t1147;
         let t1149 = t546 * t1145 - t548 * t1148 - t550 * t1147;
         let t1150 = t532 * t1144 - t534 * t1149 - t536 * t1148 - t538 * t1147;
-        let t1151 = t517 * t1143 + t519 * t1150 - t521 * t1149 + t523 * t1148
-            - t525 * t1147;
         let t1152 = t506 * t1142 - t508 * t1150 - t510 * t1149 - t512 * t1148
             - t514 * t1147;
-        let t1153 = omega_y * t194;
-        let t1154 = omega_z * t193;
-        let t1155 = t20 * t230;
-        let t1156 = 0.6 * (0.2 * t229);
-        let t1157 = 0.6 * (-(t20 * t229) - t11 * t230);
+        let t1151 = t517 * t1143 + t519 * t1150 - t521 * t1149 + t523 * t1148
+            - t525 * t1147;
+        let t1207 = s_theta / c_phi;
         let t1158 = t20 * t245;
         let t1159 = t19 * t228;
-        let t1160 = t40 * t253;
-        let t1161 = 0.6 * (0.2 * t252);
-        let t1162 = 0.6 * (-(t40 * t252) - t31 * t253);
-        let t1163 = t40 * t265;
-        let t1164 = t39 * t251;
-        let t1165 = t60 * t273;
-        let t1166 = 0.6 * (0.2 * t272);
-        let t1167 = 0.6 * (-(t60 * t272) - t51 * t273);
         let t1168 = t60 * t285;
         let t1169 = t59 * t271;
         let t1170 = 0.6 * (0.2 * t250 - (t1159 - t1158) - yd_y1 * (0.2 * t18))
             + 0.6 * (0.2 * t290 - (t1169 - t1168) - yd_y1 * (0.2 * t58));
-        let t1171 = t80 * t293;
-        let t1172 = 0.6 * (0.2 * t292);
-        let t1173 = 0.6 * (-(t80 * t292) - t71 * t293);
+        let t1163 = t40 * t265;
+        let t1164 = t39 * t251;
         let t1174 = t80 * t305;
         let t1175 = t79 * t291;
         let t1176 = 0.6 * (yd_y2 * (0.2 * t38) + (-(t1164 - t1163) - 0.2 * t270))
             + 0.6 * (yd_y2 * (0.2 * t78) + (-(t1175 - t1174) - 0.2 * t310));
-        let t1177 = t91 * t314;
-        let t1178 = t102 * t315;
-        let t1179 = t1177 + t1178;
-        let t1180 = 0.6 * (0.3 * t314);
-        let t1181 = 0.6 * (0.3 * t315);
-        let t1182 = t90 * t315;
-        let t1183 = t101 * t314;
+        let t1196 = -(t1138 - t1113) - t486 * t1170 - t492 * t1176;
         let t1184 = t101 * t316;
         let t1185 = t90 * t317;
-        let t1186 = t111 * t334;
-        let t1187 = t120 * t335;
-        let t1188 = t1186 + t1187;
-        let t1189 = 0.6 * (0.3 * t334);
-        let t1190 = 0.6 * (0.3 * t335);
-        let t1191 = t110 * t335;
-        let t1192 = t119 * t334;
+        let t1182 = t90 * t315;
+        let t1183 = t101 * t314;
         let t1193 = t119 * t336;
         let t1194 = t110 * t337;
+        let t1191 = t110 * t335;
+        let t1192 = t119 * t334;
         let t1195 = 0.6
             * (-(t102 * t331) - t1184 + (t91 * t332 + t1185)
                 - (yd_y3 * (t91 * t100 - t89 * t102) + (t1183 - t1182)))
             + 0.6
                 * (-(t120 * t351) - t1193 + (t111 * t352 + t1194)
                     - (yd_y3 * (t111 * t118 - t109 * t120) + (t1192 - t1191)));
-        let t1196 = -(t1138 - t1113) - t486 * t1170 - t492 * t1176;
         let t1197 = t1097
             + (t1094 + (t1092 + (t1090 + (t1089 + (t1088 + (t214 + t216))))))
             - t498 * t1195;
         let t1198 = -t1095 - (t210 + t212) - t1098 - t487 * t1170 - t493 * t1176
             - t499 * t1195 - t508 * t1196 + t519 * t1197;
+        let t1153 = omega_y * t194;
+        let t1154 = omega_z * t193;
+        let t1155 = t20 * t230;
+        let t1160 = t40 * t253;
+        let t1165 = t60 * t273;
+        let t1171 = t80 * t293;
+        let t1177 = t91 * t314;
+        let t1178 = t102 * t315;
+        let t1179 = t1177 + t1178;
+        let t1186 = t111 * t334;
+        let t1187 = t120 * t335;
+        let t1188 = t1186 + t1187;
         let t1199 = -(vy * t186 - vz * t182 + (t1153 - t1154)) - 0.6 * (t1155 + t1155)
             - 0.6 * (t1160 + t1160) - 0.6 * (t1165 + t1165) - 0.6 * (t1171 + t1171)
             - 0.6 * (t1179 + t1179) - 0.6 * (t1188 + t1188) - t488 * t1170 - t494 * t1176
             - t500 * t1195 - t510 * t1196 - t521 * t1197 - t534 * t1198;
+        let t1156 = 0.6 * (0.2 * t229);
+        let t1161 = 0.6 * (0.2 * t252);
+        let t1166 = 0.6 * (0.2 * t272);
+        let t1172 = 0.6 * (0.2 * t292);
+        let t1180 = 0.6 * (0.3 * t314);
+        let t1189 = 0.6 * (0.3 * t334);
         let t1200 = t1156 - (omega_z * t192 - (t223 + t225) - vx * t186) - t1161 + t1166
             - t1172 - t1180 - t1189 - t489 * t1170 - t495 * t1176 - t501 * t1195
             - t512 * t1196 + t523 * t1197 - t536 * t1198 - t548 * t1199;
+        let t1157 = 0.6 * (-(t20 * t229) - t11 * t230);
+        let t1162 = 0.6 * (-(t40 * t252) - t31 * t253);
+        let t1167 = 0.6 * (-(t60 * t272) - t51 * t273);
+        let t1173 = 0.6 * (-(t80 * t292) - t71 * t293);
+        let t1181 = 0.6 * (0.3 * t315);
+        let t1190 = 0.6 * (0.3 * t335);
         let t1201 = t571
             * (-(vx * t182 + (t220 + t222 - omega_y * t192)) - t1157 - t1162 - t1167
                 - t1173 - t1181 - t1190 - t490 * t1170 - t496 * t1176 - t502 * t1195
@@ -3069,62 +3070,46 @@ impl Exomars {
         let t1202 = t559 * t1200 - t561 * t1201;
         let t1203 = t546 * t1199 - t548 * t1202 - t550 * t1201;
         let t1204 = t532 * t1198 - t534 * t1203 - t536 * t1202 - t538 * t1201;
-        let t1205 = t517 * t1197 + t519 * t1204 - t521 * t1203 + t523 * t1202
-            - t525 * t1201;
         let t1206 = t506 * t1196 - t508 * t1204 - t510 * t1203 - t512 * t1202
             - t514 * t1201;
-        let t1207 = s_theta / c_phi;
-        let t1208 = omega_x * t199;
-        let t1209 = t11 * t229;
-        let t1210 = t1155 + t1209;
-        let t1211 = 0.6 * (0.2 * t230);
-        let t1212 = t10 * t230;
-        let t1213 = t19 * t229;
+        let t1205 = t517 * t1197 + t519 * t1204 - t521 * t1203 + t523 * t1202
+            - t525 * t1201;
         let t1214 = t19 * t231;
         let t1215 = t10 * t232;
-        let t1216 = t31 * t252;
-        let t1217 = t1160 + t1216;
-        let t1218 = 0.6 * (0.2 * t253);
-        let t1219 = t30 * t253;
-        let t1220 = t39 * t252;
-        let t1221 = t39 * t254;
-        let t1222 = t30 * t255;
-        let t1223 = t51 * t272;
-        let t1224 = t1165 + t1223;
-        let t1225 = 0.6 * (0.2 * t273);
-        let t1226 = t50 * t273;
-        let t1227 = t59 * t272;
+        let t1212 = t10 * t230;
+        let t1213 = t19 * t229;
         let t1228 = t59 * t274;
         let t1229 = t50 * t275;
+        let t1226 = t50 * t273;
+        let t1227 = t59 * t272;
         let t1230 = 0.6
             * (t20 * t249 + t1214 + (-(t11 * t250) - t1215)
                 - (yd_y1 * (t9 * t20 - t11 * t18) + (t1212 - t1213)))
             + 0.6
                 * (t60 * t289 + t1228 + (-(t51 * t290) - t1229)
                     - (yd_y1 * (t49 * t60 - t51 * t58) + (t1226 - t1227)));
-        let t1231 = t71 * t292;
-        let t1232 = t1171 + t1231;
-        let t1233 = 0.6 * (0.2 * t293);
-        let t1234 = t70 * t293;
-        let t1235 = t79 * t292;
+        let t1221 = t39 * t254;
+        let t1222 = t30 * t255;
+        let t1219 = t30 * t253;
+        let t1220 = t39 * t252;
         let t1236 = t79 * t294;
         let t1237 = t70 * t295;
+        let t1234 = t70 * t293;
+        let t1235 = t79 * t292;
         let t1238 = 0.6
             * (t40 * t269 + t1221 + (-(t31 * t270) - t1222)
                 - (yd_y2 * (t29 * t40 - t31 * t38) + (t1219 - t1220)))
             + 0.6
                 * (t80 * t309 + t1236 + (-(t71 * t310) - t1237)
                     - (yd_y2 * (t69 * t80 - t71 * t78) + (t1234 - t1235)));
-        let t1239 = 0.6 * (-(t102 * t314) - t91 * t315);
+        let t1246 = -t1088 - (t215 + t216) - t1089 - t1090 - t1092 - t1094 - t1097
+            - t486 * t1230 - t492 * t1238;
         let t1240 = t102 * t326;
         let t1241 = t101 * t313;
-        let t1242 = 0.6 * (-(t120 * t334) - t111 * t335);
         let t1243 = t120 * t346;
         let t1244 = t119 * t333;
         let t1245 = 0.6 * (0.3 * t332 - (t1240 - t1241) - yd_y3 * (t100 * 0.3))
             + 0.6 * (0.3 * t352 - (t1243 - t1244) - yd_y3 * (t118 * 0.3));
-        let t1246 = -t1088 - (t215 + t216) - t1089 - t1090 - t1092 - t1094 - t1097
-            - t486 * t1230 - t492 * t1238;
         let t1247 = -(t1087 - t1137) - t498 * t1245;
         let t1248 = t1122 + (t1119 + (t1117 + (t1115 + (t206 + t208)))) - t487 * t1230
             - t493 * t1238 - t499 * t1245 - t508 * t1246 + t519 * t1247;
@@ -3132,10 +3117,25 @@ impl Exomars {
             + (t1156 - (vy * t187 + (t224 + t225 - omega_z * t198)) - t1161) - t1172
             - t1180 - t1189 - t488 * t1230 - t494 * t1238 - t500 * t1245 - t510 * t1246
             - t521 * t1247 - t534 * t1248;
+        let t1208 = omega_x * t199;
+        let t1209 = t11 * t229;
+        let t1210 = t1155 + t1209;
+        let t1216 = t31 * t252;
+        let t1217 = t1160 + t1216;
+        let t1223 = t51 * t272;
+        let t1224 = t1165 + t1223;
+        let t1231 = t71 * t292;
+        let t1232 = t1171 + t1231;
         let t1250 = -(vz * t179 - vx * t187 + (t1154 - t1208)) - 0.6 * (t1210 + t1210)
             - 0.6 * (t1217 + t1217) - 0.6 * (t1224 + t1224) - 0.6 * (t1232 + t1232)
             - 0.6 * (t1178 + t1178) - 0.6 * (t1187 + t1187) - t489 * t1230 - t495 * t1238
             - t501 * t1245 - t512 * t1246 + t523 * t1247 - t536 * t1248 - t548 * t1249;
+        let t1211 = 0.6 * (0.2 * t230);
+        let t1218 = 0.6 * (0.2 * t253);
+        let t1225 = 0.6 * (0.2 * t273);
+        let t1233 = 0.6 * (0.2 * t293);
+        let t1239 = 0.6 * (-(t102 * t314) - t91 * t315);
+        let t1242 = 0.6 * (-(t120 * t334) - t111 * t335);
         let t1251 = t571
             * (t1211 - (omega_x * t198 - (t217 + t219) - vy * t179) - t1218 + t1225
                 - t1233 - t1239 - t1242 - t490 * t1230 - t496 * t1238 - t502 * t1245
@@ -3144,29 +3144,30 @@ impl Exomars {
         let t1252 = t559 * t1250 - t561 * t1251;
         let t1253 = t546 * t1249 - t548 * t1252 - t550 * t1251;
         let t1254 = t532 * t1248 - t534 * t1253 - t536 * t1252 - t538 * t1251;
-        let t1255 = t517 * t1247 + t519 * t1254 - t521 * t1253 + t523 * t1252
-            - t525 * t1251;
         let t1256 = t506 * t1246 - t508 * t1254 - t510 * t1253 - t512 * t1252
             - t514 * t1251;
+        let t1255 = t517 * t1247 + t519 * t1254 - t521 * t1253 + t523 * t1252
+            - t525 * t1251;
+        let t1283 = c_theta / c_phi;
         let t1257 = t11 * t245;
         let t1258 = t10 * t228;
-        let t1259 = t31 * t265;
-        let t1260 = t30 * t251;
         let t1261 = t51 * t285;
         let t1262 = t50 * t271;
         let t1263 = 0.6 * (yd_y1 * (0.2 * t9) + (-(0.2 * t249) - (t1257 - t1258)))
             + 0.6 * (yd_y1 * (0.2 * t49) + (-(0.2 * t289) - (t1261 - t1262)));
+        let t1259 = t31 * t265;
+        let t1260 = t30 * t251;
         let t1264 = t71 * t305;
         let t1265 = t70 * t291;
         let t1266 = 0.6 * (0.2 * t269 - (t1259 - t1260) - yd_y2 * (0.2 * t29))
             + 0.6 * (0.2 * t309 - (t1264 - t1265) - yd_y2 * (0.2 * t69));
+        let t1272 = t1098 + (t1095 + (t211 + t212)) - t486 * t1263 - t492 * t1266;
         let t1267 = t91 * t326;
         let t1268 = t90 * t313;
         let t1269 = t111 * t346;
         let t1270 = t110 * t333;
         let t1271 = 0.6 * (yd_y3 * (t89 * 0.3) + (-(t1268 - t1267) - 0.3 * t331))
             + 0.6 * (yd_y3 * (t109 * 0.3) + (-(t1270 - t1269) - 0.3 * t351));
-        let t1272 = t1098 + (t1095 + (t211 + t212)) - t486 * t1263 - t492 * t1266;
         let t1273 = -t1115 - (t207 + t208) - t1117 - t1119 - t1122 - t498 * t1271;
         let t1274 = -(t1114 - t1086) - t487 * t1263 - t493 * t1266 - t499 * t1271
             - t508 * t1272 + t519 * t1273;
@@ -3186,17 +3187,15 @@ impl Exomars {
         let t1278 = t559 * t1276 - t561 * t1277;
         let t1279 = t546 * t1275 - t548 * t1278 - t550 * t1277;
         let t1280 = t532 * t1274 - t534 * t1279 - t536 * t1278 - t538 * t1277;
-        let t1281 = t517 * t1273 + t519 * t1280 - t521 * t1279 + t523 * t1278
-            - t525 * t1277;
         let t1282 = t506 * t1272 - t508 * t1280 - t510 * t1279 - t512 * t1278
             - t514 * t1277;
-        let t1283 = c_theta / c_phi;
+        let t1281 = t517 * t1273 + t519 * t1280 - t521 * t1279 + t523 * t1278
+            - t525 * t1277;
         let t1284 = yd_y1 + yd_y1;
         let t1285 = t242 + t9 * t1284;
-        let t1286 = t18 * t1284 - t246;
         let t1287 = t282 + t49 * t1284;
+        let t1286 = t18 * t1284 - t246;
         let t1288 = t58 * t1284 - t286;
-        let t1289 = t1120 + (t1116 - (t756 - omega_x * t144));
         let t1290 = 0.6
             * (t239 + t10 * t249 + (t240 + t19 * t250)
                 - (t241 + yd_y1 * (t9 * t10 + t18 * t19) + (t10 * t1285 + t19 * t1286)))
@@ -3205,6 +3204,7 @@ impl Exomars {
                     - (t281 + yd_y1 * (t49 * t50 + t58 * t59)
                         + (t50 * t1287 + t59 * t1288))) + (-(t374 * t786) - t379 * t788);
         let t1291 = -t754 - 0.6 * t1285 - 0.6 * t1287 - t486 * t1290;
+        let t1289 = t1120 + (t1116 - (t756 - omega_x * t144));
         let t1292 = omega_y * t141 - 0.6 * t1286 - 0.6 * t1288 - t487 * t1290
             - t508 * t1291 + t519 * t1289;
         let t1293 = -(vy * t144 + (t759 - omega_z * t151))
@@ -3222,16 +3222,15 @@ impl Exomars {
         let t1296 = t559 * t1294 - t561 * t1295;
         let t1297 = t546 * t1293 - t548 * t1296 - t550 * t1295;
         let t1298 = t532 * t1292 - t534 * t1297 - t536 * t1296 - t538 * t1295;
-        let t1299 = t517 * t1289 + t519 * t1298 - t521 * t1297 + t523 * t1296
-            - t525 * t1295;
         let t1300 = t506 * t1291 - t508 * t1298 - t510 * t1297 - t512 * t1296
             - t514 * t1295;
+        let t1299 = t517 * t1289 + t519 * t1298 - t521 * t1297 + t523 * t1296
+            - t525 * t1295;
         let t1301 = yd_y2 + yd_y2;
         let t1302 = t262 + t29 * t1301;
-        let t1303 = t38 * t1301 - t266;
         let t1304 = t302 + t69 * t1301;
+        let t1303 = t38 * t1301 - t266;
         let t1305 = t78 * t1301 - t306;
-        let t1306 = t1123 + (t1118 - (t879 - omega_x * t159));
         let t1307 = 0.6
             * (t259 + t30 * t269 + (t260 + t39 * t270)
                 - (t261 + yd_y2 * (t29 * t30 + t38 * t39) + (t30 * t1302 + t39 * t1303)))
@@ -3240,6 +3239,7 @@ impl Exomars {
                     - (t301 + yd_y2 * (t69 * t70 + t78 * t79)
                         + (t70 * t1304 + t79 * t1305))) + (-(t388 * t909) - t393 * t911);
         let t1308 = -t877 - 0.6 * t1302 - 0.6 * t1304 - t492 * t1307;
+        let t1306 = t1123 + (t1118 - (t879 - omega_x * t159));
         let t1309 = omega_y * t156 - 0.6 * t1303 - 0.6 * t1305 - t493 * t1307
             - t508 * t1308 + t519 * t1306;
         let t1310 = -(vy * t159 + (t882 - omega_z * t166))
@@ -3257,16 +3257,16 @@ impl Exomars {
         let t1313 = t559 * t1311 - t561 * t1312;
         let t1314 = t546 * t1310 - t548 * t1313 - t550 * t1312;
         let t1315 = t532 * t1309 - t534 * t1314 - t536 * t1313 - t538 * t1312;
-        let t1316 = t517 * t1306 + t519 * t1315 - t521 * t1314 + t523 * t1313
-            - t525 * t1312;
         let t1317 = t506 * t1308 - t508 * t1315 - t510 * t1314 - t512 * t1313
             - t514 * t1312;
-        let t1318 = yd_y3 + yd_y3;
-        let t1319 = t89 * t1318 - t327;
-        let t1320 = t328 + t100 * t1318;
-        let t1321 = t109 * t1318 - t347;
-        let t1322 = t348 + t118 * t1318;
+        let t1316 = t517 * t1306 + t519 * t1315 - t521 * t1314 + t523 * t1313
+            - t525 * t1312;
         let t1323 = t1099 + (t1096 - (t1001 - omega_z * t185));
+        let t1318 = yd_y3 + yd_y3;
+        let t1320 = t328 + t100 * t1318;
+        let t1322 = t348 + t118 * t1318;
+        let t1319 = t89 * t1318 - t327;
+        let t1321 = t109 * t1318 - t347;
         let t1324 = 0.6
             * (t321 + t90 * t331 + (t322 + t101 * t332)
                 - (t323 + yd_y3 * (t89 * t90 + t100 * t101)
@@ -3295,10 +3295,10 @@ impl Exomars {
         let t1330 = t559 * t1328 - t561 * t1329;
         let t1331 = t546 * t1327 - t548 * t1330 - t550 * t1329;
         let t1332 = t532 * t1326 - t534 * t1331 - t536 * t1330 - t538 * t1329;
-        let t1333 = t517 * t1325 + t519 * t1332 - t521 * t1331 + t523 * t1330
-            - t525 * t1329;
         let t1334 = t506 * t1323 - t508 * t1332 - t510 * t1331 - t512 * t1330
             - t514 * t1329;
+        let t1333 = t517 * t1325 + t519 * t1332 - t521 * t1331 + t523 * t1330
+            - t525 * t1329;
         jac[0][3] = vy * t593 - vx * t592 + vz * t594;
         jac[1][3] = vx * t595 - vy * t596 - vz * t597;
         jac[2][3] = vx * t410 + vy * c_phi - vz * t411;

@@ -78,339 +78,370 @@ impl Lrv {
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
         // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
         let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let front_left = x[6];
+        let t1 = front_left * 0.010497107891091926;
+        let t2 = t1 - 0.002420073522975009;
+        let t4 = front_left * t2 - 0.1889588601394729;
+        let t6 = front_left * t4 - 0.008046798224083086;
+        let t3 = t1 + t2;
+        let t5 = t4 + front_left * t3;
+        let t8 = t6 + front_left * t5;
+        let t10 = front_left * 0.003569364721085567;
+        let t11 = t10 - 0.05863585356694276;
+        let t13 = front_left * t11 + 0.009084672645052382;
+        let t15 = front_left * t13 + 0.36881035216564817;
+        let t12 = t10 + t11;
+        let t14 = t13 + front_left * t12;
+        let t17 = t15 + front_left * t14;
+        let t98 = 10.0 * (t8 * t8 + t17 * t17);
         let front_right = x[7];
+        let t23 = front_right * 0.010497107891095859;
+        let t24 = -0.0024200735229748405 - t23;
+        let t26 = front_right * t24 + 0.18895886013947344;
+        let t28 = front_right * t26 - 0.008046798224083114;
+        let t25 = t24 - t23;
+        let t27 = t26 + front_right * t25;
+        let t30 = t28 + front_right * t27;
+        let t32 = front_right * 0.003569364721073275;
+        let t33 = t32 + 0.05863585356694256;
+        let t35 = front_right * t33 + 0.009084672645053608;
+        let t37 = front_right * t35 - 0.36881035216564806;
+        let t34 = t32 + t33;
+        let t36 = t35 + front_right * t34;
+        let t39 = t37 + front_right * t36;
+        let t108 = 10.0 * (t30 * t30 + t39 * t39);
         let rear_left = x[8];
+        let t45 = rear_left * 0.010497107891091926;
+        let t46 = t45 - 0.002420073522975009;
+        let t48 = rear_left * t46 - 0.1889588601394729;
+        let t50 = rear_left * t48 - 0.008046798224083086;
+        let t47 = t45 + t46;
+        let t49 = t48 + rear_left * t47;
+        let t52 = t50 + rear_left * t49;
+        let t54 = rear_left * 0.003569364721085567;
+        let t55 = t54 - 0.05863585356694276;
+        let t57 = 0.009084672645052382 + rear_left * t55;
+        let t59 = 0.36881035216564817 + rear_left * t57;
+        let t56 = t54 + t55;
+        let t58 = t57 + rear_left * t56;
+        let t61 = t59 + rear_left * t58;
+        let t118 = 10.0 * (t52 * t52 + t61 * t61);
         let rear_right = x[9];
+        let t67 = rear_right * 0.010497107891095859;
+        let t68 = -0.0024200735229748405 - t67;
+        let t70 = 0.18895886013947344 + rear_right * t68;
+        let t72 = rear_right * t70 - 0.008046798224083114;
+        let t69 = t68 - t67;
+        let t71 = t70 + rear_right * t69;
+        let t74 = t72 + rear_right * t71;
+        let t76 = rear_right * 0.003569364721073275;
+        let t77 = 0.05863585356694256 + t76;
+        let t79 = 0.009084672645053608 + rear_right * t77;
+        let t81 = rear_right * t79 - 0.36881035216564806;
+        let t78 = t76 + t77;
+        let t80 = t79 + rear_right * t78;
+        let t83 = t81 + rear_right * t80;
+        let t138 = 10.0 * (t74 * t74 + t83 * t83);
+        let t91 = t8 * 10.0;
+        let t247 = 1.0 / t98;
+        let t248 = t91 * t247;
+        let t273 = t98 * t248;
+        let t101 = t30 * 10.0;
+        let t253 = 1.0 / t108;
+        let t254 = t101 * t253;
+        let t274 = t108 * t254;
+        let t111 = t52 * 10.0;
+        let t259 = 1.0 / t118;
+        let t260 = t111 * t259;
+        let t275 = t118 * t260;
+        let t124 = t74 * 10.0;
+        let t265 = 1.0 / t138;
+        let t266 = t124 * t265;
+        let t276 = t138 * t266;
+        let t277 = 700.0 - t248 * t273 - t254 * t274 - t260 * t275 - t266 * t276;
+        let t92 = t17 * 10.0;
+        let t249 = t92 * t247;
+        let t283 = t98 * t249;
+        let t102 = t39 * 10.0;
+        let t255 = t102 * t253;
+        let t284 = t108 * t255;
+        let t112 = t61 * 10.0;
+        let t261 = t112 * t259;
+        let t285 = t118 * t261;
+        let t126 = t83 * 10.0;
+        let t267 = t126 * t265;
+        let t286 = t138 * t267;
+        let t278 = 1.0 / t277;
+        let t279 = t278 * (-(t249 * t273) - t255 * t274 - t261 * t275 - t267 * t276);
+        let t287 = t277 * t279;
+        let t288 = 700.0 - t249 * t283 - t255 * t284 - t261 * t285 - t267 * t286
+            - t279 * t287;
+        let t18 = front_left * t15 - 0.1540490207303449;
+        let t93 = t18 * t18;
+        let t9 = 0.9151637274786046 + front_left * t6;
+        let t94 = t9 * t9;
+        let t40 = front_right * t37 - 0.1540490207303449;
+        let t103 = t40 * t40;
+        let t31 = front_right * t28 - 0.9151637274786046;
+        let t104 = t31 * t31;
+        let t62 = rear_left * t59 - 0.1540490207303449;
+        let t113 = t62 * t62;
+        let t53 = 0.9151637274786046 + rear_left * t50;
+        let t114 = t53 * t53;
+        let t84 = rear_right * t81 - 0.1540490207303449;
+        let t127 = t84 * t84;
+        let t75 = rear_right * t72 - 0.9151637274786046;
+        let t128 = t75 * t75;
+        let t129 = 86.4 + 10.0 * (t93 + t94) + 10.0 * (t103 + t104)
+            + 10.0 * (t113 + t114) + 10.0 * (t127 + t128);
+        let t95 = 10.0 * (t9 * t17 - t8 * t18);
+        let t250 = t95 * t247;
+        let t293 = t98 * t250;
+        let t105 = 10.0 * (t31 * t39 - t30 * t40);
+        let t256 = t105 * t253;
+        let t294 = t108 * t256;
+        let t115 = 10.0 * (t53 * t61 - t52 * t62);
+        let t262 = t115 * t259;
+        let t295 = t118 * t262;
+        let t132 = 10.0 * (t75 * t83 - t74 * t84);
+        let t268 = t132 * t265;
+        let t296 = t138 * t268;
+        let t89 = t18 * 10.0;
+        let t99 = t40 * 10.0;
+        let t109 = t62 * 10.0;
+        let t119 = t84 * 10.0;
+        let t123 = -t89 - t99 - t109 - t119;
+        let t280 = t278 * (t123 - t250 * t273 - t256 * t274 - t262 * t275 - t268 * t276);
+        let t297 = t277 * t280;
+        let t289 = 1.0 / t288;
+        let t90 = t9 * 10.0;
+        let t100 = t31 * 10.0;
+        let t110 = t53 * 10.0;
+        let t121 = t75 * 10.0;
+        let t125 = t90 + t100 + t110 + t121;
+        let t290 = t289
+            * (t125 - t250 * t283 - t256 * t284 - t262 * t285 - t268 * t286
+                - t280 * t287);
+        let t298 = t288 * t290;
+        let t299 = t129 - t250 * t293 - t256 * t294 - t262 * t295 - t268 * t296
+            - t280 * t297 - t290 * t298;
+        let t133 = 514.8 + 10.0 * (t93 + 1.306449) + 10.0 * (1.306449 + t103)
+            + 10.0 * (1.306449 + t113) + 10.0 * (1.306449 + t127);
+        let t96 = 10.0 * (1.143 * t17);
+        let t251 = t96 * t247;
+        let t303 = t98 * t251;
+        let t106 = 10.0 * (1.143 * t39);
+        let t257 = t106 * t253;
+        let t304 = t108 * t257;
+        let t116 = 10.0 * (1.143 * t61);
+        let t263 = t116 * t259;
+        let t305 = t118 * t263;
+        let t135 = 10.0 * (1.143 * t83);
+        let t269 = t135 * t265;
+        let t306 = t138 * t269;
+        let t120 = t89 + t99 + t109 + t119;
+        let t271 = t120 * 0.0014285714285714286;
+        let t307 = 700.0 * t271;
+        let t281 = t278 * (t251 * t273 + t257 * t274 - t263 * t275 - t269 * t276);
+        let t308 = t277 * t281;
+        let t291 = t289
+            * (t251 * t283 + t257 * t284 - t263 * t285 - t269 * t286 - t281 * t287);
+        let t309 = t288 * t291;
+        let t300 = 1.0 / t299;
+        let t130 = -(10.0 * (1.143 * t9)) - 10.0 * (1.143 * t31) + 10.0 * (1.143 * t53)
+            + 10.0 * (1.143 * t75);
+        let t301 = t300
+            * (t130 + t251 * t293 + t257 * t294 - t263 * t295 - t269 * t296 - t281 * t297
+                - t291 * t298);
+        let t310 = t299 * t301;
+        let t311 = t133 - t251 * t303 - t257 * t304 - t263 * t305 - t269 * t306
+            - t271 * t307 - t281 * t308 - t291 * t309 - t301 * t310;
+        let t136 = 561.6 + 10.0 * (t94 + 1.306449) + 10.0 * (1.306449 + t104)
+            + 10.0 * (1.306449 + t114) + 10.0 * (1.306449 + t128);
+        let t97 = 10.0 * (1.143 * t8);
+        let t252 = t97 * t247;
+        let t107 = 10.0 * (1.143 * t30);
+        let t258 = t107 * t253;
+        let t117 = 10.0 * (1.143 * t52);
+        let t264 = t117 * t259;
+        let t137 = 10.0 * (1.143 * t74);
+        let t270 = t137 * t265;
+        let t122 = -t90 - t100 - t110 - t121;
+        let t272 = t122 * 0.0014285714285714286;
+        let t282 = t278 * (-(t252 * t273) - t258 * t274 + t264 * t275 + t270 * t276);
+        let t292 = t289
+            * (-(t252 * t283) - t258 * t284 + t264 * t285 + t270 * t286 - t282 * t287);
+        let t131 = -(10.0 * (1.143 * t18)) - 10.0 * (1.143 * t40) + 10.0 * (1.143 * t62)
+            + 10.0 * (1.143 * t84);
+        let t302 = t300
+            * (t131 - t252 * t293 - t258 * t294 + t264 * t295 + t270 * t296 - t282 * t297
+                - t292 * t298);
+        let t312 = 1.0 / t311;
+        let t134 = -(10.0 * (t9 * t18)) - 10.0 * (t31 * t40) - 10.0 * (t53 * t62)
+            - 10.0 * (t75 * t84);
+        let t313 = t312
+            * (t134 + t252 * t303 + t258 * t304 + t264 * t305 + t270 * t306 - t272 * t307
+                - t282 * t308 - t292 * t309 - t302 * t310);
+        let t314 = t136 - t252 * (t98 * t252) - t258 * (t108 * t258)
+            - t264 * (t118 * t264) - t270 * (t138 * t270) - t272 * (700.0 * t272)
+            - t282 * (t277 * t282) - t292 * (t288 * t292) - t302 * (t299 * t302)
+            - t313 * (t311 * t313);
         let vx = w[0];
+        let theta = x[4];
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t214 = s_phi * s_theta;
+        let t216 = c_theta * c_psi - s_psi * t214;
         let vy = w[1];
+        let t217 = c_phi * s_psi;
         let vz = w[2];
+        let t215 = s_phi * c_theta;
+        let t218 = s_theta * c_psi + s_psi * t215;
+        let t219 = c_theta * s_psi + c_psi * t214;
+        let t220 = c_phi * c_psi;
+        let t221 = s_theta * s_psi - c_psi * t215;
+        let t183 = c_phi * s_theta;
+        let t184 = c_phi * c_theta;
         let omega_x = w[3];
-        let omega_y = w[4];
         let omega_z = w[5];
+        let omega_y = w[4];
+        let t324 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
         let yd_front_left = w[6];
         let yd_front_right = w[7];
         let yd_rear_left = w[8];
         let yd_rear_right = w[9];
+        let t185 = t183 * 16.200000000000003;
+        let t141 = vz * 700.0 + omega_x * t125 + yd_front_left * t92
+            + yd_front_right * t102 + yd_rear_left * t112 + yd_rear_right * t126;
+        let t140 = vy * 700.0 + omega_x * t123 + yd_front_left * t91
+            + yd_front_right * t101 + yd_rear_left * t111 + yd_rear_right * t124;
+        let t148 = yd_front_left * t8;
+        let t149 = yd_front_left * t17;
+        let t156 = omega_z * t148 - omega_y * t149;
+        let t160 = yd_front_right * t30;
+        let t161 = yd_front_right * t39;
+        let t164 = omega_z * t160 - omega_y * t161;
+        let t168 = yd_rear_left * t52;
+        let t169 = yd_rear_left * t61;
+        let t172 = omega_z * t168 - omega_y * t169;
+        let t176 = yd_rear_right * t74;
+        let t177 = yd_rear_right * t83;
+        let t180 = omega_z * t176 - omega_y * t177;
         let f_front_left_2_x = loads[0].force[0];
         let f_front_left_2_y = loads[0].force[1];
         let f_front_left_2_z = loads[0].force[2];
+        let t222 = f_front_left_2_x * t216 + f_front_left_2_y * t219
+            - f_front_left_2_z * t183;
+        let f_front_right_2_x = loads[1].force[0];
+        let f_front_right_2_y = loads[1].force[1];
+        let f_front_right_2_z = loads[1].force[2];
+        let t228 = f_front_right_2_x * t216 + f_front_right_2_y * t219
+            - f_front_right_2_z * t183;
+        let f_rear_left_2_x = loads[2].force[0];
+        let f_rear_left_2_y = loads[2].force[1];
+        let f_rear_left_2_z = loads[2].force[2];
+        let t234 = f_rear_left_2_x * t216 + f_rear_left_2_y * t219
+            - f_rear_left_2_z * t183;
+        let f_rear_right_2_x = loads[3].force[0];
+        let f_rear_right_2_y = loads[3].force[1];
+        let f_rear_right_2_z = loads[3].force[2];
+        let t240 = f_rear_right_2_x * t216 + f_rear_right_2_y * t219
+            - f_rear_right_2_z * t183;
+        let t243 = t185
+            + (t185
+                + (t185
+                    + (10.0 * t156 - (omega_y * t141 - omega_z * t140) + 10.0 * t164
+                        + 10.0 * t172 + 10.0 * t180 + t183 * 1069.2 + t185))) + t222
+            + t228 + t234 + t240;
+        let t139 = vx * 700.0 + omega_y * t120 + omega_z * t122;
+        let t142 = vy * t123 + vz * t125 + omega_x * t129 + omega_y * t130
+            + omega_z * t131 + yd_front_left * t95 + yd_front_right * t105
+            + yd_rear_left * t115 + yd_rear_right * t132;
+        let t144 = vx * t122 + omega_x * t131 + omega_y * t134 + omega_z * t136
+            + yd_front_left * t97 + yd_front_right * t107 - yd_rear_left * t117
+            - yd_rear_right * t137;
+        let t147 = vx + (omega_y * t18 - omega_z * t9);
+        let t16 = front_left * (front_left * 0.007138729442171134 + 2.0 * t12)
+            + 2.0 * t14;
+        let t152 = yd_front_left * yd_front_left;
+        let t158 = t16 * t152 + omega_x * t148;
+        let t159 = vx + (omega_y * t40 - omega_z * t31);
+        let t38 = front_right * (front_right * 0.00713872944214655 + 2.0 * t34)
+            + 2.0 * t36;
+        let t153 = yd_front_right * yd_front_right;
+        let t166 = t38 * t153 + omega_x * t160;
+        let t167 = vx + (omega_y * t62 - omega_z * t53);
+        let t60 = rear_left * (rear_left * 0.007138729442171134 + 2.0 * t56) + 2.0 * t58;
+        let t154 = yd_rear_left * yd_rear_left;
+        let t174 = t60 * t154 + omega_x * t168;
+        let t175 = vx + (omega_y * t84 - omega_z * t75);
+        let t82 = rear_right * (rear_right * 0.00713872944214655 + 2.0 * t78)
+            + 2.0 * t80;
+        let t155 = yd_rear_right * yd_rear_right;
+        let t182 = t82 * t155 + omega_x * t176;
+        let t187 = t184 * 16.200000000000003;
+        let t188 = 1.143 * t187;
+        let t224 = f_front_left_2_x * t218 + f_front_left_2_y * t221
+            + f_front_left_2_z * t184;
         let mu_front_left_2_x = loads[0].moment[0];
         let mu_front_left_2_y = loads[0].moment[1];
         let mu_front_left_2_z = loads[0].moment[2];
         let tau_front_left_2_x = loads[0].stator_torque[0];
         let tau_front_left_2_y = loads[0].stator_torque[1];
         let tau_front_left_2_z = loads[0].stator_torque[2];
-        let f_front_right_2_x = loads[1].force[0];
-        let f_front_right_2_y = loads[1].force[1];
-        let f_front_right_2_z = loads[1].force[2];
+        let t230 = f_front_right_2_x * t218 + f_front_right_2_y * t221
+            + f_front_right_2_z * t184;
         let mu_front_right_2_x = loads[1].moment[0];
         let mu_front_right_2_y = loads[1].moment[1];
         let mu_front_right_2_z = loads[1].moment[2];
         let tau_front_right_2_x = loads[1].stator_torque[0];
         let tau_front_right_2_y = loads[1].stator_torque[1];
         let tau_front_right_2_z = loads[1].stator_torque[2];
-        let f_rear_left_2_x = loads[2].force[0];
-        let f_rear_left_2_y = loads[2].force[1];
-        let f_rear_left_2_z = loads[2].force[2];
+        let t236 = f_rear_left_2_x * t218 + f_rear_left_2_y * t221
+            + f_rear_left_2_z * t184;
         let mu_rear_left_2_x = loads[2].moment[0];
         let mu_rear_left_2_y = loads[2].moment[1];
         let mu_rear_left_2_z = loads[2].moment[2];
         let tau_rear_left_2_x = loads[2].stator_torque[0];
         let tau_rear_left_2_y = loads[2].stator_torque[1];
         let tau_rear_left_2_z = loads[2].stator_torque[2];
-        let f_rear_right_2_x = loads[3].force[0];
-        let f_rear_right_2_y = loads[3].force[1];
-        let f_rear_right_2_z = loads[3].force[2];
+        let t242 = f_rear_right_2_x * t218 + f_rear_right_2_y * t221
+            + f_rear_right_2_z * t184;
         let mu_rear_right_2_x = loads[3].moment[0];
         let mu_rear_right_2_y = loads[3].moment[1];
         let mu_rear_right_2_z = loads[3].moment[2];
         let tau_rear_right_2_x = loads[3].stator_torque[0];
         let tau_rear_right_2_y = loads[3].stator_torque[1];
         let tau_rear_right_2_z = loads[3].stator_torque[2];
-        let y0_front_left = self.neutral[0];
-        let y0_front_right = self.neutral[1];
-        let y0_rear_left = self.neutral[2];
-        let y0_rear_right = self.neutral[3];
-        let t1 = front_left * 0.010497107891091926;
-        let t2 = t1 - 0.002420073522975009;
-        let t3 = t1 + t2;
-        let t4 = front_left * t2 - 0.1889588601394729;
-        let t5 = t4 + front_left * t3;
-        let t6 = front_left * t4 - 0.008046798224083086;
-        let t7 = front_left * (front_left * 0.020994215782183853 + 2.0 * t3) + 2.0 * t5;
-        let t8 = t6 + front_left * t5;
-        let t9 = 0.9151637274786046 + front_left * t6;
-        let t10 = front_left * 0.003569364721085567;
-        let t11 = t10 - 0.05863585356694276;
-        let t12 = t10 + t11;
-        let t13 = front_left * t11 + 0.009084672645052382;
-        let t14 = t13 + front_left * t12;
-        let t15 = front_left * t13 + 0.36881035216564817;
-        let t16 = front_left * (front_left * 0.007138729442171134 + 2.0 * t12)
-            + 2.0 * t14;
-        let t17 = t15 + front_left * t14;
-        let t18 = front_left * t15 - 0.1540490207303449;
-        let t19 = front_left * 0.03982443626987119;
-        let t20 = t19 + 0.016338965034322857;
-        let t21 = front_left * t20 + 0.08957090383991165;
-        let t22 = front_left * t21 + 0.08388641649735075
-            + front_left * (t21 + front_left * (t19 + t20));
-        let t23 = front_right * 0.010497107891095859;
-        let t24 = -0.0024200735229748405 - t23;
-        let t25 = t24 - t23;
-        let t26 = front_right * t24 + 0.18895886013947344;
-        let t27 = t26 + front_right * t25;
-        let t28 = front_right * t26 - 0.008046798224083114;
-        let t29 = front_right * (2.0 * t25 - front_right * 0.020994215782191718)
-            + 2.0 * t27;
-        let t30 = t28 + front_right * t27;
-        let t31 = front_right * t28 - 0.9151637274786046;
-        let t32 = front_right * 0.003569364721073275;
-        let t33 = t32 + 0.05863585356694256;
-        let t34 = t32 + t33;
-        let t35 = front_right * t33 + 0.009084672645053608;
-        let t36 = t35 + front_right * t34;
-        let t37 = front_right * t35 - 0.36881035216564806;
-        let t38 = front_right * (front_right * 0.00713872944214655 + 2.0 * t34)
-            + 2.0 * t36;
-        let t39 = t37 + front_right * t36;
-        let t40 = front_right * t37 - 0.1540490207303449;
-        let t41 = front_right * 0.039824436269830565;
-        let t42 = 0.016338965034324415 - t41;
-        let t43 = front_right * t42 - 0.08957090383991675;
-        let t44 = front_right * t43 + 0.08388641649735058
-            + front_right * (t43 + front_right * (t42 - t41));
-        let t45 = rear_left * 0.010497107891091926;
-        let t46 = t45 - 0.002420073522975009;
-        let t47 = t45 + t46;
-        let t48 = rear_left * t46 - 0.1889588601394729;
-        let t49 = t48 + rear_left * t47;
-        let t50 = rear_left * t48 - 0.008046798224083086;
-        let t51 = rear_left * (rear_left * 0.020994215782183853 + 2.0 * t47) + 2.0 * t49;
-        let t52 = t50 + rear_left * t49;
-        let t53 = 0.9151637274786046 + rear_left * t50;
-        let t54 = rear_left * 0.003569364721085567;
-        let t55 = t54 - 0.05863585356694276;
-        let t56 = t54 + t55;
-        let t57 = 0.009084672645052382 + rear_left * t55;
-        let t58 = t57 + rear_left * t56;
-        let t59 = 0.36881035216564817 + rear_left * t57;
-        let t60 = rear_left * (rear_left * 0.007138729442171134 + 2.0 * t56) + 2.0 * t58;
-        let t61 = t59 + rear_left * t58;
-        let t62 = rear_left * t59 - 0.1540490207303449;
-        let t63 = rear_left * 0.03982443626987119;
-        let t64 = 0.016338965034322857 + t63;
-        let t65 = 0.08957090383991165 + rear_left * t64;
-        let t66 = 0.08388641649735075 + rear_left * t65
-            + rear_left * (t65 + rear_left * (t63 + t64));
-        let t67 = rear_right * 0.010497107891095859;
-        let t68 = -0.0024200735229748405 - t67;
-        let t69 = t68 - t67;
-        let t70 = 0.18895886013947344 + rear_right * t68;
-        let t71 = t70 + rear_right * t69;
-        let t72 = rear_right * t70 - 0.008046798224083114;
-        let t73 = rear_right * (2.0 * t69 - rear_right * 0.020994215782191718)
-            + 2.0 * t71;
-        let t74 = t72 + rear_right * t71;
-        let t75 = rear_right * t72 - 0.9151637274786046;
-        let t76 = rear_right * 0.003569364721073275;
-        let t77 = 0.05863585356694256 + t76;
-        let t78 = t76 + t77;
-        let t79 = 0.009084672645053608 + rear_right * t77;
-        let t80 = t79 + rear_right * t78;
-        let t81 = rear_right * t79 - 0.36881035216564806;
-        let t82 = rear_right * (rear_right * 0.00713872944214655 + 2.0 * t78)
-            + 2.0 * t80;
-        let t83 = t81 + rear_right * t80;
-        let t84 = rear_right * t81 - 0.1540490207303449;
-        let t85 = rear_right * 0.039824436269830565;
-        let t86 = 0.016338965034324415 - t85;
-        let t87 = rear_right * t86 - 0.08957090383991675;
-        let t88 = 0.08388641649735058 + rear_right * t87
-            + rear_right * (t87 + rear_right * (t86 - t85));
-        let t89 = t18 * 10.0;
-        let t90 = t9 * 10.0;
-        let t91 = t8 * 10.0;
-        let t92 = t17 * 10.0;
-        let t93 = t18 * t18;
-        let t94 = t9 * t9;
-        let t95 = 10.0 * (t9 * t17 - t8 * t18);
-        let t96 = 10.0 * (1.143 * t17);
-        let t97 = 10.0 * (1.143 * t8);
-        let t98 = 10.0 * (t8 * t8 + t17 * t17);
-        let t99 = t40 * 10.0;
-        let t100 = t31 * 10.0;
-        let t101 = t30 * 10.0;
-        let t102 = t39 * 10.0;
-        let t103 = t40 * t40;
-        let t104 = t31 * t31;
-        let t105 = 10.0 * (t31 * t39 - t30 * t40);
-        let t106 = 10.0 * (1.143 * t39);
-        let t107 = 10.0 * (1.143 * t30);
-        let t108 = 10.0 * (t30 * t30 + t39 * t39);
-        let t109 = t62 * 10.0;
-        let t110 = t53 * 10.0;
-        let t111 = t52 * 10.0;
-        let t112 = t61 * 10.0;
-        let t113 = t62 * t62;
-        let t114 = t53 * t53;
-        let t115 = 10.0 * (t53 * t61 - t52 * t62);
-        let t116 = 10.0 * (1.143 * t61);
-        let t117 = 10.0 * (1.143 * t52);
-        let t118 = 10.0 * (t52 * t52 + t61 * t61);
-        let t119 = t84 * 10.0;
-        let t120 = t89 + t99 + t109 + t119;
-        let t121 = t75 * 10.0;
-        let t122 = -t90 - t100 - t110 - t121;
-        let t123 = -t89 - t99 - t109 - t119;
-        let t124 = t74 * 10.0;
-        let t125 = t90 + t100 + t110 + t121;
-        let t126 = t83 * 10.0;
-        let t127 = t84 * t84;
-        let t128 = t75 * t75;
-        let t129 = 86.4 + 10.0 * (t93 + t94) + 10.0 * (t103 + t104)
-            + 10.0 * (t113 + t114) + 10.0 * (t127 + t128);
-        let t130 = -(10.0 * (1.143 * t9)) - 10.0 * (1.143 * t31) + 10.0 * (1.143 * t53)
-            + 10.0 * (1.143 * t75);
-        let t131 = -(10.0 * (1.143 * t18)) - 10.0 * (1.143 * t40) + 10.0 * (1.143 * t62)
-            + 10.0 * (1.143 * t84);
-        let t132 = 10.0 * (t75 * t83 - t74 * t84);
-        let t133 = 514.8 + 10.0 * (t93 + 1.306449) + 10.0 * (1.306449 + t103)
-            + 10.0 * (1.306449 + t113) + 10.0 * (1.306449 + t127);
-        let t134 = -(10.0 * (t9 * t18)) - 10.0 * (t31 * t40) - 10.0 * (t53 * t62)
-            - 10.0 * (t75 * t84);
-        let t135 = 10.0 * (1.143 * t83);
-        let t136 = 561.6 + 10.0 * (t94 + 1.306449) + 10.0 * (1.306449 + t104)
-            + 10.0 * (1.306449 + t114) + 10.0 * (1.306449 + t128);
-        let t137 = 10.0 * (1.143 * t74);
-        let t138 = 10.0 * (t74 * t74 + t83 * t83);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t139 = vx * 700.0 + omega_y * t120 + omega_z * t122;
-        let t140 = vy * 700.0 + omega_x * t123 + yd_front_left * t91
-            + yd_front_right * t101 + yd_rear_left * t111 + yd_rear_right * t124;
-        let t141 = vz * 700.0 + omega_x * t125 + yd_front_left * t92
-            + yd_front_right * t102 + yd_rear_left * t112 + yd_rear_right * t126;
-        let t142 = vy * t123 + vz * t125 + omega_x * t129 + omega_y * t130
-            + omega_z * t131 + yd_front_left * t95 + yd_front_right * t105
-            + yd_rear_left * t115 + yd_rear_right * t132;
-        let t143 = vx * t120 + omega_x * t130 + omega_y * t133 + omega_z * t134
-            - yd_front_left * t96 - yd_front_right * t106 + yd_rear_left * t116
-            + yd_rear_right * t135;
-        let t144 = vx * t122 + omega_x * t131 + omega_y * t134 + omega_z * t136
-            + yd_front_left * t97 + yd_front_right * t107 - yd_rear_left * t117
-            - yd_rear_right * t137;
         let t145 = omega_z * 1.143;
-        let t146 = omega_y * 1.143;
-        let t147 = vx + (omega_y * t18 - omega_z * t9);
-        let t148 = yd_front_left * t8;
-        let t149 = yd_front_left * t17;
         let t150 = vy + (t145 - omega_x * t18) + t148;
+        let t7 = front_left * (front_left * 0.020994215782183853 + 2.0 * t3) + 2.0 * t5;
+        let t146 = omega_y * 1.143;
         let t151 = vz + (omega_x * t9 - t146) + t149;
-        let t152 = yd_front_left * yd_front_left;
-        let t153 = yd_front_right * yd_front_right;
-        let t154 = yd_rear_left * yd_rear_left;
-        let t155 = yd_rear_right * yd_rear_right;
-        let t156 = omega_z * t148 - omega_y * t149;
         let t157 = t7 * t152 - omega_x * t149;
-        let t158 = t16 * t152 + omega_x * t148;
-        let t159 = vx + (omega_y * t40 - omega_z * t31);
-        let t160 = yd_front_right * t30;
-        let t161 = yd_front_right * t39;
-        let t162 = vy + (t145 - omega_x * t40) + t160;
-        let t163 = vz + (omega_x * t31 - t146) + t161;
-        let t164 = omega_z * t160 - omega_y * t161;
-        let t165 = t29 * t153 - omega_x * t161;
-        let t166 = t38 * t153 + omega_x * t160;
-        let t167 = vx + (omega_y * t62 - omega_z * t53);
-        let t168 = yd_rear_left * t52;
-        let t169 = yd_rear_left * t61;
-        let t170 = vy + (-t145 - omega_x * t62) + t168;
-        let t171 = vz + (t146 + omega_x * t53) + t169;
-        let t172 = omega_z * t168 - omega_y * t169;
-        let t173 = t51 * t154 - omega_x * t169;
-        let t174 = t60 * t154 + omega_x * t168;
-        let t175 = vx + (omega_y * t84 - omega_z * t75);
-        let t176 = yd_rear_right * t74;
-        let t177 = yd_rear_right * t83;
-        let t178 = vy + (-t145 - omega_x * t84) + t176;
-        let t179 = vz + (t146 + omega_x * t75) + t177;
-        let t180 = omega_z * t176 - omega_y * t177;
-        let t181 = t73 * t155 - omega_x * t177;
-        let t182 = t82 * t155 + omega_x * t176;
-        let t183 = c_phi * s_theta;
-        let t184 = c_phi * c_theta;
-        let t185 = t183 * 16.200000000000003;
         let t186 = s_phi * 16.200000000000003;
-        let t187 = t184 * 16.200000000000003;
-        let t188 = 1.143 * t187;
-        let t189 = 1.143 * t186;
-        let t190 = f64::max(front_left - 0.3490658503988659, 0.0);
         let t191 = f64::max(-0.3490658503988659 - front_left, 0.0);
-        let t192 = f64::min(10000.0 * t190, 1.0);
-        let t193 = f64::min(
-            -(70000.0 * t190) - yd_front_left * (617.2846305501084 * t192),
-            0.0,
-        );
         let t194 = f64::min(10000.0 * t191, 1.0);
         let t195 = f64::max(
             70000.0 * t191 - yd_front_left * (617.2846305501084 * t194),
             0.0,
         );
-        let t196 = f64::max(front_right - 0.3490658503988659, 0.0);
-        let t197 = f64::max(-0.3490658503988659 - front_right, 0.0);
-        let t198 = f64::min(10000.0 * t196, 1.0);
-        let t199 = f64::min(
-            -(70000.0 * t196) - yd_front_right * (617.2846305501082 * t198),
+        let t190 = f64::max(front_left - 0.3490658503988659, 0.0);
+        let t192 = f64::min(10000.0 * t190, 1.0);
+        let t193 = f64::min(
+            -(70000.0 * t190) - yd_front_left * (617.2846305501084 * t192),
             0.0,
         );
-        let t200 = f64::min(10000.0 * t197, 1.0);
-        let t201 = f64::max(
-            70000.0 * t197 - yd_front_right * (617.2846305501082 * t200),
-            0.0,
-        );
-        let t202 = f64::max(rear_left - 0.3490658503988659, 0.0);
-        let t203 = f64::max(-0.3490658503988659 - rear_left, 0.0);
-        let t204 = f64::min(10000.0 * t202, 1.0);
-        let t205 = f64::min(
-            -(70000.0 * t202) - yd_rear_left * (617.2846305501084 * t204),
-            0.0,
-        );
-        let t206 = f64::min(10000.0 * t203, 1.0);
-        let t207 = f64::max(
-            70000.0 * t203 - yd_rear_left * (617.2846305501084 * t206),
-            0.0,
-        );
-        let t208 = f64::max(rear_right - 0.3490658503988659, 0.0);
-        let t209 = f64::max(-0.3490658503988659 - rear_right, 0.0);
-        let t210 = f64::min(10000.0 * t208, 1.0);
-        let t211 = f64::min(
-            -(70000.0 * t208) - yd_rear_right * (617.2846305501082 * t210),
-            0.0,
-        );
-        let t212 = f64::min(10000.0 * t209, 1.0);
-        let t213 = f64::max(
-            70000.0 * t209 - yd_rear_right * (617.2846305501082 * t212),
-            0.0,
-        );
-        let t214 = s_phi * s_theta;
-        let t215 = s_phi * c_theta;
-        let t216 = c_theta * c_psi - s_psi * t214;
-        let t217 = c_phi * s_psi;
-        let t218 = s_theta * c_psi + s_psi * t215;
-        let t219 = c_theta * s_psi + c_psi * t214;
-        let t220 = c_phi * c_psi;
-        let t221 = s_theta * s_psi - c_psi * t215;
-        let t222 = f_front_left_2_x * t216 + f_front_left_2_y * t219
-            - f_front_left_2_z * t183;
+        let y0_front_left = self.neutral[0];
         let t223 = f_front_left_2_y * t220 - f_front_left_2_x * t217
             + f_front_left_2_z * s_phi;
-        let t224 = f_front_left_2_x * t218 + f_front_left_2_y * t221
-            + f_front_left_2_z * t184;
+        let t19 = front_left * 0.03982443626987119;
+        let t20 = t19 + 0.016338965034322857;
+        let t21 = front_left * t20 + 0.08957090383991165;
+        let t22 = front_left * t21 + 0.08388641649735075
+            + front_left * (t21 + front_left * (t19 + t20));
         let t225 = mu_front_left_2_x * t216 + mu_front_left_2_y * t219
             - mu_front_left_2_z * t183;
         let t226 = tau_front_left_2_x * t216 + tau_front_left_2_y * t219
@@ -425,12 +456,31 @@ impl Lrv {
                 + (t193
                     + (-(700.0 * (front_left - y0_front_left)) - yd_front_left * 100.0)))
             + (t8 * t223 + t17 * t224) + t22 * t225 + t22 * t226;
-        let t228 = f_front_right_2_x * t216 + f_front_right_2_y * t219
-            - f_front_right_2_z * t183;
+        let t162 = vy + (t145 - omega_x * t40) + t160;
+        let t29 = front_right * (2.0 * t25 - front_right * 0.020994215782191718)
+            + 2.0 * t27;
+        let t163 = vz + (omega_x * t31 - t146) + t161;
+        let t165 = t29 * t153 - omega_x * t161;
+        let t197 = f64::max(-0.3490658503988659 - front_right, 0.0);
+        let t200 = f64::min(10000.0 * t197, 1.0);
+        let t201 = f64::max(
+            70000.0 * t197 - yd_front_right * (617.2846305501082 * t200),
+            0.0,
+        );
+        let t196 = f64::max(front_right - 0.3490658503988659, 0.0);
+        let t198 = f64::min(10000.0 * t196, 1.0);
+        let t199 = f64::min(
+            -(70000.0 * t196) - yd_front_right * (617.2846305501082 * t198),
+            0.0,
+        );
+        let y0_front_right = self.neutral[1];
         let t229 = f_front_right_2_y * t220 - f_front_right_2_x * t217
             + f_front_right_2_z * s_phi;
-        let t230 = f_front_right_2_x * t218 + f_front_right_2_y * t221
-            + f_front_right_2_z * t184;
+        let t41 = front_right * 0.039824436269830565;
+        let t42 = 0.016338965034324415 - t41;
+        let t43 = front_right * t42 - 0.08957090383991675;
+        let t44 = front_right * t43 + 0.08388641649735058
+            + front_right * (t43 + front_right * (t42 - t41));
         let t231 = mu_front_right_2_x * t216 + mu_front_right_2_y * t219
             - mu_front_right_2_z * t183;
         let t232 = tau_front_right_2_x * t216 + tau_front_right_2_y * t219
@@ -446,12 +496,30 @@ impl Lrv {
                     + (-(700.0 * (front_right - y0_front_right))
                         - yd_front_right * 100.0))) + (t30 * t229 + t39 * t230)
             + t44 * t231 + t44 * t232;
-        let t234 = f_rear_left_2_x * t216 + f_rear_left_2_y * t219
-            - f_rear_left_2_z * t183;
+        let t170 = vy + (-t145 - omega_x * t62) + t168;
+        let t51 = rear_left * (rear_left * 0.020994215782183853 + 2.0 * t47) + 2.0 * t49;
+        let t171 = vz + (t146 + omega_x * t53) + t169;
+        let t173 = t51 * t154 - omega_x * t169;
+        let t203 = f64::max(-0.3490658503988659 - rear_left, 0.0);
+        let t206 = f64::min(10000.0 * t203, 1.0);
+        let t207 = f64::max(
+            70000.0 * t203 - yd_rear_left * (617.2846305501084 * t206),
+            0.0,
+        );
+        let t202 = f64::max(rear_left - 0.3490658503988659, 0.0);
+        let t204 = f64::min(10000.0 * t202, 1.0);
+        let t205 = f64::min(
+            -(70000.0 * t202) - yd_rear_left * (617.2846305501084 * t204),
+            0.0,
+        );
+        let y0_rear_left = self.neutral[2];
         let t235 = f_rear_left_2_y * t220 - f_rear_left_2_x * t217
             + f_rear_left_2_z * s_phi;
-        let t236 = f_rear_left_2_x * t218 + f_rear_left_2_y * t221
-            + f_rear_left_2_z * t184;
+        let t63 = rear_left * 0.03982443626987119;
+        let t64 = 0.016338965034322857 + t63;
+        let t65 = 0.08957090383991165 + rear_left * t64;
+        let t66 = 0.08388641649735075 + rear_left * t65
+            + rear_left * (t65 + rear_left * (t63 + t64));
         let t237 = mu_rear_left_2_x * t216 + mu_rear_left_2_y * t219
             - mu_rear_left_2_z * t183;
         let t238 = tau_rear_left_2_x * t216 + tau_rear_left_2_y * t219
@@ -466,18 +534,31 @@ impl Lrv {
                 + (t205
                     + (-(700.0 * (rear_left - y0_rear_left)) - yd_rear_left * 100.0)))
             + (t52 * t235 + t61 * t236) + t66 * t237 + t66 * t238;
-        let t240 = f_rear_right_2_x * t216 + f_rear_right_2_y * t219
-            - f_rear_right_2_z * t183;
+        let t178 = vy + (-t145 - omega_x * t84) + t176;
+        let t73 = rear_right * (2.0 * t69 - rear_right * 0.020994215782191718)
+            + 2.0 * t71;
+        let t179 = vz + (t146 + omega_x * t75) + t177;
+        let t181 = t73 * t155 - omega_x * t177;
+        let t209 = f64::max(-0.3490658503988659 - rear_right, 0.0);
+        let t212 = f64::min(10000.0 * t209, 1.0);
+        let t213 = f64::max(
+            70000.0 * t209 - yd_rear_right * (617.2846305501082 * t212),
+            0.0,
+        );
+        let t208 = f64::max(rear_right - 0.3490658503988659, 0.0);
+        let t210 = f64::min(10000.0 * t208, 1.0);
+        let t211 = f64::min(
+            -(70000.0 * t208) - yd_rear_right * (617.2846305501082 * t210),
+            0.0,
+        );
+        let y0_rear_right = self.neutral[3];
         let t241 = f_rear_right_2_y * t220 - f_rear_right_2_x * t217
             + f_rear_right_2_z * s_phi;
-        let t242 = f_rear_right_2_x * t218 + f_rear_right_2_y * t221
-            + f_rear_right_2_z * t184;
-        let t243 = t185
-            + (t185
-                + (t185
-                    + (10.0 * t156 - (omega_y * t141 - omega_z * t140) + 10.0 * t164
-                        + 10.0 * t172 + 10.0 * t180 + t183 * 1069.2 + t185))) + t222
-            + t228 + t234 + t240;
+        let t85 = rear_right * 0.039824436269830565;
+        let t86 = 0.016338965034324415 - t85;
+        let t87 = rear_right * t86 - 0.08957090383991675;
+        let t88 = 0.08388641649735058 + rear_right * t87
+            + rear_right * (t87 + rear_right * (t86 - t85));
         let t244 = mu_rear_right_2_x * t216 + mu_rear_right_2_y * t219
             - mu_rear_right_2_z * t183;
         let t245 = tau_rear_right_2_x * t216 + tau_rear_right_2_y * t219
@@ -492,90 +573,6 @@ impl Lrv {
                 + (t211
                     + (-(700.0 * (rear_right - y0_rear_right)) - yd_rear_right * 100.0)))
             + (t74 * t241 + t83 * t242) + t88 * t244 + t88 * t245;
-        let t247 = 1.0 / t98;
-        let t248 = t91 * t247;
-        let t249 = t92 * t247;
-        let t250 = t95 * t247;
-        let t251 = t96 * t247;
-        let t252 = t97 * t247;
-        let t253 = 1.0 / t108;
-        let t254 = t101 * t253;
-        let t255 = t102 * t253;
-        let t256 = t105 * t253;
-        let t257 = t106 * t253;
-        let t258 = t107 * t253;
-        let t259 = 1.0 / t118;
-        let t260 = t111 * t259;
-        let t261 = t112 * t259;
-        let t262 = t115 * t259;
-        let t263 = t116 * t259;
-        let t264 = t117 * t259;
-        let t265 = 1.0 / t138;
-        let t266 = t124 * t265;
-        let t267 = t126 * t265;
-        let t268 = t132 * t265;
-        let t269 = t135 * t265;
-        let t270 = t137 * t265;
-        let t271 = t120 * 0.0014285714285714286;
-        let t272 = t122 * 0.0014285714285714286;
-        let t273 = t98 * t248;
-        let t274 = t108 * t254;
-        let t275 = t118 * t260;
-        let t276 = t138 * t266;
-        let t277 = 700.0 - t248 * t273 - t254 * t274 - t260 * t275 - t266 * t276;
-        let t278 = 1.0 / t277;
-        let t279 = t278 * (-(t249 * t273) - t255 * t274 - t261 * t275 - t267 * t276);
-        let t280 = t278 * (t123 - t250 * t273 - t256 * t274 - t262 * t275 - t268 * t276);
-        let t281 = t278 * (t251 * t273 + t257 * t274 - t263 * t275 - t269 * t276);
-        let t282 = t278 * (-(t252 * t273) - t258 * t274 + t264 * t275 + t270 * t276);
-        let t283 = t98 * t249;
-        let t284 = t108 * t255;
-        let t285 = t118 * t261;
-        let t286 = t138 * t267;
-        let t287 = t277 * t279;
-        let t288 = 700.0 - t249 * t283 - t255 * t284 - t261 * t285 - t267 * t286
-            - t279 * t287;
-        let t289 = 1.0 / t288;
-        let t290 = t289
-            * (t125 - t250 * t283 - t256 * t284 - t262 * t285 - t268 * t286
-                - t280 * t287);
-        let t291 = t289
-            * (t251 * t283 + t257 * t284 - t263 * t285 - t269 * t286 - t281 * t287);
-        let t292 = t289
-            * (-(t252 * t283) - t258 * t284 + t264 * t285 + t270 * t286 - t282 * t287);
-        let t293 = t98 * t250;
-        let t294 = t108 * t256;
-        let t295 = t118 * t262;
-        let t296 = t138 * t268;
-        let t297 = t277 * t280;
-        let t298 = t288 * t290;
-        let t299 = t129 - t250 * t293 - t256 * t294 - t262 * t295 - t268 * t296
-            - t280 * t297 - t290 * t298;
-        let t300 = 1.0 / t299;
-        let t301 = t300
-            * (t130 + t251 * t293 + t257 * t294 - t263 * t295 - t269 * t296 - t281 * t297
-                - t291 * t298);
-        let t302 = t300
-            * (t131 - t252 * t293 - t258 * t294 + t264 * t295 + t270 * t296 - t282 * t297
-                - t292 * t298);
-        let t303 = t98 * t251;
-        let t304 = t108 * t257;
-        let t305 = t118 * t263;
-        let t306 = t138 * t269;
-        let t307 = 700.0 * t271;
-        let t308 = t277 * t281;
-        let t309 = t288 * t291;
-        let t310 = t299 * t301;
-        let t311 = t133 - t251 * t303 - t257 * t304 - t263 * t305 - t269 * t306
-            - t271 * t307 - t281 * t308 - t291 * t309 - t301 * t310;
-        let t312 = 1.0 / t311;
-        let t313 = t312
-            * (t134 + t252 * t303 + t258 * t304 + t264 * t305 + t270 * t306 - t272 * t307
-                - t282 * t308 - t292 * t309 - t302 * t310);
-        let t314 = t136 - t252 * (t98 * t252) - t258 * (t108 * t258)
-            - t264 * (t118 * t264) - t270 * (t138 * t270) - t272 * (700.0 * t272)
-            - t282 * (t277 * t282) - t292 * (t288 * t292) - t302 * (t299 * t302)
-            - t313 * (t311 * t313);
         let t315 = -(omega_z * t139 - omega_x * t141) - 10.0 * t157 - 10.0 * t165
             - 10.0 * t173 - 10.0 * t181 - s_phi * 1069.2 - t186 - t186 - t186 - t186
             + t223 + t229 + t235 + t241 - t227 * t248 - t233 * t254 - t239 * t260
@@ -584,6 +581,9 @@ impl Lrv {
             - 10.0 * t174 - 10.0 * t182 - t184 * 1069.2 - t187 - t187 - t187 - t187
             + t224 + t230 + t236 + t242 - t227 * t249 - t233 * t255 - t239 * t261
             - t246 * t267 - t279 * t315;
+        let t143 = vx * t120 + omega_x * t130 + omega_y * t133 + omega_z * t134
+            - yd_front_left * t96 - yd_front_right * t106 + yd_rear_left * t116
+            + yd_rear_right * t135;
         let t317 = -(vy * t141 - vz * t140 + (omega_y * t144 - omega_z * t143))
             - 10.0 * (t148 * t151 - t149 * t150 + (t9 * t158 - t18 * t157))
             - 10.0 * (t160 * t163 - t161 * t162 + (t31 * t166 - t40 * t165))
@@ -619,6 +619,7 @@ impl Lrv {
             + (tau_rear_right_2_y * t220 - tau_rear_right_2_x * t217
                 + tau_rear_right_2_z * s_phi) + t227 * t251 + t233 * t257 - t239 * t263
             - t246 * t269 - t243 * t271 - t281 * t315 - t291 * t316 - t301 * t317;
+        let t189 = 1.143 * t186;
         let t319 = 1.0 / t314
             * (-(vx * t140 - vy * t139 + (omega_x * t143 - omega_y * t142))
                 - 10.0 * (1.143 * t157 + t9 * t156 - t147 * t148)
@@ -649,7 +650,6 @@ impl Lrv {
         let t321 = t300 * t317 - t301 * t320 - t302 * t319;
         let t322 = t289 * t316 - t290 * t321 - t291 * t320 - t292 * t319;
         let t323 = t278 * t315 - t279 * t322 - t280 * t321 - t281 * t320 - t282 * t319;
-        let t324 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
         let cos_roll = c_phi;
         let pivot_6 = t98;
         let pivot_7 = t108;
@@ -718,102 +718,102 @@ impl Lrv {
         let mut m = [[0.0; 10]; 10];
         // M(y), upper triangle mirrored (MODEL.md §4, eq. 11–19)
         let front_left = x[6];
-        let front_right = x[7];
-        let rear_left = x[8];
-        let rear_right = x[9];
-        let t1 = front_left * 0.010497107891091926;
-        let t2 = t1 - 0.002420073522975009;
-        let t3 = front_left * t2 - 0.1889588601394729;
-        let t4 = front_left * t3 - 0.008046798224083086;
-        let t5 = t4 + front_left * (t3 + front_left * (t1 + t2));
-        let t6 = 0.9151637274786046 + front_left * t4;
         let t7 = front_left * 0.003569364721085567;
         let t8 = t7 - 0.05863585356694276;
         let t9 = front_left * t8 + 0.009084672645052382;
         let t10 = front_left * t9 + 0.36881035216564817;
-        let t11 = t10 + front_left * (t9 + front_left * (t7 + t8));
         let t12 = front_left * t10 - 0.1540490207303449;
-        let t13 = front_right * 0.010497107891095859;
-        let t14 = -0.0024200735229748405 - t13;
-        let t15 = front_right * t14 + 0.18895886013947344;
-        let t16 = front_right * t15 - 0.008046798224083114;
-        let t17 = t16 + front_right * (t15 + front_right * (t14 - t13));
-        let t18 = front_right * t16 - 0.9151637274786046;
+        let t49 = t12 * 10.0;
+        let front_right = x[7];
         let t19 = front_right * 0.003569364721073275;
         let t20 = t19 + 0.05863585356694256;
         let t21 = front_right * t20 + 0.009084672645053608;
         let t22 = front_right * t21 - 0.36881035216564806;
-        let t23 = t22 + front_right * (t21 + front_right * (t19 + t20));
         let t24 = front_right * t22 - 0.1540490207303449;
-        let t25 = rear_left * 0.010497107891091926;
-        let t26 = t25 - 0.002420073522975009;
-        let t27 = rear_left * t26 - 0.1889588601394729;
-        let t28 = rear_left * t27 - 0.008046798224083086;
-        let t29 = t28 + rear_left * (t27 + rear_left * (t25 + t26));
-        let t30 = 0.9151637274786046 + rear_left * t28;
+        let t58 = t24 * 10.0;
+        let rear_left = x[8];
         let t31 = rear_left * 0.003569364721085567;
         let t32 = t31 - 0.05863585356694276;
         let t33 = 0.009084672645052382 + rear_left * t32;
         let t34 = 0.36881035216564817 + rear_left * t33;
-        let t35 = t34 + rear_left * (t33 + rear_left * (t31 + t32));
         let t36 = rear_left * t34 - 0.1540490207303449;
-        let t37 = rear_right * 0.010497107891095859;
-        let t38 = -0.0024200735229748405 - t37;
-        let t39 = 0.18895886013947344 + rear_right * t38;
-        let t40 = rear_right * t39 - 0.008046798224083114;
-        let t41 = t40 + rear_right * (t39 + rear_right * (t38 - t37));
-        let t42 = rear_right * t40 - 0.9151637274786046;
+        let t67 = t36 * 10.0;
+        let rear_right = x[9];
         let t43 = rear_right * 0.003569364721073275;
         let t44 = 0.05863585356694256 + t43;
         let t45 = 0.009084672645053608 + rear_right * t44;
         let t46 = rear_right * t45 - 0.36881035216564806;
-        let t47 = t46 + rear_right * (t45 + rear_right * (t43 + t44));
         let t48 = rear_right * t46 - 0.1540490207303449;
-        let t49 = t12 * 10.0;
-        let t50 = t6 * 10.0;
-        let t51 = t5 * 10.0;
-        let t52 = t11 * 10.0;
-        let t53 = t12 * t12;
-        let t54 = t6 * t6;
-        let t55 = 10.0 * (t6 * t11 - t5 * t12);
-        let t56 = 10.0 * (1.143 * t11);
-        let t57 = 10.0 * (1.143 * t5);
-        let t58 = t24 * 10.0;
-        let t59 = t18 * 10.0;
-        let t60 = t17 * 10.0;
-        let t61 = t23 * 10.0;
-        let t62 = t24 * t24;
-        let t63 = t18 * t18;
-        let t64 = 10.0 * (t18 * t23 - t17 * t24);
-        let t65 = 10.0 * (1.143 * t23);
-        let t66 = 10.0 * (1.143 * t17);
-        let t67 = t36 * 10.0;
-        let t68 = t30 * 10.0;
-        let t69 = t29 * 10.0;
-        let t70 = t35 * 10.0;
-        let t71 = t36 * t36;
-        let t72 = t30 * t30;
-        let t73 = 10.0 * (t30 * t35 - t29 * t36);
-        let t74 = 10.0 * (1.143 * t35);
-        let t75 = 10.0 * (1.143 * t29);
         let t76 = t48 * 10.0;
         let t77 = t49 + t58 + t67 + t76;
+        let t1 = front_left * 0.010497107891091926;
+        let t2 = t1 - 0.002420073522975009;
+        let t3 = front_left * t2 - 0.1889588601394729;
+        let t4 = front_left * t3 - 0.008046798224083086;
+        let t6 = 0.9151637274786046 + front_left * t4;
+        let t50 = t6 * 10.0;
+        let t13 = front_right * 0.010497107891095859;
+        let t14 = -0.0024200735229748405 - t13;
+        let t15 = front_right * t14 + 0.18895886013947344;
+        let t16 = front_right * t15 - 0.008046798224083114;
+        let t18 = front_right * t16 - 0.9151637274786046;
+        let t59 = t18 * 10.0;
+        let t25 = rear_left * 0.010497107891091926;
+        let t26 = t25 - 0.002420073522975009;
+        let t27 = rear_left * t26 - 0.1889588601394729;
+        let t28 = rear_left * t27 - 0.008046798224083086;
+        let t30 = 0.9151637274786046 + rear_left * t28;
+        let t68 = t30 * 10.0;
+        let t37 = rear_right * 0.010497107891095859;
+        let t38 = -0.0024200735229748405 - t37;
+        let t39 = 0.18895886013947344 + rear_right * t38;
+        let t40 = rear_right * t39 - 0.008046798224083114;
+        let t42 = rear_right * t40 - 0.9151637274786046;
         let t78 = t42 * 10.0;
         let t79 = -t50 - t59 - t68 - t78;
         let t80 = -t49 - t58 - t67 - t76;
+        let t5 = t4 + front_left * (t3 + front_left * (t1 + t2));
+        let t51 = t5 * 10.0;
+        let t17 = t16 + front_right * (t15 + front_right * (t14 - t13));
+        let t60 = t17 * 10.0;
+        let t29 = t28 + rear_left * (t27 + rear_left * (t25 + t26));
+        let t69 = t29 * 10.0;
+        let t41 = t40 + rear_right * (t39 + rear_right * (t38 - t37));
         let t81 = t41 * 10.0;
         let t82 = t50 + t59 + t68 + t78;
+        let t11 = t10 + front_left * (t9 + front_left * (t7 + t8));
+        let t52 = t11 * 10.0;
+        let t23 = t22 + front_right * (t21 + front_right * (t19 + t20));
+        let t61 = t23 * 10.0;
+        let t35 = t34 + rear_left * (t33 + rear_left * (t31 + t32));
+        let t70 = t35 * 10.0;
+        let t47 = t46 + rear_right * (t45 + rear_right * (t43 + t44));
         let t83 = t47 * 10.0;
+        let t53 = t12 * t12;
+        let t54 = t6 * t6;
+        let t62 = t24 * t24;
+        let t63 = t18 * t18;
+        let t71 = t36 * t36;
+        let t72 = t30 * t30;
         let t84 = t48 * t48;
         let t85 = t42 * t42;
         let t86 = -(10.0 * (1.143 * t6)) - 10.0 * (1.143 * t18) + 10.0 * (1.143 * t30)
             + 10.0 * (1.143 * t42);
         let t87 = -(10.0 * (1.143 * t12)) - 10.0 * (1.143 * t24) + 10.0 * (1.143 * t36)
             + 10.0 * (1.143 * t48);
+        let t55 = 10.0 * (t6 * t11 - t5 * t12);
+        let t64 = 10.0 * (t18 * t23 - t17 * t24);
+        let t73 = 10.0 * (t30 * t35 - t29 * t36);
         let t88 = 10.0 * (t42 * t47 - t41 * t48);
         let t89 = -(10.0 * (t6 * t12)) - 10.0 * (t18 * t24) - 10.0 * (t30 * t36)
             - 10.0 * (t42 * t48);
+        let t56 = 10.0 * (1.143 * t11);
+        let t65 = 10.0 * (1.143 * t23);
+        let t74 = 10.0 * (1.143 * t35);
         let t90 = 10.0 * (1.143 * t47);
+        let t57 = 10.0 * (1.143 * t5);
+        let t66 = 10.0 * (1.143 * t17);
+        let t75 = 10.0 * (1.143 * t29);
         let t91 = 10.0 * (1.143 * t41);
         m[0][0] = 700.0;
         m[0][4] = t77;
@@ -900,46 +900,46 @@ impl Lrv {
         }; 4];
         // inputs
         let pos_x = x[0];
-        let pos_y = x[1];
-        let pos_z = x[2];
-        let phi = x[3];
         let theta = x[4];
         let psi = x[5];
+        let phi = x[3];
         let front_left = x[6];
-        let front_right = x[7];
-        let rear_left = x[8];
-        let rear_right = x[9];
+        let pos_y = x[1];
+        let pos_z = x[2];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
         let omega_y = w[4];
         let omega_z = w[5];
+        let vy = w[1];
+        let omega_x = w[3];
         let yd_front_left = w[6];
-        let yd_front_right = w[7];
-        let yd_rear_left = w[8];
-        let yd_rear_right = w[9];
+        let vz = w[2];
         let delta_front_left_2 = steer[0];
+        let front_right = x[7];
+        let yd_front_right = w[7];
         let delta_front_right_2 = steer[1];
+        let rear_left = x[8];
+        let yd_rear_left = w[8];
         let delta_rear_left_2 = steer[2];
+        let rear_right = x[9];
+        let yd_rear_right = w[9];
         let delta_rear_right_2 = steer[3];
         // terms shared by the wheels
-        let (s_phi, c_phi) = ::libm::sincos(phi);
         let (s_theta, c_theta) = ::libm::sincos(theta);
         let (s_psi, c_psi) = ::libm::sincos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let t1 = s_phi * s_theta;
-        let t2 = s_phi * c_theta;
-        let t3 = c_phi * s_theta;
-        let t4 = c_phi * c_theta;
         let t5 = c_theta * c_psi - s_psi * t1;
+        let t11 = 1.143 * t5;
         let t6 = c_phi * s_psi;
+        let t2 = s_phi * c_theta;
         let t7 = s_theta * c_psi + s_psi * t2;
         let t8 = c_theta * s_psi + c_psi * t1;
+        let t12 = 1.143 * t8;
         let t9 = c_phi * c_psi;
         let t10 = s_theta * s_psi - c_psi * t2;
-        let t11 = 1.143 * t5;
-        let t12 = 1.143 * t8;
+        let t3 = c_phi * s_theta;
         let t13 = 1.143 * t3;
+        let t4 = c_phi * c_theta;
         let t14 = omega_z * 1.143;
         let t15 = omega_y * 1.143;
         // wheel `front_left`: r_G, V, a_w (MODEL.md §3, eq. 7, 12)
@@ -953,10 +953,6 @@ impl Lrv {
         let t23 = front_left * t22 + 0.009084672645052382;
         let t24 = front_left * t23 + 0.36881035216564817;
         let t25 = front_left * t24 - 0.1540490207303449;
-        let t26 = front_left
-            * (front_left
-                * (front_left * (front_left * 0.03982443626987119 + 0.016338965034322857)
-                    + 0.08957090383991165) + 0.08388641649735075);
         let t27 = vx + (omega_y * t25 - omega_z * t20);
         let t28 = vy + (t14 - omega_x * t25)
             + yd_front_left * (t19 + front_left * (t18 + front_left * (t16 + t17)));
@@ -965,6 +961,10 @@ impl Lrv {
         let (s_delta_front_left_2, c_delta_front_left_2) = ::libm::sincos(
             delta_front_left_2,
         );
+        let t26 = front_left
+            * (front_left
+                * (front_left * (front_left * 0.03982443626987119 + 0.016338965034322857)
+                    + 0.08957090383991165) + 0.08388641649735075);
         let (t30, t31) = ::libm::sincos(t26);
         let t32 = s_delta_front_left_2 * t31;
         let t33 = c_delta_front_left_2 * t31;
@@ -988,11 +988,6 @@ impl Lrv {
         let t41 = front_right * t40 + 0.009084672645053608;
         let t42 = front_right * t41 - 0.36881035216564806;
         let t43 = front_right * t42 - 0.1540490207303449;
-        let t44 = front_right
-            * (front_right
-                * (front_right
-                    * (0.016338965034324415 - front_right * 0.039824436269830565)
-                    - 0.08957090383991675) + 0.08388641649735058);
         let t45 = vx + (omega_y * t43 - omega_z * t38);
         let t46 = vy + (t14 - omega_x * t43)
             + yd_front_right * (t37 + front_right * (t36 + front_right * (t35 - t34)));
@@ -1001,6 +996,11 @@ impl Lrv {
         let (s_delta_front_right_2, c_delta_front_right_2) = ::libm::sincos(
             delta_front_right_2,
         );
+        let t44 = front_right
+            * (front_right
+                * (front_right
+                    * (0.016338965034324415 - front_right * 0.039824436269830565)
+                    - 0.08957090383991675) + 0.08388641649735058);
         let (t48, t49) = ::libm::sincos(t44);
         let t50 = s_delta_front_right_2 * t49;
         let t51 = c_delta_front_right_2 * t49;
@@ -1024,12 +1024,6 @@ impl Lrv {
         let t59 = 0.009084672645052382 + rear_left * t58;
         let t60 = 0.36881035216564817 + rear_left * t59;
         let t61 = rear_left * t60 - 0.1540490207303449;
-        let t62 = rear_left
-            * (0.08388641649735075
-                + rear_left
-                    * (0.08957090383991165
-                        + rear_left
-                            * (0.016338965034322857 + rear_left * 0.03982443626987119)));
         let t63 = vx + (omega_y * t61 - omega_z * t56);
         let t64 = vy + (-t14 - omega_x * t61)
             + yd_rear_left * (t55 + rear_left * (t54 + rear_left * (t52 + t53)));
@@ -1038,6 +1032,12 @@ impl Lrv {
         let (s_delta_rear_left_2, c_delta_rear_left_2) = ::libm::sincos(
             delta_rear_left_2,
         );
+        let t62 = rear_left
+            * (0.08388641649735075
+                + rear_left
+                    * (0.08957090383991165
+                        + rear_left
+                            * (0.016338965034322857 + rear_left * 0.03982443626987119)));
         let (t66, t67) = ::libm::sincos(t62);
         let t68 = s_delta_rear_left_2 * t67;
         let t69 = c_delta_rear_left_2 * t67;
@@ -1061,12 +1061,6 @@ impl Lrv {
         let t77 = 0.009084672645053608 + rear_right * t76;
         let t78 = rear_right * t77 - 0.36881035216564806;
         let t79 = rear_right * t78 - 0.1540490207303449;
-        let t80 = rear_right
-            * (0.08388641649735058
-                + rear_right
-                    * (rear_right
-                        * (0.016338965034324415 - rear_right * 0.039824436269830565)
-                        - 0.08957090383991675));
         let t81 = vx + (omega_y * t79 - omega_z * t74);
         let t82 = vy + (-t14 - omega_x * t79)
             + yd_rear_right * (t73 + rear_right * (t72 + rear_right * (t71 - t70)));
@@ -1075,6 +1069,12 @@ impl Lrv {
         let (s_delta_rear_right_2, c_delta_rear_right_2) = ::libm::sincos(
             delta_rear_right_2,
         );
+        let t80 = rear_right
+            * (0.08388641649735058
+                + rear_right
+                    * (rear_right
+                        * (0.016338965034324415 - rear_right * 0.039824436269830565)
+                        - 0.08957090383991675));
         let (t84, t85) = ::libm::sincos(t80);
         let t86 = s_delta_rear_right_2 * t85;
         let t87 = c_delta_rear_right_2 * t85;
@@ -1101,751 +1101,328 @@ impl Lrv {
     ) -> [[f64; 20]; 20] {
         let mut jac = [[0.0; 20]; 20];
         // ∂(ẋ, ẇ)/∂(x, w) at fixed wheel loads
-        let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let front_left = x[6];
-        let front_right = x[7];
-        let rear_left = x[8];
-        let rear_right = x[9];
         let vx = w[0];
+        let psi = x[5];
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let phi = x[3];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let theta = x[4];
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let t276 = c_phi * s_theta;
+        let t509 = s_psi * t276;
         let vy = w[1];
+        let t510 = s_phi * s_psi;
         let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
+        let t277 = c_phi * c_theta;
+        let t511 = s_psi * t277;
+        let t512 = c_psi * t276;
+        let t513 = s_phi * c_psi;
+        let t514 = c_psi * t277;
+        let t349 = s_phi * s_theta;
+        let t350 = s_phi * c_theta;
         let omega_z = w[5];
-        let yd_front_left = w[6];
-        let yd_front_right = w[7];
-        let yd_rear_left = w[8];
-        let yd_rear_right = w[9];
+        let omega_x = w[3];
+        let t502 = omega_z * c_theta - omega_x * s_theta;
+        let t503 = t502 / c_phi;
+        let t549 = s_phi * t503 / c_phi;
+        let t504 = 16.200000000000003 * t349;
         let f_front_left_2_x = loads[0].force[0];
         let f_front_left_2_y = loads[0].force[1];
         let f_front_left_2_z = loads[0].force[2];
+        let t515 = f_front_left_2_y * t512 - f_front_left_2_x * t509
+            + f_front_left_2_z * t349;
+        let f_front_right_2_x = loads[1].force[0];
+        let f_front_right_2_y = loads[1].force[1];
+        let f_front_right_2_z = loads[1].force[2];
+        let t521 = f_front_right_2_y * t512 - f_front_right_2_x * t509
+            + f_front_right_2_z * t349;
+        let f_rear_left_2_x = loads[2].force[0];
+        let f_rear_left_2_y = loads[2].force[1];
+        let f_rear_left_2_z = loads[2].force[2];
+        let t527 = f_rear_left_2_y * t512 - f_rear_left_2_x * t509
+            + f_rear_left_2_z * t349;
+        let f_rear_right_2_x = loads[3].force[0];
+        let f_rear_right_2_y = loads[3].force[1];
+        let f_rear_right_2_z = loads[3].force[2];
+        let t533 = f_rear_right_2_y * t512 - f_rear_right_2_x * t509
+            + f_rear_right_2_z * t349;
+        let t536 = -(1069.2 * t349) - t504 - t504 - t504 - t504 + t515 + t521 + t527
+            + t533;
+        let front_left = x[6];
+        let t12 = front_left * 0.003569364721085567;
+        let t13 = t12 - 0.05863585356694276;
+        let t15 = front_left * t13 + 0.009084672645052382;
+        let t19 = front_left * t15 + 0.36881035216564817;
+        let t22 = front_left * t19 - 0.1540490207303449;
+        let t113 = t22 * 10.0;
+        let front_right = x[7];
+        let t40 = front_right * 0.003569364721073275;
+        let t41 = t40 + 0.05863585356694256;
+        let t43 = front_right * t41 + 0.009084672645053608;
+        let t47 = front_right * t43 - 0.36881035216564806;
+        let t50 = front_right * t47 - 0.1540490207303449;
+        let t125 = t50 * 10.0;
+        let rear_left = x[8];
+        let t68 = rear_left * 0.003569364721085567;
+        let t69 = t68 - 0.05863585356694276;
+        let t71 = 0.009084672645052382 + rear_left * t69;
+        let t75 = 0.36881035216564817 + rear_left * t71;
+        let t78 = rear_left * t75 - 0.1540490207303449;
+        let t137 = t78 * 10.0;
+        let rear_right = x[9];
+        let t96 = rear_right * 0.003569364721073275;
+        let t97 = 0.05863585356694256 + t96;
+        let t99 = 0.009084672645053608 + rear_right * t97;
+        let t103 = rear_right * t99 - 0.36881035216564806;
+        let t106 = rear_right * t103 - 0.1540490207303449;
+        let t149 = t106 * 10.0;
+        let t150 = t113 + t125 + t137 + t149;
+        let t428 = t150 * 0.0014285714285714286;
+        let t117 = t22 * t22;
+        let t129 = t50 * t50;
+        let t141 = t78 * t78;
+        let t157 = t106 * t106;
+        let t165 = 514.8 + 10.0 * (t117 + 1.306449) + 10.0 * (1.306449 + t129)
+            + 10.0 * (1.306449 + t141) + 10.0 * (1.306449 + t157);
+        let t14 = t12 + t13;
+        let t18 = t15 + front_left * t14;
+        let t21 = t19 + front_left * t18;
+        let t122 = 10.0 * (1.143 * t21);
+        let t1 = front_left * 0.010497107891091926;
+        let t2 = t1 - 0.002420073522975009;
+        let t4 = front_left * t2 - 0.1889588601394729;
+        let t8 = front_left * t4 - 0.008046798224083086;
+        let t3 = t1 + t2;
+        let t7 = t4 + front_left * t3;
+        let t10 = t8 + front_left * t7;
+        let t124 = 10.0 * (t10 * t10 + t21 * t21);
+        let t404 = 1.0 / t124;
+        let t408 = t122 * t404;
+        let t469 = t124 * t408;
+        let t42 = t40 + t41;
+        let t46 = t43 + front_right * t42;
+        let t49 = t47 + front_right * t46;
+        let t134 = 10.0 * (1.143 * t49);
+        let t29 = front_right * 0.010497107891095859;
+        let t30 = -0.0024200735229748405 - t29;
+        let t32 = front_right * t30 + 0.18895886013947344;
+        let t36 = front_right * t32 - 0.008046798224083114;
+        let t31 = t30 - t29;
+        let t35 = t32 + front_right * t31;
+        let t38 = t36 + front_right * t35;
+        let t136 = 10.0 * (t38 * t38 + t49 * t49);
+        let t410 = 1.0 / t136;
+        let t414 = t134 * t410;
+        let t470 = t136 * t414;
+        let t70 = t68 + t69;
+        let t74 = t71 + rear_left * t70;
+        let t77 = t75 + rear_left * t74;
+        let t146 = 10.0 * (1.143 * t77);
+        let t57 = rear_left * 0.010497107891091926;
+        let t58 = t57 - 0.002420073522975009;
+        let t60 = rear_left * t58 - 0.1889588601394729;
+        let t64 = rear_left * t60 - 0.008046798224083086;
+        let t59 = t57 + t58;
+        let t63 = t60 + rear_left * t59;
+        let t66 = t64 + rear_left * t63;
+        let t148 = 10.0 * (t66 * t66 + t77 * t77);
+        let t416 = 1.0 / t148;
+        let t420 = t146 * t416;
+        let t471 = t148 * t420;
+        let t98 = t96 + t97;
+        let t102 = t99 + rear_right * t98;
+        let t105 = t103 + rear_right * t102;
+        let t167 = 10.0 * (1.143 * t105);
+        let t85 = rear_right * 0.010497107891095859;
+        let t86 = -0.0024200735229748405 - t85;
+        let t88 = 0.18895886013947344 + rear_right * t86;
+        let t92 = rear_right * t88 - 0.008046798224083114;
+        let t87 = t86 - t85;
+        let t91 = t88 + rear_right * t87;
+        let t94 = t92 + rear_right * t91;
+        let t170 = 10.0 * (t94 * t94 + t105 * t105);
+        let t422 = 1.0 / t170;
+        let t426 = t167 * t422;
+        let t472 = t170 * t426;
+        let t473 = 700.0 * t428;
+        let t115 = t10 * 10.0;
+        let t405 = t115 * t404;
+        let t430 = t124 * t405;
+        let t127 = t38 * 10.0;
+        let t411 = t127 * t410;
+        let t431 = t136 * t411;
+        let t139 = t66 * 10.0;
+        let t417 = t139 * t416;
+        let t432 = t148 * t417;
+        let t154 = t94 * 10.0;
+        let t423 = t154 * t422;
+        let t433 = t170 * t423;
+        let t434 = 700.0 - t405 * t430 - t411 * t431 - t417 * t432 - t423 * t433;
+        let t435 = 1.0 / t434;
+        let t440 = t408 * t430 + t414 * t431 - t420 * t432 - t426 * t433;
+        let t441 = t435 * t440;
+        let t474 = t434 * t441;
+        let t116 = t21 * 10.0;
+        let t406 = t116 * t404;
+        let t444 = t124 * t406;
+        let t128 = t49 * 10.0;
+        let t412 = t128 * t410;
+        let t445 = t136 * t412;
+        let t140 = t77 * 10.0;
+        let t418 = t140 * t416;
+        let t446 = t148 * t418;
+        let t156 = t105 * 10.0;
+        let t424 = t156 * t422;
+        let t447 = t170 * t424;
+        let t436 = -(t406 * t430) - t412 * t431 - t418 * t432 - t424 * t433;
+        let t437 = t435 * t436;
+        let t448 = t434 * t437;
+        let t449 = 700.0 - t406 * t444 - t412 * t445 - t418 * t446 - t424 * t447
+            - t437 * t448;
+        let t450 = 1.0 / t449;
+        let t453 = t408 * t444 + t414 * t445 - t420 * t446 - t426 * t447 - t441 * t448;
+        let t454 = t450 * t453;
+        let t475 = t449 * t454;
+        let t11 = 0.9151637274786046 + front_left * t8;
+        let t118 = t11 * t11;
+        let t39 = front_right * t36 - 0.9151637274786046;
+        let t130 = t39 * t39;
+        let t67 = 0.9151637274786046 + rear_left * t64;
+        let t142 = t67 * t67;
+        let t95 = rear_right * t92 - 0.9151637274786046;
+        let t158 = t95 * t95;
+        let t159 = 86.4 + 10.0 * (t117 + t118) + 10.0 * (t129 + t130)
+            + 10.0 * (t141 + t142) + 10.0 * (t157 + t158);
+        let t119 = t10 * t22;
+        let t120 = t11 * t21;
+        let t121 = 10.0 * (t120 - t119);
+        let t407 = t121 * t404;
+        let t457 = t124 * t407;
+        let t131 = t38 * t50;
+        let t132 = t39 * t49;
+        let t133 = 10.0 * (t132 - t131);
+        let t413 = t133 * t410;
+        let t458 = t136 * t413;
+        let t143 = t66 * t78;
+        let t144 = t67 * t77;
+        let t145 = 10.0 * (t144 - t143);
+        let t419 = t145 * t416;
+        let t459 = t148 * t419;
+        let t162 = t94 * t106;
+        let t163 = t95 * t105;
+        let t164 = 10.0 * (t163 - t162);
+        let t425 = t164 * t422;
+        let t460 = t170 * t425;
+        let t153 = -t113 - t125 - t137 - t149;
+        let t438 = t153 - t407 * t430 - t413 * t431 - t419 * t432 - t425 * t433;
+        let t439 = t435 * t438;
+        let t461 = t434 * t439;
+        let t114 = t11 * 10.0;
+        let t126 = t39 * 10.0;
+        let t138 = t67 * 10.0;
+        let t151 = t95 * 10.0;
+        let t155 = t114 + t126 + t138 + t151;
+        let t451 = t155 - t407 * t444 - t413 * t445 - t419 * t446 - t425 * t447
+            - t439 * t448;
+        let t452 = t450 * t451;
+        let t462 = t449 * t452;
+        let t463 = t159 - t407 * t457 - t413 * t458 - t419 * t459 - t425 * t460
+            - t439 * t461 - t452 * t462;
+        let t464 = 1.0 / t463;
+        let t160 = -(10.0 * (1.143 * t11)) - 10.0 * (1.143 * t39) + 10.0 * (1.143 * t67)
+            + 10.0 * (1.143 * t95);
+        let t465 = t160 + t408 * t457 + t414 * t458 - t420 * t459 - t426 * t460
+            - t441 * t461 - t454 * t462;
+        let t466 = t464 * t465;
+        let t476 = t463 * t466;
+        let t477 = t165 - t408 * t469 - t414 * t470 - t420 * t471 - t426 * t472
+            - t428 * t473 - t441 * t474 - t454 * t475 - t466 * t476;
+        let t478 = 1.0 / t477;
+        let t506 = 16.200000000000003 * t350;
+        let t507 = 1.143 * t506;
+        let t517 = f_front_left_2_x * t511 - f_front_left_2_y * t514
+            - f_front_left_2_z * t350;
         let mu_front_left_2_x = loads[0].moment[0];
         let mu_front_left_2_y = loads[0].moment[1];
         let mu_front_left_2_z = loads[0].moment[2];
         let tau_front_left_2_x = loads[0].stator_torque[0];
         let tau_front_left_2_y = loads[0].stator_torque[1];
         let tau_front_left_2_z = loads[0].stator_torque[2];
-        let f_front_right_2_x = loads[1].force[0];
-        let f_front_right_2_y = loads[1].force[1];
-        let f_front_right_2_z = loads[1].force[2];
+        let t523 = f_front_right_2_x * t511 - f_front_right_2_y * t514
+            - f_front_right_2_z * t350;
         let mu_front_right_2_x = loads[1].moment[0];
         let mu_front_right_2_y = loads[1].moment[1];
         let mu_front_right_2_z = loads[1].moment[2];
         let tau_front_right_2_x = loads[1].stator_torque[0];
         let tau_front_right_2_y = loads[1].stator_torque[1];
         let tau_front_right_2_z = loads[1].stator_torque[2];
-        let f_rear_left_2_x = loads[2].force[0];
-        let f_rear_left_2_y = loads[2].force[1];
-        let f_rear_left_2_z = loads[2].force[2];
+        let t529 = f_rear_left_2_x * t511 - f_rear_left_2_y * t514
+            - f_rear_left_2_z * t350;
         let mu_rear_left_2_x = loads[2].moment[0];
         let mu_rear_left_2_y = loads[2].moment[1];
         let mu_rear_left_2_z = loads[2].moment[2];
         let tau_rear_left_2_x = loads[2].stator_torque[0];
         let tau_rear_left_2_y = loads[2].stator_torque[1];
         let tau_rear_left_2_z = loads[2].stator_torque[2];
-        let f_rear_right_2_x = loads[3].force[0];
-        let f_rear_right_2_y = loads[3].force[1];
-        let f_rear_right_2_z = loads[3].force[2];
+        let t535 = f_rear_right_2_x * t511 - f_rear_right_2_y * t514
+            - f_rear_right_2_z * t350;
         let mu_rear_right_2_x = loads[3].moment[0];
         let mu_rear_right_2_y = loads[3].moment[1];
         let mu_rear_right_2_z = loads[3].moment[2];
         let tau_rear_right_2_x = loads[3].stator_torque[0];
         let tau_rear_right_2_y = loads[3].stator_torque[1];
         let tau_rear_right_2_z = loads[3].stator_torque[2];
-        let y0_front_left = self.neutral[0];
-        let y0_front_right = self.neutral[1];
-        let y0_rear_left = self.neutral[2];
-        let y0_rear_right = self.neutral[3];
-        let t1 = front_left * 0.010497107891091926;
-        let t2 = t1 - 0.002420073522975009;
-        let t3 = t1 + t2;
-        let t4 = front_left * t2 - 0.1889588601394729;
-        let t5 = front_left * 0.020994215782183853;
-        let t6 = t5 + 2.0 * t3;
-        let t7 = t4 + front_left * t3;
-        let t8 = front_left * t4 - 0.008046798224083086;
-        let t9 = front_left * t6 + 2.0 * t7;
-        let t10 = t8 + front_left * t7;
-        let t11 = 0.9151637274786046 + front_left * t8;
-        let t12 = front_left * 0.003569364721085567;
-        let t13 = t12 - 0.05863585356694276;
-        let t14 = t12 + t13;
-        let t15 = front_left * t13 + 0.009084672645052382;
-        let t16 = front_left * 0.007138729442171134;
-        let t17 = t16 + 2.0 * t14;
-        let t18 = t15 + front_left * t14;
-        let t19 = front_left * t15 + 0.36881035216564817;
-        let t20 = front_left * t17 + 2.0 * t18;
-        let t21 = t19 + front_left * t18;
-        let t22 = front_left * t19 - 0.1540490207303449;
-        let t23 = front_left * 0.03982443626987119;
-        let t24 = t23 + 0.016338965034322857;
-        let t25 = t23 + t24;
-        let t26 = front_left * t24 + 0.08957090383991165;
-        let t27 = t26 + front_left * t25;
-        let t28 = front_left * t26 + 0.08388641649735075 + front_left * t27;
-        let t29 = front_right * 0.010497107891095859;
-        let t30 = -0.0024200735229748405 - t29;
-        let t31 = t30 - t29;
-        let t32 = front_right * t30 + 0.18895886013947344;
-        let t33 = front_right * 0.020994215782191718;
-        let t34 = 2.0 * t31 - t33;
-        let t35 = t32 + front_right * t31;
-        let t36 = front_right * t32 - 0.008046798224083114;
-        let t37 = front_right * t34 + 2.0 * t35;
-        let t38 = t36 + front_right * t35;
-        let t39 = front_right * t36 - 0.9151637274786046;
-        let t40 = front_right * 0.003569364721073275;
-        let t41 = t40 + 0.05863585356694256;
-        let t42 = t40 + t41;
-        let t43 = front_right * t41 + 0.009084672645053608;
-        let t44 = front_right * 0.00713872944214655;
-        let t45 = t44 + 2.0 * t42;
-        let t46 = t43 + front_right * t42;
-        let t47 = front_right * t43 - 0.36881035216564806;
-        let t48 = front_right * t45 + 2.0 * t46;
-        let t49 = t47 + front_right * t46;
-        let t50 = front_right * t47 - 0.1540490207303449;
-        let t51 = front_right * 0.039824436269830565;
-        let t52 = 0.016338965034324415 - t51;
-        let t53 = t52 - t51;
-        let t54 = front_right * t52 - 0.08957090383991675;
-        let t55 = t54 + front_right * t53;
-        let t56 = front_right * t54 + 0.08388641649735058 + front_right * t55;
-        let t57 = rear_left * 0.010497107891091926;
-        let t58 = t57 - 0.002420073522975009;
-        let t59 = t57 + t58;
-        let t60 = rear_left * t58 - 0.1889588601394729;
-        let t61 = rear_left * 0.020994215782183853;
-        let t62 = t61 + 2.0 * t59;
-        let t63 = t60 + rear_left * t59;
-        let t64 = rear_left * t60 - 0.008046798224083086;
-        let t65 = rear_left * t62 + 2.0 * t63;
-        let t66 = t64 + rear_left * t63;
-        let t67 = 0.9151637274786046 + rear_left * t64;
-        let t68 = rear_left * 0.003569364721085567;
-        let t69 = t68 - 0.05863585356694276;
-        let t70 = t68 + t69;
-        let t71 = 0.009084672645052382 + rear_left * t69;
-        let t72 = rear_left * 0.007138729442171134;
-        let t73 = t72 + 2.0 * t70;
-        let t74 = t71 + rear_left * t70;
-        let t75 = 0.36881035216564817 + rear_left * t71;
-        let t76 = rear_left * t73 + 2.0 * t74;
-        let t77 = t75 + rear_left * t74;
-        let t78 = rear_left * t75 - 0.1540490207303449;
-        let t79 = rear_left * 0.03982443626987119;
-        let t80 = 0.016338965034322857 + t79;
-        let t81 = t79 + t80;
-        let t82 = 0.08957090383991165 + rear_left * t80;
-        let t83 = t82 + rear_left * t81;
-        let t84 = 0.08388641649735075 + rear_left * t82 + rear_left * t83;
-        let t85 = rear_right * 0.010497107891095859;
-        let t86 = -0.0024200735229748405 - t85;
-        let t87 = t86 - t85;
-        let t88 = 0.18895886013947344 + rear_right * t86;
-        let t89 = rear_right * 0.020994215782191718;
-        let t90 = 2.0 * t87 - t89;
-        let t91 = t88 + rear_right * t87;
-        let t92 = rear_right * t88 - 0.008046798224083114;
-        let t93 = rear_right * t90 + 2.0 * t91;
-        let t94 = t92 + rear_right * t91;
-        let t95 = rear_right * t92 - 0.9151637274786046;
-        let t96 = rear_right * 0.003569364721073275;
-        let t97 = 0.05863585356694256 + t96;
-        let t98 = t96 + t97;
-        let t99 = 0.009084672645053608 + rear_right * t97;
-        let t100 = rear_right * 0.00713872944214655;
-        let t101 = t100 + 2.0 * t98;
-        let t102 = t99 + rear_right * t98;
-        let t103 = rear_right * t99 - 0.36881035216564806;
-        let t104 = rear_right * t101 + 2.0 * t102;
-        let t105 = t103 + rear_right * t102;
-        let t106 = rear_right * t103 - 0.1540490207303449;
-        let t107 = rear_right * 0.039824436269830565;
-        let t108 = 0.016338965034324415 - t107;
-        let t109 = t108 - t107;
-        let t110 = rear_right * t108 - 0.08957090383991675;
-        let t111 = t110 + rear_right * t109;
-        let t112 = 0.08388641649735058 + rear_right * t110 + rear_right * t111;
-        let t113 = t22 * 10.0;
-        let t114 = t11 * 10.0;
-        let t115 = t10 * 10.0;
-        let t116 = t21 * 10.0;
-        let t117 = t22 * t22;
-        let t118 = t11 * t11;
-        let t119 = t10 * t22;
-        let t120 = t11 * t21;
-        let t121 = 10.0 * (t120 - t119);
-        let t122 = 10.0 * (1.143 * t21);
-        let t123 = 10.0 * (1.143 * t10);
-        let t124 = 10.0 * (t10 * t10 + t21 * t21);
-        let t125 = t50 * 10.0;
-        let t126 = t39 * 10.0;
-        let t127 = t38 * 10.0;
-        let t128 = t49 * 10.0;
-        let t129 = t50 * t50;
-        let t130 = t39 * t39;
-        let t131 = t38 * t50;
-        let t132 = t39 * t49;
-        let t133 = 10.0 * (t132 - t131);
-        let t134 = 10.0 * (1.143 * t49);
-        let t135 = 10.0 * (1.143 * t38);
-        let t136 = 10.0 * (t38 * t38 + t49 * t49);
-        let t137 = t78 * 10.0;
-        let t138 = t67 * 10.0;
-        let t139 = t66 * 10.0;
-        let t140 = t77 * 10.0;
-        let t141 = t78 * t78;
-        let t142 = t67 * t67;
-        let t143 = t66 * t78;
-        let t144 = t67 * t77;
-        let t145 = 10.0 * (t144 - t143);
-        let t146 = 10.0 * (1.143 * t77);
-        let t147 = 10.0 * (1.143 * t66);
-        let t148 = 10.0 * (t66 * t66 + t77 * t77);
-        let t149 = t106 * 10.0;
-        let t150 = t113 + t125 + t137 + t149;
-        let t151 = t95 * 10.0;
-        let t152 = -t114 - t126 - t138 - t151;
-        let t153 = -t113 - t125 - t137 - t149;
-        let t154 = t94 * 10.0;
-        let t155 = t114 + t126 + t138 + t151;
-        let t156 = t105 * 10.0;
-        let t157 = t106 * t106;
-        let t158 = t95 * t95;
-        let t159 = 86.4 + 10.0 * (t117 + t118) + 10.0 * (t129 + t130)
-            + 10.0 * (t141 + t142) + 10.0 * (t157 + t158);
-        let t160 = -(10.0 * (1.143 * t11)) - 10.0 * (1.143 * t39) + 10.0 * (1.143 * t67)
-            + 10.0 * (1.143 * t95);
-        let t161 = -(10.0 * (1.143 * t22)) - 10.0 * (1.143 * t50) + 10.0 * (1.143 * t78)
-            + 10.0 * (1.143 * t106);
-        let t162 = t94 * t106;
-        let t163 = t95 * t105;
-        let t164 = 10.0 * (t163 - t162);
-        let t165 = 514.8 + 10.0 * (t117 + 1.306449) + 10.0 * (1.306449 + t129)
-            + 10.0 * (1.306449 + t141) + 10.0 * (1.306449 + t157);
-        let t166 = -(10.0 * (t11 * t22)) - 10.0 * (t39 * t50) - 10.0 * (t67 * t78)
-            - 10.0 * (t95 * t106);
-        let t167 = 10.0 * (1.143 * t105);
-        let t168 = 561.6 + 10.0 * (t118 + 1.306449) + 10.0 * (1.306449 + t130)
-            + 10.0 * (1.306449 + t142) + 10.0 * (1.306449 + t158);
-        let t169 = 10.0 * (1.143 * t94);
-        let t170 = 10.0 * (t94 * t94 + t105 * t105);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t171 = vx * 700.0;
-        let t172 = omega_y * t150;
-        let t173 = omega_z * t152;
-        let t174 = t171 + t172 + t173;
-        let t175 = vy * 700.0;
-        let t176 = omega_x * t153;
-        let t177 = t175 + t176 + yd_front_left * t115 + yd_front_right * t127
-            + yd_rear_left * t139 + yd_rear_right * t154;
-        let t178 = vz * 700.0;
-        let t179 = omega_x * t155;
-        let t180 = t178 + t179 + yd_front_left * t116 + yd_front_right * t128
-            + yd_rear_left * t140 + yd_rear_right * t156;
-        let t181 = omega_y * t160;
-        let t182 = omega_z * t161;
-        let t183 = vy * t153 + vz * t155 + omega_x * t159 + t181 + t182
-            + yd_front_left * t121 + yd_front_right * t133 + yd_rear_left * t145
-            + yd_rear_right * t164;
-        let t184 = omega_x * t160;
-        let t185 = omega_z * t166;
-        let t186 = vx * t150 + t184 + omega_y * t165 + t185 - yd_front_left * t122
-            - yd_front_right * t134 + yd_rear_left * t146 + yd_rear_right * t167;
-        let t187 = omega_x * t161;
-        let t188 = omega_y * t166;
-        let t189 = vx * t152 + t187 + t188 + omega_z * t168 + yd_front_left * t123
-            + yd_front_right * t135 - yd_rear_left * t147 - yd_rear_right * t169;
-        let t190 = omega_z * 1.143;
-        let t191 = omega_y * 1.143;
-        let t192 = vx + (omega_y * t22 - omega_z * t11);
-        let t193 = yd_front_left * t10;
-        let t194 = yd_front_left * t21;
-        let t195 = vy + (t190 - omega_x * t22) + t193;
-        let t196 = vz + (omega_x * t11 - t191) + t194;
-        let t197 = yd_front_left * yd_front_left;
-        let t198 = yd_front_right * yd_front_right;
-        let t199 = yd_rear_left * yd_rear_left;
-        let t200 = yd_rear_right * yd_rear_right;
-        let t201 = omega_z * t193 - omega_y * t194;
-        let t202 = t9 * t197 - omega_x * t194;
-        let t203 = t20 * t197 + omega_x * t193;
-        let t204 = t9 * t195;
-        let t205 = t20 * t196;
-        let t206 = t204 + t205;
-        let t207 = omega_z * t10;
-        let t208 = omega_y * t21;
-        let t209 = t207 - t208;
-        let t210 = omega_x * t21;
-        let t211 = omega_x * t10;
-        let t212 = yd_front_left * t9;
-        let t213 = yd_front_left * t20;
-        let t214 = t212 - t210;
-        let t215 = t211 + t213;
-        let t216 = vx + (omega_y * t50 - omega_z * t39);
-        let t217 = yd_front_right * t38;
-        let t218 = yd_front_right * t49;
-        let t219 = vy + (t190 - omega_x * t50) + t217;
-        let t220 = vz + (omega_x * t39 - t191) + t218;
-        let t221 = omega_z * t217 - omega_y * t218;
-        let t222 = t37 * t198 - omega_x * t218;
-        let t223 = t48 * t198 + omega_x * t217;
-        let t224 = t37 * t219;
-        let t225 = t48 * t220;
-        let t226 = t224 + t225;
-        let t227 = omega_z * t38;
-        let t228 = omega_y * t49;
-        let t229 = t227 - t228;
-        let t230 = omega_x * t49;
-        let t231 = omega_x * t38;
-        let t232 = yd_front_right * t37;
-        let t233 = yd_front_right * t48;
-        let t234 = t232 - t230;
-        let t235 = t231 + t233;
-        let t236 = vx + (omega_y * t78 - omega_z * t67);
-        let t237 = yd_rear_left * t66;
-        let t238 = yd_rear_left * t77;
-        let t239 = vy + (-t190 - omega_x * t78) + t237;
-        let t240 = vz + (t191 + omega_x * t67) + t238;
-        let t241 = omega_z * t237 - omega_y * t238;
-        let t242 = t65 * t199 - omega_x * t238;
-        let t243 = t76 * t199 + omega_x * t237;
-        let t244 = t65 * t239;
-        let t245 = t76 * t240;
-        let t246 = t244 + t245;
-        let t247 = omega_z * t66;
-        let t248 = omega_y * t77;
-        let t249 = t247 - t248;
-        let t250 = omega_x * t77;
-        let t251 = omega_x * t66;
-        let t252 = yd_rear_left * t65;
-        let t253 = yd_rear_left * t76;
-        let t254 = t252 - t250;
-        let t255 = t251 + t253;
-        let t256 = vx + (omega_y * t106 - omega_z * t95);
-        let t257 = yd_rear_right * t94;
-        let t258 = yd_rear_right * t105;
-        let t259 = vy + (-t190 - omega_x * t106) + t257;
-        let t260 = vz + (t191 + omega_x * t95) + t258;
-        let t261 = omega_z * t257 - omega_y * t258;
-        let t262 = t93 * t200 - omega_x * t258;
-        let t263 = t104 * t200 + omega_x * t257;
-        let t264 = t93 * t259;
-        let t265 = t104 * t260;
-        let t266 = t264 + t265;
-        let t267 = omega_z * t94;
-        let t268 = omega_y * t105;
-        let t269 = t267 - t268;
-        let t270 = omega_x * t105;
-        let t271 = omega_x * t94;
-        let t272 = yd_rear_right * t93;
-        let t273 = yd_rear_right * t104;
-        let t274 = t272 - t270;
-        let t275 = t271 + t273;
-        let t276 = c_phi * s_theta;
-        let t277 = c_phi * c_theta;
-        let t278 = t276 * 1069.2;
-        let t279 = t277 * 1069.2;
-        let t280 = t276 * 16.200000000000003;
-        let t281 = s_phi * 16.200000000000003;
-        let t282 = t277 * 16.200000000000003;
-        let t283 = t11 * t282;
-        let t284 = 1.143 * t282;
-        let t285 = 1.143 * t281;
-        let t286 = t11 * t280;
-        let t287 = t39 * t282;
-        let t288 = t39 * t280;
-        let t289 = t67 * t282;
-        let t290 = t67 * t280;
-        let t291 = t95 * t282;
-        let t292 = t95 * t280;
-        let t293 = front_left - 0.3490658503988659;
-        let t294 = f64::max(t293, 0.0);
-        let t295 = -0.3490658503988659 - front_left;
-        let t296 = f64::max(t295, 0.0);
-        let t297 = 10000.0 * t294;
-        let t298 = f64::min(t297, 1.0);
-        let t299 = 617.2846305501084 * t298;
-        let t300 = -(70000.0 * t294) - yd_front_left * t299;
-        let t301 = f64::min(t300, 0.0);
-        let t302 = 10000.0 * t296;
-        let t303 = f64::min(t302, 1.0);
-        let t304 = 617.2846305501084 * t303;
-        let t305 = 70000.0 * t296 - yd_front_left * t304;
-        let t306 = f64::max(t305, 0.0);
-        let t307 = front_right - 0.3490658503988659;
-        let t308 = f64::max(t307, 0.0);
-        let t309 = -0.3490658503988659 - front_right;
-        let t310 = f64::max(t309, 0.0);
-        let t311 = 10000.0 * t308;
-        let t312 = f64::min(t311, 1.0);
-        let t313 = 617.2846305501082 * t312;
-        let t314 = -(70000.0 * t308) - yd_front_right * t313;
-        let t315 = f64::min(t314, 0.0);
-        let t316 = 10000.0 * t310;
-        let t317 = f64::min(t316, 1.0);
-        let t318 = 617.2846305501082 * t317;
-        let t319 = 70000.0 * t310 - yd_front_right * t318;
-        let t320 = f64::max(t319, 0.0);
-        let t321 = rear_left - 0.3490658503988659;
-        let t322 = f64::max(t321, 0.0);
-        let t323 = -0.3490658503988659 - rear_left;
-        let t324 = f64::max(t323, 0.0);
-        let t325 = 10000.0 * t322;
-        let t326 = f64::min(t325, 1.0);
-        let t327 = 617.2846305501084 * t326;
-        let t328 = -(70000.0 * t322) - yd_rear_left * t327;
-        let t329 = f64::min(t328, 0.0);
-        let t330 = 10000.0 * t324;
-        let t331 = f64::min(t330, 1.0);
-        let t332 = 617.2846305501084 * t331;
-        let t333 = 70000.0 * t324 - yd_rear_left * t332;
-        let t334 = f64::max(t333, 0.0);
-        let t335 = rear_right - 0.3490658503988659;
-        let t336 = f64::max(t335, 0.0);
-        let t337 = -0.3490658503988659 - rear_right;
-        let t338 = f64::max(t337, 0.0);
-        let t339 = 10000.0 * t336;
-        let t340 = f64::min(t339, 1.0);
-        let t341 = 617.2846305501082 * t340;
-        let t342 = -(70000.0 * t336) - yd_rear_right * t341;
-        let t343 = f64::min(t342, 0.0);
-        let t344 = 10000.0 * t338;
-        let t345 = f64::min(t344, 1.0);
-        let t346 = 617.2846305501082 * t345;
-        let t347 = 70000.0 * t338 - yd_rear_right * t346;
-        let t348 = f64::max(t347, 0.0);
-        let t349 = s_phi * s_theta;
-        let t350 = s_phi * c_theta;
-        let t351 = c_theta * c_psi - s_psi * t349;
-        let t352 = c_phi * s_psi;
-        let t353 = s_theta * c_psi;
-        let t354 = s_psi * t350;
-        let t355 = t353 + t354;
-        let t356 = c_theta * s_psi;
-        let t357 = c_psi * t349;
-        let t358 = t356 + t357;
-        let t359 = c_phi * c_psi;
-        let t360 = s_theta * s_psi;
-        let t361 = c_psi * t350;
-        let t362 = t360 - t361;
-        let t363 = f_front_left_2_x * t351 + f_front_left_2_y * t358
-            - f_front_left_2_z * t276;
-        let t364 = f_front_left_2_y * t359 - f_front_left_2_x * t352
-            + f_front_left_2_z * s_phi;
-        let t365 = f_front_left_2_z * t277;
-        let t366 = f_front_left_2_x * t355 + f_front_left_2_y * t362 + t365;
-        let t367 = t11 * t363;
-        let t368 = mu_front_left_2_x * t351 + mu_front_left_2_y * t358
-            - mu_front_left_2_z * t276;
-        let t369 = mu_front_left_2_z * t277;
-        let t370 = tau_front_left_2_x * t351 + tau_front_left_2_y * t358
-            - tau_front_left_2_z * t276;
-        let t371 = tau_front_left_2_z * t277;
-        let t372 = 10.0
-            * (t195 * t214 - t192 * t209 + t196 * t215
-                - (yd_front_left * t206 + (t10 * t202 + t21 * t203)))
-            + (-(t10 * t281) - t21 * t282)
-            + (t306
-                + (t301
-                    + (-(700.0 * (front_left - y0_front_left)) - yd_front_left * 100.0)))
-            + (t10 * t364 + t21 * t366) + t28 * t368 + t28 * t370;
-        let t373 = f_front_right_2_x * t351 + f_front_right_2_y * t358
-            - f_front_right_2_z * t276;
-        let t374 = f_front_right_2_y * t359 - f_front_right_2_x * t352
-            + f_front_right_2_z * s_phi;
-        let t375 = f_front_right_2_z * t277;
-        let t376 = f_front_right_2_x * t355 + f_front_right_2_y * t362 + t375;
-        let t377 = t39 * t373;
-        let t378 = mu_front_right_2_x * t351 + mu_front_right_2_y * t358
-            - mu_front_right_2_z * t276;
-        let t379 = mu_front_right_2_z * t277;
-        let t380 = tau_front_right_2_x * t351 + tau_front_right_2_y * t358
-            - tau_front_right_2_z * t276;
-        let t381 = tau_front_right_2_z * t277;
-        let t382 = 10.0
-            * (t219 * t234 - t216 * t229 + t220 * t235
-                - (yd_front_right * t226 + (t38 * t222 + t49 * t223)))
-            + (-(t38 * t281) - t49 * t282)
-            + (t320
-                + (t315
-                    + (-(700.0 * (front_right - y0_front_right))
-                        - yd_front_right * 100.0))) + (t38 * t374 + t49 * t376)
-            + t56 * t378 + t56 * t380;
-        let t383 = f_rear_left_2_x * t351 + f_rear_left_2_y * t358
-            - f_rear_left_2_z * t276;
-        let t384 = f_rear_left_2_y * t359 - f_rear_left_2_x * t352
-            + f_rear_left_2_z * s_phi;
-        let t385 = f_rear_left_2_z * t277;
-        let t386 = f_rear_left_2_x * t355 + f_rear_left_2_y * t362 + t385;
-        let t387 = t67 * t383;
-        let t388 = mu_rear_left_2_x * t351 + mu_rear_left_2_y * t358
-            - mu_rear_left_2_z * t276;
-        let t389 = mu_rear_left_2_z * t277;
-        let t390 = tau_rear_left_2_x * t351 + tau_rear_left_2_y * t358
-            - tau_rear_left_2_z * t276;
-        let t391 = tau_rear_left_2_z * t277;
-        let t392 = 10.0
-            * (t239 * t254 - t236 * t249 + t240 * t255
-                - (yd_rear_left * t246 + (t66 * t242 + t77 * t243)))
-            + (-(t66 * t281) - t77 * t282)
-            + (t334
-                + (t329
-                    + (-(700.0 * (rear_left - y0_rear_left)) - yd_rear_left * 100.0)))
-            + (t66 * t384 + t77 * t386) + t84 * t388 + t84 * t390;
-        let t393 = f_rear_right_2_x * t351 + f_rear_right_2_y * t358
-            - f_rear_right_2_z * t276;
-        let t394 = f_rear_right_2_y * t359 - f_rear_right_2_x * t352
-            + f_rear_right_2_z * s_phi;
-        let t395 = f_rear_right_2_z * t277;
-        let t396 = f_rear_right_2_x * t355 + f_rear_right_2_y * t362 + t395;
-        let t397 = t95 * t393;
-        let t398 = t280
-            + (t280
-                + (t280
-                    + (10.0 * t201 - (omega_y * t180 - omega_z * t177) + 10.0 * t221
-                        + 10.0 * t241 + 10.0 * t261 + t278 + t280))) + t363 + t373 + t383
-            + t393;
-        let t399 = mu_rear_right_2_x * t351 + mu_rear_right_2_y * t358
-            - mu_rear_right_2_z * t276;
-        let t400 = mu_rear_right_2_z * t277;
-        let t401 = tau_rear_right_2_x * t351 + tau_rear_right_2_y * t358
-            - tau_rear_right_2_z * t276;
-        let t402 = tau_rear_right_2_z * t277;
-        let t403 = 10.0
-            * (t259 * t274 - t256 * t269 + t260 * t275
-                - (yd_rear_right * t266 + (t94 * t262 + t105 * t263)))
-            + (-(t94 * t281) - t105 * t282)
-            + (t348
-                + (t343
-                    + (-(700.0 * (rear_right - y0_rear_right)) - yd_rear_right * 100.0)))
-            + (t94 * t394 + t105 * t396) + t112 * t399 + t112 * t401;
-        let t404 = 1.0 / t124;
-        let t405 = t115 * t404;
-        let t406 = t116 * t404;
-        let t407 = t121 * t404;
-        let t408 = t122 * t404;
-        let t409 = t123 * t404;
-        let t410 = 1.0 / t136;
-        let t411 = t127 * t410;
-        let t412 = t128 * t410;
-        let t413 = t133 * t410;
-        let t414 = t134 * t410;
-        let t415 = t135 * t410;
-        let t416 = 1.0 / t148;
-        let t417 = t139 * t416;
-        let t418 = t140 * t416;
-        let t419 = t145 * t416;
-        let t420 = t146 * t416;
-        let t421 = t147 * t416;
-        let t422 = 1.0 / t170;
-        let t423 = t154 * t422;
-        let t424 = t156 * t422;
-        let t425 = t164 * t422;
-        let t426 = t167 * t422;
-        let t427 = t169 * t422;
-        let t428 = t150 * 0.0014285714285714286;
-        let t429 = t152 * 0.0014285714285714286;
-        let t430 = t124 * t405;
-        let t431 = t136 * t411;
-        let t432 = t148 * t417;
-        let t433 = t170 * t423;
-        let t434 = 700.0 - t405 * t430 - t411 * t431 - t417 * t432 - t423 * t433;
-        let t435 = 1.0 / t434;
-        let t436 = -(t406 * t430) - t412 * t431 - t418 * t432 - t424 * t433;
-        let t437 = t435 * t436;
-        let t438 = t153 - t407 * t430 - t413 * t431 - t419 * t432 - t425 * t433;
-        let t439 = t435 * t438;
-        let t440 = t408 * t430 + t414 * t431 - t420 * t432 - t426 * t433;
-        let t441 = t435 * t440;
-        let t442 = -(t409 * t430) - t415 * t431 + t421 * t432 + t427 * t433;
-        let t443 = t435 * t442;
-        let t444 = t124 * t406;
-        let t445 = t136 * t412;
-        let t446 = t148 * t418;
-        let t447 = t170 * t424;
-        let t448 = t434 * t437;
-        let t449 = 700.0 - t406 * t444 - t412 * t445 - t418 * t446 - t424 * t447
-            - t437 * t448;
-        let t450 = 1.0 / t449;
-        let t451 = t155 - t407 * t444 - t413 * t445 - t419 * t446 - t425 * t447
-            - t439 * t448;
-        let t452 = t450 * t451;
-        let t453 = t408 * t444 + t414 * t445 - t420 * t446 - t426 * t447 - t441 * t448;
-        let t454 = t450 * t453;
-        let t455 = -(t409 * t444) - t415 * t445 + t421 * t446 + t427 * t447
-            - t443 * t448;
-        let t456 = t450 * t455;
-        let t457 = t124 * t407;
-        let t458 = t136 * t413;
-        let t459 = t148 * t419;
-        let t460 = t170 * t425;
-        let t461 = t434 * t439;
-        let t462 = t449 * t452;
-        let t463 = t159 - t407 * t457 - t413 * t458 - t419 * t459 - t425 * t460
-            - t439 * t461 - t452 * t462;
-        let t464 = 1.0 / t463;
-        let t465 = t160 + t408 * t457 + t414 * t458 - t420 * t459 - t426 * t460
-            - t441 * t461 - t454 * t462;
-        let t466 = t464 * t465;
-        let t467 = t161 - t409 * t457 - t415 * t458 + t421 * t459 + t427 * t460
-            - t443 * t461 - t456 * t462;
-        let t468 = t464 * t467;
-        let t469 = t124 * t408;
-        let t470 = t136 * t414;
-        let t471 = t148 * t420;
-        let t472 = t170 * t426;
-        let t473 = 700.0 * t428;
-        let t474 = t434 * t441;
-        let t475 = t449 * t454;
-        let t476 = t463 * t466;
-        let t477 = t165 - t408 * t469 - t414 * t470 - t420 * t471 - t426 * t472
-            - t428 * t473 - t441 * t474 - t454 * t475 - t466 * t476;
-        let t478 = 1.0 / t477;
-        let t479 = t166 + t409 * t469 + t415 * t470 + t421 * t471 + t427 * t472
-            - t429 * t473 - t443 * t474 - t456 * t475 - t468 * t476;
-        let t480 = t478 * t479;
-        let t481 = t124 * t409;
-        let t482 = t136 * t415;
-        let t483 = t148 * t421;
-        let t484 = t170 * t427;
-        let t485 = 700.0 * t429;
-        let t486 = t434 * t443;
-        let t487 = t449 * t456;
-        let t488 = t463 * t468;
-        let t489 = t477 * t480;
-        let t490 = t168 - t409 * t481 - t415 * t482 - t421 * t483 - t427 * t484
-            - t429 * t485 - t443 * t486 - t456 * t487 - t468 * t488 - t480 * t489;
-        let t491 = 1.0 / t490;
-        let t492 = -(omega_z * t174 - omega_x * t180) - 10.0 * t202 - 10.0 * t222
-            - 10.0 * t242 - 10.0 * t262 - s_phi * 1069.2 - t281 - t281 - t281 - t281
-            + t364 + t374 + t384 + t394 - t372 * t405 - t382 * t411 - t392 * t417
-            - t403 * t423;
-        let t493 = -(omega_x * t177 - omega_y * t174) - 10.0 * t203 - 10.0 * t223
-            - 10.0 * t243 - 10.0 * t263 - t279 - t282 - t282 - t282 - t282 + t366 + t376
-            + t386 + t396 - t372 * t406 - t382 * t412 - t392 * t418 - t403 * t424
-            - t437 * t492;
-        let t494 = -(vy * t180 - vz * t177 + (omega_y * t189 - omega_z * t186))
-            - 10.0 * (t193 * t196 - t194 * t195 + (t11 * t203 - t22 * t202))
-            - 10.0 * (t217 * t220 - t218 * t219 + (t39 * t223 - t50 * t222))
-            - 10.0 * (t237 * t240 - t238 * t239 + (t67 * t243 - t78 * t242))
-            - 10.0 * (t257 * t260 - t258 * t259 + (t95 * t263 - t106 * t262))
-            + (t22 * t281 - t283) + (t50 * t281 - t287) + (t78 * t281 - t289)
-            + (t106 * t281 - t291) + (t11 * t366 - t22 * t364) + t368 + t370
-            + (t39 * t376 - t50 * t374) + t378 + t380 + (t67 * t386 - t78 * t384) + t388
-            + t390 + (t95 * t396 - t106 * t394) + t399 + t401 - t372 * t407 - t382 * t413
-            - t392 * t419 - t403 * t425 - t439 * t492 - t452 * t493;
-        let t495 = -(vz * t174 - vx * t180 + (omega_z * t183 - omega_x * t189))
-            - 10.0 * (t192 * t194 + (-(t22 * t201) - 1.143 * t203))
-            - 10.0 * (t216 * t218 + (-(t50 * t221) - 1.143 * t223))
-            - 10.0 * (t236 * t238 + (1.143 * t243 - t78 * t241))
-            - 10.0 * (t256 * t258 + (1.143 * t263 - t106 * t261)) + (t22 * t280 + t284)
-            + (t284 + t50 * t280) + (t78 * t280 - t284) + (t106 * t280 - t284)
-            + (t22 * t363 - 1.143 * t366)
-            + (mu_front_left_2_y * t359 - mu_front_left_2_x * t352
-                + mu_front_left_2_z * s_phi)
-            + (tau_front_left_2_y * t359 - tau_front_left_2_x * t352
-                + tau_front_left_2_z * s_phi) + (t50 * t373 - 1.143 * t376)
-            + (mu_front_right_2_y * t359 - mu_front_right_2_x * t352
-                + mu_front_right_2_z * s_phi)
-            + (tau_front_right_2_y * t359 - tau_front_right_2_x * t352
-                + tau_front_right_2_z * s_phi) + (t78 * t383 + 1.143 * t386)
-            + (mu_rear_left_2_y * t359 - mu_rear_left_2_x * t352
-                + mu_rear_left_2_z * s_phi)
-            + (tau_rear_left_2_y * t359 - tau_rear_left_2_x * t352
-                + tau_rear_left_2_z * s_phi) + (t106 * t393 + 1.143 * t396)
-            + (mu_rear_right_2_y * t359 - mu_rear_right_2_x * t352
-                + mu_rear_right_2_z * s_phi)
-            + (tau_rear_right_2_y * t359 - tau_rear_right_2_x * t352
-                + tau_rear_right_2_z * s_phi) + t372 * t408 + t382 * t414 - t392 * t420
-            - t403 * t426 - t398 * t428 - t441 * t492 - t454 * t493 - t466 * t494;
-        let t496 = -(vx * t177 - vy * t174 + (omega_x * t186 - omega_y * t183))
-            - 10.0 * (1.143 * t202 + t11 * t201 - t192 * t193)
-            - 10.0 * (1.143 * t222 + t39 * t221 - t216 * t217)
-            - 10.0 * (t67 * t241 - 1.143 * t242 - t236 * t237)
-            - 10.0 * (t95 * t261 - 1.143 * t262 - t256 * t257) + (-t285 - t286)
-            + (-t285 - t288) + (t285 - t290) + (t285 - t292) + (1.143 * t364 - t367)
-            + (mu_front_left_2_x * t355 + mu_front_left_2_y * t362 + t369)
-            + (tau_front_left_2_x * t355 + tau_front_left_2_y * t362 + t371)
-            + (1.143 * t374 - t377)
-            + (mu_front_right_2_x * t355 + mu_front_right_2_y * t362 + t379)
-            + (tau_front_right_2_x * t355 + tau_front_right_2_y * t362 + t381)
-            + (-(1.143 * t384) - t387)
-            + (mu_rear_left_2_x * t355 + mu_rear_left_2_y * t362 + t389)
-            + (tau_rear_left_2_x * t355 + tau_rear_left_2_y * t362 + t391)
-            + (-(1.143 * t394) - t397)
-            + (mu_rear_right_2_x * t355 + mu_rear_right_2_y * t362 + t400)
-            + (tau_rear_right_2_x * t355 + tau_rear_right_2_y * t362 + t402)
-            - t372 * t409 - t382 * t415 + t392 * t421 + t403 * t427 - t398 * t429
-            - t443 * t492 - t456 * t493 - t468 * t494 - t480 * t495;
-        let t497 = t491 * t496;
-        let t498 = t478 * t495 - t480 * t497;
-        let t499 = t464 * t494 - t466 * t498 - t468 * t497;
-        let t500 = t450 * t493 - t452 * t499 - t454 * t498 - t456 * t497;
-        let t501 = t435 * t492 - t437 * t500 - t439 * t499 - t441 * t498 - t443 * t497;
-        let t502 = omega_z * c_theta - omega_x * s_theta;
-        let t503 = t502 / c_phi;
-        let t504 = 16.200000000000003 * t349;
         let t505 = c_phi * 16.200000000000003;
-        let t506 = 16.200000000000003 * t350;
-        let t507 = 1.143 * t506;
-        let t508 = 1.143 * t505;
-        let t509 = s_psi * t276;
-        let t510 = s_phi * s_psi;
-        let t511 = s_psi * t277;
-        let t512 = c_psi * t276;
-        let t513 = s_phi * c_psi;
-        let t514 = c_psi * t277;
-        let t515 = f_front_left_2_y * t512 - f_front_left_2_x * t509
-            + f_front_left_2_z * t349;
         let t516 = f_front_left_2_x * t510 - f_front_left_2_y * t513
             + f_front_left_2_z * c_phi;
-        let t517 = f_front_left_2_x * t511 - f_front_left_2_y * t514
-            - f_front_left_2_z * t350;
+        let t23 = front_left * 0.03982443626987119;
+        let t24 = t23 + 0.016338965034322857;
+        let t26 = front_left * t24 + 0.08957090383991165;
+        let t25 = t23 + t24;
+        let t27 = t26 + front_left * t25;
+        let t28 = front_left * t26 + 0.08388641649735075 + front_left * t27;
         let t518 = mu_front_left_2_y * t512 - mu_front_left_2_x * t509
             + mu_front_left_2_z * t349;
         let t519 = tau_front_left_2_y * t512 - tau_front_left_2_x * t509
             + tau_front_left_2_z * t349;
         let t520 = t21 * t506 - t10 * t505 + (t10 * t516 + t21 * t517) + t28 * t518
             + t28 * t519;
-        let t521 = f_front_right_2_y * t512 - f_front_right_2_x * t509
-            + f_front_right_2_z * t349;
         let t522 = f_front_right_2_x * t510 - f_front_right_2_y * t513
             + f_front_right_2_z * c_phi;
-        let t523 = f_front_right_2_x * t511 - f_front_right_2_y * t514
-            - f_front_right_2_z * t350;
+        let t51 = front_right * 0.039824436269830565;
+        let t52 = 0.016338965034324415 - t51;
+        let t54 = front_right * t52 - 0.08957090383991675;
+        let t53 = t52 - t51;
+        let t55 = t54 + front_right * t53;
+        let t56 = front_right * t54 + 0.08388641649735058 + front_right * t55;
         let t524 = mu_front_right_2_y * t512 - mu_front_right_2_x * t509
             + mu_front_right_2_z * t349;
         let t525 = tau_front_right_2_y * t512 - tau_front_right_2_x * t509
             + tau_front_right_2_z * t349;
         let t526 = t49 * t506 - t38 * t505 + (t38 * t522 + t49 * t523) + t56 * t524
             + t56 * t525;
-        let t527 = f_rear_left_2_y * t512 - f_rear_left_2_x * t509
-            + f_rear_left_2_z * t349;
         let t528 = f_rear_left_2_x * t510 - f_rear_left_2_y * t513
             + f_rear_left_2_z * c_phi;
-        let t529 = f_rear_left_2_x * t511 - f_rear_left_2_y * t514
-            - f_rear_left_2_z * t350;
+        let t79 = rear_left * 0.03982443626987119;
+        let t80 = 0.016338965034322857 + t79;
+        let t82 = 0.08957090383991165 + rear_left * t80;
+        let t81 = t79 + t80;
+        let t83 = t82 + rear_left * t81;
+        let t84 = 0.08388641649735075 + rear_left * t82 + rear_left * t83;
         let t530 = mu_rear_left_2_y * t512 - mu_rear_left_2_x * t509
             + mu_rear_left_2_z * t349;
         let t531 = tau_rear_left_2_y * t512 - tau_rear_left_2_x * t509
             + tau_rear_left_2_z * t349;
         let t532 = t77 * t506 - t66 * t505 + (t66 * t528 + t77 * t529) + t84 * t530
             + t84 * t531;
-        let t533 = f_rear_right_2_y * t512 - f_rear_right_2_x * t509
-            + f_rear_right_2_z * t349;
         let t534 = f_rear_right_2_x * t510 - f_rear_right_2_y * t513
             + f_rear_right_2_z * c_phi;
-        let t535 = f_rear_right_2_x * t511 - f_rear_right_2_y * t514
-            - f_rear_right_2_z * t350;
-        let t536 = -(1069.2 * t349) - t504 - t504 - t504 - t504 + t515 + t521 + t527
-            + t533;
+        let t107 = rear_right * 0.039824436269830565;
+        let t108 = 0.016338965034324415 - t107;
+        let t110 = rear_right * t108 - 0.08957090383991675;
+        let t109 = t108 - t107;
+        let t111 = t110 + rear_right * t109;
+        let t112 = 0.08388641649735058 + rear_right * t110 + rear_right * t111;
         let t537 = mu_rear_right_2_y * t512 - mu_rear_right_2_x * t509
             + mu_rear_right_2_z * t349;
         let t538 = tau_rear_right_2_y * t512 - tau_rear_right_2_x * t509
@@ -1881,6 +1458,46 @@ impl Lrv {
             + (tau_rear_right_2_x * t510 - tau_rear_right_2_y * t513
                 + tau_rear_right_2_z * c_phi) + t408 * t520 + t414 * t526 - t420 * t532
             - t426 * t539 - t428 * t536 - t441 * t540 - t454 * t541 - t466 * t542;
+        let t166 = -(10.0 * (t11 * t22)) - 10.0 * (t39 * t50) - 10.0 * (t67 * t78)
+            - 10.0 * (t95 * t106);
+        let t123 = 10.0 * (1.143 * t10);
+        let t409 = t123 * t404;
+        let t135 = 10.0 * (1.143 * t38);
+        let t415 = t135 * t410;
+        let t147 = 10.0 * (1.143 * t66);
+        let t421 = t147 * t416;
+        let t169 = 10.0 * (1.143 * t94);
+        let t427 = t169 * t422;
+        let t152 = -t114 - t126 - t138 - t151;
+        let t429 = t152 * 0.0014285714285714286;
+        let t442 = -(t409 * t430) - t415 * t431 + t421 * t432 + t427 * t433;
+        let t443 = t435 * t442;
+        let t455 = -(t409 * t444) - t415 * t445 + t421 * t446 + t427 * t447
+            - t443 * t448;
+        let t456 = t450 * t455;
+        let t161 = -(10.0 * (1.143 * t22)) - 10.0 * (1.143 * t50) + 10.0 * (1.143 * t78)
+            + 10.0 * (1.143 * t106);
+        let t467 = t161 - t409 * t457 - t415 * t458 + t421 * t459 + t427 * t460
+            - t443 * t461 - t456 * t462;
+        let t468 = t464 * t467;
+        let t479 = t166 + t409 * t469 + t415 * t470 + t421 * t471 + t427 * t472
+            - t429 * t473 - t443 * t474 - t456 * t475 - t468 * t476;
+        let t480 = t478 * t479;
+        let t168 = 561.6 + 10.0 * (t118 + 1.306449) + 10.0 * (1.306449 + t130)
+            + 10.0 * (1.306449 + t142) + 10.0 * (1.306449 + t158);
+        let t481 = t124 * t409;
+        let t482 = t136 * t415;
+        let t483 = t148 * t421;
+        let t484 = t170 * t427;
+        let t485 = 700.0 * t429;
+        let t486 = t434 * t443;
+        let t487 = t449 * t456;
+        let t488 = t463 * t468;
+        let t489 = t477 * t480;
+        let t490 = t168 - t409 * t481 - t415 * t482 - t421 * t483 - t427 * t484
+            - t429 * t485 - t443 * t486 - t456 * t487 - t468 * t488 - t480 * t489;
+        let t491 = 1.0 / t490;
+        let t508 = 1.143 * t505;
         let t544 = t491
             * (t11 * t504 - t508 + (t39 * t504 - t508) + (t508 + t67 * t504)
                 + (t508 + t95 * t504) + (1.143 * t516 - t11 * t515)
@@ -1906,39 +1523,79 @@ impl Lrv {
         let t546 = t464 * t542 - t466 * t545 - t468 * t544;
         let t547 = t450 * t541 - t452 * t546 - t454 * t545 - t456 * t544;
         let t548 = t435 * t540 - t437 * t547 - t439 * t546 - t441 * t545 - t443 * t544;
-        let t549 = s_phi * t503 / c_phi;
-        let t550 = 1.143 * t280;
-        let t551 = t21 * t280;
-        let t552 = t49 * t280;
-        let t553 = t77 * t280;
-        let t554 = t105 * t280;
+        let t354 = s_psi * t350;
+        let t353 = s_theta * c_psi;
         let t555 = -t354 - t353;
+        let t351 = c_theta * c_psi - s_psi * t349;
+        let t361 = c_psi * t350;
+        let t360 = s_theta * s_psi;
         let t556 = t361 - t360;
+        let t356 = c_theta * s_psi;
+        let t357 = c_psi * t349;
+        let t358 = t356 + t357;
+        let t587 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
+        let t282 = t277 * 16.200000000000003;
+        let t279 = t277 * 1069.2;
+        let t365 = f_front_left_2_z * t277;
         let t557 = f_front_left_2_x * t555 + f_front_left_2_y * t556 - t365;
-        let t558 = t21 * t363;
-        let t559 = mu_front_left_2_x * t555 + mu_front_left_2_y * t556 - t369;
-        let t560 = tau_front_left_2_x * t555 + tau_front_left_2_y * t556 - t371;
-        let t561 = t551 + t558 + t28 * t559 + t28 * t560;
+        let t375 = f_front_right_2_z * t277;
         let t562 = f_front_right_2_x * t555 + f_front_right_2_y * t556 - t375;
-        let t563 = t49 * t373;
-        let t564 = mu_front_right_2_x * t555 + mu_front_right_2_y * t556 - t379;
-        let t565 = tau_front_right_2_x * t555 + tau_front_right_2_y * t556 - t381;
-        let t566 = t552 + t563 + t56 * t564 + t56 * t565;
+        let t385 = f_rear_left_2_z * t277;
         let t567 = f_rear_left_2_x * t555 + f_rear_left_2_y * t556 - t385;
-        let t568 = t77 * t383;
-        let t569 = mu_rear_left_2_x * t555 + mu_rear_left_2_y * t556 - t389;
-        let t570 = tau_rear_left_2_x * t555 + tau_rear_left_2_y * t556 - t391;
-        let t571 = t553 + t568 + t84 * t569 + t84 * t570;
+        let t395 = f_rear_right_2_z * t277;
         let t572 = f_rear_right_2_x * t555 + f_rear_right_2_y * t556 - t395;
         let t573 = t282 + (t282 + (t282 + (t279 + t282))) + t557 + t562 + t567 + t572;
+        let t280 = t276 * 16.200000000000003;
+        let t550 = 1.143 * t280;
+        let t363 = f_front_left_2_x * t351 + f_front_left_2_y * t358
+            - f_front_left_2_z * t276;
+        let t373 = f_front_right_2_x * t351 + f_front_right_2_y * t358
+            - f_front_right_2_z * t276;
+        let t383 = f_rear_left_2_x * t351 + f_rear_left_2_y * t358
+            - f_rear_left_2_z * t276;
+        let t393 = f_rear_right_2_x * t351 + f_rear_right_2_y * t358
+            - f_rear_right_2_z * t276;
+        let t551 = t21 * t280;
+        let t558 = t21 * t363;
+        let t369 = mu_front_left_2_z * t277;
+        let t559 = mu_front_left_2_x * t555 + mu_front_left_2_y * t556 - t369;
+        let t371 = tau_front_left_2_z * t277;
+        let t560 = tau_front_left_2_x * t555 + tau_front_left_2_y * t556 - t371;
+        let t561 = t551 + t558 + t28 * t559 + t28 * t560;
+        let t552 = t49 * t280;
+        let t563 = t49 * t373;
+        let t379 = mu_front_right_2_z * t277;
+        let t564 = mu_front_right_2_x * t555 + mu_front_right_2_y * t556 - t379;
+        let t381 = tau_front_right_2_z * t277;
+        let t565 = tau_front_right_2_x * t555 + tau_front_right_2_y * t556 - t381;
+        let t566 = t552 + t563 + t56 * t564 + t56 * t565;
+        let t553 = t77 * t280;
+        let t568 = t77 * t383;
+        let t389 = mu_rear_left_2_z * t277;
+        let t569 = mu_rear_left_2_x * t555 + mu_rear_left_2_y * t556 - t389;
+        let t391 = tau_rear_left_2_z * t277;
+        let t570 = tau_rear_left_2_x * t555 + tau_rear_left_2_y * t556 - t391;
+        let t571 = t553 + t568 + t84 * t569 + t84 * t570;
+        let t554 = t105 * t280;
         let t574 = t105 * t393;
+        let t400 = mu_rear_right_2_z * t277;
         let t575 = mu_rear_right_2_x * t555 + mu_rear_right_2_y * t556 - t400;
+        let t402 = tau_rear_right_2_z * t277;
         let t576 = tau_rear_right_2_x * t555 + tau_rear_right_2_y * t556 - t402;
         let t577 = t554 + t574 + t112 * t575 + t112 * t576;
         let t578 = -(t405 * t561) - t411 * t566 - t417 * t571 - t423 * t577;
+        let t278 = t276 * 1069.2;
         let t579 = t393
             + (t383 + (t373 + (t363 + (t280 + (t280 + (t280 + (t278 + t280)))))))
             - t406 * t561 - t412 * t566 - t418 * t571 - t424 * t577 - t437 * t578;
+        let t397 = t95 * t393;
+        let t387 = t67 * t383;
+        let t377 = t39 * t373;
+        let t367 = t11 * t363;
+        let t292 = t95 * t280;
+        let t290 = t67 * t280;
+        let t286 = t11 * t280;
+        let t288 = t39 * t280;
         let t580 = t397
             + (t387
                 + (t377 + (t367 + (t292 + (t290 + (t286 + t288))) + t559 + t560) + t564
@@ -1949,6 +1606,26 @@ impl Lrv {
             + (t50 * t562 - 1.143 * t373) + (t78 * t567 + 1.143 * t383)
             + (t106 * t572 + 1.143 * t393) + t408 * t561 + t414 * t566 - t420 * t571
             - t426 * t577 - t428 * t573 - t441 * t578 - t454 * t579 - t466 * t580;
+        let t401 = tau_rear_right_2_x * t351 + tau_rear_right_2_y * t358
+            - tau_rear_right_2_z * t276;
+        let t399 = mu_rear_right_2_x * t351 + mu_rear_right_2_y * t358
+            - mu_rear_right_2_z * t276;
+        let t390 = tau_rear_left_2_x * t351 + tau_rear_left_2_y * t358
+            - tau_rear_left_2_z * t276;
+        let t388 = mu_rear_left_2_x * t351 + mu_rear_left_2_y * t358
+            - mu_rear_left_2_z * t276;
+        let t380 = tau_front_right_2_x * t351 + tau_front_right_2_y * t358
+            - tau_front_right_2_z * t276;
+        let t378 = mu_front_right_2_x * t351 + mu_front_right_2_y * t358
+            - mu_front_right_2_z * t276;
+        let t370 = tau_front_left_2_x * t351 + tau_front_left_2_y * t358
+            - tau_front_left_2_z * t276;
+        let t368 = mu_front_left_2_x * t351 + mu_front_left_2_y * t358
+            - mu_front_left_2_z * t276;
+        let t291 = t95 * t282;
+        let t289 = t67 * t282;
+        let t283 = t11 * t282;
+        let t287 = t39 * t282;
         let t582 = t491
             * (t401
                 + (t399
@@ -1964,30 +1641,32 @@ impl Lrv {
         let t584 = t464 * t580 - t466 * t583 - t468 * t582;
         let t585 = t450 * t579 - t452 * t584 - t454 * t583 - t456 * t582;
         let t586 = t435 * t578 - t437 * t585 - t439 * t584 - t441 * t583 - t443 * t582;
-        let t587 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
         let t588 = -t357 - t356;
+        let t359 = c_phi * c_psi;
+        let t352 = c_phi * s_psi;
+        let t355 = t353 + t354;
         let t589 = f_front_left_2_x * t588 + f_front_left_2_y * t351;
-        let t590 = -(f_front_left_2_x * t359) - f_front_left_2_y * t352;
+        let t595 = f_front_right_2_x * t588 + f_front_right_2_y * t351;
+        let t601 = f_rear_left_2_x * t588 + f_rear_left_2_y * t351;
+        let t607 = f_rear_right_2_x * t588 + f_rear_right_2_y * t351;
+        let t610 = t589 + t595 + t601 + t607;
         let t591 = f_front_left_2_x * t556 + f_front_left_2_y * t355;
+        let t597 = f_front_right_2_x * t556 + f_front_right_2_y * t355;
+        let t603 = f_rear_left_2_x * t556 + f_rear_left_2_y * t355;
+        let t609 = f_rear_right_2_x * t556 + f_rear_right_2_y * t355;
+        let t590 = -(f_front_left_2_x * t359) - f_front_left_2_y * t352;
         let t592 = mu_front_left_2_x * t588 + mu_front_left_2_y * t351;
         let t593 = tau_front_left_2_x * t588 + tau_front_left_2_y * t351;
         let t594 = t10 * t590 + t21 * t591 + t28 * t592 + t28 * t593;
-        let t595 = f_front_right_2_x * t588 + f_front_right_2_y * t351;
         let t596 = -(f_front_right_2_x * t359) - f_front_right_2_y * t352;
-        let t597 = f_front_right_2_x * t556 + f_front_right_2_y * t355;
         let t598 = mu_front_right_2_x * t588 + mu_front_right_2_y * t351;
         let t599 = tau_front_right_2_x * t588 + tau_front_right_2_y * t351;
         let t600 = t38 * t596 + t49 * t597 + t56 * t598 + t56 * t599;
-        let t601 = f_rear_left_2_x * t588 + f_rear_left_2_y * t351;
         let t602 = -(f_rear_left_2_x * t359) - f_rear_left_2_y * t352;
-        let t603 = f_rear_left_2_x * t556 + f_rear_left_2_y * t355;
         let t604 = mu_rear_left_2_x * t588 + mu_rear_left_2_y * t351;
         let t605 = tau_rear_left_2_x * t588 + tau_rear_left_2_y * t351;
         let t606 = t66 * t602 + t77 * t603 + t84 * t604 + t84 * t605;
-        let t607 = f_rear_right_2_x * t588 + f_rear_right_2_y * t351;
         let t608 = -(f_rear_right_2_x * t359) - f_rear_right_2_y * t352;
-        let t609 = f_rear_right_2_x * t556 + f_rear_right_2_y * t355;
-        let t610 = t589 + t595 + t601 + t607;
         let t611 = mu_rear_right_2_x * t588 + mu_rear_right_2_y * t351;
         let t612 = tau_rear_right_2_x * t588 + tau_rear_right_2_y * t351;
         let t613 = t94 * t608 + t105 * t609 + t112 * t611 + t112 * t612;
@@ -2032,62 +1711,416 @@ impl Lrv {
         let t620 = t464 * t616 - t466 * t619 - t468 * t618;
         let t621 = t450 * t615 - t452 * t620 - t454 * t619 - t456 * t618;
         let t622 = t435 * t614 - t437 * t621 - t439 * t620 - t441 * t619 - t443 * t618;
-        let t623 = t3 + (t3 + t5);
-        let t624 = t6 + front_left * 0.06298264734655155 + 2.0 * t623;
-        let t625 = t7 + (t7 + front_left * t623);
+        let omega_y = w[4];
+        let t650 = omega_x * t115;
+        let yd_front_left = w[6];
+        let t16 = front_left * 0.007138729442171134;
         let t626 = t14 + (t14 + t16);
-        let t627 = t17 + front_left * 0.021416188326513402 + 2.0 * t626;
         let t628 = t18 + (t18 + front_left * t626);
-        let t629 = t27
-            + (t27 + front_left * (t25 + (t25 + front_left * 0.07964887253974239)));
-        let t630 = 10.0 * t625;
         let t631 = 10.0 * t628;
+        let t651 = t650 + yd_front_left * t631;
+        let t648 = omega_x * t116;
+        let t5 = front_left * 0.020994215782183853;
+        let t623 = t3 + (t3 + t5);
+        let t625 = t7 + (t7 + front_left * t623);
+        let t630 = 10.0 * t625;
+        let t649 = yd_front_left * t630 - t648;
+        let t664 = yd_front_left * t625;
+        let t665 = yd_front_left * t628;
+        let t668 = omega_z * t664 - omega_y * t665;
+        let t671 = 10.0 * t668 - (omega_y * t651 - omega_z * t649);
+        let t171 = vx * 700.0;
+        let t172 = omega_y * t150;
+        let t173 = omega_z * t152;
+        let t174 = t171 + t172 + t173;
+        let t178 = vz * 700.0;
+        let t179 = omega_x * t155;
+        let yd_front_right = w[7];
+        let yd_rear_left = w[8];
+        let yd_rear_right = w[9];
+        let t180 = t178 + t179 + yd_front_left * t116 + yd_front_right * t128
+            + yd_rear_left * t140 + yd_rear_right * t156;
+        let t181 = omega_y * t160;
+        let t182 = omega_z * t161;
+        let t183 = vy * t153 + vz * t155 + omega_x * t159 + t181 + t182
+            + yd_front_left * t121 + yd_front_right * t133 + yd_rear_left * t145
+            + yd_rear_right * t164;
+        let t187 = omega_x * t161;
+        let t188 = omega_y * t166;
+        let t189 = vx * t152 + t187 + t188 + omega_z * t168 + yd_front_left * t123
+            + yd_front_right * t135 - yd_rear_left * t147 - yd_rear_right * t169;
+        let t192 = vx + (omega_y * t22 - omega_z * t11);
+        let t194 = yd_front_left * t21;
+        let t193 = yd_front_left * t10;
+        let t201 = omega_z * t193 - omega_y * t194;
+        let t17 = t16 + 2.0 * t14;
+        let t20 = front_left * t17 + 2.0 * t18;
+        let t197 = yd_front_left * yd_front_left;
+        let t203 = t20 * t197 + omega_x * t193;
+        let t216 = vx + (omega_y * t50 - omega_z * t39);
+        let t218 = yd_front_right * t49;
+        let t217 = yd_front_right * t38;
+        let t221 = omega_z * t217 - omega_y * t218;
+        let t44 = front_right * 0.00713872944214655;
+        let t45 = t44 + 2.0 * t42;
+        let t48 = front_right * t45 + 2.0 * t46;
+        let t198 = yd_front_right * yd_front_right;
+        let t223 = t48 * t198 + omega_x * t217;
+        let t236 = vx + (omega_y * t78 - omega_z * t67);
+        let t238 = yd_rear_left * t77;
+        let t237 = yd_rear_left * t66;
+        let t241 = omega_z * t237 - omega_y * t238;
+        let t72 = rear_left * 0.007138729442171134;
+        let t73 = t72 + 2.0 * t70;
+        let t76 = rear_left * t73 + 2.0 * t74;
+        let t199 = yd_rear_left * yd_rear_left;
+        let t243 = t76 * t199 + omega_x * t237;
+        let t256 = vx + (omega_y * t106 - omega_z * t95);
+        let t258 = yd_rear_right * t105;
+        let t257 = yd_rear_right * t94;
+        let t261 = omega_z * t257 - omega_y * t258;
+        let t100 = rear_right * 0.00713872944214655;
+        let t101 = t100 + 2.0 * t98;
+        let t104 = rear_right * t101 + 2.0 * t102;
+        let t200 = yd_rear_right * yd_rear_right;
+        let t263 = t104 * t200 + omega_x * t257;
+        let t284 = 1.143 * t282;
+        let t362 = t360 - t361;
+        let t366 = f_front_left_2_x * t355 + f_front_left_2_y * t362 + t365;
+        let t376 = f_front_right_2_x * t355 + f_front_right_2_y * t362 + t375;
+        let t386 = f_rear_left_2_x * t355 + f_rear_left_2_y * t362 + t385;
+        let t396 = f_rear_right_2_x * t355 + f_rear_right_2_y * t362 + t395;
+        let t207 = omega_z * t10;
+        let t208 = omega_y * t21;
+        let t209 = t207 - t208;
+        let t190 = omega_z * 1.143;
+        let t195 = vy + (t190 - omega_x * t22) + t193;
+        let t210 = omega_x * t21;
+        let t6 = t5 + 2.0 * t3;
+        let t9 = front_left * t6 + 2.0 * t7;
+        let t212 = yd_front_left * t9;
+        let t214 = t212 - t210;
+        let t191 = omega_y * 1.143;
+        let t196 = vz + (omega_x * t11 - t191) + t194;
+        let t211 = omega_x * t10;
+        let t213 = yd_front_left * t20;
+        let t215 = t211 + t213;
+        let t204 = t9 * t195;
+        let t205 = t20 * t196;
+        let t206 = t204 + t205;
+        let t202 = t9 * t197 - omega_x * t194;
+        let t281 = s_phi * 16.200000000000003;
+        let t295 = -0.3490658503988659 - front_left;
+        let t296 = f64::max(t295, 0.0);
+        let t302 = 10000.0 * t296;
+        let t303 = f64::min(t302, 1.0);
+        let t304 = 617.2846305501084 * t303;
+        let t305 = 70000.0 * t296 - yd_front_left * t304;
+        let t306 = f64::max(t305, 0.0);
+        let t293 = front_left - 0.3490658503988659;
+        let t294 = f64::max(t293, 0.0);
+        let t297 = 10000.0 * t294;
+        let t298 = f64::min(t297, 1.0);
+        let t299 = 617.2846305501084 * t298;
+        let t300 = -(70000.0 * t294) - yd_front_left * t299;
+        let t301 = f64::min(t300, 0.0);
+        let y0_front_left = self.neutral[0];
+        let t364 = f_front_left_2_y * t359 - f_front_left_2_x * t352
+            + f_front_left_2_z * s_phi;
+        let t372 = 10.0
+            * (t195 * t214 - t192 * t209 + t196 * t215
+                - (yd_front_left * t206 + (t10 * t202 + t21 * t203)))
+            + (-(t10 * t281) - t21 * t282)
+            + (t306
+                + (t301
+                    + (-(700.0 * (front_left - y0_front_left)) - yd_front_left * 100.0)))
+            + (t10 * t364 + t21 * t366) + t28 * t368 + t28 * t370;
+        let t227 = omega_z * t38;
+        let t228 = omega_y * t49;
+        let t229 = t227 - t228;
+        let t219 = vy + (t190 - omega_x * t50) + t217;
+        let t230 = omega_x * t49;
+        let t33 = front_right * 0.020994215782191718;
+        let t34 = 2.0 * t31 - t33;
+        let t37 = front_right * t34 + 2.0 * t35;
+        let t232 = yd_front_right * t37;
+        let t234 = t232 - t230;
+        let t220 = vz + (omega_x * t39 - t191) + t218;
+        let t231 = omega_x * t38;
+        let t233 = yd_front_right * t48;
+        let t235 = t231 + t233;
+        let t224 = t37 * t219;
+        let t225 = t48 * t220;
+        let t226 = t224 + t225;
+        let t222 = t37 * t198 - omega_x * t218;
+        let t309 = -0.3490658503988659 - front_right;
+        let t310 = f64::max(t309, 0.0);
+        let t316 = 10000.0 * t310;
+        let t317 = f64::min(t316, 1.0);
+        let t318 = 617.2846305501082 * t317;
+        let t319 = 70000.0 * t310 - yd_front_right * t318;
+        let t320 = f64::max(t319, 0.0);
+        let t307 = front_right - 0.3490658503988659;
+        let t308 = f64::max(t307, 0.0);
+        let t311 = 10000.0 * t308;
+        let t312 = f64::min(t311, 1.0);
+        let t313 = 617.2846305501082 * t312;
+        let t314 = -(70000.0 * t308) - yd_front_right * t313;
+        let t315 = f64::min(t314, 0.0);
+        let y0_front_right = self.neutral[1];
+        let t374 = f_front_right_2_y * t359 - f_front_right_2_x * t352
+            + f_front_right_2_z * s_phi;
+        let t382 = 10.0
+            * (t219 * t234 - t216 * t229 + t220 * t235
+                - (yd_front_right * t226 + (t38 * t222 + t49 * t223)))
+            + (-(t38 * t281) - t49 * t282)
+            + (t320
+                + (t315
+                    + (-(700.0 * (front_right - y0_front_right))
+                        - yd_front_right * 100.0))) + (t38 * t374 + t49 * t376)
+            + t56 * t378 + t56 * t380;
+        let t247 = omega_z * t66;
+        let t248 = omega_y * t77;
+        let t249 = t247 - t248;
+        let t239 = vy + (-t190 - omega_x * t78) + t237;
+        let t250 = omega_x * t77;
+        let t61 = rear_left * 0.020994215782183853;
+        let t62 = t61 + 2.0 * t59;
+        let t65 = rear_left * t62 + 2.0 * t63;
+        let t252 = yd_rear_left * t65;
+        let t254 = t252 - t250;
+        let t240 = vz + (t191 + omega_x * t67) + t238;
+        let t251 = omega_x * t66;
+        let t253 = yd_rear_left * t76;
+        let t255 = t251 + t253;
+        let t244 = t65 * t239;
+        let t245 = t76 * t240;
+        let t246 = t244 + t245;
+        let t242 = t65 * t199 - omega_x * t238;
+        let t323 = -0.3490658503988659 - rear_left;
+        let t324 = f64::max(t323, 0.0);
+        let t330 = 10000.0 * t324;
+        let t331 = f64::min(t330, 1.0);
+        let t332 = 617.2846305501084 * t331;
+        let t333 = 70000.0 * t324 - yd_rear_left * t332;
+        let t334 = f64::max(t333, 0.0);
+        let t321 = rear_left - 0.3490658503988659;
+        let t322 = f64::max(t321, 0.0);
+        let t325 = 10000.0 * t322;
+        let t326 = f64::min(t325, 1.0);
+        let t327 = 617.2846305501084 * t326;
+        let t328 = -(70000.0 * t322) - yd_rear_left * t327;
+        let t329 = f64::min(t328, 0.0);
+        let y0_rear_left = self.neutral[2];
+        let t384 = f_rear_left_2_y * t359 - f_rear_left_2_x * t352
+            + f_rear_left_2_z * s_phi;
+        let t392 = 10.0
+            * (t239 * t254 - t236 * t249 + t240 * t255
+                - (yd_rear_left * t246 + (t66 * t242 + t77 * t243)))
+            + (-(t66 * t281) - t77 * t282)
+            + (t334
+                + (t329
+                    + (-(700.0 * (rear_left - y0_rear_left)) - yd_rear_left * 100.0)))
+            + (t66 * t384 + t77 * t386) + t84 * t388 + t84 * t390;
+        let t267 = omega_z * t94;
+        let t268 = omega_y * t105;
+        let t269 = t267 - t268;
+        let t259 = vy + (-t190 - omega_x * t106) + t257;
+        let t270 = omega_x * t105;
+        let t89 = rear_right * 0.020994215782191718;
+        let t90 = 2.0 * t87 - t89;
+        let t93 = rear_right * t90 + 2.0 * t91;
+        let t272 = yd_rear_right * t93;
+        let t274 = t272 - t270;
+        let t260 = vz + (t191 + omega_x * t95) + t258;
+        let t271 = omega_x * t94;
+        let t273 = yd_rear_right * t104;
+        let t275 = t271 + t273;
+        let t264 = t93 * t259;
+        let t265 = t104 * t260;
+        let t266 = t264 + t265;
+        let t262 = t93 * t200 - omega_x * t258;
+        let t337 = -0.3490658503988659 - rear_right;
+        let t338 = f64::max(t337, 0.0);
+        let t344 = 10000.0 * t338;
+        let t345 = f64::min(t344, 1.0);
+        let t346 = 617.2846305501082 * t345;
+        let t347 = 70000.0 * t338 - yd_rear_right * t346;
+        let t348 = f64::max(t347, 0.0);
+        let t335 = rear_right - 0.3490658503988659;
+        let t336 = f64::max(t335, 0.0);
+        let t339 = 10000.0 * t336;
+        let t340 = f64::min(t339, 1.0);
+        let t341 = 617.2846305501082 * t340;
+        let t342 = -(70000.0 * t336) - yd_rear_right * t341;
+        let t343 = f64::min(t342, 0.0);
+        let y0_rear_right = self.neutral[3];
+        let t394 = f_rear_right_2_y * t359 - f_rear_right_2_x * t352
+            + f_rear_right_2_z * s_phi;
+        let t403 = 10.0
+            * (t259 * t274 - t256 * t269 + t260 * t275
+                - (yd_rear_right * t266 + (t94 * t262 + t105 * t263)))
+            + (-(t94 * t281) - t105 * t282)
+            + (t348
+                + (t343
+                    + (-(700.0 * (rear_right - y0_rear_right)) - yd_rear_right * 100.0)))
+            + (t94 * t394 + t105 * t396) + t112 * t399 + t112 * t401;
+        let t175 = vy * 700.0;
+        let t176 = omega_x * t153;
+        let t177 = t175 + t176 + yd_front_left * t115 + yd_front_right * t127
+            + yd_rear_left * t139 + yd_rear_right * t154;
+        let t398 = t280
+            + (t280
+                + (t280
+                    + (10.0 * t201 - (omega_y * t180 - omega_z * t177) + 10.0 * t221
+                        + 10.0 * t241 + 10.0 * t261 + t278 + t280))) + t363 + t373 + t383
+            + t393;
+        let t492 = -(omega_z * t174 - omega_x * t180) - 10.0 * t202 - 10.0 * t222
+            - 10.0 * t242 - 10.0 * t262 - s_phi * 1069.2 - t281 - t281 - t281 - t281
+            + t364 + t374 + t384 + t394 - t372 * t405 - t382 * t411 - t392 * t417
+            - t403 * t423;
+        let t493 = -(omega_x * t177 - omega_y * t174) - 10.0 * t203 - 10.0 * t223
+            - 10.0 * t243 - 10.0 * t263 - t279 - t282 - t282 - t282 - t282 + t366 + t376
+            + t386 + t396 - t372 * t406 - t382 * t412 - t392 * t418 - t403 * t424
+            - t437 * t492;
+        let t184 = omega_x * t160;
+        let t185 = omega_z * t166;
+        let t186 = vx * t150 + t184 + omega_y * t165 + t185 - yd_front_left * t122
+            - yd_front_right * t134 + yd_rear_left * t146 + yd_rear_right * t167;
+        let t494 = -(vy * t180 - vz * t177 + (omega_y * t189 - omega_z * t186))
+            - 10.0 * (t193 * t196 - t194 * t195 + (t11 * t203 - t22 * t202))
+            - 10.0 * (t217 * t220 - t218 * t219 + (t39 * t223 - t50 * t222))
+            - 10.0 * (t237 * t240 - t238 * t239 + (t67 * t243 - t78 * t242))
+            - 10.0 * (t257 * t260 - t258 * t259 + (t95 * t263 - t106 * t262))
+            + (t22 * t281 - t283) + (t50 * t281 - t287) + (t78 * t281 - t289)
+            + (t106 * t281 - t291) + (t11 * t366 - t22 * t364) + t368 + t370
+            + (t39 * t376 - t50 * t374) + t378 + t380 + (t67 * t386 - t78 * t384) + t388
+            + t390 + (t95 * t396 - t106 * t394) + t399 + t401 - t372 * t407 - t382 * t413
+            - t392 * t419 - t403 * t425 - t439 * t492 - t452 * t493;
+        let t495 = -(vz * t174 - vx * t180 + (omega_z * t183 - omega_x * t189))
+            - 10.0 * (t192 * t194 + (-(t22 * t201) - 1.143 * t203))
+            - 10.0 * (t216 * t218 + (-(t50 * t221) - 1.143 * t223))
+            - 10.0 * (t236 * t238 + (1.143 * t243 - t78 * t241))
+            - 10.0 * (t256 * t258 + (1.143 * t263 - t106 * t261)) + (t22 * t280 + t284)
+            + (t284 + t50 * t280) + (t78 * t280 - t284) + (t106 * t280 - t284)
+            + (t22 * t363 - 1.143 * t366)
+            + (mu_front_left_2_y * t359 - mu_front_left_2_x * t352
+                + mu_front_left_2_z * s_phi)
+            + (tau_front_left_2_y * t359 - tau_front_left_2_x * t352
+                + tau_front_left_2_z * s_phi) + (t50 * t373 - 1.143 * t376)
+            + (mu_front_right_2_y * t359 - mu_front_right_2_x * t352
+                + mu_front_right_2_z * s_phi)
+            + (tau_front_right_2_y * t359 - tau_front_right_2_x * t352
+                + tau_front_right_2_z * s_phi) + (t78 * t383 + 1.143 * t386)
+            + (mu_rear_left_2_y * t359 - mu_rear_left_2_x * t352
+                + mu_rear_left_2_z * s_phi)
+            + (tau_rear_left_2_y * t359 - tau_rear_left_2_x * t352
+                + tau_rear_left_2_z * s_phi) + (t106 * t393 + 1.143 * t396)
+            + (mu_rear_right_2_y * t359 - mu_rear_right_2_x * t352
+                + mu_rear_right_2_z * s_phi)
+            + (tau_rear_right_2_y * t359 - tau_rear_right_2_x * t352
+                + tau_rear_right_2_z * s_phi) + t372 * t408 + t382 * t414 - t392 * t420
+            - t403 * t426 - t398 * t428 - t441 * t492 - t454 * t493 - t466 * t494;
+        let t285 = 1.143 * t281;
+        let t496 = -(vx * t177 - vy * t174 + (omega_x * t186 - omega_y * t183))
+            - 10.0 * (1.143 * t202 + t11 * t201 - t192 * t193)
+            - 10.0 * (1.143 * t222 + t39 * t221 - t216 * t217)
+            - 10.0 * (t67 * t241 - 1.143 * t242 - t236 * t237)
+            - 10.0 * (t95 * t261 - 1.143 * t262 - t256 * t257) + (-t285 - t286)
+            + (-t285 - t288) + (t285 - t290) + (t285 - t292) + (1.143 * t364 - t367)
+            + (mu_front_left_2_x * t355 + mu_front_left_2_y * t362 + t369)
+            + (tau_front_left_2_x * t355 + tau_front_left_2_y * t362 + t371)
+            + (1.143 * t374 - t377)
+            + (mu_front_right_2_x * t355 + mu_front_right_2_y * t362 + t379)
+            + (tau_front_right_2_x * t355 + tau_front_right_2_y * t362 + t381)
+            + (-(1.143 * t384) - t387)
+            + (mu_rear_left_2_x * t355 + mu_rear_left_2_y * t362 + t389)
+            + (tau_rear_left_2_x * t355 + tau_rear_left_2_y * t362 + t391)
+            + (-(1.143 * t394) - t397)
+            + (mu_rear_right_2_x * t355 + mu_rear_right_2_y * t362 + t400)
+            + (tau_rear_right_2_x * t355 + tau_rear_right_2_y * t362 + t402)
+            - t372 * t409 - t382 * t415 + t392 * t421 + t403 * t427 - t398 * t429
+            - t443 * t492 - t456 * t493 - t468 * t494 - t480 * t495;
+        let t497 = t491 * t496;
+        let t498 = t478 * t495 - t480 * t497;
+        let t685 = t116 * 0.0014285714285714286;
         let t632 = t21 * t22;
         let t633 = t632 + t632;
+        let t639 = 10.0 * t633;
+        let t641 = 10.0 * (1.143 * t628);
+        let t644 = t10 * t625;
+        let t645 = t21 * t628;
+        let t646 = 10.0 * (t644 + t644 + (t645 + t645));
+        let t679 = t404 * t646 / t124;
+        let t683 = t404 * t641 - t122 * t679;
+        let t708 = t408 * t646 + t124 * t683;
+        let t709 = 700.0 * t685;
+        let t680 = t404 * t630 - t115 * t679;
+        let t687 = t405 * t646 + t124 * t680;
+        let t688 = t430 * t680 + t405 * t687;
+        let t689 = t435 * t688 / t434;
+        let t692 = t440 * t689 + t435 * (t430 * t683 + t408 * t687);
+        let t710 = t434 * t692 - t441 * t688;
+        let t681 = t404 * t631 - t116 * t679;
+        let t694 = t406 * t646 + t124 * t681;
+        let t690 = t436 * t689 - t435 * (t430 * t681 + t406 * t687);
+        let t695 = t434 * t690 - t437 * t688;
+        let t696 = -(t444 * t681 + t406 * t694) - (t448 * t690 + t437 * t695);
+        let t697 = t450 * t696 / t449;
+        let t699 = t450 * (t444 * t683 + t408 * t694 - (t448 * t692 + t441 * t695))
+            - t453 * t697;
+        let t711 = t454 * t696 + t449 * t699;
         let t634 = t10 * t11;
         let t635 = t634 + t634;
         let t636 = 10.0 * (t633 + t635);
         let t637 = t10 * t21;
         let t638 = 10.0 * (t637 + t11 * t628 - (t22 * t625 + t637));
-        let t639 = 10.0 * t633;
-        let t640 = 10.0 * (t119 + t120);
-        let t641 = 10.0 * (1.143 * t628);
-        let t642 = 10.0 * t635;
-        let t643 = 10.0 * (1.143 * t625);
-        let t644 = t10 * t625;
-        let t645 = t21 * t628;
-        let t646 = 10.0 * (t644 + t644 + (t645 + t645));
+        let t682 = t404 * t638 - t121 * t679;
+        let t701 = t407 * t646 + t124 * t682;
+        let t691 = t438 * t689 + t435 * (-t116 - (t430 * t682 + t407 * t687));
+        let t702 = t434 * t691 - t439 * t688;
+        let t698 = t450
+            * (t115 - (t444 * t682 + t407 * t694) - (t448 * t691 + t439 * t695))
+            - t451 * t697;
+        let t703 = t452 * t696 + t449 * t698;
+        let t704 = t636 - (t457 * t682 + t407 * t701) - (t461 * t691 + t439 * t702)
+            - (t462 * t698 + t452 * t703);
+        let t705 = t464 * t704 / t463;
+        let t706 = t464
+            * (t457 * t683 + t408 * t701 - t123 - (t461 * t692 + t441 * t702)
+                - (t462 * t699 + t454 * t703)) - t465 * t705;
+        let t712 = t466 * t704 + t463 * t706;
+        let t713 = t639 - (t469 * t683 + t408 * t708) - (t473 * t685 + t428 * t709)
+            - (t474 * t692 + t441 * t710) - (t475 * t699 + t454 * t711)
+            - (t476 * t706 + t466 * t712);
+        let t714 = t478 * t713 / t477;
         let t647 = omega_y * t116 - omega_z * t115;
-        let t648 = omega_x * t116;
-        let t649 = yd_front_left * t630 - t648;
-        let t650 = omega_x * t115;
-        let t651 = t650 + yd_front_left * t631;
         let t652 = vy * t116;
         let t653 = vz * t115;
         let t654 = omega_y * t123;
         let t655 = omega_z * t122;
         let t656 = t653 - t652 + omega_x * t636 - t654 - t655 + yd_front_left * t638;
-        let t657 = vx * t116;
-        let t658 = omega_x * t123;
-        let t659 = t657 - t658 + omega_y * t639 - omega_z * t640 - yd_front_left * t641;
         let t660 = vx * t115;
         let t661 = omega_x * t122;
+        let t640 = 10.0 * (t119 + t120);
+        let t642 = 10.0 * t635;
+        let t643 = 10.0 * (1.143 * t625);
         let t662 = -t660 - t661 - omega_y * t640 + omega_z * t642 + yd_front_left * t643;
         let t663 = t208 - t207;
-        let t664 = yd_front_left * t625;
-        let t665 = yd_front_left * t628;
-        let t666 = t664 - t210;
-        let t667 = t211 + t665;
-        let t668 = omega_z * t664 - omega_y * t665;
-        let t669 = t197 * t624 - omega_x * t665;
+        let t627 = t17 + front_left * 0.021416188326513402 + 2.0 * t626;
         let t670 = t197 * t627 + omega_x * t664;
-        let t671 = 10.0 * t668 - (omega_y * t651 - omega_z * t649);
-        let t672 = if t293 >= 0.0 { 1.0 } else { 0.0 };
+        let t666 = t664 - t210;
+        let t624 = t6 + front_left * 0.06298264734655155 + 2.0 * t623;
+        let t667 = t211 + t665;
+        let t669 = t197 * t624 - omega_x * t665;
         let t673 = if t295 >= 0.0 { 1.0 } else { 0.0 };
-        let t674 = if 1.0 >= t297 { 1.0 } else { 0.0 };
-        let t675 = if 0.0 >= t300 { 1.0 } else { 0.0 };
         let t676 = if 1.0 >= t302 { 1.0 } else { 0.0 };
         let t677 = if t305 >= 0.0 { 1.0 } else { 0.0 };
+        let t672 = if t293 >= 0.0 { 1.0 } else { 0.0 };
+        let t674 = if 1.0 >= t297 { 1.0 } else { 0.0 };
+        let t675 = if 0.0 >= t300 { 1.0 } else { 0.0 };
+        let t629 = t27
+            + (t27 + front_left * (t25 + (t25 + front_left * 0.07964887253974239)));
         let t678 = 10.0
             * (t214 * t666 + t195 * (yd_front_left * t624 - omega_x * t628)
                 - (t209 * t663 + t192 * (omega_z * t625 - omega_y * t628))
@@ -2101,61 +2134,13 @@ impl Lrv {
                     - yd_front_left * (617.2846305501084 * (10000.0 * t672 * t674)))
                     * t675 - 700.0)) + (t364 * t625 + t366 * t628) + t368 * t629
             + t370 * t629;
-        let t679 = t404 * t646 / t124;
-        let t680 = t404 * t630 - t115 * t679;
-        let t681 = t404 * t631 - t116 * t679;
-        let t682 = t404 * t638 - t121 * t679;
-        let t683 = t404 * t641 - t122 * t679;
-        let t684 = t404 * t643 - t123 * t679;
-        let t685 = t116 * 0.0014285714285714286;
-        let t686 = t115 * 0.0014285714285714286;
-        let t687 = t405 * t646 + t124 * t680;
-        let t688 = t430 * t680 + t405 * t687;
-        let t689 = t435 * t688 / t434;
-        let t690 = t436 * t689 - t435 * (t430 * t681 + t406 * t687);
-        let t691 = t438 * t689 + t435 * (-t116 - (t430 * t682 + t407 * t687));
-        let t692 = t440 * t689 + t435 * (t430 * t683 + t408 * t687);
-        let t693 = t442 * t689 - t435 * (t430 * t684 + t409 * t687);
-        let t694 = t406 * t646 + t124 * t681;
-        let t695 = t434 * t690 - t437 * t688;
-        let t696 = -(t444 * t681 + t406 * t694) - (t448 * t690 + t437 * t695);
-        let t697 = t450 * t696 / t449;
-        let t698 = t450
-            * (t115 - (t444 * t682 + t407 * t694) - (t448 * t691 + t439 * t695))
-            - t451 * t697;
-        let t699 = t450 * (t444 * t683 + t408 * t694 - (t448 * t692 + t441 * t695))
-            - t453 * t697;
-        let t700 = t450 * (-(t444 * t684 + t409 * t694) - (t448 * t693 + t443 * t695))
-            - t455 * t697;
-        let t701 = t407 * t646 + t124 * t682;
-        let t702 = t434 * t691 - t439 * t688;
-        let t703 = t452 * t696 + t449 * t698;
-        let t704 = t636 - (t457 * t682 + t407 * t701) - (t461 * t691 + t439 * t702)
-            - (t462 * t698 + t452 * t703);
-        let t705 = t464 * t704 / t463;
-        let t706 = t464
-            * (t457 * t683 + t408 * t701 - t123 - (t461 * t692 + t441 * t702)
-                - (t462 * t699 + t454 * t703)) - t465 * t705;
-        let t707 = t464
-            * (-t122 - (t457 * t684 + t409 * t701) - (t461 * t693 + t443 * t702)
-                - (t462 * t700 + t456 * t703)) - t467 * t705;
-        let t708 = t408 * t646 + t124 * t683;
-        let t709 = 700.0 * t685;
-        let t710 = t434 * t692 - t441 * t688;
-        let t711 = t454 * t696 + t449 * t699;
-        let t712 = t466 * t704 + t463 * t706;
-        let t713 = t639 - (t469 * t683 + t408 * t708) - (t473 * t685 + t428 * t709)
-            - (t474 * t692 + t441 * t710) - (t475 * t699 + t454 * t711)
-            - (t476 * t706 + t466 * t712);
-        let t714 = t478 * t713 / t477;
-        let t715 = t478
-            * (t469 * t684 + t409 * t708 - t640 - (t429 * t709 - t473 * t686)
-                - (t474 * t693 + t443 * t710) - (t475 * t700 + t456 * t711)
-                - (t476 * t707 + t468 * t712)) - t479 * t714;
         let t716 = -(omega_z * t647 - omega_x * t651) - 10.0 * t669
             - (t405 * t678 + t372 * t680);
         let t717 = -(omega_x * t649 - omega_y * t647) - 10.0 * t670
             - (t406 * t678 + t372 * t681) - (t492 * t690 + t437 * t716);
+        let t657 = vx * t116;
+        let t658 = omega_x * t123;
+        let t659 = t657 - t658 + omega_y * t639 - omega_z * t640 - yd_front_left * t641;
         let t718 = -(vy * t651 - vz * t649 + (omega_y * t662 - omega_z * t659))
             - 10.0
                 * (t196 * t664 + t193 * t667 - (t195 * t665 + t194 * t666)
@@ -2172,6 +2157,18 @@ impl Lrv {
             + (t408 * t678 + t372 * t683) - (t428 * t671 + t398 * t685)
             - (t492 * t692 + t441 * t716) - (t493 * t699 + t454 * t717)
             - (t494 * t706 + t466 * t718);
+        let t684 = t404 * t643 - t123 * t679;
+        let t686 = t115 * 0.0014285714285714286;
+        let t693 = t442 * t689 - t435 * (t430 * t684 + t409 * t687);
+        let t700 = t450 * (-(t444 * t684 + t409 * t694) - (t448 * t693 + t443 * t695))
+            - t455 * t697;
+        let t707 = t464
+            * (-t122 - (t457 * t684 + t409 * t701) - (t461 * t693 + t443 * t702)
+                - (t462 * t700 + t456 * t703)) - t467 * t705;
+        let t715 = t478
+            * (t469 * t684 + t409 * t708 - t640 - (t429 * t709 - t473 * t686)
+                - (t474 * t693 + t443 * t710) - (t475 * t700 + t456 * t711)
+                - (t476 * t707 + t468 * t712)) - t479 * t714;
         let t720 = t491
             * (-(vx * t649 - vy * t647 + (omega_x * t659 - omega_y * t656))
                 - 10.0
@@ -2189,6 +2186,8 @@ impl Lrv {
                         - (t488 * t707 + t468 * (t468 * t704 + t463 * t707))
                         - (t489 * t715 + t480 * (t480 * t713 + t477 * t715))) / t490);
         let t721 = t478 * t719 - t495 * t714 - (t497 * t715 + t480 * t720);
+        let t499 = t464 * t494 - t466 * t498 - t468 * t497;
+        let t500 = t450 * t493 - t452 * t499 - t454 * t498 - t456 * t497;
         let t722 = t464 * t718 - t494 * t705 - (t498 * t706 + t466 * t721)
             - (t497 * t707 + t468 * t720);
         let t723 = t450 * t717 - t493 * t697 - (t499 * t698 + t452 * t722)
@@ -2196,63 +2195,100 @@ impl Lrv {
         let t724 = t492 * t689 + t435 * t716 - (t500 * t690 + t437 * t723)
             - (t499 * t691 + t439 * t722) - (t498 * t692 + t441 * t721)
             - (t497 * t693 + t443 * t720);
-        let t725 = t31 + (t31 - t33);
-        let t726 = t34 - front_right * 0.06298264734657516 + 2.0 * t725;
-        let t727 = t35 + (t35 + front_right * t725);
+        let t501 = t435 * t492 - t437 * t500 - t439 * t499 - t441 * t498 - t443 * t497;
+        let t752 = omega_x * t127;
         let t728 = t42 + (t42 + t44);
-        let t729 = t45 + front_right * 0.02141618832643965 + 2.0 * t728;
         let t730 = t46 + (t46 + front_right * t728);
-        let t731 = t55
-            + (t55 + front_right * (t53 + (t53 - front_right * 0.07964887253966113)));
-        let t732 = 10.0 * t727;
         let t733 = 10.0 * t730;
+        let t753 = t752 + yd_front_right * t733;
+        let t750 = omega_x * t128;
+        let t725 = t31 + (t31 - t33);
+        let t727 = t35 + (t35 + front_right * t725);
+        let t732 = 10.0 * t727;
+        let t751 = yd_front_right * t732 - t750;
+        let t766 = yd_front_right * t727;
+        let t767 = yd_front_right * t730;
+        let t770 = omega_z * t766 - omega_y * t767;
+        let t773 = 10.0 * t770 - (omega_y * t753 - omega_z * t751);
+        let t787 = t128 * 0.0014285714285714286;
         let t734 = t49 * t50;
         let t735 = t734 + t734;
+        let t741 = 10.0 * t735;
+        let t743 = 10.0 * (1.143 * t730);
+        let t746 = t38 * t727;
+        let t747 = t49 * t730;
+        let t748 = 10.0 * (t746 + t746 + (t747 + t747));
+        let t781 = t410 * t748 / t136;
+        let t785 = t410 * t743 - t134 * t781;
+        let t810 = t414 * t748 + t136 * t785;
+        let t811 = 700.0 * t787;
+        let t782 = t410 * t732 - t127 * t781;
+        let t789 = t411 * t748 + t136 * t782;
+        let t790 = t431 * t782 + t411 * t789;
+        let t791 = t435 * t790 / t434;
+        let t794 = t440 * t791 + t435 * (t431 * t785 + t414 * t789);
+        let t812 = t434 * t794 - t441 * t790;
+        let t783 = t410 * t733 - t128 * t781;
+        let t796 = t412 * t748 + t136 * t783;
+        let t792 = t436 * t791 - t435 * (t431 * t783 + t412 * t789);
+        let t797 = t434 * t792 - t437 * t790;
+        let t798 = -(t445 * t783 + t412 * t796) - (t448 * t792 + t437 * t797);
+        let t799 = t450 * t798 / t449;
+        let t801 = t450 * (t445 * t785 + t414 * t796 - (t448 * t794 + t441 * t797))
+            - t453 * t799;
+        let t813 = t454 * t798 + t449 * t801;
         let t736 = t38 * t39;
         let t737 = t736 + t736;
         let t738 = 10.0 * (t735 + t737);
         let t739 = t38 * t49;
         let t740 = 10.0 * (t739 + t39 * t730 - (t50 * t727 + t739));
-        let t741 = 10.0 * t735;
-        let t742 = 10.0 * (t131 + t132);
-        let t743 = 10.0 * (1.143 * t730);
-        let t744 = 10.0 * t737;
-        let t745 = 10.0 * (1.143 * t727);
-        let t746 = t38 * t727;
-        let t747 = t49 * t730;
-        let t748 = 10.0 * (t746 + t746 + (t747 + t747));
+        let t784 = t410 * t740 - t133 * t781;
+        let t803 = t413 * t748 + t136 * t784;
+        let t793 = t438 * t791 + t435 * (-t128 - (t431 * t784 + t413 * t789));
+        let t804 = t434 * t793 - t439 * t790;
+        let t800 = t450
+            * (t127 - (t445 * t784 + t413 * t796) - (t448 * t793 + t439 * t797))
+            - t451 * t799;
+        let t805 = t452 * t798 + t449 * t800;
+        let t806 = t738 - (t458 * t784 + t413 * t803) - (t461 * t793 + t439 * t804)
+            - (t462 * t800 + t452 * t805);
+        let t807 = t464 * t806 / t463;
+        let t808 = t464
+            * (t458 * t785 + t414 * t803 - t135 - (t461 * t794 + t441 * t804)
+                - (t462 * t801 + t454 * t805)) - t465 * t807;
+        let t814 = t466 * t806 + t463 * t808;
+        let t815 = t741 - (t470 * t785 + t414 * t810) - (t473 * t787 + t428 * t811)
+            - (t474 * t794 + t441 * t812) - (t475 * t801 + t454 * t813)
+            - (t476 * t808 + t466 * t814);
+        let t816 = t478 * t815 / t477;
         let t749 = omega_y * t128 - omega_z * t127;
-        let t750 = omega_x * t128;
-        let t751 = yd_front_right * t732 - t750;
-        let t752 = omega_x * t127;
-        let t753 = t752 + yd_front_right * t733;
         let t754 = vy * t128;
         let t755 = vz * t127;
         let t756 = omega_y * t135;
         let t757 = omega_z * t134;
         let t758 = t755 - t754 + omega_x * t738 - t756 - t757 + yd_front_right * t740;
-        let t759 = vx * t128;
-        let t760 = omega_x * t135;
-        let t761 = t759 - t760 + omega_y * t741 - omega_z * t742 - yd_front_right * t743;
         let t762 = vx * t127;
         let t763 = omega_x * t134;
+        let t742 = 10.0 * (t131 + t132);
+        let t744 = 10.0 * t737;
+        let t745 = 10.0 * (1.143 * t727);
         let t764 = -t762 - t763 - omega_y * t742 + omega_z * t744
             + yd_front_right * t745;
         let t765 = t228 - t227;
-        let t766 = yd_front_right * t727;
-        let t767 = yd_front_right * t730;
-        let t768 = t766 - t230;
-        let t769 = t231 + t767;
-        let t770 = omega_z * t766 - omega_y * t767;
-        let t771 = t198 * t726 - omega_x * t767;
+        let t729 = t45 + front_right * 0.02141618832643965 + 2.0 * t728;
         let t772 = t198 * t729 + omega_x * t766;
-        let t773 = 10.0 * t770 - (omega_y * t753 - omega_z * t751);
-        let t774 = if t307 >= 0.0 { 1.0 } else { 0.0 };
+        let t768 = t766 - t230;
+        let t726 = t34 - front_right * 0.06298264734657516 + 2.0 * t725;
+        let t769 = t231 + t767;
+        let t771 = t198 * t726 - omega_x * t767;
         let t775 = if t309 >= 0.0 { 1.0 } else { 0.0 };
-        let t776 = if 1.0 >= t311 { 1.0 } else { 0.0 };
-        let t777 = if 0.0 >= t314 { 1.0 } else { 0.0 };
         let t778 = if 1.0 >= t316 { 1.0 } else { 0.0 };
         let t779 = if t319 >= 0.0 { 1.0 } else { 0.0 };
+        let t774 = if t307 >= 0.0 { 1.0 } else { 0.0 };
+        let t776 = if 1.0 >= t311 { 1.0 } else { 0.0 };
+        let t777 = if 0.0 >= t314 { 1.0 } else { 0.0 };
+        let t731 = t55
+            + (t55 + front_right * (t53 + (t53 - front_right * 0.07964887253966113)));
         let t780 = 10.0
             * (t234 * t768 + t219 * (yd_front_right * t726 - omega_x * t730)
                 - (t229 * t765 + t216 * (omega_z * t727 - omega_y * t730))
@@ -2267,61 +2303,13 @@ impl Lrv {
                     - yd_front_right * (617.2846305501082 * (10000.0 * t774 * t776)))
                     * t777 - 700.0)) + (t374 * t727 + t376 * t730) + t378 * t731
             + t380 * t731;
-        let t781 = t410 * t748 / t136;
-        let t782 = t410 * t732 - t127 * t781;
-        let t783 = t410 * t733 - t128 * t781;
-        let t784 = t410 * t740 - t133 * t781;
-        let t785 = t410 * t743 - t134 * t781;
-        let t786 = t410 * t745 - t135 * t781;
-        let t787 = t128 * 0.0014285714285714286;
-        let t788 = t127 * 0.0014285714285714286;
-        let t789 = t411 * t748 + t136 * t782;
-        let t790 = t431 * t782 + t411 * t789;
-        let t791 = t435 * t790 / t434;
-        let t792 = t436 * t791 - t435 * (t431 * t783 + t412 * t789);
-        let t793 = t438 * t791 + t435 * (-t128 - (t431 * t784 + t413 * t789));
-        let t794 = t440 * t791 + t435 * (t431 * t785 + t414 * t789);
-        let t795 = t442 * t791 - t435 * (t431 * t786 + t415 * t789);
-        let t796 = t412 * t748 + t136 * t783;
-        let t797 = t434 * t792 - t437 * t790;
-        let t798 = -(t445 * t783 + t412 * t796) - (t448 * t792 + t437 * t797);
-        let t799 = t450 * t798 / t449;
-        let t800 = t450
-            * (t127 - (t445 * t784 + t413 * t796) - (t448 * t793 + t439 * t797))
-            - t451 * t799;
-        let t801 = t450 * (t445 * t785 + t414 * t796 - (t448 * t794 + t441 * t797))
-            - t453 * t799;
-        let t802 = t450 * (-(t445 * t786 + t415 * t796) - (t448 * t795 + t443 * t797))
-            - t455 * t799;
-        let t803 = t413 * t748 + t136 * t784;
-        let t804 = t434 * t793 - t439 * t790;
-        let t805 = t452 * t798 + t449 * t800;
-        let t806 = t738 - (t458 * t784 + t413 * t803) - (t461 * t793 + t439 * t804)
-            - (t462 * t800 + t452 * t805);
-        let t807 = t464 * t806 / t463;
-        let t808 = t464
-            * (t458 * t785 + t414 * t803 - t135 - (t461 * t794 + t441 * t804)
-                - (t462 * t801 + t454 * t805)) - t465 * t807;
-        let t809 = t464
-            * (-t134 - (t458 * t786 + t415 * t803) - (t461 * t795 + t443 * t804)
-                - (t462 * t802 + t456 * t805)) - t467 * t807;
-        let t810 = t414 * t748 + t136 * t785;
-        let t811 = 700.0 * t787;
-        let t812 = t434 * t794 - t441 * t790;
-        let t813 = t454 * t798 + t449 * t801;
-        let t814 = t466 * t806 + t463 * t808;
-        let t815 = t741 - (t470 * t785 + t414 * t810) - (t473 * t787 + t428 * t811)
-            - (t474 * t794 + t441 * t812) - (t475 * t801 + t454 * t813)
-            - (t476 * t808 + t466 * t814);
-        let t816 = t478 * t815 / t477;
-        let t817 = t478
-            * (t470 * t786 + t415 * t810 - t742 - (t429 * t811 - t473 * t788)
-                - (t474 * t795 + t443 * t812) - (t475 * t802 + t456 * t813)
-                - (t476 * t809 + t468 * t814)) - t479 * t816;
         let t818 = -(omega_z * t749 - omega_x * t753) - 10.0 * t771
             - (t411 * t780 + t382 * t782);
         let t819 = -(omega_x * t751 - omega_y * t749) - 10.0 * t772
             - (t412 * t780 + t382 * t783) - (t492 * t792 + t437 * t818);
+        let t759 = vx * t128;
+        let t760 = omega_x * t135;
+        let t761 = t759 - t760 + omega_y * t741 - omega_z * t742 - yd_front_right * t743;
         let t820 = -(vy * t753 - vz * t751 + (omega_y * t764 - omega_z * t761))
             - 10.0
                 * (t220 * t766 + t217 * t769 - (t219 * t767 + t218 * t768)
@@ -2338,6 +2326,18 @@ impl Lrv {
             + (t414 * t780 + t382 * t785) - (t428 * t773 + t398 * t787)
             - (t492 * t794 + t441 * t818) - (t493 * t801 + t454 * t819)
             - (t494 * t808 + t466 * t820);
+        let t786 = t410 * t745 - t135 * t781;
+        let t788 = t127 * 0.0014285714285714286;
+        let t795 = t442 * t791 - t435 * (t431 * t786 + t415 * t789);
+        let t802 = t450 * (-(t445 * t786 + t415 * t796) - (t448 * t795 + t443 * t797))
+            - t455 * t799;
+        let t809 = t464
+            * (-t134 - (t458 * t786 + t415 * t803) - (t461 * t795 + t443 * t804)
+                - (t462 * t802 + t456 * t805)) - t467 * t807;
+        let t817 = t478
+            * (t470 * t786 + t415 * t810 - t742 - (t429 * t811 - t473 * t788)
+                - (t474 * t795 + t443 * t812) - (t475 * t802 + t456 * t813)
+                - (t476 * t809 + t468 * t814)) - t479 * t816;
         let t822 = t491
             * (-(vx * t751 - vy * t749 + (omega_x * t761 - omega_y * t758))
                 - 10.0
@@ -2362,62 +2362,98 @@ impl Lrv {
         let t826 = t492 * t791 + t435 * t818 - (t500 * t792 + t437 * t825)
             - (t499 * t793 + t439 * t824) - (t498 * t794 + t441 * t823)
             - (t497 * t795 + t443 * t822);
-        let t827 = t59 + (t59 + t61);
-        let t828 = t62 + rear_left * 0.06298264734655155 + 2.0 * t827;
-        let t829 = t63 + (t63 + rear_left * t827);
+        let t854 = omega_x * t139;
         let t830 = t70 + (t70 + t72);
-        let t831 = t73 + rear_left * 0.021416188326513402 + 2.0 * t830;
         let t832 = t74 + (t74 + rear_left * t830);
-        let t833 = t83
-            + (t83 + rear_left * (t81 + (t81 + rear_left * 0.07964887253974239)));
-        let t834 = 10.0 * t829;
         let t835 = 10.0 * t832;
+        let t855 = t854 + yd_rear_left * t835;
+        let t852 = omega_x * t140;
+        let t827 = t59 + (t59 + t61);
+        let t829 = t63 + (t63 + rear_left * t827);
+        let t834 = 10.0 * t829;
+        let t853 = yd_rear_left * t834 - t852;
+        let t868 = yd_rear_left * t829;
+        let t869 = yd_rear_left * t832;
+        let t872 = omega_z * t868 - omega_y * t869;
+        let t875 = 10.0 * t872 - (omega_y * t855 - omega_z * t853);
+        let t889 = t140 * 0.0014285714285714286;
         let t836 = t77 * t78;
         let t837 = t836 + t836;
+        let t843 = 10.0 * t837;
+        let t845 = 10.0 * (1.143 * t832);
+        let t848 = t66 * t829;
+        let t849 = t77 * t832;
+        let t850 = 10.0 * (t848 + t848 + (t849 + t849));
+        let t883 = t416 * t850 / t148;
+        let t887 = t416 * t845 - t146 * t883;
+        let t912 = t420 * t850 + t148 * t887;
+        let t913 = 700.0 * t889;
+        let t884 = t416 * t834 - t139 * t883;
+        let t891 = t417 * t850 + t148 * t884;
+        let t892 = t432 * t884 + t417 * t891;
+        let t893 = t435 * t892 / t434;
+        let t896 = t440 * t893 - t435 * (t432 * t887 + t420 * t891);
+        let t914 = t434 * t896 - t441 * t892;
+        let t885 = t416 * t835 - t140 * t883;
+        let t898 = t418 * t850 + t148 * t885;
+        let t894 = t436 * t893 - t435 * (t432 * t885 + t418 * t891);
+        let t899 = t434 * t894 - t437 * t892;
+        let t900 = -(t446 * t885 + t418 * t898) - (t448 * t894 + t437 * t899);
+        let t901 = t450 * t900 / t449;
+        let t903 = t450 * (-(t446 * t887 + t420 * t898) - (t448 * t896 + t441 * t899))
+            - t453 * t901;
+        let t915 = t454 * t900 + t449 * t903;
         let t838 = t66 * t67;
         let t839 = t838 + t838;
         let t840 = 10.0 * (t837 + t839);
         let t841 = t66 * t77;
         let t842 = 10.0 * (t841 + t67 * t832 - (t78 * t829 + t841));
-        let t843 = 10.0 * t837;
-        let t844 = 10.0 * (t143 + t144);
-        let t845 = 10.0 * (1.143 * t832);
-        let t846 = 10.0 * t839;
-        let t847 = 10.0 * (1.143 * t829);
-        let t848 = t66 * t829;
-        let t849 = t77 * t832;
-        let t850 = 10.0 * (t848 + t848 + (t849 + t849));
+        let t886 = t416 * t842 - t145 * t883;
+        let t905 = t419 * t850 + t148 * t886;
+        let t895 = t438 * t893 + t435 * (-t140 - (t432 * t886 + t419 * t891));
+        let t906 = t434 * t895 - t439 * t892;
+        let t902 = t450
+            * (t139 - (t446 * t886 + t419 * t898) - (t448 * t895 + t439 * t899))
+            - t451 * t901;
+        let t907 = t452 * t900 + t449 * t902;
+        let t908 = t840 - (t459 * t886 + t419 * t905) - (t461 * t895 + t439 * t906)
+            - (t462 * t902 + t452 * t907);
+        let t909 = t464 * t908 / t463;
+        let t910 = t464
+            * (t147 - (t459 * t887 + t420 * t905) - (t461 * t896 + t441 * t906)
+                - (t462 * t903 + t454 * t907)) - t465 * t909;
+        let t916 = t466 * t908 + t463 * t910;
+        let t917 = t843 - (t471 * t887 + t420 * t912) - (t473 * t889 + t428 * t913)
+            - (t474 * t896 + t441 * t914) - (t475 * t903 + t454 * t915)
+            - (t476 * t910 + t466 * t916);
+        let t918 = t478 * t917 / t477;
         let t851 = omega_y * t140 - omega_z * t139;
-        let t852 = omega_x * t140;
-        let t853 = yd_rear_left * t834 - t852;
-        let t854 = omega_x * t139;
-        let t855 = t854 + yd_rear_left * t835;
         let t856 = vy * t140;
         let t857 = vz * t139;
         let t858 = omega_y * t147;
         let t859 = omega_z * t146;
         let t860 = t857 - t856 + omega_x * t840 + t858 + t859 + yd_rear_left * t842;
-        let t861 = vx * t140;
-        let t862 = omega_x * t147;
-        let t863 = t861 + t862 + omega_y * t843 - omega_z * t844 + yd_rear_left * t845;
         let t864 = vx * t139;
         let t865 = omega_x * t146;
+        let t844 = 10.0 * (t143 + t144);
+        let t846 = 10.0 * t839;
+        let t847 = 10.0 * (1.143 * t829);
         let t866 = t865 - t864 - omega_y * t844 + omega_z * t846 - yd_rear_left * t847;
         let t867 = t248 - t247;
-        let t868 = yd_rear_left * t829;
-        let t869 = yd_rear_left * t832;
-        let t870 = t868 - t250;
-        let t871 = t251 + t869;
-        let t872 = omega_z * t868 - omega_y * t869;
-        let t873 = t199 * t828 - omega_x * t869;
+        let t831 = t73 + rear_left * 0.021416188326513402 + 2.0 * t830;
         let t874 = t199 * t831 + omega_x * t868;
-        let t875 = 10.0 * t872 - (omega_y * t855 - omega_z * t853);
-        let t876 = if t321 >= 0.0 { 1.0 } else { 0.0 };
+        let t870 = t868 - t250;
+        let t828 = t62 + rear_left * 0.06298264734655155 + 2.0 * t827;
+        let t871 = t251 + t869;
+        let t873 = t199 * t828 - omega_x * t869;
         let t877 = if t323 >= 0.0 { 1.0 } else { 0.0 };
-        let t878 = if 1.0 >= t325 { 1.0 } else { 0.0 };
-        let t879 = if 0.0 >= t328 { 1.0 } else { 0.0 };
         let t880 = if 1.0 >= t330 { 1.0 } else { 0.0 };
         let t881 = if t333 >= 0.0 { 1.0 } else { 0.0 };
+        let t876 = if t321 >= 0.0 { 1.0 } else { 0.0 };
+        let t878 = if 1.0 >= t325 { 1.0 } else { 0.0 };
+        let t879 = if 0.0 >= t328 { 1.0 } else { 0.0 };
+        let t833 = t83
+            + (t83 + rear_left * (t81 + (t81 + rear_left * 0.07964887253974239)));
         let t882 = 10.0
             * (t254 * t870 + t239 * (yd_rear_left * t828 - omega_x * t832)
                 - (t249 * t867 + t236 * (omega_z * t829 - omega_y * t832))
@@ -2431,61 +2467,13 @@ impl Lrv {
                     - yd_rear_left * (617.2846305501084 * (10000.0 * t876 * t878)))
                     * t879 - 700.0)) + (t384 * t829 + t386 * t832) + t388 * t833
             + t390 * t833;
-        let t883 = t416 * t850 / t148;
-        let t884 = t416 * t834 - t139 * t883;
-        let t885 = t416 * t835 - t140 * t883;
-        let t886 = t416 * t842 - t145 * t883;
-        let t887 = t416 * t845 - t146 * t883;
-        let t888 = t416 * t847 - t147 * t883;
-        let t889 = t140 * 0.0014285714285714286;
-        let t890 = t139 * 0.0014285714285714286;
-        let t891 = t417 * t850 + t148 * t884;
-        let t892 = t432 * t884 + t417 * t891;
-        let t893 = t435 * t892 / t434;
-        let t894 = t436 * t893 - t435 * (t432 * t885 + t418 * t891);
-        let t895 = t438 * t893 + t435 * (-t140 - (t432 * t886 + t419 * t891));
-        let t896 = t440 * t893 - t435 * (t432 * t887 + t420 * t891);
-        let t897 = t442 * t893 + t435 * (t432 * t888 + t421 * t891);
-        let t898 = t418 * t850 + t148 * t885;
-        let t899 = t434 * t894 - t437 * t892;
-        let t900 = -(t446 * t885 + t418 * t898) - (t448 * t894 + t437 * t899);
-        let t901 = t450 * t900 / t449;
-        let t902 = t450
-            * (t139 - (t446 * t886 + t419 * t898) - (t448 * t895 + t439 * t899))
-            - t451 * t901;
-        let t903 = t450 * (-(t446 * t887 + t420 * t898) - (t448 * t896 + t441 * t899))
-            - t453 * t901;
-        let t904 = t450 * (t446 * t888 + t421 * t898 - (t448 * t897 + t443 * t899))
-            - t455 * t901;
-        let t905 = t419 * t850 + t148 * t886;
-        let t906 = t434 * t895 - t439 * t892;
-        let t907 = t452 * t900 + t449 * t902;
-        let t908 = t840 - (t459 * t886 + t419 * t905) - (t461 * t895 + t439 * t906)
-            - (t462 * t902 + t452 * t907);
-        let t909 = t464 * t908 / t463;
-        let t910 = t464
-            * (t147 - (t459 * t887 + t420 * t905) - (t461 * t896 + t441 * t906)
-                - (t462 * t903 + t454 * t907)) - t465 * t909;
-        let t911 = t464
-            * (t146 + (t459 * t888 + t421 * t905) - (t461 * t897 + t443 * t906)
-                - (t462 * t904 + t456 * t907)) - t467 * t909;
-        let t912 = t420 * t850 + t148 * t887;
-        let t913 = 700.0 * t889;
-        let t914 = t434 * t896 - t441 * t892;
-        let t915 = t454 * t900 + t449 * t903;
-        let t916 = t466 * t908 + t463 * t910;
-        let t917 = t843 - (t471 * t887 + t420 * t912) - (t473 * t889 + t428 * t913)
-            - (t474 * t896 + t441 * t914) - (t475 * t903 + t454 * t915)
-            - (t476 * t910 + t466 * t916);
-        let t918 = t478 * t917 / t477;
-        let t919 = t478
-            * (t471 * t888 + t421 * t912 - t844 - (t429 * t913 - t473 * t890)
-                - (t474 * t897 + t443 * t914) - (t475 * t904 + t456 * t915)
-                - (t476 * t911 + t468 * t916)) - t479 * t918;
         let t920 = -(omega_z * t851 - omega_x * t855) - 10.0 * t873
             - (t417 * t882 + t392 * t884);
         let t921 = -(omega_x * t853 - omega_y * t851) - 10.0 * t874
             - (t418 * t882 + t392 * t885) - (t492 * t894 + t437 * t920);
+        let t861 = vx * t140;
+        let t862 = omega_x * t147;
+        let t863 = t861 + t862 + omega_y * t843 - omega_z * t844 + yd_rear_left * t845;
         let t922 = -(vy * t855 - vz * t853 + (omega_y * t866 - omega_z * t863))
             - 10.0
                 * (t240 * t868 + t237 * t871 - (t239 * t869 + t238 * t870)
@@ -2502,6 +2490,18 @@ impl Lrv {
             - (t420 * t882 + t392 * t887) - (t428 * t875 + t398 * t889)
             - (t492 * t896 + t441 * t920) - (t493 * t903 + t454 * t921)
             - (t494 * t910 + t466 * t922);
+        let t888 = t416 * t847 - t147 * t883;
+        let t890 = t139 * 0.0014285714285714286;
+        let t897 = t442 * t893 + t435 * (t432 * t888 + t421 * t891);
+        let t904 = t450 * (t446 * t888 + t421 * t898 - (t448 * t897 + t443 * t899))
+            - t455 * t901;
+        let t911 = t464
+            * (t146 + (t459 * t888 + t421 * t905) - (t461 * t897 + t443 * t906)
+                - (t462 * t904 + t456 * t907)) - t467 * t909;
+        let t919 = t478
+            * (t471 * t888 + t421 * t912 - t844 - (t429 * t913 - t473 * t890)
+                - (t474 * t897 + t443 * t914) - (t475 * t904 + t456 * t915)
+                - (t476 * t911 + t468 * t916)) - t479 * t918;
         let t924 = t491
             * (-(vx * t853 - vy * t851 + (omega_x * t863 - omega_y * t860))
                 - 10.0
@@ -2526,62 +2526,98 @@ impl Lrv {
         let t928 = t492 * t893 + t435 * t920 - (t500 * t894 + t437 * t927)
             - (t499 * t895 + t439 * t926) - (t498 * t896 + t441 * t925)
             - (t497 * t897 + t443 * t924);
-        let t929 = t87 + (t87 - t89);
-        let t930 = t90 - rear_right * 0.06298264734657516 + 2.0 * t929;
-        let t931 = t91 + (t91 + rear_right * t929);
+        let t956 = omega_x * t154;
         let t932 = t98 + (t98 + t100);
-        let t933 = t101 + rear_right * 0.02141618832643965 + 2.0 * t932;
         let t934 = t102 + (t102 + rear_right * t932);
-        let t935 = t111
-            + (t111 + rear_right * (t109 + (t109 - rear_right * 0.07964887253966113)));
-        let t936 = 10.0 * t931;
         let t937 = 10.0 * t934;
+        let t957 = t956 + yd_rear_right * t937;
+        let t954 = omega_x * t156;
+        let t929 = t87 + (t87 - t89);
+        let t931 = t91 + (t91 + rear_right * t929);
+        let t936 = 10.0 * t931;
+        let t955 = yd_rear_right * t936 - t954;
+        let t970 = yd_rear_right * t931;
+        let t971 = yd_rear_right * t934;
+        let t974 = omega_z * t970 - omega_y * t971;
+        let t977 = 10.0 * t974 - (omega_y * t957 - omega_z * t955);
+        let t991 = t156 * 0.0014285714285714286;
         let t938 = t105 * t106;
         let t939 = t938 + t938;
+        let t945 = 10.0 * t939;
+        let t947 = 10.0 * (1.143 * t934);
+        let t950 = t94 * t931;
+        let t951 = t105 * t934;
+        let t952 = 10.0 * (t950 + t950 + (t951 + t951));
+        let t985 = t422 * t952 / t170;
+        let t989 = t422 * t947 - t167 * t985;
+        let t1014 = t426 * t952 + t170 * t989;
+        let t1015 = 700.0 * t991;
+        let t986 = t422 * t936 - t154 * t985;
+        let t993 = t423 * t952 + t170 * t986;
+        let t994 = t433 * t986 + t423 * t993;
+        let t995 = t435 * t994 / t434;
+        let t998 = t440 * t995 - t435 * (t433 * t989 + t426 * t993);
+        let t1016 = t434 * t998 - t441 * t994;
+        let t987 = t422 * t937 - t156 * t985;
+        let t1000 = t424 * t952 + t170 * t987;
+        let t996 = t436 * t995 - t435 * (t433 * t987 + t424 * t993);
+        let t1001 = t434 * t996 - t437 * t994;
+        let t1002 = -(t447 * t987 + t424 * t1000) - (t448 * t996 + t437 * t1001);
+        let t1003 = t450 * t1002 / t449;
+        let t1005 = t450 * (-(t447 * t989 + t426 * t1000) - (t448 * t998 + t441 * t1001))
+            - t453 * t1003;
+        let t1017 = t454 * t1002 + t449 * t1005;
         let t940 = t94 * t95;
         let t941 = t940 + t940;
         let t942 = 10.0 * (t939 + t941);
         let t943 = t94 * t105;
         let t944 = 10.0 * (t943 + t95 * t934 - (t106 * t931 + t943));
-        let t945 = 10.0 * t939;
-        let t946 = 10.0 * (t162 + t163);
-        let t947 = 10.0 * (1.143 * t934);
-        let t948 = 10.0 * t941;
-        let t949 = 10.0 * (1.143 * t931);
-        let t950 = t94 * t931;
-        let t951 = t105 * t934;
-        let t952 = 10.0 * (t950 + t950 + (t951 + t951));
+        let t988 = t422 * t944 - t164 * t985;
+        let t1007 = t425 * t952 + t170 * t988;
+        let t997 = t438 * t995 + t435 * (-t156 - (t433 * t988 + t425 * t993));
+        let t1008 = t434 * t997 - t439 * t994;
+        let t1004 = t450
+            * (t154 - (t447 * t988 + t425 * t1000) - (t448 * t997 + t439 * t1001))
+            - t451 * t1003;
+        let t1009 = t452 * t1002 + t449 * t1004;
+        let t1010 = t942 - (t460 * t988 + t425 * t1007) - (t461 * t997 + t439 * t1008)
+            - (t462 * t1004 + t452 * t1009);
+        let t1011 = t464 * t1010 / t463;
+        let t1012 = t464
+            * (t169 - (t460 * t989 + t426 * t1007) - (t461 * t998 + t441 * t1008)
+                - (t462 * t1005 + t454 * t1009)) - t465 * t1011;
+        let t1018 = t466 * t1010 + t463 * t1012;
+        let t1019 = t945 - (t472 * t989 + t426 * t1014) - (t473 * t991 + t428 * t1015)
+            - (t474 * t998 + t441 * t1016) - (t475 * t1005 + t454 * t1017)
+            - (t476 * t1012 + t466 * t1018);
+        let t1020 = t478 * t1019 / t477;
         let t953 = omega_y * t156 - omega_z * t154;
-        let t954 = omega_x * t156;
-        let t955 = yd_rear_right * t936 - t954;
-        let t956 = omega_x * t154;
-        let t957 = t956 + yd_rear_right * t937;
         let t958 = vy * t156;
         let t959 = vz * t154;
         let t960 = omega_y * t169;
         let t961 = omega_z * t167;
         let t962 = t959 - t958 + omega_x * t942 + t960 + t961 + yd_rear_right * t944;
-        let t963 = vx * t156;
-        let t964 = omega_x * t169;
-        let t965 = t963 + t964 + omega_y * t945 - omega_z * t946 + yd_rear_right * t947;
         let t966 = vx * t154;
         let t967 = omega_x * t167;
+        let t946 = 10.0 * (t162 + t163);
+        let t948 = 10.0 * t941;
+        let t949 = 10.0 * (1.143 * t931);
         let t968 = t967 - t966 - omega_y * t946 + omega_z * t948 - yd_rear_right * t949;
         let t969 = t268 - t267;
-        let t970 = yd_rear_right * t931;
-        let t971 = yd_rear_right * t934;
-        let t972 = t970 - t270;
-        let t973 = t271 + t971;
-        let t974 = omega_z * t970 - omega_y * t971;
-        let t975 = t200 * t930 - omega_x * t971;
+        let t933 = t101 + rear_right * 0.02141618832643965 + 2.0 * t932;
         let t976 = t200 * t933 + omega_x * t970;
-        let t977 = 10.0 * t974 - (omega_y * t957 - omega_z * t955);
-        let t978 = if t335 >= 0.0 { 1.0 } else { 0.0 };
+        let t972 = t970 - t270;
+        let t930 = t90 - rear_right * 0.06298264734657516 + 2.0 * t929;
+        let t973 = t271 + t971;
+        let t975 = t200 * t930 - omega_x * t971;
         let t979 = if t337 >= 0.0 { 1.0 } else { 0.0 };
-        let t980 = if 1.0 >= t339 { 1.0 } else { 0.0 };
-        let t981 = if 0.0 >= t342 { 1.0 } else { 0.0 };
         let t982 = if 1.0 >= t344 { 1.0 } else { 0.0 };
         let t983 = if t347 >= 0.0 { 1.0 } else { 0.0 };
+        let t978 = if t335 >= 0.0 { 1.0 } else { 0.0 };
+        let t980 = if 1.0 >= t339 { 1.0 } else { 0.0 };
+        let t981 = if 0.0 >= t342 { 1.0 } else { 0.0 };
+        let t935 = t111
+            + (t111 + rear_right * (t109 + (t109 - rear_right * 0.07964887253966113)));
         let t984 = 10.0
             * (t274 * t972 + t259 * (yd_rear_right * t930 - omega_x * t934)
                 - (t269 * t969 + t256 * (omega_z * t931 - omega_y * t934))
@@ -2596,61 +2632,13 @@ impl Lrv {
                     - yd_rear_right * (617.2846305501082 * (10000.0 * t978 * t980)))
                     * t981 - 700.0)) + (t394 * t931 + t396 * t934) + t399 * t935
             + t401 * t935;
-        let t985 = t422 * t952 / t170;
-        let t986 = t422 * t936 - t154 * t985;
-        let t987 = t422 * t937 - t156 * t985;
-        let t988 = t422 * t944 - t164 * t985;
-        let t989 = t422 * t947 - t167 * t985;
-        let t990 = t422 * t949 - t169 * t985;
-        let t991 = t156 * 0.0014285714285714286;
-        let t992 = t154 * 0.0014285714285714286;
-        let t993 = t423 * t952 + t170 * t986;
-        let t994 = t433 * t986 + t423 * t993;
-        let t995 = t435 * t994 / t434;
-        let t996 = t436 * t995 - t435 * (t433 * t987 + t424 * t993);
-        let t997 = t438 * t995 + t435 * (-t156 - (t433 * t988 + t425 * t993));
-        let t998 = t440 * t995 - t435 * (t433 * t989 + t426 * t993);
-        let t999 = t442 * t995 + t435 * (t433 * t990 + t427 * t993);
-        let t1000 = t424 * t952 + t170 * t987;
-        let t1001 = t434 * t996 - t437 * t994;
-        let t1002 = -(t447 * t987 + t424 * t1000) - (t448 * t996 + t437 * t1001);
-        let t1003 = t450 * t1002 / t449;
-        let t1004 = t450
-            * (t154 - (t447 * t988 + t425 * t1000) - (t448 * t997 + t439 * t1001))
-            - t451 * t1003;
-        let t1005 = t450 * (-(t447 * t989 + t426 * t1000) - (t448 * t998 + t441 * t1001))
-            - t453 * t1003;
-        let t1006 = t450 * (t447 * t990 + t427 * t1000 - (t448 * t999 + t443 * t1001))
-            - t455 * t1003;
-        let t1007 = t425 * t952 + t170 * t988;
-        let t1008 = t434 * t997 - t439 * t994;
-        let t1009 = t452 * t1002 + t449 * t1004;
-        let t1010 = t942 - (t460 * t988 + t425 * t1007) - (t461 * t997 + t439 * t1008)
-            - (t462 * t1004 + t452 * t1009);
-        let t1011 = t464 * t1010 / t463;
-        let t1012 = t464
-            * (t169 - (t460 * t989 + t426 * t1007) - (t461 * t998 + t441 * t1008)
-                - (t462 * t1005 + t454 * t1009)) - t465 * t1011;
-        let t1013 = t464
-            * (t167 + (t460 * t990 + t427 * t1007) - (t461 * t999 + t443 * t1008)
-                - (t462 * t1006 + t456 * t1009)) - t467 * t1011;
-        let t1014 = t426 * t952 + t170 * t989;
-        let t1015 = 700.0 * t991;
-        let t1016 = t434 * t998 - t441 * t994;
-        let t1017 = t454 * t1002 + t449 * t1005;
-        let t1018 = t466 * t1010 + t463 * t1012;
-        let t1019 = t945 - (t472 * t989 + t426 * t1014) - (t473 * t991 + t428 * t1015)
-            - (t474 * t998 + t441 * t1016) - (t475 * t1005 + t454 * t1017)
-            - (t476 * t1012 + t466 * t1018);
-        let t1020 = t478 * t1019 / t477;
-        let t1021 = t478
-            * (t472 * t990 + t427 * t1014 - t946 - (t429 * t1015 - t473 * t992)
-                - (t474 * t999 + t443 * t1016) - (t475 * t1006 + t456 * t1017)
-                - (t476 * t1013 + t468 * t1018)) - t479 * t1020;
         let t1022 = -(omega_z * t953 - omega_x * t957) - 10.0 * t975
             - (t423 * t984 + t403 * t986);
         let t1023 = -(omega_x * t955 - omega_y * t953) - 10.0 * t976
             - (t424 * t984 + t403 * t987) - (t492 * t996 + t437 * t1022);
+        let t963 = vx * t156;
+        let t964 = omega_x * t169;
+        let t965 = t963 + t964 + omega_y * t945 - omega_z * t946 + yd_rear_right * t947;
         let t1024 = -(vy * t957 - vz * t955 + (omega_y * t968 - omega_z * t965))
             - 10.0
                 * (t260 * t970 + t257 * t973 - (t259 * t971 + t258 * t972)
@@ -2667,6 +2655,18 @@ impl Lrv {
             - (t426 * t984 + t403 * t989) - (t428 * t977 + t398 * t991)
             - (t492 * t998 + t441 * t1022) - (t493 * t1005 + t454 * t1023)
             - (t494 * t1012 + t466 * t1024);
+        let t990 = t422 * t949 - t169 * t985;
+        let t992 = t154 * 0.0014285714285714286;
+        let t999 = t442 * t995 + t435 * (t433 * t990 + t427 * t993);
+        let t1006 = t450 * (t447 * t990 + t427 * t1000 - (t448 * t999 + t443 * t1001))
+            - t455 * t1003;
+        let t1013 = t464
+            * (t167 + (t460 * t990 + t427 * t1007) - (t461 * t999 + t443 * t1008)
+                - (t462 * t1006 + t456 * t1009)) - t467 * t1011;
+        let t1021 = t478
+            * (t472 * t990 + t427 * t1014 - t946 - (t429 * t1015 - t473 * t992)
+                - (t474 * t999 + t443 * t1016) - (t475 * t1006 + t456 * t1017)
+                - (t476 * t1013 + t468 * t1018)) - t479 * t1020;
         let t1026 = t491
             * (-(vx * t955 - vy * t953 + (omega_x * t965 - omega_y * t962))
                 - 10.0
@@ -2691,30 +2691,30 @@ impl Lrv {
         let t1030 = t492 * t995 + t435 * t1022 - (t500 * t996 + t437 * t1029)
             - (t499 * t997 + t439 * t1028) - (t498 * t998 + t441 * t1027)
             - (t497 * t999 + t443 * t1026);
-        let t1031 = omega_z * 700.0;
-        let t1032 = omega_y * 700.0;
-        let t1033 = omega_y * t152;
-        let t1034 = omega_z * t150;
         let t1035 = 10.0 * t194;
-        let t1036 = 10.0 * t193;
-        let t1037 = 10.0 * t209;
         let t1038 = 10.0 * t218;
-        let t1039 = 10.0 * t217;
-        let t1040 = 10.0 * t229;
         let t1041 = 10.0 * t238;
-        let t1042 = 10.0 * t237;
-        let t1043 = 10.0 * t249;
         let t1044 = 10.0 * t258;
-        let t1045 = 10.0 * t257;
+        let t1037 = 10.0 * t209;
+        let t1040 = 10.0 * t229;
+        let t1043 = 10.0 * t249;
         let t1046 = 10.0 * t269;
+        let t1031 = omega_z * 700.0;
         let t1047 = t405 * t1037 - t1031 + t411 * t1040 + t417 * t1043 + t423 * t1046;
+        let t1032 = omega_y * 700.0;
         let t1048 = t1032 + t406 * t1037 + t412 * t1040 + t418 * t1043 + t424 * t1046
             - t437 * t1047;
+        let t1033 = omega_y * t152;
+        let t1034 = omega_z * t150;
         let t1049 = t407 * t1037 - (t1033 - t1034) + t413 * t1040 + t419 * t1043
             + t425 * t1046 - t439 * t1047 - t452 * t1048;
         let t1050 = -(t178 - t180 - omega_x * t152) - t1035 - t1038 - t1041 - t1044
             - t408 * t1037 - t414 * t1040 + t420 * t1043 + t426 * t1046 - t441 * t1047
             - t454 * t1048 - t466 * t1049;
+        let t1036 = 10.0 * t193;
+        let t1039 = 10.0 * t217;
+        let t1042 = 10.0 * t237;
+        let t1045 = 10.0 * t257;
         let t1051 = t491
             * (t1036 - (t177 - t175 + omega_x * t150) + t1039 + t1042 + t1045
                 + t409 * t1037 + t415 * t1040 - t421 * t1043 - t427 * t1046
@@ -2724,13 +2724,13 @@ impl Lrv {
         let t1054 = t450 * t1048 - t452 * t1053 - t454 * t1052 - t456 * t1051;
         let t1055 = t435 * t1047 - t437 * t1054 - t439 * t1053 - t441 * t1052
             - t443 * t1051;
-        let t1056 = omega_x * 700.0;
         let t1057 = omega_z * t153;
         let t1058 = 10.0 * (t214 - t212);
         let t1059 = 10.0 * (t234 - t232);
         let t1060 = 10.0 * (t254 - t252);
         let t1061 = 10.0 * (t274 - t272);
         let t1062 = -(t405 * t1058) - t411 * t1059 - t417 * t1060 - t423 * t1061;
+        let t1056 = omega_x * 700.0;
         let t1063 = -t1056 - t406 * t1058 - t412 * t1059 - t418 * t1060 - t424 * t1061
             - t437 * t1062;
         let t1064 = t1044 + (t1041 + (t1038 + (t1035 - (t180 - t178)))) - t407 * t1058
@@ -2746,7 +2746,6 @@ impl Lrv {
         let t1069 = t450 * t1063 - t452 * t1068 - t454 * t1067 - t456 * t1066;
         let t1070 = t435 * t1062 - t437 * t1069 - t439 * t1068 - t441 * t1067
             - t443 * t1066;
-        let t1071 = omega_y * t155;
         let t1072 = 10.0 * (t215 - t213);
         let t1073 = 10.0 * (t235 - t233);
         let t1074 = 10.0 * (t255 - t253);
@@ -2759,6 +2758,7 @@ impl Lrv {
         let t1079 = t408 * t1072 - (t174 - t171 + omega_z * t155) + t414 * t1073
             - t420 * t1074 - t426 * t1075 + t428 * t1032 - t441 * t1076 - t454 * t1077
             - t466 * t1078;
+        let t1071 = omega_y * t155;
         let t1080 = t491
             * (t1071 - t409 * t1072 - t415 * t1073 + t421 * t1074 + t427 * t1075
                 + t429 * t1032 - t443 * t1076 - t456 * t1077 - t468 * t1078
@@ -2768,54 +2768,37 @@ impl Lrv {
         let t1083 = t450 * t1077 - t452 * t1082 - t454 * t1081 - t456 * t1080;
         let t1084 = t435 * t1076 - t437 * t1083 - t439 * t1082 - t441 * t1081
             - t443 * t1080;
+        let t1137 = s_theta / c_phi;
         let t1085 = t1071 - t1057;
-        let t1086 = omega_y * t161;
-        let t1087 = omega_z * t160;
-        let t1088 = t11 * t193;
-        let t1089 = t22 * t194;
-        let t1090 = t1088 + t1089;
         let t1091 = 10.0 * (1.143 * t193);
-        let t1092 = 10.0 * (1.143 * t194);
-        let t1093 = t10 * t194;
-        let t1094 = t21 * t193;
+        let t1101 = 10.0 * (1.143 * t217);
+        let t1111 = 10.0 * (1.143 * t237);
+        let t1121 = 10.0 * (1.143 * t257);
         let t1095 = t21 * t195;
         let t1096 = t10 * t196;
+        let t1093 = t10 * t194;
+        let t1094 = t21 * t193;
         let t1097 = 10.0
             * (-(t22 * t214) - t1095 + (t11 * t215 + t1096)
                 - (yd_front_left * (t11 * t20 - t9 * t22) + (t1094 - t1093)));
-        let t1098 = t39 * t217;
-        let t1099 = t50 * t218;
-        let t1100 = t1098 + t1099;
-        let t1101 = 10.0 * (1.143 * t217);
-        let t1102 = 10.0 * (1.143 * t218);
-        let t1103 = t38 * t218;
-        let t1104 = t49 * t217;
         let t1105 = t49 * t219;
         let t1106 = t38 * t220;
+        let t1103 = t38 * t218;
+        let t1104 = t49 * t217;
         let t1107 = 10.0
             * (-(t50 * t234) - t1105 + (t39 * t235 + t1106)
                 - (yd_front_right * (t39 * t48 - t37 * t50) + (t1104 - t1103)));
-        let t1108 = t67 * t237;
-        let t1109 = t78 * t238;
-        let t1110 = t1108 + t1109;
-        let t1111 = 10.0 * (1.143 * t237);
-        let t1112 = 10.0 * (1.143 * t238);
-        let t1113 = t66 * t238;
-        let t1114 = t77 * t237;
         let t1115 = t77 * t239;
         let t1116 = t66 * t240;
+        let t1113 = t66 * t238;
+        let t1114 = t77 * t237;
         let t1117 = 10.0
             * (-(t78 * t254) - t1115 + (t67 * t255 + t1116)
                 - (yd_rear_left * (t67 * t76 - t65 * t78) + (t1114 - t1113)));
-        let t1118 = t95 * t257;
-        let t1119 = t106 * t258;
-        let t1120 = t1118 + t1119;
-        let t1121 = 10.0 * (1.143 * t257);
-        let t1122 = 10.0 * (1.143 * t258);
-        let t1123 = t94 * t258;
-        let t1124 = t105 * t257;
         let t1125 = t105 * t259;
         let t1126 = t94 * t260;
+        let t1123 = t94 * t258;
+        let t1124 = t105 * t257;
         let t1127 = 10.0
             * (-(t106 * t274) - t1125 + (t95 * t275 + t1126)
                 - (yd_rear_right * (t95 * t104 - t93 * t106) + (t1124 - t1123)));
@@ -2823,6 +2806,20 @@ impl Lrv {
             - t411 * t1107 - t417 * t1117 - t423 * t1127;
         let t1129 = -t1036 - (t176 + t177) - t1039 - t1042 - t1045 - t406 * t1097
             - t412 * t1107 - t418 * t1117 - t424 * t1127 - t437 * t1128;
+        let t1086 = omega_y * t161;
+        let t1087 = omega_z * t160;
+        let t1088 = t11 * t193;
+        let t1089 = t22 * t194;
+        let t1090 = t1088 + t1089;
+        let t1098 = t39 * t217;
+        let t1099 = t50 * t218;
+        let t1100 = t1098 + t1099;
+        let t1108 = t67 * t237;
+        let t1109 = t78 * t238;
+        let t1110 = t1108 + t1109;
+        let t1118 = t95 * t257;
+        let t1119 = t106 * t258;
+        let t1120 = t1118 + t1119;
         let t1130 = -(vy * t155 - vz * t153 + (t1086 - t1087)) - 10.0 * (t1090 + t1090)
             - 10.0 * (t1100 + t1100) - 10.0 * (t1110 + t1110) - 10.0 * (t1120 + t1120)
             - t407 * t1097 - t413 * t1107 - t419 * t1117 - t425 * t1127 - t439 * t1128
@@ -2830,6 +2827,10 @@ impl Lrv {
         let t1131 = t1091 - (omega_z * t159 - (t187 + t189) - vx * t155) + t1101 - t1111
             - t1121 + t408 * t1097 + t414 * t1107 - t420 * t1117 - t426 * t1127
             + t428 * t1085 - t441 * t1128 - t454 * t1129 - t466 * t1130;
+        let t1092 = 10.0 * (1.143 * t194);
+        let t1102 = 10.0 * (1.143 * t218);
+        let t1112 = 10.0 * (1.143 * t238);
+        let t1122 = 10.0 * (1.143 * t258);
         let t1132 = t491
             * (t1092 - (vx * t153 + (t184 + t186 - omega_y * t159)) + t1102 - t1112
                 - t1122 - t409 * t1097 - t415 * t1107 + t421 * t1117 + t427 * t1127
@@ -2840,25 +2841,20 @@ impl Lrv {
         let t1135 = t450 * t1129 - t452 * t1134 - t454 * t1133 - t456 * t1132;
         let t1136 = t435 * t1128 - t437 * t1135 - t439 * t1134 - t441 * t1133
             - t443 * t1132;
-        let t1137 = s_theta / c_phi;
+        let t1151 = -t180 - t1035 - t1038 - t1041 - t1044;
         let t1138 = omega_x * t166;
-        let t1139 = 10.0 * (-(t22 * t193) - t11 * t194);
         let t1140 = t22 * t209;
         let t1141 = t21 * t192;
         let t1142 = 10.0
             * (yd_front_left * (1.143 * t20) + (-(t1140 - t1141) - 1.143 * t215));
-        let t1143 = 10.0 * (-(t50 * t217) - t39 * t218);
         let t1144 = t50 * t229;
         let t1145 = t49 * t216;
         let t1146 = 10.0
             * (yd_front_right * (1.143 * t48) + (-(t1144 - t1145) - 1.143 * t235));
-        let t1147 = 10.0 * (-(t78 * t237) - t67 * t238);
         let t1148 = t78 * t249;
         let t1149 = t77 * t236;
         let t1150 = 10.0
             * (1.143 * t255 - (t1148 - t1149) - yd_rear_left * (1.143 * t76));
-        let t1151 = -t180 - t1035 - t1038 - t1041 - t1044;
-        let t1152 = 10.0 * (-(t106 * t257) - t95 * t258);
         let t1153 = t106 * t269;
         let t1154 = t105 * t256;
         let t1155 = 10.0
@@ -2873,6 +2869,10 @@ impl Lrv {
             - 10.0 * (t1099 + t1099) - 10.0 * (t1109 + t1109) - 10.0 * (t1119 + t1119)
             + t408 * t1142 + t414 * t1146 - t420 * t1150 - t426 * t1155 - t428 * t1151
             - t441 * t1156 - t454 * t1157 - t466 * t1158;
+        let t1139 = 10.0 * (-(t22 * t193) - t11 * t194);
+        let t1143 = 10.0 * (-(t50 * t217) - t39 * t218);
+        let t1147 = 10.0 * (-(t78 * t237) - t67 * t238);
+        let t1152 = 10.0 * (-(t106 * t257) - t95 * t258);
         let t1160 = t491
             * (-(omega_x * t165 - (t181 + t183) - vy * t150) - t1139 - t1143 - t1147
                 - t1152 - t409 * t1142 - t415 * t1146 + t421 * t1150 + t427 * t1155
@@ -2883,6 +2883,8 @@ impl Lrv {
         let t1163 = t450 * t1157 - t452 * t1162 - t454 * t1161 - t456 * t1160;
         let t1164 = t435 * t1156 - t437 * t1163 - t439 * t1162 - t441 * t1161
             - t443 * t1160;
+        let t1187 = c_theta / c_phi;
+        let t1174 = t1045 + (t1042 + (t1039 + (t177 + t1036)));
         let t1165 = t11 * t209;
         let t1166 = t10 * t192;
         let t1167 = 10.0
@@ -2895,7 +2897,6 @@ impl Lrv {
         let t1172 = t66 * t236;
         let t1173 = 10.0
             * (yd_rear_left * (1.143 * t65) + (-(t1172 - t1171) - 1.143 * t254));
-        let t1174 = t1045 + (t1042 + (t1039 + (t177 + t1036)));
         let t1175 = t95 * t269;
         let t1176 = t94 * t256;
         let t1177 = 10.0
@@ -2921,11 +2922,10 @@ impl Lrv {
         let t1185 = t450 * t1179 - t452 * t1184 - t454 * t1183 - t456 * t1182;
         let t1186 = t435 * t1178 - t437 * t1185 - t439 * t1184 - t441 * t1183
             - t443 * t1182;
-        let t1187 = c_theta / c_phi;
-        let t1188 = yd_front_left + yd_front_left;
-        let t1189 = t9 * t1188 - t210;
-        let t1190 = t211 + t20 * t1188;
         let t1191 = t1037 - t647;
+        let t1188 = yd_front_left + yd_front_left;
+        let t1190 = t211 + t20 * t1188;
+        let t1189 = t9 * t1188 - t210;
         let t1192 = 10.0
             * (t204 + t10 * t214 + (t205 + t21 * t215)
                 - (t206 + yd_front_left * (t9 * t10 + t20 * t21)
@@ -2948,10 +2948,10 @@ impl Lrv {
         let t1200 = t450 * t1194 - t452 * t1199 - t454 * t1198 - t456 * t1197;
         let t1201 = t435 * t1193 - t437 * t1200 - t439 * t1199 - t441 * t1198
             - t443 * t1197;
-        let t1202 = yd_front_right + yd_front_right;
-        let t1203 = t37 * t1202 - t230;
-        let t1204 = t231 + t48 * t1202;
         let t1205 = t1040 - t749;
+        let t1202 = yd_front_right + yd_front_right;
+        let t1204 = t231 + t48 * t1202;
+        let t1203 = t37 * t1202 - t230;
         let t1206 = 10.0
             * (t224 + t38 * t234 + (t225 + t49 * t235)
                 - (t226 + yd_front_right * (t37 * t38 + t48 * t49)
@@ -2974,10 +2974,10 @@ impl Lrv {
         let t1214 = t450 * t1208 - t452 * t1213 - t454 * t1212 - t456 * t1211;
         let t1215 = t435 * t1207 - t437 * t1214 - t439 * t1213 - t441 * t1212
             - t443 * t1211;
-        let t1216 = yd_rear_left + yd_rear_left;
-        let t1217 = t65 * t1216 - t250;
-        let t1218 = t251 + t76 * t1216;
         let t1219 = t1043 - t851;
+        let t1216 = yd_rear_left + yd_rear_left;
+        let t1218 = t251 + t76 * t1216;
+        let t1217 = t65 * t1216 - t250;
         let t1220 = 10.0
             * (t244 + t66 * t254 + (t245 + t77 * t255)
                 - (t246 + yd_rear_left * (t65 * t66 + t76 * t77)
@@ -3000,10 +3000,10 @@ impl Lrv {
         let t1228 = t450 * t1222 - t452 * t1227 - t454 * t1226 - t456 * t1225;
         let t1229 = t435 * t1221 - t437 * t1228 - t439 * t1227 - t441 * t1226
             - t443 * t1225;
-        let t1230 = yd_rear_right + yd_rear_right;
-        let t1231 = t93 * t1230 - t270;
-        let t1232 = t271 + t104 * t1230;
         let t1233 = t1046 - t953;
+        let t1230 = yd_rear_right + yd_rear_right;
+        let t1232 = t271 + t104 * t1230;
+        let t1231 = t93 * t1230 - t270;
         let t1234 = 10.0
             * (t264 + t94 * t274 + (t265 + t105 * t275)
                 - (t266 + yd_rear_right * (t93 * t94 + t104 * t105)

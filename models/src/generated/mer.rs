@@ -70,689 +70,658 @@ impl Mer {
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
         // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
         let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let rocker = x[6];
-        let bogie_left = x[7];
-        let bogie_right = x[8];
-        let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
-        let omega_z = w[5];
-        let yd_rocker = w[6];
-        let yd_bogie_left = w[7];
-        let yd_bogie_right = w[8];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_middle_left_x = loads[2].force[0];
-        let f_middle_left_y = loads[2].force[1];
-        let f_middle_left_z = loads[2].force[2];
-        let mu_middle_left_x = loads[2].moment[0];
-        let mu_middle_left_y = loads[2].moment[1];
-        let mu_middle_left_z = loads[2].moment[2];
-        let tau_middle_left_x = loads[2].stator_torque[0];
-        let tau_middle_left_y = loads[2].stator_torque[1];
-        let tau_middle_left_z = loads[2].stator_torque[2];
-        let f_middle_right_x = loads[3].force[0];
-        let f_middle_right_y = loads[3].force[1];
-        let f_middle_right_z = loads[3].force[2];
-        let mu_middle_right_x = loads[3].moment[0];
-        let mu_middle_right_y = loads[3].moment[1];
-        let mu_middle_right_z = loads[3].moment[2];
-        let tau_middle_right_x = loads[3].stator_torque[0];
-        let tau_middle_right_y = loads[3].stator_torque[1];
-        let tau_middle_right_z = loads[3].stator_torque[2];
-        let f_rear_left_x = loads[4].force[0];
-        let f_rear_left_y = loads[4].force[1];
-        let f_rear_left_z = loads[4].force[2];
-        let mu_rear_left_x = loads[4].moment[0];
-        let mu_rear_left_y = loads[4].moment[1];
-        let mu_rear_left_z = loads[4].moment[2];
-        let tau_rear_left_x = loads[4].stator_torque[0];
-        let tau_rear_left_y = loads[4].stator_torque[1];
-        let tau_rear_left_z = loads[4].stator_torque[2];
-        let f_rear_right_x = loads[5].force[0];
-        let f_rear_right_y = loads[5].force[1];
-        let f_rear_right_z = loads[5].force[2];
-        let mu_rear_right_x = loads[5].moment[0];
-        let mu_rear_right_y = loads[5].moment[1];
-        let mu_rear_right_z = loads[5].moment[2];
-        let tau_rear_right_x = loads[5].stator_torque[0];
-        let tau_rear_right_y = loads[5].stator_torque[1];
-        let tau_rear_right_z = loads[5].stator_torque[2];
-        let t1 = rocker * 0.02271383655340189;
-        let t2 = t1 + 0.044467081566234;
-        let t3 = t1 + t2;
-        let t4 = rocker * t2 - 0.2749879478953897;
-        let t5 = t4 + rocker * t3;
-        let t6 = rocker * t4 - 0.2699746752375441;
-        let t7 = rocker * (rocker * 0.04542767310680378 + 2.0 * t3) + 2.0 * t5;
-        let t8 = t6 + rocker * t5;
-        let t9 = 0.7 + rocker * t6;
-        let t10 = rocker * 0.01115042885348447;
-        let t11 = 0.09058109207936695 - t10;
-        let t12 = t11 - t10;
-        let t13 = rocker * t11 + 0.13499408351228176;
-        let t14 = t13 + rocker * t12;
-        let t15 = rocker * t13 - 0.5499484125209226;
-        let t16 = rocker * (2.0 * t12 - rocker * 0.02230085770696894) + 2.0 * t14;
-        let t17 = t15 + rocker * t14;
-        let t18 = rocker * t15 - 0.32;
-        let t19 = rocker * 0.02271383655340207;
-        let t20 = t19 - 0.044467081566234495;
-        let t21 = t19 + t20;
-        let t22 = rocker * t20 - 0.2749879478953897;
-        let t23 = t22 + rocker * t21;
-        let t24 = rocker * t22 + 0.269974675237544;
-        let t25 = rocker * (rocker * 0.04542767310680414 + 2.0 * t21) + 2.0 * t23;
-        let t26 = t24 + rocker * t23;
-        let t27 = 0.7 + rocker * t24;
-        let t28 = rocker * 0.011150428853490045;
-        let t29 = -0.09058109207936622 - t28;
-        let t30 = t29 - t28;
-        let t31 = rocker * t29 + 0.1349940835122824;
-        let t32 = t31 + rocker * t30;
-        let t33 = rocker * t31 + 0.5499484125209229;
-        let t34 = rocker * (2.0 * t30 - rocker * 0.02230085770698009) + 2.0 * t32;
-        let t35 = t33 + rocker * t32;
-        let t36 = rocker * t33 - 0.32;
-        let t37 = rocker * 0.018584048089146866;
-        let t38 = 0.01646928946897587 - t37;
-        let t39 = t38 - t37;
-        let t40 = rocker * t38 + 0.22499013918713692;
-        let t41 = t40 + rocker * t39;
-        let t42 = rocker * t40 - 0.09999062045834964;
-        let t43 = rocker * (2.0 * t39 - rocker * 0.03716809617829373) + 2.0 * t41;
-        let t44 = t42 + rocker * t41;
-        let t45 = rocker * t42;
-        let t46 = rocker * 0.004129788464254052;
-        let t47 = -0.07411180261038959 - t46;
-        let t48 = t47 - t46;
-        let t49 = rocker * t47 + 0.049997808708252586;
-        let t50 = t49 + rocker * t48;
-        let t51 = rocker * t49 + 0.4499577920625733;
-        let t52 = rocker * (2.0 * t48 - rocker * 0.008259576928508105) + 2.0 * t50;
-        let t53 = t51 + rocker * t50;
-        let t54 = rocker * t51 - 0.32;
-        let t55 = bogie_left * 0.012283950186235765;
-        let t56 = t55 + 0.027678668327552673;
-        let t57 = t55 + t56;
-        let t58 = bogie_left * t56 - 0.14997486915462993;
-        let t59 = t58 + bogie_left * t57;
-        let t60 = bogie_left * t58 - 0.16993911711062648;
-        let t61 = bogie_left * (bogie_left * 0.02456790037247153 + 2.0 * t57)
-            + 2.0 * t59;
-        let t62 = t60 + bogie_left * t59;
-        let t63 = t45 + bogie_left * t60;
-        let t64 = bogie_left * 0.006960905105533847;
-        let t65 = 0.04884470881332827 - t64;
-        let t66 = t65 - t64;
-        let t67 = bogie_left * t65 + 0.08498575918762372;
-        let t68 = t67 + bogie_left * t66;
-        let t69 = bogie_left * t67 - 0.2998925596069879;
-        let t70 = bogie_left * (2.0 * t66 - bogie_left * 0.013921810211067694)
-            + 2.0 * t68;
-        let t71 = t69 + bogie_left * t68;
-        let t72 = t54 + bogie_left * t69;
-        let t73 = bogie_left * 1.910217473623093e-15;
-        let t74 = t73 + 7.159459156634517e-16;
-        let t75 = bogie_left * t74 - 4.471584043792905e-16;
-        let t76 = bogie_left * t75 + 0.9999999999999998
-            + bogie_left * (t75 + bogie_left * (t73 + t74));
         let t77 = rocker * 0.018584048089148205;
         let t78 = -0.016469289468975842 - t77;
-        let t79 = t78 - t77;
         let t80 = rocker * t78 + 0.22499013918713717;
-        let t81 = t80 + rocker * t79;
         let t82 = rocker * t80 + 0.09999062045834968;
-        let t83 = rocker * (2.0 * t79 - rocker * 0.03716809617829641) + 2.0 * t81;
+        let t79 = t78 - t77;
+        let t81 = t80 + rocker * t79;
         let t84 = t82 + rocker * t81;
-        let t85 = rocker * t82;
+        let t267 = t84 * t84;
         let t86 = rocker * 0.004129788464256266;
         let t87 = 0.07411180261038984 - t86;
-        let t88 = t87 - t86;
         let t89 = rocker * t87 + 0.049997808708252794;
-        let t90 = t89 + rocker * t88;
         let t91 = rocker * t89 - 0.4499577920625732;
-        let t92 = rocker * (2.0 * t88 - rocker * 0.008259576928512532) + 2.0 * t90;
+        let t88 = t87 - t86;
+        let t90 = t89 + rocker * t88;
         let t93 = t91 + rocker * t90;
-        let t94 = rocker * t91 - 0.32;
-        let t95 = bogie_right * 0.012283950186235765;
-        let t96 = 0.027678668327552673 + t95;
-        let t97 = t95 + t96;
-        let t98 = bogie_right * t96 - 0.14997486915462993;
-        let t99 = t98 + bogie_right * t97;
-        let t100 = bogie_right * t98 - 0.16993911711062648;
-        let t101 = bogie_right * (bogie_right * 0.02456790037247153 + 2.0 * t97)
-            + 2.0 * t99;
-        let t102 = t100 + bogie_right * t99;
-        let t103 = t85 + bogie_right * t100;
-        let t104 = bogie_right * 0.006960905105533847;
-        let t105 = 0.04884470881332827 - t104;
-        let t106 = t105 - t104;
-        let t107 = 0.08498575918762372 + bogie_right * t105;
-        let t108 = t107 + bogie_right * t106;
-        let t109 = bogie_right * t107 - 0.2998925596069879;
-        let t110 = bogie_right * (2.0 * t106 - bogie_right * 0.013921810211067694)
-            + 2.0 * t108;
-        let t111 = t109 + bogie_right * t108;
-        let t112 = t94 + bogie_right * t109;
-        let t113 = bogie_right * 1.910217473623093e-15;
-        let t114 = 7.159459156634517e-16 + t113;
-        let t115 = bogie_right * t114 - 4.471584043792905e-16;
-        let t116 = 0.9999999999999998 + bogie_right * t115
-            + bogie_right * (t115 + bogie_right * (t113 + t114));
-        let t117 = bogie_left * 0.014331275217275046;
-        let t118 = 0.027678668327552808 - t117;
-        let t119 = t118 - t117;
-        let t120 = bogie_left * t118 + 0.17497068068040164;
-        let t121 = t120 + bogie_left * t119;
-        let t122 = bogie_left * t120 - 0.16993911711062654;
-        let t123 = bogie_left * (2.0 * t119 - bogie_left * 0.028662550434550092)
-            + 2.0 * t121;
-        let t124 = t122 + bogie_left * t121;
-        let t125 = t45 - 0.65 + bogie_left * t122;
-        let t126 = bogie_left * 0.00696090510553369;
-        let t127 = -0.05698549361554983 - t126;
-        let t128 = t127 - t126;
-        let t129 = bogie_left * t127 + 0.0849857591876236;
-        let t130 = t129 + bogie_left * t128;
-        let t131 = bogie_left * t129 + 0.34987465287481934;
-        let t132 = bogie_left * (2.0 * t128 - bogie_left * 0.01392181021106738)
-            + 2.0 * t130;
-        let t133 = t131 + bogie_left * t130;
-        let t134 = t54 + bogie_left * t131;
-        let t135 = bogie_right * 0.014331275217275046;
-        let t136 = 0.027678668327552808 - t135;
-        let t137 = t136 - t135;
-        let t138 = 0.17497068068040164 + bogie_right * t136;
-        let t139 = t138 + bogie_right * t137;
-        let t140 = bogie_right * t138 - 0.16993911711062654;
-        let t141 = bogie_right * (2.0 * t137 - bogie_right * 0.028662550434550092)
-            + 2.0 * t139;
-        let t142 = t140 + bogie_right * t139;
-        let t143 = t85 - 0.65 + bogie_right * t140;
-        let t144 = bogie_right * 0.00696090510553369;
-        let t145 = -0.05698549361554983 - t144;
-        let t146 = t145 - t144;
-        let t147 = 0.0849857591876236 + bogie_right * t145;
-        let t148 = t147 + bogie_right * t146;
-        let t149 = 0.34987465287481934 + bogie_right * t147;
-        let t150 = bogie_right * (2.0 * t146 - bogie_right * 0.01392181021106738)
-            + 2.0 * t148;
-        let t151 = t149 + bogie_right * t148;
-        let t152 = t94 + bogie_right * t149;
+        let t268 = 2.0 * (t267 + t93 * t93);
+        let t37 = rocker * 0.018584048089146866;
+        let t38 = 0.01646928946897587 - t37;
+        let t40 = rocker * t38 + 0.22499013918713692;
+        let t42 = rocker * t40 - 0.09999062045834964;
+        let t39 = t38 - t37;
+        let t41 = t40 + rocker * t39;
+        let t44 = t42 + rocker * t41;
+        let t257 = t44 * t44;
+        let t46 = rocker * 0.004129788464254052;
+        let t47 = -0.07411180261038959 - t46;
+        let t49 = rocker * t47 + 0.049997808708252586;
+        let t51 = rocker * t49 + 0.4499577920625733;
+        let t48 = t47 - t46;
+        let t50 = t49 + rocker * t48;
+        let t53 = t51 + rocker * t50;
+        let t258 = 2.0 * (t257 + t53 * t53);
+        let t1 = rocker * 0.02271383655340189;
+        let t2 = t1 + 0.044467081566234;
+        let t4 = rocker * t2 - 0.2749879478953897;
+        let t6 = rocker * t4 - 0.2699746752375441;
+        let t3 = t1 + t2;
+        let t5 = t4 + rocker * t3;
+        let t8 = t6 + rocker * t5;
+        let t10 = rocker * 0.01115042885348447;
+        let t11 = 0.09058109207936695 - t10;
+        let t13 = rocker * t11 + 0.13499408351228176;
+        let t15 = rocker * t13 - 0.5499484125209226;
+        let t12 = t11 - t10;
+        let t14 = t13 + rocker * t12;
+        let t17 = t15 + rocker * t14;
+        let t19 = rocker * 0.02271383655340207;
+        let t20 = t19 - 0.044467081566234495;
+        let t22 = rocker * t20 - 0.2749879478953897;
+        let t24 = rocker * t22 + 0.269974675237544;
+        let t21 = t19 + t20;
+        let t23 = t22 + rocker * t21;
+        let t26 = t24 + rocker * t23;
+        let t28 = rocker * 0.011150428853490045;
+        let t29 = -0.09058109207936622 - t28;
+        let t31 = rocker * t29 + 0.1349940835122824;
+        let t33 = rocker * t31 + 0.5499484125209229;
+        let t30 = t29 - t28;
+        let t32 = t31 + rocker * t30;
+        let t35 = t33 + rocker * t32;
         let t153 = rocker * 0.008259576928510431;
         let t154 = t153 + 0.016469289468975704;
-        let t155 = t153 + t154;
         let t156 = rocker * t154 - 0.09999561741650541;
-        let t157 = t156 + rocker * t155;
         let t158 = rocker * t156 - 0.09999062045834964;
-        let t159 = rocker * (rocker * 0.016519153857020862 + 2.0 * t155) + 2.0 * t157;
+        let t155 = t153 + t154;
+        let t157 = t156 + rocker * t155;
         let t160 = t158 + rocker * t157;
-        let t161 = 0.35 + rocker * t158;
         let t162 = rocker * 0.0041297884642546735;
         let t163 = 0.032938578937951345 - t162;
-        let t164 = t163 - t162;
         let t165 = rocker * t163 + 0.04999780870825264;
-        let t166 = t165 + rocker * t164;
         let t167 = rocker * t165 - 0.1999812409166992;
-        let t168 = rocker * (2.0 * t164 - rocker * 0.008259576928509347) + 2.0 * t166;
+        let t164 = t163 - t162;
+        let t166 = t165 + rocker * t164;
         let t169 = t167 + rocker * t166;
-        let t170 = rocker * t167 - 0.15;
         let t171 = rocker * 0.008259576928510088;
         let t172 = t171 - 0.016469289468975627;
-        let t173 = t171 + t172;
         let t174 = rocker * t172 - 0.09999561741650537;
-        let t175 = t174 + rocker * t173;
         let t176 = rocker * t174 + 0.0999906204583496;
-        let t177 = rocker * (rocker * 0.016519153857020175 + 2.0 * t173) + 2.0 * t175;
+        let t173 = t171 + t172;
+        let t175 = t174 + rocker * t173;
         let t178 = t176 + rocker * t175;
-        let t179 = 0.35 + rocker * t176;
         let t180 = rocker * 0.004129788464255254;
         let t181 = -0.03293857893795131 - t180;
-        let t182 = t181 - t180;
         let t183 = rocker * t181 + 0.04999780870825271;
-        let t184 = t183 + rocker * t182;
         let t185 = rocker * t183 + 0.19998124091669922;
-        let t186 = rocker * (2.0 * t182 - rocker * 0.008259576928510507) + 2.0 * t184;
+        let t182 = t181 - t180;
+        let t184 = t183 + rocker * t182;
         let t187 = t185 + rocker * t184;
-        let t188 = rocker * t185 - 0.15;
         let t189 = rocker * 0.004129788464252804;
         let t190 = -0.07411180261038977 - t189;
-        let t191 = t190 - t189;
         let t192 = rocker * t190 + 0.04999780870825242;
-        let t193 = t192 + rocker * t191;
         let t194 = rocker * t192 + 0.44995779206257336;
-        let t195 = rocker * (2.0 * t191 - rocker * 0.008259576928505609) + 2.0 * t193;
+        let t191 = t190 - t189;
+        let t193 = t192 + rocker * t191;
         let t196 = t194 + rocker * t193;
-        let t197 = bogie_left * 1.1152709955829303e-16;
-        let t198 = t197 + 0.016281569604442835;
-        let t199 = t197 + t198;
-        let t200 = bogie_left * t198 - 2.488320152625496e-17;
-        let t201 = t200 + bogie_left * t199;
-        let t202 = bogie_left * t200 - 0.09996418653566262;
-        let t203 = bogie_left * (bogie_left * 2.2305419911658606e-16 + 2.0 * t199)
-            + 2.0 * t201;
-        let t204 = t202 + bogie_left * t201;
-        let t205 = t45 - 0.3 + bogie_left * t202;
-        let t206 = bogie_left * 0.004094650062078649;
-        let t207 = 1.1830649267924e-17 - t206;
-        let t208 = t207 - t206;
-        let t209 = bogie_left * t207 + 0.04999162305154333;
-        let t210 = t209 + bogie_left * t208;
-        let t211 = bogie_left * t209 - 5.509901911258716e-18;
-        let t212 = bogie_left * (2.0 * t208 - bogie_left * 0.008189300124157297)
-            + 2.0 * t210;
-        let t213 = t211 + bogie_left * t210;
-        let t214 = rocker * t194 - 0.25 + bogie_left * t211;
         let t215 = rocker * 0.00412978846425477;
         let t216 = 0.07411180261039031 - t215;
-        let t217 = t216 - t215;
         let t218 = 0.04999780870825264 + rocker * t216;
-        let t219 = t218 + rocker * t217;
         let t220 = rocker * t218 - 0.4499577920625733;
-        let t221 = rocker * (2.0 * t217 - rocker * 0.00825957692850954) + 2.0 * t219;
+        let t217 = t216 - t215;
+        let t219 = t218 + rocker * t217;
         let t222 = t220 + rocker * t219;
-        let t223 = bogie_right * 1.1152709955829303e-16;
-        let t224 = 0.016281569604442835 + t223;
-        let t225 = t223 + t224;
-        let t226 = bogie_right * t224 - 2.488320152625496e-17;
-        let t227 = t226 + bogie_right * t225;
-        let t228 = bogie_right * t226 - 0.09996418653566262;
-        let t229 = bogie_right * (bogie_right * 2.2305419911658606e-16 + 2.0 * t225)
-            + 2.0 * t227;
-        let t230 = t228 + bogie_right * t227;
-        let t231 = t85 - 0.3 + bogie_right * t228;
-        let t232 = bogie_right * 0.004094650062078649;
-        let t233 = 1.1830649267924e-17 - t232;
-        let t234 = t233 - t232;
-        let t235 = 0.04999162305154333 + bogie_right * t233;
-        let t236 = t235 + bogie_right * t234;
-        let t237 = bogie_right * t235 - 5.509901911258716e-18;
-        let t238 = bogie_right * (2.0 * t234 - bogie_right * 0.008189300124157297)
-            + 2.0 * t236;
-        let t239 = t237 + bogie_right * t236;
-        let t240 = rocker * t220 - 0.25 + bogie_right * t237;
-        let t241 = 2.0 * t18;
-        let t242 = 2.0 * t9;
-        let t243 = t18 * t18;
-        let t244 = t9 * t9;
-        let t245 = 2.0 * t36;
-        let t246 = 2.0 * t27;
-        let t247 = t36 * t36;
-        let t248 = t27 * t27;
-        let t249 = 2.0 * t72;
-        let t250 = 2.0 * t44;
-        let t251 = 2.0 * t63;
-        let t252 = 2.0 * t53;
-        let t253 = t72 * t72;
-        let t254 = 2.0 * (0.6 * t53);
-        let t255 = t63 * t63;
-        let t256 = 2.0 * (0.6 * t44);
-        let t257 = t44 * t44;
-        let t258 = 2.0 * (t257 + t53 * t53);
-        let t259 = 2.0 * t112;
-        let t260 = 2.0 * t84;
-        let t261 = 2.0 * t103;
-        let t262 = 2.0 * t93;
-        let t263 = t112 * t112;
-        let t264 = 2.0 * (0.6 * t93);
-        let t265 = t103 * t103;
-        let t266 = 2.0 * (0.6 * t84);
-        let t267 = t84 * t84;
-        let t268 = 2.0 * (t267 + t93 * t93);
-        let t269 = 2.0 * t134;
-        let t270 = 2.0 * t125;
-        let t271 = t134 * t134;
-        let t272 = t125 * t125;
-        let t273 = 2.0 * t152;
-        let t274 = 2.0 * t143;
-        let t275 = t152 * t152;
-        let t276 = t143 * t143;
-        let t277 = t170 * 3.0;
-        let t278 = t161 * 3.0;
-        let t279 = t170 * t170;
-        let t280 = t161 * t161;
-        let t281 = t188 * 3.0;
-        let t282 = t179 * 3.0;
-        let t283 = t188 * t188;
-        let t284 = t179 * t179;
-        let t285 = t214 * 3.0;
-        let t286 = 2.0 * t62 + 2.0 * t124 + t204 * 3.0;
-        let t287 = t205 * 3.0;
-        let t288 = 2.0 * t71 + 2.0 * t133 + t213 * 3.0;
-        let t289 = t214 * t214;
-        let t290 = 2.0 * (0.6 * t71) + 2.0 * (0.6 * t133) + 3.0 * (0.58 * t213);
-        let t291 = t205 * t205;
-        let t292 = 2.0 * (t62 * t72 - t63 * t71) + 2.0 * (t124 * t134 - t125 * t133)
-            + 3.0 * (t204 * t214 - t205 * t213);
-        let t293 = -(2.0 * (0.6 * t62)) - 2.0 * (0.6 * t124) - 3.0 * (0.58 * t204);
-        let t294 = t240 * 3.0;
-        let t295 = t241 + t245 + t249 + t259 + t269 + t273 + t277 + t281 + t285 + t294;
-        let t296 = t260 + (t250 + (2.0 * t8 + 2.0 * t26 + t250 + t260)) + t160 * 3.0
-            + t178 * 3.0 + t44 * 3.0 + t84 * 3.0;
-        let t297 = 2.0 * t102 + 2.0 * t142 + t230 * 3.0;
-        let t298 = -t241 - t245 - t249 - t259 - t269 - t273 - t277 - t281 - t285 - t294;
-        let t299 = t231 * 3.0;
-        let t300 = t242 + t246 + t251 + t261 + t270 + t274 + t278 + t282 + t287 + t299;
-        let t301 = -t242 - t246 - t251 - t261 - t270 - t274 - t278 - t282 - t287 - t299;
-        let t302 = t262 + (t252 + (2.0 * t17 + 2.0 * t35 + t252 + t262)) + t169 * 3.0
-            + t187 * 3.0 + t196 * 3.0 + t222 * 3.0;
-        let t303 = 2.0 * t111 + 2.0 * t151 + t239 * 3.0;
-        let t304 = t240 * t240;
-        let t305 = 21.1 + 2.0 * (t243 + 0.36) + 2.0 * (0.36 + t247) + 2.0 * (0.36 + t253)
-            + 2.0 * (0.36 + t263) + 2.0 * (0.36 + t271) + 2.0 * (0.36 + t275)
-            + 3.0 * (t279 + 0.30250000000000005) + 3.0 * (0.30250000000000005 + t283)
-            + 3.0 * (t289 + 0.3364) + 3.0 * (0.3364 + t304);
-        let t306 = 2.0 * (0.6 * t27) - 2.0 * (0.6 * t9) - 2.0 * (0.6 * t63)
-            + 2.0 * (0.6 * t103) - 2.0 * (0.6 * t125) + 2.0 * (0.6 * t143)
-            - 3.0 * (0.55 * t161) + 3.0 * (0.55 * t179) - 3.0 * (0.58 * t205)
-            + 3.0 * (0.58 * t231);
-        let t307 = -(2.0 * (t9 * t18)) - 2.0 * (t27 * t36) - 2.0 * (t63 * t72)
-            - 2.0 * (t103 * t112) - 2.0 * (t125 * t134) - 2.0 * (t143 * t152)
-            - 3.0 * (t161 * t170) - 3.0 * (t179 * t188) - 3.0 * (t205 * t214)
-            - 3.0 * (t231 * t240);
-        let t308 = t254 + (2.0 * (0.6 * t17) - 2.0 * (0.6 * t35) + t254 - t264) - t264
-            + 3.0 * (0.55 * t169) - 3.0 * (0.55 * t187) + 3.0 * (0.58 * t196)
-            - 3.0 * (0.58 * t222);
-        let t309 = -(2.0 * (0.6 * t111)) - 2.0 * (0.6 * t151) - 3.0 * (0.58 * t239);
-        let t310 = t231 * t231;
-        let t311 = 27.6 + 2.0 * (t243 + t244) + 2.0 * (t247 + t248) + 2.0 * (t253 + t255)
-            + 2.0 * (t263 + t265) + 2.0 * (t271 + t272) + 2.0 * (t275 + t276)
-            + 3.0 * (t279 + t280) + 3.0 * (t283 + t284) + 3.0 * (t289 + t291)
-            + 3.0 * (t304 + t310);
-        let t312 = 2.0 * (0.6 * t36) - 2.0 * (0.6 * t18) - 2.0 * (0.6 * t72)
-            + 2.0 * (0.6 * t112) - 2.0 * (0.6 * t134) + 2.0 * (0.6 * t152)
-            - 3.0 * (0.55 * t170) + 3.0 * (0.55 * t188) - 3.0 * (0.58 * t214)
-            + 3.0 * (0.58 * t240);
-        let t313 = 2.0 * (t8 * t18 - t9 * t17) + 2.0 * (t26 * t36 - t27 * t35)
-            + 2.0 * (t44 * t72 - t53 * t63) + 2.0 * (t84 * t112 - t93 * t103)
-            + 2.0 * (t44 * t134 - t53 * t125) + 2.0 * (t84 * t152 - t93 * t143)
-            + 3.0 * (t160 * t170 - t161 * t169) + 3.0 * (t178 * t188 - t179 * t187)
-            + 3.0 * (t44 * t214 - t196 * t205) + 3.0 * (t84 * t240 - t222 * t231);
-        let t314 = 2.0 * (t102 * t112 - t103 * t111) + 2.0 * (t142 * t152 - t143 * t151)
-            + 3.0 * (t230 * t240 - t231 * t239);
-        let t315 = 42.5 + 2.0 * (0.36 + t244) + 2.0 * (0.36 + t248) + 2.0 * (0.36 + t255)
-            + 2.0 * (0.36 + t265) + 2.0 * (0.36 + t272) + 2.0 * (0.36 + t276)
-            + 3.0 * (0.30250000000000005 + t280) + 3.0 * (0.30250000000000005 + t284)
-            + 3.0 * (0.3364 + t291) + 3.0 * (0.3364 + t310);
-        let t316 = t266 + (2.0 * (0.6 * t26) - 2.0 * (0.6 * t8) - t256 + t266 - t256)
-            - 3.0 * (0.55 * t160) + 3.0 * (0.55 * t178) - 3.0 * (t44 * 0.58)
-            + 3.0 * (t84 * 0.58);
-        let t317 = 2.0 * (0.6 * t102) + 2.0 * (0.6 * t142) + 3.0 * (0.58 * t230);
         let t318 = t268
             + (t258
                 + (2.0 * (t8 * t8 + t17 * t17) + 2.0 * (t26 * t26 + t35 * t35) + t258
                     + t268)) + 3.0 * (t160 * t160 + t169 * t169)
             + 3.0 * (t178 * t178 + t187 * t187) + 3.0 * (t257 + t196 * t196)
             + 3.0 * (t267 + t222 * t222);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let bogie_left = x[7];
+        let t55 = bogie_left * 0.012283950186235765;
+        let t56 = t55 + 0.027678668327552673;
+        let t58 = bogie_left * t56 - 0.14997486915462993;
+        let t60 = bogie_left * t58 - 0.16993911711062648;
+        let t57 = t55 + t56;
+        let t59 = t58 + bogie_left * t57;
+        let t62 = t60 + bogie_left * t59;
+        let t64 = bogie_left * 0.006960905105533847;
+        let t65 = 0.04884470881332827 - t64;
+        let t67 = bogie_left * t65 + 0.08498575918762372;
+        let t69 = bogie_left * t67 - 0.2998925596069879;
+        let t66 = t65 - t64;
+        let t68 = t67 + bogie_left * t66;
+        let t71 = t69 + bogie_left * t68;
+        let t117 = bogie_left * 0.014331275217275046;
+        let t118 = 0.027678668327552808 - t117;
+        let t120 = bogie_left * t118 + 0.17497068068040164;
+        let t122 = bogie_left * t120 - 0.16993911711062654;
+        let t119 = t118 - t117;
+        let t121 = t120 + bogie_left * t119;
+        let t124 = t122 + bogie_left * t121;
+        let t126 = bogie_left * 0.00696090510553369;
+        let t127 = -0.05698549361554983 - t126;
+        let t129 = bogie_left * t127 + 0.0849857591876236;
+        let t131 = bogie_left * t129 + 0.34987465287481934;
+        let t128 = t127 - t126;
+        let t130 = t129 + bogie_left * t128;
+        let t133 = t131 + bogie_left * t130;
+        let t197 = bogie_left * 1.1152709955829303e-16;
+        let t198 = t197 + 0.016281569604442835;
+        let t200 = bogie_left * t198 - 2.488320152625496e-17;
+        let t202 = bogie_left * t200 - 0.09996418653566262;
+        let t199 = t197 + t198;
+        let t201 = t200 + bogie_left * t199;
+        let t204 = t202 + bogie_left * t201;
+        let t206 = bogie_left * 0.004094650062078649;
+        let t207 = 1.1830649267924e-17 - t206;
+        let t209 = bogie_left * t207 + 0.04999162305154333;
+        let t211 = bogie_left * t209 - 5.509901911258716e-18;
+        let t208 = t207 - t206;
+        let t210 = t209 + bogie_left * t208;
+        let t213 = t211 + bogie_left * t210;
+        let t522 = 1.0 / t318;
+        let t523 = (2.0 * (t44 * t62 + t53 * t71) + 2.0 * (t44 * t124 + t53 * t133)
+            + 3.0 * (t44 * t204 + t196 * t213)) * t522;
+        let t530 = t318 * t523;
+        let t531 = 2.0 * (t62 * t62 + t71 * t71) + 2.0 * (t124 * t124 + t133 * t133)
+            + 3.0 * (t204 * t204 + t213 * t213) - t523 * t530;
+        let bogie_right = x[8];
+        let t95 = bogie_right * 0.012283950186235765;
+        let t96 = 0.027678668327552673 + t95;
+        let t98 = bogie_right * t96 - 0.14997486915462993;
+        let t100 = bogie_right * t98 - 0.16993911711062648;
+        let t97 = t95 + t96;
+        let t99 = t98 + bogie_right * t97;
+        let t102 = t100 + bogie_right * t99;
+        let t104 = bogie_right * 0.006960905105533847;
+        let t105 = 0.04884470881332827 - t104;
+        let t107 = 0.08498575918762372 + bogie_right * t105;
+        let t109 = bogie_right * t107 - 0.2998925596069879;
+        let t106 = t105 - t104;
+        let t108 = t107 + bogie_right * t106;
+        let t111 = t109 + bogie_right * t108;
+        let t135 = bogie_right * 0.014331275217275046;
+        let t136 = 0.027678668327552808 - t135;
+        let t138 = 0.17497068068040164 + bogie_right * t136;
+        let t140 = bogie_right * t138 - 0.16993911711062654;
+        let t137 = t136 - t135;
+        let t139 = t138 + bogie_right * t137;
+        let t142 = t140 + bogie_right * t139;
+        let t144 = bogie_right * 0.00696090510553369;
+        let t145 = -0.05698549361554983 - t144;
+        let t147 = 0.0849857591876236 + bogie_right * t145;
+        let t149 = 0.34987465287481934 + bogie_right * t147;
+        let t146 = t145 - t144;
+        let t148 = t147 + bogie_right * t146;
+        let t151 = t149 + bogie_right * t148;
+        let t223 = bogie_right * 1.1152709955829303e-16;
+        let t224 = 0.016281569604442835 + t223;
+        let t226 = bogie_right * t224 - 2.488320152625496e-17;
+        let t228 = bogie_right * t226 - 0.09996418653566262;
+        let t225 = t223 + t224;
+        let t227 = t226 + bogie_right * t225;
+        let t230 = t228 + bogie_right * t227;
+        let t232 = bogie_right * 0.004094650062078649;
+        let t233 = 1.1830649267924e-17 - t232;
+        let t235 = 0.04999162305154333 + bogie_right * t233;
+        let t237 = bogie_right * t235 - 5.509901911258716e-18;
+        let t234 = t233 - t232;
+        let t236 = t235 + bogie_right * t234;
+        let t239 = t237 + bogie_right * t236;
+        let t524 = (2.0 * (t84 * t102 + t93 * t111) + 2.0 * (t84 * t142 + t93 * t151)
+            + 3.0 * (t84 * t230 + t222 * t239)) * t522;
+        let t539 = t318 * t524;
+        let t532 = 1.0 / t531;
+        let t533 = t532 * (t524 * t530);
+        let t540 = t531 * t533;
+        let t541 = 2.0 * (t102 * t102 + t111 * t111) + 2.0 * (t142 * t142 + t151 * t151)
+            + 3.0 * (t230 * t230 + t239 * t239) - t524 * t539 - t533 * t540;
+        let t260 = 2.0 * t84;
+        let t250 = 2.0 * t44;
+        let t296 = t260 + (t250 + (2.0 * t8 + 2.0 * t26 + t250 + t260)) + t160 * 3.0
+            + t178 * 3.0 + t44 * 3.0 + t84 * 3.0;
+        let t525 = t296 * t522;
+        let t548 = t318 * t525;
+        let t286 = 2.0 * t62 + 2.0 * t124 + t204 * 3.0;
+        let t534 = t532 * (t286 - t525 * t530);
+        let t549 = t531 * t534;
+        let t542 = 1.0 / t541;
+        let t297 = 2.0 * t102 + 2.0 * t142 + t230 * 3.0;
+        let t543 = t542 * (t297 - t525 * t539 + t534 * t540);
+        let t550 = t541 * t543;
+        let t551 = 174.0 - t525 * t548 - t534 * t549 - t543 * t550;
+        let t262 = 2.0 * t93;
+        let t252 = 2.0 * t53;
+        let t302 = t262 + (t252 + (2.0 * t17 + 2.0 * t35 + t252 + t262)) + t169 * 3.0
+            + t187 * 3.0 + t196 * 3.0 + t222 * 3.0;
+        let t526 = t302 * t522;
+        let t559 = t318 * t526;
+        let t288 = 2.0 * t71 + 2.0 * t133 + t213 * 3.0;
+        let t535 = t532 * (t288 - t526 * t530);
+        let t560 = t531 * t535;
+        let t303 = 2.0 * t111 + 2.0 * t151 + t239 * 3.0;
+        let t544 = t542 * (t303 - t526 * t539 + t535 * t540);
+        let t561 = t541 * t544;
+        let t552 = 1.0 / t551;
+        let t553 = t552 * (-(t526 * t548) - t535 * t549 - t544 * t550);
+        let t562 = t551 * t553;
+        let t563 = 174.0 - t526 * t559 - t535 * t560 - t544 * t561 - t553 * t562;
+        let t18 = rocker * t15 - 0.32;
+        let t243 = t18 * t18;
+        let t36 = rocker * t33 - 0.32;
+        let t247 = t36 * t36;
+        let t54 = rocker * t51 - 0.32;
+        let t72 = t54 + bogie_left * t69;
+        let t253 = t72 * t72;
+        let t94 = rocker * t91 - 0.32;
+        let t112 = t94 + bogie_right * t109;
+        let t263 = t112 * t112;
+        let t134 = t54 + bogie_left * t131;
+        let t271 = t134 * t134;
+        let t152 = t94 + bogie_right * t149;
+        let t275 = t152 * t152;
+        let t170 = rocker * t167 - 0.15;
+        let t279 = t170 * t170;
+        let t188 = rocker * t185 - 0.15;
+        let t283 = t188 * t188;
+        let t214 = rocker * t194 - 0.25 + bogie_left * t211;
+        let t289 = t214 * t214;
+        let t240 = rocker * t220 - 0.25 + bogie_right * t237;
+        let t304 = t240 * t240;
+        let t305 = 21.1 + 2.0 * (t243 + 0.36) + 2.0 * (0.36 + t247) + 2.0 * (0.36 + t253)
+            + 2.0 * (0.36 + t263) + 2.0 * (0.36 + t271) + 2.0 * (0.36 + t275)
+            + 3.0 * (t279 + 0.30250000000000005) + 3.0 * (0.30250000000000005 + t283)
+            + 3.0 * (t289 + 0.3364) + 3.0 * (0.3364 + t304);
+        let t264 = 2.0 * (0.6 * t93);
+        let t254 = 2.0 * (0.6 * t53);
+        let t308 = t254 + (2.0 * (0.6 * t17) - 2.0 * (0.6 * t35) + t254 - t264) - t264
+            + 3.0 * (0.55 * t169) - 3.0 * (0.55 * t187) + 3.0 * (0.58 * t196)
+            - 3.0 * (0.58 * t222);
+        let t527 = t308 * t522;
+        let t568 = t318 * t527;
+        let t290 = 2.0 * (0.6 * t71) + 2.0 * (0.6 * t133) + 3.0 * (0.58 * t213);
+        let t536 = t532 * (t290 - t527 * t530);
+        let t569 = t531 * t536;
+        let t309 = -(2.0 * (0.6 * t111)) - 2.0 * (0.6 * t151) - 3.0 * (0.58 * t239);
+        let t545 = t542 * (t309 - t527 * t539 + t536 * t540);
+        let t570 = t541 * t545;
+        let t554 = t552 * (-(t527 * t548) - t536 * t549 - t545 * t550);
+        let t571 = t551 * t554;
+        let t241 = 2.0 * t18;
+        let t245 = 2.0 * t36;
+        let t249 = 2.0 * t72;
+        let t259 = 2.0 * t112;
+        let t269 = 2.0 * t134;
+        let t273 = 2.0 * t152;
+        let t277 = t170 * 3.0;
+        let t281 = t188 * 3.0;
+        let t285 = t214 * 3.0;
+        let t294 = t240 * 3.0;
+        let t298 = -t241 - t245 - t249 - t259 - t269 - t273 - t277 - t281 - t285 - t294;
+        let t557 = t298 * 0.005747126436781609;
+        let t572 = 174.0 * t557;
+        let t564 = 1.0 / t563;
+        let t565 = t564 * (-(t527 * t559) - t536 * t560 - t545 * t561 - t554 * t562);
+        let t573 = t563 * t565;
+        let t574 = t305 - t527 * t568 - t536 * t569 - t545 * t570 - t554 * t571
+            - t557 * t572 - t565 * t573;
+        let t9 = 0.7 + rocker * t6;
+        let t244 = t9 * t9;
+        let t27 = 0.7 + rocker * t24;
+        let t248 = t27 * t27;
+        let t45 = rocker * t42;
+        let t63 = t45 + bogie_left * t60;
+        let t255 = t63 * t63;
+        let t85 = rocker * t82;
+        let t103 = t85 + bogie_right * t100;
+        let t265 = t103 * t103;
+        let t125 = t45 - 0.65 + bogie_left * t122;
+        let t272 = t125 * t125;
+        let t143 = t85 - 0.65 + bogie_right * t140;
+        let t276 = t143 * t143;
+        let t161 = 0.35 + rocker * t158;
+        let t280 = t161 * t161;
+        let t179 = 0.35 + rocker * t176;
+        let t284 = t179 * t179;
+        let t205 = t45 - 0.3 + bogie_left * t202;
+        let t291 = t205 * t205;
+        let t231 = t85 - 0.3 + bogie_right * t228;
+        let t310 = t231 * t231;
+        let t311 = 27.6 + 2.0 * (t243 + t244) + 2.0 * (t247 + t248) + 2.0 * (t253 + t255)
+            + 2.0 * (t263 + t265) + 2.0 * (t271 + t272) + 2.0 * (t275 + t276)
+            + 3.0 * (t279 + t280) + 3.0 * (t283 + t284) + 3.0 * (t289 + t291)
+            + 3.0 * (t304 + t310);
+        let t313 = 2.0 * (t8 * t18 - t9 * t17) + 2.0 * (t26 * t36 - t27 * t35)
+            + 2.0 * (t44 * t72 - t53 * t63) + 2.0 * (t84 * t112 - t93 * t103)
+            + 2.0 * (t44 * t134 - t53 * t125) + 2.0 * (t84 * t152 - t93 * t143)
+            + 3.0 * (t160 * t170 - t161 * t169) + 3.0 * (t178 * t188 - t179 * t187)
+            + 3.0 * (t44 * t214 - t196 * t205) + 3.0 * (t84 * t240 - t222 * t231);
+        let t528 = t313 * t522;
+        let t578 = t318 * t528;
+        let t292 = 2.0 * (t62 * t72 - t63 * t71) + 2.0 * (t124 * t134 - t125 * t133)
+            + 3.0 * (t204 * t214 - t205 * t213);
+        let t537 = t532 * (t292 - t528 * t530);
+        let t579 = t531 * t537;
+        let t314 = 2.0 * (t102 * t112 - t103 * t111) + 2.0 * (t142 * t152 - t143 * t151)
+            + 3.0 * (t230 * t240 - t231 * t239);
+        let t546 = t542 * (t314 - t528 * t539 + t537 * t540);
+        let t580 = t541 * t546;
+        let t295 = t241 + t245 + t249 + t259 + t269 + t273 + t277 + t281 + t285 + t294;
+        let t555 = t552 * (t295 - t528 * t548 - t537 * t549 - t546 * t550);
+        let t581 = t551 * t555;
+        let t242 = 2.0 * t9;
+        let t246 = 2.0 * t27;
+        let t251 = 2.0 * t63;
+        let t261 = 2.0 * t103;
+        let t270 = 2.0 * t125;
+        let t274 = 2.0 * t143;
+        let t278 = t161 * 3.0;
+        let t282 = t179 * 3.0;
+        let t287 = t205 * 3.0;
+        let t299 = t231 * 3.0;
+        let t301 = -t242 - t246 - t251 - t261 - t270 - t274 - t278 - t282 - t287 - t299;
+        let t566 = t564 * (t301 - t528 * t559 - t537 * t560 - t546 * t561 - t555 * t562);
+        let t582 = t563 * t566;
+        let t575 = 1.0 / t574;
+        let t306 = 2.0 * (0.6 * t27) - 2.0 * (0.6 * t9) - 2.0 * (0.6 * t63)
+            + 2.0 * (0.6 * t103) - 2.0 * (0.6 * t125) + 2.0 * (0.6 * t143)
+            - 3.0 * (0.55 * t161) + 3.0 * (0.55 * t179) - 3.0 * (0.58 * t205)
+            + 3.0 * (0.58 * t231);
+        let t576 = t575
+            * (t306 - t528 * t568 - t537 * t569 - t546 * t570 - t555 * t571
+                - t566 * t573);
+        let t583 = t574 * t576;
+        let t584 = t311 - t528 * t578 - t537 * t579 - t546 * t580 - t555 * t581
+            - t566 * t582 - t576 * t583;
+        let t315 = 42.5 + 2.0 * (0.36 + t244) + 2.0 * (0.36 + t248) + 2.0 * (0.36 + t255)
+            + 2.0 * (0.36 + t265) + 2.0 * (0.36 + t272) + 2.0 * (0.36 + t276)
+            + 3.0 * (0.30250000000000005 + t280) + 3.0 * (0.30250000000000005 + t284)
+            + 3.0 * (0.3364 + t291) + 3.0 * (0.3364 + t310);
+        let t266 = 2.0 * (0.6 * t84);
+        let t256 = 2.0 * (0.6 * t44);
+        let t316 = t266 + (2.0 * (0.6 * t26) - 2.0 * (0.6 * t8) - t256 + t266 - t256)
+            - 3.0 * (0.55 * t160) + 3.0 * (0.55 * t178) - 3.0 * (t44 * 0.58)
+            + 3.0 * (t84 * 0.58);
+        let t529 = t316 * t522;
+        let t293 = -(2.0 * (0.6 * t62)) - 2.0 * (0.6 * t124) - 3.0 * (0.58 * t204);
+        let t538 = t532 * (t293 - t529 * t530);
+        let t317 = 2.0 * (0.6 * t102) + 2.0 * (0.6 * t142) + 3.0 * (0.58 * t230);
+        let t547 = t542 * (t317 - t529 * t539 + t538 * t540);
+        let t556 = t552 * (-(t529 * t548) - t538 * t549 - t547 * t550);
+        let t300 = t242 + t246 + t251 + t261 + t270 + t274 + t278 + t282 + t287 + t299;
+        let t558 = t300 * 0.005747126436781609;
+        let t567 = t564 * (-(t529 * t559) - t538 * t560 - t547 * t561 - t556 * t562);
+        let t307 = -(2.0 * (t9 * t18)) - 2.0 * (t27 * t36) - 2.0 * (t63 * t72)
+            - 2.0 * (t103 * t112) - 2.0 * (t125 * t134) - 2.0 * (t143 * t152)
+            - 3.0 * (t161 * t170) - 3.0 * (t179 * t188) - 3.0 * (t205 * t214)
+            - 3.0 * (t231 * t240);
+        let t577 = t575
+            * (t307 - t529 * t568 - t538 * t569 - t547 * t570 - t556 * t571 - t558 * t572
+                - t567 * t573);
+        let t585 = 1.0 / t584;
+        let t312 = 2.0 * (0.6 * t36) - 2.0 * (0.6 * t18) - 2.0 * (0.6 * t72)
+            + 2.0 * (0.6 * t112) - 2.0 * (0.6 * t134) + 2.0 * (0.6 * t152)
+            - 3.0 * (0.55 * t170) + 3.0 * (0.55 * t188) - 3.0 * (0.58 * t214)
+            + 3.0 * (0.58 * t240);
+        let t586 = t585
+            * (t312 - t529 * t578 - t538 * t579 - t547 * t580 - t556 * t581 - t567 * t582
+                - t577 * t583);
+        let t587 = t315 - t529 * (t318 * t529) - t538 * (t531 * t538)
+            - t547 * (t541 * t547) - t556 * (t551 * t556) - t558 * (174.0 * t558)
+            - t567 * (t563 * t567) - t577 * (t574 * t577) - t586 * (t584 * t586);
+        let vx = w[0];
+        let theta = x[4];
         let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
         let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t319 = vx * 174.0 + omega_y * t295 + yd_rocker * t296 + yd_bogie_left * t286
-            + yd_bogie_right * t297;
-        let t320 = vy * 174.0 + omega_x * t298 + omega_z * t300;
-        let t321 = vz * 174.0 + omega_y * t301 + yd_rocker * t302 + yd_bogie_left * t288
-            + yd_bogie_right * t303;
-        let t322 = vy * t298 + omega_x * t305 + omega_y * t306 + omega_z * t307
-            + yd_rocker * t308 + yd_bogie_left * t290 + yd_bogie_right * t309;
-        let t323 = vx * t295 + vz * t301 + omega_x * t306 + omega_y * t311
-            + omega_z * t312 + yd_rocker * t313 + yd_bogie_left * t292
-            + yd_bogie_right * t314;
-        let t324 = vy * t300 + omega_x * t307 + omega_y * t312 + omega_z * t315
-            + yd_rocker * t316 + yd_bogie_left * t293 + yd_bogie_right * t317;
-        let t325 = omega_z * 0.6;
-        let t326 = omega_x * 0.6;
-        let t327 = vy + (omega_z * t9 - omega_x * t18);
-        let t328 = yd_rocker * t8;
-        let t329 = yd_rocker * t17;
-        let t330 = vx + (omega_y * t18 - t325) + t328;
-        let t331 = vz + (t326 - omega_y * t9) + t329;
-        let t332 = yd_rocker * yd_rocker;
-        let t333 = yd_bogie_left * yd_bogie_left;
-        let t334 = yd_bogie_right * yd_bogie_right;
-        let t335 = omega_x * t329 - omega_z * t328;
-        let t336 = t7 * t332 + omega_y * t329;
-        let t337 = t16 * t332 - omega_y * t328;
-        let t338 = vy + (omega_z * t27 - omega_x * t36);
-        let t339 = yd_rocker * t26;
-        let t340 = yd_rocker * t35;
-        let t341 = vx + (t325 + omega_y * t36) + t339;
-        let t342 = vz + (-t326 - omega_y * t27) + t340;
-        let t343 = omega_x * t340 - omega_z * t339;
-        let t344 = t25 * t332 + omega_y * t340;
-        let t345 = t34 * t332 - omega_y * t339;
-        let t346 = vy + (omega_z * t63 - omega_x * t72);
-        let t347 = yd_rocker * t44;
-        let t348 = yd_rocker * t53;
-        let t349 = yd_bogie_left * t62;
-        let t350 = yd_bogie_left * t71;
-        let t351 = vx + (omega_y * t72 - t325) + t347 + t349;
-        let t352 = vz + (t326 - omega_y * t63) + t348 + t350;
-        let t353 = t43 * t332;
-        let t354 = t52 * t332;
-        let t355 = t347 + t349;
-        let t356 = t348 + t350;
-        let t357 = omega_x * t356 - omega_z * t355;
-        let t358 = t353 + t61 * t333 + omega_y * t356;
-        let t359 = t354 + t70 * t333 - omega_y * t355;
-        let t360 = omega_z * t44;
-        let t361 = omega_x * t53 - t360;
-        let t362 = omega_y * t44;
-        let t363 = yd_rocker * t43;
-        let t364 = omega_y * t53 + t363;
-        let t365 = yd_rocker * t52 - t362;
-        let t366 = vy + (omega_z * t103 - omega_x * t112);
-        let t367 = yd_rocker * t84;
-        let t368 = yd_rocker * t93;
-        let t369 = yd_bogie_right * t102;
-        let t370 = yd_bogie_right * t111;
-        let t371 = vx + (t325 + omega_y * t112) + t367 + t369;
-        let t372 = vz + (-t326 - omega_y * t103) + t368 + t370;
-        let t373 = t83 * t332;
-        let t374 = t92 * t332;
-        let t375 = t367 + t369;
-        let t376 = t368 + t370;
-        let t377 = omega_x * t376 - omega_z * t375;
-        let t378 = t373 + t101 * t334 + omega_y * t376;
-        let t379 = t374 + t110 * t334 - omega_y * t375;
-        let t380 = omega_z * t84;
-        let t381 = omega_x * t93 - t380;
-        let t382 = omega_y * t84;
-        let t383 = yd_rocker * t83;
-        let t384 = omega_y * t93 + t383;
-        let t385 = yd_rocker * t92 - t382;
-        let t386 = vy + (omega_z * t125 - omega_x * t134);
-        let t387 = yd_bogie_left * t124;
-        let t388 = yd_bogie_left * t133;
-        let t389 = t347 + (vx + (omega_y * t134 - t325)) + t387;
-        let t390 = t348 + (vz + (t326 - omega_y * t125)) + t388;
-        let t391 = t347 + t387;
-        let t392 = t348 + t388;
-        let t393 = omega_x * t392 - omega_z * t391;
-        let t394 = t353 + t123 * t333 + omega_y * t392;
-        let t395 = t354 + t132 * t333 - omega_y * t391;
-        let t396 = vy + (omega_z * t143 - omega_x * t152);
-        let t397 = yd_bogie_right * t142;
-        let t398 = yd_bogie_right * t151;
-        let t399 = t367 + (vx + (t325 + omega_y * t152)) + t397;
-        let t400 = t368 + (vz + (-t326 - omega_y * t143)) + t398;
-        let t401 = t367 + t397;
-        let t402 = t368 + t398;
-        let t403 = omega_x * t402 - omega_z * t401;
-        let t404 = t373 + t141 * t334 + omega_y * t402;
-        let t405 = t374 + t150 * t334 - omega_y * t401;
-        let t406 = omega_z * 0.55;
-        let t407 = omega_x * 0.55;
-        let t408 = vy + (omega_z * t161 - omega_x * t170);
-        let t409 = yd_rocker * t160;
-        let t410 = yd_rocker * t169;
-        let t411 = vx + (omega_y * t170 - t406) + t409;
-        let t412 = vz + (t407 - omega_y * t161) + t410;
-        let t413 = omega_x * t410 - omega_z * t409;
-        let t414 = t159 * t332 + omega_y * t410;
-        let t415 = t168 * t332 - omega_y * t409;
-        let t416 = vy + (omega_z * t179 - omega_x * t188);
-        let t417 = yd_rocker * t178;
-        let t418 = yd_rocker * t187;
-        let t419 = vx + (t406 + omega_y * t188) + t417;
-        let t420 = vz + (-t407 - omega_y * t179) + t418;
-        let t421 = omega_x * t418 - omega_z * t417;
-        let t422 = t177 * t332 + omega_y * t418;
-        let t423 = t186 * t332 - omega_y * t417;
-        let t424 = omega_z * 0.58;
-        let t425 = omega_x * 0.58;
-        let t426 = vy + (omega_z * t205 - omega_x * t214);
-        let t427 = yd_rocker * t196;
-        let t428 = yd_bogie_left * t204;
-        let t429 = yd_bogie_left * t213;
-        let t430 = t347 + (vx + (omega_y * t214 - t424)) + t428;
-        let t431 = vz + (t425 - omega_y * t205) + t427 + t429;
-        let t432 = t347 + t428;
-        let t433 = t427 + t429;
-        let t434 = omega_x * t433 - omega_z * t432;
-        let t435 = t353 + t203 * t333 + omega_y * t433;
-        let t436 = t195 * t332 + t212 * t333 - omega_y * t432;
-        let t437 = vy + (omega_z * t231 - omega_x * t240);
-        let t438 = yd_rocker * t222;
-        let t439 = yd_bogie_right * t230;
-        let t440 = yd_bogie_right * t239;
-        let t441 = t367 + (vx + (t424 + omega_y * t240)) + t439;
-        let t442 = vz + (-t425 - omega_y * t231) + t438 + t440;
-        let t443 = t367 + t439;
-        let t444 = t438 + t440;
-        let t445 = omega_x * t444 - omega_z * t443;
-        let t446 = t373 + t229 * t334 + omega_y * t444;
-        let t447 = t221 * t332 + t238 * t334 - omega_y * t443;
+        let t482 = s_phi * s_theta;
+        let t484 = c_theta * c_psi - s_psi * t482;
+        let vy = w[1];
+        let t485 = c_phi * s_psi;
+        let vz = w[2];
+        let t483 = s_phi * c_theta;
+        let t486 = s_theta * c_psi + s_psi * t483;
+        let t487 = c_theta * s_psi + c_psi * t482;
+        let t488 = c_phi * c_psi;
+        let t489 = s_theta * s_psi - c_psi * t483;
         let t448 = c_phi * s_theta;
         let t449 = c_phi * c_theta;
-        let t450 = t448 * 7.42;
-        let t451 = s_phi * 7.42;
-        let t452 = t449 * 7.42;
-        let t453 = 0.6 * t452;
-        let t454 = 0.6 * t450;
-        let t455 = t44 * t450 - t53 * t452;
-        let t456 = t84 * t450 - t93 * t452;
+        let omega_x = w[3];
+        let omega_z = w[5];
+        let omega_y = w[4];
+        let t601 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let yd_rocker = w[6];
+        let yd_bogie_left = w[7];
+        let yd_bogie_right = w[8];
         let t457 = t448 * 11.129999999999999;
-        let t458 = s_phi * 11.129999999999999;
+        let t450 = t448 * 7.42;
+        let t321 = vz * 174.0 + omega_y * t301 + yd_rocker * t302 + yd_bogie_left * t288
+            + yd_bogie_right * t303;
+        let t320 = vy * 174.0 + omega_x * t298 + omega_z * t300;
+        let t7 = rocker * (rocker * 0.04542767310680378 + 2.0 * t3) + 2.0 * t5;
+        let t332 = yd_rocker * yd_rocker;
+        let t329 = yd_rocker * t17;
+        let t336 = t7 * t332 + omega_y * t329;
+        let t25 = rocker * (rocker * 0.04542767310680414 + 2.0 * t21) + 2.0 * t23;
+        let t340 = yd_rocker * t35;
+        let t344 = t25 * t332 + omega_y * t340;
+        let t43 = rocker * (2.0 * t39 - rocker * 0.03716809617829373) + 2.0 * t41;
+        let t353 = t43 * t332;
+        let t61 = bogie_left * (bogie_left * 0.02456790037247153 + 2.0 * t57)
+            + 2.0 * t59;
+        let t333 = yd_bogie_left * yd_bogie_left;
+        let t348 = yd_rocker * t53;
+        let t350 = yd_bogie_left * t71;
+        let t356 = t348 + t350;
+        let t358 = t353 + t61 * t333 + omega_y * t356;
+        let t83 = rocker * (2.0 * t79 - rocker * 0.03716809617829641) + 2.0 * t81;
+        let t373 = t83 * t332;
+        let t101 = bogie_right * (bogie_right * 0.02456790037247153 + 2.0 * t97)
+            + 2.0 * t99;
+        let t334 = yd_bogie_right * yd_bogie_right;
+        let t368 = yd_rocker * t93;
+        let t370 = yd_bogie_right * t111;
+        let t376 = t368 + t370;
+        let t378 = t373 + t101 * t334 + omega_y * t376;
+        let t123 = bogie_left * (2.0 * t119 - bogie_left * 0.028662550434550092)
+            + 2.0 * t121;
+        let t388 = yd_bogie_left * t133;
+        let t392 = t348 + t388;
+        let t394 = t353 + t123 * t333 + omega_y * t392;
+        let t141 = bogie_right * (2.0 * t137 - bogie_right * 0.028662550434550092)
+            + 2.0 * t139;
+        let t398 = yd_bogie_right * t151;
+        let t402 = t368 + t398;
+        let t404 = t373 + t141 * t334 + omega_y * t402;
+        let t159 = rocker * (rocker * 0.016519153857020862 + 2.0 * t155) + 2.0 * t157;
+        let t410 = yd_rocker * t169;
+        let t414 = t159 * t332 + omega_y * t410;
+        let t177 = rocker * (rocker * 0.016519153857020175 + 2.0 * t173) + 2.0 * t175;
+        let t418 = yd_rocker * t187;
+        let t422 = t177 * t332 + omega_y * t418;
+        let t203 = bogie_left * (bogie_left * 2.2305419911658606e-16 + 2.0 * t199)
+            + 2.0 * t201;
+        let t427 = yd_rocker * t196;
+        let t429 = yd_bogie_left * t213;
+        let t433 = t427 + t429;
+        let t435 = t353 + t203 * t333 + omega_y * t433;
+        let t229 = bogie_right * (bogie_right * 2.2305419911658606e-16 + 2.0 * t225)
+            + 2.0 * t227;
+        let t438 = yd_rocker * t222;
+        let t440 = yd_bogie_right * t239;
+        let t444 = t438 + t440;
+        let t446 = t373 + t229 * t334 + omega_y * t444;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
+        let t490 = f_front_left_x * t484 + f_front_left_y * t487 - f_front_left_z * t448;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
+        let t495 = f_front_right_x * t484 + f_front_right_y * t487
+            - f_front_right_z * t448;
+        let f_middle_left_x = loads[2].force[0];
+        let f_middle_left_y = loads[2].force[1];
+        let f_middle_left_z = loads[2].force[2];
+        let t500 = f_middle_left_x * t484 + f_middle_left_y * t487
+            - f_middle_left_z * t448;
+        let f_middle_right_x = loads[3].force[0];
+        let f_middle_right_y = loads[3].force[1];
+        let f_middle_right_z = loads[3].force[2];
+        let t505 = f_middle_right_x * t484 + f_middle_right_y * t487
+            - f_middle_right_z * t448;
+        let f_rear_left_x = loads[4].force[0];
+        let f_rear_left_y = loads[4].force[1];
+        let f_rear_left_z = loads[4].force[2];
+        let t510 = f_rear_left_x * t484 + f_rear_left_y * t487 - f_rear_left_z * t448;
+        let f_rear_right_x = loads[5].force[0];
+        let f_rear_right_y = loads[5].force[1];
+        let f_rear_right_z = loads[5].force[2];
+        let t515 = f_rear_right_x * t484 + f_rear_right_y * t487 - f_rear_right_z * t448;
+        let t452 = t449 * 7.42;
+        let t456 = t84 * t450 - t93 * t452;
+        let t455 = t44 * t450 - t53 * t452;
+        let t325 = omega_z * 0.6;
+        let t328 = yd_rocker * t8;
+        let t330 = vx + (omega_y * t18 - t325) + t328;
+        let t327 = vy + (omega_z * t9 - omega_x * t18);
+        let t326 = omega_x * 0.6;
+        let t331 = vz + (t326 - omega_y * t9) + t329;
+        let t16 = rocker * (2.0 * t12 - rocker * 0.02230085770696894) + 2.0 * t14;
+        let t337 = t16 * t332 - omega_y * t328;
+        let t339 = yd_rocker * t26;
+        let t341 = vx + (t325 + omega_y * t36) + t339;
+        let t338 = vy + (omega_z * t27 - omega_x * t36);
+        let t342 = vz + (-t326 - omega_y * t27) + t340;
+        let t34 = rocker * (2.0 * t30 - rocker * 0.02230085770698009) + 2.0 * t32;
+        let t345 = t34 * t332 - omega_y * t339;
+        let t347 = yd_rocker * t44;
+        let t349 = yd_bogie_left * t62;
+        let t351 = vx + (omega_y * t72 - t325) + t347 + t349;
+        let t363 = yd_rocker * t43;
+        let t364 = omega_y * t53 + t363;
+        let t346 = vy + (omega_z * t63 - omega_x * t72);
+        let t360 = omega_z * t44;
+        let t361 = omega_x * t53 - t360;
+        let t352 = vz + (t326 - omega_y * t63) + t348 + t350;
+        let t362 = omega_y * t44;
+        let t52 = rocker * (2.0 * t48 - rocker * 0.008259576928508105) + 2.0 * t50;
+        let t365 = yd_rocker * t52 - t362;
+        let t354 = t52 * t332;
+        let t70 = bogie_left * (2.0 * t66 - bogie_left * 0.013921810211067694)
+            + 2.0 * t68;
+        let t355 = t347 + t349;
+        let t359 = t354 + t70 * t333 - omega_y * t355;
+        let t367 = yd_rocker * t84;
+        let t369 = yd_bogie_right * t102;
+        let t371 = vx + (t325 + omega_y * t112) + t367 + t369;
+        let t383 = yd_rocker * t83;
+        let t384 = omega_y * t93 + t383;
+        let t366 = vy + (omega_z * t103 - omega_x * t112);
+        let t380 = omega_z * t84;
+        let t381 = omega_x * t93 - t380;
+        let t372 = vz + (-t326 - omega_y * t103) + t368 + t370;
+        let t382 = omega_y * t84;
+        let t92 = rocker * (2.0 * t88 - rocker * 0.008259576928512532) + 2.0 * t90;
+        let t385 = yd_rocker * t92 - t382;
+        let t374 = t92 * t332;
+        let t110 = bogie_right * (2.0 * t106 - bogie_right * 0.013921810211067694)
+            + 2.0 * t108;
+        let t375 = t367 + t369;
+        let t379 = t374 + t110 * t334 - omega_y * t375;
+        let t387 = yd_bogie_left * t124;
+        let t389 = t347 + (vx + (omega_y * t134 - t325)) + t387;
+        let t386 = vy + (omega_z * t125 - omega_x * t134);
+        let t390 = t348 + (vz + (t326 - omega_y * t125)) + t388;
+        let t132 = bogie_left * (2.0 * t128 - bogie_left * 0.01392181021106738)
+            + 2.0 * t130;
+        let t391 = t347 + t387;
+        let t395 = t354 + t132 * t333 - omega_y * t391;
+        let t397 = yd_bogie_right * t142;
+        let t399 = t367 + (vx + (t325 + omega_y * t152)) + t397;
+        let t396 = vy + (omega_z * t143 - omega_x * t152);
+        let t400 = t368 + (vz + (-t326 - omega_y * t143)) + t398;
+        let t150 = bogie_right * (2.0 * t146 - bogie_right * 0.01392181021106738)
+            + 2.0 * t148;
+        let t401 = t367 + t397;
+        let t405 = t374 + t150 * t334 - omega_y * t401;
+        let t406 = omega_z * 0.55;
+        let t409 = yd_rocker * t160;
+        let t411 = vx + (omega_y * t170 - t406) + t409;
+        let t408 = vy + (omega_z * t161 - omega_x * t170);
+        let t407 = omega_x * 0.55;
+        let t412 = vz + (t407 - omega_y * t161) + t410;
+        let t168 = rocker * (2.0 * t164 - rocker * 0.008259576928509347) + 2.0 * t166;
+        let t415 = t168 * t332 - omega_y * t409;
+        let t417 = yd_rocker * t178;
+        let t419 = vx + (t406 + omega_y * t188) + t417;
+        let t416 = vy + (omega_z * t179 - omega_x * t188);
+        let t420 = vz + (-t407 - omega_y * t179) + t418;
+        let t186 = rocker * (2.0 * t182 - rocker * 0.008259576928510507) + 2.0 * t184;
+        let t423 = t186 * t332 - omega_y * t417;
+        let t424 = omega_z * 0.58;
+        let t428 = yd_bogie_left * t204;
+        let t430 = t347 + (vx + (omega_y * t214 - t424)) + t428;
+        let t426 = vy + (omega_z * t205 - omega_x * t214);
+        let t425 = omega_x * 0.58;
+        let t431 = vz + (t425 - omega_y * t205) + t427 + t429;
+        let t195 = rocker * (2.0 * t191 - rocker * 0.008259576928505609) + 2.0 * t193;
+        let t212 = bogie_left * (2.0 * t208 - bogie_left * 0.008189300124157297)
+            + 2.0 * t210;
+        let t432 = t347 + t428;
+        let t436 = t195 * t332 + t212 * t333 - omega_y * t432;
+        let t439 = yd_bogie_right * t230;
+        let t441 = t367 + (vx + (t424 + omega_y * t240)) + t439;
+        let t437 = vy + (omega_z * t231 - omega_x * t240);
+        let t442 = vz + (-t425 - omega_y * t231) + t438 + t440;
+        let t221 = rocker * (2.0 * t217 - rocker * 0.00825957692850954) + 2.0 * t219;
+        let t238 = bogie_right * (2.0 * t234 - bogie_right * 0.008189300124157297)
+            + 2.0 * t236;
+        let t443 = t367 + t439;
+        let t447 = t221 * t332 + t238 * t334 - omega_y * t443;
         let t459 = t449 * 11.129999999999999;
-        let t460 = 0.55 * t459;
-        let t461 = 0.55 * t457;
-        let t462 = 0.58 * t459;
-        let t463 = 0.58 * t457;
         let t464 = f64::max(rocker - 0.4363323129985824, 0.0);
-        let t465 = f64::max(-0.4363323129985824 - rocker, 0.0);
         let t466 = f64::min(10000.0 * t464, 1.0);
         let t467 = f64::min(
             -(100.0 * t464) - yd_rocker * (43.7067683346622 * t466),
             0.0,
         );
+        let t465 = f64::max(-0.4363323129985824 - rocker, 0.0);
         let t468 = f64::min(10000.0 * t465, 1.0);
         let t469 = f64::max(100.0 * t465 - yd_rocker * (43.7067683346622 * t468), 0.0);
-        let t470 = f64::max(bogie_left - 0.6108652381980153, 0.0);
-        let t471 = f64::max(-0.6108652381980153 - bogie_left, 0.0);
-        let t472 = f64::min(10000.0 * t470, 1.0);
-        let t473 = f64::min(
-            -(100.0 * t470) - yd_bogie_left * (15.102203414474054 * t472),
-            0.0,
-        );
-        let t474 = f64::min(10000.0 * t471, 1.0);
-        let t475 = f64::max(
-            100.0 * t471 - yd_bogie_left * (15.102203414474054 * t474),
-            0.0,
-        );
-        let t476 = f64::max(bogie_right - 0.6108652381980153, 0.0);
-        let t477 = f64::max(-0.6108652381980153 - bogie_right, 0.0);
-        let t478 = f64::min(10000.0 * t476, 1.0);
-        let t479 = f64::min(
-            -(100.0 * t476) - yd_bogie_right * (15.102203414474054 * t478),
-            0.0,
-        );
-        let t480 = f64::min(10000.0 * t477, 1.0);
-        let t481 = f64::max(
-            100.0 * t477 - yd_bogie_right * (15.102203414474054 * t480),
-            0.0,
-        );
-        let t482 = s_phi * s_theta;
-        let t483 = s_phi * c_theta;
-        let t484 = c_theta * c_psi - s_psi * t482;
-        let t485 = c_phi * s_psi;
-        let t486 = s_theta * c_psi + s_psi * t483;
-        let t487 = c_theta * s_psi + c_psi * t482;
-        let t488 = c_phi * c_psi;
-        let t489 = s_theta * s_psi - c_psi * t483;
-        let t490 = f_front_left_x * t484 + f_front_left_y * t487 - f_front_left_z * t448;
-        let t491 = f_front_left_y * t488 - f_front_left_x * t485
-            + f_front_left_z * s_phi;
         let t492 = f_front_left_x * t486 + f_front_left_y * t489 + f_front_left_z * t449;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
         let t493 = mu_front_left_y * t488 - mu_front_left_x * t485
             + mu_front_left_z * s_phi;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
         let t494 = tau_front_left_y * t488 - tau_front_left_x * t485
             + tau_front_left_z * s_phi;
-        let t495 = f_front_right_x * t484 + f_front_right_y * t487
-            - f_front_right_z * t448;
-        let t496 = f_front_right_y * t488 - f_front_right_x * t485
-            + f_front_right_z * s_phi;
         let t497 = f_front_right_x * t486 + f_front_right_y * t489
             + f_front_right_z * t449;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
         let t498 = mu_front_right_y * t488 - mu_front_right_x * t485
             + mu_front_right_z * s_phi;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
         let t499 = tau_front_right_y * t488 - tau_front_right_x * t485
             + tau_front_right_z * s_phi;
-        let t500 = f_middle_left_x * t484 + f_middle_left_y * t487
-            - f_middle_left_z * t448;
-        let t501 = f_middle_left_y * t488 - f_middle_left_x * t485
-            + f_middle_left_z * s_phi;
         let t502 = f_middle_left_x * t486 + f_middle_left_y * t489
             + f_middle_left_z * t449;
-        let t503 = mu_middle_left_y * t488 - mu_middle_left_x * t485
-            + mu_middle_left_z * s_phi;
-        let t504 = tau_middle_left_y * t488 - tau_middle_left_x * t485
-            + tau_middle_left_z * s_phi;
-        let t505 = f_middle_right_x * t484 + f_middle_right_y * t487
-            - f_middle_right_z * t448;
-        let t506 = f_middle_right_y * t488 - f_middle_right_x * t485
-            + f_middle_right_z * s_phi;
         let t507 = f_middle_right_x * t486 + f_middle_right_y * t489
             + f_middle_right_z * t449;
-        let t508 = mu_middle_right_y * t488 - mu_middle_right_x * t485
-            + mu_middle_right_z * s_phi;
-        let t509 = tau_middle_right_y * t488 - tau_middle_right_x * t485
-            + tau_middle_right_z * s_phi;
-        let t510 = f_rear_left_x * t484 + f_rear_left_y * t487 - f_rear_left_z * t448;
-        let t511 = f_rear_left_y * t488 - f_rear_left_x * t485 + f_rear_left_z * s_phi;
         let t512 = f_rear_left_x * t486 + f_rear_left_y * t489 + f_rear_left_z * t449;
-        let t513 = mu_rear_left_y * t488 - mu_rear_left_x * t485
-            + mu_rear_left_z * s_phi;
-        let t514 = tau_rear_left_y * t488 - tau_rear_left_x * t485
-            + tau_rear_left_z * s_phi;
-        let t515 = f_rear_right_x * t484 + f_rear_right_y * t487 - f_rear_right_z * t448;
-        let t516 = f_rear_right_y * t488 - f_rear_right_x * t485
-            + f_rear_right_z * s_phi;
         let t517 = f_rear_right_x * t486 + f_rear_right_y * t489 + f_rear_right_z * t449;
-        let t518 = 2.0 * t335 - (omega_z * t319 - omega_x * t321) + 2.0 * t343
-            + 2.0 * t357 + 2.0 * t377 + 2.0 * t393 + 2.0 * t403 + 3.0 * t413 + 3.0 * t421
-            + 3.0 * t434 + 3.0 * t445 - s_phi * 556.5 - t451 - t451 - t451 - t451 - t451
-            - t451 - t458 - t458 - t458 - t458 + t491 + t496 + t501 + t506 + t511 + t516;
         let t519 = t456
             + (t455
                 + (2.0
@@ -815,90 +784,43 @@ impl Mer {
             - 1.0000000000000002 * t498 - 1.0000000000000002 * t499
             + (t44 * t500 + t53 * t502) + (t84 * t505 + t93 * t507)
             + (t44 * t510 + t53 * t512) + (t84 * t515 + t93 * t517);
-        let t520 = mu_rear_right_y * t488 - mu_rear_right_x * t485
-            + mu_rear_right_z * s_phi;
-        let t521 = tau_rear_right_y * t488 - tau_rear_right_x * t485
-            + tau_rear_right_z * s_phi;
-        let t522 = 1.0 / t318;
-        let t523 = (2.0 * (t44 * t62 + t53 * t71) + 2.0 * (t44 * t124 + t53 * t133)
-            + 3.0 * (t44 * t204 + t196 * t213)) * t522;
-        let t524 = (2.0 * (t84 * t102 + t93 * t111) + 2.0 * (t84 * t142 + t93 * t151)
-            + 3.0 * (t84 * t230 + t222 * t239)) * t522;
-        let t525 = t296 * t522;
-        let t526 = t302 * t522;
-        let t527 = t308 * t522;
-        let t528 = t313 * t522;
-        let t529 = t316 * t522;
-        let t530 = t318 * t523;
-        let t531 = 2.0 * (t62 * t62 + t71 * t71) + 2.0 * (t124 * t124 + t133 * t133)
-            + 3.0 * (t204 * t204 + t213 * t213) - t523 * t530;
-        let t532 = 1.0 / t531;
-        let t533 = t532 * (t524 * t530);
-        let t534 = t532 * (t286 - t525 * t530);
-        let t535 = t532 * (t288 - t526 * t530);
-        let t536 = t532 * (t290 - t527 * t530);
-        let t537 = t532 * (t292 - t528 * t530);
-        let t538 = t532 * (t293 - t529 * t530);
-        let t539 = t318 * t524;
-        let t540 = t531 * t533;
-        let t541 = 2.0 * (t102 * t102 + t111 * t111) + 2.0 * (t142 * t142 + t151 * t151)
-            + 3.0 * (t230 * t230 + t239 * t239) - t524 * t539 - t533 * t540;
-        let t542 = 1.0 / t541;
-        let t543 = t542 * (t297 - t525 * t539 + t534 * t540);
-        let t544 = t542 * (t303 - t526 * t539 + t535 * t540);
-        let t545 = t542 * (t309 - t527 * t539 + t536 * t540);
-        let t546 = t542 * (t314 - t528 * t539 + t537 * t540);
-        let t547 = t542 * (t317 - t529 * t539 + t538 * t540);
-        let t548 = t318 * t525;
-        let t549 = t531 * t534;
-        let t550 = t541 * t543;
-        let t551 = 174.0 - t525 * t548 - t534 * t549 - t543 * t550;
-        let t552 = 1.0 / t551;
-        let t553 = t552 * (-(t526 * t548) - t535 * t549 - t544 * t550);
-        let t554 = t552 * (-(t527 * t548) - t536 * t549 - t545 * t550);
-        let t555 = t552 * (t295 - t528 * t548 - t537 * t549 - t546 * t550);
-        let t556 = t552 * (-(t529 * t548) - t538 * t549 - t547 * t550);
-        let t557 = t298 * 0.005747126436781609;
-        let t558 = t300 * 0.005747126436781609;
-        let t559 = t318 * t526;
-        let t560 = t531 * t535;
-        let t561 = t541 * t544;
-        let t562 = t551 * t553;
-        let t563 = 174.0 - t526 * t559 - t535 * t560 - t544 * t561 - t553 * t562;
-        let t564 = 1.0 / t563;
-        let t565 = t564 * (-(t527 * t559) - t536 * t560 - t545 * t561 - t554 * t562);
-        let t566 = t564 * (t301 - t528 * t559 - t537 * t560 - t546 * t561 - t555 * t562);
-        let t567 = t564 * (-(t529 * t559) - t538 * t560 - t547 * t561 - t556 * t562);
-        let t568 = t318 * t527;
-        let t569 = t531 * t536;
-        let t570 = t541 * t545;
-        let t571 = t551 * t554;
-        let t572 = 174.0 * t557;
-        let t573 = t563 * t565;
-        let t574 = t305 - t527 * t568 - t536 * t569 - t545 * t570 - t554 * t571
-            - t557 * t572 - t565 * t573;
-        let t575 = 1.0 / t574;
-        let t576 = t575
-            * (t306 - t528 * t568 - t537 * t569 - t546 * t570 - t555 * t571
-                - t566 * t573);
-        let t577 = t575
-            * (t307 - t529 * t568 - t538 * t569 - t547 * t570 - t556 * t571 - t558 * t572
-                - t567 * t573);
-        let t578 = t318 * t528;
-        let t579 = t531 * t537;
-        let t580 = t541 * t546;
-        let t581 = t551 * t555;
-        let t582 = t563 * t566;
-        let t583 = t574 * t576;
-        let t584 = t311 - t528 * t578 - t537 * t579 - t546 * t580 - t555 * t581
-            - t566 * t582 - t576 * t583;
-        let t585 = 1.0 / t584;
-        let t586 = t585
-            * (t312 - t529 * t578 - t538 * t579 - t547 * t580 - t556 * t581 - t567 * t582
-                - t577 * t583);
-        let t587 = t315 - t529 * (t318 * t529) - t538 * (t531 * t538)
-            - t547 * (t541 * t547) - t556 * (t551 * t556) - t558 * (174.0 * t558)
-            - t567 * (t563 * t567) - t577 * (t574 * t577) - t586 * (t584 * t586);
+        let t470 = f64::max(bogie_left - 0.6108652381980153, 0.0);
+        let t472 = f64::min(10000.0 * t470, 1.0);
+        let t473 = f64::min(
+            -(100.0 * t470) - yd_bogie_left * (15.102203414474054 * t472),
+            0.0,
+        );
+        let t471 = f64::max(-0.6108652381980153 - bogie_left, 0.0);
+        let t474 = f64::min(10000.0 * t471, 1.0);
+        let t475 = f64::max(
+            100.0 * t471 - yd_bogie_left * (15.102203414474054 * t474),
+            0.0,
+        );
+        let t73 = bogie_left * 1.910217473623093e-15;
+        let t74 = t73 + 7.159459156634517e-16;
+        let t75 = bogie_left * t74 - 4.471584043792905e-16;
+        let t76 = bogie_left * t75 + 0.9999999999999998
+            + bogie_left * (t75 + bogie_left * (t73 + t74));
+        let mu_middle_left_x = loads[2].moment[0];
+        let mu_middle_left_y = loads[2].moment[1];
+        let mu_middle_left_z = loads[2].moment[2];
+        let t503 = mu_middle_left_y * t488 - mu_middle_left_x * t485
+            + mu_middle_left_z * s_phi;
+        let tau_middle_left_x = loads[2].stator_torque[0];
+        let tau_middle_left_y = loads[2].stator_torque[1];
+        let tau_middle_left_z = loads[2].stator_torque[2];
+        let t504 = tau_middle_left_y * t488 - tau_middle_left_x * t485
+            + tau_middle_left_z * s_phi;
+        let mu_rear_left_x = loads[4].moment[0];
+        let mu_rear_left_y = loads[4].moment[1];
+        let mu_rear_left_z = loads[4].moment[2];
+        let t513 = mu_rear_left_y * t488 - mu_rear_left_x * t485
+            + mu_rear_left_z * s_phi;
+        let tau_rear_left_x = loads[4].stator_torque[0];
+        let tau_rear_left_y = loads[4].stator_torque[1];
+        let tau_rear_left_z = loads[4].stator_torque[2];
+        let t514 = tau_rear_left_y * t488 - tau_rear_left_x * t485
+            + tau_rear_left_z * s_phi;
         let t588 = 2.0
             * (t351 * (omega_y * t71 + yd_bogie_left * t61)
                 - t346 * (omega_x * t71 - omega_z * t62)
@@ -920,6 +842,43 @@ impl Mer {
             + (t124 * t450 - t133 * t452) + (t204 * t457 - t213 * t459) + (t473 + t475)
             + (t62 * t500 + t71 * t502) + t76 * t503 + t76 * t504
             + (t124 * t510 + t133 * t512) + t76 * t513 + t76 * t514 - t519 * t523;
+        let t476 = f64::max(bogie_right - 0.6108652381980153, 0.0);
+        let t478 = f64::min(10000.0 * t476, 1.0);
+        let t479 = f64::min(
+            -(100.0 * t476) - yd_bogie_right * (15.102203414474054 * t478),
+            0.0,
+        );
+        let t477 = f64::max(-0.6108652381980153 - bogie_right, 0.0);
+        let t480 = f64::min(10000.0 * t477, 1.0);
+        let t481 = f64::max(
+            100.0 * t477 - yd_bogie_right * (15.102203414474054 * t480),
+            0.0,
+        );
+        let t113 = bogie_right * 1.910217473623093e-15;
+        let t114 = 7.159459156634517e-16 + t113;
+        let t115 = bogie_right * t114 - 4.471584043792905e-16;
+        let t116 = 0.9999999999999998 + bogie_right * t115
+            + bogie_right * (t115 + bogie_right * (t113 + t114));
+        let mu_middle_right_x = loads[3].moment[0];
+        let mu_middle_right_y = loads[3].moment[1];
+        let mu_middle_right_z = loads[3].moment[2];
+        let t508 = mu_middle_right_y * t488 - mu_middle_right_x * t485
+            + mu_middle_right_z * s_phi;
+        let tau_middle_right_x = loads[3].stator_torque[0];
+        let tau_middle_right_y = loads[3].stator_torque[1];
+        let tau_middle_right_z = loads[3].stator_torque[2];
+        let t509 = tau_middle_right_y * t488 - tau_middle_right_x * t485
+            + tau_middle_right_z * s_phi;
+        let mu_rear_right_x = loads[5].moment[0];
+        let mu_rear_right_y = loads[5].moment[1];
+        let mu_rear_right_z = loads[5].moment[2];
+        let t520 = mu_rear_right_y * t488 - mu_rear_right_x * t485
+            + mu_rear_right_z * s_phi;
+        let tau_rear_right_x = loads[5].stator_torque[0];
+        let tau_rear_right_y = loads[5].stator_torque[1];
+        let tau_rear_right_z = loads[5].stator_torque[2];
+        let t521 = tau_rear_right_y * t488 - tau_rear_right_x * t485
+            + tau_rear_right_z * s_phi;
         let t589 = 2.0
             * (t371 * (omega_y * t111 + yd_bogie_right * t101)
                 - t366 * (omega_x * t111 - omega_z * t102)
@@ -955,11 +914,48 @@ impl Mer {
                                             - 2.0 * t404 - 3.0 * t414 - 3.0 * t422 - 3.0 * t435
                                             - 3.0 * t446 + t448 * 556.5 + t450))))) + t457))) + t490
             + t495 + t500 + t505 + t510 + t515 - t519 * t525 - t534 * t588 - t543 * t589;
+        let t319 = vx * 174.0 + omega_y * t295 + yd_rocker * t296 + yd_bogie_left * t286
+            + yd_bogie_right * t297;
         let t591 = -(omega_x * t320 - omega_y * t319) - 2.0 * t337 - 2.0 * t345
             - 2.0 * t359 - 2.0 * t379 - 2.0 * t395 - 2.0 * t405 - 3.0 * t415 - 3.0 * t423
             - 3.0 * t436 - 3.0 * t447 - t449 * 556.5 - t452 - t452 - t452 - t452 - t452
             - t452 - t459 - t459 - t459 - t459 + t492 + t497 + t502 + t507 + t512 + t517
             - t519 * t526 - t535 * t588 - t544 * t589 - t553 * t590;
+        let t324 = vy * t300 + omega_x * t307 + omega_y * t312 + omega_z * t315
+            + yd_rocker * t316 + yd_bogie_left * t293 + yd_bogie_right * t317;
+        let t323 = vx * t295 + vz * t301 + omega_x * t306 + omega_y * t311
+            + omega_z * t312 + yd_rocker * t313 + yd_bogie_left * t292
+            + yd_bogie_right * t314;
+        let t335 = omega_x * t329 - omega_z * t328;
+        let t343 = omega_x * t340 - omega_z * t339;
+        let t357 = omega_x * t356 - omega_z * t355;
+        let t377 = omega_x * t376 - omega_z * t375;
+        let t393 = omega_x * t392 - omega_z * t391;
+        let t403 = omega_x * t402 - omega_z * t401;
+        let t413 = omega_x * t410 - omega_z * t409;
+        let t421 = omega_x * t418 - omega_z * t417;
+        let t434 = omega_x * t433 - omega_z * t432;
+        let t445 = omega_x * t444 - omega_z * t443;
+        let t453 = 0.6 * t452;
+        let t451 = s_phi * 7.42;
+        let t460 = 0.55 * t459;
+        let t458 = s_phi * 11.129999999999999;
+        let t462 = 0.58 * t459;
+        let t491 = f_front_left_y * t488 - f_front_left_x * t485
+            + f_front_left_z * s_phi;
+        let t496 = f_front_right_y * t488 - f_front_right_x * t485
+            + f_front_right_z * s_phi;
+        let t501 = f_middle_left_y * t488 - f_middle_left_x * t485
+            + f_middle_left_z * s_phi;
+        let t506 = f_middle_right_y * t488 - f_middle_right_x * t485
+            + f_middle_right_z * s_phi;
+        let t511 = f_rear_left_y * t488 - f_rear_left_x * t485 + f_rear_left_z * s_phi;
+        let t516 = f_rear_right_y * t488 - f_rear_right_x * t485
+            + f_rear_right_z * s_phi;
+        let t518 = 2.0 * t335 - (omega_z * t319 - omega_x * t321) + 2.0 * t343
+            + 2.0 * t357 + 2.0 * t377 + 2.0 * t393 + 2.0 * t403 + 3.0 * t413 + 3.0 * t421
+            + 3.0 * t434 + 3.0 * t445 - s_phi * 556.5 - t451 - t451 - t451 - t451 - t451
+            - t451 - t458 - t458 - t458 - t458 + t491 + t496 + t501 + t506 + t511 + t516;
         let t592 = -(vy * t321 - vz * t320 + (omega_y * t324 - omega_z * t323))
             - 2.0 * (0.6 * t337 + t18 * t335 - t327 * t329)
             - 2.0 * (t36 * t343 - 0.6 * t345 - t338 * t340)
@@ -997,6 +993,8 @@ impl Mer {
             + (tau_rear_right_x * t484 + tau_rear_right_y * t487
                 - tau_rear_right_z * t448) - t519 * t527 - t536 * t588 - t545 * t589
             - t554 * t590 - t518 * t557 - t565 * t591;
+        let t322 = vy * t298 + omega_x * t305 + omega_y * t306 + omega_z * t307
+            + yd_rocker * t308 + yd_bogie_left * t290 + yd_bogie_right * t309;
         let t593 = -(vz * t319 - vx * t321 + (omega_z * t322 - omega_x * t324))
             - 2.0 * (t329 * t330 - t328 * t331 + (t18 * t336 - t9 * t337))
             - 2.0 * (t340 * t341 - t339 * t342 + (t36 * t344 - t27 * t345))
@@ -1018,6 +1016,9 @@ impl Mer {
             + (t112 * t505 - t103 * t507) + t508 + t509 + (t134 * t510 - t125 * t512)
             + t513 + t514 + (t152 * t515 - t143 * t517) + t520 + t521 - t519 * t528
             - t537 * t588 - t546 * t589 - t555 * t590 - t566 * t591 - t576 * t592;
+        let t454 = 0.6 * t450;
+        let t461 = 0.55 * t457;
+        let t463 = 0.58 * t457;
         let t594 = 1.0 / t587
             * (-(vx * t320 - vy * t319 + (omega_x * t323 - omega_y * t322))
                 - 2.0 * (t327 * t328 + (-(t9 * t335) - 0.6 * t336))
@@ -1067,7 +1068,6 @@ impl Mer {
             - t547 * t594;
         let t600 = t532 * t588 + t533 * t599 - t534 * t598 - t535 * t597 - t536 * t596
             - t537 * t595 - t538 * t594;
-        let t601 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
         let cos_roll = c_phi;
         let pivot_6 = t318;
         let pivot_7 = t531;
@@ -1129,230 +1129,207 @@ impl Mer {
         let mut m = [[0.0; 9]; 9];
         // M(y), upper triangle mirrored (MODEL.md §4, eq. 11–19)
         let rocker = x[6];
-        let bogie_left = x[7];
-        let bogie_right = x[8];
-        let t1 = rocker * 0.02271383655340189;
-        let t2 = t1 + 0.044467081566234;
-        let t3 = rocker * t2 - 0.2749879478953897;
-        let t4 = rocker * t3 - 0.2699746752375441;
-        let t5 = t4 + rocker * (t3 + rocker * (t1 + t2));
-        let t6 = 0.7 + rocker * t4;
         let t7 = rocker * 0.01115042885348447;
         let t8 = 0.09058109207936695 - t7;
         let t9 = rocker * t8 + 0.13499408351228176;
         let t10 = rocker * t9 - 0.5499484125209226;
-        let t11 = t10 + rocker * (t9 + rocker * (t8 - t7));
         let t12 = rocker * t10 - 0.32;
-        let t13 = rocker * 0.02271383655340207;
-        let t14 = t13 - 0.044467081566234495;
-        let t15 = rocker * t14 - 0.2749879478953897;
-        let t16 = rocker * t15 + 0.269974675237544;
-        let t17 = t16 + rocker * (t15 + rocker * (t13 + t14));
-        let t18 = 0.7 + rocker * t16;
+        let t155 = 2.0 * t12;
         let t19 = rocker * 0.011150428853490045;
         let t20 = -0.09058109207936622 - t19;
         let t21 = rocker * t20 + 0.1349940835122824;
         let t22 = rocker * t21 + 0.5499484125209229;
-        let t23 = t22 + rocker * (t21 + rocker * (t20 - t19));
         let t24 = rocker * t22 - 0.32;
-        let t25 = rocker * 0.018584048089146866;
-        let t26 = 0.01646928946897587 - t25;
-        let t27 = rocker * t26 + 0.22499013918713692;
-        let t28 = rocker * t27 - 0.09999062045834964;
-        let t29 = t28 + rocker * (t27 + rocker * (t26 - t25));
-        let t30 = rocker * t28;
+        let t159 = 2.0 * t24;
         let t31 = rocker * 0.004129788464254052;
         let t32 = -0.07411180261038959 - t31;
         let t33 = rocker * t32 + 0.049997808708252586;
         let t34 = rocker * t33 + 0.4499577920625733;
-        let t35 = t34 + rocker * (t33 + rocker * (t32 - t31));
         let t36 = rocker * t34 - 0.32;
-        let t37 = bogie_left * 0.012283950186235765;
-        let t38 = t37 + 0.027678668327552673;
-        let t39 = bogie_left * t38 - 0.14997486915462993;
-        let t40 = bogie_left * t39 - 0.16993911711062648;
-        let t41 = t40 + bogie_left * (t39 + bogie_left * (t37 + t38));
-        let t42 = t30 + bogie_left * t40;
+        let bogie_left = x[7];
         let t43 = bogie_left * 0.006960905105533847;
         let t44 = 0.04884470881332827 - t43;
         let t45 = bogie_left * t44 + 0.08498575918762372;
         let t46 = bogie_left * t45 - 0.2998925596069879;
-        let t47 = t46 + bogie_left * (t45 + bogie_left * (t44 - t43));
         let t48 = t36 + bogie_left * t46;
+        let t163 = 2.0 * t48;
+        let t55 = rocker * 0.004129788464256266;
+        let t56 = 0.07411180261038984 - t55;
+        let t57 = rocker * t56 + 0.049997808708252794;
+        let t58 = rocker * t57 - 0.4499577920625732;
+        let t60 = rocker * t58 - 0.32;
+        let bogie_right = x[8];
+        let t67 = bogie_right * 0.006960905105533847;
+        let t68 = 0.04884470881332827 - t67;
+        let t69 = 0.08498575918762372 + bogie_right * t68;
+        let t70 = bogie_right * t69 - 0.2998925596069879;
+        let t72 = t60 + bogie_right * t70;
+        let t173 = 2.0 * t72;
+        let t79 = bogie_left * 0.00696090510553369;
+        let t80 = -0.05698549361554983 - t79;
+        let t81 = bogie_left * t80 + 0.0849857591876236;
+        let t82 = bogie_left * t81 + 0.34987465287481934;
+        let t84 = t36 + bogie_left * t82;
+        let t183 = 2.0 * t84;
+        let t91 = bogie_right * 0.00696090510553369;
+        let t92 = -0.05698549361554983 - t91;
+        let t93 = 0.0849857591876236 + bogie_right * t92;
+        let t94 = 0.34987465287481934 + bogie_right * t93;
+        let t96 = t60 + bogie_right * t94;
+        let t187 = 2.0 * t96;
+        let t103 = rocker * 0.0041297884642546735;
+        let t104 = 0.032938578937951345 - t103;
+        let t105 = rocker * t104 + 0.04999780870825264;
+        let t106 = rocker * t105 - 0.1999812409166992;
+        let t108 = rocker * t106 - 0.15;
+        let t191 = t108 * 3.0;
+        let t115 = rocker * 0.004129788464255254;
+        let t116 = -0.03293857893795131 - t115;
+        let t117 = rocker * t116 + 0.04999780870825271;
+        let t118 = rocker * t117 + 0.19998124091669922;
+        let t120 = rocker * t118 - 0.15;
+        let t195 = t120 * 3.0;
+        let t121 = rocker * 0.004129788464252804;
+        let t122 = -0.07411180261038977 - t121;
+        let t123 = rocker * t122 + 0.04999780870825242;
+        let t124 = rocker * t123 + 0.44995779206257336;
+        let t132 = bogie_left * 0.004094650062078649;
+        let t133 = 1.1830649267924e-17 - t132;
+        let t134 = bogie_left * t133 + 0.04999162305154333;
+        let t135 = bogie_left * t134 - 5.509901911258716e-18;
+        let t137 = rocker * t124 - 0.25 + bogie_left * t135;
+        let t199 = t137 * 3.0;
+        let t138 = rocker * 0.00412978846425477;
+        let t139 = 0.07411180261039031 - t138;
+        let t140 = 0.04999780870825264 + rocker * t139;
+        let t141 = rocker * t140 - 0.4499577920625733;
+        let t149 = bogie_right * 0.004094650062078649;
+        let t150 = 1.1830649267924e-17 - t149;
+        let t151 = 0.04999162305154333 + bogie_right * t150;
+        let t152 = bogie_right * t151 - 5.509901911258716e-18;
+        let t154 = rocker * t141 - 0.25 + bogie_right * t152;
+        let t209 = t154 * 3.0;
+        let t210 = t155 + t159 + t163 + t173 + t183 + t187 + t191 + t195 + t199 + t209;
         let t49 = rocker * 0.018584048089148205;
         let t50 = -0.016469289468975842 - t49;
         let t51 = rocker * t50 + 0.22499013918713717;
         let t52 = rocker * t51 + 0.09999062045834968;
         let t53 = t52 + rocker * (t51 + rocker * (t50 - t49));
-        let t54 = rocker * t52;
-        let t55 = rocker * 0.004129788464256266;
-        let t56 = 0.07411180261038984 - t55;
-        let t57 = rocker * t56 + 0.049997808708252794;
-        let t58 = rocker * t57 - 0.4499577920625732;
-        let t59 = t58 + rocker * (t57 + rocker * (t56 - t55));
-        let t60 = rocker * t58 - 0.32;
-        let t61 = bogie_right * 0.012283950186235765;
-        let t62 = 0.027678668327552673 + t61;
-        let t63 = bogie_right * t62 - 0.14997486915462993;
-        let t64 = bogie_right * t63 - 0.16993911711062648;
-        let t65 = t64 + bogie_right * (t63 + bogie_right * (t61 + t62));
-        let t66 = t54 + bogie_right * t64;
-        let t67 = bogie_right * 0.006960905105533847;
-        let t68 = 0.04884470881332827 - t67;
-        let t69 = 0.08498575918762372 + bogie_right * t68;
-        let t70 = bogie_right * t69 - 0.2998925596069879;
-        let t71 = t70 + bogie_right * (t69 + bogie_right * (t68 - t67));
-        let t72 = t60 + bogie_right * t70;
-        let t73 = bogie_left * 0.014331275217275046;
-        let t74 = 0.027678668327552808 - t73;
-        let t75 = bogie_left * t74 + 0.17497068068040164;
-        let t76 = bogie_left * t75 - 0.16993911711062654;
-        let t77 = t76 + bogie_left * (t75 + bogie_left * (t74 - t73));
-        let t78 = t30 - 0.65 + bogie_left * t76;
-        let t79 = bogie_left * 0.00696090510553369;
-        let t80 = -0.05698549361554983 - t79;
-        let t81 = bogie_left * t80 + 0.0849857591876236;
-        let t82 = bogie_left * t81 + 0.34987465287481934;
-        let t83 = t82 + bogie_left * (t81 + bogie_left * (t80 - t79));
-        let t84 = t36 + bogie_left * t82;
-        let t85 = bogie_right * 0.014331275217275046;
-        let t86 = 0.027678668327552808 - t85;
-        let t87 = 0.17497068068040164 + bogie_right * t86;
-        let t88 = bogie_right * t87 - 0.16993911711062654;
-        let t89 = t88 + bogie_right * (t87 + bogie_right * (t86 - t85));
-        let t90 = t54 - 0.65 + bogie_right * t88;
-        let t91 = bogie_right * 0.00696090510553369;
-        let t92 = -0.05698549361554983 - t91;
-        let t93 = 0.0849857591876236 + bogie_right * t92;
-        let t94 = 0.34987465287481934 + bogie_right * t93;
-        let t95 = t94 + bogie_right * (t93 + bogie_right * (t92 - t91));
-        let t96 = t60 + bogie_right * t94;
+        let t174 = 2.0 * t53;
+        let t25 = rocker * 0.018584048089146866;
+        let t26 = 0.01646928946897587 - t25;
+        let t27 = rocker * t26 + 0.22499013918713692;
+        let t28 = rocker * t27 - 0.09999062045834964;
+        let t29 = t28 + rocker * (t27 + rocker * (t26 - t25));
+        let t164 = 2.0 * t29;
+        let t1 = rocker * 0.02271383655340189;
+        let t2 = t1 + 0.044467081566234;
+        let t3 = rocker * t2 - 0.2749879478953897;
+        let t4 = rocker * t3 - 0.2699746752375441;
+        let t5 = t4 + rocker * (t3 + rocker * (t1 + t2));
+        let t13 = rocker * 0.02271383655340207;
+        let t14 = t13 - 0.044467081566234495;
+        let t15 = rocker * t14 - 0.2749879478953897;
+        let t16 = rocker * t15 + 0.269974675237544;
+        let t17 = t16 + rocker * (t15 + rocker * (t13 + t14));
         let t97 = rocker * 0.008259576928510431;
         let t98 = t97 + 0.016469289468975704;
         let t99 = rocker * t98 - 0.09999561741650541;
         let t100 = rocker * t99 - 0.09999062045834964;
         let t101 = t100 + rocker * (t99 + rocker * (t97 + t98));
-        let t102 = 0.35 + rocker * t100;
-        let t103 = rocker * 0.0041297884642546735;
-        let t104 = 0.032938578937951345 - t103;
-        let t105 = rocker * t104 + 0.04999780870825264;
-        let t106 = rocker * t105 - 0.1999812409166992;
-        let t107 = t106 + rocker * (t105 + rocker * (t104 - t103));
-        let t108 = rocker * t106 - 0.15;
         let t109 = rocker * 0.008259576928510088;
         let t110 = t109 - 0.016469289468975627;
         let t111 = rocker * t110 - 0.09999561741650537;
         let t112 = rocker * t111 + 0.0999906204583496;
         let t113 = t112 + rocker * (t111 + rocker * (t109 + t110));
-        let t114 = 0.35 + rocker * t112;
-        let t115 = rocker * 0.004129788464255254;
-        let t116 = -0.03293857893795131 - t115;
-        let t117 = rocker * t116 + 0.04999780870825271;
-        let t118 = rocker * t117 + 0.19998124091669922;
-        let t119 = t118 + rocker * (t117 + rocker * (t116 - t115));
-        let t120 = rocker * t118 - 0.15;
-        let t121 = rocker * 0.004129788464252804;
-        let t122 = -0.07411180261038977 - t121;
-        let t123 = rocker * t122 + 0.04999780870825242;
-        let t124 = rocker * t123 + 0.44995779206257336;
-        let t125 = t124 + rocker * (t123 + rocker * (t122 - t121));
+        let t211 = t174 + (t164 + (2.0 * t5 + 2.0 * t17 + t164 + t174)) + t101 * 3.0
+            + t113 * 3.0 + t29 * 3.0 + t53 * 3.0;
+        let t37 = bogie_left * 0.012283950186235765;
+        let t38 = t37 + 0.027678668327552673;
+        let t39 = bogie_left * t38 - 0.14997486915462993;
+        let t40 = bogie_left * t39 - 0.16993911711062648;
+        let t41 = t40 + bogie_left * (t39 + bogie_left * (t37 + t38));
+        let t73 = bogie_left * 0.014331275217275046;
+        let t74 = 0.027678668327552808 - t73;
+        let t75 = bogie_left * t74 + 0.17497068068040164;
+        let t76 = bogie_left * t75 - 0.16993911711062654;
+        let t77 = t76 + bogie_left * (t75 + bogie_left * (t74 - t73));
         let t126 = bogie_left * 1.1152709955829303e-16;
         let t127 = t126 + 0.016281569604442835;
         let t128 = bogie_left * t127 - 2.488320152625496e-17;
         let t129 = bogie_left * t128 - 0.09996418653566262;
         let t130 = t129 + bogie_left * (t128 + bogie_left * (t126 + t127));
-        let t131 = t30 - 0.3 + bogie_left * t129;
-        let t132 = bogie_left * 0.004094650062078649;
-        let t133 = 1.1830649267924e-17 - t132;
-        let t134 = bogie_left * t133 + 0.04999162305154333;
-        let t135 = bogie_left * t134 - 5.509901911258716e-18;
-        let t136 = t135 + bogie_left * (t134 + bogie_left * (t133 - t132));
-        let t137 = rocker * t124 - 0.25 + bogie_left * t135;
-        let t138 = rocker * 0.00412978846425477;
-        let t139 = 0.07411180261039031 - t138;
-        let t140 = 0.04999780870825264 + rocker * t139;
-        let t141 = rocker * t140 - 0.4499577920625733;
-        let t142 = t141 + rocker * (t140 + rocker * (t139 - t138));
+        let t200 = 2.0 * t41 + 2.0 * t77 + t130 * 3.0;
+        let t61 = bogie_right * 0.012283950186235765;
+        let t62 = 0.027678668327552673 + t61;
+        let t63 = bogie_right * t62 - 0.14997486915462993;
+        let t64 = bogie_right * t63 - 0.16993911711062648;
+        let t65 = t64 + bogie_right * (t63 + bogie_right * (t61 + t62));
+        let t85 = bogie_right * 0.014331275217275046;
+        let t86 = 0.027678668327552808 - t85;
+        let t87 = 0.17497068068040164 + bogie_right * t86;
+        let t88 = bogie_right * t87 - 0.16993911711062654;
+        let t89 = t88 + bogie_right * (t87 + bogie_right * (t86 - t85));
         let t143 = bogie_right * 1.1152709955829303e-16;
         let t144 = 0.016281569604442835 + t143;
         let t145 = bogie_right * t144 - 2.488320152625496e-17;
         let t146 = bogie_right * t145 - 0.09996418653566262;
         let t147 = t146 + bogie_right * (t145 + bogie_right * (t143 + t144));
-        let t148 = t54 - 0.3 + bogie_right * t146;
-        let t149 = bogie_right * 0.004094650062078649;
-        let t150 = 1.1830649267924e-17 - t149;
-        let t151 = 0.04999162305154333 + bogie_right * t150;
-        let t152 = bogie_right * t151 - 5.509901911258716e-18;
-        let t153 = t152 + bogie_right * (t151 + bogie_right * (t150 - t149));
-        let t154 = rocker * t141 - 0.25 + bogie_right * t152;
-        let t155 = 2.0 * t12;
-        let t156 = 2.0 * t6;
-        let t157 = t12 * t12;
-        let t158 = t6 * t6;
-        let t159 = 2.0 * t24;
-        let t160 = 2.0 * t18;
-        let t161 = t24 * t24;
-        let t162 = t18 * t18;
-        let t163 = 2.0 * t48;
-        let t164 = 2.0 * t29;
-        let t165 = 2.0 * t42;
-        let t166 = 2.0 * t35;
-        let t167 = t48 * t48;
-        let t168 = 2.0 * (0.6 * t35);
-        let t169 = t42 * t42;
-        let t170 = 2.0 * (0.6 * t29);
-        let t171 = t29 * t29;
-        let t172 = 2.0 * (t171 + t35 * t35);
-        let t173 = 2.0 * t72;
-        let t174 = 2.0 * t53;
-        let t175 = 2.0 * t66;
-        let t176 = 2.0 * t59;
-        let t177 = t72 * t72;
-        let t178 = 2.0 * (0.6 * t59);
-        let t179 = t66 * t66;
-        let t180 = 2.0 * (0.6 * t53);
-        let t181 = t53 * t53;
-        let t182 = 2.0 * (t181 + t59 * t59);
-        let t183 = 2.0 * t84;
-        let t184 = 2.0 * t78;
-        let t185 = t84 * t84;
-        let t186 = t78 * t78;
-        let t187 = 2.0 * t96;
-        let t188 = 2.0 * t90;
-        let t189 = t96 * t96;
-        let t190 = t90 * t90;
-        let t191 = t108 * 3.0;
-        let t192 = t102 * 3.0;
-        let t193 = t108 * t108;
-        let t194 = t102 * t102;
-        let t195 = t120 * 3.0;
-        let t196 = t114 * 3.0;
-        let t197 = t120 * t120;
-        let t198 = t114 * t114;
-        let t199 = t137 * 3.0;
-        let t200 = 2.0 * t41 + 2.0 * t77 + t130 * 3.0;
-        let t201 = t131 * 3.0;
-        let t202 = 2.0 * t47 + 2.0 * t83 + t136 * 3.0;
-        let t203 = t137 * t137;
-        let t204 = 2.0 * (0.6 * t47) + 2.0 * (0.6 * t83) + 3.0 * (0.58 * t136);
-        let t205 = t131 * t131;
-        let t206 = 2.0 * (t41 * t48 - t42 * t47) + 2.0 * (t77 * t84 - t78 * t83)
-            + 3.0 * (t130 * t137 - t131 * t136);
-        let t207 = -(2.0 * (0.6 * t41)) - 2.0 * (0.6 * t77) - 3.0 * (0.58 * t130);
-        let t208 = 2.0 * (t29 * t41 + t35 * t47) + 2.0 * (t29 * t77 + t35 * t83)
-            + 3.0 * (t29 * t130 + t125 * t136);
-        let t209 = t154 * 3.0;
-        let t210 = t155 + t159 + t163 + t173 + t183 + t187 + t191 + t195 + t199 + t209;
-        let t211 = t174 + (t164 + (2.0 * t5 + 2.0 * t17 + t164 + t174)) + t101 * 3.0
-            + t113 * 3.0 + t29 * 3.0 + t53 * 3.0;
         let t212 = 2.0 * t65 + 2.0 * t89 + t147 * 3.0;
         let t213 = -t155 - t159 - t163 - t173 - t183 - t187 - t191 - t195 - t199 - t209;
+        let t6 = 0.7 + rocker * t4;
+        let t156 = 2.0 * t6;
+        let t18 = 0.7 + rocker * t16;
+        let t160 = 2.0 * t18;
+        let t30 = rocker * t28;
+        let t42 = t30 + bogie_left * t40;
+        let t165 = 2.0 * t42;
+        let t54 = rocker * t52;
+        let t66 = t54 + bogie_right * t64;
+        let t175 = 2.0 * t66;
+        let t78 = t30 - 0.65 + bogie_left * t76;
+        let t184 = 2.0 * t78;
+        let t90 = t54 - 0.65 + bogie_right * t88;
+        let t188 = 2.0 * t90;
+        let t102 = 0.35 + rocker * t100;
+        let t192 = t102 * 3.0;
+        let t114 = 0.35 + rocker * t112;
+        let t196 = t114 * 3.0;
+        let t131 = t30 - 0.3 + bogie_left * t129;
+        let t201 = t131 * 3.0;
+        let t148 = t54 - 0.3 + bogie_right * t146;
         let t214 = t148 * 3.0;
         let t215 = t156 + t160 + t165 + t175 + t184 + t188 + t192 + t196 + t201 + t214;
         let t216 = -t156 - t160 - t165 - t175 - t184 - t188 - t192 - t196 - t201 - t214;
+        let t59 = t58 + rocker * (t57 + rocker * (t56 - t55));
+        let t176 = 2.0 * t59;
+        let t35 = t34 + rocker * (t33 + rocker * (t32 - t31));
+        let t166 = 2.0 * t35;
+        let t11 = t10 + rocker * (t9 + rocker * (t8 - t7));
+        let t23 = t22 + rocker * (t21 + rocker * (t20 - t19));
+        let t107 = t106 + rocker * (t105 + rocker * (t104 - t103));
+        let t119 = t118 + rocker * (t117 + rocker * (t116 - t115));
+        let t125 = t124 + rocker * (t123 + rocker * (t122 - t121));
+        let t142 = t141 + rocker * (t140 + rocker * (t139 - t138));
         let t217 = t176 + (t166 + (2.0 * t11 + 2.0 * t23 + t166 + t176)) + t107 * 3.0
             + t119 * 3.0 + t125 * 3.0 + t142 * 3.0;
+        let t47 = t46 + bogie_left * (t45 + bogie_left * (t44 - t43));
+        let t83 = t82 + bogie_left * (t81 + bogie_left * (t80 - t79));
+        let t136 = t135 + bogie_left * (t134 + bogie_left * (t133 - t132));
+        let t202 = 2.0 * t47 + 2.0 * t83 + t136 * 3.0;
+        let t71 = t70 + bogie_right * (t69 + bogie_right * (t68 - t67));
+        let t95 = t94 + bogie_right * (t93 + bogie_right * (t92 - t91));
+        let t153 = t152 + bogie_right * (t151 + bogie_right * (t150 - t149));
         let t218 = 2.0 * t71 + 2.0 * t95 + t153 * 3.0;
+        let t157 = t12 * t12;
+        let t161 = t24 * t24;
+        let t167 = t48 * t48;
+        let t177 = t72 * t72;
+        let t185 = t84 * t84;
+        let t189 = t96 * t96;
+        let t193 = t108 * t108;
+        let t197 = t120 * t120;
+        let t203 = t137 * t137;
         let t219 = t154 * t154;
         let t220 = 2.0 * (0.6 * t18) - 2.0 * (0.6 * t6) - 2.0 * (0.6 * t42)
             + 2.0 * (0.6 * t66) - 2.0 * (0.6 * t78) + 2.0 * (0.6 * t90)
@@ -1362,10 +1339,22 @@ impl Mer {
             - 2.0 * (t66 * t72) - 2.0 * (t78 * t84) - 2.0 * (t90 * t96)
             - 3.0 * (t102 * t108) - 3.0 * (t114 * t120) - 3.0 * (t131 * t137)
             - 3.0 * (t148 * t154);
+        let t178 = 2.0 * (0.6 * t59);
+        let t168 = 2.0 * (0.6 * t35);
         let t222 = t168 + (2.0 * (0.6 * t11) - 2.0 * (0.6 * t23) + t168 - t178) - t178
             + 3.0 * (0.55 * t107) - 3.0 * (0.55 * t119) + 3.0 * (0.58 * t125)
             - 3.0 * (0.58 * t142);
+        let t204 = 2.0 * (0.6 * t47) + 2.0 * (0.6 * t83) + 3.0 * (0.58 * t136);
         let t223 = -(2.0 * (0.6 * t71)) - 2.0 * (0.6 * t95) - 3.0 * (0.58 * t153);
+        let t158 = t6 * t6;
+        let t162 = t18 * t18;
+        let t169 = t42 * t42;
+        let t179 = t66 * t66;
+        let t186 = t78 * t78;
+        let t190 = t90 * t90;
+        let t194 = t102 * t102;
+        let t198 = t114 * t114;
+        let t205 = t131 * t131;
         let t224 = t148 * t148;
         let t225 = 2.0 * (0.6 * t24) - 2.0 * (0.6 * t12) - 2.0 * (0.6 * t48)
             + 2.0 * (0.6 * t72) - 2.0 * (0.6 * t84) + 2.0 * (0.6 * t96)
@@ -1376,12 +1365,23 @@ impl Mer {
             + 2.0 * (t29 * t84 - t35 * t78) + 2.0 * (t53 * t96 - t59 * t90)
             + 3.0 * (t101 * t108 - t102 * t107) + 3.0 * (t113 * t120 - t114 * t119)
             + 3.0 * (t29 * t137 - t125 * t131) + 3.0 * (t53 * t154 - t142 * t148);
+        let t206 = 2.0 * (t41 * t48 - t42 * t47) + 2.0 * (t77 * t84 - t78 * t83)
+            + 3.0 * (t130 * t137 - t131 * t136);
         let t227 = 2.0 * (t65 * t72 - t66 * t71) + 2.0 * (t89 * t96 - t90 * t95)
             + 3.0 * (t147 * t154 - t148 * t153);
+        let t180 = 2.0 * (0.6 * t53);
+        let t170 = 2.0 * (0.6 * t29);
         let t228 = t180 + (2.0 * (0.6 * t17) - 2.0 * (0.6 * t5) - t170 + t180 - t170)
             - 3.0 * (0.55 * t101) + 3.0 * (0.55 * t113) - 3.0 * (t29 * 0.58)
             + 3.0 * (t53 * 0.58);
+        let t207 = -(2.0 * (0.6 * t41)) - 2.0 * (0.6 * t77) - 3.0 * (0.58 * t130);
         let t229 = 2.0 * (0.6 * t65) + 2.0 * (0.6 * t89) + 3.0 * (0.58 * t147);
+        let t181 = t53 * t53;
+        let t182 = 2.0 * (t181 + t59 * t59);
+        let t171 = t29 * t29;
+        let t172 = 2.0 * (t171 + t35 * t35);
+        let t208 = 2.0 * (t29 * t41 + t35 * t47) + 2.0 * (t29 * t77 + t35 * t83)
+            + 3.0 * (t29 * t130 + t125 * t136);
         let t230 = 2.0 * (t53 * t65 + t59 * t71) + 2.0 * (t53 * t89 + t59 * t95)
             + 3.0 * (t53 * t147 + t142 * t153);
         m[0][0] = 174.0;
@@ -1475,28 +1475,46 @@ impl Mer {
         }; 6];
         // inputs
         let pos_x = x[0];
-        let pos_y = x[1];
-        let pos_z = x[2];
-        let phi = x[3];
+        let rocker = x[6];
         let theta = x[4];
         let psi = x[5];
-        let rocker = x[6];
-        let bogie_left = x[7];
-        let bogie_right = x[8];
+        let phi = x[3];
+        let pos_y = x[1];
+        let pos_z = x[2];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
         let omega_y = w[4];
         let omega_z = w[5];
         let yd_rocker = w[6];
-        let yd_bogie_left = w[7];
-        let yd_bogie_right = w[8];
+        let vy = w[1];
+        let omega_x = w[3];
+        let vz = w[2];
         let delta_front_left = steer[0];
         let delta_front_right = steer[1];
+        let bogie_left = x[7];
+        let yd_bogie_left = w[7];
+        let bogie_right = x[8];
+        let yd_bogie_right = w[8];
         let delta_rear_left = steer[4];
         let delta_rear_right = steer[5];
         // terms shared by the wheels
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let t21 = s_phi * s_theta;
+        let t25 = c_theta * c_psi - s_psi * t21;
+        let t26 = c_phi * s_psi;
+        let t31 = 0.6 * t26;
+        let t22 = s_phi * c_theta;
+        let t27 = s_theta * c_psi + s_psi * t22;
+        let t28 = c_theta * s_psi + c_psi * t21;
+        let t29 = c_phi * c_psi;
+        let t32 = 0.6 * t29;
+        let t30 = s_theta * s_psi - c_psi * t22;
+        let t23 = c_phi * s_theta;
+        let t33 = 0.6 * s_phi;
+        let t24 = c_phi * c_theta;
+        let t34 = omega_z * 0.6;
+        let t35 = omega_x * 0.6;
         let t1 = rocker * 0.018584048089146866;
         let t2 = 0.01646928946897587 - t1;
         let t3 = rocker * t2 + 0.22499013918713692;
@@ -1507,6 +1525,8 @@ impl Mer {
         let t8 = rocker * t7 + 0.049997808708252586;
         let t9 = rocker * t8 + 0.4499577920625733;
         let t10 = rocker * t9 - 0.32;
+        let t36 = yd_rocker * (t4 + rocker * (t3 + rocker * (t2 - t1)));
+        let t37 = yd_rocker * (t9 + rocker * (t8 + rocker * (t7 - t6)));
         let t11 = rocker * 0.018584048089148205;
         let t12 = -0.016469289468975842 - t11;
         let t13 = rocker * t12 + 0.22499013918713717;
@@ -1517,26 +1537,6 @@ impl Mer {
         let t18 = rocker * t17 + 0.049997808708252794;
         let t19 = rocker * t18 - 0.4499577920625732;
         let t20 = rocker * t19 - 0.32;
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t21 = s_phi * s_theta;
-        let t22 = s_phi * c_theta;
-        let t23 = c_phi * s_theta;
-        let t24 = c_phi * c_theta;
-        let t25 = c_theta * c_psi - s_psi * t21;
-        let t26 = c_phi * s_psi;
-        let t27 = s_theta * c_psi + s_psi * t22;
-        let t28 = c_theta * s_psi + c_psi * t21;
-        let t29 = c_phi * c_psi;
-        let t30 = s_theta * s_psi - c_psi * t22;
-        let t31 = 0.6 * t26;
-        let t32 = 0.6 * t29;
-        let t33 = 0.6 * s_phi;
-        let t34 = omega_z * 0.6;
-        let t35 = omega_x * 0.6;
-        let t36 = yd_rocker * (t4 + rocker * (t3 + rocker * (t2 - t1)));
-        let t37 = yd_rocker * (t9 + rocker * (t8 + rocker * (t7 - t6)));
         let t38 = yd_rocker * (t14 + rocker * (t13 + rocker * (t12 - t11)));
         let t39 = yd_rocker * (t19 + rocker * (t18 + rocker * (t17 - t16)));
         // wheel `front_left`: r_G, V, a_w (MODEL.md §3, eq. 7, 12)
@@ -1550,9 +1550,9 @@ impl Mer {
         let t47 = rocker * t46 + 0.13499408351228176;
         let t48 = rocker * t47 - 0.5499484125209226;
         let t49 = rocker * t48 - 0.32;
-        let t50 = vy + (omega_z * t44 - omega_x * t49);
         let t51 = vx + (omega_y * t49 - t34)
             + yd_rocker * (t43 + rocker * (t42 + rocker * (t40 + t41)));
+        let t50 = vy + (omega_z * t44 - omega_x * t49);
         let t52 = vz + (t35 - omega_y * t44)
             + yd_rocker * (t48 + rocker * (t47 + rocker * (t46 - t45)));
         let (s_delta_front_left, c_delta_front_left) = ::libm::sincos(delta_front_left);
@@ -1576,9 +1576,9 @@ impl Mer {
         let t60 = rocker * t59 + 0.1349940835122824;
         let t61 = rocker * t60 + 0.5499484125209229;
         let t62 = rocker * t61 - 0.32;
-        let t63 = vy + (omega_z * t57 - omega_x * t62);
         let t64 = vx + (t34 + omega_y * t62)
             + yd_rocker * (t56 + rocker * (t55 + rocker * (t53 + t54)));
+        let t63 = vy + (omega_z * t57 - omega_x * t62);
         let t65 = vz + (-t35 - omega_y * t57)
             + yd_rocker * (t61 + rocker * (t60 + rocker * (t59 - t58)));
         let (s_delta_front_right, c_delta_front_right) = ::libm::sincos(
@@ -1604,9 +1604,9 @@ impl Mer {
         let t73 = bogie_left * t72 + 0.08498575918762372;
         let t74 = bogie_left * t73 - 0.2998925596069879;
         let t75 = t10 + bogie_left * t74;
-        let t76 = vy + (omega_z * t70 - omega_x * t75);
         let t77 = vx + (omega_y * t75 - t34) + t36
             + yd_bogie_left * (t69 + bogie_left * (t68 + bogie_left * (t66 + t67)));
+        let t76 = vy + (omega_z * t70 - omega_x * t75);
         let t78 = vz + (t35 - omega_y * t70) + t37
             + yd_bogie_left * (t74 + bogie_left * (t73 + bogie_left * (t72 - t71)));
         out[2].centre[0] = pos_x + (t70 * t25 - t31 + t75 * t27);
@@ -1629,9 +1629,9 @@ impl Mer {
         let t86 = 0.08498575918762372 + bogie_right * t85;
         let t87 = bogie_right * t86 - 0.2998925596069879;
         let t88 = t20 + bogie_right * t87;
-        let t89 = vy + (omega_z * t83 - omega_x * t88);
         let t90 = vx + (t34 + omega_y * t88) + t38
             + yd_bogie_right * (t82 + bogie_right * (t81 + bogie_right * (t79 + t80)));
+        let t89 = vy + (omega_z * t83 - omega_x * t88);
         let t91 = vz + (-t35 - omega_y * t83) + t39
             + yd_bogie_right * (t87 + bogie_right * (t86 + bogie_right * (t85 - t84)));
         out[3].centre[0] = pos_x + (t31 + t83 * t25 + t88 * t27);
@@ -1654,9 +1654,9 @@ impl Mer {
         let t99 = bogie_left * t98 + 0.0849857591876236;
         let t100 = bogie_left * t99 + 0.34987465287481934;
         let t101 = t10 + bogie_left * t100;
-        let t102 = vy + (omega_z * t96 - omega_x * t101);
         let t103 = t36 + (vx + (omega_y * t101 - t34))
             + yd_bogie_left * (t95 + bogie_left * (t94 + bogie_left * (t93 - t92)));
+        let t102 = vy + (omega_z * t96 - omega_x * t101);
         let t104 = t37 + (vz + (t35 - omega_y * t96))
             + yd_bogie_left * (t100 + bogie_left * (t99 + bogie_left * (t98 - t97)));
         let (s_delta_rear_left, c_delta_rear_left) = ::libm::sincos(delta_rear_left);
@@ -1680,10 +1680,10 @@ impl Mer {
         let t112 = 0.0849857591876236 + bogie_right * t111;
         let t113 = 0.34987465287481934 + bogie_right * t112;
         let t114 = t20 + bogie_right * t113;
-        let t115 = vy + (omega_z * t109 - omega_x * t114);
         let t116 = t38 + (vx + (t34 + omega_y * t114))
             + yd_bogie_right
                 * (t108 + bogie_right * (t107 + bogie_right * (t106 - t105)));
+        let t115 = vy + (omega_z * t109 - omega_x * t114);
         let t117 = t39 + (vz + (-t35 - omega_y * t109))
             + yd_bogie_right
                 * (t113 + bogie_right * (t112 + bogie_right * (t111 - t110)));
@@ -1711,1381 +1711,337 @@ impl Mer {
     ) -> [[f64; 18]; 18] {
         let mut jac = [[0.0; 18]; 18];
         // ∂(ẋ, ẇ)/∂(x, w) at fixed wheel loads
-        let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let rocker = x[6];
-        let bogie_left = x[7];
-        let bogie_right = x[8];
         let vx = w[0];
+        let psi = x[5];
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let phi = x[3];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let theta = x[4];
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let t743 = c_phi * s_theta;
+        let t1011 = s_psi * t743;
         let vy = w[1];
+        let t1012 = s_phi * s_psi;
         let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
+        let t744 = c_phi * c_theta;
+        let t1013 = s_psi * t744;
+        let t1014 = c_psi * t743;
+        let t1015 = s_phi * c_psi;
+        let t1016 = c_psi * t744;
+        let t803 = s_phi * s_theta;
+        let t804 = s_phi * c_theta;
         let omega_z = w[5];
-        let yd_rocker = w[6];
-        let yd_bogie_left = w[7];
-        let yd_bogie_right = w[8];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_middle_left_x = loads[2].force[0];
-        let f_middle_left_y = loads[2].force[1];
-        let f_middle_left_z = loads[2].force[2];
-        let mu_middle_left_x = loads[2].moment[0];
-        let mu_middle_left_y = loads[2].moment[1];
-        let mu_middle_left_z = loads[2].moment[2];
-        let tau_middle_left_x = loads[2].stator_torque[0];
-        let tau_middle_left_y = loads[2].stator_torque[1];
-        let tau_middle_left_z = loads[2].stator_torque[2];
-        let f_middle_right_x = loads[3].force[0];
-        let f_middle_right_y = loads[3].force[1];
-        let f_middle_right_z = loads[3].force[2];
-        let mu_middle_right_x = loads[3].moment[0];
-        let mu_middle_right_y = loads[3].moment[1];
-        let mu_middle_right_z = loads[3].moment[2];
-        let tau_middle_right_x = loads[3].stator_torque[0];
-        let tau_middle_right_y = loads[3].stator_torque[1];
-        let tau_middle_right_z = loads[3].stator_torque[2];
-        let f_rear_left_x = loads[4].force[0];
-        let f_rear_left_y = loads[4].force[1];
-        let f_rear_left_z = loads[4].force[2];
-        let mu_rear_left_x = loads[4].moment[0];
-        let mu_rear_left_y = loads[4].moment[1];
-        let mu_rear_left_z = loads[4].moment[2];
-        let tau_rear_left_x = loads[4].stator_torque[0];
-        let tau_rear_left_y = loads[4].stator_torque[1];
-        let tau_rear_left_z = loads[4].stator_torque[2];
-        let f_rear_right_x = loads[5].force[0];
-        let f_rear_right_y = loads[5].force[1];
-        let f_rear_right_z = loads[5].force[2];
-        let mu_rear_right_x = loads[5].moment[0];
-        let mu_rear_right_y = loads[5].moment[1];
-        let mu_rear_right_z = loads[5].moment[2];
-        let tau_rear_right_x = loads[5].stator_torque[0];
-        let tau_rear_right_y = loads[5].stator_torque[1];
-        let tau_rear_right_z = loads[5].stator_torque[2];
-        let t1 = rocker * 0.02271383655340189;
-        let t2 = t1 + 0.044467081566234;
-        let t3 = t1 + t2;
-        let t4 = rocker * t2 - 0.2749879478953897;
-        let t5 = rocker * 0.04542767310680378;
-        let t6 = t5 + 2.0 * t3;
-        let t7 = t4 + rocker * t3;
-        let t8 = rocker * t4 - 0.2699746752375441;
-        let t9 = rocker * t6 + 2.0 * t7;
-        let t10 = t8 + rocker * t7;
-        let t11 = 0.7 + rocker * t8;
-        let t12 = rocker * 0.01115042885348447;
-        let t13 = 0.09058109207936695 - t12;
-        let t14 = t13 - t12;
-        let t15 = rocker * t13 + 0.13499408351228176;
-        let t16 = rocker * 0.02230085770696894;
-        let t17 = 2.0 * t14 - t16;
-        let t18 = t15 + rocker * t14;
-        let t19 = rocker * t15 - 0.5499484125209226;
-        let t20 = rocker * t17 + 2.0 * t18;
-        let t21 = t19 + rocker * t18;
-        let t22 = rocker * t19 - 0.32;
-        let t23 = rocker * 0.02271383655340207;
-        let t24 = t23 - 0.044467081566234495;
-        let t25 = t23 + t24;
-        let t26 = rocker * t24 - 0.2749879478953897;
-        let t27 = rocker * 0.04542767310680414;
-        let t28 = t27 + 2.0 * t25;
-        let t29 = t26 + rocker * t25;
-        let t30 = rocker * t26 + 0.269974675237544;
-        let t31 = rocker * t28 + 2.0 * t29;
-        let t32 = t30 + rocker * t29;
-        let t33 = 0.7 + rocker * t30;
-        let t34 = rocker * 0.011150428853490045;
-        let t35 = -0.09058109207936622 - t34;
-        let t36 = t35 - t34;
-        let t37 = rocker * t35 + 0.1349940835122824;
-        let t38 = rocker * 0.02230085770698009;
-        let t39 = 2.0 * t36 - t38;
-        let t40 = t37 + rocker * t36;
-        let t41 = rocker * t37 + 0.5499484125209229;
-        let t42 = rocker * t39 + 2.0 * t40;
-        let t43 = t41 + rocker * t40;
-        let t44 = rocker * t41 - 0.32;
-        let t45 = rocker * 0.018584048089146866;
-        let t46 = 0.01646928946897587 - t45;
-        let t47 = t46 - t45;
-        let t48 = rocker * t46 + 0.22499013918713692;
-        let t49 = rocker * 0.03716809617829373;
-        let t50 = 2.0 * t47 - t49;
-        let t51 = t48 + rocker * t47;
-        let t52 = rocker * t48 - 0.09999062045834964;
-        let t53 = rocker * t50 + 2.0 * t51;
-        let t54 = t52 + rocker * t51;
-        let t55 = rocker * t52;
-        let t56 = rocker * 0.004129788464254052;
-        let t57 = -0.07411180261038959 - t56;
-        let t58 = t57 - t56;
-        let t59 = rocker * t57 + 0.049997808708252586;
-        let t60 = rocker * 0.008259576928508105;
-        let t61 = 2.0 * t58 - t60;
-        let t62 = t59 + rocker * t58;
-        let t63 = rocker * t59 + 0.4499577920625733;
-        let t64 = rocker * t61 + 2.0 * t62;
-        let t65 = t63 + rocker * t62;
-        let t66 = rocker * t63 - 0.32;
-        let t67 = bogie_left * 0.012283950186235765;
-        let t68 = t67 + 0.027678668327552673;
-        let t69 = t67 + t68;
-        let t70 = bogie_left * t68 - 0.14997486915462993;
-        let t71 = bogie_left * 0.02456790037247153;
-        let t72 = t71 + 2.0 * t69;
-        let t73 = t70 + bogie_left * t69;
-        let t74 = bogie_left * t70 - 0.16993911711062648;
-        let t75 = bogie_left * t72 + 2.0 * t73;
-        let t76 = t74 + bogie_left * t73;
-        let t77 = t55 + bogie_left * t74;
-        let t78 = bogie_left * 0.006960905105533847;
-        let t79 = 0.04884470881332827 - t78;
-        let t80 = t79 - t78;
-        let t81 = bogie_left * t79 + 0.08498575918762372;
-        let t82 = bogie_left * 0.013921810211067694;
-        let t83 = 2.0 * t80 - t82;
-        let t84 = t81 + bogie_left * t80;
-        let t85 = bogie_left * t81 - 0.2998925596069879;
-        let t86 = bogie_left * t83 + 2.0 * t84;
-        let t87 = t85 + bogie_left * t84;
-        let t88 = t66 + bogie_left * t85;
-        let t89 = bogie_left * 1.910217473623093e-15;
-        let t90 = t89 + 7.159459156634517e-16;
-        let t91 = t89 + t90;
-        let t92 = bogie_left * t90 - 4.471584043792905e-16;
-        let t93 = t92 + bogie_left * t91;
-        let t94 = bogie_left * t92 + 0.9999999999999998 + bogie_left * t93;
+        let omega_x = w[3];
+        let t995 = omega_z * c_theta - omega_x * s_theta;
+        let t996 = t995 / c_phi;
+        let t1062 = s_phi * t996 / c_phi;
+        let rocker = x[6];
         let t95 = rocker * 0.018584048089148205;
         let t96 = -0.016469289468975842 - t95;
-        let t97 = t96 - t95;
         let t98 = rocker * t96 + 0.22499013918713717;
-        let t99 = rocker * 0.03716809617829641;
-        let t100 = 2.0 * t97 - t99;
-        let t101 = t98 + rocker * t97;
         let t102 = rocker * t98 + 0.09999062045834968;
-        let t103 = rocker * t100 + 2.0 * t101;
+        let t97 = t96 - t95;
+        let t101 = t98 + rocker * t97;
         let t104 = t102 + rocker * t101;
-        let t105 = rocker * t102;
-        let t106 = rocker * 0.004129788464256266;
-        let t107 = 0.07411180261038984 - t106;
-        let t108 = t107 - t106;
-        let t109 = rocker * t107 + 0.049997808708252794;
-        let t110 = rocker * 0.008259576928512532;
-        let t111 = 2.0 * t108 - t110;
-        let t112 = t109 + rocker * t108;
-        let t113 = rocker * t109 - 0.4499577920625732;
-        let t114 = rocker * t111 + 2.0 * t112;
-        let t115 = t113 + rocker * t112;
-        let t116 = rocker * t113 - 0.32;
-        let t117 = bogie_right * 0.012283950186235765;
-        let t118 = 0.027678668327552673 + t117;
-        let t119 = t117 + t118;
-        let t120 = bogie_right * t118 - 0.14997486915462993;
-        let t121 = bogie_right * 0.02456790037247153;
-        let t122 = t121 + 2.0 * t119;
-        let t123 = t120 + bogie_right * t119;
-        let t124 = bogie_right * t120 - 0.16993911711062648;
-        let t125 = bogie_right * t122 + 2.0 * t123;
-        let t126 = t124 + bogie_right * t123;
-        let t127 = t105 + bogie_right * t124;
-        let t128 = bogie_right * 0.006960905105533847;
-        let t129 = 0.04884470881332827 - t128;
-        let t130 = t129 - t128;
-        let t131 = 0.08498575918762372 + bogie_right * t129;
-        let t132 = bogie_right * 0.013921810211067694;
-        let t133 = 2.0 * t130 - t132;
-        let t134 = t131 + bogie_right * t130;
-        let t135 = bogie_right * t131 - 0.2998925596069879;
-        let t136 = bogie_right * t133 + 2.0 * t134;
-        let t137 = t135 + bogie_right * t134;
-        let t138 = t116 + bogie_right * t135;
-        let t139 = bogie_right * 1.910217473623093e-15;
-        let t140 = 7.159459156634517e-16 + t139;
-        let t141 = t139 + t140;
-        let t142 = bogie_right * t140 - 4.471584043792905e-16;
-        let t143 = t142 + bogie_right * t141;
-        let t144 = 0.9999999999999998 + bogie_right * t142 + bogie_right * t143;
-        let t145 = bogie_left * 0.014331275217275046;
-        let t146 = 0.027678668327552808 - t145;
-        let t147 = t146 - t145;
-        let t148 = bogie_left * t146 + 0.17497068068040164;
-        let t149 = bogie_left * 0.028662550434550092;
-        let t150 = 2.0 * t147 - t149;
-        let t151 = t148 + bogie_left * t147;
-        let t152 = bogie_left * t148 - 0.16993911711062654;
-        let t153 = bogie_left * t150 + 2.0 * t151;
-        let t154 = t152 + bogie_left * t151;
-        let t155 = t55 - 0.65 + bogie_left * t152;
-        let t156 = bogie_left * 0.00696090510553369;
-        let t157 = -0.05698549361554983 - t156;
-        let t158 = t157 - t156;
-        let t159 = bogie_left * t157 + 0.0849857591876236;
-        let t160 = bogie_left * 0.01392181021106738;
-        let t161 = 2.0 * t158 - t160;
-        let t162 = t159 + bogie_left * t158;
-        let t163 = bogie_left * t159 + 0.34987465287481934;
-        let t164 = bogie_left * t161 + 2.0 * t162;
-        let t165 = t163 + bogie_left * t162;
-        let t166 = t66 + bogie_left * t163;
-        let t167 = bogie_right * 0.014331275217275046;
-        let t168 = 0.027678668327552808 - t167;
-        let t169 = t168 - t167;
-        let t170 = 0.17497068068040164 + bogie_right * t168;
-        let t171 = bogie_right * 0.028662550434550092;
-        let t172 = 2.0 * t169 - t171;
-        let t173 = t170 + bogie_right * t169;
-        let t174 = bogie_right * t170 - 0.16993911711062654;
-        let t175 = bogie_right * t172 + 2.0 * t173;
-        let t176 = t174 + bogie_right * t173;
-        let t177 = t105 - 0.65 + bogie_right * t174;
-        let t178 = bogie_right * 0.00696090510553369;
-        let t179 = -0.05698549361554983 - t178;
-        let t180 = t179 - t178;
-        let t181 = 0.0849857591876236 + bogie_right * t179;
-        let t182 = bogie_right * 0.01392181021106738;
-        let t183 = 2.0 * t180 - t182;
-        let t184 = t181 + bogie_right * t180;
-        let t185 = 0.34987465287481934 + bogie_right * t181;
-        let t186 = bogie_right * t183 + 2.0 * t184;
-        let t187 = t185 + bogie_right * t184;
-        let t188 = t116 + bogie_right * t185;
+        let t333 = 2.0 * t104;
+        let t45 = rocker * 0.018584048089146866;
+        let t46 = 0.01646928946897587 - t45;
+        let t48 = rocker * t46 + 0.22499013918713692;
+        let t52 = rocker * t48 - 0.09999062045834964;
+        let t47 = t46 - t45;
+        let t51 = t48 + rocker * t47;
+        let t54 = t52 + rocker * t51;
+        let t316 = 2.0 * t54;
+        let t1 = rocker * 0.02271383655340189;
+        let t2 = t1 + 0.044467081566234;
+        let t4 = rocker * t2 - 0.2749879478953897;
+        let t8 = rocker * t4 - 0.2699746752375441;
+        let t3 = t1 + t2;
+        let t7 = t4 + rocker * t3;
+        let t10 = t8 + rocker * t7;
+        let t298 = 2.0 * t10;
+        let t23 = rocker * 0.02271383655340207;
+        let t24 = t23 - 0.044467081566234495;
+        let t26 = rocker * t24 - 0.2749879478953897;
+        let t30 = rocker * t26 + 0.269974675237544;
+        let t25 = t23 + t24;
+        let t29 = t26 + rocker * t25;
+        let t32 = t30 + rocker * t29;
+        let t307 = 2.0 * t32;
         let t189 = rocker * 0.008259576928510431;
         let t190 = t189 + 0.016469289468975704;
-        let t191 = t189 + t190;
         let t192 = rocker * t190 - 0.09999561741650541;
-        let t193 = rocker * 0.016519153857020862;
-        let t194 = t193 + 2.0 * t191;
-        let t195 = t192 + rocker * t191;
         let t196 = rocker * t192 - 0.09999062045834964;
-        let t197 = rocker * t194 + 2.0 * t195;
+        let t191 = t189 + t190;
+        let t195 = t192 + rocker * t191;
         let t198 = t196 + rocker * t195;
-        let t199 = 0.35 + rocker * t196;
-        let t200 = rocker * 0.0041297884642546735;
-        let t201 = 0.032938578937951345 - t200;
-        let t202 = t201 - t200;
-        let t203 = rocker * t201 + 0.04999780870825264;
-        let t204 = rocker * 0.008259576928509347;
-        let t205 = 2.0 * t202 - t204;
-        let t206 = t203 + rocker * t202;
-        let t207 = rocker * t203 - 0.1999812409166992;
-        let t208 = rocker * t205 + 2.0 * t206;
-        let t209 = t207 + rocker * t206;
-        let t210 = rocker * t207 - 0.15;
+        let t372 = t198 * 3.0;
         let t211 = rocker * 0.008259576928510088;
         let t212 = t211 - 0.016469289468975627;
-        let t213 = t211 + t212;
         let t214 = rocker * t212 - 0.09999561741650537;
-        let t215 = rocker * 0.016519153857020175;
-        let t216 = t215 + 2.0 * t213;
-        let t217 = t214 + rocker * t213;
         let t218 = rocker * t214 + 0.0999906204583496;
-        let t219 = rocker * t216 + 2.0 * t217;
+        let t213 = t211 + t212;
+        let t217 = t214 + rocker * t213;
         let t220 = t218 + rocker * t217;
-        let t221 = 0.35 + rocker * t218;
-        let t222 = rocker * 0.004129788464255254;
-        let t223 = -0.03293857893795131 - t222;
-        let t224 = t223 - t222;
-        let t225 = rocker * t223 + 0.04999780870825271;
-        let t226 = rocker * 0.008259576928510507;
-        let t227 = 2.0 * t224 - t226;
-        let t228 = t225 + rocker * t224;
-        let t229 = rocker * t225 + 0.19998124091669922;
-        let t230 = rocker * t227 + 2.0 * t228;
-        let t231 = t229 + rocker * t228;
-        let t232 = rocker * t229 - 0.15;
-        let t233 = rocker * 0.004129788464252804;
-        let t234 = -0.07411180261038977 - t233;
-        let t235 = t234 - t233;
-        let t236 = rocker * t234 + 0.04999780870825242;
-        let t237 = rocker * 0.008259576928505609;
-        let t238 = 2.0 * t235 - t237;
-        let t239 = t236 + rocker * t235;
-        let t240 = rocker * t236 + 0.44995779206257336;
-        let t241 = rocker * t238 + 2.0 * t239;
-        let t242 = t240 + rocker * t239;
-        let t243 = bogie_left * 1.1152709955829303e-16;
-        let t244 = t243 + 0.016281569604442835;
-        let t245 = t243 + t244;
-        let t246 = bogie_left * t244 - 2.488320152625496e-17;
-        let t247 = bogie_left * 2.2305419911658606e-16;
-        let t248 = t247 + 2.0 * t245;
-        let t249 = t246 + bogie_left * t245;
-        let t250 = bogie_left * t246 - 0.09996418653566262;
-        let t251 = bogie_left * t248 + 2.0 * t249;
-        let t252 = t250 + bogie_left * t249;
-        let t253 = t55 - 0.3 + bogie_left * t250;
-        let t254 = bogie_left * 0.004094650062078649;
-        let t255 = 1.1830649267924e-17 - t254;
-        let t256 = t255 - t254;
-        let t257 = bogie_left * t255 + 0.04999162305154333;
-        let t258 = bogie_left * 0.008189300124157297;
-        let t259 = 2.0 * t256 - t258;
-        let t260 = t257 + bogie_left * t256;
-        let t261 = bogie_left * t257 - 5.509901911258716e-18;
-        let t262 = bogie_left * t259 + 2.0 * t260;
-        let t263 = t261 + bogie_left * t260;
-        let t264 = rocker * t240 - 0.25 + bogie_left * t261;
-        let t265 = rocker * 0.00412978846425477;
-        let t266 = 0.07411180261039031 - t265;
-        let t267 = t266 - t265;
-        let t268 = 0.04999780870825264 + rocker * t266;
-        let t269 = rocker * 0.00825957692850954;
-        let t270 = 2.0 * t267 - t269;
-        let t271 = t268 + rocker * t267;
-        let t272 = rocker * t268 - 0.4499577920625733;
-        let t273 = rocker * t270 + 2.0 * t271;
-        let t274 = t272 + rocker * t271;
-        let t275 = bogie_right * 1.1152709955829303e-16;
-        let t276 = 0.016281569604442835 + t275;
-        let t277 = t275 + t276;
-        let t278 = bogie_right * t276 - 2.488320152625496e-17;
-        let t279 = bogie_right * 2.2305419911658606e-16;
-        let t280 = t279 + 2.0 * t277;
-        let t281 = t278 + bogie_right * t277;
-        let t282 = bogie_right * t278 - 0.09996418653566262;
-        let t283 = bogie_right * t280 + 2.0 * t281;
-        let t284 = t282 + bogie_right * t281;
-        let t285 = t105 - 0.3 + bogie_right * t282;
-        let t286 = bogie_right * 0.004094650062078649;
-        let t287 = 1.1830649267924e-17 - t286;
-        let t288 = t287 - t286;
-        let t289 = 0.04999162305154333 + bogie_right * t287;
-        let t290 = bogie_right * 0.008189300124157297;
-        let t291 = 2.0 * t288 - t290;
-        let t292 = t289 + bogie_right * t288;
-        let t293 = bogie_right * t289 - 5.509901911258716e-18;
-        let t294 = bogie_right * t291 + 2.0 * t292;
-        let t295 = t293 + bogie_right * t292;
-        let t296 = rocker * t272 - 0.25 + bogie_right * t293;
-        let t297 = 2.0 * t22;
-        let t298 = 2.0 * t10;
-        let t299 = 2.0 * t11;
-        let t300 = 2.0 * t21;
-        let t301 = t22 * t22;
-        let t302 = 2.0 * (0.6 * t21);
-        let t303 = t11 * t11;
-        let t304 = t10 * t22;
-        let t305 = t11 * t21;
-        let t306 = 2.0 * t44;
-        let t307 = 2.0 * t32;
-        let t308 = 2.0 * t33;
-        let t309 = 2.0 * t43;
-        let t310 = t44 * t44;
-        let t311 = 2.0 * (0.6 * t43);
-        let t312 = t33 * t33;
-        let t313 = t32 * t44;
-        let t314 = t33 * t43;
-        let t315 = 2.0 * t88;
-        let t316 = 2.0 * t54;
-        let t317 = 2.0 * t76;
-        let t318 = 2.0 * t77;
-        let t319 = 2.0 * t65;
-        let t320 = 2.0 * t87;
-        let t321 = t88 * t88;
-        let t322 = 2.0 * (0.6 * t65);
-        let t323 = 2.0 * (0.6 * t87);
-        let t324 = t77 * t77;
-        let t325 = t54 * t88;
-        let t326 = t65 * t77;
-        let t327 = t76 * t88;
-        let t328 = t77 * t87;
-        let t329 = 2.0 * (0.6 * t54);
-        let t330 = t54 * t54;
-        let t331 = 2.0 * (t330 + t65 * t65);
-        let t332 = 2.0 * t138;
-        let t333 = 2.0 * t104;
-        let t334 = 2.0 * t126;
-        let t335 = 2.0 * t127;
-        let t336 = 2.0 * t115;
-        let t337 = 2.0 * t137;
-        let t338 = t138 * t138;
-        let t339 = 2.0 * (0.6 * t115);
-        let t340 = 2.0 * (0.6 * t137);
-        let t341 = t127 * t127;
-        let t342 = t104 * t138;
-        let t343 = t115 * t127;
-        let t344 = t126 * t138;
-        let t345 = t127 * t137;
-        let t346 = 2.0 * (0.6 * t104);
-        let t347 = t104 * t104;
-        let t348 = 2.0 * (t347 + t115 * t115);
-        let t349 = 2.0 * t166;
-        let t350 = 2.0 * t154;
-        let t351 = 2.0 * t155;
-        let t352 = 2.0 * t165;
-        let t353 = t166 * t166;
-        let t354 = 2.0 * (0.6 * t165);
-        let t355 = t155 * t155;
-        let t356 = t54 * t166;
-        let t357 = t65 * t155;
-        let t358 = t154 * t166;
-        let t359 = t155 * t165;
-        let t360 = 2.0 * t188;
-        let t361 = 2.0 * t176;
-        let t362 = 2.0 * t177;
-        let t363 = 2.0 * t187;
-        let t364 = t188 * t188;
-        let t365 = 2.0 * (0.6 * t187);
-        let t366 = t177 * t177;
-        let t367 = t104 * t188;
-        let t368 = t115 * t177;
-        let t369 = t176 * t188;
-        let t370 = t177 * t187;
-        let t371 = t210 * 3.0;
-        let t372 = t198 * 3.0;
-        let t373 = t199 * 3.0;
-        let t374 = t209 * 3.0;
-        let t375 = t210 * t210;
-        let t376 = 3.0 * (0.55 * t209);
-        let t377 = t199 * t199;
-        let t378 = t198 * t210;
-        let t379 = t199 * t209;
-        let t380 = t232 * 3.0;
         let t381 = t220 * 3.0;
-        let t382 = t221 * 3.0;
-        let t383 = t231 * 3.0;
-        let t384 = t232 * t232;
-        let t385 = 3.0 * (0.55 * t231);
-        let t386 = t221 * t221;
-        let t387 = t220 * t232;
-        let t388 = t221 * t231;
-        let t389 = t264 * 3.0;
         let t390 = t54 * 3.0;
-        let t391 = t252 * 3.0;
-        let t392 = t317 + t350 + t391;
-        let t393 = t253 * 3.0;
-        let t394 = t242 * 3.0;
-        let t395 = t263 * 3.0;
-        let t396 = t320 + t352 + t395;
-        let t397 = t264 * t264;
-        let t398 = 3.0 * (0.58 * t242);
-        let t399 = 3.0 * (0.58 * t263);
-        let t400 = t323 + t354 + t399;
-        let t401 = t253 * t253;
-        let t402 = t54 * t264;
-        let t403 = t242 * t253;
-        let t404 = t252 * t264;
-        let t405 = t253 * t263;
-        let t406 = 2.0 * (t327 - t328) + 2.0 * (t358 - t359) + 3.0 * (t404 - t405);
-        let t407 = -(2.0 * (0.6 * t76)) - 2.0 * (0.6 * t154) - 3.0 * (0.58 * t252);
-        let t408 = 2.0 * (t54 * t76 + t65 * t87) + 2.0 * (t54 * t154 + t65 * t165)
-            + 3.0 * (t54 * t252 + t242 * t263);
-        let t409 = t296 * 3.0;
-        let t410 = t297 + t306 + t315 + t332 + t349 + t360 + t371 + t380 + t389 + t409;
         let t411 = t104 * 3.0;
         let t412 = t333 + (t316 + (t298 + t307 + t316 + t333)) + t372 + t381 + t390
             + t411;
-        let t413 = t284 * 3.0;
-        let t414 = t334 + t361 + t413;
-        let t415 = -t297 - t306 - t315 - t332 - t349 - t360 - t371 - t380 - t389 - t409;
-        let t416 = t285 * 3.0;
-        let t417 = t299 + t308 + t318 + t335 + t351 + t362 + t373 + t382 + t393 + t416;
-        let t418 = -t299 - t308 - t318 - t335 - t351 - t362 - t373 - t382 - t393 - t416;
-        let t419 = t274 * 3.0;
-        let t420 = t336 + (t319 + (t300 + t309 + t319 + t336)) + t374 + t383 + t394
-            + t419;
-        let t421 = t295 * 3.0;
-        let t422 = t337 + t363 + t421;
-        let t423 = t296 * t296;
-        let t424 = 21.1 + 2.0 * (t301 + 0.36) + 2.0 * (0.36 + t310) + 2.0 * (0.36 + t321)
-            + 2.0 * (0.36 + t338) + 2.0 * (0.36 + t353) + 2.0 * (0.36 + t364)
-            + 3.0 * (t375 + 0.30250000000000005) + 3.0 * (0.30250000000000005 + t384)
-            + 3.0 * (t397 + 0.3364) + 3.0 * (0.3364 + t423);
-        let t425 = 2.0 * (0.6 * t33) - 2.0 * (0.6 * t11) - 2.0 * (0.6 * t77)
-            + 2.0 * (0.6 * t127) - 2.0 * (0.6 * t155) + 2.0 * (0.6 * t177)
-            - 3.0 * (0.55 * t199) + 3.0 * (0.55 * t221) - 3.0 * (0.58 * t253)
-            + 3.0 * (0.58 * t285);
-        let t426 = -(2.0 * (t11 * t22)) - 2.0 * (t33 * t44) - 2.0 * (t77 * t88)
-            - 2.0 * (t127 * t138) - 2.0 * (t155 * t166) - 2.0 * (t177 * t188)
-            - 3.0 * (t199 * t210) - 3.0 * (t221 * t232) - 3.0 * (t253 * t264)
-            - 3.0 * (t285 * t296);
-        let t427 = 3.0 * (0.58 * t274);
-        let t428 = t322 + (t302 - t311 + t322 - t339) - t339 + t376 - t385 + t398 - t427;
-        let t429 = 3.0 * (0.58 * t295);
-        let t430 = -t340 - t365 - t429;
-        let t431 = t285 * t285;
-        let t432 = 27.6 + 2.0 * (t301 + t303) + 2.0 * (t310 + t312) + 2.0 * (t321 + t324)
-            + 2.0 * (t338 + t341) + 2.0 * (t353 + t355) + 2.0 * (t364 + t366)
-            + 3.0 * (t375 + t377) + 3.0 * (t384 + t386) + 3.0 * (t397 + t401)
-            + 3.0 * (t423 + t431);
-        let t433 = 2.0 * (0.6 * t44) - 2.0 * (0.6 * t22) - 2.0 * (0.6 * t88)
-            + 2.0 * (0.6 * t138) - 2.0 * (0.6 * t166) + 2.0 * (0.6 * t188)
-            - 3.0 * (0.55 * t210) + 3.0 * (0.55 * t232) - 3.0 * (0.58 * t264)
-            + 3.0 * (0.58 * t296);
-        let t434 = t104 * t296;
-        let t435 = t274 * t285;
-        let t436 = 2.0 * (t304 - t305) + 2.0 * (t313 - t314) + 2.0 * (t325 - t326)
-            + 2.0 * (t342 - t343) + 2.0 * (t356 - t357) + 2.0 * (t367 - t368)
-            + 3.0 * (t378 - t379) + 3.0 * (t387 - t388) + 3.0 * (t402 - t403)
-            + 3.0 * (t434 - t435);
-        let t437 = t284 * t296;
-        let t438 = t285 * t295;
-        let t439 = 2.0 * (t344 - t345) + 2.0 * (t369 - t370) + 3.0 * (t437 - t438);
-        let t440 = 42.5 + 2.0 * (0.36 + t303) + 2.0 * (0.36 + t312) + 2.0 * (0.36 + t324)
-            + 2.0 * (0.36 + t341) + 2.0 * (0.36 + t355) + 2.0 * (0.36 + t366)
-            + 3.0 * (0.30250000000000005 + t377) + 3.0 * (0.30250000000000005 + t386)
-            + 3.0 * (0.3364 + t401) + 3.0 * (0.3364 + t431);
-        let t441 = t346 + (2.0 * (0.6 * t32) - 2.0 * (0.6 * t10) - t329 + t346 - t329)
-            - 3.0 * (0.55 * t198) + 3.0 * (0.55 * t220) - 3.0 * (t54 * 0.58)
-            + 3.0 * (t104 * 0.58);
-        let t442 = 2.0 * (0.6 * t126) + 2.0 * (0.6 * t176) + 3.0 * (0.58 * t284);
+        let t347 = t104 * t104;
+        let t106 = rocker * 0.004129788464256266;
+        let t107 = 0.07411180261038984 - t106;
+        let t109 = rocker * t107 + 0.049997808708252794;
+        let t113 = rocker * t109 - 0.4499577920625732;
+        let t108 = t107 - t106;
+        let t112 = t109 + rocker * t108;
+        let t115 = t113 + rocker * t112;
+        let t348 = 2.0 * (t347 + t115 * t115);
+        let t330 = t54 * t54;
+        let t56 = rocker * 0.004129788464254052;
+        let t57 = -0.07411180261038959 - t56;
+        let t59 = rocker * t57 + 0.049997808708252586;
+        let t63 = rocker * t59 + 0.4499577920625733;
+        let t58 = t57 - t56;
+        let t62 = t59 + rocker * t58;
+        let t65 = t63 + rocker * t62;
+        let t331 = 2.0 * (t330 + t65 * t65);
+        let t12 = rocker * 0.01115042885348447;
+        let t13 = 0.09058109207936695 - t12;
+        let t15 = rocker * t13 + 0.13499408351228176;
+        let t19 = rocker * t15 - 0.5499484125209226;
+        let t14 = t13 - t12;
+        let t18 = t15 + rocker * t14;
+        let t21 = t19 + rocker * t18;
+        let t34 = rocker * 0.011150428853490045;
+        let t35 = -0.09058109207936622 - t34;
+        let t37 = rocker * t35 + 0.1349940835122824;
+        let t41 = rocker * t37 + 0.5499484125209229;
+        let t36 = t35 - t34;
+        let t40 = t37 + rocker * t36;
+        let t43 = t41 + rocker * t40;
+        let t200 = rocker * 0.0041297884642546735;
+        let t201 = 0.032938578937951345 - t200;
+        let t203 = rocker * t201 + 0.04999780870825264;
+        let t207 = rocker * t203 - 0.1999812409166992;
+        let t202 = t201 - t200;
+        let t206 = t203 + rocker * t202;
+        let t209 = t207 + rocker * t206;
+        let t222 = rocker * 0.004129788464255254;
+        let t223 = -0.03293857893795131 - t222;
+        let t225 = rocker * t223 + 0.04999780870825271;
+        let t229 = rocker * t225 + 0.19998124091669922;
+        let t224 = t223 - t222;
+        let t228 = t225 + rocker * t224;
+        let t231 = t229 + rocker * t228;
+        let t233 = rocker * 0.004129788464252804;
+        let t234 = -0.07411180261038977 - t233;
+        let t236 = rocker * t234 + 0.04999780870825242;
+        let t240 = rocker * t236 + 0.44995779206257336;
+        let t235 = t234 - t233;
+        let t239 = t236 + rocker * t235;
+        let t242 = t240 + rocker * t239;
+        let t265 = rocker * 0.00412978846425477;
+        let t266 = 0.07411180261039031 - t265;
+        let t268 = 0.04999780870825264 + rocker * t266;
+        let t272 = rocker * t268 - 0.4499577920625733;
+        let t267 = t266 - t265;
+        let t271 = t268 + rocker * t267;
+        let t274 = t272 + rocker * t271;
         let t443 = t348
             + (t331
                 + (2.0 * (t10 * t10 + t21 * t21) + 2.0 * (t32 * t32 + t43 * t43) + t331
                     + t348)) + 3.0 * (t198 * t198 + t209 * t209)
             + 3.0 * (t220 * t220 + t231 * t231) + 3.0 * (t330 + t242 * t242)
             + 3.0 * (t347 + t274 * t274);
-        let t444 = 2.0 * (t104 * t126 + t115 * t137) + 2.0 * (t104 * t176 + t115 * t187)
-            + 3.0 * (t104 * t284 + t274 * t295);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t445 = vx * 174.0;
-        let t446 = omega_y * t410;
-        let t447 = t445 + t446 + yd_rocker * t412 + yd_bogie_left * t392
-            + yd_bogie_right * t414;
-        let t448 = vy * 174.0;
-        let t449 = omega_x * t415;
-        let t450 = omega_z * t417;
-        let t451 = t448 + t449 + t450;
-        let t452 = vz * 174.0;
-        let t453 = omega_y * t418;
-        let t454 = t452 + t453 + yd_rocker * t420 + yd_bogie_left * t396
-            + yd_bogie_right * t422;
-        let t455 = omega_y * t425;
-        let t456 = omega_z * t426;
-        let t457 = vy * t415 + omega_x * t424 + t455 + t456 + yd_rocker * t428
-            + yd_bogie_left * t400 + yd_bogie_right * t430;
-        let t458 = omega_x * t425;
-        let t459 = omega_z * t433;
-        let t460 = vx * t410 + vz * t418 + t458 + omega_y * t432 + t459
-            + yd_rocker * t436 + yd_bogie_left * t406 + yd_bogie_right * t439;
-        let t461 = omega_x * t426;
-        let t462 = omega_y * t433;
-        let t463 = vy * t417 + t461 + t462 + omega_z * t440 + yd_rocker * t441
-            + yd_bogie_left * t407 + yd_bogie_right * t442;
-        let t464 = omega_z * 0.6;
-        let t465 = omega_x * 0.6;
-        let t466 = vy + (omega_z * t11 - omega_x * t22);
-        let t467 = yd_rocker * t10;
-        let t468 = yd_rocker * t21;
-        let t469 = vx + (omega_y * t22 - t464) + t467;
-        let t470 = vz + (t465 - omega_y * t11) + t468;
-        let t471 = yd_rocker * yd_rocker;
-        let t472 = yd_bogie_left * yd_bogie_left;
-        let t473 = yd_bogie_right * yd_bogie_right;
-        let t474 = omega_x * t468 - omega_z * t467;
-        let t475 = t9 * t471 + omega_y * t468;
-        let t476 = t20 * t471 - omega_y * t467;
-        let t477 = t9 * t469;
-        let t478 = t20 * t470;
-        let t479 = t477 + t478;
-        let t480 = omega_y * t21;
-        let t481 = omega_x * t21;
-        let t482 = omega_z * t10;
-        let t483 = t481 - t482;
-        let t484 = omega_y * t10;
-        let t485 = yd_rocker * t9;
-        let t486 = yd_rocker * t20;
-        let t487 = t480 + t485;
-        let t488 = t486 - t484;
-        let t489 = vy + (omega_z * t33 - omega_x * t44);
-        let t490 = yd_rocker * t32;
-        let t491 = yd_rocker * t43;
-        let t492 = vx + (t464 + omega_y * t44) + t490;
-        let t493 = vz + (-t465 - omega_y * t33) + t491;
-        let t494 = omega_x * t491 - omega_z * t490;
-        let t495 = t31 * t471 + omega_y * t491;
-        let t496 = t42 * t471 - omega_y * t490;
-        let t497 = t31 * t492;
-        let t498 = t42 * t493;
-        let t499 = t497 + t498;
-        let t500 = omega_y * t43;
-        let t501 = omega_x * t43;
-        let t502 = omega_z * t32;
-        let t503 = t501 - t502;
-        let t504 = omega_y * t32;
-        let t505 = yd_rocker * t31;
-        let t506 = yd_rocker * t42;
-        let t507 = t500 + t505;
-        let t508 = t506 - t504;
-        let t509 = vy + (omega_z * t77 - omega_x * t88);
-        let t510 = yd_rocker * t54;
-        let t511 = yd_rocker * t65;
-        let t512 = yd_bogie_left * t76;
-        let t513 = yd_bogie_left * t87;
-        let t514 = vx + (omega_y * t88 - t464) + t510 + t512;
-        let t515 = vz + (t465 - omega_y * t77) + t511 + t513;
-        let t516 = t53 * t471;
-        let t517 = t64 * t471;
-        let t518 = t510 + t512;
-        let t519 = t511 + t513;
-        let t520 = omega_x * t519 - omega_z * t518;
-        let t521 = t516 + t75 * t472 + omega_y * t519;
-        let t522 = t517 + t86 * t472 - omega_y * t518;
-        let t523 = t53 * t514;
-        let t524 = t64 * t515;
-        let t525 = t523 + t524;
-        let t526 = omega_y * t65;
-        let t527 = omega_x * t65;
-        let t528 = omega_z * t54;
-        let t529 = t527 - t528;
-        let t530 = omega_y * t54;
-        let t531 = yd_rocker * t53;
-        let t532 = yd_rocker * t64;
-        let t533 = t526 + t531;
-        let t534 = t532 - t530;
-        let t535 = t75 * t514;
-        let t536 = t86 * t515;
-        let t537 = t535 + t536;
-        let t538 = omega_y * t87;
-        let t539 = omega_x * t87;
-        let t540 = omega_z * t76;
-        let t541 = t539 - t540;
-        let t542 = omega_y * t76;
-        let t543 = yd_bogie_left * t75;
-        let t544 = yd_bogie_left * t86;
-        let t545 = t538 + t543;
-        let t546 = t544 - t542;
-        let t547 = vy + (omega_z * t127 - omega_x * t138);
-        let t548 = yd_rocker * t104;
-        let t549 = yd_rocker * t115;
-        let t550 = yd_bogie_right * t126;
-        let t551 = yd_bogie_right * t137;
-        let t552 = vx + (t464 + omega_y * t138) + t548 + t550;
-        let t553 = vz + (-t465 - omega_y * t127) + t549 + t551;
-        let t554 = t103 * t471;
-        let t555 = t114 * t471;
-        let t556 = t548 + t550;
-        let t557 = t549 + t551;
-        let t558 = omega_x * t557 - omega_z * t556;
-        let t559 = t554 + t125 * t473 + omega_y * t557;
-        let t560 = t555 + t136 * t473 - omega_y * t556;
-        let t561 = t103 * t552;
-        let t562 = t114 * t553;
-        let t563 = t561 + t562;
-        let t564 = omega_y * t115;
-        let t565 = omega_x * t115;
-        let t566 = omega_z * t104;
-        let t567 = t565 - t566;
-        let t568 = omega_y * t104;
-        let t569 = yd_rocker * t103;
-        let t570 = yd_rocker * t114;
-        let t571 = t564 + t569;
-        let t572 = t570 - t568;
-        let t573 = t125 * t552;
-        let t574 = t136 * t553;
-        let t575 = t573 + t574;
-        let t576 = omega_y * t137;
-        let t577 = omega_x * t137;
-        let t578 = omega_z * t126;
-        let t579 = t577 - t578;
-        let t580 = omega_y * t126;
-        let t581 = yd_bogie_right * t125;
-        let t582 = yd_bogie_right * t136;
-        let t583 = t576 + t581;
-        let t584 = t582 - t580;
-        let t585 = vy + (omega_z * t155 - omega_x * t166);
-        let t586 = yd_bogie_left * t154;
-        let t587 = yd_bogie_left * t165;
-        let t588 = t510 + (vx + (omega_y * t166 - t464)) + t586;
-        let t589 = t511 + (vz + (t465 - omega_y * t155)) + t587;
-        let t590 = t510 + t586;
-        let t591 = t511 + t587;
-        let t592 = omega_x * t591 - omega_z * t590;
-        let t593 = t516 + t153 * t472 + omega_y * t591;
-        let t594 = t517 + t164 * t472 - omega_y * t590;
-        let t595 = t53 * t588;
-        let t596 = t64 * t589;
-        let t597 = t595 + t596;
-        let t598 = t153 * t588;
-        let t599 = t164 * t589;
-        let t600 = t598 + t599;
-        let t601 = omega_y * t165;
-        let t602 = omega_x * t165;
-        let t603 = omega_z * t154;
-        let t604 = t602 - t603;
-        let t605 = omega_y * t154;
-        let t606 = yd_bogie_left * t153;
-        let t607 = yd_bogie_left * t164;
-        let t608 = t601 + t606;
-        let t609 = t607 - t605;
-        let t610 = vy + (omega_z * t177 - omega_x * t188);
-        let t611 = yd_bogie_right * t176;
-        let t612 = yd_bogie_right * t187;
-        let t613 = t548 + (vx + (t464 + omega_y * t188)) + t611;
-        let t614 = t549 + (vz + (-t465 - omega_y * t177)) + t612;
-        let t615 = t548 + t611;
-        let t616 = t549 + t612;
-        let t617 = omega_x * t616 - omega_z * t615;
-        let t618 = t554 + t175 * t473 + omega_y * t616;
-        let t619 = t555 + t186 * t473 - omega_y * t615;
-        let t620 = t103 * t613;
-        let t621 = t114 * t614;
-        let t622 = t620 + t621;
-        let t623 = t175 * t613;
-        let t624 = t186 * t614;
-        let t625 = t623 + t624;
-        let t626 = omega_y * t187;
-        let t627 = omega_x * t187;
-        let t628 = omega_z * t176;
-        let t629 = t627 - t628;
-        let t630 = omega_y * t176;
-        let t631 = yd_bogie_right * t175;
-        let t632 = yd_bogie_right * t186;
-        let t633 = t626 + t631;
-        let t634 = t632 - t630;
-        let t635 = omega_z * 0.55;
-        let t636 = omega_x * 0.55;
-        let t637 = vy + (omega_z * t199 - omega_x * t210);
-        let t638 = yd_rocker * t198;
-        let t639 = yd_rocker * t209;
-        let t640 = vx + (omega_y * t210 - t635) + t638;
-        let t641 = vz + (t636 - omega_y * t199) + t639;
-        let t642 = omega_x * t639 - omega_z * t638;
-        let t643 = t197 * t471 + omega_y * t639;
-        let t644 = t208 * t471 - omega_y * t638;
-        let t645 = t197 * t640;
-        let t646 = t208 * t641;
-        let t647 = t645 + t646;
-        let t648 = omega_y * t209;
-        let t649 = omega_x * t209;
-        let t650 = omega_z * t198;
-        let t651 = t649 - t650;
-        let t652 = omega_y * t198;
-        let t653 = yd_rocker * t197;
-        let t654 = yd_rocker * t208;
-        let t655 = t648 + t653;
-        let t656 = t654 - t652;
-        let t657 = vy + (omega_z * t221 - omega_x * t232);
-        let t658 = yd_rocker * t220;
-        let t659 = yd_rocker * t231;
-        let t660 = vx + (t635 + omega_y * t232) + t658;
-        let t661 = vz + (-t636 - omega_y * t221) + t659;
-        let t662 = omega_x * t659 - omega_z * t658;
-        let t663 = t219 * t471 + omega_y * t659;
-        let t664 = t230 * t471 - omega_y * t658;
-        let t665 = t219 * t660;
-        let t666 = t230 * t661;
-        let t667 = t665 + t666;
-        let t668 = omega_y * t231;
-        let t669 = omega_x * t231;
-        let t670 = omega_z * t220;
-        let t671 = t669 - t670;
-        let t672 = omega_y * t220;
-        let t673 = yd_rocker * t219;
-        let t674 = yd_rocker * t230;
-        let t675 = t668 + t673;
-        let t676 = t674 - t672;
-        let t677 = omega_z * 0.58;
-        let t678 = omega_x * 0.58;
-        let t679 = vy + (omega_z * t253 - omega_x * t264);
-        let t680 = yd_rocker * t242;
-        let t681 = yd_bogie_left * t252;
-        let t682 = yd_bogie_left * t263;
-        let t683 = t510 + (vx + (omega_y * t264 - t677)) + t681;
-        let t684 = vz + (t678 - omega_y * t253) + t680 + t682;
-        let t685 = t510 + t681;
-        let t686 = t680 + t682;
-        let t687 = omega_x * t686 - omega_z * t685;
-        let t688 = t516 + t251 * t472 + omega_y * t686;
-        let t689 = t241 * t471 + t262 * t472 - omega_y * t685;
-        let t690 = t53 * t683;
-        let t691 = t241 * t684;
-        let t692 = t690 + t691;
-        let t693 = omega_y * t242;
-        let t694 = omega_x * t242;
-        let t695 = t694 - t528;
-        let t696 = yd_rocker * t241;
-        let t697 = t531 + t693;
-        let t698 = t696 - t530;
-        let t699 = t251 * t683;
-        let t700 = t262 * t684;
-        let t701 = t699 + t700;
-        let t702 = omega_y * t263;
-        let t703 = omega_x * t263;
-        let t704 = omega_z * t252;
-        let t705 = t703 - t704;
-        let t706 = omega_y * t252;
-        let t707 = yd_bogie_left * t251;
-        let t708 = yd_bogie_left * t262;
-        let t709 = t702 + t707;
-        let t710 = t708 - t706;
-        let t711 = vy + (omega_z * t285 - omega_x * t296);
-        let t712 = yd_rocker * t274;
-        let t713 = yd_bogie_right * t284;
-        let t714 = yd_bogie_right * t295;
-        let t715 = t548 + (vx + (t677 + omega_y * t296)) + t713;
-        let t716 = vz + (-t678 - omega_y * t285) + t712 + t714;
-        let t717 = t548 + t713;
-        let t718 = t712 + t714;
-        let t719 = omega_x * t718 - omega_z * t717;
-        let t720 = t554 + t283 * t473 + omega_y * t718;
-        let t721 = t273 * t471 + t294 * t473 - omega_y * t717;
-        let t722 = t103 * t715;
-        let t723 = t273 * t716;
-        let t724 = t722 + t723;
-        let t725 = omega_y * t274;
-        let t726 = omega_x * t274;
-        let t727 = t726 - t566;
-        let t728 = yd_rocker * t273;
-        let t729 = t569 + t725;
-        let t730 = t728 - t568;
-        let t731 = t283 * t715;
-        let t732 = t294 * t716;
-        let t733 = t731 + t732;
-        let t734 = omega_y * t295;
-        let t735 = omega_x * t295;
-        let t736 = omega_z * t284;
-        let t737 = t735 - t736;
-        let t738 = omega_y * t284;
-        let t739 = yd_bogie_right * t283;
-        let t740 = yd_bogie_right * t294;
-        let t741 = t734 + t739;
-        let t742 = t740 - t738;
-        let t743 = c_phi * s_theta;
-        let t744 = c_phi * c_theta;
-        let t745 = t743 * 556.5;
-        let t746 = t744 * 556.5;
-        let t747 = t743 * 7.42;
-        let t748 = s_phi * 7.42;
-        let t749 = t744 * 7.42;
-        let t750 = 0.6 * t749;
-        let t751 = 0.6 * t747;
-        let t752 = t54 * t747 - t65 * t749;
-        let t753 = t104 * t747 - t115 * t749;
-        let t754 = t743 * 11.129999999999999;
-        let t755 = s_phi * 11.129999999999999;
-        let t756 = t744 * 11.129999999999999;
-        let t757 = 0.55 * t756;
-        let t758 = 0.55 * t754;
-        let t759 = 0.58 * t756;
-        let t760 = 0.58 * t754;
-        let t761 = rocker - 0.4363323129985824;
-        let t762 = f64::max(t761, 0.0);
-        let t763 = -0.4363323129985824 - rocker;
-        let t764 = f64::max(t763, 0.0);
-        let t765 = 10000.0 * t762;
-        let t766 = f64::min(t765, 1.0);
-        let t767 = 43.7067683346622 * t766;
-        let t768 = -(100.0 * t762) - yd_rocker * t767;
-        let t769 = f64::min(t768, 0.0);
-        let t770 = 10000.0 * t764;
-        let t771 = f64::min(t770, 1.0);
-        let t772 = 43.7067683346622 * t771;
-        let t773 = 100.0 * t764 - yd_rocker * t772;
-        let t774 = f64::max(t773, 0.0);
-        let t775 = bogie_left - 0.6108652381980153;
-        let t776 = f64::max(t775, 0.0);
-        let t777 = -0.6108652381980153 - bogie_left;
-        let t778 = f64::max(t777, 0.0);
-        let t779 = 10000.0 * t776;
-        let t780 = f64::min(t779, 1.0);
-        let t781 = 15.102203414474054 * t780;
-        let t782 = -(100.0 * t776) - yd_bogie_left * t781;
-        let t783 = f64::min(t782, 0.0);
-        let t784 = 10000.0 * t778;
-        let t785 = f64::min(t784, 1.0);
-        let t786 = 15.102203414474054 * t785;
-        let t787 = 100.0 * t778 - yd_bogie_left * t786;
-        let t788 = f64::max(t787, 0.0);
-        let t789 = bogie_right - 0.6108652381980153;
-        let t790 = f64::max(t789, 0.0);
-        let t791 = -0.6108652381980153 - bogie_right;
-        let t792 = f64::max(t791, 0.0);
-        let t793 = 10000.0 * t790;
-        let t794 = f64::min(t793, 1.0);
-        let t795 = 15.102203414474054 * t794;
-        let t796 = -(100.0 * t790) - yd_bogie_right * t795;
-        let t797 = f64::min(t796, 0.0);
-        let t798 = 10000.0 * t792;
-        let t799 = f64::min(t798, 1.0);
-        let t800 = 15.102203414474054 * t799;
-        let t801 = 100.0 * t792 - yd_bogie_right * t800;
-        let t802 = f64::max(t801, 0.0);
-        let t803 = s_phi * s_theta;
-        let t804 = s_phi * c_theta;
-        let t805 = c_theta * c_psi - s_psi * t803;
-        let t806 = c_phi * s_psi;
-        let t807 = s_theta * c_psi;
-        let t808 = s_psi * t804;
-        let t809 = t807 + t808;
-        let t810 = c_theta * s_psi;
-        let t811 = c_psi * t803;
-        let t812 = t810 + t811;
-        let t813 = c_phi * c_psi;
-        let t814 = s_theta * s_psi;
-        let t815 = c_psi * t804;
-        let t816 = t814 - t815;
-        let t817 = f_front_left_x * t805 + f_front_left_y * t812 - f_front_left_z * t743;
-        let t818 = f_front_left_y * t813 - f_front_left_x * t806
-            + f_front_left_z * s_phi;
-        let t819 = f_front_left_z * t744;
-        let t820 = f_front_left_x * t809 + f_front_left_y * t816 + t819;
-        let t821 = 0.6 * t817;
-        let t822 = mu_front_left_x * t805 + mu_front_left_y * t812
-            - mu_front_left_z * t743;
-        let t823 = mu_front_left_y * t813 - mu_front_left_x * t806
-            + mu_front_left_z * s_phi;
-        let t824 = mu_front_left_z * t744;
-        let t825 = tau_front_left_x * t805 + tau_front_left_y * t812
-            - tau_front_left_z * t743;
-        let t826 = tau_front_left_y * t813 - tau_front_left_x * t806
-            + tau_front_left_z * s_phi;
-        let t827 = tau_front_left_z * t744;
-        let t828 = f_front_right_x * t805 + f_front_right_y * t812
-            - f_front_right_z * t743;
-        let t829 = f_front_right_y * t813 - f_front_right_x * t806
-            + f_front_right_z * s_phi;
-        let t830 = f_front_right_z * t744;
-        let t831 = f_front_right_x * t809 + f_front_right_y * t816 + t830;
-        let t832 = 0.6 * t828;
-        let t833 = mu_front_right_x * t805 + mu_front_right_y * t812
-            - mu_front_right_z * t743;
-        let t834 = mu_front_right_y * t813 - mu_front_right_x * t806
-            + mu_front_right_z * s_phi;
-        let t835 = mu_front_right_z * t744;
-        let t836 = tau_front_right_x * t805 + tau_front_right_y * t812
-            - tau_front_right_z * t743;
-        let t837 = tau_front_right_y * t813 - tau_front_right_x * t806
-            + tau_front_right_z * s_phi;
-        let t838 = tau_front_right_z * t744;
-        let t839 = f_middle_left_x * t805 + f_middle_left_y * t812
-            - f_middle_left_z * t743;
-        let t840 = f_middle_left_y * t813 - f_middle_left_x * t806
-            + f_middle_left_z * s_phi;
-        let t841 = f_middle_left_z * t744;
-        let t842 = f_middle_left_x * t809 + f_middle_left_y * t816 + t841;
-        let t843 = 0.6 * t839;
-        let t844 = mu_middle_left_x * t805 + mu_middle_left_y * t812
-            - mu_middle_left_z * t743;
-        let t845 = mu_middle_left_y * t813 - mu_middle_left_x * t806
-            + mu_middle_left_z * s_phi;
-        let t846 = mu_middle_left_z * t744;
-        let t847 = tau_middle_left_x * t805 + tau_middle_left_y * t812
-            - tau_middle_left_z * t743;
-        let t848 = tau_middle_left_y * t813 - tau_middle_left_x * t806
-            + tau_middle_left_z * s_phi;
-        let t849 = tau_middle_left_z * t744;
-        let t850 = f_middle_right_x * t805 + f_middle_right_y * t812
-            - f_middle_right_z * t743;
-        let t851 = f_middle_right_y * t813 - f_middle_right_x * t806
-            + f_middle_right_z * s_phi;
-        let t852 = f_middle_right_z * t744;
-        let t853 = f_middle_right_x * t809 + f_middle_right_y * t816 + t852;
-        let t854 = 0.6 * t850;
-        let t855 = mu_middle_right_x * t805 + mu_middle_right_y * t812
-            - mu_middle_right_z * t743;
-        let t856 = mu_middle_right_y * t813 - mu_middle_right_x * t806
-            + mu_middle_right_z * s_phi;
-        let t857 = mu_middle_right_z * t744;
-        let t858 = tau_middle_right_x * t805 + tau_middle_right_y * t812
-            - tau_middle_right_z * t743;
-        let t859 = tau_middle_right_y * t813 - tau_middle_right_x * t806
-            + tau_middle_right_z * s_phi;
-        let t860 = tau_middle_right_z * t744;
-        let t861 = f_rear_left_x * t805 + f_rear_left_y * t812 - f_rear_left_z * t743;
-        let t862 = f_rear_left_y * t813 - f_rear_left_x * t806 + f_rear_left_z * s_phi;
-        let t863 = f_rear_left_z * t744;
-        let t864 = f_rear_left_x * t809 + f_rear_left_y * t816 + t863;
-        let t865 = 0.6 * t861;
-        let t866 = mu_rear_left_x * t805 + mu_rear_left_y * t812 - mu_rear_left_z * t743;
-        let t867 = mu_rear_left_y * t813 - mu_rear_left_x * t806
-            + mu_rear_left_z * s_phi;
-        let t868 = mu_rear_left_z * t744;
-        let t869 = tau_rear_left_x * t805 + tau_rear_left_y * t812
-            - tau_rear_left_z * t743;
-        let t870 = tau_rear_left_y * t813 - tau_rear_left_x * t806
-            + tau_rear_left_z * s_phi;
-        let t871 = tau_rear_left_z * t744;
-        let t872 = f_rear_right_x * t805 + f_rear_right_y * t812 - f_rear_right_z * t743;
-        let t873 = f_rear_right_y * t813 - f_rear_right_x * t806
-            + f_rear_right_z * s_phi;
-        let t874 = f_rear_right_z * t744;
-        let t875 = f_rear_right_x * t809 + f_rear_right_y * t816 + t874;
-        let t876 = 0.6 * t872;
-        let t877 = 2.0 * t474 - (omega_z * t447 - omega_x * t454) + 2.0 * t494
-            + 2.0 * t520 + 2.0 * t558 + 2.0 * t592 + 2.0 * t617 + 3.0 * t642 + 3.0 * t662
-            + 3.0 * t687 + 3.0 * t719 - s_phi * 556.5 - t748 - t748 - t748 - t748 - t748
-            - t748 - t755 - t755 - t755 - t755 + t818 + t829 + t840 + t851 + t862 + t873;
-        let t878 = t753
-            + (t752
-                + (2.0
-                    * (t469 * t487 - t466 * t483 + t470 * t488
-                        - (yd_rocker * t479 + (t10 * t475 + t21 * t476)))
-                    + 2.0
-                        * (t492 * t507 - t489 * t503 + t493 * t508
-                            - (yd_rocker * t499 + (t32 * t495 + t43 * t496)))
-                    + 2.0
-                        * (t514 * t533 - t509 * t529 + t515 * t534
-                            - (yd_rocker * t525 + (t54 * t521 + t65 * t522)))
-                    + 2.0
-                        * (t552 * t571 - t547 * t567 + t553 * t572
-                            - (yd_rocker * t563 + (t104 * t559 + t115 * t560)))
-                    + 2.0
-                        * (t533 * t588 - t529 * t585 + t534 * t589
-                            - (yd_rocker * t597 + (t54 * t593 + t65 * t594)))
-                    + 2.0
-                        * (t571 * t613 - t567 * t610 + t572 * t614
-                            - (yd_rocker * t622 + (t104 * t618 + t115 * t619)))
-                    + 3.0
-                        * (t640 * t655 - t637 * t651 + t641 * t656
-                            - (yd_rocker * t647 + (t198 * t643 + t209 * t644)))
-                    + 3.0
-                        * (t660 * t675 - t657 * t671 + t661 * t676
-                            - (yd_rocker * t667 + (t220 * t663 + t231 * t664)))
-                    + 3.0
-                        * (t683 * t697 - t679 * t695 + t684 * t698
-                            - (yd_rocker * t692 + (t54 * t688 + t242 * t689)))
-                    + 3.0
-                        * (t715 * t729 - t711 * t727 + t716 * t730
-                            - (yd_rocker * t724 + (t104 * t720 + t274 * t721)))
-                    + (t10 * t747 - t21 * t749) + (t32 * t747 - t43 * t749) + t752
-                    + t753)) + (t198 * t754 - t209 * t756) + (t220 * t754 - t231 * t756)
-            + (t54 * t754 - t242 * t756) + (t104 * t754 - t274 * t756) + (t769 + t774)
-            + (t10 * t817 + t21 * t820) + 1.0000000000000002 * t823
-            + 1.0000000000000002 * t826 + (t32 * t828 + t43 * t831)
-            - 1.0000000000000002 * t834 - 1.0000000000000002 * t837
-            + (t54 * t839 + t65 * t842) + (t104 * t850 + t115 * t853)
-            + (t54 * t861 + t65 * t864) + (t104 * t872 + t115 * t875);
-        let t879 = mu_rear_right_x * t805 + mu_rear_right_y * t812
-            - mu_rear_right_z * t743;
-        let t880 = mu_rear_right_y * t813 - mu_rear_right_x * t806
-            + mu_rear_right_z * s_phi;
-        let t881 = mu_rear_right_z * t744;
-        let t882 = tau_rear_right_x * t805 + tau_rear_right_y * t812
-            - tau_rear_right_z * t743;
-        let t883 = tau_rear_right_y * t813 - tau_rear_right_x * t806
-            + tau_rear_right_z * s_phi;
-        let t884 = tau_rear_right_z * t744;
         let t885 = 1.0 / t443;
-        let t886 = t408 * t885;
-        let t887 = t444 * t885;
         let t888 = t412 * t885;
-        let t889 = t420 * t885;
-        let t890 = t428 * t885;
-        let t891 = t436 * t885;
-        let t892 = t441 * t885;
+        let t922 = t443 * t888;
+        let bogie_left = x[7];
+        let t67 = bogie_left * 0.012283950186235765;
+        let t68 = t67 + 0.027678668327552673;
+        let t70 = bogie_left * t68 - 0.14997486915462993;
+        let t74 = bogie_left * t70 - 0.16993911711062648;
+        let t69 = t67 + t68;
+        let t73 = t70 + bogie_left * t69;
+        let t76 = t74 + bogie_left * t73;
+        let t78 = bogie_left * 0.006960905105533847;
+        let t79 = 0.04884470881332827 - t78;
+        let t81 = bogie_left * t79 + 0.08498575918762372;
+        let t85 = bogie_left * t81 - 0.2998925596069879;
+        let t80 = t79 - t78;
+        let t84 = t81 + bogie_left * t80;
+        let t87 = t85 + bogie_left * t84;
+        let t145 = bogie_left * 0.014331275217275046;
+        let t146 = 0.027678668327552808 - t145;
+        let t148 = bogie_left * t146 + 0.17497068068040164;
+        let t152 = bogie_left * t148 - 0.16993911711062654;
+        let t147 = t146 - t145;
+        let t151 = t148 + bogie_left * t147;
+        let t154 = t152 + bogie_left * t151;
+        let t156 = bogie_left * 0.00696090510553369;
+        let t157 = -0.05698549361554983 - t156;
+        let t159 = bogie_left * t157 + 0.0849857591876236;
+        let t163 = bogie_left * t159 + 0.34987465287481934;
+        let t158 = t157 - t156;
+        let t162 = t159 + bogie_left * t158;
+        let t165 = t163 + bogie_left * t162;
+        let t243 = bogie_left * 1.1152709955829303e-16;
+        let t244 = t243 + 0.016281569604442835;
+        let t246 = bogie_left * t244 - 2.488320152625496e-17;
+        let t250 = bogie_left * t246 - 0.09996418653566262;
+        let t245 = t243 + t244;
+        let t249 = t246 + bogie_left * t245;
+        let t252 = t250 + bogie_left * t249;
+        let t254 = bogie_left * 0.004094650062078649;
+        let t255 = 1.1830649267924e-17 - t254;
+        let t257 = bogie_left * t255 + 0.04999162305154333;
+        let t261 = bogie_left * t257 - 5.509901911258716e-18;
+        let t256 = t255 - t254;
+        let t260 = t257 + bogie_left * t256;
+        let t263 = t261 + bogie_left * t260;
+        let t408 = 2.0 * (t54 * t76 + t65 * t87) + 2.0 * (t54 * t154 + t65 * t165)
+            + 3.0 * (t54 * t252 + t242 * t263);
+        let t886 = t408 * t885;
         let t893 = t443 * t886;
         let t894 = 2.0 * (t76 * t76 + t87 * t87) + 2.0 * (t154 * t154 + t165 * t165)
             + 3.0 * (t252 * t252 + t263 * t263) - t886 * t893;
         let t895 = 1.0 / t894;
-        let t896 = t887 * t893;
-        let t897 = t895 * t896;
+        let t317 = 2.0 * t76;
+        let t350 = 2.0 * t154;
+        let t391 = t252 * 3.0;
+        let t392 = t317 + t350 + t391;
         let t898 = t392 - t888 * t893;
         let t899 = t895 * t898;
-        let t900 = t396 - t889 * t893;
-        let t901 = t895 * t900;
-        let t902 = t400 - t890 * t893;
-        let t903 = t895 * t902;
-        let t904 = t406 - t891 * t893;
-        let t905 = t895 * t904;
-        let t906 = t407 - t892 * t893;
-        let t907 = t895 * t906;
+        let t923 = t894 * t899;
+        let bogie_right = x[8];
+        let t117 = bogie_right * 0.012283950186235765;
+        let t118 = 0.027678668327552673 + t117;
+        let t120 = bogie_right * t118 - 0.14997486915462993;
+        let t124 = bogie_right * t120 - 0.16993911711062648;
+        let t119 = t117 + t118;
+        let t123 = t120 + bogie_right * t119;
+        let t126 = t124 + bogie_right * t123;
+        let t128 = bogie_right * 0.006960905105533847;
+        let t129 = 0.04884470881332827 - t128;
+        let t131 = 0.08498575918762372 + bogie_right * t129;
+        let t135 = bogie_right * t131 - 0.2998925596069879;
+        let t130 = t129 - t128;
+        let t134 = t131 + bogie_right * t130;
+        let t137 = t135 + bogie_right * t134;
+        let t167 = bogie_right * 0.014331275217275046;
+        let t168 = 0.027678668327552808 - t167;
+        let t170 = 0.17497068068040164 + bogie_right * t168;
+        let t174 = bogie_right * t170 - 0.16993911711062654;
+        let t169 = t168 - t167;
+        let t173 = t170 + bogie_right * t169;
+        let t176 = t174 + bogie_right * t173;
+        let t178 = bogie_right * 0.00696090510553369;
+        let t179 = -0.05698549361554983 - t178;
+        let t181 = 0.0849857591876236 + bogie_right * t179;
+        let t185 = 0.34987465287481934 + bogie_right * t181;
+        let t180 = t179 - t178;
+        let t184 = t181 + bogie_right * t180;
+        let t187 = t185 + bogie_right * t184;
+        let t275 = bogie_right * 1.1152709955829303e-16;
+        let t276 = 0.016281569604442835 + t275;
+        let t278 = bogie_right * t276 - 2.488320152625496e-17;
+        let t282 = bogie_right * t278 - 0.09996418653566262;
+        let t277 = t275 + t276;
+        let t281 = t278 + bogie_right * t277;
+        let t284 = t282 + bogie_right * t281;
+        let t286 = bogie_right * 0.004094650062078649;
+        let t287 = 1.1830649267924e-17 - t286;
+        let t289 = 0.04999162305154333 + bogie_right * t287;
+        let t293 = bogie_right * t289 - 5.509901911258716e-18;
+        let t288 = t287 - t286;
+        let t292 = t289 + bogie_right * t288;
+        let t295 = t293 + bogie_right * t292;
+        let t444 = 2.0 * (t104 * t126 + t115 * t137) + 2.0 * (t104 * t176 + t115 * t187)
+            + 3.0 * (t104 * t284 + t274 * t295);
+        let t887 = t444 * t885;
         let t908 = t443 * t887;
+        let t896 = t887 * t893;
+        let t897 = t895 * t896;
         let t909 = t894 * t897;
         let t910 = 2.0 * (t126 * t126 + t137 * t137) + 2.0 * (t176 * t176 + t187 * t187)
             + 3.0 * (t284 * t284 + t295 * t295) - t887 * t908 - t897 * t909;
         let t911 = 1.0 / t910;
+        let t334 = 2.0 * t126;
+        let t361 = 2.0 * t176;
+        let t413 = t284 * 3.0;
+        let t414 = t334 + t361 + t413;
         let t912 = t414 - t888 * t908 + t899 * t909;
         let t913 = t911 * t912;
-        let t914 = t422 - t889 * t908 + t901 * t909;
-        let t915 = t911 * t914;
-        let t916 = t430 - t890 * t908 + t903 * t909;
-        let t917 = t911 * t916;
-        let t918 = t439 - t891 * t908 + t905 * t909;
-        let t919 = t911 * t918;
-        let t920 = t442 - t892 * t908 + t907 * t909;
-        let t921 = t911 * t920;
-        let t922 = t443 * t888;
-        let t923 = t894 * t899;
         let t924 = t910 * t913;
         let t925 = 174.0 - t888 * t922 - t899 * t923 - t913 * t924;
         let t926 = 1.0 / t925;
-        let t927 = -(t889 * t922) - t901 * t923 - t915 * t924;
-        let t928 = t926 * t927;
-        let t929 = -(t890 * t922) - t903 * t923 - t917 * t924;
-        let t930 = t926 * t929;
-        let t931 = t410 - t891 * t922 - t905 * t923 - t919 * t924;
-        let t932 = t926 * t931;
-        let t933 = -(t892 * t922) - t907 * t923 - t921 * t924;
-        let t934 = t926 * t933;
-        let t935 = t415 * 0.005747126436781609;
-        let t936 = t417 * 0.005747126436781609;
-        let t937 = t443 * t889;
-        let t938 = t894 * t901;
-        let t939 = t910 * t915;
-        let t940 = t925 * t928;
-        let t941 = 174.0 - t889 * t937 - t901 * t938 - t915 * t939 - t928 * t940;
-        let t942 = 1.0 / t941;
-        let t943 = -(t890 * t937) - t903 * t938 - t917 * t939 - t930 * t940;
-        let t944 = t942 * t943;
-        let t945 = t418 - t891 * t937 - t905 * t938 - t919 * t939 - t932 * t940;
-        let t946 = t942 * t945;
-        let t947 = -(t892 * t937) - t907 * t938 - t921 * t939 - t934 * t940;
-        let t948 = t942 * t947;
-        let t949 = t443 * t890;
-        let t950 = t894 * t903;
-        let t951 = t910 * t917;
-        let t952 = t925 * t930;
-        let t953 = 174.0 * t935;
-        let t954 = t941 * t944;
-        let t955 = t424 - t890 * t949 - t903 * t950 - t917 * t951 - t930 * t952
-            - t935 * t953 - t944 * t954;
-        let t956 = 1.0 / t955;
-        let t957 = t425 - t891 * t949 - t905 * t950 - t919 * t951 - t932 * t952
-            - t946 * t954;
-        let t958 = t956 * t957;
-        let t959 = t426 - t892 * t949 - t907 * t950 - t921 * t951 - t934 * t952
-            - t936 * t953 - t948 * t954;
-        let t960 = t956 * t959;
-        let t961 = t443 * t891;
-        let t962 = t894 * t905;
-        let t963 = t910 * t919;
-        let t964 = t925 * t932;
-        let t965 = t941 * t946;
-        let t966 = t955 * t958;
-        let t967 = t432 - t891 * t961 - t905 * t962 - t919 * t963 - t932 * t964
-            - t946 * t965 - t958 * t966;
-        let t968 = 1.0 / t967;
-        let t969 = t433 - t892 * t961 - t907 * t962 - t921 * t963 - t934 * t964
-            - t948 * t965 - t960 * t966;
-        let t970 = t968 * t969;
-        let t971 = t443 * t892;
-        let t972 = t894 * t907;
-        let t973 = t910 * t921;
-        let t974 = t925 * t934;
-        let t975 = 174.0 * t936;
-        let t976 = t941 * t948;
-        let t977 = t955 * t960;
-        let t978 = t967 * t970;
-        let t979 = t440 - t892 * t971 - t907 * t972 - t921 * t973 - t934 * t974
-            - t936 * t975 - t948 * t976 - t960 * t977 - t970 * t978;
-        let t980 = 1.0 / t979;
-        let t981 = 2.0
-            * (t514 * t545 - t509 * t541 + t515 * t546
-                - (yd_bogie_left * t537 + (t76 * t521 + t87 * t522)))
-            + 2.0
-                * (t588 * t608 - t585 * t604 + t589 * t609
-                    - (yd_bogie_left * t600 + (t154 * t593 + t165 * t594)))
-            + 3.0
-                * (t683 * t709 - t679 * t705 + t684 * t710
-                    - (yd_bogie_left * t701 + (t252 * t688 + t263 * t689)))
-            + (t76 * t747 - t87 * t749) + (t154 * t747 - t165 * t749)
-            + (t252 * t754 - t263 * t756) + (t783 + t788) + (t76 * t839 + t87 * t842)
-            + t94 * t845 + t94 * t848 + (t154 * t861 + t165 * t864) + t94 * t867
-            + t94 * t870 - t878 * t886;
-        let t982 = 2.0
-            * (t552 * t583 - t547 * t579 + t553 * t584
-                - (yd_bogie_right * t575 + (t126 * t559 + t137 * t560)))
-            + 2.0
-                * (t613 * t633 - t610 * t629 + t614 * t634
-                    - (yd_bogie_right * t625 + (t176 * t618 + t187 * t619)))
-            + 3.0
-                * (t715 * t741 - t711 * t737 + t716 * t742
-                    - (yd_bogie_right * t733 + (t284 * t720 + t295 * t721)))
-            + (t126 * t747 - t137 * t749) + (t176 * t747 - t187 * t749)
-            + (t284 * t754 - t295 * t756) + (t797 + t802) + (t126 * t850 + t137 * t853)
-            + t144 * t856 + t144 * t859 + (t176 * t872 + t187 * t875) + t144 * t880
-            + t144 * t883 - t878 * t887 + t897 * t981;
-        let t983 = t754
-            + (t754
-                + (t754
-                    + (t747
-                        + (t747
-                            + (t747
-                                + (t747
-                                    + (t747
-                                        + (-(omega_y * t454 - omega_z * t451) - 2.0 * t475
-                                            - 2.0 * t495 - 2.0 * t521 - 2.0 * t559 - 2.0 * t593
-                                            - 2.0 * t618 - 3.0 * t643 - 3.0 * t663 - 3.0 * t688
-                                            - 3.0 * t720 + t745 + t747))))) + t754))) + t817 + t828
-            + t839 + t850 + t861 + t872 - t878 * t888 - t899 * t981 - t913 * t982;
-        let t984 = -(omega_x * t451 - omega_y * t447) - 2.0 * t476 - 2.0 * t496
-            - 2.0 * t522 - 2.0 * t560 - 2.0 * t594 - 2.0 * t619 - 3.0 * t644 - 3.0 * t664
-            - 3.0 * t689 - 3.0 * t721 - t746 - t749 - t749 - t749 - t749 - t749 - t749
-            - t756 - t756 - t756 - t756 + t820 + t831 + t842 + t853 + t864 + t875
-            - t878 * t889 - t901 * t981 - t915 * t982 - t928 * t983;
-        let t985 = -(vy * t454 - vz * t451 + (omega_y * t463 - omega_z * t460))
-            - 2.0 * (0.6 * t476 + t22 * t474 - t466 * t468)
-            - 2.0 * (t44 * t494 - 0.6 * t496 - t489 * t491)
-            - 2.0 * (0.6 * t522 + t88 * t520 - t509 * t519)
-            - 2.0 * (t138 * t558 - 0.6 * t560 - t547 * t557)
-            - 2.0 * (0.6 * t594 + t166 * t592 - t585 * t591)
-            - 2.0 * (t188 * t617 - 0.6 * t619 - t610 * t616)
-            - 3.0 * (0.55 * t644 + t210 * t642 - t637 * t639)
-            - 3.0 * (t232 * t662 - 0.55 * t664 - t657 * t659)
-            - 3.0 * (0.58 * t689 + t264 * t687 - t679 * t686)
-            - 3.0 * (t296 * t719 - 0.58 * t721 - t711 * t718) + (t22 * t748 - t750)
-            + (t750 + t44 * t748) + (t88 * t748 - t750) + (t750 + t138 * t748)
-            + (t166 * t748 - t750) + (t750 + t188 * t748) + (t210 * t755 - t757)
-            + (t757 + t232 * t755) + (t264 * t755 - t759) + (t759 + t296 * t755)
-            + (0.6 * t820 - t22 * t818) + t822 + t825 + (-(0.6 * t831) - t44 * t829)
-            + t833 + t836 + (0.6 * t842 - t88 * t840) + t844 + t847
-            + (-(0.6 * t853) - t138 * t851) + t855 + t858 + (0.6 * t864 - t166 * t862)
-            + t866 + t869 + (-(0.6 * t875) - t188 * t873) + t879 + t882 - t878 * t890
-            - t903 * t981 - t917 * t982 - t930 * t983 - t877 * t935 - t944 * t984;
-        let t986 = -(vz * t447 - vx * t454 + (omega_z * t457 - omega_x * t463))
-            - 2.0 * (t468 * t469 - t467 * t470 + (t22 * t475 - t11 * t476))
-            - 2.0 * (t491 * t492 - t490 * t493 + (t44 * t495 - t33 * t496))
-            - 2.0 * (t514 * t519 - t515 * t518 + (t88 * t521 - t77 * t522))
-            - 2.0 * (t552 * t557 - t553 * t556 + (t138 * t559 - t127 * t560))
-            - 2.0 * (t588 * t591 - t589 * t590 + (t166 * t593 - t155 * t594))
-            - 2.0 * (t613 * t616 - t614 * t615 + (t188 * t618 - t177 * t619))
-            - 3.0 * (t639 * t640 - t638 * t641 + (t210 * t643 - t199 * t644))
-            - 3.0 * (t659 * t660 - t658 * t661 + (t232 * t663 - t221 * t664))
-            - 3.0 * (t683 * t686 - t684 * t685 + (t264 * t688 - t253 * t689))
-            - 3.0 * (t715 * t718 - t716 * t717 + (t296 * t720 - t285 * t721))
-            + (t22 * t747 + t11 * t749) + (t44 * t747 + t33 * t749)
-            + (t88 * t747 + t77 * t749) + (t138 * t747 + t127 * t749)
-            + (t166 * t747 + t155 * t749) + (t188 * t747 + t177 * t749)
-            + (t210 * t754 + t199 * t756) + (t232 * t754 + t221 * t756)
-            + (t264 * t754 + t253 * t756) + (t296 * t754 + t285 * t756)
-            + (t22 * t817 - t11 * t820) + t823 + t826 + (t44 * t828 - t33 * t831) + t834
-            + t837 + (t88 * t839 - t77 * t842) + t845 + t848
-            + (t138 * t850 - t127 * t853) + t856 + t859 + (t166 * t861 - t155 * t864)
-            + t867 + t870 + (t188 * t872 - t177 * t875) + t880 + t883 - t878 * t891
-            - t905 * t981 - t919 * t982 - t932 * t983 - t946 * t984 - t958 * t985;
-        let t987 = -(vx * t451 - vy * t447 + (omega_x * t460 - omega_y * t457))
-            - 2.0 * (t466 * t467 + (-(t11 * t474) - 0.6 * t475))
-            - 2.0 * (t489 * t490 + (0.6 * t495 - t33 * t494))
-            - 2.0 * (t509 * t518 + (-(t77 * t520) - 0.6 * t521))
-            - 2.0 * (t547 * t556 + (0.6 * t559 - t127 * t558))
-            - 2.0 * (t585 * t590 + (-(t155 * t592) - 0.6 * t593))
-            - 2.0 * (t610 * t615 + (0.6 * t618 - t177 * t617))
-            - 3.0 * (t637 * t638 + (-(t199 * t642) - 0.55 * t643))
-            - 3.0 * (t657 * t658 + (0.55 * t663 - t221 * t662))
-            - 3.0 * (t679 * t685 + (-(t253 * t687) - 0.58 * t688))
-            - 3.0 * (t711 * t717 + (0.58 * t720 - t285 * t719)) + (-(t11 * t748) - t751)
-            + (t751 - t33 * t748) + (-t751 - t77 * t748) + (t751 - t127 * t748)
-            + (-t751 - t155 * t748) + (t751 - t177 * t748) + (-(t199 * t755) - t758)
-            + (t758 - t221 * t755) + (-(t253 * t755) - t760) + (t760 - t285 * t755)
-            + (t11 * t818 - t821)
-            + (mu_front_left_x * t809 + mu_front_left_y * t816 + t824)
-            + (tau_front_left_x * t809 + tau_front_left_y * t816 + t827)
-            + (t33 * t829 + t832)
-            + (mu_front_right_x * t809 + mu_front_right_y * t816 + t835)
-            + (tau_front_right_x * t809 + tau_front_right_y * t816 + t838)
-            + (t77 * t840 - t843)
-            + (mu_middle_left_x * t809 + mu_middle_left_y * t816 + t846)
-            + (tau_middle_left_x * t809 + tau_middle_left_y * t816 + t849)
-            + (t127 * t851 + t854)
-            + (mu_middle_right_x * t809 + mu_middle_right_y * t816 + t857)
-            + (tau_middle_right_x * t809 + tau_middle_right_y * t816 + t860)
-            + (t155 * t862 - t865)
-            + (mu_rear_left_x * t809 + mu_rear_left_y * t816 + t868)
-            + (tau_rear_left_x * t809 + tau_rear_left_y * t816 + t871)
-            + (t177 * t873 + t876)
-            + (mu_rear_right_x * t809 + mu_rear_right_y * t816 + t881)
-            + (tau_rear_right_x * t809 + tau_rear_right_y * t816 + t884) - t878 * t892
-            - t907 * t981 - t921 * t982 - t934 * t983 - t877 * t936 - t948 * t984
-            - t960 * t985 - t970 * t986;
-        let t988 = t980 * t987;
-        let t989 = t968 * t986 - t970 * t988;
-        let t990 = t956 * t985 - t958 * t989 - t960 * t988;
-        let t991 = t942 * t984 - t944 * t990 - t946 * t989 - t948 * t988;
-        let t992 = t926 * t983 - t928 * t991 - t930 * t990 - t932 * t989 - t934 * t988;
-        let t993 = t911 * t982 - t913 * t992 - t915 * t991 - t917 * t990 - t919 * t989
-            - t921 * t988;
-        let t994 = t895 * t981 + t897 * t993 - t899 * t992 - t901 * t991 - t903 * t990
-            - t905 * t989 - t907 * t988;
-        let t995 = omega_z * c_theta - omega_x * s_theta;
-        let t996 = t995 / c_phi;
-        let t997 = 7.42 * t803;
-        let t998 = c_phi * 7.42;
-        let t999 = 7.42 * t804;
-        let t1000 = 0.6 * t999;
-        let t1001 = 0.6 * t997;
-        let t1002 = t65 * t999 - t54 * t997;
-        let t1003 = t115 * t999 - t104 * t997;
         let t1004 = 11.129999999999999 * t803;
-        let t1005 = c_phi * 11.129999999999999;
-        let t1006 = 11.129999999999999 * t804;
-        let t1007 = 0.55 * t1006;
-        let t1008 = 0.55 * t1004;
-        let t1009 = 0.58 * t1006;
-        let t1010 = 0.58 * t1004;
-        let t1011 = s_psi * t743;
-        let t1012 = s_phi * s_psi;
-        let t1013 = s_psi * t744;
-        let t1014 = c_psi * t743;
-        let t1015 = s_phi * c_psi;
-        let t1016 = c_psi * t744;
+        let t997 = 7.42 * t803;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
         let t1017 = f_front_left_y * t1014 - f_front_left_x * t1011
             + f_front_left_z * t803;
-        let t1018 = f_front_left_x * t1012 - f_front_left_y * t1015
-            + f_front_left_z * c_phi;
-        let t1019 = f_front_left_x * t1013 - f_front_left_y * t1016
-            - f_front_left_z * t804;
-        let t1020 = mu_front_left_x * t1012 - mu_front_left_y * t1015
-            + mu_front_left_z * c_phi;
-        let t1021 = tau_front_left_x * t1012 - tau_front_left_y * t1015
-            + tau_front_left_z * c_phi;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
         let t1022 = f_front_right_y * t1014 - f_front_right_x * t1011
             + f_front_right_z * t803;
-        let t1023 = f_front_right_x * t1012 - f_front_right_y * t1015
-            + f_front_right_z * c_phi;
-        let t1024 = f_front_right_x * t1013 - f_front_right_y * t1016
-            - f_front_right_z * t804;
-        let t1025 = mu_front_right_x * t1012 - mu_front_right_y * t1015
-            + mu_front_right_z * c_phi;
-        let t1026 = tau_front_right_x * t1012 - tau_front_right_y * t1015
-            + tau_front_right_z * c_phi;
+        let f_middle_left_x = loads[2].force[0];
+        let f_middle_left_y = loads[2].force[1];
+        let f_middle_left_z = loads[2].force[2];
         let t1027 = f_middle_left_y * t1014 - f_middle_left_x * t1011
             + f_middle_left_z * t803;
-        let t1028 = f_middle_left_x * t1012 - f_middle_left_y * t1015
-            + f_middle_left_z * c_phi;
-        let t1029 = f_middle_left_x * t1013 - f_middle_left_y * t1016
-            - f_middle_left_z * t804;
-        let t1030 = mu_middle_left_x * t1012 - mu_middle_left_y * t1015
-            + mu_middle_left_z * c_phi;
-        let t1031 = tau_middle_left_x * t1012 - tau_middle_left_y * t1015
-            + tau_middle_left_z * c_phi;
+        let f_middle_right_x = loads[3].force[0];
+        let f_middle_right_y = loads[3].force[1];
+        let f_middle_right_z = loads[3].force[2];
         let t1032 = f_middle_right_y * t1014 - f_middle_right_x * t1011
             + f_middle_right_z * t803;
-        let t1033 = f_middle_right_x * t1012 - f_middle_right_y * t1015
-            + f_middle_right_z * c_phi;
-        let t1034 = f_middle_right_x * t1013 - f_middle_right_y * t1016
-            - f_middle_right_z * t804;
-        let t1035 = mu_middle_right_x * t1012 - mu_middle_right_y * t1015
-            + mu_middle_right_z * c_phi;
-        let t1036 = tau_middle_right_x * t1012 - tau_middle_right_y * t1015
-            + tau_middle_right_z * c_phi;
+        let f_rear_left_x = loads[4].force[0];
+        let f_rear_left_y = loads[4].force[1];
+        let f_rear_left_z = loads[4].force[2];
         let t1037 = f_rear_left_y * t1014 - f_rear_left_x * t1011 + f_rear_left_z * t803;
-        let t1038 = f_rear_left_x * t1012 - f_rear_left_y * t1015
-            + f_rear_left_z * c_phi;
-        let t1039 = f_rear_left_x * t1013 - f_rear_left_y * t1016 - f_rear_left_z * t804;
-        let t1040 = mu_rear_left_x * t1012 - mu_rear_left_y * t1015
-            + mu_rear_left_z * c_phi;
-        let t1041 = tau_rear_left_x * t1012 - tau_rear_left_y * t1015
-            + tau_rear_left_z * c_phi;
+        let f_rear_right_x = loads[5].force[0];
+        let f_rear_right_y = loads[5].force[1];
+        let f_rear_right_z = loads[5].force[2];
         let t1042 = f_rear_right_y * t1014 - f_rear_right_x * t1011
             + f_rear_right_z * t803;
-        let t1043 = f_rear_right_x * t1012 - f_rear_right_y * t1015
-            + f_rear_right_z * c_phi;
+        let t999 = 7.42 * t804;
+        let t1003 = t115 * t999 - t104 * t997;
+        let t1002 = t65 * t999 - t54 * t997;
+        let t1006 = 11.129999999999999 * t804;
+        let t1019 = f_front_left_x * t1013 - f_front_left_y * t1016
+            - f_front_left_z * t804;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
+        let t1020 = mu_front_left_x * t1012 - mu_front_left_y * t1015
+            + mu_front_left_z * c_phi;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
+        let t1021 = tau_front_left_x * t1012 - tau_front_left_y * t1015
+            + tau_front_left_z * c_phi;
+        let t1024 = f_front_right_x * t1013 - f_front_right_y * t1016
+            - f_front_right_z * t804;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
+        let t1025 = mu_front_right_x * t1012 - mu_front_right_y * t1015
+            + mu_front_right_z * c_phi;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
+        let t1026 = tau_front_right_x * t1012 - tau_front_right_y * t1015
+            + tau_front_right_z * c_phi;
+        let t1029 = f_middle_left_x * t1013 - f_middle_left_y * t1016
+            - f_middle_left_z * t804;
+        let t1034 = f_middle_right_x * t1013 - f_middle_right_y * t1016
+            - f_middle_right_z * t804;
+        let t1039 = f_rear_left_x * t1013 - f_rear_left_y * t1016 - f_rear_left_z * t804;
         let t1044 = f_rear_right_x * t1013 - f_rear_right_y * t1016
             - f_rear_right_z * t804;
-        let t1045 = -(c_phi * 556.5) - t998 - t998 - t998 - t998 - t998 - t998 - t1005
-            - t1005 - t1005 - t1005 + t1018 + t1023 + t1028 + t1033 + t1038 + t1043;
         let t1046 = t1003
             + (t1002
                 + (t21 * t999 - t10 * t997 + (t43 * t999 - t32 * t997) + t1002 + t1003))
@@ -3096,14 +2052,62 @@ impl Mer {
             - 1.0000000000000002 * t1025 - 1.0000000000000002 * t1026
             + (t54 * t1027 + t65 * t1029) + (t104 * t1032 + t115 * t1034)
             + (t54 * t1037 + t65 * t1039) + (t104 * t1042 + t115 * t1044);
-        let t1047 = mu_rear_right_x * t1012 - mu_rear_right_y * t1015
-            + mu_rear_right_z * c_phi;
-        let t1048 = tau_rear_right_x * t1012 - tau_rear_right_y * t1015
-            + tau_rear_right_z * c_phi;
+        let t89 = bogie_left * 1.910217473623093e-15;
+        let t90 = t89 + 7.159459156634517e-16;
+        let t92 = bogie_left * t90 - 4.471584043792905e-16;
+        let t91 = t89 + t90;
+        let t93 = t92 + bogie_left * t91;
+        let t94 = bogie_left * t92 + 0.9999999999999998 + bogie_left * t93;
+        let mu_middle_left_x = loads[2].moment[0];
+        let mu_middle_left_y = loads[2].moment[1];
+        let mu_middle_left_z = loads[2].moment[2];
+        let t1030 = mu_middle_left_x * t1012 - mu_middle_left_y * t1015
+            + mu_middle_left_z * c_phi;
+        let tau_middle_left_x = loads[2].stator_torque[0];
+        let tau_middle_left_y = loads[2].stator_torque[1];
+        let tau_middle_left_z = loads[2].stator_torque[2];
+        let t1031 = tau_middle_left_x * t1012 - tau_middle_left_y * t1015
+            + tau_middle_left_z * c_phi;
+        let mu_rear_left_x = loads[4].moment[0];
+        let mu_rear_left_y = loads[4].moment[1];
+        let mu_rear_left_z = loads[4].moment[2];
+        let t1040 = mu_rear_left_x * t1012 - mu_rear_left_y * t1015
+            + mu_rear_left_z * c_phi;
+        let tau_rear_left_x = loads[4].stator_torque[0];
+        let tau_rear_left_y = loads[4].stator_torque[1];
+        let tau_rear_left_z = loads[4].stator_torque[2];
+        let t1041 = tau_rear_left_x * t1012 - tau_rear_left_y * t1015
+            + tau_rear_left_z * c_phi;
         let t1049 = t87 * t999 - t76 * t997 + (t165 * t999 - t154 * t997)
             + (t263 * t1006 - t252 * t1004) + (t76 * t1027 + t87 * t1029) + t94 * t1030
             + t94 * t1031 + (t154 * t1037 + t165 * t1039) + t94 * t1040 + t94 * t1041
             - t886 * t1046;
+        let t139 = bogie_right * 1.910217473623093e-15;
+        let t140 = 7.159459156634517e-16 + t139;
+        let t142 = bogie_right * t140 - 4.471584043792905e-16;
+        let t141 = t139 + t140;
+        let t143 = t142 + bogie_right * t141;
+        let t144 = 0.9999999999999998 + bogie_right * t142 + bogie_right * t143;
+        let mu_middle_right_x = loads[3].moment[0];
+        let mu_middle_right_y = loads[3].moment[1];
+        let mu_middle_right_z = loads[3].moment[2];
+        let t1035 = mu_middle_right_x * t1012 - mu_middle_right_y * t1015
+            + mu_middle_right_z * c_phi;
+        let tau_middle_right_x = loads[3].stator_torque[0];
+        let tau_middle_right_y = loads[3].stator_torque[1];
+        let tau_middle_right_z = loads[3].stator_torque[2];
+        let t1036 = tau_middle_right_x * t1012 - tau_middle_right_y * t1015
+            + tau_middle_right_z * c_phi;
+        let mu_rear_right_x = loads[5].moment[0];
+        let mu_rear_right_y = loads[5].moment[1];
+        let mu_rear_right_z = loads[5].moment[2];
+        let t1047 = mu_rear_right_x * t1012 - mu_rear_right_y * t1015
+            + mu_rear_right_z * c_phi;
+        let tau_rear_right_x = loads[5].stator_torque[0];
+        let tau_rear_right_y = loads[5].stator_torque[1];
+        let tau_rear_right_z = loads[5].stator_torque[2];
+        let t1048 = tau_rear_right_x * t1012 - tau_rear_right_y * t1015
+            + tau_rear_right_z * c_phi;
         let t1050 = t137 * t999 - t126 * t997 + (t187 * t999 - t176 * t997)
             + (t295 * t1006 - t284 * t1004) + (t126 * t1032 + t137 * t1034)
             + t144 * t1035 + t144 * t1036 + (t176 * t1042 + t187 * t1044) + t144 * t1047
@@ -3111,12 +2115,135 @@ impl Mer {
         let t1051 = -(556.5 * t803) - t997 - t997 - t997 - t997 - t997 - t997 - t1004
             - t1004 - t1004 - t1004 + t1017 + t1022 + t1027 + t1032 + t1037 + t1042
             - t888 * t1046 - t899 * t1049 - t913 * t1050;
+        let t336 = 2.0 * t115;
+        let t319 = 2.0 * t65;
+        let t300 = 2.0 * t21;
+        let t309 = 2.0 * t43;
+        let t374 = t209 * 3.0;
+        let t383 = t231 * 3.0;
+        let t394 = t242 * 3.0;
+        let t419 = t274 * 3.0;
+        let t420 = t336 + (t319 + (t300 + t309 + t319 + t336)) + t374 + t383 + t394
+            + t419;
+        let t889 = t420 * t885;
+        let t320 = 2.0 * t87;
+        let t352 = 2.0 * t165;
+        let t395 = t263 * 3.0;
+        let t396 = t320 + t352 + t395;
+        let t900 = t396 - t889 * t893;
+        let t901 = t895 * t900;
+        let t337 = 2.0 * t137;
+        let t363 = 2.0 * t187;
+        let t421 = t295 * 3.0;
+        let t422 = t337 + t363 + t421;
+        let t914 = t422 - t889 * t908 + t901 * t909;
+        let t915 = t911 * t914;
+        let t927 = -(t889 * t922) - t901 * t923 - t915 * t924;
+        let t928 = t926 * t927;
+        let t937 = t443 * t889;
+        let t938 = t894 * t901;
+        let t939 = t910 * t915;
+        let t940 = t925 * t928;
+        let t941 = 174.0 - t889 * t937 - t901 * t938 - t915 * t939 - t928 * t940;
+        let t942 = 1.0 / t941;
         let t1052 = t1006
             + (t1006
                 + (t1006
                     + (t999 + (t999 + (t999 + (t999 + (t999 + (556.5 * t804 + t999)))))
                         + t1006))) + t1019 + t1024 + t1029 + t1034 + t1039 + t1044
             - t889 * t1046 - t901 * t1049 - t915 * t1050 - t928 * t1051;
+        let t339 = 2.0 * (0.6 * t115);
+        let t322 = 2.0 * (0.6 * t65);
+        let t302 = 2.0 * (0.6 * t21);
+        let t311 = 2.0 * (0.6 * t43);
+        let t376 = 3.0 * (0.55 * t209);
+        let t385 = 3.0 * (0.55 * t231);
+        let t398 = 3.0 * (0.58 * t242);
+        let t427 = 3.0 * (0.58 * t274);
+        let t428 = t322 + (t302 - t311 + t322 - t339) - t339 + t376 - t385 + t398 - t427;
+        let t890 = t428 * t885;
+        let t323 = 2.0 * (0.6 * t87);
+        let t354 = 2.0 * (0.6 * t165);
+        let t399 = 3.0 * (0.58 * t263);
+        let t400 = t323 + t354 + t399;
+        let t902 = t400 - t890 * t893;
+        let t903 = t895 * t902;
+        let t340 = 2.0 * (0.6 * t137);
+        let t365 = 2.0 * (0.6 * t187);
+        let t429 = 3.0 * (0.58 * t295);
+        let t430 = -t340 - t365 - t429;
+        let t916 = t430 - t890 * t908 + t903 * t909;
+        let t917 = t911 * t916;
+        let t929 = -(t890 * t922) - t903 * t923 - t917 * t924;
+        let t930 = t926 * t929;
+        let t943 = -(t890 * t937) - t903 * t938 - t917 * t939 - t930 * t940;
+        let t944 = t942 * t943;
+        let t22 = rocker * t19 - 0.32;
+        let t301 = t22 * t22;
+        let t44 = rocker * t41 - 0.32;
+        let t310 = t44 * t44;
+        let t66 = rocker * t63 - 0.32;
+        let t88 = t66 + bogie_left * t85;
+        let t321 = t88 * t88;
+        let t116 = rocker * t113 - 0.32;
+        let t138 = t116 + bogie_right * t135;
+        let t338 = t138 * t138;
+        let t166 = t66 + bogie_left * t163;
+        let t353 = t166 * t166;
+        let t188 = t116 + bogie_right * t185;
+        let t364 = t188 * t188;
+        let t210 = rocker * t207 - 0.15;
+        let t375 = t210 * t210;
+        let t232 = rocker * t229 - 0.15;
+        let t384 = t232 * t232;
+        let t264 = rocker * t240 - 0.25 + bogie_left * t261;
+        let t397 = t264 * t264;
+        let t296 = rocker * t272 - 0.25 + bogie_right * t293;
+        let t423 = t296 * t296;
+        let t424 = 21.1 + 2.0 * (t301 + 0.36) + 2.0 * (0.36 + t310) + 2.0 * (0.36 + t321)
+            + 2.0 * (0.36 + t338) + 2.0 * (0.36 + t353) + 2.0 * (0.36 + t364)
+            + 3.0 * (t375 + 0.30250000000000005) + 3.0 * (0.30250000000000005 + t384)
+            + 3.0 * (t397 + 0.3364) + 3.0 * (0.3364 + t423);
+        let t949 = t443 * t890;
+        let t950 = t894 * t903;
+        let t951 = t910 * t917;
+        let t952 = t925 * t930;
+        let t297 = 2.0 * t22;
+        let t306 = 2.0 * t44;
+        let t315 = 2.0 * t88;
+        let t332 = 2.0 * t138;
+        let t349 = 2.0 * t166;
+        let t360 = 2.0 * t188;
+        let t371 = t210 * 3.0;
+        let t380 = t232 * 3.0;
+        let t389 = t264 * 3.0;
+        let t409 = t296 * 3.0;
+        let t415 = -t297 - t306 - t315 - t332 - t349 - t360 - t371 - t380 - t389 - t409;
+        let t935 = t415 * 0.005747126436781609;
+        let t953 = 174.0 * t935;
+        let t954 = t941 * t944;
+        let t955 = t424 - t890 * t949 - t903 * t950 - t917 * t951 - t930 * t952
+            - t935 * t953 - t944 * t954;
+        let t956 = 1.0 / t955;
+        let t1000 = 0.6 * t999;
+        let t998 = c_phi * 7.42;
+        let t1007 = 0.55 * t1006;
+        let t1005 = c_phi * 11.129999999999999;
+        let t1009 = 0.58 * t1006;
+        let t1018 = f_front_left_x * t1012 - f_front_left_y * t1015
+            + f_front_left_z * c_phi;
+        let t1023 = f_front_right_x * t1012 - f_front_right_y * t1015
+            + f_front_right_z * c_phi;
+        let t1028 = f_middle_left_x * t1012 - f_middle_left_y * t1015
+            + f_middle_left_z * c_phi;
+        let t1033 = f_middle_right_x * t1012 - f_middle_right_y * t1015
+            + f_middle_right_z * c_phi;
+        let t1038 = f_rear_left_x * t1012 - f_rear_left_y * t1015
+            + f_rear_left_z * c_phi;
+        let t1043 = f_rear_right_x * t1012 - f_rear_right_y * t1015
+            + f_rear_right_z * c_phi;
+        let t1045 = -(c_phi * 556.5) - t998 - t998 - t998 - t998 - t998 - t998 - t1005
+            - t1005 - t1005 - t1005 + t1018 + t1023 + t1028 + t1033 + t1038 + t1043;
         let t1053 = t1000 + t22 * t998 + (t44 * t998 - t1000) + (t1000 + t88 * t998)
             + (t138 * t998 - t1000) + (t1000 + t166 * t998) + (t188 * t998 - t1000)
             + (t1007 + t210 * t1005) + (t232 * t1005 - t1007) + (t1009 + t264 * t1005)
@@ -3145,6 +2272,107 @@ impl Mer {
             + (tau_rear_right_y * t1014 - tau_rear_right_x * t1011
                 + tau_rear_right_z * t803) - t890 * t1046 - t903 * t1049 - t917 * t1050
             - t930 * t1051 - t935 * t1045 - t944 * t1052;
+        let t11 = 0.7 + rocker * t8;
+        let t33 = 0.7 + rocker * t30;
+        let t55 = rocker * t52;
+        let t77 = t55 + bogie_left * t74;
+        let t105 = rocker * t102;
+        let t127 = t105 + bogie_right * t124;
+        let t155 = t55 - 0.65 + bogie_left * t152;
+        let t177 = t105 - 0.65 + bogie_right * t174;
+        let t199 = 0.35 + rocker * t196;
+        let t221 = 0.35 + rocker * t218;
+        let t253 = t55 - 0.3 + bogie_left * t250;
+        let t285 = t105 - 0.3 + bogie_right * t282;
+        let t425 = 2.0 * (0.6 * t33) - 2.0 * (0.6 * t11) - 2.0 * (0.6 * t77)
+            + 2.0 * (0.6 * t127) - 2.0 * (0.6 * t155) + 2.0 * (0.6 * t177)
+            - 3.0 * (0.55 * t199) + 3.0 * (0.55 * t221) - 3.0 * (0.58 * t253)
+            + 3.0 * (0.58 * t285);
+        let t304 = t10 * t22;
+        let t305 = t11 * t21;
+        let t313 = t32 * t44;
+        let t314 = t33 * t43;
+        let t325 = t54 * t88;
+        let t326 = t65 * t77;
+        let t342 = t104 * t138;
+        let t343 = t115 * t127;
+        let t356 = t54 * t166;
+        let t357 = t65 * t155;
+        let t367 = t104 * t188;
+        let t368 = t115 * t177;
+        let t378 = t198 * t210;
+        let t379 = t199 * t209;
+        let t387 = t220 * t232;
+        let t388 = t221 * t231;
+        let t402 = t54 * t264;
+        let t403 = t242 * t253;
+        let t434 = t104 * t296;
+        let t435 = t274 * t285;
+        let t436 = 2.0 * (t304 - t305) + 2.0 * (t313 - t314) + 2.0 * (t325 - t326)
+            + 2.0 * (t342 - t343) + 2.0 * (t356 - t357) + 2.0 * (t367 - t368)
+            + 3.0 * (t378 - t379) + 3.0 * (t387 - t388) + 3.0 * (t402 - t403)
+            + 3.0 * (t434 - t435);
+        let t891 = t436 * t885;
+        let t327 = t76 * t88;
+        let t328 = t77 * t87;
+        let t358 = t154 * t166;
+        let t359 = t155 * t165;
+        let t404 = t252 * t264;
+        let t405 = t253 * t263;
+        let t406 = 2.0 * (t327 - t328) + 2.0 * (t358 - t359) + 3.0 * (t404 - t405);
+        let t904 = t406 - t891 * t893;
+        let t905 = t895 * t904;
+        let t344 = t126 * t138;
+        let t345 = t127 * t137;
+        let t369 = t176 * t188;
+        let t370 = t177 * t187;
+        let t437 = t284 * t296;
+        let t438 = t285 * t295;
+        let t439 = 2.0 * (t344 - t345) + 2.0 * (t369 - t370) + 3.0 * (t437 - t438);
+        let t918 = t439 - t891 * t908 + t905 * t909;
+        let t919 = t911 * t918;
+        let t410 = t297 + t306 + t315 + t332 + t349 + t360 + t371 + t380 + t389 + t409;
+        let t931 = t410 - t891 * t922 - t905 * t923 - t919 * t924;
+        let t932 = t926 * t931;
+        let t299 = 2.0 * t11;
+        let t308 = 2.0 * t33;
+        let t318 = 2.0 * t77;
+        let t335 = 2.0 * t127;
+        let t351 = 2.0 * t155;
+        let t362 = 2.0 * t177;
+        let t373 = t199 * 3.0;
+        let t382 = t221 * 3.0;
+        let t393 = t253 * 3.0;
+        let t416 = t285 * 3.0;
+        let t418 = -t299 - t308 - t318 - t335 - t351 - t362 - t373 - t382 - t393 - t416;
+        let t945 = t418 - t891 * t937 - t905 * t938 - t919 * t939 - t932 * t940;
+        let t946 = t942 * t945;
+        let t957 = t425 - t891 * t949 - t905 * t950 - t919 * t951 - t932 * t952
+            - t946 * t954;
+        let t958 = t956 * t957;
+        let t303 = t11 * t11;
+        let t312 = t33 * t33;
+        let t324 = t77 * t77;
+        let t341 = t127 * t127;
+        let t355 = t155 * t155;
+        let t366 = t177 * t177;
+        let t377 = t199 * t199;
+        let t386 = t221 * t221;
+        let t401 = t253 * t253;
+        let t431 = t285 * t285;
+        let t432 = 27.6 + 2.0 * (t301 + t303) + 2.0 * (t310 + t312) + 2.0 * (t321 + t324)
+            + 2.0 * (t338 + t341) + 2.0 * (t353 + t355) + 2.0 * (t364 + t366)
+            + 3.0 * (t375 + t377) + 3.0 * (t384 + t386) + 3.0 * (t397 + t401)
+            + 3.0 * (t423 + t431);
+        let t961 = t443 * t891;
+        let t962 = t894 * t905;
+        let t963 = t910 * t919;
+        let t964 = t925 * t932;
+        let t965 = t941 * t946;
+        let t966 = t955 * t958;
+        let t967 = t432 - t891 * t961 - t905 * t962 - t919 * t963 - t932 * t964
+            - t946 * t965 - t958 * t966;
+        let t968 = 1.0 / t967;
         let t1054 = -(t22 * t997) - t11 * t999 + (-(t44 * t997) - t33 * t999)
             + (-(t88 * t997) - t77 * t999) + (-(t138 * t997) - t127 * t999)
             + (-(t166 * t997) - t155 * t999) + (-(t188 * t997) - t177 * t999)
@@ -3156,6 +2384,56 @@ impl Mer {
             + (t166 * t1037 - t155 * t1039) + t1040 + t1041
             + (t188 * t1042 - t177 * t1044) + t1047 + t1048 - t891 * t1046 - t905 * t1049
             - t919 * t1050 - t932 * t1051 - t946 * t1052 - t958 * t1053;
+        let t433 = 2.0 * (0.6 * t44) - 2.0 * (0.6 * t22) - 2.0 * (0.6 * t88)
+            + 2.0 * (0.6 * t138) - 2.0 * (0.6 * t166) + 2.0 * (0.6 * t188)
+            - 3.0 * (0.55 * t210) + 3.0 * (0.55 * t232) - 3.0 * (0.58 * t264)
+            + 3.0 * (0.58 * t296);
+        let t346 = 2.0 * (0.6 * t104);
+        let t329 = 2.0 * (0.6 * t54);
+        let t441 = t346 + (2.0 * (0.6 * t32) - 2.0 * (0.6 * t10) - t329 + t346 - t329)
+            - 3.0 * (0.55 * t198) + 3.0 * (0.55 * t220) - 3.0 * (t54 * 0.58)
+            + 3.0 * (t104 * 0.58);
+        let t892 = t441 * t885;
+        let t407 = -(2.0 * (0.6 * t76)) - 2.0 * (0.6 * t154) - 3.0 * (0.58 * t252);
+        let t906 = t407 - t892 * t893;
+        let t907 = t895 * t906;
+        let t442 = 2.0 * (0.6 * t126) + 2.0 * (0.6 * t176) + 3.0 * (0.58 * t284);
+        let t920 = t442 - t892 * t908 + t907 * t909;
+        let t921 = t911 * t920;
+        let t933 = -(t892 * t922) - t907 * t923 - t921 * t924;
+        let t934 = t926 * t933;
+        let t947 = -(t892 * t937) - t907 * t938 - t921 * t939 - t934 * t940;
+        let t948 = t942 * t947;
+        let t426 = -(2.0 * (t11 * t22)) - 2.0 * (t33 * t44) - 2.0 * (t77 * t88)
+            - 2.0 * (t127 * t138) - 2.0 * (t155 * t166) - 2.0 * (t177 * t188)
+            - 3.0 * (t199 * t210) - 3.0 * (t221 * t232) - 3.0 * (t253 * t264)
+            - 3.0 * (t285 * t296);
+        let t417 = t299 + t308 + t318 + t335 + t351 + t362 + t373 + t382 + t393 + t416;
+        let t936 = t417 * 0.005747126436781609;
+        let t959 = t426 - t892 * t949 - t907 * t950 - t921 * t951 - t934 * t952
+            - t936 * t953 - t948 * t954;
+        let t960 = t956 * t959;
+        let t969 = t433 - t892 * t961 - t907 * t962 - t921 * t963 - t934 * t964
+            - t948 * t965 - t960 * t966;
+        let t970 = t968 * t969;
+        let t440 = 42.5 + 2.0 * (0.36 + t303) + 2.0 * (0.36 + t312) + 2.0 * (0.36 + t324)
+            + 2.0 * (0.36 + t341) + 2.0 * (0.36 + t355) + 2.0 * (0.36 + t366)
+            + 3.0 * (0.30250000000000005 + t377) + 3.0 * (0.30250000000000005 + t386)
+            + 3.0 * (0.3364 + t401) + 3.0 * (0.3364 + t431);
+        let t971 = t443 * t892;
+        let t972 = t894 * t907;
+        let t973 = t910 * t921;
+        let t974 = t925 * t934;
+        let t975 = 174.0 * t936;
+        let t976 = t941 * t948;
+        let t977 = t955 * t960;
+        let t978 = t967 * t970;
+        let t979 = t440 - t892 * t971 - t907 * t972 - t921 * t973 - t934 * t974
+            - t936 * t975 - t948 * t976 - t960 * t977 - t970 * t978;
+        let t980 = 1.0 / t979;
+        let t1001 = 0.6 * t997;
+        let t1008 = 0.55 * t1004;
+        let t1010 = 0.58 * t1004;
         let t1055 = t980
             * (t1001 - t11 * t998 + (-t1001 - t33 * t998) + (t1001 - t77 * t998)
                 + (-t1001 - t127 * t998) + (t1001 - t155 * t998) + (-t1001 - t177 * t998)
@@ -3197,45 +2475,73 @@ impl Mer {
             - t919 * t1056 - t921 * t1055;
         let t1061 = t895 * t1049 + t897 * t1060 - t899 * t1059 - t901 * t1058
             - t903 * t1057 - t905 * t1056 - t907 * t1055;
-        let t1062 = s_phi * t996 / c_phi;
+        let t808 = s_psi * t804;
+        let t807 = s_theta * c_psi;
+        let t1077 = -t808 - t807;
+        let t805 = c_theta * c_psi - s_psi * t803;
+        let t815 = c_psi * t804;
+        let t814 = s_theta * s_psi;
+        let t1078 = t815 - t814;
+        let t810 = c_theta * s_psi;
+        let t811 = c_psi * t803;
+        let t812 = t810 + t811;
+        let t1109 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
+        let t756 = t744 * 11.129999999999999;
+        let t749 = t744 * 7.42;
+        let t746 = t744 * 556.5;
+        let t819 = f_front_left_z * t744;
+        let t1079 = f_front_left_x * t1077 + f_front_left_y * t1078 - t819;
+        let t830 = f_front_right_z * t744;
+        let t1081 = f_front_right_x * t1077 + f_front_right_y * t1078 - t830;
+        let t841 = f_middle_left_z * t744;
+        let t1083 = f_middle_left_x * t1077 + f_middle_left_y * t1078 - t841;
+        let t852 = f_middle_right_z * t744;
+        let t1086 = f_middle_right_x * t1077 + f_middle_right_y * t1078 - t852;
+        let t863 = f_rear_left_z * t744;
+        let t1089 = f_rear_left_x * t1077 + f_rear_left_y * t1078 - t863;
+        let t874 = f_rear_right_z * t744;
+        let t1092 = f_rear_right_x * t1077 + f_rear_right_y * t1078 - t874;
+        let t747 = t743 * 7.42;
+        let t1067 = t104 * t749 + t115 * t747;
+        let t1065 = t54 * t749 + t65 * t747;
         let t1063 = t10 * t749 + t21 * t747;
         let t1064 = t32 * t749 + t43 * t747;
-        let t1065 = t54 * t749 + t65 * t747;
-        let t1066 = t76 * t749 + t87 * t747;
-        let t1067 = t104 * t749 + t115 * t747;
-        let t1068 = t126 * t749 + t137 * t747;
-        let t1069 = t154 * t749 + t165 * t747;
-        let t1070 = t176 * t749 + t187 * t747;
+        let t754 = t743 * 11.129999999999999;
         let t1071 = t198 * t756 + t209 * t754;
         let t1072 = t220 * t756 + t231 * t754;
         let t1073 = t54 * t756 + t242 * t754;
-        let t1074 = t252 * t756 + t263 * t754;
         let t1075 = t104 * t756 + t274 * t754;
-        let t1076 = t284 * t756 + t295 * t754;
-        let t1077 = -t808 - t807;
-        let t1078 = t815 - t814;
-        let t1079 = f_front_left_x * t1077 + f_front_left_y * t1078 - t819;
+        let t817 = f_front_left_x * t805 + f_front_left_y * t812 - f_front_left_z * t743;
         let t1080 = t21 * t817;
-        let t1081 = f_front_right_x * t1077 + f_front_right_y * t1078 - t830;
+        let t828 = f_front_right_x * t805 + f_front_right_y * t812
+            - f_front_right_z * t743;
         let t1082 = t43 * t828;
-        let t1083 = f_middle_left_x * t1077 + f_middle_left_y * t1078 - t841;
+        let t839 = f_middle_left_x * t805 + f_middle_left_y * t812
+            - f_middle_left_z * t743;
         let t1084 = t65 * t839;
-        let t1085 = t87 * t839;
-        let t1086 = f_middle_right_x * t1077 + f_middle_right_y * t1078 - t852;
+        let t850 = f_middle_right_x * t805 + f_middle_right_y * t812
+            - f_middle_right_z * t743;
         let t1087 = t115 * t850;
-        let t1088 = t137 * t850;
-        let t1089 = f_rear_left_x * t1077 + f_rear_left_y * t1078 - t863;
+        let t861 = f_rear_left_x * t805 + f_rear_left_y * t812 - f_rear_left_z * t743;
         let t1090 = t65 * t861;
-        let t1091 = t165 * t861;
-        let t1092 = f_rear_right_x * t1077 + f_rear_right_y * t1078 - t874;
+        let t872 = f_rear_right_x * t805 + f_rear_right_y * t812 - f_rear_right_z * t743;
         let t1093 = t115 * t872;
         let t1094 = t1067 + (t1065 + (t1063 + t1064 + t1065 + t1067)) + t1071 + t1072
             + t1073 + t1075 + (t10 * t1079 + t1080) + (t32 * t1081 + t1082)
             + (t54 * t1083 + t1084) + (t104 * t1086 + t1087) + (t54 * t1089 + t1090)
             + (t104 * t1092 + t1093);
-        let t1095 = t187 * t872;
+        let t1066 = t76 * t749 + t87 * t747;
+        let t1069 = t154 * t749 + t165 * t747;
+        let t1074 = t252 * t756 + t263 * t754;
+        let t1085 = t87 * t839;
+        let t1091 = t165 * t861;
         let t1096 = t1066 + t1069 + t1074 + (t76 * t1083 + t1085)
             + (t154 * t1089 + t1091) - t886 * t1094;
+        let t1068 = t126 * t749 + t137 * t747;
+        let t1070 = t176 * t749 + t187 * t747;
+        let t1076 = t284 * t756 + t295 * t754;
+        let t1088 = t137 * t850;
+        let t1095 = t187 * t872;
         let t1097 = t1068 + t1070 + t1076 + (t126 * t1086 + t1088)
             + (t176 * t1092 + t1095) - t887 * t1094 + t897 * t1096;
         let t1098 = t756
@@ -3245,6 +2551,7 @@ impl Mer {
                         + (t749 + (t749 + (t749 + (t749 + (t749 + (t746 + t749)))))))))
             + t1079 + t1081 + t1083 + t1086 + t1089 + t1092 - t888 * t1094 - t899 * t1096
             - t913 * t1097;
+        let t745 = t743 * 556.5;
         let t1099 = t872
             + (t861
                 + (t850
@@ -3259,6 +2566,24 @@ impl Mer {
                                                     + (t747
                                                         + (t747 + (t747 + (t747 + (t745 + t747)))))))))))))))
             - t889 * t1094 - t901 * t1096 - t915 * t1097 - t928 * t1098;
+        let t876 = 0.6 * t872;
+        let t865 = 0.6 * t861;
+        let t854 = 0.6 * t850;
+        let t843 = 0.6 * t839;
+        let t832 = 0.6 * t828;
+        let t821 = 0.6 * t817;
+        let t824 = mu_front_left_z * t744;
+        let t827 = tau_front_left_z * t744;
+        let t835 = mu_front_right_z * t744;
+        let t838 = tau_front_right_z * t744;
+        let t846 = mu_middle_left_z * t744;
+        let t849 = tau_middle_left_z * t744;
+        let t857 = mu_middle_right_z * t744;
+        let t860 = tau_middle_right_z * t744;
+        let t868 = mu_rear_left_z * t744;
+        let t871 = tau_rear_left_z * t744;
+        let t881 = mu_rear_right_z * t744;
+        let t884 = tau_rear_right_z * t744;
         let t1100 = t865
             + (t843
                 + (t821 + (mu_front_left_x * t1077 + mu_front_left_y * t1078 - t824)
@@ -3283,6 +2608,29 @@ impl Mer {
             + (t88 * t1083 - t77 * t839) + (t138 * t1086 - t127 * t850)
             + (t166 * t1089 - t155 * t861) + (t188 * t1092 - t177 * t872) - t891 * t1094
             - t905 * t1096 - t919 * t1097 - t932 * t1098 - t946 * t1099 - t958 * t1100;
+        let t882 = tau_rear_right_x * t805 + tau_rear_right_y * t812
+            - tau_rear_right_z * t743;
+        let t879 = mu_rear_right_x * t805 + mu_rear_right_y * t812
+            - mu_rear_right_z * t743;
+        let t869 = tau_rear_left_x * t805 + tau_rear_left_y * t812
+            - tau_rear_left_z * t743;
+        let t866 = mu_rear_left_x * t805 + mu_rear_left_y * t812 - mu_rear_left_z * t743;
+        let t858 = tau_middle_right_x * t805 + tau_middle_right_y * t812
+            - tau_middle_right_z * t743;
+        let t855 = mu_middle_right_x * t805 + mu_middle_right_y * t812
+            - mu_middle_right_z * t743;
+        let t847 = tau_middle_left_x * t805 + tau_middle_left_y * t812
+            - tau_middle_left_z * t743;
+        let t844 = mu_middle_left_x * t805 + mu_middle_left_y * t812
+            - mu_middle_left_z * t743;
+        let t836 = tau_front_right_x * t805 + tau_front_right_y * t812
+            - tau_front_right_z * t743;
+        let t833 = mu_front_right_x * t805 + mu_front_right_y * t812
+            - mu_front_right_z * t743;
+        let t825 = tau_front_left_x * t805 + tau_front_left_y * t812
+            - tau_front_left_z * t743;
+        let t822 = mu_front_left_x * t805 + mu_front_left_y * t812
+            - mu_front_left_z * t743;
         let t1102 = t980
             * (t882
                 + (t879
@@ -3306,46 +2654,41 @@ impl Mer {
             - t919 * t1103 - t921 * t1102;
         let t1108 = t895 * t1096 + t897 * t1107 - t899 * t1106 - t901 * t1105
             - t903 * t1104 - t905 * t1103 - t907 * t1102;
-        let t1109 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
         let t1110 = -t811 - t810;
+        let t813 = c_phi * c_psi;
+        let t806 = c_phi * s_psi;
+        let t809 = t807 + t808;
         let t1111 = f_front_left_x * t1110 + f_front_left_y * t805;
-        let t1112 = -(f_front_left_x * t813) - f_front_left_y * t806;
+        let t1116 = f_front_right_x * t1110 + f_front_right_y * t805;
+        let t1121 = f_middle_left_x * t1110 + f_middle_left_y * t805;
+        let t1126 = f_middle_right_x * t1110 + f_middle_right_y * t805;
+        let t1131 = f_rear_left_x * t1110 + f_rear_left_y * t805;
+        let t1136 = f_rear_right_x * t1110 + f_rear_right_y * t805;
         let t1113 = f_front_left_x * t1078 + f_front_left_y * t809;
         let t1114 = -(mu_front_left_x * t813) - mu_front_left_y * t806;
         let t1115 = -(tau_front_left_x * t813) - tau_front_left_y * t806;
-        let t1116 = f_front_right_x * t1110 + f_front_right_y * t805;
-        let t1117 = -(f_front_right_x * t813) - f_front_right_y * t806;
         let t1118 = f_front_right_x * t1078 + f_front_right_y * t809;
         let t1119 = -(mu_front_right_x * t813) - mu_front_right_y * t806;
         let t1120 = -(tau_front_right_x * t813) - tau_front_right_y * t806;
-        let t1121 = f_middle_left_x * t1110 + f_middle_left_y * t805;
-        let t1122 = -(f_middle_left_x * t813) - f_middle_left_y * t806;
         let t1123 = f_middle_left_x * t1078 + f_middle_left_y * t809;
-        let t1124 = -(mu_middle_left_x * t813) - mu_middle_left_y * t806;
-        let t1125 = -(tau_middle_left_x * t813) - tau_middle_left_y * t806;
-        let t1126 = f_middle_right_x * t1110 + f_middle_right_y * t805;
-        let t1127 = -(f_middle_right_x * t813) - f_middle_right_y * t806;
         let t1128 = f_middle_right_x * t1078 + f_middle_right_y * t809;
-        let t1129 = -(mu_middle_right_x * t813) - mu_middle_right_y * t806;
-        let t1130 = -(tau_middle_right_x * t813) - tau_middle_right_y * t806;
-        let t1131 = f_rear_left_x * t1110 + f_rear_left_y * t805;
-        let t1132 = -(f_rear_left_x * t813) - f_rear_left_y * t806;
         let t1133 = f_rear_left_x * t1078 + f_rear_left_y * t809;
-        let t1134 = -(mu_rear_left_x * t813) - mu_rear_left_y * t806;
-        let t1135 = -(tau_rear_left_x * t813) - tau_rear_left_y * t806;
-        let t1136 = f_rear_right_x * t1110 + f_rear_right_y * t805;
-        let t1137 = -(f_rear_right_x * t813) - f_rear_right_y * t806;
         let t1138 = f_rear_right_x * t1078 + f_rear_right_y * t809;
-        let t1139 = t1112 + t1117 + t1122 + t1127 + t1132 + t1137;
         let t1140 = t10 * t1111 + t21 * t1113 + 1.0000000000000002 * t1114
             + 1.0000000000000002 * t1115 + (t32 * t1116 + t43 * t1118)
             - 1.0000000000000002 * t1119 - 1.0000000000000002 * t1120
             + (t54 * t1121 + t65 * t1123) + (t104 * t1126 + t115 * t1128)
             + (t54 * t1131 + t65 * t1133) + (t104 * t1136 + t115 * t1138);
-        let t1141 = -(mu_rear_right_x * t813) - mu_rear_right_y * t806;
-        let t1142 = -(tau_rear_right_x * t813) - tau_rear_right_y * t806;
+        let t1124 = -(mu_middle_left_x * t813) - mu_middle_left_y * t806;
+        let t1125 = -(tau_middle_left_x * t813) - tau_middle_left_y * t806;
+        let t1134 = -(mu_rear_left_x * t813) - mu_rear_left_y * t806;
+        let t1135 = -(tau_rear_left_x * t813) - tau_rear_left_y * t806;
         let t1143 = t76 * t1121 + t87 * t1123 + t94 * t1124 + t94 * t1125
             + (t154 * t1131 + t165 * t1133) + t94 * t1134 + t94 * t1135 - t886 * t1140;
+        let t1129 = -(mu_middle_right_x * t813) - mu_middle_right_y * t806;
+        let t1130 = -(tau_middle_right_x * t813) - tau_middle_right_y * t806;
+        let t1141 = -(mu_rear_right_x * t813) - mu_rear_right_y * t806;
+        let t1142 = -(tau_rear_right_x * t813) - tau_rear_right_y * t806;
         let t1144 = t126 * t1126 + t137 * t1128 + t144 * t1129 + t144 * t1130
             + (t176 * t1136 + t187 * t1138) + t144 * t1141 + t144 * t1142 - t887 * t1140
             + t897 * t1143;
@@ -3353,6 +2696,13 @@ impl Mer {
             - t899 * t1143 - t913 * t1144;
         let t1146 = t1113 + t1118 + t1123 + t1128 + t1133 + t1138 - t889 * t1140
             - t901 * t1143 - t915 * t1144 - t928 * t1145;
+        let t1112 = -(f_front_left_x * t813) - f_front_left_y * t806;
+        let t1117 = -(f_front_right_x * t813) - f_front_right_y * t806;
+        let t1122 = -(f_middle_left_x * t813) - f_middle_left_y * t806;
+        let t1127 = -(f_middle_right_x * t813) - f_middle_right_y * t806;
+        let t1132 = -(f_rear_left_x * t813) - f_rear_left_y * t806;
+        let t1137 = -(f_rear_right_x * t813) - f_rear_right_y * t806;
+        let t1139 = t1112 + t1117 + t1122 + t1127 + t1132 + t1137;
         let t1147 = 0.6 * t1113 - t22 * t1112
             + (mu_front_left_x * t1110 + mu_front_left_y * t805)
             + (tau_front_left_x * t1110 + tau_front_left_y * t805)
@@ -3408,174 +2758,568 @@ impl Mer {
             - t919 * t1150 - t921 * t1149;
         let t1155 = t895 * t1143 + t897 * t1154 - t899 * t1153 - t901 * t1152
             - t903 * t1151 - t905 * t1150 - t907 * t1149;
-        let t1156 = t3 + (t3 + t5);
-        let t1157 = t6 + rocker * 0.13628301932041134 + 2.0 * t1156;
-        let t1158 = t7 + (t7 + rocker * t1156);
-        let t1159 = t14 + (t14 - t16);
-        let t1160 = t17 - rocker * 0.06690257312090682 + 2.0 * t1159;
-        let t1161 = t18 + (t18 + rocker * t1159);
-        let t1162 = t25 + (t25 + t27);
-        let t1163 = t28 + rocker * 0.13628301932041242 + 2.0 * t1162;
-        let t1164 = t29 + (t29 + rocker * t1162);
-        let t1165 = t36 + (t36 - t38);
-        let t1166 = t39 - rocker * 0.06690257312094026 + 2.0 * t1165;
-        let t1167 = t40 + (t40 + rocker * t1165);
-        let t1168 = t47 + (t47 - t49);
-        let t1169 = t50 - rocker * 0.1115042885348812 + 2.0 * t1168;
-        let t1170 = t51 + (t51 + rocker * t1168);
-        let t1171 = t58 + (t58 - t60);
-        let t1172 = t61 - rocker * 0.024778730785524315 + 2.0 * t1171;
-        let t1173 = t62 + (t62 + rocker * t1171);
+        let omega_y = w[4];
+        let t452 = vz * 174.0;
+        let t453 = omega_y * t418;
+        let yd_rocker = w[6];
+        let yd_bogie_left = w[7];
+        let yd_bogie_right = w[8];
+        let t454 = t452 + t453 + yd_rocker * t420 + yd_bogie_left * t396
+            + yd_bogie_right * t422;
+        let t448 = vy * 174.0;
+        let t449 = omega_x * t415;
+        let t450 = omega_z * t417;
+        let t451 = t448 + t449 + t450;
+        let t5 = rocker * 0.04542767310680378;
+        let t6 = t5 + 2.0 * t3;
+        let t9 = rocker * t6 + 2.0 * t7;
+        let t471 = yd_rocker * yd_rocker;
+        let t468 = yd_rocker * t21;
+        let t475 = t9 * t471 + omega_y * t468;
+        let t27 = rocker * 0.04542767310680414;
+        let t28 = t27 + 2.0 * t25;
+        let t31 = rocker * t28 + 2.0 * t29;
+        let t491 = yd_rocker * t43;
+        let t495 = t31 * t471 + omega_y * t491;
+        let t49 = rocker * 0.03716809617829373;
+        let t50 = 2.0 * t47 - t49;
+        let t53 = rocker * t50 + 2.0 * t51;
+        let t516 = t53 * t471;
+        let t71 = bogie_left * 0.02456790037247153;
+        let t72 = t71 + 2.0 * t69;
+        let t75 = bogie_left * t72 + 2.0 * t73;
+        let t472 = yd_bogie_left * yd_bogie_left;
+        let t511 = yd_rocker * t65;
+        let t513 = yd_bogie_left * t87;
+        let t519 = t511 + t513;
+        let t521 = t516 + t75 * t472 + omega_y * t519;
+        let t99 = rocker * 0.03716809617829641;
+        let t100 = 2.0 * t97 - t99;
+        let t103 = rocker * t100 + 2.0 * t101;
+        let t554 = t103 * t471;
+        let t121 = bogie_right * 0.02456790037247153;
+        let t122 = t121 + 2.0 * t119;
+        let t125 = bogie_right * t122 + 2.0 * t123;
+        let t473 = yd_bogie_right * yd_bogie_right;
+        let t549 = yd_rocker * t115;
+        let t551 = yd_bogie_right * t137;
+        let t557 = t549 + t551;
+        let t559 = t554 + t125 * t473 + omega_y * t557;
+        let t149 = bogie_left * 0.028662550434550092;
+        let t150 = 2.0 * t147 - t149;
+        let t153 = bogie_left * t150 + 2.0 * t151;
+        let t587 = yd_bogie_left * t165;
+        let t591 = t511 + t587;
+        let t593 = t516 + t153 * t472 + omega_y * t591;
+        let t171 = bogie_right * 0.028662550434550092;
+        let t172 = 2.0 * t169 - t171;
+        let t175 = bogie_right * t172 + 2.0 * t173;
+        let t612 = yd_bogie_right * t187;
+        let t616 = t549 + t612;
+        let t618 = t554 + t175 * t473 + omega_y * t616;
+        let t193 = rocker * 0.016519153857020862;
+        let t194 = t193 + 2.0 * t191;
+        let t197 = rocker * t194 + 2.0 * t195;
+        let t639 = yd_rocker * t209;
+        let t643 = t197 * t471 + omega_y * t639;
+        let t215 = rocker * 0.016519153857020175;
+        let t216 = t215 + 2.0 * t213;
+        let t219 = rocker * t216 + 2.0 * t217;
+        let t659 = yd_rocker * t231;
+        let t663 = t219 * t471 + omega_y * t659;
+        let t247 = bogie_left * 2.2305419911658606e-16;
+        let t248 = t247 + 2.0 * t245;
+        let t251 = bogie_left * t248 + 2.0 * t249;
+        let t680 = yd_rocker * t242;
+        let t682 = yd_bogie_left * t263;
+        let t686 = t680 + t682;
+        let t688 = t516 + t251 * t472 + omega_y * t686;
+        let t279 = bogie_right * 2.2305419911658606e-16;
+        let t280 = t279 + 2.0 * t277;
+        let t283 = bogie_right * t280 + 2.0 * t281;
+        let t712 = yd_rocker * t274;
+        let t714 = yd_bogie_right * t295;
+        let t718 = t712 + t714;
+        let t720 = t554 + t283 * t473 + omega_y * t718;
+        let t753 = t104 * t747 - t115 * t749;
+        let t752 = t54 * t747 - t65 * t749;
+        let t464 = omega_z * 0.6;
+        let t467 = yd_rocker * t10;
+        let t469 = vx + (omega_y * t22 - t464) + t467;
+        let t480 = omega_y * t21;
+        let t485 = yd_rocker * t9;
+        let t487 = t480 + t485;
+        let t466 = vy + (omega_z * t11 - omega_x * t22);
+        let t481 = omega_x * t21;
+        let t482 = omega_z * t10;
+        let t483 = t481 - t482;
+        let t465 = omega_x * 0.6;
+        let t470 = vz + (t465 - omega_y * t11) + t468;
+        let t484 = omega_y * t10;
+        let t16 = rocker * 0.02230085770696894;
+        let t17 = 2.0 * t14 - t16;
+        let t20 = rocker * t17 + 2.0 * t18;
+        let t486 = yd_rocker * t20;
+        let t488 = t486 - t484;
+        let t477 = t9 * t469;
+        let t478 = t20 * t470;
+        let t479 = t477 + t478;
+        let t476 = t20 * t471 - omega_y * t467;
+        let t490 = yd_rocker * t32;
+        let t492 = vx + (t464 + omega_y * t44) + t490;
+        let t500 = omega_y * t43;
+        let t505 = yd_rocker * t31;
+        let t507 = t500 + t505;
+        let t489 = vy + (omega_z * t33 - omega_x * t44);
+        let t501 = omega_x * t43;
+        let t502 = omega_z * t32;
+        let t503 = t501 - t502;
+        let t493 = vz + (-t465 - omega_y * t33) + t491;
+        let t504 = omega_y * t32;
+        let t38 = rocker * 0.02230085770698009;
+        let t39 = 2.0 * t36 - t38;
+        let t42 = rocker * t39 + 2.0 * t40;
+        let t506 = yd_rocker * t42;
+        let t508 = t506 - t504;
+        let t497 = t31 * t492;
+        let t498 = t42 * t493;
+        let t499 = t497 + t498;
+        let t496 = t42 * t471 - omega_y * t490;
+        let t510 = yd_rocker * t54;
+        let t512 = yd_bogie_left * t76;
+        let t514 = vx + (omega_y * t88 - t464) + t510 + t512;
+        let t526 = omega_y * t65;
+        let t531 = yd_rocker * t53;
+        let t533 = t526 + t531;
+        let t509 = vy + (omega_z * t77 - omega_x * t88);
+        let t527 = omega_x * t65;
+        let t528 = omega_z * t54;
+        let t529 = t527 - t528;
+        let t515 = vz + (t465 - omega_y * t77) + t511 + t513;
+        let t530 = omega_y * t54;
+        let t60 = rocker * 0.008259576928508105;
+        let t61 = 2.0 * t58 - t60;
+        let t64 = rocker * t61 + 2.0 * t62;
+        let t532 = yd_rocker * t64;
+        let t534 = t532 - t530;
+        let t523 = t53 * t514;
+        let t524 = t64 * t515;
+        let t525 = t523 + t524;
+        let t517 = t64 * t471;
+        let t82 = bogie_left * 0.013921810211067694;
+        let t83 = 2.0 * t80 - t82;
+        let t86 = bogie_left * t83 + 2.0 * t84;
+        let t518 = t510 + t512;
+        let t522 = t517 + t86 * t472 - omega_y * t518;
+        let t548 = yd_rocker * t104;
+        let t550 = yd_bogie_right * t126;
+        let t552 = vx + (t464 + omega_y * t138) + t548 + t550;
+        let t564 = omega_y * t115;
+        let t569 = yd_rocker * t103;
+        let t571 = t564 + t569;
+        let t547 = vy + (omega_z * t127 - omega_x * t138);
+        let t565 = omega_x * t115;
+        let t566 = omega_z * t104;
+        let t567 = t565 - t566;
+        let t553 = vz + (-t465 - omega_y * t127) + t549 + t551;
+        let t568 = omega_y * t104;
+        let t110 = rocker * 0.008259576928512532;
+        let t111 = 2.0 * t108 - t110;
+        let t114 = rocker * t111 + 2.0 * t112;
+        let t570 = yd_rocker * t114;
+        let t572 = t570 - t568;
+        let t561 = t103 * t552;
+        let t562 = t114 * t553;
+        let t563 = t561 + t562;
+        let t555 = t114 * t471;
+        let t132 = bogie_right * 0.013921810211067694;
+        let t133 = 2.0 * t130 - t132;
+        let t136 = bogie_right * t133 + 2.0 * t134;
+        let t556 = t548 + t550;
+        let t560 = t555 + t136 * t473 - omega_y * t556;
+        let t586 = yd_bogie_left * t154;
+        let t588 = t510 + (vx + (omega_y * t166 - t464)) + t586;
+        let t585 = vy + (omega_z * t155 - omega_x * t166);
+        let t589 = t511 + (vz + (t465 - omega_y * t155)) + t587;
+        let t595 = t53 * t588;
+        let t596 = t64 * t589;
+        let t597 = t595 + t596;
+        let t160 = bogie_left * 0.01392181021106738;
+        let t161 = 2.0 * t158 - t160;
+        let t164 = bogie_left * t161 + 2.0 * t162;
+        let t590 = t510 + t586;
+        let t594 = t517 + t164 * t472 - omega_y * t590;
+        let t611 = yd_bogie_right * t176;
+        let t613 = t548 + (vx + (t464 + omega_y * t188)) + t611;
+        let t610 = vy + (omega_z * t177 - omega_x * t188);
+        let t614 = t549 + (vz + (-t465 - omega_y * t177)) + t612;
+        let t620 = t103 * t613;
+        let t621 = t114 * t614;
+        let t622 = t620 + t621;
+        let t182 = bogie_right * 0.01392181021106738;
+        let t183 = 2.0 * t180 - t182;
+        let t186 = bogie_right * t183 + 2.0 * t184;
+        let t615 = t548 + t611;
+        let t619 = t555 + t186 * t473 - omega_y * t615;
+        let t635 = omega_z * 0.55;
+        let t638 = yd_rocker * t198;
+        let t640 = vx + (omega_y * t210 - t635) + t638;
+        let t648 = omega_y * t209;
+        let t653 = yd_rocker * t197;
+        let t655 = t648 + t653;
+        let t637 = vy + (omega_z * t199 - omega_x * t210);
+        let t649 = omega_x * t209;
+        let t650 = omega_z * t198;
+        let t651 = t649 - t650;
+        let t636 = omega_x * 0.55;
+        let t641 = vz + (t636 - omega_y * t199) + t639;
+        let t652 = omega_y * t198;
+        let t204 = rocker * 0.008259576928509347;
+        let t205 = 2.0 * t202 - t204;
+        let t208 = rocker * t205 + 2.0 * t206;
+        let t654 = yd_rocker * t208;
+        let t656 = t654 - t652;
+        let t645 = t197 * t640;
+        let t646 = t208 * t641;
+        let t647 = t645 + t646;
+        let t644 = t208 * t471 - omega_y * t638;
+        let t658 = yd_rocker * t220;
+        let t660 = vx + (t635 + omega_y * t232) + t658;
+        let t668 = omega_y * t231;
+        let t673 = yd_rocker * t219;
+        let t675 = t668 + t673;
+        let t657 = vy + (omega_z * t221 - omega_x * t232);
+        let t669 = omega_x * t231;
+        let t670 = omega_z * t220;
+        let t671 = t669 - t670;
+        let t661 = vz + (-t636 - omega_y * t221) + t659;
+        let t672 = omega_y * t220;
+        let t226 = rocker * 0.008259576928510507;
+        let t227 = 2.0 * t224 - t226;
+        let t230 = rocker * t227 + 2.0 * t228;
+        let t674 = yd_rocker * t230;
+        let t676 = t674 - t672;
+        let t665 = t219 * t660;
+        let t666 = t230 * t661;
+        let t667 = t665 + t666;
+        let t664 = t230 * t471 - omega_y * t658;
+        let t677 = omega_z * 0.58;
+        let t681 = yd_bogie_left * t252;
+        let t683 = t510 + (vx + (omega_y * t264 - t677)) + t681;
+        let t693 = omega_y * t242;
+        let t697 = t531 + t693;
+        let t679 = vy + (omega_z * t253 - omega_x * t264);
+        let t694 = omega_x * t242;
+        let t695 = t694 - t528;
+        let t678 = omega_x * 0.58;
+        let t684 = vz + (t678 - omega_y * t253) + t680 + t682;
+        let t237 = rocker * 0.008259576928505609;
+        let t238 = 2.0 * t235 - t237;
+        let t241 = rocker * t238 + 2.0 * t239;
+        let t696 = yd_rocker * t241;
+        let t698 = t696 - t530;
+        let t690 = t53 * t683;
+        let t691 = t241 * t684;
+        let t692 = t690 + t691;
+        let t258 = bogie_left * 0.008189300124157297;
+        let t259 = 2.0 * t256 - t258;
+        let t262 = bogie_left * t259 + 2.0 * t260;
+        let t685 = t510 + t681;
+        let t689 = t241 * t471 + t262 * t472 - omega_y * t685;
+        let t713 = yd_bogie_right * t284;
+        let t715 = t548 + (vx + (t677 + omega_y * t296)) + t713;
+        let t725 = omega_y * t274;
+        let t729 = t569 + t725;
+        let t711 = vy + (omega_z * t285 - omega_x * t296);
+        let t726 = omega_x * t274;
+        let t727 = t726 - t566;
+        let t716 = vz + (-t678 - omega_y * t285) + t712 + t714;
+        let t269 = rocker * 0.00825957692850954;
+        let t270 = 2.0 * t267 - t269;
+        let t273 = rocker * t270 + 2.0 * t271;
+        let t728 = yd_rocker * t273;
+        let t730 = t728 - t568;
+        let t722 = t103 * t715;
+        let t723 = t273 * t716;
+        let t724 = t722 + t723;
+        let t290 = bogie_right * 0.008189300124157297;
+        let t291 = 2.0 * t288 - t290;
+        let t294 = bogie_right * t291 + 2.0 * t292;
+        let t717 = t548 + t713;
+        let t721 = t273 * t471 + t294 * t473 - omega_y * t717;
+        let t761 = rocker - 0.4363323129985824;
+        let t762 = f64::max(t761, 0.0);
+        let t765 = 10000.0 * t762;
+        let t766 = f64::min(t765, 1.0);
+        let t767 = 43.7067683346622 * t766;
+        let t768 = -(100.0 * t762) - yd_rocker * t767;
+        let t769 = f64::min(t768, 0.0);
+        let t763 = -0.4363323129985824 - rocker;
+        let t764 = f64::max(t763, 0.0);
+        let t770 = 10000.0 * t764;
+        let t771 = f64::min(t770, 1.0);
+        let t772 = 43.7067683346622 * t771;
+        let t773 = 100.0 * t764 - yd_rocker * t772;
+        let t774 = f64::max(t773, 0.0);
+        let t816 = t814 - t815;
+        let t820 = f_front_left_x * t809 + f_front_left_y * t816 + t819;
+        let t823 = mu_front_left_y * t813 - mu_front_left_x * t806
+            + mu_front_left_z * s_phi;
+        let t826 = tau_front_left_y * t813 - tau_front_left_x * t806
+            + tau_front_left_z * s_phi;
+        let t831 = f_front_right_x * t809 + f_front_right_y * t816 + t830;
+        let t834 = mu_front_right_y * t813 - mu_front_right_x * t806
+            + mu_front_right_z * s_phi;
+        let t837 = tau_front_right_y * t813 - tau_front_right_x * t806
+            + tau_front_right_z * s_phi;
+        let t842 = f_middle_left_x * t809 + f_middle_left_y * t816 + t841;
+        let t853 = f_middle_right_x * t809 + f_middle_right_y * t816 + t852;
+        let t864 = f_rear_left_x * t809 + f_rear_left_y * t816 + t863;
+        let t875 = f_rear_right_x * t809 + f_rear_right_y * t816 + t874;
+        let t878 = t753
+            + (t752
+                + (2.0
+                    * (t469 * t487 - t466 * t483 + t470 * t488
+                        - (yd_rocker * t479 + (t10 * t475 + t21 * t476)))
+                    + 2.0
+                        * (t492 * t507 - t489 * t503 + t493 * t508
+                            - (yd_rocker * t499 + (t32 * t495 + t43 * t496)))
+                    + 2.0
+                        * (t514 * t533 - t509 * t529 + t515 * t534
+                            - (yd_rocker * t525 + (t54 * t521 + t65 * t522)))
+                    + 2.0
+                        * (t552 * t571 - t547 * t567 + t553 * t572
+                            - (yd_rocker * t563 + (t104 * t559 + t115 * t560)))
+                    + 2.0
+                        * (t533 * t588 - t529 * t585 + t534 * t589
+                            - (yd_rocker * t597 + (t54 * t593 + t65 * t594)))
+                    + 2.0
+                        * (t571 * t613 - t567 * t610 + t572 * t614
+                            - (yd_rocker * t622 + (t104 * t618 + t115 * t619)))
+                    + 3.0
+                        * (t640 * t655 - t637 * t651 + t641 * t656
+                            - (yd_rocker * t647 + (t198 * t643 + t209 * t644)))
+                    + 3.0
+                        * (t660 * t675 - t657 * t671 + t661 * t676
+                            - (yd_rocker * t667 + (t220 * t663 + t231 * t664)))
+                    + 3.0
+                        * (t683 * t697 - t679 * t695 + t684 * t698
+                            - (yd_rocker * t692 + (t54 * t688 + t242 * t689)))
+                    + 3.0
+                        * (t715 * t729 - t711 * t727 + t716 * t730
+                            - (yd_rocker * t724 + (t104 * t720 + t274 * t721)))
+                    + (t10 * t747 - t21 * t749) + (t32 * t747 - t43 * t749) + t752
+                    + t753)) + (t198 * t754 - t209 * t756) + (t220 * t754 - t231 * t756)
+            + (t54 * t754 - t242 * t756) + (t104 * t754 - t274 * t756) + (t769 + t774)
+            + (t10 * t817 + t21 * t820) + 1.0000000000000002 * t823
+            + 1.0000000000000002 * t826 + (t32 * t828 + t43 * t831)
+            - 1.0000000000000002 * t834 - 1.0000000000000002 * t837
+            + (t54 * t839 + t65 * t842) + (t104 * t850 + t115 * t853)
+            + (t54 * t861 + t65 * t864) + (t104 * t872 + t115 * t875);
+        let t538 = omega_y * t87;
+        let t543 = yd_bogie_left * t75;
+        let t545 = t538 + t543;
+        let t539 = omega_x * t87;
+        let t540 = omega_z * t76;
+        let t541 = t539 - t540;
+        let t542 = omega_y * t76;
+        let t544 = yd_bogie_left * t86;
+        let t546 = t544 - t542;
+        let t535 = t75 * t514;
+        let t536 = t86 * t515;
+        let t537 = t535 + t536;
+        let t601 = omega_y * t165;
+        let t606 = yd_bogie_left * t153;
+        let t608 = t601 + t606;
+        let t602 = omega_x * t165;
+        let t603 = omega_z * t154;
+        let t604 = t602 - t603;
+        let t605 = omega_y * t154;
+        let t607 = yd_bogie_left * t164;
+        let t609 = t607 - t605;
+        let t598 = t153 * t588;
+        let t599 = t164 * t589;
+        let t600 = t598 + t599;
+        let t702 = omega_y * t263;
+        let t707 = yd_bogie_left * t251;
+        let t709 = t702 + t707;
+        let t703 = omega_x * t263;
+        let t704 = omega_z * t252;
+        let t705 = t703 - t704;
+        let t706 = omega_y * t252;
+        let t708 = yd_bogie_left * t262;
+        let t710 = t708 - t706;
+        let t699 = t251 * t683;
+        let t700 = t262 * t684;
+        let t701 = t699 + t700;
+        let t775 = bogie_left - 0.6108652381980153;
+        let t776 = f64::max(t775, 0.0);
+        let t779 = 10000.0 * t776;
+        let t780 = f64::min(t779, 1.0);
+        let t781 = 15.102203414474054 * t780;
+        let t782 = -(100.0 * t776) - yd_bogie_left * t781;
+        let t783 = f64::min(t782, 0.0);
+        let t777 = -0.6108652381980153 - bogie_left;
+        let t778 = f64::max(t777, 0.0);
+        let t784 = 10000.0 * t778;
+        let t785 = f64::min(t784, 1.0);
+        let t786 = 15.102203414474054 * t785;
+        let t787 = 100.0 * t778 - yd_bogie_left * t786;
+        let t788 = f64::max(t787, 0.0);
+        let t845 = mu_middle_left_y * t813 - mu_middle_left_x * t806
+            + mu_middle_left_z * s_phi;
+        let t848 = tau_middle_left_y * t813 - tau_middle_left_x * t806
+            + tau_middle_left_z * s_phi;
+        let t867 = mu_rear_left_y * t813 - mu_rear_left_x * t806
+            + mu_rear_left_z * s_phi;
+        let t870 = tau_rear_left_y * t813 - tau_rear_left_x * t806
+            + tau_rear_left_z * s_phi;
+        let t981 = 2.0
+            * (t514 * t545 - t509 * t541 + t515 * t546
+                - (yd_bogie_left * t537 + (t76 * t521 + t87 * t522)))
+            + 2.0
+                * (t588 * t608 - t585 * t604 + t589 * t609
+                    - (yd_bogie_left * t600 + (t154 * t593 + t165 * t594)))
+            + 3.0
+                * (t683 * t709 - t679 * t705 + t684 * t710
+                    - (yd_bogie_left * t701 + (t252 * t688 + t263 * t689)))
+            + (t76 * t747 - t87 * t749) + (t154 * t747 - t165 * t749)
+            + (t252 * t754 - t263 * t756) + (t783 + t788) + (t76 * t839 + t87 * t842)
+            + t94 * t845 + t94 * t848 + (t154 * t861 + t165 * t864) + t94 * t867
+            + t94 * t870 - t878 * t886;
+        let t576 = omega_y * t137;
+        let t581 = yd_bogie_right * t125;
+        let t583 = t576 + t581;
+        let t577 = omega_x * t137;
+        let t578 = omega_z * t126;
+        let t579 = t577 - t578;
+        let t580 = omega_y * t126;
+        let t582 = yd_bogie_right * t136;
+        let t584 = t582 - t580;
+        let t573 = t125 * t552;
+        let t574 = t136 * t553;
+        let t575 = t573 + t574;
+        let t626 = omega_y * t187;
+        let t631 = yd_bogie_right * t175;
+        let t633 = t626 + t631;
+        let t627 = omega_x * t187;
+        let t628 = omega_z * t176;
+        let t629 = t627 - t628;
+        let t630 = omega_y * t176;
+        let t632 = yd_bogie_right * t186;
+        let t634 = t632 - t630;
+        let t623 = t175 * t613;
+        let t624 = t186 * t614;
+        let t625 = t623 + t624;
+        let t734 = omega_y * t295;
+        let t739 = yd_bogie_right * t283;
+        let t741 = t734 + t739;
+        let t735 = omega_x * t295;
+        let t736 = omega_z * t284;
+        let t737 = t735 - t736;
+        let t738 = omega_y * t284;
+        let t740 = yd_bogie_right * t294;
+        let t742 = t740 - t738;
+        let t731 = t283 * t715;
+        let t732 = t294 * t716;
+        let t733 = t731 + t732;
+        let t789 = bogie_right - 0.6108652381980153;
+        let t790 = f64::max(t789, 0.0);
+        let t793 = 10000.0 * t790;
+        let t794 = f64::min(t793, 1.0);
+        let t795 = 15.102203414474054 * t794;
+        let t796 = -(100.0 * t790) - yd_bogie_right * t795;
+        let t797 = f64::min(t796, 0.0);
+        let t791 = -0.6108652381980153 - bogie_right;
+        let t792 = f64::max(t791, 0.0);
+        let t798 = 10000.0 * t792;
+        let t799 = f64::min(t798, 1.0);
+        let t800 = 15.102203414474054 * t799;
+        let t801 = 100.0 * t792 - yd_bogie_right * t800;
+        let t802 = f64::max(t801, 0.0);
+        let t856 = mu_middle_right_y * t813 - mu_middle_right_x * t806
+            + mu_middle_right_z * s_phi;
+        let t859 = tau_middle_right_y * t813 - tau_middle_right_x * t806
+            + tau_middle_right_z * s_phi;
+        let t880 = mu_rear_right_y * t813 - mu_rear_right_x * t806
+            + mu_rear_right_z * s_phi;
+        let t883 = tau_rear_right_y * t813 - tau_rear_right_x * t806
+            + tau_rear_right_z * s_phi;
+        let t982 = 2.0
+            * (t552 * t583 - t547 * t579 + t553 * t584
+                - (yd_bogie_right * t575 + (t126 * t559 + t137 * t560)))
+            + 2.0
+                * (t613 * t633 - t610 * t629 + t614 * t634
+                    - (yd_bogie_right * t625 + (t176 * t618 + t187 * t619)))
+            + 3.0
+                * (t715 * t741 - t711 * t737 + t716 * t742
+                    - (yd_bogie_right * t733 + (t284 * t720 + t295 * t721)))
+            + (t126 * t747 - t137 * t749) + (t176 * t747 - t187 * t749)
+            + (t284 * t754 - t295 * t756) + (t797 + t802) + (t126 * t850 + t137 * t853)
+            + t144 * t856 + t144 * t859 + (t176 * t872 + t187 * t875) + t144 * t880
+            + t144 * t883 - t878 * t887 + t897 * t981;
+        let t983 = t754
+            + (t754
+                + (t754
+                    + (t747
+                        + (t747
+                            + (t747
+                                + (t747
+                                    + (t747
+                                        + (-(omega_y * t454 - omega_z * t451) - 2.0 * t475
+                                            - 2.0 * t495 - 2.0 * t521 - 2.0 * t559 - 2.0 * t593
+                                            - 2.0 * t618 - 3.0 * t643 - 3.0 * t663 - 3.0 * t688
+                                            - 3.0 * t720 + t745 + t747))))) + t754))) + t817 + t828
+            + t839 + t850 + t861 + t872 - t878 * t888 - t899 * t981 - t913 * t982;
         let t1174 = t97 + (t97 - t99);
-        let t1175 = t100 - rocker * 0.11150428853488922 + 2.0 * t1174;
         let t1176 = t101 + (t101 + rocker * t1174);
-        let t1177 = t108 + (t108 - t110);
-        let t1178 = t111 - rocker * 0.024778730785537596 + 2.0 * t1177;
-        let t1179 = t112 + (t112 + rocker * t1177);
-        let t1180 = t191 + (t191 + t193);
-        let t1181 = t194 + rocker * 0.04955746157106258 + 2.0 * t1180;
-        let t1182 = t195 + (t195 + rocker * t1180);
-        let t1183 = t202 + (t202 - t204);
-        let t1184 = t205 - rocker * 0.02477873078552804 + 2.0 * t1183;
-        let t1185 = t206 + (t206 + rocker * t1183);
-        let t1186 = t213 + (t213 + t215);
-        let t1187 = t216 + rocker * 0.04955746157106053 + 2.0 * t1186;
-        let t1188 = t217 + (t217 + rocker * t1186);
-        let t1189 = t224 + (t224 - t226);
-        let t1190 = t227 - rocker * 0.02477873078553152 + 2.0 * t1189;
-        let t1191 = t228 + (t228 + rocker * t1189);
-        let t1192 = t235 + (t235 - t237);
-        let t1193 = t238 - rocker * 0.024778730785516824 + 2.0 * t1192;
-        let t1194 = t239 + (t239 + rocker * t1192);
-        let t1195 = t267 + (t267 - t269);
-        let t1196 = t270 - rocker * 0.02477873078552862 + 2.0 * t1195;
-        let t1197 = t271 + (t271 + rocker * t1195);
-        let t1198 = t21 * t22;
-        let t1199 = t1198 + t1198;
-        let t1200 = t10 * t11;
-        let t1201 = t1200 + t1200;
-        let t1202 = t10 * t21;
-        let t1203 = t10 * t1158;
-        let t1204 = t21 * t1161;
-        let t1205 = t43 * t44;
-        let t1206 = t1205 + t1205;
-        let t1207 = t32 * t33;
-        let t1208 = t1207 + t1207;
-        let t1209 = t32 * t43;
-        let t1210 = t32 * t1164;
-        let t1211 = t43 * t1167;
-        let t1212 = 2.0 * t1170;
-        let t1213 = 2.0 * t1173;
-        let t1214 = t65 * t88;
-        let t1215 = t1214 + t1214;
-        let t1216 = 2.0 * (0.6 * t1173);
-        let t1217 = t54 * t77;
-        let t1218 = t1217 + t1217;
-        let t1219 = t54 * t65;
-        let t1220 = t65 * t76;
-        let t1221 = t54 * t87;
-        let t1222 = 2.0 * (0.6 * t1170);
-        let t1223 = t54 * t1170;
-        let t1224 = t1223 + t1223;
-        let t1225 = t65 * t1173;
-        let t1226 = 2.0 * (t1224 + (t1225 + t1225));
         let t1227 = 2.0 * t1176;
-        let t1228 = 2.0 * t1179;
-        let t1229 = t115 * t138;
-        let t1230 = t1229 + t1229;
-        let t1231 = 2.0 * (0.6 * t1179);
-        let t1232 = t104 * t127;
-        let t1233 = t1232 + t1232;
-        let t1234 = t104 * t115;
-        let t1235 = t115 * t126;
-        let t1236 = t104 * t137;
-        let t1237 = 2.0 * (0.6 * t1176);
-        let t1238 = t104 * t1176;
-        let t1239 = t1238 + t1238;
-        let t1240 = t115 * t1179;
-        let t1241 = 2.0 * (t1239 + (t1240 + t1240));
-        let t1242 = t65 * t166;
-        let t1243 = t1242 + t1242;
-        let t1244 = t54 * t155;
-        let t1245 = t1244 + t1244;
-        let t1246 = t65 * t154;
-        let t1247 = t54 * t165;
-        let t1248 = t115 * t188;
-        let t1249 = t1248 + t1248;
-        let t1250 = t104 * t177;
-        let t1251 = t1250 + t1250;
-        let t1252 = t115 * t176;
-        let t1253 = t104 * t187;
-        let t1254 = t209 * t210;
-        let t1255 = t1254 + t1254;
-        let t1256 = t198 * t199;
-        let t1257 = t1256 + t1256;
-        let t1258 = t198 * t209;
-        let t1259 = t198 * t1182;
-        let t1260 = t209 * t1185;
-        let t1261 = t231 * t232;
-        let t1262 = t1261 + t1261;
-        let t1263 = t220 * t221;
-        let t1264 = t1263 + t1263;
-        let t1265 = t220 * t231;
-        let t1266 = t220 * t1188;
-        let t1267 = t231 * t1191;
-        let t1268 = t242 * t264;
-        let t1269 = t1268 + t1268;
-        let t1270 = t54 * t253;
-        let t1271 = t1270 + t1270;
-        let t1272 = t54 * t242;
-        let t1273 = t242 * t252;
-        let t1274 = t54 * t263;
-        let t1275 = 2.0 * (t1220 - t1221) + 2.0 * (t1246 - t1247)
-            + 3.0 * (t1273 - t1274);
-        let t1276 = t242 * t1194;
+        let t1168 = t47 + (t47 - t49);
+        let t1170 = t51 + (t51 + rocker * t1168);
+        let t1212 = 2.0 * t1170;
+        let t1156 = t3 + (t3 + t5);
+        let t1158 = t7 + (t7 + rocker * t1156);
+        let t1162 = t25 + (t25 + t27);
+        let t1164 = t29 + (t29 + rocker * t1162);
+        let t1180 = t191 + (t191 + t193);
+        let t1182 = t195 + (t195 + rocker * t1180);
+        let t1186 = t213 + (t213 + t215);
+        let t1188 = t217 + (t217 + rocker * t1186);
         let t1277 = t1227 + (t1212 + (2.0 * t1158 + 2.0 * t1164 + t1212 + t1227))
             + 3.0 * t1182 + 3.0 * t1188 + 3.0 * t1170 + 3.0 * t1176;
-        let t1278 = -t300 - t309 - t319 - t336 - t319 - t336 - t374 - t383 - t394 - t419;
-        let t1279 = -t298 - t307 - t316 - t333 - t316 - t333 - t372 - t381 - t390 - t411;
-        let t1280 = t1228 + (t1213 + (2.0 * t1161 + 2.0 * t1167 + t1213 + t1228))
-            + 3.0 * t1185 + 3.0 * t1191 + 3.0 * t1194 + 3.0 * t1197;
-        let t1281 = t274 * t296;
-        let t1282 = t1281 + t1281;
-        let t1283 = 2.0 * t1199 + 2.0 * t1206 + 2.0 * t1215 + 2.0 * t1230 + 2.0 * t1243
-            + 2.0 * t1249 + 3.0 * t1255 + 3.0 * t1262 + 3.0 * t1269 + 3.0 * t1282;
-        let t1284 = -(2.0 * (t304 + t305)) - 2.0 * (t313 + t314) - 2.0 * (t325 + t326)
-            - 2.0 * (t342 + t343) - 2.0 * (t356 + t357) - 2.0 * (t367 + t368)
-            - 3.0 * (t378 + t379) - 3.0 * (t387 + t388) - 3.0 * (t402 + t403)
-            - 3.0 * (t434 + t435);
-        let t1285 = t1216 + (2.0 * (0.6 * t1161) - 2.0 * (0.6 * t1167) + t1216 - t1231)
-            - t1231 + 3.0 * (0.55 * t1185) - 3.0 * (0.55 * t1191) + 3.0 * (0.58 * t1194)
-            - 3.0 * (0.58 * t1197);
-        let t1286 = t104 * t285;
-        let t1287 = t1286 + t1286;
-        let t1288 = 2.0 * (t1199 + t1201) + 2.0 * (t1206 + t1208) + 2.0 * (t1215 + t1218)
-            + 2.0 * (t1230 + t1233) + 2.0 * (t1243 + t1245) + 2.0 * (t1249 + t1251)
-            + 3.0 * (t1255 + t1257) + 3.0 * (t1262 + t1264) + 3.0 * (t1269 + t1271)
-            + 3.0 * (t1282 + t1287);
-        let t1289 = t427
-            + (t385 + (t339 + (t339 + (t311 - t302 - t322) - t322) - t376) - t398);
-        let t1290 = t104 * t274;
-        let t1291 = 2.0 * (t22 * t1158 + t1202 - (t1202 + t11 * t1161))
-            + 2.0 * (t44 * t1164 + t1209 - (t1209 + t33 * t1167))
-            + 2.0 * (t88 * t1170 + t1219 - (t1219 + t77 * t1173))
-            + 2.0 * (t138 * t1176 + t1234 - (t1234 + t127 * t1179))
-            + 2.0 * (t1219 + t166 * t1170 - (t1219 + t155 * t1173))
-            + 2.0 * (t1234 + t188 * t1176 - (t1234 + t177 * t1179))
-            + 3.0 * (t210 * t1182 + t1258 - (t1258 + t199 * t1185))
-            + 3.0 * (t232 * t1188 + t1265 - (t1265 + t221 * t1191))
-            + 3.0 * (t264 * t1170 + t1272 - (t1272 + t253 * t1194))
-            + 3.0 * (t296 * t1176 + t1290 - (t1290 + t285 * t1197));
-        let t1292 = t274 * t284;
-        let t1293 = t104 * t295;
-        let t1294 = 2.0 * (t1235 - t1236) + 2.0 * (t1252 - t1253)
-            + 3.0 * (t1292 - t1293);
-        let t1295 = 2.0 * t1201 + 2.0 * t1208 + 2.0 * t1218 + 2.0 * t1233 + 2.0 * t1245
-            + 2.0 * t1251 + 3.0 * t1257 + 3.0 * t1264 + 3.0 * t1271 + 3.0 * t1287;
-        let t1296 = t1237
-            + (2.0 * (0.6 * t1164) - 2.0 * (0.6 * t1158) - t1222 + t1237 - t1222)
-            - 3.0 * (0.55 * t1182) + 3.0 * (0.55 * t1188) - 3.0 * (0.58 * t1170)
-            + 3.0 * (0.58 * t1176);
+        let t1238 = t104 * t1176;
+        let t1239 = t1238 + t1238;
+        let t1177 = t108 + (t108 - t110);
+        let t1179 = t112 + (t112 + rocker * t1177);
+        let t1240 = t115 * t1179;
+        let t1241 = 2.0 * (t1239 + (t1240 + t1240));
+        let t1223 = t54 * t1170;
+        let t1224 = t1223 + t1223;
+        let t1171 = t58 + (t58 - t60);
+        let t1173 = t62 + (t62 + rocker * t1171);
+        let t1225 = t65 * t1173;
+        let t1226 = 2.0 * (t1224 + (t1225 + t1225));
+        let t1203 = t10 * t1158;
+        let t1159 = t14 + (t14 - t16);
+        let t1161 = t18 + (t18 + rocker * t1159);
+        let t1204 = t21 * t1161;
+        let t1210 = t32 * t1164;
+        let t1165 = t36 + (t36 - t38);
+        let t1167 = t40 + (t40 + rocker * t1165);
+        let t1211 = t43 * t1167;
+        let t1259 = t198 * t1182;
+        let t1183 = t202 + (t202 - t204);
+        let t1185 = t206 + (t206 + rocker * t1183);
+        let t1260 = t209 * t1185;
+        let t1266 = t220 * t1188;
+        let t1189 = t224 + (t224 - t226);
+        let t1191 = t228 + (t228 + rocker * t1189);
+        let t1267 = t231 * t1191;
+        let t1192 = t235 + (t235 - t237);
+        let t1194 = t239 + (t239 + rocker * t1192);
+        let t1276 = t242 * t1194;
+        let t1195 = t267 + (t267 - t269);
+        let t1197 = t271 + (t271 + rocker * t1195);
         let t1297 = t274 * t1197;
         let t1298 = t1241
             + (t1226
@@ -3584,140 +3328,146 @@ impl Mer {
             + 3.0 * (t1259 + t1259 + (t1260 + t1260))
             + 3.0 * (t1266 + t1266 + (t1267 + t1267)) + 3.0 * (t1224 + (t1276 + t1276))
             + 3.0 * (t1239 + (t1297 + t1297));
-        let t1299 = omega_y * t420;
-        let t1300 = t1299 + yd_rocker * t1277;
+        let t1429 = t885 * t1298 / t443;
+        let t1432 = t885 * t1277 - t412 * t1429;
+        let t1455 = t888 * t1298 + t443 * t1432;
+        let t1430 = t885
+            * (2.0 * (t76 * t1170 + t87 * t1173) + 2.0 * (t154 * t1170 + t165 * t1173)
+                + 3.0 * (t252 * t1170 + t263 * t1194)) - t408 * t1429;
+        let t1437 = t886 * t1298 + t443 * t1430;
+        let t1438 = t893 * t1430 + t886 * t1437;
+        let t1439 = t895 * t1438 / t894;
+        let t1441 = t898 * t1439 - t895 * (t893 * t1432 + t888 * t1437);
+        let t1456 = t894 * t1441 - t899 * t1438;
+        let t1431 = t885
+            * (2.0 * (t126 * t1176 + t137 * t1179) + 2.0 * (t176 * t1176 + t187 * t1179)
+                + 3.0 * (t284 * t1176 + t295 * t1197)) - t444 * t1429;
+        let t1446 = t887 * t1298 + t443 * t1431;
+        let t1440 = t896 * t1439 + t895 * (t893 * t1431 + t887 * t1437);
+        let t1447 = t894 * t1440 - t897 * t1438;
+        let t1448 = -(t908 * t1431 + t887 * t1446) - (t909 * t1440 + t897 * t1447);
+        let t1449 = t911 * t1448 / t910;
+        let t1450 = t911 * (t909 * t1441 + t899 * t1447 - (t908 * t1432 + t888 * t1446))
+            - t912 * t1449;
+        let t1457 = t913 * t1448 + t910 * t1450;
+        let t1458 = -(t922 * t1432 + t888 * t1455) - (t923 * t1441 + t899 * t1456)
+            - (t924 * t1450 + t913 * t1457);
+        let t1459 = t926 * t1458 / t925;
+        let t1175 = t100 - rocker * 0.11150428853488922 + 2.0 * t1174;
+        let t1361 = t471 * t1175;
+        let t1358 = yd_rocker * t1179;
+        let t1365 = t1361 + omega_y * t1358;
+        let t1369 = 2.0 * t1365;
+        let t1169 = t50 - rocker * 0.1115042885348812 + 2.0 * t1168;
+        let t1332 = t471 * t1169;
+        let t1329 = yd_rocker * t1173;
+        let t1336 = t1332 + omega_y * t1329;
+        let t1340 = 2.0 * t1336;
+        let t1279 = -t298 - t307 - t316 - t333 - t316 - t333 - t372 - t381 - t390 - t411;
+        let t1228 = 2.0 * t1179;
+        let t1213 = 2.0 * t1173;
+        let t1280 = t1228 + (t1213 + (2.0 * t1161 + 2.0 * t1167 + t1213 + t1228))
+            + 3.0 * t1185 + 3.0 * t1191 + 3.0 * t1194 + 3.0 * t1197;
+        let t1303 = omega_y * t1279 + yd_rocker * t1280;
+        let t1278 = -t300 - t309 - t319 - t336 - t319 - t336 - t374 - t383 - t394 - t419;
         let t1301 = omega_z * t412;
         let t1302 = omega_x * t1278 + t1301;
-        let t1303 = omega_y * t1279 + yd_rocker * t1280;
-        let t1304 = omega_y * t441;
-        let t1305 = vy * t1278 + omega_x * t1283 + t1304 + omega_z * t1284
-            + yd_rocker * t1285;
-        let t1306 = vx * t420;
-        let t1307 = omega_x * t441;
-        let t1308 = t1306 + vz * t1279 + t1307 + omega_y * t1288 + omega_z * t1289
-            + yd_rocker * t1291 + yd_bogie_left * t1275 + yd_bogie_right * t1294;
-        let t1309 = vy * t412;
-        let t1310 = t1309 + omega_x * t1284 + omega_y * t1289 + omega_z * t1295
-            + yd_rocker * t1296;
-        let t1311 = t482 - t481;
-        let t1312 = yd_rocker * t1158;
+        let t1157 = t6 + rocker * 0.13628301932041134 + 2.0 * t1156;
         let t1313 = yd_rocker * t1161;
-        let t1314 = t480 + t1312;
-        let t1315 = t1313 - t484;
-        let t1316 = omega_x * t1313 - omega_z * t1312;
         let t1317 = t471 * t1157 + omega_y * t1313;
-        let t1318 = t471 * t1160 - omega_y * t1312;
-        let t1319 = t502 - t501;
-        let t1320 = yd_rocker * t1164;
+        let t1163 = t28 + rocker * 0.13628301932041242 + 2.0 * t1162;
         let t1321 = yd_rocker * t1167;
-        let t1322 = t500 + t1320;
-        let t1323 = t1321 - t504;
-        let t1324 = omega_x * t1321 - omega_z * t1320;
         let t1325 = t471 * t1163 + omega_y * t1321;
+        let t1181 = t194 + rocker * 0.04955746157106258 + 2.0 * t1180;
+        let t1387 = yd_rocker * t1185;
+        let t1391 = t471 * t1181 + omega_y * t1387;
+        let t1187 = t216 + rocker * 0.04955746157106053 + 2.0 * t1186;
+        let t1395 = yd_rocker * t1191;
+        let t1399 = t471 * t1187 + omega_y * t1395;
+        let t1402 = yd_rocker * t1194;
+        let t1406 = t1332 + omega_y * t1402;
+        let t1409 = yd_rocker * t1197;
+        let t1413 = t1361 + omega_y * t1409;
+        let t1421 = t747 * t1176 - t749 * t1179;
+        let t1418 = t747 * t1170 - t749 * t1173;
+        let t1312 = yd_rocker * t1158;
+        let t1314 = t480 + t1312;
+        let t1311 = t482 - t481;
+        let t1315 = t1313 - t484;
+        let t1160 = t17 - rocker * 0.06690257312090682 + 2.0 * t1159;
+        let t1318 = t471 * t1160 - omega_y * t1312;
+        let t1320 = yd_rocker * t1164;
+        let t1322 = t500 + t1320;
+        let t1319 = t502 - t501;
+        let t1323 = t1321 - t504;
+        let t1166 = t39 - rocker * 0.06690257312094026 + 2.0 * t1165;
         let t1326 = t471 * t1166 - omega_y * t1320;
-        let t1327 = t528 - t527;
         let t1328 = yd_rocker * t1170;
-        let t1329 = yd_rocker * t1173;
         let t1330 = t526 + t1328;
+        let t1353 = t533 * t1330;
+        let t1350 = yd_rocker * t1169;
+        let t1351 = omega_y * t1173 + t1350;
+        let t1327 = t528 - t527;
+        let t1354 = t529 * t1327;
+        let t1347 = omega_z * t1170;
+        let t1348 = omega_x * t1173 - t1347;
         let t1331 = t1329 - t530;
-        let t1332 = t471 * t1169;
-        let t1333 = omega_z * t1328;
-        let t1334 = omega_x * t1329 - t1333;
-        let t1335 = omega_y * t1328;
-        let t1336 = t1332 + omega_y * t1329;
-        let t1337 = t471 * t1172 - t1335;
-        let t1338 = 0.6 * t1337;
-        let t1339 = 0.6 * t1336;
-        let t1340 = 2.0 * t1336;
-        let t1341 = 2.0 * t1334;
-        let t1342 = 2.0 * t1337;
+        let t1355 = t534 * t1331;
+        let t1349 = omega_y * t1170;
+        let t1172 = t61 - rocker * 0.024778730785524315 + 2.0 * t1171;
+        let t1352 = yd_rocker * t1172 - t1349;
         let t1343 = t53 * t1330;
         let t1344 = t64 * t1331;
         let t1345 = t54 * t1336;
+        let t1335 = omega_y * t1328;
+        let t1337 = t471 * t1172 - t1335;
         let t1346 = t65 * t1337;
-        let t1347 = omega_z * t1170;
-        let t1348 = omega_x * t1173 - t1347;
-        let t1349 = omega_y * t1170;
-        let t1350 = yd_rocker * t1169;
-        let t1351 = omega_y * t1173 + t1350;
-        let t1352 = yd_rocker * t1172 - t1349;
-        let t1353 = t533 * t1330;
-        let t1354 = t529 * t1327;
-        let t1355 = t534 * t1331;
-        let t1356 = t566 - t565;
         let t1357 = yd_rocker * t1176;
-        let t1358 = yd_rocker * t1179;
         let t1359 = t564 + t1357;
+        let t1382 = t571 * t1359;
+        let t1379 = yd_rocker * t1175;
+        let t1380 = omega_y * t1179 + t1379;
+        let t1356 = t566 - t565;
+        let t1383 = t567 * t1356;
+        let t1376 = omega_z * t1176;
+        let t1377 = omega_x * t1179 - t1376;
         let t1360 = t1358 - t568;
-        let t1361 = t471 * t1175;
-        let t1362 = omega_z * t1357;
-        let t1363 = omega_x * t1358 - t1362;
-        let t1364 = omega_y * t1357;
-        let t1365 = t1361 + omega_y * t1358;
-        let t1366 = t471 * t1178 - t1364;
-        let t1367 = 0.6 * t1366;
-        let t1368 = 0.6 * t1365;
-        let t1369 = 2.0 * t1365;
-        let t1370 = 2.0 * t1363;
-        let t1371 = 2.0 * t1366;
+        let t1384 = t572 * t1360;
+        let t1378 = omega_y * t1176;
+        let t1178 = t111 - rocker * 0.024778730785537596 + 2.0 * t1177;
+        let t1381 = yd_rocker * t1178 - t1378;
         let t1372 = t103 * t1359;
         let t1373 = t114 * t1360;
         let t1374 = t104 * t1365;
+        let t1364 = omega_y * t1357;
+        let t1366 = t471 * t1178 - t1364;
         let t1375 = t115 * t1366;
-        let t1376 = omega_z * t1176;
-        let t1377 = omega_x * t1179 - t1376;
-        let t1378 = omega_y * t1176;
-        let t1379 = yd_rocker * t1175;
-        let t1380 = omega_y * t1179 + t1379;
-        let t1381 = yd_rocker * t1178 - t1378;
-        let t1382 = t571 * t1359;
-        let t1383 = t567 * t1356;
-        let t1384 = t572 * t1360;
-        let t1385 = t650 - t649;
         let t1386 = yd_rocker * t1182;
-        let t1387 = yd_rocker * t1185;
         let t1388 = t648 + t1386;
+        let t1385 = t650 - t649;
         let t1389 = t1387 - t652;
-        let t1390 = omega_x * t1387 - omega_z * t1386;
-        let t1391 = t471 * t1181 + omega_y * t1387;
+        let t1184 = t205 - rocker * 0.02477873078552804 + 2.0 * t1183;
         let t1392 = t471 * t1184 - omega_y * t1386;
-        let t1393 = t670 - t669;
         let t1394 = yd_rocker * t1188;
-        let t1395 = yd_rocker * t1191;
         let t1396 = t668 + t1394;
+        let t1393 = t670 - t669;
         let t1397 = t1395 - t672;
-        let t1398 = omega_x * t1395 - omega_z * t1394;
-        let t1399 = t471 * t1187 + omega_y * t1395;
+        let t1190 = t227 - rocker * 0.02477873078553152 + 2.0 * t1189;
         let t1400 = t471 * t1190 - omega_y * t1394;
-        let t1401 = t528 - t694;
-        let t1402 = yd_rocker * t1194;
         let t1403 = t693 + t1328;
+        let t1401 = t528 - t694;
         let t1404 = t1402 - t530;
-        let t1405 = omega_x * t1402 - t1333;
-        let t1406 = t1332 + omega_y * t1402;
+        let t1193 = t238 - rocker * 0.024778730785516824 + 2.0 * t1192;
         let t1407 = t471 * t1193 - t1335;
-        let t1408 = t566 - t726;
-        let t1409 = yd_rocker * t1197;
         let t1410 = t725 + t1357;
+        let t1408 = t566 - t726;
         let t1411 = t1409 - t568;
-        let t1412 = omega_x * t1409 - t1362;
-        let t1413 = t1361 + omega_y * t1409;
+        let t1196 = t270 - rocker * 0.02477873078552862 + 2.0 * t1195;
         let t1414 = t471 * t1196 - t1364;
-        let t1415 = t1370
-            + (t1341
-                + (2.0 * t1316 - (omega_z * t1300 - omega_x * t1303) + 2.0 * t1324
-                    + t1341 + t1370)) + 3.0 * t1390 + 3.0 * t1398 + 3.0 * t1405
-            + 3.0 * t1412;
-        let t1416 = t65 * t748;
-        let t1417 = t54 * t748;
-        let t1418 = t747 * t1170 - t749 * t1173;
-        let t1419 = t115 * t748;
-        let t1420 = t104 * t748;
-        let t1421 = t747 * t1176 - t749 * t1179;
         let t1422 = if t761 >= 0.0 { 1.0 } else { 0.0 };
-        let t1423 = if t763 >= 0.0 { 1.0 } else { 0.0 };
         let t1424 = if 1.0 >= t765 { 1.0 } else { 0.0 };
         let t1425 = if 0.0 >= t768 { 1.0 } else { 0.0 };
+        let t1423 = if t763 >= 0.0 { 1.0 } else { 0.0 };
         let t1426 = if 1.0 >= t770 { 1.0 } else { 0.0 };
         let t1427 = if t773 >= 0.0 { 1.0 } else { 0.0 };
         let t1428 = t1421
@@ -3813,115 +3563,6 @@ impl Mer {
             + (t828 * t1164 + t831 * t1167) + (t839 * t1170 + t842 * t1173)
             + (t850 * t1176 + t853 * t1179) + (t861 * t1170 + t864 * t1173)
             + (t872 * t1176 + t875 * t1179);
-        let t1429 = t885 * t1298 / t443;
-        let t1430 = t885
-            * (2.0 * (t76 * t1170 + t87 * t1173) + 2.0 * (t154 * t1170 + t165 * t1173)
-                + 3.0 * (t252 * t1170 + t263 * t1194)) - t408 * t1429;
-        let t1431 = t885
-            * (2.0 * (t126 * t1176 + t137 * t1179) + 2.0 * (t176 * t1176 + t187 * t1179)
-                + 3.0 * (t284 * t1176 + t295 * t1197)) - t444 * t1429;
-        let t1432 = t885 * t1277 - t412 * t1429;
-        let t1433 = t885 * t1280 - t420 * t1429;
-        let t1434 = t885 * t1285 - t428 * t1429;
-        let t1435 = t885 * t1291 - t436 * t1429;
-        let t1436 = t885 * t1296 - t441 * t1429;
-        let t1437 = t886 * t1298 + t443 * t1430;
-        let t1438 = t893 * t1430 + t886 * t1437;
-        let t1439 = t895 * t1438 / t894;
-        let t1440 = t896 * t1439 + t895 * (t893 * t1431 + t887 * t1437);
-        let t1441 = t898 * t1439 - t895 * (t893 * t1432 + t888 * t1437);
-        let t1442 = t900 * t1439 - t895 * (t893 * t1433 + t889 * t1437);
-        let t1443 = t902 * t1439 - t895 * (t893 * t1434 + t890 * t1437);
-        let t1444 = t904 * t1439 + t895 * (t1275 - (t893 * t1435 + t891 * t1437));
-        let t1445 = t906 * t1439 - t895 * (t893 * t1436 + t892 * t1437);
-        let t1446 = t887 * t1298 + t443 * t1431;
-        let t1447 = t894 * t1440 - t897 * t1438;
-        let t1448 = -(t908 * t1431 + t887 * t1446) - (t909 * t1440 + t897 * t1447);
-        let t1449 = t911 * t1448 / t910;
-        let t1450 = t911 * (t909 * t1441 + t899 * t1447 - (t908 * t1432 + t888 * t1446))
-            - t912 * t1449;
-        let t1451 = t911 * (t909 * t1442 + t901 * t1447 - (t908 * t1433 + t889 * t1446))
-            - t914 * t1449;
-        let t1452 = t911 * (t909 * t1443 + t903 * t1447 - (t908 * t1434 + t890 * t1446))
-            - t916 * t1449;
-        let t1453 = t911
-            * (t1294 - (t908 * t1435 + t891 * t1446) + (t909 * t1444 + t905 * t1447))
-            - t918 * t1449;
-        let t1454 = t911 * (t909 * t1445 + t907 * t1447 - (t908 * t1436 + t892 * t1446))
-            - t920 * t1449;
-        let t1455 = t888 * t1298 + t443 * t1432;
-        let t1456 = t894 * t1441 - t899 * t1438;
-        let t1457 = t913 * t1448 + t910 * t1450;
-        let t1458 = -(t922 * t1432 + t888 * t1455) - (t923 * t1441 + t899 * t1456)
-            - (t924 * t1450 + t913 * t1457);
-        let t1459 = t926 * t1458 / t925;
-        let t1460 = t926
-            * (-(t922 * t1433 + t889 * t1455) - (t923 * t1442 + t901 * t1456)
-                - (t924 * t1451 + t915 * t1457)) - t927 * t1459;
-        let t1461 = t926
-            * (-(t922 * t1434 + t890 * t1455) - (t923 * t1443 + t903 * t1456)
-                - (t924 * t1452 + t917 * t1457)) - t929 * t1459;
-        let t1462 = t926
-            * (t420 - (t922 * t1435 + t891 * t1455) - (t923 * t1444 + t905 * t1456)
-                - (t924 * t1453 + t919 * t1457)) - t931 * t1459;
-        let t1463 = t926
-            * (-(t922 * t1436 + t892 * t1455) - (t923 * t1445 + t907 * t1456)
-                - (t924 * t1454 + t921 * t1457)) - t933 * t1459;
-        let t1464 = 0.005747126436781609 * t1278;
-        let t1465 = t412 * 0.005747126436781609;
-        let t1466 = t889 * t1298 + t443 * t1433;
-        let t1467 = t894 * t1442 - t901 * t1438;
-        let t1468 = t915 * t1448 + t910 * t1451;
-        let t1469 = t928 * t1458 + t925 * t1460;
-        let t1470 = -(t937 * t1433 + t889 * t1466) - (t938 * t1442 + t901 * t1467)
-            - (t939 * t1451 + t915 * t1468) - (t940 * t1460 + t928 * t1469);
-        let t1471 = t942 * t1470 / t941;
-        let t1472 = t942
-            * (-(t937 * t1434 + t890 * t1466) - (t938 * t1443 + t903 * t1467)
-                - (t939 * t1452 + t917 * t1468) - (t940 * t1461 + t930 * t1469))
-            - t943 * t1471;
-        let t1473 = t942
-            * (t1279 - (t937 * t1435 + t891 * t1466) - (t938 * t1444 + t905 * t1467)
-                - (t939 * t1453 + t919 * t1468) - (t940 * t1462 + t932 * t1469))
-            - t945 * t1471;
-        let t1474 = t942
-            * (-(t937 * t1436 + t892 * t1466) - (t938 * t1445 + t907 * t1467)
-                - (t939 * t1454 + t921 * t1468) - (t940 * t1463 + t934 * t1469))
-            - t947 * t1471;
-        let t1475 = t890 * t1298 + t443 * t1434;
-        let t1476 = t894 * t1443 - t903 * t1438;
-        let t1477 = t917 * t1448 + t910 * t1452;
-        let t1478 = t930 * t1458 + t925 * t1461;
-        let t1479 = 174.0 * t1464;
-        let t1480 = t944 * t1470 + t941 * t1472;
-        let t1481 = t1283 - (t949 * t1434 + t890 * t1475) - (t950 * t1443 + t903 * t1476)
-            - (t951 * t1452 + t917 * t1477) - (t952 * t1461 + t930 * t1478)
-            - (t953 * t1464 + t935 * t1479) - (t954 * t1472 + t944 * t1480);
-        let t1482 = t956 * t1481 / t955;
-        let t1483 = t956
-            * (t441 - (t949 * t1435 + t891 * t1475) - (t950 * t1444 + t905 * t1476)
-                - (t951 * t1453 + t919 * t1477) - (t952 * t1462 + t932 * t1478)
-                - (t954 * t1473 + t946 * t1480)) - t957 * t1482;
-        let t1484 = t956
-            * (t1284 - (t949 * t1436 + t892 * t1475) - (t950 * t1445 + t907 * t1476)
-                - (t951 * t1454 + t921 * t1477) - (t952 * t1463 + t934 * t1478)
-                - (t953 * t1465 + t936 * t1479) - (t954 * t1474 + t948 * t1480))
-            - t959 * t1482;
-        let t1485 = t891 * t1298 + t443 * t1435;
-        let t1486 = t894 * t1444 - t905 * t1438;
-        let t1487 = t919 * t1448 + t910 * t1453;
-        let t1488 = t932 * t1458 + t925 * t1462;
-        let t1489 = t946 * t1470 + t941 * t1473;
-        let t1490 = t958 * t1481 + t955 * t1483;
-        let t1491 = t1288 - (t961 * t1435 + t891 * t1485) - (t962 * t1444 + t905 * t1486)
-            - (t963 * t1453 + t919 * t1487) - (t964 * t1462 + t932 * t1488)
-            - (t965 * t1473 + t946 * t1489) - (t966 * t1483 + t958 * t1490);
-        let t1492 = t968 * t1491 / t967;
-        let t1493 = t968
-            * (t1289 - (t961 * t1436 + t892 * t1485) - (t962 * t1445 + t907 * t1486)
-                - (t963 * t1454 + t921 * t1487) - (t964 * t1463 + t934 * t1488)
-                - (t965 * t1474 + t948 * t1489) - (t966 * t1484 + t960 * t1490))
-            - t969 * t1492;
         let t1494 = 2.0
             * (t545 * t1330 - t541 * t1327 + t546 * t1331
                 - (yd_bogie_left * (t75 * t1330 + t86 * t1331)
@@ -3952,10 +3593,309 @@ impl Mer {
             - t1340 - t1369 - t1340 - t1369 - 3.0 * t1391 - 3.0 * t1399 - 3.0 * t1406
             - 3.0 * t1413 - (t888 * t1428 + t878 * t1432) - (t981 * t1441 + t899 * t1494)
             - (t982 * t1450 + t913 * t1495);
+        let t445 = vx * 174.0;
+        let t446 = omega_y * t410;
+        let t447 = t445 + t446 + yd_rocker * t412 + yd_bogie_left * t392
+            + yd_bogie_right * t414;
+        let t984 = -(omega_x * t451 - omega_y * t447) - 2.0 * t476 - 2.0 * t496
+            - 2.0 * t522 - 2.0 * t560 - 2.0 * t594 - 2.0 * t619 - 3.0 * t644 - 3.0 * t664
+            - 3.0 * t689 - 3.0 * t721 - t746 - t749 - t749 - t749 - t749 - t749 - t749
+            - t756 - t756 - t756 - t756 + t820 + t831 + t842 + t853 + t864 + t875
+            - t878 * t889 - t901 * t981 - t915 * t982 - t928 * t983;
+        let t461 = omega_x * t426;
+        let t462 = omega_y * t433;
+        let t463 = vy * t417 + t461 + t462 + omega_z * t440 + yd_rocker * t441
+            + yd_bogie_left * t407 + yd_bogie_right * t442;
+        let t458 = omega_x * t425;
+        let t459 = omega_z * t433;
+        let t460 = vx * t410 + vz * t418 + t458 + omega_y * t432 + t459
+            + yd_rocker * t436 + yd_bogie_left * t406 + yd_bogie_right * t439;
+        let t474 = omega_x * t468 - omega_z * t467;
+        let t494 = omega_x * t491 - omega_z * t490;
+        let t520 = omega_x * t519 - omega_z * t518;
+        let t558 = omega_x * t557 - omega_z * t556;
+        let t592 = omega_x * t591 - omega_z * t590;
+        let t617 = omega_x * t616 - omega_z * t615;
+        let t642 = omega_x * t639 - omega_z * t638;
+        let t662 = omega_x * t659 - omega_z * t658;
+        let t687 = omega_x * t686 - omega_z * t685;
+        let t719 = omega_x * t718 - omega_z * t717;
+        let t750 = 0.6 * t749;
+        let t748 = s_phi * 7.42;
+        let t757 = 0.55 * t756;
+        let t755 = s_phi * 11.129999999999999;
+        let t759 = 0.58 * t756;
+        let t818 = f_front_left_y * t813 - f_front_left_x * t806
+            + f_front_left_z * s_phi;
+        let t829 = f_front_right_y * t813 - f_front_right_x * t806
+            + f_front_right_z * s_phi;
+        let t840 = f_middle_left_y * t813 - f_middle_left_x * t806
+            + f_middle_left_z * s_phi;
+        let t851 = f_middle_right_y * t813 - f_middle_right_x * t806
+            + f_middle_right_z * s_phi;
+        let t862 = f_rear_left_y * t813 - f_rear_left_x * t806 + f_rear_left_z * s_phi;
+        let t873 = f_rear_right_y * t813 - f_rear_right_x * t806
+            + f_rear_right_z * s_phi;
+        let t877 = 2.0 * t474 - (omega_z * t447 - omega_x * t454) + 2.0 * t494
+            + 2.0 * t520 + 2.0 * t558 + 2.0 * t592 + 2.0 * t617 + 3.0 * t642 + 3.0 * t662
+            + 3.0 * t687 + 3.0 * t719 - s_phi * 556.5 - t748 - t748 - t748 - t748 - t748
+            - t748 - t755 - t755 - t755 - t755 + t818 + t829 + t840 + t851 + t862 + t873;
+        let t985 = -(vy * t454 - vz * t451 + (omega_y * t463 - omega_z * t460))
+            - 2.0 * (0.6 * t476 + t22 * t474 - t466 * t468)
+            - 2.0 * (t44 * t494 - 0.6 * t496 - t489 * t491)
+            - 2.0 * (0.6 * t522 + t88 * t520 - t509 * t519)
+            - 2.0 * (t138 * t558 - 0.6 * t560 - t547 * t557)
+            - 2.0 * (0.6 * t594 + t166 * t592 - t585 * t591)
+            - 2.0 * (t188 * t617 - 0.6 * t619 - t610 * t616)
+            - 3.0 * (0.55 * t644 + t210 * t642 - t637 * t639)
+            - 3.0 * (t232 * t662 - 0.55 * t664 - t657 * t659)
+            - 3.0 * (0.58 * t689 + t264 * t687 - t679 * t686)
+            - 3.0 * (t296 * t719 - 0.58 * t721 - t711 * t718) + (t22 * t748 - t750)
+            + (t750 + t44 * t748) + (t88 * t748 - t750) + (t750 + t138 * t748)
+            + (t166 * t748 - t750) + (t750 + t188 * t748) + (t210 * t755 - t757)
+            + (t757 + t232 * t755) + (t264 * t755 - t759) + (t759 + t296 * t755)
+            + (0.6 * t820 - t22 * t818) + t822 + t825 + (-(0.6 * t831) - t44 * t829)
+            + t833 + t836 + (0.6 * t842 - t88 * t840) + t844 + t847
+            + (-(0.6 * t853) - t138 * t851) + t855 + t858 + (0.6 * t864 - t166 * t862)
+            + t866 + t869 + (-(0.6 * t875) - t188 * t873) + t879 + t882 - t878 * t890
+            - t903 * t981 - t917 * t982 - t930 * t983 - t877 * t935 - t944 * t984;
+        let t455 = omega_y * t425;
+        let t456 = omega_z * t426;
+        let t457 = vy * t415 + omega_x * t424 + t455 + t456 + yd_rocker * t428
+            + yd_bogie_left * t400 + yd_bogie_right * t430;
+        let t986 = -(vz * t447 - vx * t454 + (omega_z * t457 - omega_x * t463))
+            - 2.0 * (t468 * t469 - t467 * t470 + (t22 * t475 - t11 * t476))
+            - 2.0 * (t491 * t492 - t490 * t493 + (t44 * t495 - t33 * t496))
+            - 2.0 * (t514 * t519 - t515 * t518 + (t88 * t521 - t77 * t522))
+            - 2.0 * (t552 * t557 - t553 * t556 + (t138 * t559 - t127 * t560))
+            - 2.0 * (t588 * t591 - t589 * t590 + (t166 * t593 - t155 * t594))
+            - 2.0 * (t613 * t616 - t614 * t615 + (t188 * t618 - t177 * t619))
+            - 3.0 * (t639 * t640 - t638 * t641 + (t210 * t643 - t199 * t644))
+            - 3.0 * (t659 * t660 - t658 * t661 + (t232 * t663 - t221 * t664))
+            - 3.0 * (t683 * t686 - t684 * t685 + (t264 * t688 - t253 * t689))
+            - 3.0 * (t715 * t718 - t716 * t717 + (t296 * t720 - t285 * t721))
+            + (t22 * t747 + t11 * t749) + (t44 * t747 + t33 * t749)
+            + (t88 * t747 + t77 * t749) + (t138 * t747 + t127 * t749)
+            + (t166 * t747 + t155 * t749) + (t188 * t747 + t177 * t749)
+            + (t210 * t754 + t199 * t756) + (t232 * t754 + t221 * t756)
+            + (t264 * t754 + t253 * t756) + (t296 * t754 + t285 * t756)
+            + (t22 * t817 - t11 * t820) + t823 + t826 + (t44 * t828 - t33 * t831) + t834
+            + t837 + (t88 * t839 - t77 * t842) + t845 + t848
+            + (t138 * t850 - t127 * t853) + t856 + t859 + (t166 * t861 - t155 * t864)
+            + t867 + t870 + (t188 * t872 - t177 * t875) + t880 + t883 - t878 * t891
+            - t905 * t981 - t919 * t982 - t932 * t983 - t946 * t984 - t958 * t985;
+        let t751 = 0.6 * t747;
+        let t758 = 0.55 * t754;
+        let t760 = 0.58 * t754;
+        let t987 = -(vx * t451 - vy * t447 + (omega_x * t460 - omega_y * t457))
+            - 2.0 * (t466 * t467 + (-(t11 * t474) - 0.6 * t475))
+            - 2.0 * (t489 * t490 + (0.6 * t495 - t33 * t494))
+            - 2.0 * (t509 * t518 + (-(t77 * t520) - 0.6 * t521))
+            - 2.0 * (t547 * t556 + (0.6 * t559 - t127 * t558))
+            - 2.0 * (t585 * t590 + (-(t155 * t592) - 0.6 * t593))
+            - 2.0 * (t610 * t615 + (0.6 * t618 - t177 * t617))
+            - 3.0 * (t637 * t638 + (-(t199 * t642) - 0.55 * t643))
+            - 3.0 * (t657 * t658 + (0.55 * t663 - t221 * t662))
+            - 3.0 * (t679 * t685 + (-(t253 * t687) - 0.58 * t688))
+            - 3.0 * (t711 * t717 + (0.58 * t720 - t285 * t719)) + (-(t11 * t748) - t751)
+            + (t751 - t33 * t748) + (-t751 - t77 * t748) + (t751 - t127 * t748)
+            + (-t751 - t155 * t748) + (t751 - t177 * t748) + (-(t199 * t755) - t758)
+            + (t758 - t221 * t755) + (-(t253 * t755) - t760) + (t760 - t285 * t755)
+            + (t11 * t818 - t821)
+            + (mu_front_left_x * t809 + mu_front_left_y * t816 + t824)
+            + (tau_front_left_x * t809 + tau_front_left_y * t816 + t827)
+            + (t33 * t829 + t832)
+            + (mu_front_right_x * t809 + mu_front_right_y * t816 + t835)
+            + (tau_front_right_x * t809 + tau_front_right_y * t816 + t838)
+            + (t77 * t840 - t843)
+            + (mu_middle_left_x * t809 + mu_middle_left_y * t816 + t846)
+            + (tau_middle_left_x * t809 + tau_middle_left_y * t816 + t849)
+            + (t127 * t851 + t854)
+            + (mu_middle_right_x * t809 + mu_middle_right_y * t816 + t857)
+            + (tau_middle_right_x * t809 + tau_middle_right_y * t816 + t860)
+            + (t155 * t862 - t865)
+            + (mu_rear_left_x * t809 + mu_rear_left_y * t816 + t868)
+            + (tau_rear_left_x * t809 + tau_rear_left_y * t816 + t871)
+            + (t177 * t873 + t876)
+            + (mu_rear_right_x * t809 + mu_rear_right_y * t816 + t881)
+            + (tau_rear_right_x * t809 + tau_rear_right_y * t816 + t884) - t878 * t892
+            - t907 * t981 - t921 * t982 - t934 * t983 - t877 * t936 - t948 * t984
+            - t960 * t985 - t970 * t986;
+        let t988 = t980 * t987;
+        let t989 = t968 * t986 - t970 * t988;
+        let t990 = t956 * t985 - t958 * t989 - t960 * t988;
+        let t991 = t942 * t984 - t944 * t990 - t946 * t989 - t948 * t988;
+        let t1433 = t885 * t1280 - t420 * t1429;
+        let t1442 = t900 * t1439 - t895 * (t893 * t1433 + t889 * t1437);
+        let t1451 = t911 * (t909 * t1442 + t901 * t1447 - (t908 * t1433 + t889 * t1446))
+            - t914 * t1449;
+        let t1460 = t926
+            * (-(t922 * t1433 + t889 * t1455) - (t923 * t1442 + t901 * t1456)
+                - (t924 * t1451 + t915 * t1457)) - t927 * t1459;
+        let t1466 = t889 * t1298 + t443 * t1433;
+        let t1467 = t894 * t1442 - t901 * t1438;
+        let t1468 = t915 * t1448 + t910 * t1451;
+        let t1469 = t928 * t1458 + t925 * t1460;
+        let t1470 = -(t937 * t1433 + t889 * t1466) - (t938 * t1442 + t901 * t1467)
+            - (t939 * t1451 + t915 * t1468) - (t940 * t1460 + t928 * t1469);
+        let t1471 = t942 * t1470 / t941;
+        let t1371 = 2.0 * t1366;
+        let t1342 = 2.0 * t1337;
+        let t1299 = omega_y * t420;
+        let t1300 = t1299 + yd_rocker * t1277;
         let t1497 = -(omega_x * t1302 - omega_y * t1300) - 2.0 * t1318 - 2.0 * t1326
             - t1342 - t1371 - t1342 - t1371 - 3.0 * t1392 - 3.0 * t1400 - 3.0 * t1407
             - 3.0 * t1414 - (t889 * t1428 + t878 * t1433) - (t981 * t1442 + t901 * t1494)
             - (t982 * t1451 + t915 * t1495) - (t983 * t1460 + t928 * t1496);
+        let t1231 = 2.0 * (0.6 * t1179);
+        let t1216 = 2.0 * (0.6 * t1173);
+        let t1285 = t1216 + (2.0 * (0.6 * t1161) - 2.0 * (0.6 * t1167) + t1216 - t1231)
+            - t1231 + 3.0 * (0.55 * t1185) - 3.0 * (0.55 * t1191) + 3.0 * (0.58 * t1194)
+            - 3.0 * (0.58 * t1197);
+        let t1434 = t885 * t1285 - t428 * t1429;
+        let t1443 = t902 * t1439 - t895 * (t893 * t1434 + t890 * t1437);
+        let t1452 = t911 * (t909 * t1443 + t903 * t1447 - (t908 * t1434 + t890 * t1446))
+            - t916 * t1449;
+        let t1461 = t926
+            * (-(t922 * t1434 + t890 * t1455) - (t923 * t1443 + t903 * t1456)
+                - (t924 * t1452 + t917 * t1457)) - t929 * t1459;
+        let t1472 = t942
+            * (-(t937 * t1434 + t890 * t1466) - (t938 * t1443 + t903 * t1467)
+                - (t939 * t1452 + t917 * t1468) - (t940 * t1461 + t930 * t1469))
+            - t943 * t1471;
+        let t1198 = t21 * t22;
+        let t1199 = t1198 + t1198;
+        let t1205 = t43 * t44;
+        let t1206 = t1205 + t1205;
+        let t1214 = t65 * t88;
+        let t1215 = t1214 + t1214;
+        let t1229 = t115 * t138;
+        let t1230 = t1229 + t1229;
+        let t1242 = t65 * t166;
+        let t1243 = t1242 + t1242;
+        let t1248 = t115 * t188;
+        let t1249 = t1248 + t1248;
+        let t1254 = t209 * t210;
+        let t1255 = t1254 + t1254;
+        let t1261 = t231 * t232;
+        let t1262 = t1261 + t1261;
+        let t1268 = t242 * t264;
+        let t1269 = t1268 + t1268;
+        let t1281 = t274 * t296;
+        let t1282 = t1281 + t1281;
+        let t1283 = 2.0 * t1199 + 2.0 * t1206 + 2.0 * t1215 + 2.0 * t1230 + 2.0 * t1243
+            + 2.0 * t1249 + 3.0 * t1255 + 3.0 * t1262 + 3.0 * t1269 + 3.0 * t1282;
+        let t1475 = t890 * t1298 + t443 * t1434;
+        let t1476 = t894 * t1443 - t903 * t1438;
+        let t1477 = t917 * t1448 + t910 * t1452;
+        let t1478 = t930 * t1458 + t925 * t1461;
+        let t1464 = 0.005747126436781609 * t1278;
+        let t1479 = 174.0 * t1464;
+        let t1480 = t944 * t1470 + t941 * t1472;
+        let t1481 = t1283 - (t949 * t1434 + t890 * t1475) - (t950 * t1443 + t903 * t1476)
+            - (t951 * t1452 + t917 * t1477) - (t952 * t1461 + t930 * t1478)
+            - (t953 * t1464 + t935 * t1479) - (t954 * t1472 + t944 * t1480);
+        let t1482 = t956 * t1481 / t955;
+        let t1419 = t115 * t748;
+        let t1416 = t65 * t748;
+        let t1309 = vy * t412;
+        let t1284 = -(2.0 * (t304 + t305)) - 2.0 * (t313 + t314) - 2.0 * (t325 + t326)
+            - 2.0 * (t342 + t343) - 2.0 * (t356 + t357) - 2.0 * (t367 + t368)
+            - 3.0 * (t378 + t379) - 3.0 * (t387 + t388) - 3.0 * (t402 + t403)
+            - 3.0 * (t434 + t435);
+        let t1289 = t427
+            + (t385 + (t339 + (t339 + (t311 - t302 - t322) - t322) - t376) - t398);
+        let t1200 = t10 * t11;
+        let t1201 = t1200 + t1200;
+        let t1207 = t32 * t33;
+        let t1208 = t1207 + t1207;
+        let t1217 = t54 * t77;
+        let t1218 = t1217 + t1217;
+        let t1232 = t104 * t127;
+        let t1233 = t1232 + t1232;
+        let t1244 = t54 * t155;
+        let t1245 = t1244 + t1244;
+        let t1250 = t104 * t177;
+        let t1251 = t1250 + t1250;
+        let t1256 = t198 * t199;
+        let t1257 = t1256 + t1256;
+        let t1263 = t220 * t221;
+        let t1264 = t1263 + t1263;
+        let t1270 = t54 * t253;
+        let t1271 = t1270 + t1270;
+        let t1286 = t104 * t285;
+        let t1287 = t1286 + t1286;
+        let t1295 = 2.0 * t1201 + 2.0 * t1208 + 2.0 * t1218 + 2.0 * t1233 + 2.0 * t1245
+            + 2.0 * t1251 + 3.0 * t1257 + 3.0 * t1264 + 3.0 * t1271 + 3.0 * t1287;
+        let t1237 = 2.0 * (0.6 * t1176);
+        let t1222 = 2.0 * (0.6 * t1170);
+        let t1296 = t1237
+            + (2.0 * (0.6 * t1164) - 2.0 * (0.6 * t1158) - t1222 + t1237 - t1222)
+            - 3.0 * (0.55 * t1182) + 3.0 * (0.55 * t1188) - 3.0 * (0.58 * t1170)
+            + 3.0 * (0.58 * t1176);
+        let t1310 = t1309 + omega_x * t1284 + omega_y * t1289 + omega_z * t1295
+            + yd_rocker * t1296;
+        let t1306 = vx * t420;
+        let t1307 = omega_x * t441;
+        let t1288 = 2.0 * (t1199 + t1201) + 2.0 * (t1206 + t1208) + 2.0 * (t1215 + t1218)
+            + 2.0 * (t1230 + t1233) + 2.0 * (t1243 + t1245) + 2.0 * (t1249 + t1251)
+            + 3.0 * (t1255 + t1257) + 3.0 * (t1262 + t1264) + 3.0 * (t1269 + t1271)
+            + 3.0 * (t1282 + t1287);
+        let t1202 = t10 * t21;
+        let t1209 = t32 * t43;
+        let t1219 = t54 * t65;
+        let t1234 = t104 * t115;
+        let t1258 = t198 * t209;
+        let t1265 = t220 * t231;
+        let t1272 = t54 * t242;
+        let t1290 = t104 * t274;
+        let t1291 = 2.0 * (t22 * t1158 + t1202 - (t1202 + t11 * t1161))
+            + 2.0 * (t44 * t1164 + t1209 - (t1209 + t33 * t1167))
+            + 2.0 * (t88 * t1170 + t1219 - (t1219 + t77 * t1173))
+            + 2.0 * (t138 * t1176 + t1234 - (t1234 + t127 * t1179))
+            + 2.0 * (t1219 + t166 * t1170 - (t1219 + t155 * t1173))
+            + 2.0 * (t1234 + t188 * t1176 - (t1234 + t177 * t1179))
+            + 3.0 * (t210 * t1182 + t1258 - (t1258 + t199 * t1185))
+            + 3.0 * (t232 * t1188 + t1265 - (t1265 + t221 * t1191))
+            + 3.0 * (t264 * t1170 + t1272 - (t1272 + t253 * t1194))
+            + 3.0 * (t296 * t1176 + t1290 - (t1290 + t285 * t1197));
+        let t1220 = t65 * t76;
+        let t1221 = t54 * t87;
+        let t1246 = t65 * t154;
+        let t1247 = t54 * t165;
+        let t1273 = t242 * t252;
+        let t1274 = t54 * t263;
+        let t1275 = 2.0 * (t1220 - t1221) + 2.0 * (t1246 - t1247)
+            + 3.0 * (t1273 - t1274);
+        let t1235 = t115 * t126;
+        let t1236 = t104 * t137;
+        let t1252 = t115 * t176;
+        let t1253 = t104 * t187;
+        let t1292 = t274 * t284;
+        let t1293 = t104 * t295;
+        let t1294 = 2.0 * (t1235 - t1236) + 2.0 * (t1252 - t1253)
+            + 3.0 * (t1292 - t1293);
+        let t1308 = t1306 + vz * t1279 + t1307 + omega_y * t1288 + omega_z * t1289
+            + yd_rocker * t1291 + yd_bogie_left * t1275 + yd_bogie_right * t1294;
+        let t1316 = omega_x * t1313 - omega_z * t1312;
+        let t1324 = omega_x * t1321 - omega_z * t1320;
+        let t1338 = 0.6 * t1337;
+        let t1333 = omega_z * t1328;
+        let t1334 = omega_x * t1329 - t1333;
+        let t1367 = 0.6 * t1366;
+        let t1362 = omega_z * t1357;
+        let t1363 = omega_x * t1358 - t1362;
+        let t1390 = omega_x * t1387 - omega_z * t1386;
+        let t1398 = omega_x * t1395 - omega_z * t1394;
+        let t1405 = omega_x * t1402 - t1333;
+        let t1412 = omega_x * t1409 - t1362;
+        let t1370 = 2.0 * t1363;
+        let t1341 = 2.0 * t1334;
+        let t1415 = t1370
+            + (t1341
+                + (2.0 * t1316 - (omega_z * t1300 - omega_x * t1303) + 2.0 * t1324
+                    + t1341 + t1370)) + 3.0 * t1390 + 3.0 * t1398 + 3.0 * t1405
+            + 3.0 * t1412;
         let t1498 = t1419
             + (t1416
                 + (-(vy * t1303 - vz * t1302 + (omega_y * t1310 - omega_z * t1308))
@@ -3995,6 +3935,35 @@ impl Mer {
             - (t981 * t1443 + t903 * t1494) - (t982 * t1452 + t917 * t1495)
             - (t983 * t1461 + t930 * t1496) - (t935 * t1415 + t877 * t1464)
             - (t984 * t1472 + t944 * t1497);
+        let t1435 = t885 * t1291 - t436 * t1429;
+        let t1444 = t904 * t1439 + t895 * (t1275 - (t893 * t1435 + t891 * t1437));
+        let t1453 = t911
+            * (t1294 - (t908 * t1435 + t891 * t1446) + (t909 * t1444 + t905 * t1447))
+            - t918 * t1449;
+        let t1462 = t926
+            * (t420 - (t922 * t1435 + t891 * t1455) - (t923 * t1444 + t905 * t1456)
+                - (t924 * t1453 + t919 * t1457)) - t931 * t1459;
+        let t1473 = t942
+            * (t1279 - (t937 * t1435 + t891 * t1466) - (t938 * t1444 + t905 * t1467)
+                - (t939 * t1453 + t919 * t1468) - (t940 * t1462 + t932 * t1469))
+            - t945 * t1471;
+        let t1483 = t956
+            * (t441 - (t949 * t1435 + t891 * t1475) - (t950 * t1444 + t905 * t1476)
+                - (t951 * t1453 + t919 * t1477) - (t952 * t1462 + t932 * t1478)
+                - (t954 * t1473 + t946 * t1480)) - t957 * t1482;
+        let t1485 = t891 * t1298 + t443 * t1435;
+        let t1486 = t894 * t1444 - t905 * t1438;
+        let t1487 = t919 * t1448 + t910 * t1453;
+        let t1488 = t932 * t1458 + t925 * t1462;
+        let t1489 = t946 * t1470 + t941 * t1473;
+        let t1490 = t958 * t1481 + t955 * t1483;
+        let t1491 = t1288 - (t961 * t1435 + t891 * t1485) - (t962 * t1444 + t905 * t1486)
+            - (t963 * t1453 + t919 * t1487) - (t964 * t1462 + t932 * t1488)
+            - (t965 * t1473 + t946 * t1489) - (t966 * t1483 + t958 * t1490);
+        let t1492 = t968 * t1491 / t967;
+        let t1304 = omega_y * t441;
+        let t1305 = vy * t1278 + omega_x * t1283 + t1304 + omega_z * t1284
+            + yd_rocker * t1285;
         let t1499 = t1075
             + (t1073
                 + (t1072
@@ -4058,6 +4027,32 @@ impl Mer {
             - (t891 * t1428 + t878 * t1435) - (t981 * t1444 + t905 * t1494)
             - (t982 * t1453 + t919 * t1495) - (t983 * t1462 + t932 * t1496)
             - (t984 * t1473 + t946 * t1497) - (t985 * t1483 + t958 * t1498);
+        let t1436 = t885 * t1296 - t441 * t1429;
+        let t1445 = t906 * t1439 - t895 * (t893 * t1436 + t892 * t1437);
+        let t1454 = t911 * (t909 * t1445 + t907 * t1447 - (t908 * t1436 + t892 * t1446))
+            - t920 * t1449;
+        let t1463 = t926
+            * (-(t922 * t1436 + t892 * t1455) - (t923 * t1445 + t907 * t1456)
+                - (t924 * t1454 + t921 * t1457)) - t933 * t1459;
+        let t1474 = t942
+            * (-(t937 * t1436 + t892 * t1466) - (t938 * t1445 + t907 * t1467)
+                - (t939 * t1454 + t921 * t1468) - (t940 * t1463 + t934 * t1469))
+            - t947 * t1471;
+        let t1465 = t412 * 0.005747126436781609;
+        let t1484 = t956
+            * (t1284 - (t949 * t1436 + t892 * t1475) - (t950 * t1445 + t907 * t1476)
+                - (t951 * t1454 + t921 * t1477) - (t952 * t1463 + t934 * t1478)
+                - (t953 * t1465 + t936 * t1479) - (t954 * t1474 + t948 * t1480))
+            - t959 * t1482;
+        let t1493 = t968
+            * (t1289 - (t961 * t1436 + t892 * t1485) - (t962 * t1445 + t907 * t1486)
+                - (t963 * t1454 + t921 * t1487) - (t964 * t1463 + t934 * t1488)
+                - (t965 * t1474 + t948 * t1489) - (t966 * t1484 + t960 * t1490))
+            - t969 * t1492;
+        let t1420 = t104 * t748;
+        let t1417 = t54 * t748;
+        let t1339 = 0.6 * t1336;
+        let t1368 = 0.6 * t1365;
         let t1500 = t980
             * (-(vx * t1302 - vy * t1300 + (omega_x * t1308 - omega_y * t1305))
                 - 2.0
@@ -4115,6 +4110,11 @@ impl Mer {
         let t1504 = t926 * t1496 - t983 * t1459 - (t991 * t1460 + t928 * t1503)
             - (t990 * t1461 + t930 * t1502) - (t989 * t1462 + t932 * t1501)
             - (t988 * t1463 + t934 * t1500);
+        let t992 = t926 * t983 - t928 * t991 - t930 * t990 - t932 * t989 - t934 * t988;
+        let t993 = t911 * t982 - t913 * t992 - t915 * t991 - t917 * t990 - t919 * t989
+            - t921 * t988;
+        let t994 = t895 * t981 + t897 * t993 - t899 * t992 - t901 * t991 - t903 * t990
+            - t905 * t989 - t907 * t988;
         let t1505 = t911 * t1495 - t982 * t1449 - (t992 * t1450 + t913 * t1504)
             - (t991 * t1451 + t915 * t1503) - (t990 * t1452 + t917 * t1502)
             - (t989 * t1453 + t919 * t1501) - (t988 * t1454 + t921 * t1500);
@@ -4123,104 +4123,75 @@ impl Mer {
             - (t990 * t1443 + t903 * t1502) - (t989 * t1444 + t905 * t1501)
             - (t988 * t1445 + t907 * t1500);
         let t1507 = t69 + (t69 + t71);
-        let t1508 = t72 + bogie_left * 0.07370370111741459 + 2.0 * t1507;
         let t1509 = t73 + (t73 + bogie_left * t1507);
-        let t1510 = t80 + (t80 - t82);
-        let t1511 = t83 - bogie_left * 0.04176543063320308 + 2.0 * t1510;
-        let t1512 = t84 + (t84 + bogie_left * t1510);
-        let t1513 = t93
-            + (t93 + bogie_left * (t91 + (t91 + bogie_left * 3.820434947246186e-15)));
-        let t1514 = t147 + (t147 - t149);
-        let t1515 = t150 - bogie_left * 0.08598765130365027 + 2.0 * t1514;
-        let t1516 = t151 + (t151 + bogie_left * t1514);
-        let t1517 = t158 + (t158 - t160);
-        let t1518 = t161 - bogie_left * 0.04176543063320214 + 2.0 * t1517;
-        let t1519 = t162 + (t162 + bogie_left * t1517);
-        let t1520 = t245 + (t245 + t247);
-        let t1521 = t248 + bogie_left * 6.691625973497582e-16 + 2.0 * t1520;
-        let t1522 = t249 + (t249 + bogie_left * t1520);
-        let t1523 = t256 + (t256 - t258);
-        let t1524 = t259 - bogie_left * 0.02456790037247189 + 2.0 * t1523;
-        let t1525 = t260 + (t260 + bogie_left * t1523);
-        let t1526 = t87 * t88;
-        let t1527 = t1526 + t1526;
-        let t1528 = t76 * t77;
-        let t1529 = t1528 + t1528;
-        let t1530 = t76 * t87;
         let t1531 = t76 * t1509;
+        let t1510 = t80 + (t80 - t82);
+        let t1512 = t84 + (t84 + bogie_left * t1510);
         let t1532 = t87 * t1512;
-        let t1533 = t165 * t166;
-        let t1534 = t1533 + t1533;
-        let t1535 = t154 * t155;
-        let t1536 = t1535 + t1535;
-        let t1537 = t154 * t165;
+        let t1514 = t147 + (t147 - t149);
+        let t1516 = t151 + (t151 + bogie_left * t1514);
         let t1538 = t154 * t1516;
+        let t1517 = t158 + (t158 - t160);
+        let t1519 = t162 + (t162 + bogie_left * t1517);
         let t1539 = t165 * t1519;
+        let t1520 = t245 + (t245 + t247);
+        let t1522 = t249 + (t249 + bogie_left * t1520);
+        let t1558 = t252 * t1522;
+        let t1523 = t256 + (t256 - t258);
+        let t1525 = t260 + (t260 + bogie_left * t1523);
+        let t1559 = t263 * t1525;
+        let t1604 = t885
+            * (2.0 * (t54 * t1509 + t65 * t1512) + 2.0 * (t54 * t1516 + t65 * t1519)
+                + 3.0 * (t54 * t1522 + t242 * t1525));
+        let t1606 = t443 * t1604;
+        let t1607 = 2.0 * (t1531 + t1531 + (t1532 + t1532))
+            + 2.0 * (t1538 + t1538 + (t1539 + t1539))
+            + 3.0 * (t1558 + t1558 + (t1559 + t1559)) - (t893 * t1604 + t886 * t1606);
+        let t1608 = t895 * t1607 / t894;
         let t1540 = 2.0 * t1509 + 2.0 * t1516 + 3.0 * t1522;
-        let t1541 = -t320 - t352 - t395;
+        let t1610 = t895 * (t1540 - t888 * t1606) - t898 * t1608;
+        let t1623 = t899 * t1607 + t894 * t1610;
+        let t1609 = t895 * (t887 * t1606) - t896 * t1608;
+        let t1615 = t897 * t1607 + t894 * t1609;
+        let t1616 = t909 * t1609 + t897 * t1615;
+        let t1617 = t911 * t1616 / t910;
+        let t1618 = t912 * t1617 + t911 * (t909 * t1610 + t899 * t1615);
+        let t1624 = t910 * t1618 - t913 * t1616;
+        let t1625 = -(t923 * t1610 + t899 * t1623) - (t924 * t1618 + t913 * t1624);
+        let t1626 = t926 * t1625 / t925;
         let t1542 = -t317 - t350 - t391;
         let t1543 = 2.0 * t1512 + 2.0 * t1519 + 3.0 * t1525;
-        let t1544 = t263 * t264;
-        let t1545 = t1544 + t1544;
-        let t1546 = 2.0 * t1527 + 2.0 * t1534 + 3.0 * t1545;
-        let t1547 = -(2.0 * (t327 + t328)) - 2.0 * (t358 + t359) - 3.0 * (t404 + t405);
-        let t1548 = 2.0 * (0.6 * t1512) + 2.0 * (0.6 * t1519) + 3.0 * (0.58 * t1525);
-        let t1549 = t252 * t253;
-        let t1550 = t1549 + t1549;
-        let t1551 = 2.0 * (t1527 + t1529) + 2.0 * (t1534 + t1536)
-            + 3.0 * (t1545 + t1550);
-        let t1552 = -t323 - t354 - t399;
-        let t1553 = 2.0 * (t1221 - t1220) + 2.0 * (t1247 - t1246)
-            + 3.0 * (t1274 - t1273);
-        let t1554 = t252 * t263;
-        let t1555 = 2.0 * (t88 * t1509 + t1530 - (t1530 + t77 * t1512))
-            + 2.0 * (t166 * t1516 + t1537 - (t1537 + t155 * t1519))
-            + 3.0 * (t264 * t1522 + t1554 - (t1554 + t253 * t1525));
-        let t1556 = 2.0 * t1529 + 2.0 * t1536 + 3.0 * t1550;
-        let t1557 = -(2.0 * (0.6 * t1509)) - 2.0 * (0.6 * t1516) - 3.0 * (0.58 * t1522);
-        let t1558 = t252 * t1522;
-        let t1559 = t263 * t1525;
-        let t1560 = omega_y * t396;
-        let t1561 = t1560 + yd_bogie_left * t1540;
+        let t1564 = omega_y * t1542 + yd_bogie_left * t1543;
+        let t1541 = -t320 - t352 - t395;
         let t1562 = omega_z * t392;
         let t1563 = omega_x * t1541 + t1562;
-        let t1564 = omega_y * t1542 + yd_bogie_left * t1543;
-        let t1565 = omega_y * t407;
-        let t1566 = vy * t1541 + omega_x * t1546 + t1565 + omega_z * t1547
-            + yd_bogie_left * t1548;
-        let t1567 = vx * t396;
-        let t1568 = omega_x * t407;
-        let t1569 = t1567 + vz * t1542 + t1568 + omega_y * t1551 + omega_z * t1552
-            + yd_rocker * t1553 + yd_bogie_left * t1555;
-        let t1570 = vy * t392;
-        let t1571 = t1570 + omega_x * t1547 + omega_y * t1552 + omega_z * t1556
-            + yd_bogie_left * t1557;
-        let t1572 = t540 - t539;
-        let t1573 = yd_bogie_left * t1509;
+        let t1508 = t72 + bogie_left * 0.07370370111741459 + 2.0 * t1507;
         let t1574 = yd_bogie_left * t1512;
-        let t1575 = t538 + t1573;
-        let t1576 = t1574 - t542;
-        let t1577 = omega_x * t1574 - omega_z * t1573;
         let t1578 = t472 * t1508 + omega_y * t1574;
-        let t1579 = t472 * t1511 - omega_y * t1573;
-        let t1580 = t603 - t602;
-        let t1581 = yd_bogie_left * t1516;
+        let t1515 = t150 - bogie_left * 0.08598765130365027 + 2.0 * t1514;
         let t1582 = yd_bogie_left * t1519;
-        let t1583 = t601 + t1581;
-        let t1584 = t1582 - t605;
-        let t1585 = omega_x * t1582 - omega_z * t1581;
         let t1586 = t472 * t1515 + omega_y * t1582;
-        let t1587 = t472 * t1518 - omega_y * t1581;
-        let t1588 = t704 - t703;
-        let t1589 = yd_bogie_left * t1522;
+        let t1521 = t248 + bogie_left * 6.691625973497582e-16 + 2.0 * t1520;
         let t1590 = yd_bogie_left * t1525;
-        let t1591 = t702 + t1589;
-        let t1592 = t1590 - t706;
-        let t1593 = omega_x * t1590 - omega_z * t1589;
         let t1594 = t472 * t1521 + omega_y * t1590;
+        let t1573 = yd_bogie_left * t1509;
+        let t1575 = t538 + t1573;
+        let t1572 = t540 - t539;
+        let t1576 = t1574 - t542;
+        let t1511 = t83 - bogie_left * 0.04176543063320308 + 2.0 * t1510;
+        let t1579 = t472 * t1511 - omega_y * t1573;
+        let t1581 = yd_bogie_left * t1516;
+        let t1583 = t601 + t1581;
+        let t1580 = t603 - t602;
+        let t1584 = t1582 - t605;
+        let t1518 = t161 - bogie_left * 0.04176543063320214 + 2.0 * t1517;
+        let t1587 = t472 * t1518 - omega_y * t1581;
+        let t1589 = yd_bogie_left * t1522;
+        let t1591 = t702 + t1589;
+        let t1588 = t704 - t703;
+        let t1592 = t1590 - t706;
+        let t1524 = t259 - bogie_left * 0.02456790037247189 + 2.0 * t1523;
         let t1595 = t472 * t1524 - omega_y * t1589;
-        let t1596 = 2.0 * t1577 - (omega_z * t1561 - omega_x * t1564) + 2.0 * t1585
-            + 3.0 * t1593;
         let t1597 = 2.0
             * (t533 * t1575 - t529 * t1572 + t534 * t1576
                 - (yd_rocker * (t53 * t1575 + t64 * t1576)
@@ -4234,100 +4205,13 @@ impl Mer {
                     - (yd_rocker * (t53 * t1591 + t241 * t1592)
                         + (t54 * t1594 + t242 * t1595)));
         let t1598 = if t775 >= 0.0 { 1.0 } else { 0.0 };
-        let t1599 = if t777 >= 0.0 { 1.0 } else { 0.0 };
         let t1600 = if 1.0 >= t779 { 1.0 } else { 0.0 };
         let t1601 = if 0.0 >= t782 { 1.0 } else { 0.0 };
+        let t1599 = if t777 >= 0.0 { 1.0 } else { 0.0 };
         let t1602 = if 1.0 >= t784 { 1.0 } else { 0.0 };
         let t1603 = if t787 >= 0.0 { 1.0 } else { 0.0 };
-        let t1604 = t885
-            * (2.0 * (t54 * t1509 + t65 * t1512) + 2.0 * (t54 * t1516 + t65 * t1519)
-                + 3.0 * (t54 * t1522 + t242 * t1525));
-        let t1605 = t885 * t1553;
-        let t1606 = t443 * t1604;
-        let t1607 = 2.0 * (t1531 + t1531 + (t1532 + t1532))
-            + 2.0 * (t1538 + t1538 + (t1539 + t1539))
-            + 3.0 * (t1558 + t1558 + (t1559 + t1559)) - (t893 * t1604 + t886 * t1606);
-        let t1608 = t895 * t1607 / t894;
-        let t1609 = t895 * (t887 * t1606) - t896 * t1608;
-        let t1610 = t895 * (t1540 - t888 * t1606) - t898 * t1608;
-        let t1611 = t895 * (t1543 - t889 * t1606) - t900 * t1608;
-        let t1612 = t895 * (t1548 - t890 * t1606) - t902 * t1608;
-        let t1613 = t895 * (t1555 - (t893 * t1605 + t891 * t1606)) - t904 * t1608;
-        let t1614 = t895 * (t1557 - t892 * t1606) - t906 * t1608;
-        let t1615 = t897 * t1607 + t894 * t1609;
-        let t1616 = t909 * t1609 + t897 * t1615;
-        let t1617 = t911 * t1616 / t910;
-        let t1618 = t912 * t1617 + t911 * (t909 * t1610 + t899 * t1615);
-        let t1619 = t914 * t1617 + t911 * (t909 * t1611 + t901 * t1615);
-        let t1620 = t916 * t1617 + t911 * (t909 * t1612 + t903 * t1615);
-        let t1621 = t918 * t1617 + t911 * (t909 * t1613 + t905 * t1615 - t908 * t1605);
-        let t1622 = t920 * t1617 + t911 * (t909 * t1614 + t907 * t1615);
-        let t1623 = t899 * t1607 + t894 * t1610;
-        let t1624 = t910 * t1618 - t913 * t1616;
-        let t1625 = -(t923 * t1610 + t899 * t1623) - (t924 * t1618 + t913 * t1624);
-        let t1626 = t926 * t1625 / t925;
-        let t1627 = t926
-            * (-(t923 * t1611 + t901 * t1623) - (t924 * t1619 + t915 * t1624))
-            - t927 * t1626;
-        let t1628 = t926
-            * (-(t923 * t1612 + t903 * t1623) - (t924 * t1620 + t917 * t1624))
-            - t929 * t1626;
-        let t1629 = t926
-            * (t396 - t922 * t1605 - (t923 * t1613 + t905 * t1623)
-                - (t924 * t1621 + t919 * t1624)) - t931 * t1626;
-        let t1630 = t926
-            * (-(t923 * t1614 + t907 * t1623) - (t924 * t1622 + t921 * t1624))
-            - t933 * t1626;
-        let t1631 = 0.005747126436781609 * t1541;
-        let t1632 = t392 * 0.005747126436781609;
-        let t1633 = t901 * t1607 + t894 * t1611;
-        let t1634 = t910 * t1619 - t915 * t1616;
-        let t1635 = t928 * t1625 + t925 * t1627;
-        let t1636 = -(t938 * t1611 + t901 * t1633) - (t939 * t1619 + t915 * t1634)
-            - (t940 * t1627 + t928 * t1635);
-        let t1637 = t942 * t1636 / t941;
-        let t1638 = t942
-            * (-(t938 * t1612 + t903 * t1633) - (t939 * t1620 + t917 * t1634)
-                - (t940 * t1628 + t930 * t1635)) - t943 * t1637;
-        let t1639 = t942
-            * (t1542 - t937 * t1605 - (t938 * t1613 + t905 * t1633)
-                - (t939 * t1621 + t919 * t1634) - (t940 * t1629 + t932 * t1635))
-            - t945 * t1637;
-        let t1640 = t942
-            * (-(t938 * t1614 + t907 * t1633) - (t939 * t1622 + t921 * t1634)
-                - (t940 * t1630 + t934 * t1635)) - t947 * t1637;
-        let t1641 = t903 * t1607 + t894 * t1612;
-        let t1642 = t910 * t1620 - t917 * t1616;
-        let t1643 = t930 * t1625 + t925 * t1628;
-        let t1644 = 174.0 * t1631;
-        let t1645 = t944 * t1636 + t941 * t1638;
-        let t1646 = t1546 - (t950 * t1612 + t903 * t1641) - (t951 * t1620 + t917 * t1642)
-            - (t952 * t1628 + t930 * t1643) - (t953 * t1631 + t935 * t1644)
-            - (t954 * t1638 + t944 * t1645);
-        let t1647 = t956 * t1646 / t955;
-        let t1648 = t956
-            * (t407 - t949 * t1605 - (t950 * t1613 + t905 * t1641)
-                - (t951 * t1621 + t919 * t1642) - (t952 * t1629 + t932 * t1643)
-                - (t954 * t1639 + t946 * t1645)) - t957 * t1647;
-        let t1649 = t956
-            * (t1547 - (t950 * t1614 + t907 * t1641) - (t951 * t1622 + t921 * t1642)
-                - (t952 * t1630 + t934 * t1643) - (t953 * t1632 + t936 * t1644)
-                - (t954 * t1640 + t948 * t1645)) - t959 * t1647;
-        let t1650 = t443 * t1605;
-        let t1651 = t905 * t1607 + t894 * t1613;
-        let t1652 = t910 * t1621 - t919 * t1616;
-        let t1653 = t932 * t1625 + t925 * t1629;
-        let t1654 = t946 * t1636 + t941 * t1639;
-        let t1655 = t958 * t1646 + t955 * t1648;
-        let t1656 = t1551 - (t961 * t1605 + t891 * t1650) - (t962 * t1613 + t905 * t1651)
-            - (t963 * t1621 + t919 * t1652) - (t964 * t1629 + t932 * t1653)
-            - (t965 * t1639 + t946 * t1654) - (t966 * t1648 + t958 * t1655);
-        let t1657 = t968 * t1656 / t967;
-        let t1658 = t968
-            * (t1552 - t892 * t1650 - (t962 * t1614 + t907 * t1651)
-                - (t963 * t1622 + t921 * t1652) - (t964 * t1630 + t934 * t1653)
-                - (t965 * t1640 + t948 * t1654) - (t966 * t1649 + t960 * t1655))
-            - t969 * t1657;
+        let t1513 = t93
+            + (t93 + bogie_left * (t91 + (t91 + bogie_left * 3.820434947246186e-15)));
         let t1659 = 2.0
             * (t545 * t1575 + t514 * (omega_y * t1512 + yd_bogie_left * t1508)
                 - (t541 * t1572 + t509 * (omega_x * t1512 - omega_z * t1509))
@@ -4362,9 +4246,80 @@ impl Mer {
         let t1661 = -(omega_y * t1564 - omega_z * t1563) - 2.0 * t1578 - 2.0 * t1586
             - 3.0 * t1594 - t888 * t1597 - (t981 * t1610 + t899 * t1659)
             - (t982 * t1618 + t913 * t1660);
+        let t1611 = t895 * (t1543 - t889 * t1606) - t900 * t1608;
+        let t1619 = t914 * t1617 + t911 * (t909 * t1611 + t901 * t1615);
+        let t1627 = t926
+            * (-(t923 * t1611 + t901 * t1623) - (t924 * t1619 + t915 * t1624))
+            - t927 * t1626;
+        let t1633 = t901 * t1607 + t894 * t1611;
+        let t1634 = t910 * t1619 - t915 * t1616;
+        let t1635 = t928 * t1625 + t925 * t1627;
+        let t1636 = -(t938 * t1611 + t901 * t1633) - (t939 * t1619 + t915 * t1634)
+            - (t940 * t1627 + t928 * t1635);
+        let t1637 = t942 * t1636 / t941;
+        let t1560 = omega_y * t396;
+        let t1561 = t1560 + yd_bogie_left * t1540;
         let t1662 = -(omega_x * t1563 - omega_y * t1561) - 2.0 * t1579 - 2.0 * t1587
             - 3.0 * t1595 - t889 * t1597 - (t981 * t1611 + t901 * t1659)
             - (t982 * t1619 + t915 * t1660) - (t983 * t1627 + t928 * t1661);
+        let t1548 = 2.0 * (0.6 * t1512) + 2.0 * (0.6 * t1519) + 3.0 * (0.58 * t1525);
+        let t1612 = t895 * (t1548 - t890 * t1606) - t902 * t1608;
+        let t1620 = t916 * t1617 + t911 * (t909 * t1612 + t903 * t1615);
+        let t1628 = t926
+            * (-(t923 * t1612 + t903 * t1623) - (t924 * t1620 + t917 * t1624))
+            - t929 * t1626;
+        let t1638 = t942
+            * (-(t938 * t1612 + t903 * t1633) - (t939 * t1620 + t917 * t1634)
+                - (t940 * t1628 + t930 * t1635)) - t943 * t1637;
+        let t1526 = t87 * t88;
+        let t1527 = t1526 + t1526;
+        let t1533 = t165 * t166;
+        let t1534 = t1533 + t1533;
+        let t1544 = t263 * t264;
+        let t1545 = t1544 + t1544;
+        let t1546 = 2.0 * t1527 + 2.0 * t1534 + 3.0 * t1545;
+        let t1641 = t903 * t1607 + t894 * t1612;
+        let t1642 = t910 * t1620 - t917 * t1616;
+        let t1643 = t930 * t1625 + t925 * t1628;
+        let t1631 = 0.005747126436781609 * t1541;
+        let t1644 = 174.0 * t1631;
+        let t1645 = t944 * t1636 + t941 * t1638;
+        let t1646 = t1546 - (t950 * t1612 + t903 * t1641) - (t951 * t1620 + t917 * t1642)
+            - (t952 * t1628 + t930 * t1643) - (t953 * t1631 + t935 * t1644)
+            - (t954 * t1638 + t944 * t1645);
+        let t1647 = t956 * t1646 / t955;
+        let t1570 = vy * t392;
+        let t1547 = -(2.0 * (t327 + t328)) - 2.0 * (t358 + t359) - 3.0 * (t404 + t405);
+        let t1552 = -t323 - t354 - t399;
+        let t1528 = t76 * t77;
+        let t1529 = t1528 + t1528;
+        let t1535 = t154 * t155;
+        let t1536 = t1535 + t1535;
+        let t1549 = t252 * t253;
+        let t1550 = t1549 + t1549;
+        let t1556 = 2.0 * t1529 + 2.0 * t1536 + 3.0 * t1550;
+        let t1557 = -(2.0 * (0.6 * t1509)) - 2.0 * (0.6 * t1516) - 3.0 * (0.58 * t1522);
+        let t1571 = t1570 + omega_x * t1547 + omega_y * t1552 + omega_z * t1556
+            + yd_bogie_left * t1557;
+        let t1567 = vx * t396;
+        let t1568 = omega_x * t407;
+        let t1551 = 2.0 * (t1527 + t1529) + 2.0 * (t1534 + t1536)
+            + 3.0 * (t1545 + t1550);
+        let t1553 = 2.0 * (t1221 - t1220) + 2.0 * (t1247 - t1246)
+            + 3.0 * (t1274 - t1273);
+        let t1530 = t76 * t87;
+        let t1537 = t154 * t165;
+        let t1554 = t252 * t263;
+        let t1555 = 2.0 * (t88 * t1509 + t1530 - (t1530 + t77 * t1512))
+            + 2.0 * (t166 * t1516 + t1537 - (t1537 + t155 * t1519))
+            + 3.0 * (t264 * t1522 + t1554 - (t1554 + t253 * t1525));
+        let t1569 = t1567 + vz * t1542 + t1568 + omega_y * t1551 + omega_z * t1552
+            + yd_rocker * t1553 + yd_bogie_left * t1555;
+        let t1577 = omega_x * t1574 - omega_z * t1573;
+        let t1585 = omega_x * t1582 - omega_z * t1581;
+        let t1593 = omega_x * t1590 - omega_z * t1589;
+        let t1596 = 2.0 * t1577 - (omega_z * t1561 - omega_x * t1564) + 2.0 * t1585
+            + 3.0 * t1593;
         let t1663 = -(vy * t1564 - vz * t1563 + (omega_y * t1571 - omega_z * t1569))
             - 2.0
                 * (0.6 * t1579 + (t87 * t520 + t88 * t1577)
@@ -4379,6 +4334,33 @@ impl Mer {
             - (t981 * t1612 + t903 * t1659) - (t982 * t1620 + t917 * t1660)
             - (t983 * t1628 + t930 * t1661) - (t935 * t1596 + t877 * t1631)
             - (t984 * t1638 + t944 * t1662);
+        let t1605 = t885 * t1553;
+        let t1613 = t895 * (t1555 - (t893 * t1605 + t891 * t1606)) - t904 * t1608;
+        let t1621 = t918 * t1617 + t911 * (t909 * t1613 + t905 * t1615 - t908 * t1605);
+        let t1629 = t926
+            * (t396 - t922 * t1605 - (t923 * t1613 + t905 * t1623)
+                - (t924 * t1621 + t919 * t1624)) - t931 * t1626;
+        let t1639 = t942
+            * (t1542 - t937 * t1605 - (t938 * t1613 + t905 * t1633)
+                - (t939 * t1621 + t919 * t1634) - (t940 * t1629 + t932 * t1635))
+            - t945 * t1637;
+        let t1648 = t956
+            * (t407 - t949 * t1605 - (t950 * t1613 + t905 * t1641)
+                - (t951 * t1621 + t919 * t1642) - (t952 * t1629 + t932 * t1643)
+                - (t954 * t1639 + t946 * t1645)) - t957 * t1647;
+        let t1650 = t443 * t1605;
+        let t1651 = t905 * t1607 + t894 * t1613;
+        let t1652 = t910 * t1621 - t919 * t1616;
+        let t1653 = t932 * t1625 + t925 * t1629;
+        let t1654 = t946 * t1636 + t941 * t1639;
+        let t1655 = t958 * t1646 + t955 * t1648;
+        let t1656 = t1551 - (t961 * t1605 + t891 * t1650) - (t962 * t1613 + t905 * t1651)
+            - (t963 * t1621 + t919 * t1652) - (t964 * t1629 + t932 * t1653)
+            - (t965 * t1639 + t946 * t1654) - (t966 * t1648 + t958 * t1655);
+        let t1657 = t968 * t1656 / t967;
+        let t1565 = omega_y * t407;
+        let t1566 = vy * t1541 + omega_x * t1546 + t1565 + omega_z * t1547
+            + yd_bogie_left * t1548;
         let t1664 = t1074
             + (t1069
                 + (t1066
@@ -4401,6 +4383,24 @@ impl Mer {
             - (t981 * t1613 + t905 * t1659) - (t982 * t1621 + t919 * t1660)
             - (t983 * t1629 + t932 * t1661) - (t984 * t1639 + t946 * t1662)
             - (t985 * t1648 + t958 * t1663);
+        let t1614 = t895 * (t1557 - t892 * t1606) - t906 * t1608;
+        let t1622 = t920 * t1617 + t911 * (t909 * t1614 + t907 * t1615);
+        let t1630 = t926
+            * (-(t923 * t1614 + t907 * t1623) - (t924 * t1622 + t921 * t1624))
+            - t933 * t1626;
+        let t1640 = t942
+            * (-(t938 * t1614 + t907 * t1633) - (t939 * t1622 + t921 * t1634)
+                - (t940 * t1630 + t934 * t1635)) - t947 * t1637;
+        let t1632 = t392 * 0.005747126436781609;
+        let t1649 = t956
+            * (t1547 - (t950 * t1614 + t907 * t1641) - (t951 * t1622 + t921 * t1642)
+                - (t952 * t1630 + t934 * t1643) - (t953 * t1632 + t936 * t1644)
+                - (t954 * t1640 + t948 * t1645)) - t959 * t1647;
+        let t1658 = t968
+            * (t1552 - t892 * t1650 - (t962 * t1614 + t907 * t1651)
+                - (t963 * t1622 + t921 * t1652) - (t964 * t1630 + t934 * t1653)
+                - (t965 * t1640 + t948 * t1654) - (t966 * t1649 + t960 * t1655))
+            - t969 * t1657;
         let t1665 = t980
             * (-(vx * t1563 - vy * t1561 + (omega_x * t1569 - omega_y * t1566))
                 - 2.0
@@ -4442,105 +4442,72 @@ impl Mer {
             - (t990 * t1612 + t903 * t1667) - (t989 * t1613 + t905 * t1666)
             - (t988 * t1614 + t907 * t1665);
         let t1672 = t119 + (t119 + t121);
-        let t1673 = t122 + bogie_right * 0.07370370111741459 + 2.0 * t1672;
         let t1674 = t123 + (t123 + bogie_right * t1672);
-        let t1675 = t130 + (t130 - t132);
-        let t1676 = t133 - bogie_right * 0.04176543063320308 + 2.0 * t1675;
-        let t1677 = t134 + (t134 + bogie_right * t1675);
-        let t1678 = t143
-            + (t143
-                + bogie_right * (t141 + (t141 + bogie_right * 3.820434947246186e-15)));
-        let t1679 = t169 + (t169 - t171);
-        let t1680 = t172 - bogie_right * 0.08598765130365027 + 2.0 * t1679;
-        let t1681 = t173 + (t173 + bogie_right * t1679);
-        let t1682 = t180 + (t180 - t182);
-        let t1683 = t183 - bogie_right * 0.04176543063320214 + 2.0 * t1682;
-        let t1684 = t184 + (t184 + bogie_right * t1682);
-        let t1685 = t277 + (t277 + t279);
-        let t1686 = t280 + bogie_right * 6.691625973497582e-16 + 2.0 * t1685;
-        let t1687 = t281 + (t281 + bogie_right * t1685);
-        let t1688 = t288 + (t288 - t290);
-        let t1689 = t291 - bogie_right * 0.02456790037247189 + 2.0 * t1688;
-        let t1690 = t292 + (t292 + bogie_right * t1688);
-        let t1691 = t137 * t138;
-        let t1692 = t1691 + t1691;
-        let t1693 = t126 * t127;
-        let t1694 = t1693 + t1693;
-        let t1695 = t126 * t137;
         let t1696 = t126 * t1674;
+        let t1675 = t130 + (t130 - t132);
+        let t1677 = t134 + (t134 + bogie_right * t1675);
         let t1697 = t137 * t1677;
-        let t1698 = t187 * t188;
-        let t1699 = t1698 + t1698;
-        let t1700 = t176 * t177;
-        let t1701 = t1700 + t1700;
-        let t1702 = t176 * t187;
+        let t1679 = t169 + (t169 - t171);
+        let t1681 = t173 + (t173 + bogie_right * t1679);
         let t1703 = t176 * t1681;
+        let t1682 = t180 + (t180 - t182);
+        let t1684 = t184 + (t184 + bogie_right * t1682);
         let t1704 = t187 * t1684;
+        let t1685 = t277 + (t277 + t279);
+        let t1687 = t281 + (t281 + bogie_right * t1685);
+        let t1723 = t284 * t1687;
+        let t1688 = t288 + (t288 - t290);
+        let t1690 = t292 + (t292 + bogie_right * t1688);
+        let t1724 = t295 * t1690;
+        let t1769 = t885
+            * (2.0 * (t104 * t1674 + t115 * t1677) + 2.0 * (t104 * t1681 + t115 * t1684)
+                + 3.0 * (t104 * t1687 + t274 * t1690));
+        let t1773 = t443 * t1769;
+        let t1771 = t895 * (t893 * t1769);
+        let t1774 = t894 * t1771;
+        let t1775 = 2.0 * (t1696 + t1696 + (t1697 + t1697))
+            + 2.0 * (t1703 + t1703 + (t1704 + t1704))
+            + 3.0 * (t1723 + t1723 + (t1724 + t1724)) - (t908 * t1769 + t887 * t1773)
+            - (t909 * t1771 + t897 * t1774);
+        let t1776 = t911 * t1775 / t910;
         let t1705 = 2.0 * t1674 + 2.0 * t1681 + 3.0 * t1687;
-        let t1706 = -t337 - t363 - t421;
+        let t1777 = t911 * (t1705 - t888 * t1773 + t899 * t1774) - t912 * t1776;
+        let t1782 = t913 * t1775 + t910 * t1777;
+        let t1783 = t924 * t1777 + t913 * t1782;
+        let t1784 = t926 * t1783 / t925;
         let t1707 = -t334 - t361 - t413;
         let t1708 = 2.0 * t1677 + 2.0 * t1684 + 3.0 * t1690;
-        let t1709 = t295 * t296;
-        let t1710 = t1709 + t1709;
-        let t1711 = 2.0 * t1692 + 2.0 * t1699 + 3.0 * t1710;
-        let t1712 = -(2.0 * (t344 + t345)) - 2.0 * (t369 + t370) - 3.0 * (t437 + t438);
-        let t1713 = -(2.0 * (0.6 * t1677)) - 2.0 * (0.6 * t1684) - 3.0 * (0.58 * t1690);
-        let t1714 = t284 * t285;
-        let t1715 = t1714 + t1714;
-        let t1716 = 2.0 * (t1692 + t1694) + 2.0 * (t1699 + t1701)
-            + 3.0 * (t1710 + t1715);
-        let t1717 = t429 + (t340 + t365);
-        let t1718 = 2.0 * (t1236 - t1235) + 2.0 * (t1253 - t1252)
-            + 3.0 * (t1293 - t1292);
-        let t1719 = t284 * t295;
-        let t1720 = 2.0 * (t138 * t1674 + t1695 - (t1695 + t127 * t1677))
-            + 2.0 * (t188 * t1681 + t1702 - (t1702 + t177 * t1684))
-            + 3.0 * (t296 * t1687 + t1719 - (t1719 + t285 * t1690));
-        let t1721 = 2.0 * t1694 + 2.0 * t1701 + 3.0 * t1715;
-        let t1722 = 2.0 * (0.6 * t1674) + 2.0 * (0.6 * t1681) + 3.0 * (0.58 * t1687);
-        let t1723 = t284 * t1687;
-        let t1724 = t295 * t1690;
-        let t1725 = omega_y * t422;
-        let t1726 = t1725 + yd_bogie_right * t1705;
+        let t1729 = omega_y * t1707 + yd_bogie_right * t1708;
+        let t1706 = -t337 - t363 - t421;
         let t1727 = omega_z * t414;
         let t1728 = omega_x * t1706 + t1727;
-        let t1729 = omega_y * t1707 + yd_bogie_right * t1708;
-        let t1730 = omega_y * t442;
-        let t1731 = vy * t1706 + omega_x * t1711 + t1730 + omega_z * t1712
-            + yd_bogie_right * t1713;
-        let t1732 = vx * t422;
-        let t1733 = omega_x * t442;
-        let t1734 = t1732 + vz * t1707 + t1733 + omega_y * t1716 + omega_z * t1717
-            + yd_rocker * t1718 + yd_bogie_right * t1720;
-        let t1735 = vy * t414;
-        let t1736 = t1735 + omega_x * t1712 + omega_y * t1717 + omega_z * t1721
-            + yd_bogie_right * t1722;
-        let t1737 = t578 - t577;
-        let t1738 = yd_bogie_right * t1674;
+        let t1673 = t122 + bogie_right * 0.07370370111741459 + 2.0 * t1672;
         let t1739 = yd_bogie_right * t1677;
-        let t1740 = t576 + t1738;
-        let t1741 = t1739 - t580;
-        let t1742 = omega_x * t1739 - omega_z * t1738;
         let t1743 = t473 * t1673 + omega_y * t1739;
-        let t1744 = t473 * t1676 - omega_y * t1738;
-        let t1745 = t628 - t627;
-        let t1746 = yd_bogie_right * t1681;
+        let t1680 = t172 - bogie_right * 0.08598765130365027 + 2.0 * t1679;
         let t1747 = yd_bogie_right * t1684;
-        let t1748 = t626 + t1746;
-        let t1749 = t1747 - t630;
-        let t1750 = omega_x * t1747 - omega_z * t1746;
         let t1751 = t473 * t1680 + omega_y * t1747;
-        let t1752 = t473 * t1683 - omega_y * t1746;
-        let t1753 = t736 - t735;
-        let t1754 = yd_bogie_right * t1687;
+        let t1686 = t280 + bogie_right * 6.691625973497582e-16 + 2.0 * t1685;
         let t1755 = yd_bogie_right * t1690;
-        let t1756 = t734 + t1754;
-        let t1757 = t1755 - t738;
-        let t1758 = omega_x * t1755 - omega_z * t1754;
         let t1759 = t473 * t1686 + omega_y * t1755;
+        let t1738 = yd_bogie_right * t1674;
+        let t1740 = t576 + t1738;
+        let t1737 = t578 - t577;
+        let t1741 = t1739 - t580;
+        let t1676 = t133 - bogie_right * 0.04176543063320308 + 2.0 * t1675;
+        let t1744 = t473 * t1676 - omega_y * t1738;
+        let t1746 = yd_bogie_right * t1681;
+        let t1748 = t626 + t1746;
+        let t1745 = t628 - t627;
+        let t1749 = t1747 - t630;
+        let t1683 = t183 - bogie_right * 0.04176543063320214 + 2.0 * t1682;
+        let t1752 = t473 * t1683 - omega_y * t1746;
+        let t1754 = yd_bogie_right * t1687;
+        let t1756 = t734 + t1754;
+        let t1753 = t736 - t735;
+        let t1757 = t1755 - t738;
+        let t1689 = t291 - bogie_right * 0.02456790037247189 + 2.0 * t1688;
         let t1760 = t473 * t1689 - omega_y * t1754;
-        let t1761 = 2.0 * t1742 - (omega_z * t1726 - omega_x * t1729) + 2.0 * t1750
-            + 3.0 * t1758;
         let t1762 = 2.0
             * (t571 * t1740 - t567 * t1737 + t572 * t1741
                 - (yd_rocker * (t103 * t1740 + t114 * t1741)
@@ -4553,87 +4520,16 @@ impl Mer {
                 * (t729 * t1756 - t727 * t1753 + t730 * t1757
                     - (yd_rocker * (t103 * t1756 + t273 * t1757)
                         + (t104 * t1759 + t274 * t1760)));
+        let t1815 = t886 * t1762;
         let t1763 = if t789 >= 0.0 { 1.0 } else { 0.0 };
-        let t1764 = if t791 >= 0.0 { 1.0 } else { 0.0 };
         let t1765 = if 1.0 >= t793 { 1.0 } else { 0.0 };
         let t1766 = if 0.0 >= t796 { 1.0 } else { 0.0 };
+        let t1764 = if t791 >= 0.0 { 1.0 } else { 0.0 };
         let t1767 = if 1.0 >= t798 { 1.0 } else { 0.0 };
         let t1768 = if t801 >= 0.0 { 1.0 } else { 0.0 };
-        let t1769 = t885
-            * (2.0 * (t104 * t1674 + t115 * t1677) + 2.0 * (t104 * t1681 + t115 * t1684)
-                + 3.0 * (t104 * t1687 + t274 * t1690));
-        let t1770 = t885 * t1718;
-        let t1771 = t895 * (t893 * t1769);
-        let t1772 = t895 * (t893 * t1770);
-        let t1773 = t443 * t1769;
-        let t1774 = t894 * t1771;
-        let t1775 = 2.0 * (t1696 + t1696 + (t1697 + t1697))
-            + 2.0 * (t1703 + t1703 + (t1704 + t1704))
-            + 3.0 * (t1723 + t1723 + (t1724 + t1724)) - (t908 * t1769 + t887 * t1773)
-            - (t909 * t1771 + t897 * t1774);
-        let t1776 = t911 * t1775 / t910;
-        let t1777 = t911 * (t1705 - t888 * t1773 + t899 * t1774) - t912 * t1776;
-        let t1778 = t911 * (t1708 - t889 * t1773 + t901 * t1774) - t914 * t1776;
-        let t1779 = t911 * (t1713 - t890 * t1773 + t903 * t1774) - t916 * t1776;
-        let t1780 = t911
-            * (t1720 - (t908 * t1770 + t891 * t1773) + (t905 * t1774 - t909 * t1772))
-            - t918 * t1776;
-        let t1781 = t911 * (t1722 - t892 * t1773 + t907 * t1774) - t920 * t1776;
-        let t1782 = t913 * t1775 + t910 * t1777;
-        let t1783 = t924 * t1777 + t913 * t1782;
-        let t1784 = t926 * t1783 / t925;
-        let t1785 = t927 * t1784 - t926 * (t924 * t1778 + t915 * t1782);
-        let t1786 = t929 * t1784 - t926 * (t924 * t1779 + t917 * t1782);
-        let t1787 = t931 * t1784
-            + t926
-                * (t422 - t922 * t1770 + t923 * t1772 - (t924 * t1780 + t919 * t1782));
-        let t1788 = t933 * t1784 - t926 * (t924 * t1781 + t921 * t1782);
-        let t1789 = 0.005747126436781609 * t1706;
-        let t1790 = t414 * 0.005747126436781609;
-        let t1791 = t915 * t1775 + t910 * t1778;
-        let t1792 = t925 * t1785 - t928 * t1783;
-        let t1793 = -(t939 * t1778 + t915 * t1791) - (t940 * t1785 + t928 * t1792);
-        let t1794 = t942 * t1793 / t941;
-        let t1795 = t942
-            * (-(t939 * t1779 + t917 * t1791) - (t940 * t1786 + t930 * t1792))
-            - t943 * t1794;
-        let t1796 = t942
-            * (t1707 - t937 * t1770 + t938 * t1772 - (t939 * t1780 + t919 * t1791)
-                - (t940 * t1787 + t932 * t1792)) - t945 * t1794;
-        let t1797 = t942
-            * (-(t939 * t1781 + t921 * t1791) - (t940 * t1788 + t934 * t1792))
-            - t947 * t1794;
-        let t1798 = t917 * t1775 + t910 * t1779;
-        let t1799 = t925 * t1786 - t930 * t1783;
-        let t1800 = 174.0 * t1789;
-        let t1801 = t944 * t1793 + t941 * t1795;
-        let t1802 = t1711 - (t951 * t1779 + t917 * t1798) - (t952 * t1786 + t930 * t1799)
-            - (t953 * t1789 + t935 * t1800) - (t954 * t1795 + t944 * t1801);
-        let t1803 = t956 * t1802 / t955;
-        let t1804 = t956
-            * (t442 - t949 * t1770 + t950 * t1772 - (t951 * t1780 + t919 * t1798)
-                - (t952 * t1787 + t932 * t1799) - (t954 * t1796 + t946 * t1801))
-            - t957 * t1803;
-        let t1805 = t956
-            * (t1712 - (t951 * t1781 + t921 * t1798) - (t952 * t1788 + t934 * t1799)
-                - (t953 * t1790 + t936 * t1800) - (t954 * t1797 + t948 * t1801))
-            - t959 * t1803;
-        let t1806 = t443 * t1770;
-        let t1807 = t894 * t1772;
-        let t1808 = t919 * t1775 + t910 * t1780;
-        let t1809 = t925 * t1787 - t932 * t1783;
-        let t1810 = t946 * t1793 + t941 * t1796;
-        let t1811 = t958 * t1802 + t955 * t1804;
-        let t1812 = t1716 - (t961 * t1770 + t891 * t1806)
-            - (-(t962 * t1772) - t905 * t1807) - (t963 * t1780 + t919 * t1808)
-            - (t964 * t1787 + t932 * t1809) - (t965 * t1796 + t946 * t1810)
-            - (t966 * t1804 + t958 * t1811);
-        let t1813 = t968 * t1812 / t967;
-        let t1814 = t968
-            * (t1717 - t892 * t1806 + t907 * t1807 - (t963 * t1781 + t921 * t1808)
-                - (t964 * t1788 + t934 * t1809) - (t965 * t1797 + t948 * t1810)
-                - (t966 * t1805 + t960 * t1811)) - t969 * t1813;
-        let t1815 = t886 * t1762;
+        let t1678 = t143
+            + (t143
+                + bogie_right * (t141 + (t141 + bogie_right * 3.820434947246186e-15)));
         let t1816 = 2.0
             * (t583 * t1740 + t552 * (omega_y * t1677 + yd_bogie_right * t1673)
                 - (t579 * t1737 + t547 * (omega_x * t1677 - omega_z * t1674))
@@ -4667,9 +4563,70 @@ impl Mer {
             + (t981 * t1771 - t897 * t1815);
         let t1817 = -(omega_y * t1729 - omega_z * t1728) - 2.0 * t1743 - 2.0 * t1751
             - 3.0 * t1759 - t888 * t1762 + t899 * t1815 - (t982 * t1777 + t913 * t1816);
+        let t1778 = t911 * (t1708 - t889 * t1773 + t901 * t1774) - t914 * t1776;
+        let t1785 = t927 * t1784 - t926 * (t924 * t1778 + t915 * t1782);
+        let t1791 = t915 * t1775 + t910 * t1778;
+        let t1792 = t925 * t1785 - t928 * t1783;
+        let t1793 = -(t939 * t1778 + t915 * t1791) - (t940 * t1785 + t928 * t1792);
+        let t1794 = t942 * t1793 / t941;
+        let t1725 = omega_y * t422;
+        let t1726 = t1725 + yd_bogie_right * t1705;
         let t1818 = -(omega_x * t1728 - omega_y * t1726) - 2.0 * t1744 - 2.0 * t1752
             - 3.0 * t1760 - t889 * t1762 + t901 * t1815 - (t982 * t1778 + t915 * t1816)
             - (t983 * t1785 + t928 * t1817);
+        let t1713 = -(2.0 * (0.6 * t1677)) - 2.0 * (0.6 * t1684) - 3.0 * (0.58 * t1690);
+        let t1779 = t911 * (t1713 - t890 * t1773 + t903 * t1774) - t916 * t1776;
+        let t1786 = t929 * t1784 - t926 * (t924 * t1779 + t917 * t1782);
+        let t1795 = t942
+            * (-(t939 * t1779 + t917 * t1791) - (t940 * t1786 + t930 * t1792))
+            - t943 * t1794;
+        let t1691 = t137 * t138;
+        let t1692 = t1691 + t1691;
+        let t1698 = t187 * t188;
+        let t1699 = t1698 + t1698;
+        let t1709 = t295 * t296;
+        let t1710 = t1709 + t1709;
+        let t1711 = 2.0 * t1692 + 2.0 * t1699 + 3.0 * t1710;
+        let t1798 = t917 * t1775 + t910 * t1779;
+        let t1799 = t925 * t1786 - t930 * t1783;
+        let t1789 = 0.005747126436781609 * t1706;
+        let t1800 = 174.0 * t1789;
+        let t1801 = t944 * t1793 + t941 * t1795;
+        let t1802 = t1711 - (t951 * t1779 + t917 * t1798) - (t952 * t1786 + t930 * t1799)
+            - (t953 * t1789 + t935 * t1800) - (t954 * t1795 + t944 * t1801);
+        let t1803 = t956 * t1802 / t955;
+        let t1735 = vy * t414;
+        let t1712 = -(2.0 * (t344 + t345)) - 2.0 * (t369 + t370) - 3.0 * (t437 + t438);
+        let t1717 = t429 + (t340 + t365);
+        let t1693 = t126 * t127;
+        let t1694 = t1693 + t1693;
+        let t1700 = t176 * t177;
+        let t1701 = t1700 + t1700;
+        let t1714 = t284 * t285;
+        let t1715 = t1714 + t1714;
+        let t1721 = 2.0 * t1694 + 2.0 * t1701 + 3.0 * t1715;
+        let t1722 = 2.0 * (0.6 * t1674) + 2.0 * (0.6 * t1681) + 3.0 * (0.58 * t1687);
+        let t1736 = t1735 + omega_x * t1712 + omega_y * t1717 + omega_z * t1721
+            + yd_bogie_right * t1722;
+        let t1732 = vx * t422;
+        let t1733 = omega_x * t442;
+        let t1716 = 2.0 * (t1692 + t1694) + 2.0 * (t1699 + t1701)
+            + 3.0 * (t1710 + t1715);
+        let t1718 = 2.0 * (t1236 - t1235) + 2.0 * (t1253 - t1252)
+            + 3.0 * (t1293 - t1292);
+        let t1695 = t126 * t137;
+        let t1702 = t176 * t187;
+        let t1719 = t284 * t295;
+        let t1720 = 2.0 * (t138 * t1674 + t1695 - (t1695 + t127 * t1677))
+            + 2.0 * (t188 * t1681 + t1702 - (t1702 + t177 * t1684))
+            + 3.0 * (t296 * t1687 + t1719 - (t1719 + t285 * t1690));
+        let t1734 = t1732 + vz * t1707 + t1733 + omega_y * t1716 + omega_z * t1717
+            + yd_rocker * t1718 + yd_bogie_right * t1720;
+        let t1742 = omega_x * t1739 - omega_z * t1738;
+        let t1750 = omega_x * t1747 - omega_z * t1746;
+        let t1758 = omega_x * t1755 - omega_z * t1754;
+        let t1761 = 2.0 * t1742 - (omega_z * t1726 - omega_x * t1729) + 2.0 * t1750
+            + 3.0 * t1758;
         let t1819 = -(vy * t1729 - vz * t1728 + (omega_y * t1736 - omega_z * t1734))
             - 2.0
                 * (t137 * t558 + t138 * t1742 - 0.6 * t1744
@@ -4683,6 +4640,35 @@ impl Mer {
             + t295 * t755 - t137 * t851 - t187 * t873 - t890 * t1762 + t903 * t1815
             - (t982 * t1779 + t917 * t1816) - (t983 * t1786 + t930 * t1817)
             - (t935 * t1761 + t877 * t1789) - (t984 * t1795 + t944 * t1818);
+        let t1770 = t885 * t1718;
+        let t1772 = t895 * (t893 * t1770);
+        let t1780 = t911
+            * (t1720 - (t908 * t1770 + t891 * t1773) + (t905 * t1774 - t909 * t1772))
+            - t918 * t1776;
+        let t1787 = t931 * t1784
+            + t926
+                * (t422 - t922 * t1770 + t923 * t1772 - (t924 * t1780 + t919 * t1782));
+        let t1796 = t942
+            * (t1707 - t937 * t1770 + t938 * t1772 - (t939 * t1780 + t919 * t1791)
+                - (t940 * t1787 + t932 * t1792)) - t945 * t1794;
+        let t1804 = t956
+            * (t442 - t949 * t1770 + t950 * t1772 - (t951 * t1780 + t919 * t1798)
+                - (t952 * t1787 + t932 * t1799) - (t954 * t1796 + t946 * t1801))
+            - t957 * t1803;
+        let t1806 = t443 * t1770;
+        let t1807 = t894 * t1772;
+        let t1808 = t919 * t1775 + t910 * t1780;
+        let t1809 = t925 * t1787 - t932 * t1783;
+        let t1810 = t946 * t1793 + t941 * t1796;
+        let t1811 = t958 * t1802 + t955 * t1804;
+        let t1812 = t1716 - (t961 * t1770 + t891 * t1806)
+            - (-(t962 * t1772) - t905 * t1807) - (t963 * t1780 + t919 * t1808)
+            - (t964 * t1787 + t932 * t1809) - (t965 * t1796 + t946 * t1810)
+            - (t966 * t1804 + t958 * t1811);
+        let t1813 = t968 * t1812 / t967;
+        let t1730 = omega_y * t442;
+        let t1731 = vy * t1706 + omega_x * t1711 + t1730 + omega_z * t1712
+            + yd_bogie_right * t1713;
         let t1820 = t1076
             + (t1070
                 + (t1068
@@ -4706,6 +4692,20 @@ impl Mer {
             - (-(t981 * t1772) - t905 * t1815) - (t982 * t1780 + t919 * t1816)
             - (t983 * t1787 + t932 * t1817) - (t984 * t1796 + t946 * t1818)
             - (t985 * t1804 + t958 * t1819);
+        let t1781 = t911 * (t1722 - t892 * t1773 + t907 * t1774) - t920 * t1776;
+        let t1788 = t933 * t1784 - t926 * (t924 * t1781 + t921 * t1782);
+        let t1797 = t942
+            * (-(t939 * t1781 + t921 * t1791) - (t940 * t1788 + t934 * t1792))
+            - t947 * t1794;
+        let t1790 = t414 * 0.005747126436781609;
+        let t1805 = t956
+            * (t1712 - (t951 * t1781 + t921 * t1798) - (t952 * t1788 + t934 * t1799)
+                - (t953 * t1790 + t936 * t1800) - (t954 * t1797 + t948 * t1801))
+            - t959 * t1803;
+        let t1814 = t968
+            * (t1717 - t892 * t1806 + t907 * t1807 - (t963 * t1781 + t921 * t1808)
+                - (t964 * t1788 + t934 * t1809) - (t965 * t1797 + t948 * t1810)
+                - (t966 * t1805 + t960 * t1811)) - t969 * t1813;
         let t1821 = t980
             * (-(vx * t1728 - vy * t1726 + (omega_x * t1734 - omega_y * t1731))
                 - 2.0
@@ -4743,21 +4743,8 @@ impl Mer {
             - (t989 * t1780 + t919 * t1822) - (t988 * t1781 + t921 * t1821);
         let t1827 = t993 * t1771 + t897 * t1826 - t895 * t1815 - t899 * t1825
             - t901 * t1824 - t903 * t1823 - (t905 * t1822 - t989 * t1772) - t907 * t1821;
-        let t1828 = omega_z * 174.0;
-        let t1829 = omega_y * 174.0;
-        let t1830 = omega_z * t410;
-        let t1831 = 2.0 * t468;
-        let t1832 = 2.0 * t491;
-        let t1833 = 2.0 * t519;
-        let t1834 = 2.0 * (t533 - t531);
-        let t1835 = 2.0 * t557;
         let t1836 = 2.0 * (t571 - t569);
-        let t1837 = 2.0 * t591;
-        let t1838 = 2.0 * t616;
-        let t1839 = 3.0 * t639;
-        let t1840 = 3.0 * t659;
-        let t1841 = 3.0 * t686;
-        let t1842 = 3.0 * t718;
+        let t1834 = 2.0 * (t533 - t531);
         let t1843 = t1836
             + (t1834 + (2.0 * (t487 - t485) + 2.0 * (t507 - t505) + t1834 + t1836))
             + 3.0 * (t655 - t653) + 3.0 * (t675 - t673) + 3.0 * (t697 - t531)
@@ -4767,9 +4754,22 @@ impl Mer {
         let t1845 = 2.0 * (t583 - t581) + 2.0 * (t633 - t631) + 3.0 * (t741 - t739)
             - t887 * t1843 + t897 * t1844;
         let t1846 = -(t888 * t1843) - t899 * t1844 - t913 * t1845;
+        let t1829 = omega_y * 174.0;
         let t1847 = t1829 - t889 * t1843 - t901 * t1844 - t915 * t1845 - t928 * t1846;
+        let t1830 = omega_z * t410;
+        let t1828 = omega_z * 174.0;
         let t1848 = t1830 - t890 * t1843 - t903 * t1844 - t917 * t1845 - t930 * t1846
             + t935 * t1828 - t944 * t1847;
+        let t1831 = 2.0 * t468;
+        let t1832 = 2.0 * t491;
+        let t1833 = 2.0 * t519;
+        let t1835 = 2.0 * t557;
+        let t1837 = 2.0 * t591;
+        let t1838 = 2.0 * t616;
+        let t1839 = 3.0 * t639;
+        let t1840 = 3.0 * t659;
+        let t1841 = 3.0 * t686;
+        let t1842 = 3.0 * t718;
         let t1849 = -(t452 - t454) - t1831 - t1832 - t1833 - t1835 - t1837 - t1838
             - t1839 - t1840 - t1841 - t1842 - t891 * t1843 - t905 * t1844 - t919 * t1845
             - t932 * t1846 - t946 * t1847 - t958 * t1848;
@@ -4786,38 +4786,26 @@ impl Mer {
             - t919 * t1851 - t921 * t1850;
         let t1856 = t895 * t1844 + t897 * t1855 - t899 * t1854 - t901 * t1853
             - t903 * t1852 - t905 * t1851 - t907 * t1850;
-        let t1857 = omega_x * 174.0;
-        let t1858 = omega_z * t415;
-        let t1859 = omega_x * t417;
-        let t1860 = 2.0 * t467;
-        let t1861 = 2.0 * t483;
-        let t1862 = 2.0 * t490;
-        let t1863 = 2.0 * t503;
-        let t1864 = 2.0 * t518;
-        let t1865 = 2.0 * t529;
-        let t1866 = 2.0 * t541;
-        let t1867 = 2.0 * t556;
         let t1868 = 2.0 * t567;
-        let t1869 = 2.0 * t579;
-        let t1870 = 2.0 * t590;
-        let t1871 = 2.0 * t604;
-        let t1872 = 2.0 * t615;
-        let t1873 = 2.0 * t629;
-        let t1874 = 3.0 * t638;
+        let t1865 = 2.0 * t529;
+        let t1861 = 2.0 * t483;
+        let t1863 = 2.0 * t503;
         let t1875 = 3.0 * t651;
-        let t1876 = 3.0 * t658;
         let t1877 = 3.0 * t671;
-        let t1878 = 3.0 * t685;
         let t1879 = 3.0 * t695;
-        let t1880 = 3.0 * t705;
-        let t1881 = 3.0 * t717;
         let t1882 = 3.0 * t727;
         let t1883 = -t1861 - t1863 - t1865 - t1868 - t1865 - t1868 - t1875 - t1877
             - t1879 - t1882;
-        let t1884 = 3.0 * t737;
+        let t1866 = 2.0 * t541;
+        let t1871 = 2.0 * t604;
+        let t1880 = 3.0 * t705;
         let t1885 = -t1866 - t1871 - t1880 - t886 * t1883;
+        let t1869 = 2.0 * t579;
+        let t1873 = 2.0 * t629;
+        let t1884 = 3.0 * t737;
         let t1886 = -t1869 - t1873 - t1884 - t887 * t1883 + t897 * t1885;
         let t1887 = t1828 - t888 * t1883 - t899 * t1885 - t913 * t1886;
+        let t1857 = omega_x * 174.0;
         let t1888 = -t1857 - t889 * t1883 - t901 * t1885 - t915 * t1886 - t928 * t1887;
         let t1889 = t1842
             + (t1841
@@ -4829,8 +4817,20 @@ impl Mer {
                                     + (t1833
                                         + (t1832 + (t1831 - (t454 - t452 + omega_y * t417))))))))))
             - t890 * t1883 - t903 * t1885 - t917 * t1886 - t930 * t1887 - t944 * t1888;
+        let t1858 = omega_z * t415;
+        let t1859 = omega_x * t417;
         let t1890 = -(t1858 - t1859) - t891 * t1883 - t905 * t1885 - t919 * t1886
             - t932 * t1887 - t946 * t1888 - t958 * t1889;
+        let t1860 = 2.0 * t467;
+        let t1862 = 2.0 * t490;
+        let t1864 = 2.0 * t518;
+        let t1867 = 2.0 * t556;
+        let t1870 = 2.0 * t590;
+        let t1872 = 2.0 * t615;
+        let t1874 = 3.0 * t638;
+        let t1876 = 3.0 * t658;
+        let t1878 = 3.0 * t685;
+        let t1881 = 3.0 * t717;
         let t1891 = t980
             * (-(t445 - t447 - omega_y * t415) - t1860 - t1862 - t1864 - t1867 - t1870
                 - t1872 - t1874 - t1876 - t1878 - t1881 - t892 * t1883 - t907 * t1885
@@ -4845,9 +4845,8 @@ impl Mer {
             - t919 * t1892 - t921 * t1891;
         let t1897 = t895 * t1885 + t897 * t1896 - t899 * t1895 - t901 * t1894
             - t903 * t1893 - t905 * t1892 - t907 * t1891;
-        let t1898 = omega_x * t418;
-        let t1899 = 2.0 * (t534 - t532);
         let t1900 = 2.0 * (t572 - t570);
+        let t1899 = 2.0 * (t534 - t532);
         let t1901 = t1900
             + (t1899 + (2.0 * (t488 - t486) + 2.0 * (t508 - t506) + t1899 + t1900))
             + 3.0 * (t656 - t654) + 3.0 * (t676 - t674) + 3.0 * (t698 - t696)
@@ -4869,6 +4868,7 @@ impl Mer {
                                 + (t1867 + (t1864 + (t1862 + (t1860 - (t447 - t445))))))))))
             - t891 * t1901 - t905 * t1902 - t919 * t1903 - t932 * t1904 - t946 * t1905
             - t958 * t1906;
+        let t1898 = omega_x * t418;
         let t1908 = t980
             * (-t1898 - t892 * t1901 - t907 * t1902 - t921 * t1903 - t934 * t1904
                 - t936 * t1857 - t948 * t1905 - t960 * t1906 - t970 * t1907);
@@ -4881,76 +4881,29 @@ impl Mer {
             - t919 * t1909 - t921 * t1908;
         let t1914 = t895 * t1902 + t897 * t1913 - t899 * t1912 - t901 * t1911
             - t903 * t1910 - t905 * t1909 - t907 * t1908;
-        let t1915 = omega_y * t426;
-        let t1916 = omega_z * t425;
-        let t1917 = t22 * t468;
-        let t1918 = 2.0 * (0.6 * t467);
-        let t1919 = 2.0 * (-(t22 * t467) - t11 * t468);
+        let t1998 = s_theta / c_phi;
         let t1920 = t22 * t483;
         let t1921 = t21 * t466;
-        let t1922 = t44 * t491;
-        let t1923 = 2.0 * (0.6 * t490);
-        let t1924 = 2.0 * (-(t44 * t490) - t33 * t491);
         let t1925 = t44 * t503;
         let t1926 = t43 * t489;
-        let t1927 = t88 * t519;
-        let t1928 = 2.0 * (0.6 * t518);
-        let t1929 = 2.0 * (-(t88 * t518) - t77 * t519);
-        let t1930 = yd_rocker * (0.6 * t64);
         let t1931 = t88 * t529;
         let t1932 = t65 * t509;
         let t1933 = 0.6 * t534;
-        let t1934 = t88 * t541;
-        let t1935 = t87 * t509;
-        let t1936 = t138 * t557;
-        let t1937 = 2.0 * (0.6 * t556);
-        let t1938 = 2.0 * (-(t138 * t556) - t127 * t557);
+        let t1930 = yd_rocker * (0.6 * t64);
         let t1939 = yd_rocker * (0.6 * t114);
         let t1940 = t138 * t567;
         let t1941 = t115 * t547;
         let t1942 = 0.6 * t572;
-        let t1943 = t138 * t579;
-        let t1944 = t137 * t547;
-        let t1945 = t166 * t591;
-        let t1946 = 2.0 * (0.6 * t590);
-        let t1947 = 2.0 * (-(t166 * t590) - t155 * t591);
         let t1948 = t65 * t585;
         let t1949 = t166 * t529;
-        let t1950 = t166 * t604;
-        let t1951 = t165 * t585;
-        let t1952 = t188 * t616;
-        let t1953 = 2.0 * (0.6 * t615);
-        let t1954 = 2.0 * (-(t188 * t615) - t177 * t616);
         let t1955 = t115 * t610;
         let t1956 = t188 * t567;
-        let t1957 = t188 * t629;
-        let t1958 = t187 * t610;
-        let t1959 = t210 * t639;
-        let t1960 = 3.0 * (0.55 * t638);
-        let t1961 = 3.0 * (-(t210 * t638) - t199 * t639);
         let t1962 = t210 * t651;
         let t1963 = t209 * t637;
-        let t1964 = t232 * t659;
-        let t1965 = 3.0 * (0.55 * t658);
-        let t1966 = 3.0 * (-(t232 * t658) - t221 * t659);
         let t1967 = t232 * t671;
         let t1968 = t231 * t657;
-        let t1969 = t264 * t686;
-        let t1970 = 3.0 * (0.58 * t685);
-        let t1971 = 3.0 * (-(t264 * t685) - t253 * t686);
         let t1972 = t264 * t695;
         let t1973 = t242 * t679;
-        let t1974 = t264 * t705;
-        let t1975 = t263 * t679;
-        let t1976 = t296 * t718;
-        let t1977 = t1842
-            + (t1841
-                + (t1840
-                    + (t1839
-                        + (t1838
-                            + (t1837 + (t1835 + (t1833 + (t1832 + (t454 + t1831)))))))));
-        let t1978 = 3.0 * (0.58 * t717);
-        let t1979 = 3.0 * (-(t296 * t717) - t285 * t718);
         let t1980 = t296 * t727;
         let t1981 = t274 * t711;
         let t1982 = 2.0 * (0.6 * t488 - (t1921 - t1920) - yd_rocker * (0.6 * t20))
@@ -4963,12 +4916,22 @@ impl Mer {
             + 3.0 * (yd_rocker * (0.55 * t230) + (-(t1968 - t1967) - 0.55 * t676))
             + 3.0 * (0.58 * t698 - (t1973 - t1972) - yd_rocker * (0.58 * t241))
             + 3.0 * (yd_rocker * (0.58 * t273) + (-(t1981 - t1980) - 0.58 * t730));
-        let t1983 = t296 * t737;
-        let t1984 = t295 * t711;
+        let t1934 = t88 * t541;
+        let t1935 = t87 * t509;
+        let t1950 = t166 * t604;
+        let t1951 = t165 * t585;
+        let t1974 = t264 * t705;
+        let t1975 = t263 * t679;
         let t1985 = 2.0 * (0.6 * t546 - (t1935 - t1934) - yd_bogie_left * (0.6 * t86))
             + 2.0 * (0.6 * t609 - (t1951 - t1950) - yd_bogie_left * (0.6 * t164))
             + 3.0 * (0.58 * t710 - (t1975 - t1974) - yd_bogie_left * (0.58 * t262))
             - t886 * t1982;
+        let t1943 = t138 * t579;
+        let t1944 = t137 * t547;
+        let t1957 = t188 * t629;
+        let t1958 = t187 * t610;
+        let t1983 = t296 * t737;
+        let t1984 = t295 * t711;
         let t1986 = 2.0
             * (yd_bogie_right * (0.6 * t136) + (-(t1944 - t1943) - 0.6 * t584))
             + 2.0 * (yd_bogie_right * (0.6 * t186) + (-(t1958 - t1957) - 0.6 * t634))
@@ -4977,15 +4940,53 @@ impl Mer {
         let t1987 = t1858 - t888 * t1982 - t899 * t1985 - t913 * t1986;
         let t1988 = -(t449 + t451) - t889 * t1982 - t901 * t1985 - t915 * t1986
             - t928 * t1987;
+        let t1915 = omega_y * t426;
+        let t1916 = omega_z * t425;
+        let t1917 = t22 * t468;
+        let t1922 = t44 * t491;
+        let t1927 = t88 * t519;
+        let t1936 = t138 * t557;
+        let t1945 = t166 * t591;
+        let t1952 = t188 * t616;
+        let t1959 = t210 * t639;
+        let t1964 = t232 * t659;
+        let t1969 = t264 * t686;
+        let t1976 = t296 * t718;
+        let t1977 = t1842
+            + (t1841
+                + (t1840
+                    + (t1839
+                        + (t1838
+                            + (t1837 + (t1835 + (t1833 + (t1832 + (t454 + t1831)))))))));
         let t1989 = -(t1915 - t1916 - vz * t415) - 2.0 * (t1917 + t1917)
             - 2.0 * (t1922 + t1922) - 2.0 * (t1927 + t1927) - 2.0 * (t1936 + t1936)
             - 2.0 * (t1945 + t1945) - 2.0 * (t1952 + t1952) - 3.0 * (t1959 + t1959)
             - 3.0 * (t1964 + t1964) - 3.0 * (t1969 + t1969) - 3.0 * (t1976 + t1976)
             - t890 * t1982 - t903 * t1985 - t917 * t1986 - t930 * t1987 - t935 * t1977
             - t944 * t1988;
+        let t1918 = 2.0 * (0.6 * t467);
+        let t1923 = 2.0 * (0.6 * t490);
+        let t1928 = 2.0 * (0.6 * t518);
+        let t1937 = 2.0 * (0.6 * t556);
+        let t1946 = 2.0 * (0.6 * t590);
+        let t1953 = 2.0 * (0.6 * t615);
+        let t1960 = 3.0 * (0.55 * t638);
+        let t1965 = 3.0 * (0.55 * t658);
+        let t1970 = 3.0 * (0.58 * t685);
+        let t1978 = 3.0 * (0.58 * t717);
         let t1990 = t1918 - (omega_z * t424 - (t461 + t463)) - t1923 + t1928 - t1937
             + t1946 - t1953 + t1960 - t1965 + t1970 - t1978 - t891 * t1982 - t905 * t1985
             - t919 * t1986 - t932 * t1987 - t946 * t1988 - t958 * t1989;
+        let t1919 = 2.0 * (-(t22 * t467) - t11 * t468);
+        let t1924 = 2.0 * (-(t44 * t490) - t33 * t491);
+        let t1929 = 2.0 * (-(t88 * t518) - t77 * t519);
+        let t1938 = 2.0 * (-(t138 * t556) - t127 * t557);
+        let t1947 = 2.0 * (-(t166 * t590) - t155 * t591);
+        let t1954 = 2.0 * (-(t188 * t615) - t177 * t616);
+        let t1961 = 3.0 * (-(t210 * t638) - t199 * t639);
+        let t1966 = 3.0 * (-(t232 * t658) - t221 * t659);
+        let t1971 = 3.0 * (-(t264 * t685) - t253 * t686);
+        let t1979 = 3.0 * (-(t296 * t717) - t285 * t718);
         let t1991 = t980
             * (-(vx * t415 + (t458 + t460 - omega_y * t424)) - t1919 - t1924 - t1929
                 - t1938 - t1947 - t1954 - t1961 - t1966 - t1971 - t1979 - t892 * t1982
@@ -5000,99 +5001,46 @@ impl Mer {
             - t919 * t1992 - t921 * t1991;
         let t1997 = t895 * t1985 + t897 * t1996 - t899 * t1995 - t901 * t1994
             - t903 * t1993 - t905 * t1992 - t907 * t1991;
-        let t1998 = s_theta / c_phi;
-        let t1999 = t1830 - t1898;
-        let t2000 = omega_x * t433;
-        let t2001 = t11 * t467;
-        let t2002 = t1917 + t2001;
-        let t2003 = 2.0 * (0.6 * t468);
-        let t2004 = t10 * t468;
-        let t2005 = t21 * t467;
         let t2006 = t21 * t469;
         let t2007 = t10 * t470;
-        let t2008 = t33 * t490;
-        let t2009 = t1922 + t2008;
-        let t2010 = 2.0 * (0.6 * t491);
-        let t2011 = t32 * t491;
-        let t2012 = t43 * t490;
+        let t2004 = t10 * t468;
+        let t2005 = t21 * t467;
         let t2013 = t43 * t492;
         let t2014 = t32 * t493;
-        let t2015 = t77 * t518;
-        let t2016 = t1927 + t2015;
-        let t2017 = 2.0 * (0.6 * t519);
-        let t2018 = t54 * t519;
-        let t2019 = t65 * t518;
+        let t2011 = t32 * t491;
+        let t2012 = t43 * t490;
         let t2020 = t65 * t514;
         let t2021 = t54 * t515;
-        let t2022 = t76 * t519;
-        let t2023 = t87 * t518;
-        let t2024 = t87 * t514;
-        let t2025 = t76 * t515;
-        let t2026 = t127 * t556;
-        let t2027 = t1936 + t2026;
-        let t2028 = 2.0 * (0.6 * t557);
-        let t2029 = t104 * t557;
-        let t2030 = t115 * t556;
+        let t2018 = t54 * t519;
+        let t2019 = t65 * t518;
         let t2031 = t115 * t552;
         let t2032 = t104 * t553;
-        let t2033 = t126 * t557;
-        let t2034 = t137 * t556;
-        let t2035 = t137 * t552;
-        let t2036 = t126 * t553;
-        let t2037 = t155 * t590;
-        let t2038 = t1945 + t2037;
-        let t2039 = 2.0 * (0.6 * t591);
-        let t2040 = t54 * t591;
-        let t2041 = t65 * t590;
+        let t2029 = t104 * t557;
+        let t2030 = t115 * t556;
         let t2042 = t65 * t588;
         let t2043 = t54 * t589;
-        let t2044 = t154 * t591;
-        let t2045 = t165 * t590;
-        let t2046 = t165 * t588;
-        let t2047 = t154 * t589;
-        let t2048 = t177 * t615;
-        let t2049 = t1952 + t2048;
-        let t2050 = 2.0 * (0.6 * t616);
-        let t2051 = t104 * t616;
-        let t2052 = t115 * t615;
+        let t2040 = t54 * t591;
+        let t2041 = t65 * t590;
         let t2053 = t115 * t613;
         let t2054 = t104 * t614;
-        let t2055 = t176 * t616;
-        let t2056 = t187 * t615;
-        let t2057 = t187 * t613;
-        let t2058 = t176 * t614;
-        let t2059 = t199 * t638;
-        let t2060 = t1959 + t2059;
-        let t2061 = 3.0 * (0.55 * t639);
-        let t2062 = t198 * t639;
-        let t2063 = t209 * t638;
+        let t2051 = t104 * t616;
+        let t2052 = t115 * t615;
         let t2064 = t209 * t640;
         let t2065 = t198 * t641;
-        let t2066 = t221 * t658;
-        let t2067 = t1964 + t2066;
-        let t2068 = 3.0 * (0.55 * t659);
-        let t2069 = t220 * t659;
-        let t2070 = t231 * t658;
+        let t2062 = t198 * t639;
+        let t2063 = t209 * t638;
         let t2071 = t231 * t660;
         let t2072 = t220 * t661;
-        let t2073 = t253 * t685;
-        let t2074 = t1969 + t2073;
-        let t2075 = 3.0 * (0.58 * t686);
-        let t2076 = t54 * t686;
-        let t2077 = t242 * t685;
+        let t2069 = t220 * t659;
+        let t2070 = t231 * t658;
         let t2078 = t242 * t683;
         let t2079 = t54 * t684;
-        let t2080 = t252 * t686;
-        let t2081 = t263 * t685;
-        let t2082 = t263 * t683;
-        let t2083 = t252 * t684;
-        let t2084 = t285 * t717;
-        let t2085 = t1976 + t2084;
-        let t2086 = 3.0 * (0.58 * t718);
-        let t2087 = t104 * t718;
-        let t2088 = t274 * t717;
+        let t2076 = t54 * t686;
+        let t2077 = t242 * t685;
         let t2089 = t274 * t715;
         let t2090 = t104 * t716;
+        let t2087 = t104 * t718;
+        let t2088 = t274 * t717;
         let t2091 = 2.0
             * (t22 * t487 + t2006 + (-(t11 * t488) - t2007)
                 - (yd_rocker * (t9 * t22 - t11 * t20) + (t2004 - t2005)))
@@ -5123,10 +5071,18 @@ impl Mer {
             + 3.0
                 * (t296 * t729 + t2089 + (-(t285 * t730) - t2090)
                     - (yd_rocker * (t103 * t296 - t273 * t285) + (t2087 - t2088)));
-        let t2092 = t284 * t718;
-        let t2093 = t295 * t717;
-        let t2094 = t295 * t715;
-        let t2095 = t284 * t716;
+        let t2024 = t87 * t514;
+        let t2025 = t76 * t515;
+        let t2022 = t76 * t519;
+        let t2023 = t87 * t518;
+        let t2046 = t165 * t588;
+        let t2047 = t154 * t589;
+        let t2044 = t154 * t591;
+        let t2045 = t165 * t590;
+        let t2082 = t263 * t683;
+        let t2083 = t252 * t684;
+        let t2080 = t252 * t686;
+        let t2081 = t263 * t685;
         let t2096 = 2.0
             * (t88 * t545 + t2024 + (-(t77 * t546) - t2025)
                 - (yd_bogie_left * (t75 * t88 - t77 * t86) + (t2022 - t2023)))
@@ -5137,6 +5093,18 @@ impl Mer {
                 * (t264 * t709 + t2082 + (-(t253 * t710) - t2083)
                     - (yd_bogie_left * (t251 * t264 - t253 * t262) + (t2080 - t2081)))
             - t886 * t2091;
+        let t2035 = t137 * t552;
+        let t2036 = t126 * t553;
+        let t2033 = t126 * t557;
+        let t2034 = t137 * t556;
+        let t2057 = t187 * t613;
+        let t2058 = t176 * t614;
+        let t2055 = t176 * t616;
+        let t2056 = t187 * t615;
+        let t2094 = t295 * t715;
+        let t2095 = t284 * t716;
+        let t2092 = t284 * t718;
+        let t2093 = t295 * t717;
         let t2097 = 2.0
             * (t138 * t583 + t2035 + (-(t127 * t584) - t2036)
                 - (yd_bogie_right * (t125 * t138 - t127 * t136) + (t2033 - t2034)))
@@ -5157,6 +5125,7 @@ impl Mer {
                             + (t1870
                                 + (t1867 + (t1864 + (t1862 + (t1860 + (t446 + t447))))))))))
             - t889 * t2091 - t901 * t2096 - t915 * t2097 - t928 * t2098;
+        let t1999 = t1830 - t1898;
         let t2100 = t1970
             + (t1960
                 + (t1946
@@ -5164,12 +5133,43 @@ impl Mer {
                         + (t1918 - (vy * t418 + (t462 + t463 - omega_z * t432)) - t1923)
                         - t1937) - t1953) - t1965) - t1978 - t890 * t2091 - t903 * t2096
             - t917 * t2097 - t930 * t2098 + t935 * t1999 - t944 * t2099;
+        let t2000 = omega_x * t433;
+        let t2001 = t11 * t467;
+        let t2002 = t1917 + t2001;
+        let t2008 = t33 * t490;
+        let t2009 = t1922 + t2008;
+        let t2015 = t77 * t518;
+        let t2016 = t1927 + t2015;
+        let t2026 = t127 * t556;
+        let t2027 = t1936 + t2026;
+        let t2037 = t155 * t590;
+        let t2038 = t1945 + t2037;
+        let t2048 = t177 * t615;
+        let t2049 = t1952 + t2048;
+        let t2059 = t199 * t638;
+        let t2060 = t1959 + t2059;
+        let t2066 = t221 * t658;
+        let t2067 = t1964 + t2066;
+        let t2073 = t253 * t685;
+        let t2074 = t1969 + t2073;
+        let t2084 = t285 * t717;
+        let t2085 = t1976 + t2084;
         let t2101 = -(vz * t410 - vx * t418 + (t1916 - t2000)) - 2.0 * (t2002 + t2002)
             - 2.0 * (t2009 + t2009) - 2.0 * (t2016 + t2016) - 2.0 * (t2027 + t2027)
             - 2.0 * (t2038 + t2038) - 2.0 * (t2049 + t2049) - 3.0 * (t2060 + t2060)
             - 3.0 * (t2067 + t2067) - 3.0 * (t2074 + t2074) - 3.0 * (t2085 + t2085)
             - t891 * t2091 - t905 * t2096 - t919 * t2097 - t932 * t2098 - t946 * t2099
             - t958 * t2100;
+        let t2003 = 2.0 * (0.6 * t468);
+        let t2010 = 2.0 * (0.6 * t491);
+        let t2017 = 2.0 * (0.6 * t519);
+        let t2028 = 2.0 * (0.6 * t557);
+        let t2039 = 2.0 * (0.6 * t591);
+        let t2050 = 2.0 * (0.6 * t616);
+        let t2061 = 3.0 * (0.55 * t639);
+        let t2068 = 3.0 * (0.55 * t659);
+        let t2075 = 3.0 * (0.58 * t686);
+        let t2086 = 3.0 * (0.58 * t718);
         let t2102 = t980
             * (t2003 - (omega_x * t432 - (t455 + t457) - vy * t410) - t2010 + t2017
                 - t2028 + t2039 - t2050 + t2061 - t2068 + t2075 - t2086 - t892 * t2091
@@ -5184,6 +5184,7 @@ impl Mer {
             - t919 * t2103 - t921 * t2102;
         let t2108 = t895 * t2096 + t897 * t2107 - t899 * t2106 - t901 * t2105
             - t903 * t2104 - t905 * t2103 - t907 * t2102;
+        let t2160 = c_theta / c_phi;
         let t2109 = t11 * t483;
         let t2110 = t10 * t466;
         let t2111 = t33 * t503;
@@ -5192,32 +5193,20 @@ impl Mer {
         let t2114 = 0.6 * t533;
         let t2115 = t77 * t529;
         let t2116 = t54 * t509;
-        let t2117 = t77 * t541;
-        let t2118 = t76 * t509;
-        let t2119 = yd_rocker * (0.6 * t103);
         let t2120 = 0.6 * t571;
         let t2121 = t127 * t567;
         let t2122 = t104 * t547;
-        let t2123 = t127 * t579;
-        let t2124 = t126 * t547;
+        let t2119 = yd_rocker * (0.6 * t103);
         let t2125 = t54 * t585;
         let t2126 = t155 * t529;
-        let t2127 = t155 * t604;
-        let t2128 = t154 * t585;
         let t2129 = t104 * t610;
         let t2130 = t177 * t567;
-        let t2131 = t177 * t629;
-        let t2132 = t176 * t610;
         let t2133 = t199 * t651;
         let t2134 = t198 * t637;
         let t2135 = t221 * t671;
         let t2136 = t220 * t657;
         let t2137 = t253 * t695;
         let t2138 = t54 * t679;
-        let t2139 = t253 * t705;
-        let t2140 = t252 * t679;
-        let t2141 = -t447 - t1860 - t1862 - t1864 - t1867 - t1870 - t1872 - t1874 - t1876
-            - t1878 - t1881;
         let t2142 = t285 * t727;
         let t2143 = t104 * t711;
         let t2144 = 2.0 * (yd_rocker * (0.6 * t9) + (-(0.6 * t487) - (t2109 - t2110)))
@@ -5230,19 +5219,31 @@ impl Mer {
             + 3.0 * (0.55 * t675 - (t2135 - t2136) - yd_rocker * (0.55 * t219))
             + 3.0 * (yd_rocker * (t53 * 0.58) + (-(0.58 * t697) - (t2137 - t2138)))
             + 3.0 * (0.58 * t729 - (t2142 - t2143) - yd_rocker * (t103 * 0.58));
-        let t2145 = t285 * t737;
-        let t2146 = t284 * t711;
+        let t2117 = t77 * t541;
+        let t2118 = t76 * t509;
+        let t2127 = t155 * t604;
+        let t2128 = t154 * t585;
+        let t2139 = t253 * t705;
+        let t2140 = t252 * t679;
         let t2147 = 2.0
             * (yd_bogie_left * (0.6 * t75) + (-(0.6 * t545) - (t2117 - t2118)))
             + 2.0 * (yd_bogie_left * (0.6 * t153) + (-(0.6 * t608) - (t2127 - t2128)))
             + 3.0 * (yd_bogie_left * (0.58 * t251) + (-(0.58 * t709) - (t2139 - t2140)))
             - t886 * t2144;
+        let t2123 = t127 * t579;
+        let t2124 = t126 * t547;
+        let t2131 = t177 * t629;
+        let t2132 = t176 * t610;
+        let t2145 = t285 * t737;
+        let t2146 = t284 * t711;
         let t2148 = 2.0 * (0.6 * t583 - (t2123 - t2124) - yd_bogie_right * (0.6 * t125))
             + 2.0 * (0.6 * t633 - (t2131 - t2132) - yd_bogie_right * (0.6 * t175))
             + 3.0 * (0.58 * t741 - (t2145 - t2146) - yd_bogie_right * (0.58 * t283))
             - t887 * t2144 + t897 * t2147;
         let t2149 = t450 + t451 - t888 * t2144 - t899 * t2147 - t913 * t2148;
         let t2150 = -t1859 - t889 * t2144 - t901 * t2147 - t915 * t2148 - t928 * t2149;
+        let t2141 = -t447 - t1860 - t1862 - t1864 - t1867 - t1870 - t1872 - t1874 - t1876
+            - t1878 - t1881;
         let t2151 = -t1919 - (omega_y * t440 - (t459 + t460) - vz * t417) - t1924 - t1929
             - t1938 - t1947 - t1954 - t1961 - t1966 - t1971 - t1979 - t890 * t2144
             - t903 * t2147 - t917 * t2148 - t930 * t2149 - t935 * t2141 - t944 * t2150;
@@ -5268,53 +5269,37 @@ impl Mer {
             - t919 * t2154 - t921 * t2153;
         let t2159 = t895 * t2147 + t897 * t2158 - t899 * t2157 - t901 * t2156
             - t903 * t2155 - t905 * t2154 - t907 * t2153;
-        let t2160 = c_theta / c_phi;
         let t2161 = yd_rocker + yd_rocker;
-        let t2162 = t480 + t9 * t2161;
-        let t2163 = t20 * t2161 - t484;
-        let t2164 = t500 + t31 * t2161;
-        let t2165 = t42 * t2161 - t504;
-        let t2166 = t53 * t2161;
-        let t2167 = t526 + t2166;
-        let t2168 = t64 * t2161 - t530;
-        let t2169 = 0.6 * t2168;
-        let t2170 = 0.6 * t2167;
-        let t2171 = 2.0 * t2167;
-        let t2172 = 2.0 * t2168;
-        let t2173 = t53 * t54;
-        let t2174 = yd_rocker * (t2173 + t64 * t65);
-        let t2175 = t54 * t2167 + t65 * t2168;
-        let t2176 = t54 * t533;
-        let t2177 = t65 * t534;
         let t2178 = t103 * t2161;
         let t2179 = t564 + t2178;
-        let t2180 = t114 * t2161 - t568;
-        let t2181 = 0.6 * t2180;
-        let t2182 = 0.6 * t2179;
         let t2183 = 2.0 * t2179;
-        let t2184 = 2.0 * t2180;
-        let t2185 = t103 * t104;
-        let t2186 = yd_rocker * (t2185 + t114 * t115);
-        let t2187 = t104 * t2179 + t115 * t2180;
+        let t2166 = t53 * t2161;
+        let t2167 = t526 + t2166;
+        let t2171 = 2.0 * t2167;
+        let t2162 = t480 + t9 * t2161;
+        let t2164 = t500 + t31 * t2161;
+        let t2190 = t648 + t197 * t2161;
+        let t2192 = t668 + t219 * t2161;
+        let t2194 = t693 + t2166;
+        let t2196 = t725 + t2178;
+        let t2163 = t20 * t2161 - t484;
+        let t2165 = t42 * t2161 - t504;
+        let t2176 = t54 * t533;
+        let t2177 = t65 * t534;
+        let t2173 = t53 * t54;
+        let t2174 = yd_rocker * (t2173 + t64 * t65);
+        let t2168 = t64 * t2161 - t530;
+        let t2175 = t54 * t2167 + t65 * t2168;
         let t2188 = t104 * t571;
         let t2189 = t115 * t572;
-        let t2190 = t648 + t197 * t2161;
+        let t2185 = t103 * t104;
+        let t2186 = yd_rocker * (t2185 + t114 * t115);
+        let t2180 = t114 * t2161 - t568;
+        let t2187 = t104 * t2179 + t115 * t2180;
         let t2191 = t208 * t2161 - t652;
-        let t2192 = t668 + t219 * t2161;
         let t2193 = t230 * t2161 - t672;
-        let t2194 = t693 + t2166;
         let t2195 = t241 * t2161 - t530;
-        let t2196 = t725 + t2178;
         let t2197 = t273 * t2161 - t568;
-        let t2198 = t1882
-            + (t1879
-                + (t1877
-                    + (t1875
-                        + (t1868
-                            + (t1865
-                                + (t1868
-                                    + (t1865
-                                        + (t1863 + (t1861 - (t1301 - omega_x * t420))))))))));
         let t2199 = 2.0
             * (t477 + t10 * t487 + (t478 + t21 * t488)
                 - (t479 + yd_rocker * (t9 * t10 + t20 * t21)
@@ -5371,9 +5356,22 @@ impl Mer {
         let t2202 = -t1299 - 2.0 * t2162 - 2.0 * t2164 - t2171 - t2183 - t2171 - t2183
             - 3.0 * t2190 - 3.0 * t2192 - 3.0 * t2194 - 3.0 * t2196 - t888 * t2199
             - t899 * t2200 - t913 * t2201;
+        let t2184 = 2.0 * t2180;
+        let t2172 = 2.0 * t2168;
         let t2203 = omega_y * t412 - 2.0 * t2163 - 2.0 * t2165 - t2172 - t2184 - t2172
             - t2184 - 3.0 * t2191 - 3.0 * t2193 - 3.0 * t2195 - 3.0 * t2197
             - t889 * t2199 - t901 * t2200 - t915 * t2201 - t928 * t2202;
+        let t2169 = 0.6 * t2168;
+        let t2181 = 0.6 * t2180;
+        let t2198 = t1882
+            + (t1879
+                + (t1877
+                    + (t1875
+                        + (t1868
+                            + (t1865
+                                + (t1868
+                                    + (t1865
+                                        + (t1863 + (t1861 - (t1301 - omega_x * t420))))))))));
         let t2204 = -(vy * t420 + (t1304 - omega_z * t436))
             - 2.0 * (t1920 + 0.6 * t2163 - t1921) - 2.0 * (t1925 - 0.6 * t2165 - t1926)
             - 2.0 * (t1931 + t2169 - t1932) - 2.0 * (t1940 - t2181 - t1941)
@@ -5395,6 +5393,8 @@ impl Mer {
             - 3.0 * (t2087 + t2089 - (t2088 + t2090) + (t296 * t2196 - t285 * t2197))
             - t891 * t2199 - t905 * t2200 - t919 * t2201 - t932 * t2202 - t946 * t2203
             - t958 * t2204;
+        let t2170 = 0.6 * t2167;
+        let t2182 = 0.6 * t2179;
         let t2206 = t980
             * (-(omega_x * t436 - omega_y * t428 - t1309)
                 - 2.0 * (t2110 + (-t2109 - 0.6 * t2162))
@@ -5418,12 +5418,11 @@ impl Mer {
             - t903 * t2208 - t905 * t2207 - t907 * t2206;
         let t2213 = yd_bogie_left + yd_bogie_left;
         let t2214 = t538 + t75 * t2213;
-        let t2215 = t86 * t2213 - t542;
         let t2216 = t601 + t153 * t2213;
-        let t2217 = t164 * t2213 - t605;
         let t2218 = t702 + t251 * t2213;
+        let t2215 = t86 * t2213 - t542;
+        let t2217 = t164 * t2213 - t605;
         let t2219 = t262 * t2213 - t706;
-        let t2220 = t1880 + (t1871 + (t1866 - (t1562 - omega_x * t396)));
         let t2221 = 2.0
             * (t76 * t533 + t87 * t534
                 - (yd_rocker * (t53 * t76 + t64 * t87) + (t54 * t2214 + t65 * t2215)))
@@ -5453,6 +5452,7 @@ impl Mer {
             - t899 * t2222 - t913 * t2223;
         let t2225 = omega_y * t392 - 2.0 * t2215 - 2.0 * t2217 - 3.0 * t2219
             - t889 * t2221 - t901 * t2222 - t915 * t2223 - t928 * t2224;
+        let t2220 = t1880 + (t1871 + (t1866 - (t1562 - omega_x * t396)));
         let t2226 = -(vy * t396 + (t1565 - omega_z * t406))
             - 2.0 * (t1934 + 0.6 * t2215 - t1935) - 2.0 * (t1950 + 0.6 * t2217 - t1951)
             - 3.0 * (t1974 + 0.58 * t2219 - t1975) - t890 * t2221 - t903 * t2222
@@ -5481,12 +5481,11 @@ impl Mer {
             - t903 * t2230 - t905 * t2229 - t907 * t2228;
         let t2235 = yd_bogie_right + yd_bogie_right;
         let t2236 = t576 + t125 * t2235;
-        let t2237 = t136 * t2235 - t580;
         let t2238 = t626 + t175 * t2235;
-        let t2239 = t186 * t2235 - t630;
         let t2240 = t734 + t283 * t2235;
+        let t2237 = t136 * t2235 - t580;
+        let t2239 = t186 * t2235 - t630;
         let t2241 = t294 * t2235 - t738;
-        let t2242 = t1884 + (t1873 + (t1869 - (t1727 - omega_x * t422)));
         let t2243 = 2.0
             * (t126 * t571 + t137 * t572
                 - (yd_rocker * (t103 * t126 + t114 * t137)
@@ -5517,6 +5516,7 @@ impl Mer {
             + t899 * t2244 - t913 * t2245;
         let t2247 = omega_y * t414 - 2.0 * t2237 - 2.0 * t2239 - 3.0 * t2241
             - t889 * t2243 + t901 * t2244 - t915 * t2245 - t928 * t2246;
+        let t2242 = t1884 + (t1873 + (t1869 - (t1727 - omega_x * t422)));
         let t2248 = -(vy * t422 + (t1730 - omega_z * t439))
             - 2.0 * (t1943 - 0.6 * t2237 - t1944) - 2.0 * (t1957 - 0.6 * t2239 - t1958)
             - 3.0 * (t1983 - 0.58 * t2241 - t1984) - t890 * t2243 + t903 * t2244

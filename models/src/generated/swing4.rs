@@ -73,291 +73,304 @@ impl Swing4 {
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
         // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
         let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
-        let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
-        let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_left_z = loads[2].moment[2];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let mu_rear_right_x = loads[3].moment[0];
-        let mu_rear_right_y = loads[3].moment[1];
-        let mu_rear_right_z = loads[3].moment[2];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let y0_y1 = self.neutral[0];
-        let y0_y2 = self.neutral[1];
-        let y0_y3 = self.neutral[2];
-        let y0_y4 = self.neutral[3];
         let t1 = y1 + 0.30019663134302466;
         let t2 = t1 * 0.002464233750367055;
         let t3 = t2 + 0.03184261207074479;
-        let t4 = t2 + t3;
         let t5 = t1 * t3 - 0.029570805004404663;
-        let t6 = t5 + t1 * t4;
         let t7 = t1 * t5 - 0.19105567242446875;
-        let t8 = t1 * (t1 * 0.00492846750073411 + 2.0 * t4) + 2.0 * t6;
+        let t4 = t2 + t3;
+        let t6 = t5 + t1 * t4;
         let t9 = t7 + t1 * t6;
-        let t10 = 0.23914161000880932 + t1 * t7;
         let t11 = t1 * 0.007960653017686198;
         let t12 = 0.00985693500146822 - t11;
-        let t13 = t12 - t11;
         let t14 = t1 * t12 + 0.09552783621223437;
-        let t15 = t14 + t1 * t13;
         let t16 = t1 * t14 - 0.059141610008809326;
-        let t17 = t1 * (2.0 * t13 - t1 * 0.015921306035372396) + 2.0 * t15;
+        let t13 = t12 - t11;
+        let t15 = t14 + t1 * t13;
         let t18 = t16 + t1 * t15;
-        let t19 = t1 * t16 - 0.20105567242446876;
+        let t86 = 0.6 * (t9 * t9 + t18 * t18);
+        let y2 = x[7];
         let t20 = y2 + 0.30019663134302466;
         let t21 = 0.002464233750367055 * t20;
         let t22 = 0.03184261207074479 + t21;
-        let t23 = t21 + t22;
         let t24 = t20 * t22 - 0.029570805004404663;
-        let t25 = t24 + t20 * t23;
         let t26 = t20 * t24 - 0.19105567242446875;
-        let t27 = t20 * (0.00492846750073411 * t20 + 2.0 * t23) + 2.0 * t25;
+        let t23 = t21 + t22;
+        let t25 = t24 + t20 * t23;
         let t28 = t26 + t20 * t25;
-        let t29 = 0.23914161000880932 + t20 * t26;
         let t30 = 0.007960653017686198 * t20;
         let t31 = 0.00985693500146822 - t30;
-        let t32 = t31 - t30;
         let t33 = 0.09552783621223437 + t20 * t31;
-        let t34 = t33 + t20 * t32;
         let t35 = t20 * t33 - 0.059141610008809326;
-        let t36 = t20 * (2.0 * t32 - 0.015921306035372396 * t20) + 2.0 * t34;
+        let t32 = t31 - t30;
+        let t34 = t33 + t20 * t32;
         let t37 = t35 + t20 * t34;
-        let t38 = t20 * t35 - 0.20105567242446876;
+        let t96 = 0.6 * (t28 * t28 + t37 * t37);
+        let y3 = x[8];
         let t39 = y3 - 0.30019663134302466;
         let t40 = 0.002464233750367055 * t39;
         let t41 = 0.03184261207074479 - t40;
-        let t42 = t41 - t40;
         let t43 = t39 * t41 + 0.029570805004404663;
-        let t44 = t43 + t39 * t42;
         let t45 = t39 * t43 - 0.19105567242446875;
-        let t46 = t39 * (2.0 * t42 - 0.00492846750073411 * t39) + 2.0 * t44;
+        let t42 = t41 - t40;
+        let t44 = t43 + t39 * t42;
         let t47 = t45 + t39 * t44;
-        let t48 = t39 * t45 - 0.2791416100088093;
         let t49 = 0.007960653017686198 * t39;
         let t50 = -0.00985693500146822 - t49;
-        let t51 = t50 - t49;
         let t52 = 0.09552783621223437 + t39 * t50;
-        let t53 = t52 + t39 * t51;
         let t54 = t39 * t52 + 0.059141610008809326;
-        let t55 = t39 * (2.0 * t51 - 0.015921306035372396 * t39) + 2.0 * t53;
+        let t51 = t50 - t49;
+        let t53 = t52 + t39 * t51;
         let t56 = t54 + t39 * t53;
-        let t57 = t39 * t54 - 0.20105567242446876;
+        let t106 = 0.6 * (t47 * t47 + t56 * t56);
+        let y4 = x[9];
         let t58 = y4 - 0.30019663134302466;
         let t59 = 0.002464233750367055 * t58;
         let t60 = 0.03184261207074479 - t59;
-        let t61 = t60 - t59;
         let t62 = 0.029570805004404663 + t58 * t60;
-        let t63 = t62 + t58 * t61;
         let t64 = t58 * t62 - 0.19105567242446875;
-        let t65 = t58 * (2.0 * t61 - 0.00492846750073411 * t58) + 2.0 * t63;
+        let t61 = t60 - t59;
+        let t63 = t62 + t58 * t61;
         let t66 = t64 + t58 * t63;
-        let t67 = t58 * t64 - 0.2791416100088093;
         let t68 = 0.007960653017686198 * t58;
         let t69 = -0.00985693500146822 - t68;
-        let t70 = t69 - t68;
         let t71 = 0.09552783621223437 + t58 * t69;
-        let t72 = t71 + t58 * t70;
         let t73 = 0.059141610008809326 + t58 * t71;
-        let t74 = t58 * (2.0 * t70 - 0.015921306035372396 * t58) + 2.0 * t72;
+        let t70 = t69 - t68;
+        let t72 = t71 + t58 * t70;
         let t75 = t73 + t58 * t72;
-        let t76 = t58 * t73 - 0.20105567242446876;
-        let t77 = t19 * 0.6;
+        let t126 = 0.6 * (t66 * t66 + t75 * t75);
         let t78 = t9 * 0.6;
-        let t79 = t10 * 0.6;
-        let t80 = t18 * 0.6;
-        let t81 = t19 * t19;
-        let t82 = 0.6 * (0.2 * t18);
-        let t83 = t10 * t10;
-        let t84 = 0.6 * (t9 * t19 - t10 * t18);
-        let t85 = 0.6 * (0.2 * t9);
-        let t86 = 0.6 * (t9 * t9 + t18 * t18);
-        let t87 = t38 * 0.6;
+        let t231 = 1.0 / t86;
+        let t232 = t78 * t231;
+        let t255 = t86 * t232;
         let t88 = t28 * 0.6;
-        let t89 = t29 * 0.6;
-        let t90 = t37 * 0.6;
-        let t91 = t38 * t38;
-        let t92 = 0.6 * (0.2 * t37);
-        let t93 = t29 * t29;
-        let t94 = 0.6 * (t28 * t38 - t29 * t37);
-        let t95 = 0.6 * (0.2 * t28);
-        let t96 = 0.6 * (t28 * t28 + t37 * t37);
-        let t97 = t57 * 0.6;
+        let t237 = 1.0 / t96;
+        let t238 = t88 * t237;
+        let t256 = t96 * t238;
         let t98 = t47 * 0.6;
-        let t99 = t48 * 0.6;
-        let t100 = t56 * 0.6;
-        let t101 = t57 * t57;
-        let t102 = 0.6 * (0.2 * t56);
-        let t103 = t48 * t48;
-        let t104 = 0.6 * (t47 * t57 - t48 * t56);
-        let t105 = 0.6 * (0.2 * t47);
-        let t106 = 0.6 * (t47 * t47 + t56 * t56);
-        let t107 = t76 * 0.6;
-        let t108 = t77 + t87 + t97 + t107;
+        let t243 = 1.0 / t106;
+        let t244 = t98 * t243;
+        let t257 = t106 * t244;
         let t109 = t66 * 0.6;
-        let t110 = -t77 - t87 - t97 - t107;
-        let t111 = t67 * 0.6;
-        let t112 = t79 + t89 + t99 + t111;
-        let t113 = -t79 - t89 - t99 - t111;
+        let t249 = 1.0 / t126;
+        let t250 = t109 * t249;
+        let t258 = t126 * t250;
+        let t259 = 32.400000000000006 - t232 * t255 - t238 * t256 - t244 * t257
+            - t250 * t258;
+        let t80 = t18 * 0.6;
+        let t233 = t80 * t231;
+        let t267 = t86 * t233;
+        let t90 = t37 * 0.6;
+        let t239 = t90 * t237;
+        let t268 = t96 * t239;
+        let t100 = t56 * 0.6;
+        let t245 = t100 * t243;
+        let t269 = t106 * t245;
         let t114 = t75 * 0.6;
+        let t251 = t114 * t249;
+        let t270 = t126 * t251;
+        let t260 = 1.0 / t259;
+        let t261 = t260 * (-(t233 * t255) - t239 * t256 - t245 * t257 - t251 * t258);
+        let t271 = t259 * t261;
+        let t272 = 32.400000000000006 - t233 * t267 - t239 * t268 - t245 * t269
+            - t251 * t270 - t261 * t271;
+        let t19 = t1 * t16 - 0.20105567242446876;
+        let t81 = t19 * t19;
+        let t38 = t20 * t35 - 0.20105567242446876;
+        let t91 = t38 * t38;
+        let t57 = t39 * t54 - 0.20105567242446876;
+        let t101 = t57 * t57;
+        let t76 = t58 * t73 - 0.20105567242446876;
         let t115 = t76 * t76;
         let t116 = 0.7 + 0.6 * (t81 + 0.04000000000000001)
             + 0.6 * (0.04000000000000001 + t91) + 0.6 * (0.04000000000000001 + t101)
             + 0.6 * (0.04000000000000001 + t115);
-        let t117 = 0.6 * (0.2 * t29) - 0.6 * (0.2 * t10) - 0.6 * (0.2 * t48)
-            + 0.6 * (0.2 * t67);
-        let t118 = -(0.6 * (t10 * t19)) - 0.6 * (t29 * t38) - 0.6 * (t48 * t57)
-            - 0.6 * (t67 * t76);
+        let t82 = 0.6 * (0.2 * t18);
+        let t234 = t82 * t231;
+        let t277 = t86 * t234;
+        let t92 = 0.6 * (0.2 * t37);
+        let t240 = t92 * t237;
+        let t278 = t96 * t240;
+        let t102 = 0.6 * (0.2 * t56);
+        let t246 = t102 * t243;
+        let t279 = t106 * t246;
         let t119 = 0.6 * (0.2 * t75);
+        let t252 = t119 * t249;
+        let t280 = t126 * t252;
+        let t262 = t260 * (t240 * t256 - t234 * t255 - t246 * t257 + t252 * t258);
+        let t281 = t259 * t262;
+        let t77 = t19 * 0.6;
+        let t87 = t38 * 0.6;
+        let t97 = t57 * 0.6;
+        let t107 = t76 * 0.6;
+        let t110 = -t77 - t87 - t97 - t107;
+        let t265 = t110 * 0.030864197530864192;
+        let t282 = 32.400000000000006 * t265;
+        let t273 = 1.0 / t272;
+        let t274 = t273
+            * (t240 * t268 - t234 * t267 - t246 * t269 + t252 * t270 - t262 * t271);
+        let t283 = t272 * t274;
+        let t284 = t116 - t234 * t277 - t240 * t278 - t246 * t279 - t252 * t280
+            - t262 * t281 - t265 * t282 - t274 * t283;
+        let t10 = 0.23914161000880932 + t1 * t7;
+        let t83 = t10 * t10;
+        let t29 = 0.23914161000880932 + t20 * t26;
+        let t93 = t29 * t29;
+        let t48 = t39 * t45 - 0.2791416100088093;
+        let t103 = t48 * t48;
+        let t67 = t58 * t64 - 0.2791416100088093;
         let t120 = t67 * t67;
         let t121 = 0.9 + 0.6 * (t81 + t83) + 0.6 * (t91 + t93) + 0.6 * (t101 + t103)
             + 0.6 * (t115 + t120);
-        let t122 = 0.6 * (0.2 * t38) - 0.6 * (0.2 * t19) - 0.6 * (0.2 * t57)
-            + 0.6 * (0.2 * t76);
+        let t84 = 0.6 * (t9 * t19 - t10 * t18);
+        let t235 = t84 * t231;
+        let t288 = t86 * t235;
+        let t94 = 0.6 * (t28 * t38 - t29 * t37);
+        let t241 = t94 * t237;
+        let t289 = t96 * t241;
+        let t104 = 0.6 * (t47 * t57 - t48 * t56);
+        let t247 = t104 * t243;
+        let t290 = t106 * t247;
         let t123 = 0.6 * (t66 * t76 - t67 * t75);
+        let t253 = t123 * t249;
+        let t291 = t126 * t253;
+        let t108 = t77 + t87 + t97 + t107;
+        let t263 = t260 * (t108 - t235 * t255 - t241 * t256 - t247 * t257 - t253 * t258);
+        let t292 = t259 * t263;
+        let t79 = t10 * 0.6;
+        let t89 = t29 * 0.6;
+        let t99 = t48 * 0.6;
+        let t111 = t67 * 0.6;
+        let t113 = -t79 - t89 - t99 - t111;
+        let t275 = t273
+            * (t113 - t235 * t267 - t241 * t268 - t247 * t269 - t253 * t270
+                - t263 * t271);
+        let t293 = t272 * t275;
+        let t285 = 1.0 / t284;
+        let t117 = 0.6 * (0.2 * t29) - 0.6 * (0.2 * t10) - 0.6 * (0.2 * t48)
+            + 0.6 * (0.2 * t67);
+        let t286 = t285
+            * (t117 - t235 * t277 + t241 * t278 - t247 * t279 + t253 * t280 - t263 * t281
+                - t275 * t283);
+        let t294 = t284 * t286;
+        let t295 = t121 - t235 * t288 - t241 * t289 - t247 * t290 - t253 * t291
+            - t263 * t292 - t275 * t293 - t286 * t294;
         let t124 = 1.5 + 0.6 * (0.04000000000000001 + t83)
             + 0.6 * (0.04000000000000001 + t93) + 0.6 * (0.04000000000000001 + t103)
             + 0.6 * (0.04000000000000001 + t120);
+        let t85 = 0.6 * (0.2 * t9);
+        let t236 = t85 * t231;
+        let t95 = 0.6 * (0.2 * t28);
+        let t242 = t95 * t237;
+        let t105 = 0.6 * (0.2 * t47);
+        let t248 = t105 * t243;
         let t125 = 0.6 * (0.2 * t66);
-        let t126 = 0.6 * (t66 * t66 + t75 * t75);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let t254 = t125 * t249;
+        let t264 = t260 * (t236 * t255 - t242 * t256 + t248 * t257 - t254 * t258);
+        let t112 = t79 + t89 + t99 + t111;
+        let t266 = t112 * 0.030864197530864192;
+        let t276 = t273
+            * (t236 * t267 - t242 * t268 + t248 * t269 - t254 * t270 - t264 * t271);
+        let t118 = -(0.6 * (t10 * t19)) - 0.6 * (t29 * t38) - 0.6 * (t48 * t57)
+            - 0.6 * (t67 * t76);
+        let t287 = t285
+            * (t118 + t236 * t277 + t242 * t278 + t248 * t279 + t254 * t280 - t264 * t281
+                - t266 * t282 - t276 * t283);
+        let t296 = 1.0 / t295;
+        let t122 = 0.6 * (0.2 * t38) - 0.6 * (0.2 * t19) - 0.6 * (0.2 * t57)
+            + 0.6 * (0.2 * t76);
+        let t297 = t296
+            * (t122 + t236 * t288 - t242 * t289 + t248 * t290 - t254 * t291 - t264 * t292
+                - t276 * t293 - t287 * t294);
+        let t298 = t124 - t236 * (t86 * t236) - t242 * (t96 * t242)
+            - t248 * (t106 * t248) - t254 * (t126 * t254) - t264 * (t259 * t264)
+            - t266 * (32.400000000000006 * t266) - t276 * (t272 * t276)
+            - t287 * (t284 * t287) - t297 * (t295 * t297);
+        let vx = w[0];
+        let theta = x[4];
         let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
         let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t127 = vx * 32.400000000000006 + omega_y * t108 + yd_y1 * t78 + yd_y2 * t88
-            + yd_y3 * t98 + yd_y4 * t109;
-        let t128 = vy * 32.400000000000006 + omega_x * t110 + omega_z * t112;
-        let t129 = vz * 32.400000000000006 + omega_y * t113 + yd_y1 * t80 + yd_y2 * t90
-            + yd_y3 * t100 + yd_y4 * t114;
-        let t130 = vy * t110 + omega_x * t116 + omega_y * t117 + omega_z * t118
-            + yd_y1 * t82 - yd_y2 * t92 + yd_y3 * t102 - yd_y4 * t119;
-        let t131 = vx * t108 + vz * t113 + omega_x * t117 + omega_y * t121
-            + omega_z * t122 + yd_y1 * t84 + yd_y2 * t94 + yd_y3 * t104 + yd_y4 * t123;
-        let t132 = vy * t112 + omega_x * t118 + omega_y * t122 + omega_z * t124
-            - yd_y1 * t85 + yd_y2 * t95 - yd_y3 * t105 + yd_y4 * t125;
-        let t133 = omega_z * 0.2;
-        let t134 = omega_x * 0.2;
-        let t135 = vy + (omega_z * t10 - omega_x * t19);
-        let t136 = yd_y1 * t9;
-        let t137 = yd_y1 * t18;
-        let t138 = vx + (omega_y * t19 - t133) + t136;
-        let t139 = vz + (t134 - omega_y * t10) + t137;
-        let t140 = yd_y1 * yd_y1;
-        let t141 = yd_y2 * yd_y2;
-        let t142 = yd_y3 * yd_y3;
-        let t143 = yd_y4 * yd_y4;
-        let t144 = omega_x * t137 - omega_z * t136;
-        let t145 = t8 * t140 + omega_y * t137;
-        let t146 = t17 * t140 - omega_y * t136;
-        let t147 = vy + (omega_z * t29 - omega_x * t38);
-        let t148 = yd_y2 * t28;
-        let t149 = yd_y2 * t37;
-        let t150 = vx + (t133 + omega_y * t38) + t148;
-        let t151 = vz + (-t134 - omega_y * t29) + t149;
-        let t152 = omega_x * t149 - omega_z * t148;
-        let t153 = t27 * t141 + omega_y * t149;
-        let t154 = t36 * t141 - omega_y * t148;
-        let t155 = vy + (omega_z * t48 - omega_x * t57);
-        let t156 = yd_y3 * t47;
-        let t157 = yd_y3 * t56;
-        let t158 = vx + (omega_y * t57 - t133) + t156;
-        let t159 = vz + (t134 - omega_y * t48) + t157;
-        let t160 = omega_x * t157 - omega_z * t156;
-        let t161 = t46 * t142 + omega_y * t157;
-        let t162 = t55 * t142 - omega_y * t156;
-        let t163 = vy + (omega_z * t67 - omega_x * t76);
-        let t164 = yd_y4 * t66;
-        let t165 = yd_y4 * t75;
-        let t166 = vx + (t133 + omega_y * t76) + t164;
-        let t167 = vz + (-t134 - omega_y * t67) + t165;
-        let t168 = omega_x * t165 - omega_z * t164;
-        let t169 = t65 * t143 + omega_y * t165;
-        let t170 = t74 * t143 - omega_y * t164;
-        let t171 = c_phi * s_theta;
-        let t172 = c_phi * c_theta;
-        let t173 = t171 * 0.972;
-        let t174 = s_phi * 0.972;
-        let t175 = t172 * 0.972;
-        let t176 = 0.2 * t175;
-        let t177 = 0.2 * t173;
-        let t178 = f64::max(y1 + 0.03490658503988659, 0.0);
-        let t179 = f64::max(-1.0471975511965976 - y1, 0.0);
-        let t180 = f64::min(10000.0 * t178, 1.0);
-        let t181 = f64::min(-(500.0 * t178) - yd_y1 * (6.92820323027551 * t180), 0.0);
-        let t182 = f64::min(10000.0 * t179, 1.0);
-        let t183 = f64::max(500.0 * t179 - yd_y1 * (6.92820323027551 * t182), 0.0);
-        let t184 = f64::max(y2 + 0.03490658503988659, 0.0);
-        let t185 = f64::max(-1.0471975511965976 - y2, 0.0);
-        let t186 = f64::min(10000.0 * t184, 1.0);
-        let t187 = f64::min(-(500.0 * t184) - yd_y2 * (6.92820323027551 * t186), 0.0);
-        let t188 = f64::min(10000.0 * t185, 1.0);
-        let t189 = f64::max(500.0 * t185 - yd_y2 * (6.92820323027551 * t188), 0.0);
-        let t190 = f64::max(y3 - 1.0471975511965976, 0.0);
-        let t191 = f64::max(0.03490658503988659 - y3, 0.0);
-        let t192 = f64::min(10000.0 * t190, 1.0);
-        let t193 = f64::min(-(500.0 * t190) - yd_y3 * (6.92820323027551 * t192), 0.0);
-        let t194 = f64::min(10000.0 * t191, 1.0);
-        let t195 = f64::max(500.0 * t191 - yd_y3 * (6.92820323027551 * t194), 0.0);
-        let t196 = f64::max(y4 - 1.0471975511965976, 0.0);
-        let t197 = f64::max(0.03490658503988659 - y4, 0.0);
-        let t198 = f64::min(10000.0 * t196, 1.0);
-        let t199 = f64::min(-(500.0 * t196) - yd_y4 * (6.92820323027551 * t198), 0.0);
-        let t200 = f64::min(10000.0 * t197, 1.0);
-        let t201 = f64::max(500.0 * t197 - yd_y4 * (6.92820323027551 * t200), 0.0);
         let t202 = s_phi * s_theta;
-        let t203 = s_phi * c_theta;
         let t204 = c_theta * c_psi - s_psi * t202;
+        let vy = w[1];
         let t205 = c_phi * s_psi;
+        let vz = w[2];
+        let t203 = s_phi * c_theta;
         let t206 = s_theta * c_psi + s_psi * t203;
         let t207 = c_theta * s_psi + c_psi * t202;
         let t208 = c_phi * c_psi;
         let t209 = s_theta * s_psi - c_psi * t203;
+        let t171 = c_phi * s_theta;
+        let t172 = c_phi * c_theta;
+        let omega_x = w[3];
+        let omega_z = w[5];
+        let omega_y = w[4];
+        let t308 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let yd_y1 = w[6];
+        let yd_y2 = w[7];
+        let yd_y3 = w[8];
+        let yd_y4 = w[9];
+        let t173 = t171 * 0.972;
+        let t129 = vz * 32.400000000000006 + omega_y * t113 + yd_y1 * t80 + yd_y2 * t90
+            + yd_y3 * t100 + yd_y4 * t114;
+        let t128 = vy * 32.400000000000006 + omega_x * t110 + omega_z * t112;
+        let t8 = t1 * (t1 * 0.00492846750073411 + 2.0 * t4) + 2.0 * t6;
+        let t140 = yd_y1 * yd_y1;
+        let t137 = yd_y1 * t18;
+        let t145 = t8 * t140 + omega_y * t137;
+        let t27 = t20 * (0.00492846750073411 * t20 + 2.0 * t23) + 2.0 * t25;
+        let t141 = yd_y2 * yd_y2;
+        let t149 = yd_y2 * t37;
+        let t153 = t27 * t141 + omega_y * t149;
+        let t46 = t39 * (2.0 * t42 - 0.00492846750073411 * t39) + 2.0 * t44;
+        let t142 = yd_y3 * yd_y3;
+        let t157 = yd_y3 * t56;
+        let t161 = t46 * t142 + omega_y * t157;
+        let t65 = t58 * (2.0 * t61 - 0.00492846750073411 * t58) + 2.0 * t63;
+        let t143 = yd_y4 * yd_y4;
+        let t165 = yd_y4 * t75;
+        let t169 = t65 * t143 + omega_y * t165;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
         let t210 = f_front_left_x * t204 + f_front_left_y * t207 - f_front_left_z * t171;
-        let t211 = f_front_left_y * t208 - f_front_left_x * t205
-            + f_front_left_z * s_phi;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
+        let t215 = f_front_right_x * t204 + f_front_right_y * t207
+            - f_front_right_z * t171;
+        let f_rear_left_x = loads[2].force[0];
+        let f_rear_left_y = loads[2].force[1];
+        let f_rear_left_z = loads[2].force[2];
+        let t220 = f_rear_left_x * t204 + f_rear_left_y * t207 - f_rear_left_z * t171;
+        let f_rear_right_x = loads[3].force[0];
+        let f_rear_right_y = loads[3].force[1];
+        let f_rear_right_z = loads[3].force[2];
+        let t225 = f_rear_right_x * t204 + f_rear_right_y * t207 - f_rear_right_z * t171;
+        let t133 = omega_z * 0.2;
+        let t136 = yd_y1 * t9;
+        let t138 = vx + (omega_y * t19 - t133) + t136;
+        let t135 = vy + (omega_z * t10 - omega_x * t19);
+        let t134 = omega_x * 0.2;
+        let t139 = vz + (t134 - omega_y * t10) + t137;
+        let t17 = t1 * (2.0 * t13 - t1 * 0.015921306035372396) + 2.0 * t15;
+        let t146 = t17 * t140 - omega_y * t136;
+        let t175 = t172 * 0.972;
+        let t179 = f64::max(-1.0471975511965976 - y1, 0.0);
+        let t182 = f64::min(10000.0 * t179, 1.0);
+        let t183 = f64::max(500.0 * t179 - yd_y1 * (6.92820323027551 * t182), 0.0);
+        let t178 = f64::max(y1 + 0.03490658503988659, 0.0);
+        let t180 = f64::min(10000.0 * t178, 1.0);
+        let t181 = f64::min(-(500.0 * t178) - yd_y1 * (6.92820323027551 * t180), 0.0);
+        let y0_y1 = self.neutral[0];
         let t212 = f_front_left_x * t206 + f_front_left_y * t209 + f_front_left_z * t172;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
         let t213 = mu_front_left_y * t208 - mu_front_left_x * t205
             + mu_front_left_z * s_phi;
         let t214 = 0.6
@@ -368,12 +381,24 @@ impl Swing4 {
             + (t9 * t173 - t18 * t175)
             + (t183 + (t181 + (-((y1 - y0_y1) * 5.0) - yd_y1 * 3.5)))
             + (t9 * t210 + t18 * t212) + t213;
-        let t215 = f_front_right_x * t204 + f_front_right_y * t207
-            - f_front_right_z * t171;
-        let t216 = f_front_right_y * t208 - f_front_right_x * t205
-            + f_front_right_z * s_phi;
+        let t148 = yd_y2 * t28;
+        let t150 = vx + (t133 + omega_y * t38) + t148;
+        let t147 = vy + (omega_z * t29 - omega_x * t38);
+        let t151 = vz + (-t134 - omega_y * t29) + t149;
+        let t36 = t20 * (2.0 * t32 - 0.015921306035372396 * t20) + 2.0 * t34;
+        let t154 = t36 * t141 - omega_y * t148;
+        let t185 = f64::max(-1.0471975511965976 - y2, 0.0);
+        let t188 = f64::min(10000.0 * t185, 1.0);
+        let t189 = f64::max(500.0 * t185 - yd_y2 * (6.92820323027551 * t188), 0.0);
+        let t184 = f64::max(y2 + 0.03490658503988659, 0.0);
+        let t186 = f64::min(10000.0 * t184, 1.0);
+        let t187 = f64::min(-(500.0 * t184) - yd_y2 * (6.92820323027551 * t186), 0.0);
+        let y0_y2 = self.neutral[1];
         let t217 = f_front_right_x * t206 + f_front_right_y * t209
             + f_front_right_z * t172;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
         let t218 = mu_front_right_y * t208 - mu_front_right_x * t205
             + mu_front_right_z * s_phi;
         let t219 = 0.6
@@ -384,9 +409,23 @@ impl Swing4 {
             + (t28 * t173 - t37 * t175)
             + (t189 + (t187 + (-(5.0 * (y2 - y0_y2)) - yd_y2 * 3.5)))
             + (t28 * t215 + t37 * t217) + t218;
-        let t220 = f_rear_left_x * t204 + f_rear_left_y * t207 - f_rear_left_z * t171;
-        let t221 = f_rear_left_y * t208 - f_rear_left_x * t205 + f_rear_left_z * s_phi;
+        let t156 = yd_y3 * t47;
+        let t158 = vx + (omega_y * t57 - t133) + t156;
+        let t155 = vy + (omega_z * t48 - omega_x * t57);
+        let t159 = vz + (t134 - omega_y * t48) + t157;
+        let t55 = t39 * (2.0 * t51 - 0.015921306035372396 * t39) + 2.0 * t53;
+        let t162 = t55 * t142 - omega_y * t156;
+        let t191 = f64::max(0.03490658503988659 - y3, 0.0);
+        let t194 = f64::min(10000.0 * t191, 1.0);
+        let t195 = f64::max(500.0 * t191 - yd_y3 * (6.92820323027551 * t194), 0.0);
+        let t190 = f64::max(y3 - 1.0471975511965976, 0.0);
+        let t192 = f64::min(10000.0 * t190, 1.0);
+        let t193 = f64::min(-(500.0 * t190) - yd_y3 * (6.92820323027551 * t192), 0.0);
+        let y0_y3 = self.neutral[2];
         let t222 = f_rear_left_x * t206 + f_rear_left_y * t209 + f_rear_left_z * t172;
+        let mu_rear_left_x = loads[2].moment[0];
+        let mu_rear_left_y = loads[2].moment[1];
+        let mu_rear_left_z = loads[2].moment[2];
         let t223 = mu_rear_left_y * t208 - mu_rear_left_x * t205
             + mu_rear_left_z * s_phi;
         let t224 = 0.6
@@ -397,13 +436,23 @@ impl Swing4 {
             + (t47 * t173 - t56 * t175)
             + (t195 + (t193 + (-(5.0 * (y3 - y0_y3)) - yd_y3 * 3.5)))
             + (t47 * t220 + t56 * t222) + t223;
-        let t225 = f_rear_right_x * t204 + f_rear_right_y * t207 - f_rear_right_z * t171;
-        let t226 = f_rear_right_y * t208 - f_rear_right_x * t205
-            + f_rear_right_z * s_phi;
+        let t164 = yd_y4 * t66;
+        let t166 = vx + (t133 + omega_y * t76) + t164;
+        let t163 = vy + (omega_z * t67 - omega_x * t76);
+        let t167 = vz + (-t134 - omega_y * t67) + t165;
+        let t74 = t58 * (2.0 * t70 - 0.015921306035372396 * t58) + 2.0 * t72;
+        let t170 = t74 * t143 - omega_y * t164;
+        let t197 = f64::max(0.03490658503988659 - y4, 0.0);
+        let t200 = f64::min(10000.0 * t197, 1.0);
+        let t201 = f64::max(500.0 * t197 - yd_y4 * (6.92820323027551 * t200), 0.0);
+        let t196 = f64::max(y4 - 1.0471975511965976, 0.0);
+        let t198 = f64::min(10000.0 * t196, 1.0);
+        let t199 = f64::min(-(500.0 * t196) - yd_y4 * (6.92820323027551 * t198), 0.0);
+        let y0_y4 = self.neutral[3];
         let t227 = f_rear_right_x * t206 + f_rear_right_y * t209 + f_rear_right_z * t172;
-        let t228 = 0.6 * t144 - (omega_z * t127 - omega_x * t129) + 0.6 * t152
-            + 0.6 * t160 + 0.6 * t168 - s_phi * 48.6 - t174 - t174 - t174 - t174 + t211
-            + t216 + t221 + t226;
+        let mu_rear_right_x = loads[3].moment[0];
+        let mu_rear_right_y = loads[3].moment[1];
+        let mu_rear_right_z = loads[3].moment[2];
         let t229 = mu_rear_right_y * t208 - mu_rear_right_x * t205
             + mu_rear_right_z * s_phi;
         let t230 = 0.6
@@ -414,101 +463,50 @@ impl Swing4 {
             + (t66 * t173 - t75 * t175)
             + (t201 + (t199 + (-(5.0 * (y4 - y0_y4)) - yd_y4 * 3.5)))
             + (t66 * t225 + t75 * t227) + t229;
-        let t231 = 1.0 / t86;
-        let t232 = t78 * t231;
-        let t233 = t80 * t231;
-        let t234 = t82 * t231;
-        let t235 = t84 * t231;
-        let t236 = t85 * t231;
-        let t237 = 1.0 / t96;
-        let t238 = t88 * t237;
-        let t239 = t90 * t237;
-        let t240 = t92 * t237;
-        let t241 = t94 * t237;
-        let t242 = t95 * t237;
-        let t243 = 1.0 / t106;
-        let t244 = t98 * t243;
-        let t245 = t100 * t243;
-        let t246 = t102 * t243;
-        let t247 = t104 * t243;
-        let t248 = t105 * t243;
-        let t249 = 1.0 / t126;
-        let t250 = t109 * t249;
-        let t251 = t114 * t249;
-        let t252 = t119 * t249;
-        let t253 = t123 * t249;
-        let t254 = t125 * t249;
-        let t255 = t86 * t232;
-        let t256 = t96 * t238;
-        let t257 = t106 * t244;
-        let t258 = t126 * t250;
-        let t259 = 32.400000000000006 - t232 * t255 - t238 * t256 - t244 * t257
-            - t250 * t258;
-        let t260 = 1.0 / t259;
-        let t261 = t260 * (-(t233 * t255) - t239 * t256 - t245 * t257 - t251 * t258);
-        let t262 = t260 * (t240 * t256 - t234 * t255 - t246 * t257 + t252 * t258);
-        let t263 = t260 * (t108 - t235 * t255 - t241 * t256 - t247 * t257 - t253 * t258);
-        let t264 = t260 * (t236 * t255 - t242 * t256 + t248 * t257 - t254 * t258);
-        let t265 = t110 * 0.030864197530864192;
-        let t266 = t112 * 0.030864197530864192;
-        let t267 = t86 * t233;
-        let t268 = t96 * t239;
-        let t269 = t106 * t245;
-        let t270 = t126 * t251;
-        let t271 = t259 * t261;
-        let t272 = 32.400000000000006 - t233 * t267 - t239 * t268 - t245 * t269
-            - t251 * t270 - t261 * t271;
-        let t273 = 1.0 / t272;
-        let t274 = t273
-            * (t240 * t268 - t234 * t267 - t246 * t269 + t252 * t270 - t262 * t271);
-        let t275 = t273
-            * (t113 - t235 * t267 - t241 * t268 - t247 * t269 - t253 * t270
-                - t263 * t271);
-        let t276 = t273
-            * (t236 * t267 - t242 * t268 + t248 * t269 - t254 * t270 - t264 * t271);
-        let t277 = t86 * t234;
-        let t278 = t96 * t240;
-        let t279 = t106 * t246;
-        let t280 = t126 * t252;
-        let t281 = t259 * t262;
-        let t282 = 32.400000000000006 * t265;
-        let t283 = t272 * t274;
-        let t284 = t116 - t234 * t277 - t240 * t278 - t246 * t279 - t252 * t280
-            - t262 * t281 - t265 * t282 - t274 * t283;
-        let t285 = 1.0 / t284;
-        let t286 = t285
-            * (t117 - t235 * t277 + t241 * t278 - t247 * t279 + t253 * t280 - t263 * t281
-                - t275 * t283);
-        let t287 = t285
-            * (t118 + t236 * t277 + t242 * t278 + t248 * t279 + t254 * t280 - t264 * t281
-                - t266 * t282 - t276 * t283);
-        let t288 = t86 * t235;
-        let t289 = t96 * t241;
-        let t290 = t106 * t247;
-        let t291 = t126 * t253;
-        let t292 = t259 * t263;
-        let t293 = t272 * t275;
-        let t294 = t284 * t286;
-        let t295 = t121 - t235 * t288 - t241 * t289 - t247 * t290 - t253 * t291
-            - t263 * t292 - t275 * t293 - t286 * t294;
-        let t296 = 1.0 / t295;
-        let t297 = t296
-            * (t122 + t236 * t288 - t242 * t289 + t248 * t290 - t254 * t291 - t264 * t292
-                - t276 * t293 - t287 * t294);
-        let t298 = t124 - t236 * (t86 * t236) - t242 * (t96 * t242)
-            - t248 * (t106 * t248) - t254 * (t126 * t254) - t264 * (t259 * t264)
-            - t266 * (32.400000000000006 * t266) - t276 * (t272 * t276)
-            - t287 * (t284 * t287) - t297 * (t295 * t297);
         let t299 = t173
             + (t173
                 + (t173
                     + (-(omega_y * t129 - omega_z * t128) - 0.6 * t145 - 0.6 * t153
                         - 0.6 * t161 - 0.6 * t169 + t171 * 48.6 + t173))) + t210 + t215
             + t220 + t225 - t214 * t232 - t219 * t238 - t224 * t244 - t230 * t250;
+        let t127 = vx * 32.400000000000006 + omega_y * t108 + yd_y1 * t78 + yd_y2 * t88
+            + yd_y3 * t98 + yd_y4 * t109;
         let t300 = -(omega_x * t128 - omega_y * t127) - 0.6 * t146 - 0.6 * t154
             - 0.6 * t162 - 0.6 * t170 - t172 * 48.6 - t175 - t175 - t175 - t175 + t212
             + t217 + t222 + t227 - t214 * t233 - t219 * t239 - t224 * t245 - t230 * t251
             - t261 * t299;
+        let t132 = vy * t112 + omega_x * t118 + omega_y * t122 + omega_z * t124
+            - yd_y1 * t85 + yd_y2 * t95 - yd_y3 * t105 + yd_y4 * t125;
+        let t131 = vx * t108 + vz * t113 + omega_x * t117 + omega_y * t121
+            + omega_z * t122 + yd_y1 * t84 + yd_y2 * t94 + yd_y3 * t104 + yd_y4 * t123;
+        let t144 = omega_x * t137 - omega_z * t136;
+        let t152 = omega_x * t149 - omega_z * t148;
+        let t160 = omega_x * t157 - omega_z * t156;
+        let t168 = omega_x * t165 - omega_z * t164;
+        let t176 = 0.2 * t175;
+        let t174 = s_phi * 0.972;
+        let t211 = f_front_left_y * t208 - f_front_left_x * t205
+            + f_front_left_z * s_phi;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
+        let t216 = f_front_right_y * t208 - f_front_right_x * t205
+            + f_front_right_z * s_phi;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
+        let t221 = f_rear_left_y * t208 - f_rear_left_x * t205 + f_rear_left_z * s_phi;
+        let tau_rear_left_x = loads[2].stator_torque[0];
+        let tau_rear_left_y = loads[2].stator_torque[1];
+        let tau_rear_left_z = loads[2].stator_torque[2];
+        let t226 = f_rear_right_y * t208 - f_rear_right_x * t205
+            + f_rear_right_z * s_phi;
+        let tau_rear_right_x = loads[3].stator_torque[0];
+        let tau_rear_right_y = loads[3].stator_torque[1];
+        let tau_rear_right_z = loads[3].stator_torque[2];
+        let t228 = 0.6 * t144 - (omega_z * t127 - omega_x * t129) + 0.6 * t152
+            + 0.6 * t160 + 0.6 * t168 - s_phi * 48.6 - t174 - t174 - t174 - t174 + t211
+            + t216 + t221 + t226;
         let t301 = -(vy * t129 - vz * t128 + (omega_y * t132 - omega_z * t131))
             - 0.6 * (0.2 * t146 + t19 * t144 - t135 * t137)
             - 0.6 * (t38 * t152 - 0.2 * t154 - t147 * t149)
@@ -530,6 +528,8 @@ impl Swing4 {
             + (tau_rear_right_x * t204 + tau_rear_right_y * t207
                 - tau_rear_right_z * t171) - t214 * t234 + t219 * t240 - t224 * t246
             + t230 * t252 - t262 * t299 - t228 * t265 - t274 * t300;
+        let t130 = vy * t110 + omega_x * t116 + omega_y * t117 + omega_z * t118
+            + yd_y1 * t82 - yd_y2 * t92 + yd_y3 * t102 - yd_y4 * t119;
         let t302 = -(vz * t127 - vx * t129 + (omega_z * t130 - omega_x * t132))
             - 0.6 * (t137 * t138 - t136 * t139 + (t19 * t145 - t10 * t146))
             - 0.6 * (t149 * t150 - t148 * t151 + (t38 * t153 - t29 * t154))
@@ -547,6 +547,7 @@ impl Swing4 {
             + (tau_rear_right_y * t208 - tau_rear_right_x * t205
                 + tau_rear_right_z * s_phi) - t214 * t235 - t219 * t241 - t224 * t247
             - t230 * t253 - t263 * t299 - t275 * t300 - t286 * t301;
+        let t177 = 0.2 * t173;
         let t303 = 1.0 / t298
             * (-(vx * t128 - vy * t127 + (omega_x * t131 - omega_y * t130))
                 - 0.6 * (t135 * t136 + (-(t10 * t144) - 0.2 * t145))
@@ -576,7 +577,6 @@ impl Swing4 {
         let t305 = t285 * t301 - t286 * t304 - t287 * t303;
         let t306 = t273 * t300 - t274 * t305 - t275 * t304 - t276 * t303;
         let t307 = t260 * t299 - t261 * t306 - t262 * t305 - t263 * t304 - t264 * t303;
-        let t308 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
         let cos_roll = c_phi;
         let pivot_6 = t86;
         let pivot_7 = t96;
@@ -645,106 +645,106 @@ impl Swing4 {
         let mut m = [[0.0; 10]; 10];
         // M(y), upper triangle mirrored (MODEL.md §4, eq. 11–19)
         let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
         let t1 = y1 + 0.30019663134302466;
+        let t8 = t1 * 0.007960653017686198;
+        let t9 = 0.00985693500146822 - t8;
+        let t10 = t1 * t9 + 0.09552783621223437;
+        let t11 = t1 * t10 - 0.059141610008809326;
+        let t13 = t1 * t11 - 0.20105567242446876;
+        let t53 = t13 * 0.6;
+        let y2 = x[7];
+        let t14 = y2 + 0.30019663134302466;
+        let t21 = 0.007960653017686198 * t14;
+        let t22 = 0.00985693500146822 - t21;
+        let t23 = 0.09552783621223437 + t14 * t22;
+        let t24 = t14 * t23 - 0.059141610008809326;
+        let t26 = t14 * t24 - 0.20105567242446876;
+        let t62 = t26 * 0.6;
+        let y3 = x[8];
+        let t27 = y3 - 0.30019663134302466;
+        let t34 = 0.007960653017686198 * t27;
+        let t35 = -0.00985693500146822 - t34;
+        let t36 = 0.09552783621223437 + t27 * t35;
+        let t37 = t27 * t36 + 0.059141610008809326;
+        let t39 = t27 * t37 - 0.20105567242446876;
+        let t71 = t39 * 0.6;
+        let y4 = x[9];
+        let t40 = y4 - 0.30019663134302466;
+        let t47 = 0.007960653017686198 * t40;
+        let t48 = -0.00985693500146822 - t47;
+        let t49 = 0.09552783621223437 + t40 * t48;
+        let t50 = 0.059141610008809326 + t40 * t49;
+        let t52 = t40 * t50 - 0.20105567242446876;
+        let t80 = t52 * 0.6;
+        let t81 = t53 + t62 + t71 + t80;
         let t2 = t1 * 0.002464233750367055;
         let t3 = t2 + 0.03184261207074479;
         let t4 = t1 * t3 - 0.029570805004404663;
         let t5 = t1 * t4 - 0.19105567242446875;
         let t6 = t5 + t1 * (t4 + t1 * (t2 + t3));
-        let t7 = 0.23914161000880932 + t1 * t5;
-        let t8 = t1 * 0.007960653017686198;
-        let t9 = 0.00985693500146822 - t8;
-        let t10 = t1 * t9 + 0.09552783621223437;
-        let t11 = t1 * t10 - 0.059141610008809326;
-        let t12 = t11 + t1 * (t10 + t1 * (t9 - t8));
-        let t13 = t1 * t11 - 0.20105567242446876;
-        let t14 = y2 + 0.30019663134302466;
+        let t54 = t6 * 0.6;
         let t15 = 0.002464233750367055 * t14;
         let t16 = 0.03184261207074479 + t15;
         let t17 = t14 * t16 - 0.029570805004404663;
         let t18 = t14 * t17 - 0.19105567242446875;
         let t19 = t18 + t14 * (t17 + t14 * (t15 + t16));
-        let t20 = 0.23914161000880932 + t14 * t18;
-        let t21 = 0.007960653017686198 * t14;
-        let t22 = 0.00985693500146822 - t21;
-        let t23 = 0.09552783621223437 + t14 * t22;
-        let t24 = t14 * t23 - 0.059141610008809326;
-        let t25 = t24 + t14 * (t23 + t14 * (t22 - t21));
-        let t26 = t14 * t24 - 0.20105567242446876;
-        let t27 = y3 - 0.30019663134302466;
+        let t63 = t19 * 0.6;
         let t28 = 0.002464233750367055 * t27;
         let t29 = 0.03184261207074479 - t28;
         let t30 = t27 * t29 + 0.029570805004404663;
         let t31 = t27 * t30 - 0.19105567242446875;
         let t32 = t31 + t27 * (t30 + t27 * (t29 - t28));
-        let t33 = t27 * t31 - 0.2791416100088093;
-        let t34 = 0.007960653017686198 * t27;
-        let t35 = -0.00985693500146822 - t34;
-        let t36 = 0.09552783621223437 + t27 * t35;
-        let t37 = t27 * t36 + 0.059141610008809326;
-        let t38 = t37 + t27 * (t36 + t27 * (t35 - t34));
-        let t39 = t27 * t37 - 0.20105567242446876;
-        let t40 = y4 - 0.30019663134302466;
+        let t72 = t32 * 0.6;
         let t41 = 0.002464233750367055 * t40;
         let t42 = 0.03184261207074479 - t41;
         let t43 = 0.029570805004404663 + t40 * t42;
         let t44 = t40 * t43 - 0.19105567242446875;
         let t45 = t44 + t40 * (t43 + t40 * (t42 - t41));
-        let t46 = t40 * t44 - 0.2791416100088093;
-        let t47 = 0.007960653017686198 * t40;
-        let t48 = -0.00985693500146822 - t47;
-        let t49 = 0.09552783621223437 + t40 * t48;
-        let t50 = 0.059141610008809326 + t40 * t49;
-        let t51 = t50 + t40 * (t49 + t40 * (t48 - t47));
-        let t52 = t40 * t50 - 0.20105567242446876;
-        let t53 = t13 * 0.6;
-        let t54 = t6 * 0.6;
-        let t55 = t7 * 0.6;
-        let t56 = t12 * 0.6;
-        let t57 = t13 * t13;
-        let t58 = 0.6 * (0.2 * t12);
-        let t59 = t7 * t7;
-        let t60 = 0.6 * (t6 * t13 - t7 * t12);
-        let t61 = 0.6 * (0.2 * t6);
-        let t62 = t26 * 0.6;
-        let t63 = t19 * 0.6;
-        let t64 = t20 * 0.6;
-        let t65 = t25 * 0.6;
-        let t66 = t26 * t26;
-        let t67 = 0.6 * (0.2 * t25);
-        let t68 = t20 * t20;
-        let t69 = 0.6 * (t19 * t26 - t20 * t25);
-        let t70 = 0.6 * (0.2 * t19);
-        let t71 = t39 * 0.6;
-        let t72 = t32 * 0.6;
-        let t73 = t33 * 0.6;
-        let t74 = t38 * 0.6;
-        let t75 = t39 * t39;
-        let t76 = 0.6 * (0.2 * t38);
-        let t77 = t33 * t33;
-        let t78 = 0.6 * (t32 * t39 - t33 * t38);
-        let t79 = 0.6 * (0.2 * t32);
-        let t80 = t52 * 0.6;
-        let t81 = t53 + t62 + t71 + t80;
         let t82 = t45 * 0.6;
         let t83 = -t53 - t62 - t71 - t80;
+        let t7 = 0.23914161000880932 + t1 * t5;
+        let t55 = t7 * 0.6;
+        let t20 = 0.23914161000880932 + t14 * t18;
+        let t64 = t20 * 0.6;
+        let t33 = t27 * t31 - 0.2791416100088093;
+        let t73 = t33 * 0.6;
+        let t46 = t40 * t44 - 0.2791416100088093;
         let t84 = t46 * 0.6;
         let t85 = t55 + t64 + t73 + t84;
         let t86 = -t55 - t64 - t73 - t84;
+        let t12 = t11 + t1 * (t10 + t1 * (t9 - t8));
+        let t56 = t12 * 0.6;
+        let t25 = t24 + t14 * (t23 + t14 * (t22 - t21));
+        let t65 = t25 * 0.6;
+        let t38 = t37 + t27 * (t36 + t27 * (t35 - t34));
+        let t74 = t38 * 0.6;
+        let t51 = t50 + t40 * (t49 + t40 * (t48 - t47));
         let t87 = t51 * 0.6;
+        let t57 = t13 * t13;
+        let t66 = t26 * t26;
+        let t75 = t39 * t39;
         let t88 = t52 * t52;
         let t89 = 0.6 * (0.2 * t20) - 0.6 * (0.2 * t7) - 0.6 * (0.2 * t33)
             + 0.6 * (0.2 * t46);
         let t90 = -(0.6 * (t7 * t13)) - 0.6 * (t20 * t26) - 0.6 * (t33 * t39)
             - 0.6 * (t46 * t52);
+        let t58 = 0.6 * (0.2 * t12);
+        let t67 = 0.6 * (0.2 * t25);
+        let t76 = 0.6 * (0.2 * t38);
         let t91 = 0.6 * (0.2 * t51);
+        let t59 = t7 * t7;
+        let t68 = t20 * t20;
+        let t77 = t33 * t33;
         let t92 = t46 * t46;
         let t93 = 0.6 * (0.2 * t26) - 0.6 * (0.2 * t13) - 0.6 * (0.2 * t39)
             + 0.6 * (0.2 * t52);
+        let t60 = 0.6 * (t6 * t13 - t7 * t12);
+        let t69 = 0.6 * (t19 * t26 - t20 * t25);
+        let t78 = 0.6 * (t32 * t39 - t33 * t38);
         let t94 = 0.6 * (t45 * t52 - t46 * t51);
+        let t61 = 0.6 * (0.2 * t6);
+        let t70 = 0.6 * (0.2 * t19);
+        let t79 = 0.6 * (0.2 * t32);
         let t95 = 0.6 * (0.2 * t45);
         m[0][0] = 32.400000000000006;
         m[0][4] = t81;
@@ -833,42 +833,42 @@ impl Swing4 {
         }; 4];
         // inputs
         let pos_x = x[0];
-        let pos_y = x[1];
-        let pos_z = x[2];
-        let phi = x[3];
+        let y1 = x[6];
         let theta = x[4];
         let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
+        let phi = x[3];
+        let pos_y = x[1];
+        let pos_z = x[2];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
         let omega_y = w[4];
         let omega_z = w[5];
         let yd_y1 = w[6];
+        let vy = w[1];
+        let omega_x = w[3];
+        let vz = w[2];
+        let y2 = x[7];
         let yd_y2 = w[7];
+        let y3 = x[8];
         let yd_y3 = w[8];
+        let y4 = x[9];
         let yd_y4 = w[9];
         // terms shared by the wheels
-        let (s_phi, c_phi) = ::libm::sincos(phi);
         let (s_theta, c_theta) = ::libm::sincos(theta);
         let (s_psi, c_psi) = ::libm::sincos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let t1 = s_phi * s_theta;
-        let t2 = s_phi * c_theta;
-        let t3 = c_phi * s_theta;
-        let t4 = c_phi * c_theta;
         let t5 = c_theta * c_psi - s_psi * t1;
         let t6 = c_phi * s_psi;
+        let t11 = 0.2 * t6;
+        let t2 = s_phi * c_theta;
         let t7 = s_theta * c_psi + s_psi * t2;
         let t8 = c_theta * s_psi + c_psi * t1;
         let t9 = c_phi * c_psi;
-        let t10 = s_theta * s_psi - c_psi * t2;
-        let t11 = 0.2 * t6;
         let t12 = 0.2 * t9;
+        let t10 = s_theta * s_psi - c_psi * t2;
+        let t3 = c_phi * s_theta;
         let t13 = 0.2 * s_phi;
+        let t4 = c_phi * c_theta;
         let t14 = omega_z * 0.2;
         let t15 = omega_x * 0.2;
         // wheel `front_left`: r_G, V, a_w (MODEL.md §3, eq. 7, 12)
@@ -883,9 +883,9 @@ impl Swing4 {
         let t24 = t16 * t23 + 0.09552783621223437;
         let t25 = t16 * t24 - 0.059141610008809326;
         let t26 = t16 * t25 - 0.20105567242446876;
-        let t27 = vy + (omega_z * t21 - omega_x * t26);
         let t28 = vx + (omega_y * t26 - t14)
             + yd_y1 * (t20 + t16 * (t19 + t16 * (t17 + t18)));
+        let t27 = vy + (omega_z * t21 - omega_x * t26);
         let t29 = vz + (t15 - omega_y * t21)
             + yd_y1 * (t25 + t16 * (t24 + t16 * (t23 - t22)));
         out[0].centre[0] = pos_x + (t21 * t5 - t11 + t26 * t7);
@@ -909,9 +909,9 @@ impl Swing4 {
         let t38 = 0.09552783621223437 + t30 * t37;
         let t39 = t30 * t38 - 0.059141610008809326;
         let t40 = t30 * t39 - 0.20105567242446876;
-        let t41 = vy + (omega_z * t35 - omega_x * t40);
         let t42 = vx + (t14 + omega_y * t40)
             + yd_y2 * (t34 + t30 * (t33 + t30 * (t31 + t32)));
+        let t41 = vy + (omega_z * t35 - omega_x * t40);
         let t43 = vz + (-t15 - omega_y * t35)
             + yd_y2 * (t39 + t30 * (t38 + t30 * (t37 - t36)));
         out[1].centre[0] = pos_x + (t11 + t35 * t5 + t40 * t7);
@@ -935,9 +935,9 @@ impl Swing4 {
         let t52 = 0.09552783621223437 + t44 * t51;
         let t53 = t44 * t52 + 0.059141610008809326;
         let t54 = t44 * t53 - 0.20105567242446876;
-        let t55 = vy + (omega_z * t49 - omega_x * t54);
         let t56 = vx + (omega_y * t54 - t14)
             + yd_y3 * (t48 + t44 * (t47 + t44 * (t46 - t45)));
+        let t55 = vy + (omega_z * t49 - omega_x * t54);
         let t57 = vz + (t15 - omega_y * t49)
             + yd_y3 * (t53 + t44 * (t52 + t44 * (t51 - t50)));
         out[2].centre[0] = pos_x + (t49 * t5 - t11 + t54 * t7);
@@ -961,9 +961,9 @@ impl Swing4 {
         let t66 = 0.09552783621223437 + t58 * t65;
         let t67 = 0.059141610008809326 + t58 * t66;
         let t68 = t58 * t67 - 0.20105567242446876;
-        let t69 = vy + (omega_z * t63 - omega_x * t68);
         let t70 = vx + (t14 + omega_y * t68)
             + yd_y4 * (t62 + t58 * (t61 + t58 * (t60 - t59)));
+        let t69 = vy + (omega_z * t63 - omega_x * t68);
         let t71 = vz + (-t15 - omega_y * t63)
             + yd_y4 * (t67 + t58 * (t66 + t58 * (t65 - t64)));
         out[3].centre[0] = pos_x + (t11 + t63 * t5 + t68 * t7);
@@ -989,532 +989,177 @@ impl Swing4 {
     ) -> [[f64; 20]; 20] {
         let mut jac = [[0.0; 20]; 20];
         // ∂(ẋ, ẇ)/∂(x, w) at fixed wheel loads
-        let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
         let vx = w[0];
+        let psi = x[5];
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let phi = x[3];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let theta = x[4];
+        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let t256 = c_phi * s_theta;
+        let t485 = s_psi * t256;
         let vy = w[1];
+        let t486 = s_phi * s_psi;
         let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
+        let t257 = c_phi * c_theta;
+        let t487 = s_psi * t257;
+        let t488 = c_psi * t256;
+        let t489 = s_phi * c_psi;
+        let t490 = c_psi * t257;
+        let t321 = s_phi * s_theta;
+        let t322 = s_phi * c_theta;
         let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_left_z = loads[2].moment[2];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let mu_rear_right_x = loads[3].moment[0];
-        let mu_rear_right_y = loads[3].moment[1];
-        let mu_rear_right_z = loads[3].moment[2];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let y0_y1 = self.neutral[0];
-        let y0_y2 = self.neutral[1];
-        let y0_y3 = self.neutral[2];
-        let y0_y4 = self.neutral[3];
+        let omega_x = w[3];
+        let t478 = omega_z * c_theta - omega_x * s_theta;
+        let t479 = t478 / c_phi;
+        let t521 = s_phi * t479 / c_phi;
+        let y1 = x[6];
         let t1 = y1 + 0.30019663134302466;
         let t2 = t1 * 0.002464233750367055;
         let t3 = t2 + 0.03184261207074479;
-        let t4 = t2 + t3;
         let t5 = t1 * t3 - 0.029570805004404663;
-        let t6 = t1 * 0.00492846750073411;
-        let t7 = t6 + 2.0 * t4;
-        let t8 = t5 + t1 * t4;
         let t9 = t1 * t5 - 0.19105567242446875;
-        let t10 = t1 * t7 + 2.0 * t8;
+        let t4 = t2 + t3;
+        let t8 = t5 + t1 * t4;
         let t11 = t9 + t1 * t8;
-        let t12 = 0.23914161000880932 + t1 * t9;
+        let t94 = t11 * 0.6;
         let t13 = t1 * 0.007960653017686198;
         let t14 = 0.00985693500146822 - t13;
-        let t15 = t14 - t13;
         let t16 = t1 * t14 + 0.09552783621223437;
-        let t17 = t1 * 0.015921306035372396;
-        let t18 = 2.0 * t15 - t17;
-        let t19 = t16 + t1 * t15;
         let t20 = t1 * t16 - 0.059141610008809326;
-        let t21 = t1 * t18 + 2.0 * t19;
+        let t15 = t14 - t13;
+        let t19 = t16 + t1 * t15;
         let t22 = t20 + t1 * t19;
-        let t23 = t1 * t20 - 0.20105567242446876;
+        let t104 = 0.6 * (t11 * t11 + t22 * t22);
+        let t380 = 1.0 / t104;
+        let t381 = t94 * t380;
+        let t404 = t104 * t381;
+        let y2 = x[7];
         let t24 = y2 + 0.30019663134302466;
         let t25 = 0.002464233750367055 * t24;
         let t26 = 0.03184261207074479 + t25;
-        let t27 = t25 + t26;
         let t28 = t24 * t26 - 0.029570805004404663;
-        let t29 = 0.00492846750073411 * t24;
-        let t30 = t29 + 2.0 * t27;
-        let t31 = t28 + t24 * t27;
         let t32 = t24 * t28 - 0.19105567242446875;
-        let t33 = t24 * t30 + 2.0 * t31;
+        let t27 = t25 + t26;
+        let t31 = t28 + t24 * t27;
         let t34 = t32 + t24 * t31;
-        let t35 = 0.23914161000880932 + t24 * t32;
+        let t106 = t34 * 0.6;
         let t36 = 0.007960653017686198 * t24;
         let t37 = 0.00985693500146822 - t36;
-        let t38 = t37 - t36;
         let t39 = 0.09552783621223437 + t24 * t37;
-        let t40 = 0.015921306035372396 * t24;
-        let t41 = 2.0 * t38 - t40;
-        let t42 = t39 + t24 * t38;
         let t43 = t24 * t39 - 0.059141610008809326;
-        let t44 = t24 * t41 + 2.0 * t42;
+        let t38 = t37 - t36;
+        let t42 = t39 + t24 * t38;
         let t45 = t43 + t24 * t42;
-        let t46 = t24 * t43 - 0.20105567242446876;
+        let t116 = 0.6 * (t34 * t34 + t45 * t45);
+        let t386 = 1.0 / t116;
+        let t387 = t106 * t386;
+        let t405 = t116 * t387;
+        let y3 = x[8];
         let t47 = y3 - 0.30019663134302466;
         let t48 = 0.002464233750367055 * t47;
         let t49 = 0.03184261207074479 - t48;
-        let t50 = t49 - t48;
         let t51 = t47 * t49 + 0.029570805004404663;
-        let t52 = 0.00492846750073411 * t47;
-        let t53 = 2.0 * t50 - t52;
-        let t54 = t51 + t47 * t50;
         let t55 = t47 * t51 - 0.19105567242446875;
-        let t56 = t47 * t53 + 2.0 * t54;
+        let t50 = t49 - t48;
+        let t54 = t51 + t47 * t50;
         let t57 = t55 + t47 * t54;
-        let t58 = t47 * t55 - 0.2791416100088093;
+        let t118 = t57 * 0.6;
         let t59 = 0.007960653017686198 * t47;
         let t60 = -0.00985693500146822 - t59;
-        let t61 = t60 - t59;
         let t62 = 0.09552783621223437 + t47 * t60;
-        let t63 = 0.015921306035372396 * t47;
-        let t64 = 2.0 * t61 - t63;
-        let t65 = t62 + t47 * t61;
         let t66 = t47 * t62 + 0.059141610008809326;
-        let t67 = t47 * t64 + 2.0 * t65;
+        let t61 = t60 - t59;
+        let t65 = t62 + t47 * t61;
         let t68 = t66 + t47 * t65;
-        let t69 = t47 * t66 - 0.20105567242446876;
+        let t128 = 0.6 * (t57 * t57 + t68 * t68);
+        let t392 = 1.0 / t128;
+        let t393 = t118 * t392;
+        let t406 = t128 * t393;
+        let y4 = x[9];
         let t70 = y4 - 0.30019663134302466;
         let t71 = 0.002464233750367055 * t70;
         let t72 = 0.03184261207074479 - t71;
-        let t73 = t72 - t71;
         let t74 = 0.029570805004404663 + t70 * t72;
-        let t75 = 0.00492846750073411 * t70;
-        let t76 = 2.0 * t73 - t75;
-        let t77 = t74 + t70 * t73;
         let t78 = t70 * t74 - 0.19105567242446875;
-        let t79 = t70 * t76 + 2.0 * t77;
+        let t73 = t72 - t71;
+        let t77 = t74 + t70 * t73;
         let t80 = t78 + t70 * t77;
-        let t81 = t70 * t78 - 0.2791416100088093;
+        let t131 = t80 * 0.6;
         let t82 = 0.007960653017686198 * t70;
         let t83 = -0.00985693500146822 - t82;
-        let t84 = t83 - t82;
         let t85 = 0.09552783621223437 + t70 * t83;
-        let t86 = 0.015921306035372396 * t70;
-        let t87 = 2.0 * t84 - t86;
-        let t88 = t85 + t70 * t84;
         let t89 = 0.059141610008809326 + t70 * t85;
-        let t90 = t70 * t87 + 2.0 * t88;
+        let t84 = t83 - t82;
+        let t88 = t85 + t70 * t84;
         let t91 = t89 + t70 * t88;
-        let t92 = t70 * t89 - 0.20105567242446876;
-        let t93 = t23 * 0.6;
-        let t94 = t11 * 0.6;
-        let t95 = t12 * 0.6;
-        let t96 = t22 * 0.6;
-        let t97 = t23 * t23;
-        let t98 = 0.6 * (0.2 * t22);
-        let t99 = t12 * t12;
-        let t100 = t11 * t23;
-        let t101 = t12 * t22;
-        let t102 = 0.6 * (t100 - t101);
-        let t103 = 0.6 * (0.2 * t11);
-        let t104 = 0.6 * (t11 * t11 + t22 * t22);
-        let t105 = t46 * 0.6;
-        let t106 = t34 * 0.6;
-        let t107 = t35 * 0.6;
-        let t108 = t45 * 0.6;
-        let t109 = t46 * t46;
-        let t110 = 0.6 * (0.2 * t45);
-        let t111 = t35 * t35;
-        let t112 = t34 * t46;
-        let t113 = t35 * t45;
-        let t114 = 0.6 * (t112 - t113);
-        let t115 = 0.6 * (0.2 * t34);
-        let t116 = 0.6 * (t34 * t34 + t45 * t45);
-        let t117 = t69 * 0.6;
-        let t118 = t57 * 0.6;
-        let t119 = t58 * 0.6;
-        let t120 = t68 * 0.6;
-        let t121 = t69 * t69;
-        let t122 = 0.6 * (0.2 * t68);
-        let t123 = t58 * t58;
-        let t124 = t57 * t69;
-        let t125 = t58 * t68;
-        let t126 = 0.6 * (t124 - t125);
-        let t127 = 0.6 * (0.2 * t57);
-        let t128 = 0.6 * (t57 * t57 + t68 * t68);
-        let t129 = t92 * 0.6;
-        let t130 = t93 + t105 + t117 + t129;
-        let t131 = t80 * 0.6;
-        let t132 = -t93 - t105 - t117 - t129;
-        let t133 = t81 * 0.6;
-        let t134 = t95 + t107 + t119 + t133;
-        let t135 = -t95 - t107 - t119 - t133;
-        let t136 = t91 * 0.6;
-        let t137 = t92 * t92;
-        let t138 = 0.7 + 0.6 * (t97 + 0.04000000000000001)
-            + 0.6 * (0.04000000000000001 + t109) + 0.6 * (0.04000000000000001 + t121)
-            + 0.6 * (0.04000000000000001 + t137);
-        let t139 = 0.6 * (0.2 * t35) - 0.6 * (0.2 * t12) - 0.6 * (0.2 * t58)
-            + 0.6 * (0.2 * t81);
-        let t140 = -(0.6 * (t12 * t23)) - 0.6 * (t35 * t46) - 0.6 * (t58 * t69)
-            - 0.6 * (t81 * t92);
-        let t141 = 0.6 * (0.2 * t91);
-        let t142 = t81 * t81;
-        let t143 = 0.9 + 0.6 * (t97 + t99) + 0.6 * (t109 + t111) + 0.6 * (t121 + t123)
-            + 0.6 * (t137 + t142);
-        let t144 = 0.6 * (0.2 * t46) - 0.6 * (0.2 * t23) - 0.6 * (0.2 * t69)
-            + 0.6 * (0.2 * t92);
-        let t145 = t80 * t92;
-        let t146 = t81 * t91;
-        let t147 = 0.6 * (t145 - t146);
-        let t148 = 1.5 + 0.6 * (0.04000000000000001 + t99)
-            + 0.6 * (0.04000000000000001 + t111) + 0.6 * (0.04000000000000001 + t123)
-            + 0.6 * (0.04000000000000001 + t142);
-        let t149 = 0.6 * (0.2 * t80);
         let t150 = 0.6 * (t80 * t80 + t91 * t91);
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t151 = vx * 32.400000000000006;
-        let t152 = omega_y * t130;
-        let t153 = t151 + t152 + yd_y1 * t94 + yd_y2 * t106 + yd_y3 * t118
-            + yd_y4 * t131;
-        let t154 = vy * 32.400000000000006;
-        let t155 = omega_x * t132;
-        let t156 = omega_z * t134;
-        let t157 = t154 + t155 + t156;
-        let t158 = vz * 32.400000000000006;
-        let t159 = omega_y * t135;
-        let t160 = t158 + t159 + yd_y1 * t96 + yd_y2 * t108 + yd_y3 * t120
-            + yd_y4 * t136;
-        let t161 = omega_y * t139;
-        let t162 = omega_z * t140;
-        let t163 = vy * t132 + omega_x * t138 + t161 + t162 + yd_y1 * t98 - yd_y2 * t110
-            + yd_y3 * t122 - yd_y4 * t141;
-        let t164 = omega_x * t139;
-        let t165 = omega_z * t144;
-        let t166 = vx * t130 + vz * t135 + t164 + omega_y * t143 + t165 + yd_y1 * t102
-            + yd_y2 * t114 + yd_y3 * t126 + yd_y4 * t147;
-        let t167 = omega_x * t140;
-        let t168 = omega_y * t144;
-        let t169 = vy * t134 + t167 + t168 + omega_z * t148 - yd_y1 * t103 + yd_y2 * t115
-            - yd_y3 * t127 + yd_y4 * t149;
-        let t170 = omega_z * 0.2;
-        let t171 = omega_x * 0.2;
-        let t172 = vy + (omega_z * t12 - omega_x * t23);
-        let t173 = yd_y1 * t11;
-        let t174 = yd_y1 * t22;
-        let t175 = vx + (omega_y * t23 - t170) + t173;
-        let t176 = vz + (t171 - omega_y * t12) + t174;
-        let t177 = yd_y1 * yd_y1;
-        let t178 = yd_y2 * yd_y2;
-        let t179 = yd_y3 * yd_y3;
-        let t180 = yd_y4 * yd_y4;
-        let t181 = omega_x * t174 - omega_z * t173;
-        let t182 = t10 * t177 + omega_y * t174;
-        let t183 = t21 * t177 - omega_y * t173;
-        let t184 = t10 * t175;
-        let t185 = t21 * t176;
-        let t186 = t184 + t185;
-        let t187 = omega_y * t22;
-        let t188 = omega_x * t22;
-        let t189 = omega_z * t11;
-        let t190 = t188 - t189;
-        let t191 = omega_y * t11;
-        let t192 = yd_y1 * t10;
-        let t193 = yd_y1 * t21;
-        let t194 = t187 + t192;
-        let t195 = t193 - t191;
-        let t196 = vy + (omega_z * t35 - omega_x * t46);
-        let t197 = yd_y2 * t34;
-        let t198 = yd_y2 * t45;
-        let t199 = vx + (t170 + omega_y * t46) + t197;
-        let t200 = vz + (-t171 - omega_y * t35) + t198;
-        let t201 = omega_x * t198 - omega_z * t197;
-        let t202 = t33 * t178 + omega_y * t198;
-        let t203 = t44 * t178 - omega_y * t197;
-        let t204 = t33 * t199;
-        let t205 = t44 * t200;
-        let t206 = t204 + t205;
-        let t207 = omega_y * t45;
-        let t208 = omega_x * t45;
-        let t209 = omega_z * t34;
-        let t210 = t208 - t209;
-        let t211 = omega_y * t34;
-        let t212 = yd_y2 * t33;
-        let t213 = yd_y2 * t44;
-        let t214 = t207 + t212;
-        let t215 = t213 - t211;
-        let t216 = vy + (omega_z * t58 - omega_x * t69);
-        let t217 = yd_y3 * t57;
-        let t218 = yd_y3 * t68;
-        let t219 = vx + (omega_y * t69 - t170) + t217;
-        let t220 = vz + (t171 - omega_y * t58) + t218;
-        let t221 = omega_x * t218 - omega_z * t217;
-        let t222 = t56 * t179 + omega_y * t218;
-        let t223 = t67 * t179 - omega_y * t217;
-        let t224 = t56 * t219;
-        let t225 = t67 * t220;
-        let t226 = t224 + t225;
-        let t227 = omega_y * t68;
-        let t228 = omega_x * t68;
-        let t229 = omega_z * t57;
-        let t230 = t228 - t229;
-        let t231 = omega_y * t57;
-        let t232 = yd_y3 * t56;
-        let t233 = yd_y3 * t67;
-        let t234 = t227 + t232;
-        let t235 = t233 - t231;
-        let t236 = vy + (omega_z * t81 - omega_x * t92);
-        let t237 = yd_y4 * t80;
-        let t238 = yd_y4 * t91;
-        let t239 = vx + (t170 + omega_y * t92) + t237;
-        let t240 = vz + (-t171 - omega_y * t81) + t238;
-        let t241 = omega_x * t238 - omega_z * t237;
-        let t242 = t79 * t180 + omega_y * t238;
-        let t243 = t90 * t180 - omega_y * t237;
-        let t244 = t79 * t239;
-        let t245 = t90 * t240;
-        let t246 = t244 + t245;
-        let t247 = omega_y * t91;
-        let t248 = omega_x * t91;
-        let t249 = omega_z * t80;
-        let t250 = t248 - t249;
-        let t251 = omega_y * t80;
-        let t252 = yd_y4 * t79;
-        let t253 = yd_y4 * t90;
-        let t254 = t247 + t252;
-        let t255 = t253 - t251;
-        let t256 = c_phi * s_theta;
-        let t257 = c_phi * c_theta;
-        let t258 = t256 * 48.6;
-        let t259 = t257 * 48.6;
-        let t260 = t256 * 0.972;
-        let t261 = s_phi * 0.972;
-        let t262 = t257 * 0.972;
-        let t263 = 0.2 * t262;
-        let t264 = 0.2 * t260;
-        let t265 = y1 + 0.03490658503988659;
-        let t266 = f64::max(t265, 0.0);
-        let t267 = -1.0471975511965976 - y1;
-        let t268 = f64::max(t267, 0.0);
-        let t269 = 10000.0 * t266;
-        let t270 = f64::min(t269, 1.0);
-        let t271 = 6.92820323027551 * t270;
-        let t272 = -(500.0 * t266) - yd_y1 * t271;
-        let t273 = f64::min(t272, 0.0);
-        let t274 = 10000.0 * t268;
-        let t275 = f64::min(t274, 1.0);
-        let t276 = 6.92820323027551 * t275;
-        let t277 = 500.0 * t268 - yd_y1 * t276;
-        let t278 = f64::max(t277, 0.0);
-        let t279 = y2 + 0.03490658503988659;
-        let t280 = f64::max(t279, 0.0);
-        let t281 = -1.0471975511965976 - y2;
-        let t282 = f64::max(t281, 0.0);
-        let t283 = 10000.0 * t280;
-        let t284 = f64::min(t283, 1.0);
-        let t285 = 6.92820323027551 * t284;
-        let t286 = -(500.0 * t280) - yd_y2 * t285;
-        let t287 = f64::min(t286, 0.0);
-        let t288 = 10000.0 * t282;
-        let t289 = f64::min(t288, 1.0);
-        let t290 = 6.92820323027551 * t289;
-        let t291 = 500.0 * t282 - yd_y2 * t290;
-        let t292 = f64::max(t291, 0.0);
-        let t293 = y3 - 1.0471975511965976;
-        let t294 = f64::max(t293, 0.0);
-        let t295 = 0.03490658503988659 - y3;
-        let t296 = f64::max(t295, 0.0);
-        let t297 = 10000.0 * t294;
-        let t298 = f64::min(t297, 1.0);
-        let t299 = 6.92820323027551 * t298;
-        let t300 = -(500.0 * t294) - yd_y3 * t299;
-        let t301 = f64::min(t300, 0.0);
-        let t302 = 10000.0 * t296;
-        let t303 = f64::min(t302, 1.0);
-        let t304 = 6.92820323027551 * t303;
-        let t305 = 500.0 * t296 - yd_y3 * t304;
-        let t306 = f64::max(t305, 0.0);
-        let t307 = y4 - 1.0471975511965976;
-        let t308 = f64::max(t307, 0.0);
-        let t309 = 0.03490658503988659 - y4;
-        let t310 = f64::max(t309, 0.0);
-        let t311 = 10000.0 * t308;
-        let t312 = f64::min(t311, 1.0);
-        let t313 = 6.92820323027551 * t312;
-        let t314 = -(500.0 * t308) - yd_y4 * t313;
-        let t315 = f64::min(t314, 0.0);
-        let t316 = 10000.0 * t310;
-        let t317 = f64::min(t316, 1.0);
-        let t318 = 6.92820323027551 * t317;
-        let t319 = 500.0 * t310 - yd_y4 * t318;
-        let t320 = f64::max(t319, 0.0);
-        let t321 = s_phi * s_theta;
-        let t322 = s_phi * c_theta;
-        let t323 = c_theta * c_psi - s_psi * t321;
-        let t324 = c_phi * s_psi;
-        let t325 = s_theta * c_psi;
-        let t326 = s_psi * t322;
-        let t327 = t325 + t326;
-        let t328 = c_theta * s_psi;
-        let t329 = c_psi * t321;
-        let t330 = t328 + t329;
-        let t331 = c_phi * c_psi;
-        let t332 = s_theta * s_psi;
-        let t333 = c_psi * t322;
-        let t334 = t332 - t333;
-        let t335 = f_front_left_x * t323 + f_front_left_y * t330 - f_front_left_z * t256;
-        let t336 = f_front_left_y * t331 - f_front_left_x * t324
-            + f_front_left_z * s_phi;
-        let t337 = f_front_left_z * t257;
-        let t338 = f_front_left_x * t327 + f_front_left_y * t334 + t337;
-        let t339 = 0.2 * t335;
-        let t340 = mu_front_left_x * t323 + mu_front_left_y * t330
-            - mu_front_left_z * t256;
-        let t341 = mu_front_left_y * t331 - mu_front_left_x * t324
-            + mu_front_left_z * s_phi;
-        let t342 = mu_front_left_z * t257;
-        let t343 = 0.6
-            * (t175 * t194 - t172 * t190 + t176 * t195
-                - (yd_y1 * t186 + (t11 * t182 + t22 * t183))) + (t11 * t260 - t22 * t262)
-            + (t278 + (t273 + (-((y1 - y0_y1) * 5.0) - yd_y1 * 3.5)))
-            + (t11 * t335 + t22 * t338) + t341;
-        let t344 = tau_front_left_x * t323 + tau_front_left_y * t330
-            - tau_front_left_z * t256;
-        let t345 = tau_front_left_z * t257;
-        let t346 = f_front_right_x * t323 + f_front_right_y * t330
-            - f_front_right_z * t256;
-        let t347 = f_front_right_y * t331 - f_front_right_x * t324
-            + f_front_right_z * s_phi;
-        let t348 = f_front_right_z * t257;
-        let t349 = f_front_right_x * t327 + f_front_right_y * t334 + t348;
-        let t350 = 0.2 * t346;
-        let t351 = mu_front_right_x * t323 + mu_front_right_y * t330
-            - mu_front_right_z * t256;
-        let t352 = mu_front_right_y * t331 - mu_front_right_x * t324
-            + mu_front_right_z * s_phi;
-        let t353 = mu_front_right_z * t257;
-        let t354 = 0.6
-            * (t199 * t214 - t196 * t210 + t200 * t215
-                - (yd_y2 * t206 + (t34 * t202 + t45 * t203))) + (t34 * t260 - t45 * t262)
-            + (t292 + (t287 + (-(5.0 * (y2 - y0_y2)) - yd_y2 * 3.5)))
-            + (t34 * t346 + t45 * t349) + t352;
-        let t355 = tau_front_right_x * t323 + tau_front_right_y * t330
-            - tau_front_right_z * t256;
-        let t356 = tau_front_right_z * t257;
-        let t357 = f_rear_left_x * t323 + f_rear_left_y * t330 - f_rear_left_z * t256;
-        let t358 = f_rear_left_y * t331 - f_rear_left_x * t324 + f_rear_left_z * s_phi;
-        let t359 = f_rear_left_z * t257;
-        let t360 = f_rear_left_x * t327 + f_rear_left_y * t334 + t359;
-        let t361 = 0.2 * t357;
-        let t362 = mu_rear_left_x * t323 + mu_rear_left_y * t330 - mu_rear_left_z * t256;
-        let t363 = mu_rear_left_y * t331 - mu_rear_left_x * t324
-            + mu_rear_left_z * s_phi;
-        let t364 = mu_rear_left_z * t257;
-        let t365 = 0.6
-            * (t219 * t234 - t216 * t230 + t220 * t235
-                - (yd_y3 * t226 + (t57 * t222 + t68 * t223))) + (t57 * t260 - t68 * t262)
-            + (t306 + (t301 + (-(5.0 * (y3 - y0_y3)) - yd_y3 * 3.5)))
-            + (t57 * t357 + t68 * t360) + t363;
-        let t366 = tau_rear_left_x * t323 + tau_rear_left_y * t330
-            - tau_rear_left_z * t256;
-        let t367 = tau_rear_left_z * t257;
-        let t368 = f_rear_right_x * t323 + f_rear_right_y * t330 - f_rear_right_z * t256;
-        let t369 = f_rear_right_y * t331 - f_rear_right_x * t324
-            + f_rear_right_z * s_phi;
-        let t370 = f_rear_right_z * t257;
-        let t371 = f_rear_right_x * t327 + f_rear_right_y * t334 + t370;
-        let t372 = 0.2 * t368;
-        let t373 = 0.6 * t181 - (omega_z * t153 - omega_x * t160) + 0.6 * t201
-            + 0.6 * t221 + 0.6 * t241 - s_phi * 48.6 - t261 - t261 - t261 - t261 + t336
-            + t347 + t358 + t369;
-        let t374 = mu_rear_right_x * t323 + mu_rear_right_y * t330
-            - mu_rear_right_z * t256;
-        let t375 = mu_rear_right_y * t331 - mu_rear_right_x * t324
-            + mu_rear_right_z * s_phi;
-        let t376 = mu_rear_right_z * t257;
-        let t377 = 0.6
-            * (t239 * t254 - t236 * t250 + t240 * t255
-                - (yd_y4 * t246 + (t80 * t242 + t91 * t243))) + (t80 * t260 - t91 * t262)
-            + (t320 + (t315 + (-(5.0 * (y4 - y0_y4)) - yd_y4 * 3.5)))
-            + (t80 * t368 + t91 * t371) + t375;
-        let t378 = tau_rear_right_x * t323 + tau_rear_right_y * t330
-            - tau_rear_right_z * t256;
-        let t379 = tau_rear_right_z * t257;
-        let t380 = 1.0 / t104;
-        let t381 = t94 * t380;
-        let t382 = t96 * t380;
-        let t383 = t98 * t380;
-        let t384 = t102 * t380;
-        let t385 = t103 * t380;
-        let t386 = 1.0 / t116;
-        let t387 = t106 * t386;
-        let t388 = t108 * t386;
-        let t389 = t110 * t386;
-        let t390 = t114 * t386;
-        let t391 = t115 * t386;
-        let t392 = 1.0 / t128;
-        let t393 = t118 * t392;
-        let t394 = t120 * t392;
-        let t395 = t122 * t392;
-        let t396 = t126 * t392;
-        let t397 = t127 * t392;
         let t398 = 1.0 / t150;
         let t399 = t131 * t398;
-        let t400 = t136 * t398;
-        let t401 = t141 * t398;
-        let t402 = t147 * t398;
-        let t403 = t149 * t398;
-        let t404 = t104 * t381;
-        let t405 = t116 * t387;
-        let t406 = t128 * t393;
         let t407 = t150 * t399;
         let t408 = 32.400000000000006 - t381 * t404 - t387 * t405 - t393 * t406
             - t399 * t407;
         let t409 = 1.0 / t408;
+        let t480 = 0.972 * t321;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
+        let t491 = f_front_left_y * t488 - f_front_left_x * t485 + f_front_left_z * t321;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
+        let t496 = f_front_right_y * t488 - f_front_right_x * t485
+            + f_front_right_z * t321;
+        let f_rear_left_x = loads[2].force[0];
+        let f_rear_left_y = loads[2].force[1];
+        let f_rear_left_z = loads[2].force[2];
+        let t501 = f_rear_left_y * t488 - f_rear_left_x * t485 + f_rear_left_z * t321;
+        let f_rear_right_x = loads[3].force[0];
+        let f_rear_right_y = loads[3].force[1];
+        let f_rear_right_z = loads[3].force[2];
+        let t506 = f_rear_right_y * t488 - f_rear_right_x * t485 + f_rear_right_z * t321;
+        let t482 = 0.972 * t322;
+        let t493 = f_front_left_x * t487 - f_front_left_y * t490 - f_front_left_z * t322;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
+        let t494 = mu_front_left_x * t486 - mu_front_left_y * t489
+            + mu_front_left_z * c_phi;
+        let t495 = t22 * t482 - t11 * t480 + (t11 * t491 + t22 * t493) + t494;
+        let t498 = f_front_right_x * t487 - f_front_right_y * t490
+            - f_front_right_z * t322;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
+        let t499 = mu_front_right_x * t486 - mu_front_right_y * t489
+            + mu_front_right_z * c_phi;
+        let t500 = t45 * t482 - t34 * t480 + (t34 * t496 + t45 * t498) + t499;
+        let t503 = f_rear_left_x * t487 - f_rear_left_y * t490 - f_rear_left_z * t322;
+        let mu_rear_left_x = loads[2].moment[0];
+        let mu_rear_left_y = loads[2].moment[1];
+        let mu_rear_left_z = loads[2].moment[2];
+        let t504 = mu_rear_left_x * t486 - mu_rear_left_y * t489
+            + mu_rear_left_z * c_phi;
+        let t505 = t68 * t482 - t57 * t480 + (t57 * t501 + t68 * t503) + t504;
+        let t508 = f_rear_right_x * t487 - f_rear_right_y * t490 - f_rear_right_z * t322;
+        let mu_rear_right_x = loads[3].moment[0];
+        let mu_rear_right_y = loads[3].moment[1];
+        let mu_rear_right_z = loads[3].moment[2];
+        let t510 = mu_rear_right_x * t486 - mu_rear_right_y * t489
+            + mu_rear_right_z * c_phi;
+        let t511 = t91 * t482 - t80 * t480 + (t80 * t506 + t91 * t508) + t510;
+        let t512 = -(48.6 * t321) - t480 - t480 - t480 - t480 + t491 + t496 + t501 + t506
+            - t381 * t495 - t387 * t500 - t393 * t505 - t399 * t511;
+        let t96 = t22 * 0.6;
+        let t382 = t96 * t380;
+        let t108 = t45 * 0.6;
+        let t388 = t108 * t386;
+        let t120 = t68 * 0.6;
+        let t394 = t120 * t392;
+        let t136 = t91 * 0.6;
+        let t400 = t136 * t398;
         let t410 = -(t382 * t404) - t388 * t405 - t394 * t406 - t400 * t407;
         let t411 = t409 * t410;
-        let t412 = t389 * t405 - t383 * t404 - t395 * t406 + t401 * t407;
-        let t413 = t409 * t412;
-        let t414 = t130 - t384 * t404 - t390 * t405 - t396 * t406 - t402 * t407;
-        let t415 = t409 * t414;
-        let t416 = t385 * t404 - t391 * t405 + t397 * t406 - t403 * t407;
-        let t417 = t409 * t416;
-        let t418 = t132 * 0.030864197530864192;
-        let t419 = t134 * 0.030864197530864192;
         let t420 = t104 * t382;
         let t421 = t116 * t388;
         let t422 = t128 * t394;
@@ -1523,164 +1168,70 @@ impl Swing4 {
         let t425 = 32.400000000000006 - t382 * t420 - t388 * t421 - t394 * t422
             - t400 * t423 - t411 * t424;
         let t426 = 1.0 / t425;
+        let t513 = t482 + (t482 + (t482 + (48.6 * t322 + t482))) + t493 + t498 + t503
+            + t508 - t382 * t495 - t388 * t500 - t394 * t505 - t400 * t511 - t411 * t512;
+        let t98 = 0.6 * (0.2 * t22);
+        let t383 = t98 * t380;
+        let t110 = 0.6 * (0.2 * t45);
+        let t389 = t110 * t386;
+        let t122 = 0.6 * (0.2 * t68);
+        let t395 = t122 * t392;
+        let t141 = 0.6 * (0.2 * t91);
+        let t401 = t141 * t398;
+        let t412 = t389 * t405 - t383 * t404 - t395 * t406 + t401 * t407;
+        let t413 = t409 * t412;
         let t427 = t389 * t421 - t383 * t420 - t395 * t422 + t401 * t423 - t413 * t424;
         let t428 = t426 * t427;
-        let t429 = t135 - t384 * t420 - t390 * t421 - t396 * t422 - t402 * t423
-            - t415 * t424;
-        let t430 = t426 * t429;
-        let t431 = t385 * t420 - t391 * t421 + t397 * t422 - t403 * t423 - t417 * t424;
-        let t432 = t426 * t431;
+        let t23 = t1 * t20 - 0.20105567242446876;
+        let t97 = t23 * t23;
+        let t46 = t24 * t43 - 0.20105567242446876;
+        let t109 = t46 * t46;
+        let t69 = t47 * t66 - 0.20105567242446876;
+        let t121 = t69 * t69;
+        let t92 = t70 * t89 - 0.20105567242446876;
+        let t137 = t92 * t92;
+        let t138 = 0.7 + 0.6 * (t97 + 0.04000000000000001)
+            + 0.6 * (0.04000000000000001 + t109) + 0.6 * (0.04000000000000001 + t121)
+            + 0.6 * (0.04000000000000001 + t137);
         let t433 = t104 * t383;
         let t434 = t116 * t389;
         let t435 = t128 * t395;
         let t436 = t150 * t401;
         let t437 = t408 * t413;
+        let t93 = t23 * 0.6;
+        let t105 = t46 * 0.6;
+        let t117 = t69 * 0.6;
+        let t129 = t92 * 0.6;
+        let t132 = -t93 - t105 - t117 - t129;
+        let t418 = t132 * 0.030864197530864192;
         let t438 = 32.400000000000006 * t418;
         let t439 = t425 * t428;
         let t440 = t138 - t383 * t433 - t389 * t434 - t395 * t435 - t401 * t436
             - t413 * t437 - t418 * t438 - t428 * t439;
         let t441 = 1.0 / t440;
-        let t442 = t139 - t384 * t433 + t390 * t434 - t396 * t435 + t402 * t436
-            - t415 * t437 - t430 * t439;
-        let t443 = t441 * t442;
-        let t444 = t140 + t385 * t433 + t391 * t434 + t397 * t435 + t403 * t436
-            - t417 * t437 - t419 * t438 - t432 * t439;
-        let t445 = t441 * t444;
-        let t446 = t104 * t384;
-        let t447 = t116 * t390;
-        let t448 = t128 * t396;
-        let t449 = t150 * t402;
-        let t450 = t408 * t415;
-        let t451 = t425 * t430;
-        let t452 = t440 * t443;
-        let t453 = t143 - t384 * t446 - t390 * t447 - t396 * t448 - t402 * t449
-            - t415 * t450 - t430 * t451 - t443 * t452;
-        let t454 = 1.0 / t453;
-        let t455 = t144 + t385 * t446 - t391 * t447 + t397 * t448 - t403 * t449
-            - t417 * t450 - t432 * t451 - t445 * t452;
-        let t456 = t454 * t455;
-        let t457 = t104 * t385;
-        let t458 = t116 * t391;
-        let t459 = t128 * t397;
-        let t460 = t150 * t403;
-        let t461 = t408 * t417;
-        let t462 = 32.400000000000006 * t419;
-        let t463 = t425 * t432;
-        let t464 = t440 * t445;
-        let t465 = t453 * t456;
-        let t466 = t148 - t385 * t457 - t391 * t458 - t397 * t459 - t403 * t460
-            - t417 * t461 - t419 * t462 - t432 * t463 - t445 * t464 - t456 * t465;
-        let t467 = 1.0 / t466;
-        let t468 = t260
-            + (t260
-                + (t260
-                    + (-(omega_y * t160 - omega_z * t157) - 0.6 * t182 - 0.6 * t202
-                        - 0.6 * t222 - 0.6 * t242 + t258 + t260))) + t335 + t346 + t357
-            + t368 - t343 * t381 - t354 * t387 - t365 * t393 - t377 * t399;
-        let t469 = -(omega_x * t157 - omega_y * t153) - 0.6 * t183 - 0.6 * t203
-            - 0.6 * t223 - 0.6 * t243 - t259 - t262 - t262 - t262 - t262 + t338 + t349
-            + t360 + t371 - t343 * t382 - t354 * t388 - t365 * t394 - t377 * t400
-            - t411 * t468;
-        let t470 = -(vy * t160 - vz * t157 + (omega_y * t169 - omega_z * t166))
-            - 0.6 * (0.2 * t183 + t23 * t181 - t172 * t174)
-            - 0.6 * (t46 * t201 - 0.2 * t203 - t196 * t198)
-            - 0.6 * (0.2 * t223 + t69 * t221 - t216 * t218)
-            - 0.6 * (t92 * t241 - 0.2 * t243 - t236 * t238) + (t23 * t261 - t263)
-            + (t263 + t46 * t261) + (t69 * t261 - t263) + (t263 + t92 * t261)
-            + (0.2 * t338 - t23 * t336) + t340 + t344 + (-(0.2 * t349) - t46 * t347)
-            + t351 + t355 + (0.2 * t360 - t69 * t358) + t362 + t366
-            + (-(0.2 * t371) - t92 * t369) + t374 + t378 - t343 * t383 + t354 * t389
-            - t365 * t395 + t377 * t401 - t413 * t468 - t373 * t418 - t428 * t469;
-        let t471 = -(vz * t153 - vx * t160 + (omega_z * t163 - omega_x * t169))
-            - 0.6 * (t174 * t175 - t173 * t176 + (t23 * t182 - t12 * t183))
-            - 0.6 * (t198 * t199 - t197 * t200 + (t46 * t202 - t35 * t203))
-            - 0.6 * (t218 * t219 - t217 * t220 + (t69 * t222 - t58 * t223))
-            - 0.6 * (t238 * t239 - t237 * t240 + (t92 * t242 - t81 * t243))
-            + (t23 * t260 + t12 * t262) + (t46 * t260 + t35 * t262)
-            + (t69 * t260 + t58 * t262) + (t92 * t260 + t81 * t262)
-            + (t23 * t335 - t12 * t338) + t341
-            + (tau_front_left_y * t331 - tau_front_left_x * t324
-                + tau_front_left_z * s_phi) + (t46 * t346 - t35 * t349) + t352
-            + (tau_front_right_y * t331 - tau_front_right_x * t324
-                + tau_front_right_z * s_phi) + (t69 * t357 - t58 * t360) + t363
-            + (tau_rear_left_y * t331 - tau_rear_left_x * t324 + tau_rear_left_z * s_phi)
-            + (t92 * t368 - t81 * t371) + t375
-            + (tau_rear_right_y * t331 - tau_rear_right_x * t324
-                + tau_rear_right_z * s_phi) - t343 * t384 - t354 * t390 - t365 * t396
-            - t377 * t402 - t415 * t468 - t430 * t469 - t443 * t470;
-        let t472 = -(vx * t157 - vy * t153 + (omega_x * t166 - omega_y * t163))
-            - 0.6 * (t172 * t173 + (-(t12 * t181) - 0.2 * t182))
-            - 0.6 * (t196 * t197 + (0.2 * t202 - t35 * t201))
-            - 0.6 * (t216 * t217 + (-(t58 * t221) - 0.2 * t222))
-            - 0.6 * (t236 * t237 + (0.2 * t242 - t81 * t241)) + (-(t12 * t261) - t264)
-            + (t264 - t35 * t261) + (-t264 - t58 * t261) + (t264 - t81 * t261)
-            + (t12 * t336 - t339)
-            + (mu_front_left_x * t327 + mu_front_left_y * t334 + t342)
-            + (tau_front_left_x * t327 + tau_front_left_y * t334 + t345)
-            + (t35 * t347 + t350)
-            + (mu_front_right_x * t327 + mu_front_right_y * t334 + t353)
-            + (tau_front_right_x * t327 + tau_front_right_y * t334 + t356)
-            + (t58 * t358 - t361)
-            + (mu_rear_left_x * t327 + mu_rear_left_y * t334 + t364)
-            + (tau_rear_left_x * t327 + tau_rear_left_y * t334 + t367)
-            + (t81 * t369 + t372)
-            + (mu_rear_right_x * t327 + mu_rear_right_y * t334 + t376)
-            + (tau_rear_right_x * t327 + tau_rear_right_y * t334 + t379) + t343 * t385
-            - t354 * t391 + t365 * t397 - t377 * t403 - t417 * t468 - t373 * t419
-            - t432 * t469 - t445 * t470 - t456 * t471;
-        let t473 = t467 * t472;
-        let t474 = t454 * t471 - t456 * t473;
-        let t475 = t441 * t470 - t443 * t474 - t445 * t473;
-        let t476 = t426 * t469 - t428 * t475 - t430 * t474 - t432 * t473;
-        let t477 = t409 * t468 - t411 * t476 - t413 * t475 - t415 * t474 - t417 * t473;
-        let t478 = omega_z * c_theta - omega_x * s_theta;
-        let t479 = t478 / c_phi;
-        let t480 = 0.972 * t321;
-        let t481 = c_phi * 0.972;
-        let t482 = 0.972 * t322;
         let t483 = 0.2 * t482;
-        let t484 = 0.2 * t480;
-        let t485 = s_psi * t256;
-        let t486 = s_phi * s_psi;
-        let t487 = s_psi * t257;
-        let t488 = c_psi * t256;
-        let t489 = s_phi * c_psi;
-        let t490 = c_psi * t257;
-        let t491 = f_front_left_y * t488 - f_front_left_x * t485 + f_front_left_z * t321;
+        let t481 = c_phi * 0.972;
         let t492 = f_front_left_x * t486 - f_front_left_y * t489
             + f_front_left_z * c_phi;
-        let t493 = f_front_left_x * t487 - f_front_left_y * t490 - f_front_left_z * t322;
-        let t494 = mu_front_left_x * t486 - mu_front_left_y * t489
-            + mu_front_left_z * c_phi;
-        let t495 = t22 * t482 - t11 * t480 + (t11 * t491 + t22 * t493) + t494;
-        let t496 = f_front_right_y * t488 - f_front_right_x * t485
-            + f_front_right_z * t321;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
         let t497 = f_front_right_x * t486 - f_front_right_y * t489
             + f_front_right_z * c_phi;
-        let t498 = f_front_right_x * t487 - f_front_right_y * t490
-            - f_front_right_z * t322;
-        let t499 = mu_front_right_x * t486 - mu_front_right_y * t489
-            + mu_front_right_z * c_phi;
-        let t500 = t45 * t482 - t34 * t480 + (t34 * t496 + t45 * t498) + t499;
-        let t501 = f_rear_left_y * t488 - f_rear_left_x * t485 + f_rear_left_z * t321;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
         let t502 = f_rear_left_x * t486 - f_rear_left_y * t489 + f_rear_left_z * c_phi;
-        let t503 = f_rear_left_x * t487 - f_rear_left_y * t490 - f_rear_left_z * t322;
-        let t504 = mu_rear_left_x * t486 - mu_rear_left_y * t489
-            + mu_rear_left_z * c_phi;
-        let t505 = t68 * t482 - t57 * t480 + (t57 * t501 + t68 * t503) + t504;
-        let t506 = f_rear_right_y * t488 - f_rear_right_x * t485 + f_rear_right_z * t321;
+        let tau_rear_left_x = loads[2].stator_torque[0];
+        let tau_rear_left_y = loads[2].stator_torque[1];
+        let tau_rear_left_z = loads[2].stator_torque[2];
         let t507 = f_rear_right_x * t486 - f_rear_right_y * t489
             + f_rear_right_z * c_phi;
-        let t508 = f_rear_right_x * t487 - f_rear_right_y * t490 - f_rear_right_z * t322;
+        let tau_rear_right_x = loads[3].stator_torque[0];
+        let tau_rear_right_y = loads[3].stator_torque[1];
+        let tau_rear_right_z = loads[3].stator_torque[2];
         let t509 = -(c_phi * 48.6) - t481 - t481 - t481 - t481 + t492 + t497 + t502
             + t507;
-        let t510 = mu_rear_right_x * t486 - mu_rear_right_y * t489
-            + mu_rear_right_z * c_phi;
-        let t511 = t91 * t482 - t80 * t480 + (t80 * t506 + t91 * t508) + t510;
-        let t512 = -(48.6 * t321) - t480 - t480 - t480 - t480 + t491 + t496 + t501 + t506
-            - t381 * t495 - t387 * t500 - t393 * t505 - t399 * t511;
-        let t513 = t482 + (t482 + (t482 + (48.6 * t322 + t482))) + t493 + t498 + t503
-            + t508 - t382 * t495 - t388 * t500 - t394 * t505 - t400 * t511 - t411 * t512;
         let t514 = t483 + t23 * t481 + (t46 * t481 - t483) + (t483 + t69 * t481)
             + (t92 * t481 - t483) + (0.2 * t493 - t23 * t492)
             + (mu_front_left_y * t488 - mu_front_left_x * t485 + mu_front_left_z * t321)
@@ -1697,6 +1248,58 @@ impl Swing4 {
             + (tau_rear_right_y * t488 - tau_rear_right_x * t485
                 + tau_rear_right_z * t321) - t383 * t495 + t389 * t500 - t395 * t505
             + t401 * t511 - t413 * t512 - t418 * t509 - t428 * t513;
+        let t12 = 0.23914161000880932 + t1 * t9;
+        let t35 = 0.23914161000880932 + t24 * t32;
+        let t58 = t47 * t55 - 0.2791416100088093;
+        let t81 = t70 * t78 - 0.2791416100088093;
+        let t139 = 0.6 * (0.2 * t35) - 0.6 * (0.2 * t12) - 0.6 * (0.2 * t58)
+            + 0.6 * (0.2 * t81);
+        let t100 = t11 * t23;
+        let t101 = t12 * t22;
+        let t102 = 0.6 * (t100 - t101);
+        let t384 = t102 * t380;
+        let t112 = t34 * t46;
+        let t113 = t35 * t45;
+        let t114 = 0.6 * (t112 - t113);
+        let t390 = t114 * t386;
+        let t124 = t57 * t69;
+        let t125 = t58 * t68;
+        let t126 = 0.6 * (t124 - t125);
+        let t396 = t126 * t392;
+        let t145 = t80 * t92;
+        let t146 = t81 * t91;
+        let t147 = 0.6 * (t145 - t146);
+        let t402 = t147 * t398;
+        let t130 = t93 + t105 + t117 + t129;
+        let t414 = t130 - t384 * t404 - t390 * t405 - t396 * t406 - t402 * t407;
+        let t415 = t409 * t414;
+        let t95 = t12 * 0.6;
+        let t107 = t35 * 0.6;
+        let t119 = t58 * 0.6;
+        let t133 = t81 * 0.6;
+        let t135 = -t95 - t107 - t119 - t133;
+        let t429 = t135 - t384 * t420 - t390 * t421 - t396 * t422 - t402 * t423
+            - t415 * t424;
+        let t430 = t426 * t429;
+        let t442 = t139 - t384 * t433 + t390 * t434 - t396 * t435 + t402 * t436
+            - t415 * t437 - t430 * t439;
+        let t443 = t441 * t442;
+        let t99 = t12 * t12;
+        let t111 = t35 * t35;
+        let t123 = t58 * t58;
+        let t142 = t81 * t81;
+        let t143 = 0.9 + 0.6 * (t97 + t99) + 0.6 * (t109 + t111) + 0.6 * (t121 + t123)
+            + 0.6 * (t137 + t142);
+        let t446 = t104 * t384;
+        let t447 = t116 * t390;
+        let t448 = t128 * t396;
+        let t449 = t150 * t402;
+        let t450 = t408 * t415;
+        let t451 = t425 * t430;
+        let t452 = t440 * t443;
+        let t453 = t143 - t384 * t446 - t390 * t447 - t396 * t448 - t402 * t449
+            - t415 * t450 - t430 * t451 - t443 * t452;
+        let t454 = 1.0 / t453;
         let t515 = -(t23 * t480) - t12 * t482 + (-(t46 * t480) - t35 * t482)
             + (-(t69 * t480) - t58 * t482) + (-(t92 * t480) - t81 * t482)
             + (t23 * t491 - t12 * t493) + t494
@@ -1709,6 +1312,46 @@ impl Swing4 {
             + (tau_rear_right_x * t486 - tau_rear_right_y * t489
                 + tau_rear_right_z * c_phi) - t384 * t495 - t390 * t500 - t396 * t505
             - t402 * t511 - t415 * t512 - t430 * t513 - t443 * t514;
+        let t144 = 0.6 * (0.2 * t46) - 0.6 * (0.2 * t23) - 0.6 * (0.2 * t69)
+            + 0.6 * (0.2 * t92);
+        let t103 = 0.6 * (0.2 * t11);
+        let t385 = t103 * t380;
+        let t115 = 0.6 * (0.2 * t34);
+        let t391 = t115 * t386;
+        let t127 = 0.6 * (0.2 * t57);
+        let t397 = t127 * t392;
+        let t149 = 0.6 * (0.2 * t80);
+        let t403 = t149 * t398;
+        let t416 = t385 * t404 - t391 * t405 + t397 * t406 - t403 * t407;
+        let t417 = t409 * t416;
+        let t431 = t385 * t420 - t391 * t421 + t397 * t422 - t403 * t423 - t417 * t424;
+        let t432 = t426 * t431;
+        let t140 = -(0.6 * (t12 * t23)) - 0.6 * (t35 * t46) - 0.6 * (t58 * t69)
+            - 0.6 * (t81 * t92);
+        let t134 = t95 + t107 + t119 + t133;
+        let t419 = t134 * 0.030864197530864192;
+        let t444 = t140 + t385 * t433 + t391 * t434 + t397 * t435 + t403 * t436
+            - t417 * t437 - t419 * t438 - t432 * t439;
+        let t445 = t441 * t444;
+        let t455 = t144 + t385 * t446 - t391 * t447 + t397 * t448 - t403 * t449
+            - t417 * t450 - t432 * t451 - t445 * t452;
+        let t456 = t454 * t455;
+        let t148 = 1.5 + 0.6 * (0.04000000000000001 + t99)
+            + 0.6 * (0.04000000000000001 + t111) + 0.6 * (0.04000000000000001 + t123)
+            + 0.6 * (0.04000000000000001 + t142);
+        let t457 = t104 * t385;
+        let t458 = t116 * t391;
+        let t459 = t128 * t397;
+        let t460 = t150 * t403;
+        let t461 = t408 * t417;
+        let t462 = 32.400000000000006 * t419;
+        let t463 = t425 * t432;
+        let t464 = t440 * t445;
+        let t465 = t453 * t456;
+        let t466 = t148 - t385 * t457 - t391 * t458 - t397 * t459 - t403 * t460
+            - t417 * t461 - t419 * t462 - t432 * t463 - t445 * t464 - t456 * t465;
+        let t467 = 1.0 / t466;
+        let t484 = 0.2 * t480;
         let t516 = t467
             * (t484 - t12 * t481 + (-t484 - t35 * t481) + (t484 - t58 * t481)
                 + (-t484 - t81 * t481) + (t12 * t492 - 0.2 * t491)
@@ -1733,30 +1376,63 @@ impl Swing4 {
         let t518 = t441 * t514 - t443 * t517 - t445 * t516;
         let t519 = t426 * t513 - t428 * t518 - t430 * t517 - t432 * t516;
         let t520 = t409 * t512 - t411 * t519 - t413 * t518 - t415 * t517 - t417 * t516;
-        let t521 = s_phi * t479 / c_phi;
-        let t522 = t11 * t262 + t22 * t260;
-        let t523 = t34 * t262 + t45 * t260;
-        let t524 = t57 * t262 + t68 * t260;
-        let t525 = t80 * t262 + t91 * t260;
+        let t326 = s_psi * t322;
+        let t325 = s_theta * c_psi;
         let t526 = -t326 - t325;
+        let t323 = c_theta * c_psi - s_psi * t321;
+        let t333 = c_psi * t322;
+        let t332 = s_theta * s_psi;
         let t527 = t333 - t332;
+        let t328 = c_theta * s_psi;
+        let t329 = c_psi * t321;
+        let t330 = t328 + t329;
+        let t549 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
+        let t262 = t257 * 0.972;
+        let t259 = t257 * 48.6;
+        let t337 = f_front_left_z * t257;
         let t528 = f_front_left_x * t526 + f_front_left_y * t527 - t337;
+        let t348 = f_front_right_z * t257;
+        let t531 = f_front_right_x * t526 + f_front_right_y * t527 - t348;
+        let t359 = f_rear_left_z * t257;
+        let t534 = f_rear_left_x * t526 + f_rear_left_y * t527 - t359;
+        let t370 = f_rear_right_z * t257;
+        let t537 = f_rear_right_x * t526 + f_rear_right_y * t527 - t370;
+        let t260 = t256 * 0.972;
+        let t522 = t11 * t262 + t22 * t260;
+        let t335 = f_front_left_x * t323 + f_front_left_y * t330 - f_front_left_z * t256;
         let t529 = t22 * t335;
         let t530 = t522 + (t11 * t528 + t529);
-        let t531 = f_front_right_x * t526 + f_front_right_y * t527 - t348;
+        let t523 = t34 * t262 + t45 * t260;
+        let t346 = f_front_right_x * t323 + f_front_right_y * t330
+            - f_front_right_z * t256;
         let t532 = t45 * t346;
         let t533 = t523 + (t34 * t531 + t532);
-        let t534 = f_rear_left_x * t526 + f_rear_left_y * t527 - t359;
+        let t524 = t57 * t262 + t68 * t260;
+        let t357 = f_rear_left_x * t323 + f_rear_left_y * t330 - f_rear_left_z * t256;
         let t535 = t68 * t357;
         let t536 = t524 + (t57 * t534 + t535);
-        let t537 = f_rear_right_x * t526 + f_rear_right_y * t527 - t370;
+        let t525 = t80 * t262 + t91 * t260;
+        let t368 = f_rear_right_x * t323 + f_rear_right_y * t330 - f_rear_right_z * t256;
         let t538 = t91 * t368;
         let t539 = t525 + (t80 * t537 + t538);
         let t540 = t262 + (t262 + (t262 + (t259 + t262))) + t528 + t531 + t534 + t537
             - t381 * t530 - t387 * t533 - t393 * t536 - t399 * t539;
+        let t258 = t256 * 48.6;
         let t541 = t368
             + (t357 + (t346 + (t335 + (t260 + (t260 + (t260 + (t258 + t260)))))))
             - t382 * t530 - t388 * t533 - t394 * t536 - t400 * t539 - t411 * t540;
+        let t372 = 0.2 * t368;
+        let t361 = 0.2 * t357;
+        let t350 = 0.2 * t346;
+        let t339 = 0.2 * t335;
+        let t342 = mu_front_left_z * t257;
+        let t345 = tau_front_left_z * t257;
+        let t353 = mu_front_right_z * t257;
+        let t356 = tau_front_right_z * t257;
+        let t364 = mu_rear_left_z * t257;
+        let t367 = tau_rear_left_z * t257;
+        let t376 = mu_rear_right_z * t257;
+        let t379 = tau_rear_right_z * t257;
         let t542 = t361
             + (t339 + (mu_front_left_x * t526 + mu_front_left_y * t527 - t342)
                 + (tau_front_left_x * t526 + tau_front_left_y * t527 - t345) - t350
@@ -1773,6 +1449,21 @@ impl Swing4 {
             + (t69 * t534 - t58 * t357) + (t92 * t537 - t81 * t368) - t384 * t530
             - t390 * t533 - t396 * t536 - t402 * t539 - t415 * t540 - t430 * t541
             - t443 * t542;
+        let t378 = tau_rear_right_x * t323 + tau_rear_right_y * t330
+            - tau_rear_right_z * t256;
+        let t374 = mu_rear_right_x * t323 + mu_rear_right_y * t330
+            - mu_rear_right_z * t256;
+        let t366 = tau_rear_left_x * t323 + tau_rear_left_y * t330
+            - tau_rear_left_z * t256;
+        let t362 = mu_rear_left_x * t323 + mu_rear_left_y * t330 - mu_rear_left_z * t256;
+        let t355 = tau_front_right_x * t323 + tau_front_right_y * t330
+            - tau_front_right_z * t256;
+        let t351 = mu_front_right_x * t323 + mu_front_right_y * t330
+            - mu_front_right_z * t256;
+        let t344 = tau_front_left_x * t323 + tau_front_left_y * t330
+            - tau_front_left_z * t256;
+        let t340 = mu_front_left_x * t323 + mu_front_left_y * t330
+            - mu_front_left_z * t256;
         let t544 = t467
             * (t378
                 + (t374
@@ -1786,33 +1477,35 @@ impl Swing4 {
         let t546 = t441 * t542 - t443 * t545 - t445 * t544;
         let t547 = t426 * t541 - t428 * t546 - t430 * t545 - t432 * t544;
         let t548 = t409 * t540 - t411 * t547 - t413 * t546 - t415 * t545 - t417 * t544;
-        let t549 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
         let t550 = -t329 - t328;
+        let t331 = c_phi * c_psi;
+        let t324 = c_phi * s_psi;
+        let t327 = t325 + t326;
         let t551 = f_front_left_x * t550 + f_front_left_y * t323;
-        let t552 = -(f_front_left_x * t331) - f_front_left_y * t324;
+        let t556 = f_front_right_x * t550 + f_front_right_y * t323;
+        let t561 = f_rear_left_x * t550 + f_rear_left_y * t323;
+        let t566 = f_rear_right_x * t550 + f_rear_right_y * t323;
         let t553 = f_front_left_x * t527 + f_front_left_y * t327;
         let t554 = -(mu_front_left_x * t331) - mu_front_left_y * t324;
         let t555 = t11 * t551 + t22 * t553 + t554;
-        let t556 = f_front_right_x * t550 + f_front_right_y * t323;
-        let t557 = -(f_front_right_x * t331) - f_front_right_y * t324;
         let t558 = f_front_right_x * t527 + f_front_right_y * t327;
         let t559 = -(mu_front_right_x * t331) - mu_front_right_y * t324;
         let t560 = t34 * t556 + t45 * t558 + t559;
-        let t561 = f_rear_left_x * t550 + f_rear_left_y * t323;
-        let t562 = -(f_rear_left_x * t331) - f_rear_left_y * t324;
         let t563 = f_rear_left_x * t527 + f_rear_left_y * t327;
         let t564 = -(mu_rear_left_x * t331) - mu_rear_left_y * t324;
         let t565 = t57 * t561 + t68 * t563 + t564;
-        let t566 = f_rear_right_x * t550 + f_rear_right_y * t323;
-        let t567 = -(f_rear_right_x * t331) - f_rear_right_y * t324;
         let t568 = f_rear_right_x * t527 + f_rear_right_y * t327;
-        let t569 = t552 + t557 + t562 + t567;
         let t570 = -(mu_rear_right_x * t331) - mu_rear_right_y * t324;
         let t571 = t80 * t566 + t91 * t568 + t570;
         let t572 = t551 + t556 + t561 + t566 - t381 * t555 - t387 * t560 - t393 * t565
             - t399 * t571;
         let t573 = t553 + t558 + t563 + t568 - t382 * t555 - t388 * t560 - t394 * t565
             - t400 * t571 - t411 * t572;
+        let t552 = -(f_front_left_x * t331) - f_front_left_y * t324;
+        let t557 = -(f_front_right_x * t331) - f_front_right_y * t324;
+        let t562 = -(f_rear_left_x * t331) - f_rear_left_y * t324;
+        let t567 = -(f_rear_right_x * t331) - f_rear_right_y * t324;
+        let t569 = t552 + t557 + t562 + t567;
         let t574 = 0.2 * t553 - t23 * t552
             + (mu_front_left_x * t550 + mu_front_left_y * t323)
             + (tau_front_left_x * t550 + tau_front_left_y * t323)
@@ -1855,60 +1548,256 @@ impl Swing4 {
         let t578 = t441 * t574 - t443 * t577 - t445 * t576;
         let t579 = t426 * t573 - t428 * t578 - t430 * t577 - t432 * t576;
         let t580 = t409 * t572 - t411 * t579 - t413 * t578 - t415 * t577 - t417 * t576;
+        let omega_y = w[4];
+        let t158 = vz * 32.400000000000006;
+        let t159 = omega_y * t135;
+        let yd_y1 = w[6];
+        let yd_y2 = w[7];
+        let yd_y3 = w[8];
+        let yd_y4 = w[9];
+        let t160 = t158 + t159 + yd_y1 * t96 + yd_y2 * t108 + yd_y3 * t120
+            + yd_y4 * t136;
+        let t154 = vy * 32.400000000000006;
+        let t155 = omega_x * t132;
+        let t156 = omega_z * t134;
+        let t157 = t154 + t155 + t156;
+        let t6 = t1 * 0.00492846750073411;
+        let t7 = t6 + 2.0 * t4;
+        let t10 = t1 * t7 + 2.0 * t8;
+        let t177 = yd_y1 * yd_y1;
+        let t174 = yd_y1 * t22;
+        let t182 = t10 * t177 + omega_y * t174;
+        let t29 = 0.00492846750073411 * t24;
+        let t30 = t29 + 2.0 * t27;
+        let t33 = t24 * t30 + 2.0 * t31;
+        let t178 = yd_y2 * yd_y2;
+        let t198 = yd_y2 * t45;
+        let t202 = t33 * t178 + omega_y * t198;
+        let t52 = 0.00492846750073411 * t47;
+        let t53 = 2.0 * t50 - t52;
+        let t56 = t47 * t53 + 2.0 * t54;
+        let t179 = yd_y3 * yd_y3;
+        let t218 = yd_y3 * t68;
+        let t222 = t56 * t179 + omega_y * t218;
+        let t75 = 0.00492846750073411 * t70;
+        let t76 = 2.0 * t73 - t75;
+        let t79 = t70 * t76 + 2.0 * t77;
+        let t180 = yd_y4 * yd_y4;
+        let t238 = yd_y4 * t91;
+        let t242 = t79 * t180 + omega_y * t238;
+        let t170 = omega_z * 0.2;
+        let t173 = yd_y1 * t11;
+        let t175 = vx + (omega_y * t23 - t170) + t173;
+        let t187 = omega_y * t22;
+        let t192 = yd_y1 * t10;
+        let t194 = t187 + t192;
+        let t172 = vy + (omega_z * t12 - omega_x * t23);
+        let t188 = omega_x * t22;
+        let t189 = omega_z * t11;
+        let t190 = t188 - t189;
+        let t171 = omega_x * 0.2;
+        let t176 = vz + (t171 - omega_y * t12) + t174;
+        let t191 = omega_y * t11;
+        let t17 = t1 * 0.015921306035372396;
+        let t18 = 2.0 * t15 - t17;
+        let t21 = t1 * t18 + 2.0 * t19;
+        let t193 = yd_y1 * t21;
+        let t195 = t193 - t191;
+        let t184 = t10 * t175;
+        let t185 = t21 * t176;
+        let t186 = t184 + t185;
+        let t183 = t21 * t177 - omega_y * t173;
+        let t267 = -1.0471975511965976 - y1;
+        let t268 = f64::max(t267, 0.0);
+        let t274 = 10000.0 * t268;
+        let t275 = f64::min(t274, 1.0);
+        let t276 = 6.92820323027551 * t275;
+        let t277 = 500.0 * t268 - yd_y1 * t276;
+        let t278 = f64::max(t277, 0.0);
+        let t265 = y1 + 0.03490658503988659;
+        let t266 = f64::max(t265, 0.0);
+        let t269 = 10000.0 * t266;
+        let t270 = f64::min(t269, 1.0);
+        let t271 = 6.92820323027551 * t270;
+        let t272 = -(500.0 * t266) - yd_y1 * t271;
+        let t273 = f64::min(t272, 0.0);
+        let y0_y1 = self.neutral[0];
+        let t334 = t332 - t333;
+        let t338 = f_front_left_x * t327 + f_front_left_y * t334 + t337;
+        let t341 = mu_front_left_y * t331 - mu_front_left_x * t324
+            + mu_front_left_z * s_phi;
+        let t343 = 0.6
+            * (t175 * t194 - t172 * t190 + t176 * t195
+                - (yd_y1 * t186 + (t11 * t182 + t22 * t183))) + (t11 * t260 - t22 * t262)
+            + (t278 + (t273 + (-((y1 - y0_y1) * 5.0) - yd_y1 * 3.5)))
+            + (t11 * t335 + t22 * t338) + t341;
+        let t197 = yd_y2 * t34;
+        let t199 = vx + (t170 + omega_y * t46) + t197;
+        let t207 = omega_y * t45;
+        let t212 = yd_y2 * t33;
+        let t214 = t207 + t212;
+        let t196 = vy + (omega_z * t35 - omega_x * t46);
+        let t208 = omega_x * t45;
+        let t209 = omega_z * t34;
+        let t210 = t208 - t209;
+        let t200 = vz + (-t171 - omega_y * t35) + t198;
+        let t211 = omega_y * t34;
+        let t40 = 0.015921306035372396 * t24;
+        let t41 = 2.0 * t38 - t40;
+        let t44 = t24 * t41 + 2.0 * t42;
+        let t213 = yd_y2 * t44;
+        let t215 = t213 - t211;
+        let t204 = t33 * t199;
+        let t205 = t44 * t200;
+        let t206 = t204 + t205;
+        let t203 = t44 * t178 - omega_y * t197;
+        let t281 = -1.0471975511965976 - y2;
+        let t282 = f64::max(t281, 0.0);
+        let t288 = 10000.0 * t282;
+        let t289 = f64::min(t288, 1.0);
+        let t290 = 6.92820323027551 * t289;
+        let t291 = 500.0 * t282 - yd_y2 * t290;
+        let t292 = f64::max(t291, 0.0);
+        let t279 = y2 + 0.03490658503988659;
+        let t280 = f64::max(t279, 0.0);
+        let t283 = 10000.0 * t280;
+        let t284 = f64::min(t283, 1.0);
+        let t285 = 6.92820323027551 * t284;
+        let t286 = -(500.0 * t280) - yd_y2 * t285;
+        let t287 = f64::min(t286, 0.0);
+        let y0_y2 = self.neutral[1];
+        let t349 = f_front_right_x * t327 + f_front_right_y * t334 + t348;
+        let t352 = mu_front_right_y * t331 - mu_front_right_x * t324
+            + mu_front_right_z * s_phi;
+        let t354 = 0.6
+            * (t199 * t214 - t196 * t210 + t200 * t215
+                - (yd_y2 * t206 + (t34 * t202 + t45 * t203))) + (t34 * t260 - t45 * t262)
+            + (t292 + (t287 + (-(5.0 * (y2 - y0_y2)) - yd_y2 * 3.5)))
+            + (t34 * t346 + t45 * t349) + t352;
+        let t217 = yd_y3 * t57;
+        let t219 = vx + (omega_y * t69 - t170) + t217;
+        let t227 = omega_y * t68;
+        let t232 = yd_y3 * t56;
+        let t234 = t227 + t232;
+        let t216 = vy + (omega_z * t58 - omega_x * t69);
+        let t228 = omega_x * t68;
+        let t229 = omega_z * t57;
+        let t230 = t228 - t229;
+        let t220 = vz + (t171 - omega_y * t58) + t218;
+        let t231 = omega_y * t57;
+        let t63 = 0.015921306035372396 * t47;
+        let t64 = 2.0 * t61 - t63;
+        let t67 = t47 * t64 + 2.0 * t65;
+        let t233 = yd_y3 * t67;
+        let t235 = t233 - t231;
+        let t224 = t56 * t219;
+        let t225 = t67 * t220;
+        let t226 = t224 + t225;
+        let t223 = t67 * t179 - omega_y * t217;
+        let t295 = 0.03490658503988659 - y3;
+        let t296 = f64::max(t295, 0.0);
+        let t302 = 10000.0 * t296;
+        let t303 = f64::min(t302, 1.0);
+        let t304 = 6.92820323027551 * t303;
+        let t305 = 500.0 * t296 - yd_y3 * t304;
+        let t306 = f64::max(t305, 0.0);
+        let t293 = y3 - 1.0471975511965976;
+        let t294 = f64::max(t293, 0.0);
+        let t297 = 10000.0 * t294;
+        let t298 = f64::min(t297, 1.0);
+        let t299 = 6.92820323027551 * t298;
+        let t300 = -(500.0 * t294) - yd_y3 * t299;
+        let t301 = f64::min(t300, 0.0);
+        let y0_y3 = self.neutral[2];
+        let t360 = f_rear_left_x * t327 + f_rear_left_y * t334 + t359;
+        let t363 = mu_rear_left_y * t331 - mu_rear_left_x * t324
+            + mu_rear_left_z * s_phi;
+        let t365 = 0.6
+            * (t219 * t234 - t216 * t230 + t220 * t235
+                - (yd_y3 * t226 + (t57 * t222 + t68 * t223))) + (t57 * t260 - t68 * t262)
+            + (t306 + (t301 + (-(5.0 * (y3 - y0_y3)) - yd_y3 * 3.5)))
+            + (t57 * t357 + t68 * t360) + t363;
+        let t237 = yd_y4 * t80;
+        let t239 = vx + (t170 + omega_y * t92) + t237;
+        let t247 = omega_y * t91;
+        let t252 = yd_y4 * t79;
+        let t254 = t247 + t252;
+        let t236 = vy + (omega_z * t81 - omega_x * t92);
+        let t248 = omega_x * t91;
+        let t249 = omega_z * t80;
+        let t250 = t248 - t249;
+        let t240 = vz + (-t171 - omega_y * t81) + t238;
+        let t251 = omega_y * t80;
+        let t86 = 0.015921306035372396 * t70;
+        let t87 = 2.0 * t84 - t86;
+        let t90 = t70 * t87 + 2.0 * t88;
+        let t253 = yd_y4 * t90;
+        let t255 = t253 - t251;
+        let t244 = t79 * t239;
+        let t245 = t90 * t240;
+        let t246 = t244 + t245;
+        let t243 = t90 * t180 - omega_y * t237;
+        let t309 = 0.03490658503988659 - y4;
+        let t310 = f64::max(t309, 0.0);
+        let t316 = 10000.0 * t310;
+        let t317 = f64::min(t316, 1.0);
+        let t318 = 6.92820323027551 * t317;
+        let t319 = 500.0 * t310 - yd_y4 * t318;
+        let t320 = f64::max(t319, 0.0);
+        let t307 = y4 - 1.0471975511965976;
+        let t308 = f64::max(t307, 0.0);
+        let t311 = 10000.0 * t308;
+        let t312 = f64::min(t311, 1.0);
+        let t313 = 6.92820323027551 * t312;
+        let t314 = -(500.0 * t308) - yd_y4 * t313;
+        let t315 = f64::min(t314, 0.0);
+        let y0_y4 = self.neutral[3];
+        let t371 = f_rear_right_x * t327 + f_rear_right_y * t334 + t370;
+        let t375 = mu_rear_right_y * t331 - mu_rear_right_x * t324
+            + mu_rear_right_z * s_phi;
+        let t377 = 0.6
+            * (t239 * t254 - t236 * t250 + t240 * t255
+                - (yd_y4 * t246 + (t80 * t242 + t91 * t243))) + (t80 * t260 - t91 * t262)
+            + (t320 + (t315 + (-(5.0 * (y4 - y0_y4)) - yd_y4 * 3.5)))
+            + (t80 * t368 + t91 * t371) + t375;
+        let t468 = t260
+            + (t260
+                + (t260
+                    + (-(omega_y * t160 - omega_z * t157) - 0.6 * t182 - 0.6 * t202
+                        - 0.6 * t222 - 0.6 * t242 + t258 + t260))) + t335 + t346 + t357
+            + t368 - t343 * t381 - t354 * t387 - t365 * t393 - t377 * t399;
         let t581 = t4 + (t4 + t6);
-        let t582 = t7 + t1 * 0.014785402502202331 + 2.0 * t581;
         let t583 = t8 + (t8 + t1 * t581);
-        let t584 = t15 + (t15 - t17);
-        let t585 = t18 - t1 * 0.04776391810611719 + 2.0 * t584;
-        let t586 = t19 + (t19 + t1 * t584);
         let t587 = 0.6 * t583;
-        let t588 = 0.6 * t586;
-        let t589 = t22 * t23;
-        let t590 = t589 + t589;
-        let t591 = 0.6 * t590;
-        let t592 = 0.6 * (t100 + t101);
-        let t593 = 0.6 * (0.2 * t586);
-        let t594 = t11 * t12;
-        let t595 = t594 + t594;
-        let t596 = 0.6 * (t590 + t595);
-        let t597 = t11 * t22;
-        let t598 = 0.6 * (t23 * t583 + t597 - (t597 + t12 * t586));
-        let t599 = 0.6 * t595;
-        let t600 = 0.6 * (0.2 * t583);
         let t601 = t11 * t583;
+        let t584 = t15 + (t15 - t17);
+        let t586 = t19 + (t19 + t1 * t584);
         let t602 = t22 * t586;
         let t603 = 0.6 * (t601 + t601 + (t602 + t602));
-        let t604 = omega_y * t96;
-        let t605 = t604 + yd_y1 * t587;
-        let t606 = omega_z * t94 - omega_x * t96;
+        let t636 = t380 * t603 / t104;
+        let t637 = t380 * t587 - t94 * t636;
+        let t642 = t381 * t603 + t104 * t637;
+        let t643 = t404 * t637 + t381 * t642;
+        let t644 = t409 * t643 / t408;
         let t607 = omega_y * t94;
+        let t588 = 0.6 * t586;
         let t608 = yd_y1 * t588 - t607;
-        let t609 = vy * t96;
-        let t610 = omega_y * t103;
-        let t611 = omega_x * t591 - t609 - t610 - omega_z * t592 + yd_y1 * t593;
-        let t612 = vx * t96;
-        let t613 = vz * t94;
-        let t614 = omega_x * t103;
-        let t615 = omega_z * t98;
-        let t616 = t612 - t613 - t614 + omega_y * t596 - t615 + yd_y1 * t598;
-        let t617 = vy * t94;
-        let t618 = omega_y * t98;
-        let t619 = t617 - omega_x * t592 - t618 + omega_z * t599 - yd_y1 * t600;
-        let t620 = t189 - t188;
-        let t621 = yd_y1 * t583;
+        let t606 = omega_z * t94 - omega_x * t96;
+        let t582 = t7 + t1 * 0.014785402502202331 + 2.0 * t581;
         let t622 = yd_y1 * t586;
-        let t623 = t187 + t621;
-        let t624 = t622 - t191;
-        let t625 = omega_x * t622 - omega_z * t621;
         let t626 = t177 * t582 + omega_y * t622;
+        let t621 = yd_y1 * t583;
+        let t623 = t187 + t621;
+        let t620 = t189 - t188;
+        let t624 = t622 - t191;
+        let t585 = t18 - t1 * 0.04776391810611719 + 2.0 * t584;
         let t627 = t177 * t585 - omega_y * t621;
-        let t628 = 0.6 * t625 - (omega_z * t605 - omega_x * t608);
-        let t629 = if t265 >= 0.0 { 1.0 } else { 0.0 };
         let t630 = if t267 >= 0.0 { 1.0 } else { 0.0 };
-        let t631 = if 1.0 >= t269 { 1.0 } else { 0.0 };
-        let t632 = if 0.0 >= t272 { 1.0 } else { 0.0 };
         let t633 = if 1.0 >= t274 { 1.0 } else { 0.0 };
         let t634 = if t277 >= 0.0 { 1.0 } else { 0.0 };
+        let t629 = if t265 >= 0.0 { 1.0 } else { 0.0 };
+        let t631 = if 1.0 >= t269 { 1.0 } else { 0.0 };
+        let t632 = if 0.0 >= t272 { 1.0 } else { 0.0 };
         let t635 = 0.6
             * (t194 * t623 + t175 * (omega_y * t586 + yd_y1 * t582)
                 - (t190 * t620 + t172 * (omega_x * t586 - omega_z * t583))
@@ -1921,46 +1810,154 @@ impl Swing4 {
                 + ((-(500.0 * t629)
                     - yd_y1 * (6.92820323027551 * (10000.0 * t629 * t631))) * t632
                     - 5.0)) + (t335 * t583 + t338 * t586);
-        let t636 = t380 * t603 / t104;
-        let t637 = t380 * t587 - t94 * t636;
+        let t673 = -(omega_y * t608 - omega_z * t606) - 0.6 * t626
+            - (t381 * t635 + t343 * t637);
+        let t151 = vx * 32.400000000000006;
+        let t152 = omega_y * t130;
+        let t153 = t151 + t152 + yd_y1 * t94 + yd_y2 * t106 + yd_y3 * t118
+            + yd_y4 * t131;
+        let t469 = -(omega_x * t157 - omega_y * t153) - 0.6 * t183 - 0.6 * t203
+            - 0.6 * t223 - 0.6 * t243 - t259 - t262 - t262 - t262 - t262 + t338 + t349
+            + t360 + t371 - t343 * t382 - t354 * t388 - t365 * t394 - t377 * t400
+            - t411 * t468;
+        let t167 = omega_x * t140;
+        let t168 = omega_y * t144;
+        let t169 = vy * t134 + t167 + t168 + omega_z * t148 - yd_y1 * t103 + yd_y2 * t115
+            - yd_y3 * t127 + yd_y4 * t149;
+        let t164 = omega_x * t139;
+        let t165 = omega_z * t144;
+        let t166 = vx * t130 + vz * t135 + t164 + omega_y * t143 + t165 + yd_y1 * t102
+            + yd_y2 * t114 + yd_y3 * t126 + yd_y4 * t147;
+        let t181 = omega_x * t174 - omega_z * t173;
+        let t201 = omega_x * t198 - omega_z * t197;
+        let t221 = omega_x * t218 - omega_z * t217;
+        let t241 = omega_x * t238 - omega_z * t237;
+        let t263 = 0.2 * t262;
+        let t261 = s_phi * 0.972;
+        let t336 = f_front_left_y * t331 - f_front_left_x * t324
+            + f_front_left_z * s_phi;
+        let t347 = f_front_right_y * t331 - f_front_right_x * t324
+            + f_front_right_z * s_phi;
+        let t358 = f_rear_left_y * t331 - f_rear_left_x * t324 + f_rear_left_z * s_phi;
+        let t369 = f_rear_right_y * t331 - f_rear_right_x * t324
+            + f_rear_right_z * s_phi;
+        let t373 = 0.6 * t181 - (omega_z * t153 - omega_x * t160) + 0.6 * t201
+            + 0.6 * t221 + 0.6 * t241 - s_phi * 48.6 - t261 - t261 - t261 - t261 + t336
+            + t347 + t358 + t369;
+        let t470 = -(vy * t160 - vz * t157 + (omega_y * t169 - omega_z * t166))
+            - 0.6 * (0.2 * t183 + t23 * t181 - t172 * t174)
+            - 0.6 * (t46 * t201 - 0.2 * t203 - t196 * t198)
+            - 0.6 * (0.2 * t223 + t69 * t221 - t216 * t218)
+            - 0.6 * (t92 * t241 - 0.2 * t243 - t236 * t238) + (t23 * t261 - t263)
+            + (t263 + t46 * t261) + (t69 * t261 - t263) + (t263 + t92 * t261)
+            + (0.2 * t338 - t23 * t336) + t340 + t344 + (-(0.2 * t349) - t46 * t347)
+            + t351 + t355 + (0.2 * t360 - t69 * t358) + t362 + t366
+            + (-(0.2 * t371) - t92 * t369) + t374 + t378 - t343 * t383 + t354 * t389
+            - t365 * t395 + t377 * t401 - t413 * t468 - t373 * t418 - t428 * t469;
+        let t161 = omega_y * t139;
+        let t162 = omega_z * t140;
+        let t163 = vy * t132 + omega_x * t138 + t161 + t162 + yd_y1 * t98 - yd_y2 * t110
+            + yd_y3 * t122 - yd_y4 * t141;
+        let t471 = -(vz * t153 - vx * t160 + (omega_z * t163 - omega_x * t169))
+            - 0.6 * (t174 * t175 - t173 * t176 + (t23 * t182 - t12 * t183))
+            - 0.6 * (t198 * t199 - t197 * t200 + (t46 * t202 - t35 * t203))
+            - 0.6 * (t218 * t219 - t217 * t220 + (t69 * t222 - t58 * t223))
+            - 0.6 * (t238 * t239 - t237 * t240 + (t92 * t242 - t81 * t243))
+            + (t23 * t260 + t12 * t262) + (t46 * t260 + t35 * t262)
+            + (t69 * t260 + t58 * t262) + (t92 * t260 + t81 * t262)
+            + (t23 * t335 - t12 * t338) + t341
+            + (tau_front_left_y * t331 - tau_front_left_x * t324
+                + tau_front_left_z * s_phi) + (t46 * t346 - t35 * t349) + t352
+            + (tau_front_right_y * t331 - tau_front_right_x * t324
+                + tau_front_right_z * s_phi) + (t69 * t357 - t58 * t360) + t363
+            + (tau_rear_left_y * t331 - tau_rear_left_x * t324 + tau_rear_left_z * s_phi)
+            + (t92 * t368 - t81 * t371) + t375
+            + (tau_rear_right_y * t331 - tau_rear_right_x * t324
+                + tau_rear_right_z * s_phi) - t343 * t384 - t354 * t390 - t365 * t396
+            - t377 * t402 - t415 * t468 - t430 * t469 - t443 * t470;
+        let t264 = 0.2 * t260;
+        let t472 = -(vx * t157 - vy * t153 + (omega_x * t166 - omega_y * t163))
+            - 0.6 * (t172 * t173 + (-(t12 * t181) - 0.2 * t182))
+            - 0.6 * (t196 * t197 + (0.2 * t202 - t35 * t201))
+            - 0.6 * (t216 * t217 + (-(t58 * t221) - 0.2 * t222))
+            - 0.6 * (t236 * t237 + (0.2 * t242 - t81 * t241)) + (-(t12 * t261) - t264)
+            + (t264 - t35 * t261) + (-t264 - t58 * t261) + (t264 - t81 * t261)
+            + (t12 * t336 - t339)
+            + (mu_front_left_x * t327 + mu_front_left_y * t334 + t342)
+            + (tau_front_left_x * t327 + tau_front_left_y * t334 + t345)
+            + (t35 * t347 + t350)
+            + (mu_front_right_x * t327 + mu_front_right_y * t334 + t353)
+            + (tau_front_right_x * t327 + tau_front_right_y * t334 + t356)
+            + (t58 * t358 - t361)
+            + (mu_rear_left_x * t327 + mu_rear_left_y * t334 + t364)
+            + (tau_rear_left_x * t327 + tau_rear_left_y * t334 + t367)
+            + (t81 * t369 + t372)
+            + (mu_rear_right_x * t327 + mu_rear_right_y * t334 + t376)
+            + (tau_rear_right_x * t327 + tau_rear_right_y * t334 + t379) + t343 * t385
+            - t354 * t391 + t365 * t397 - t377 * t403 - t417 * t468 - t373 * t419
+            - t432 * t469 - t445 * t470 - t456 * t471;
+        let t473 = t467 * t472;
+        let t474 = t454 * t471 - t456 * t473;
+        let t475 = t441 * t470 - t443 * t474 - t445 * t473;
+        let t476 = t426 * t469 - t428 * t475 - t430 * t474 - t432 * t473;
         let t638 = t380 * t588 - t96 * t636;
-        let t639 = t380 * t593 - t98 * t636;
-        let t640 = t380 * t598 - t102 * t636;
-        let t641 = t380 * t600 - t103 * t636;
-        let t642 = t381 * t603 + t104 * t637;
-        let t643 = t404 * t637 + t381 * t642;
-        let t644 = t409 * t643 / t408;
         let t645 = t410 * t644 - t409 * (t404 * t638 + t382 * t642);
-        let t646 = t412 * t644 - t409 * (t404 * t639 + t383 * t642);
-        let t647 = t414 * t644 + t409 * (t96 - (t404 * t640 + t384 * t642));
-        let t648 = t416 * t644 + t409 * (t404 * t641 + t385 * t642);
-        let t649 = t96 * 0.030864197530864192;
-        let t650 = t94 * 0.030864197530864192;
         let t651 = t382 * t603 + t104 * t638;
         let t652 = t408 * t645 - t411 * t643;
         let t653 = -(t420 * t638 + t382 * t651) - (t424 * t645 + t411 * t652);
         let t654 = t426 * t653 / t425;
+        let t604 = omega_y * t96;
+        let t605 = t604 + yd_y1 * t587;
+        let t674 = -(omega_x * t606 - omega_y * t605) - 0.6 * t627
+            - (t382 * t635 + t343 * t638) - (t468 * t645 + t411 * t673);
+        let t593 = 0.6 * (0.2 * t586);
+        let t639 = t380 * t593 - t98 * t636;
+        let t646 = t412 * t644 - t409 * (t404 * t639 + t383 * t642);
         let t655 = t426 * (-(t420 * t639 + t383 * t651) - (t424 * t646 + t413 * t652))
             - t427 * t654;
-        let t656 = t426
-            * (-t94 - (t420 * t640 + t384 * t651) - (t424 * t647 + t415 * t652))
-            - t429 * t654;
-        let t657 = t426 * (t420 * t641 + t385 * t651 - (t424 * t648 + t417 * t652))
-            - t431 * t654;
+        let t589 = t22 * t23;
+        let t590 = t589 + t589;
+        let t591 = 0.6 * t590;
         let t658 = t383 * t603 + t104 * t639;
         let t659 = t408 * t646 - t413 * t643;
+        let t649 = t96 * 0.030864197530864192;
         let t660 = 32.400000000000006 * t649;
         let t661 = t428 * t653 + t425 * t655;
         let t662 = t591 - (t433 * t639 + t383 * t658) - (t437 * t646 + t413 * t659)
             - (-(t438 * t649) - t418 * t660) - (t439 * t655 + t428 * t661);
         let t663 = t441 * t662 / t440;
+        let t617 = vy * t94;
+        let t592 = 0.6 * (t100 + t101);
+        let t618 = omega_y * t98;
+        let t594 = t11 * t12;
+        let t595 = t594 + t594;
+        let t599 = 0.6 * t595;
+        let t600 = 0.6 * (0.2 * t583);
+        let t619 = t617 - omega_x * t592 - t618 + omega_z * t599 - yd_y1 * t600;
+        let t612 = vx * t96;
+        let t613 = vz * t94;
+        let t614 = omega_x * t103;
+        let t596 = 0.6 * (t590 + t595);
+        let t615 = omega_z * t98;
+        let t597 = t11 * t22;
+        let t598 = 0.6 * (t23 * t583 + t597 - (t597 + t12 * t586));
+        let t616 = t612 - t613 - t614 + omega_y * t596 - t615 + yd_y1 * t598;
+        let t625 = omega_x * t622 - omega_z * t621;
+        let t628 = 0.6 * t625 - (omega_z * t605 - omega_x * t608);
+        let t675 = -(vy * t608 - vz * t606 + (omega_y * t619 - omega_z * t616))
+            - 0.6
+                * (0.2 * t627 + (t22 * t181 + t23 * t625) - (t174 * t620 + t172 * t622))
+            + t22 * t261 - t22 * t336 - (t383 * t635 + t343 * t639)
+            - (t468 * t646 + t413 * t673) - (t418 * t628 - t373 * t649)
+            - (t469 * t655 + t428 * t674);
+        let t640 = t380 * t598 - t102 * t636;
+        let t647 = t414 * t644 + t409 * (t96 - (t404 * t640 + t384 * t642));
+        let t656 = t426
+            * (-t94 - (t420 * t640 + t384 * t651) - (t424 * t647 + t415 * t652))
+            - t429 * t654;
         let t664 = t441
             * (-t103 - (t433 * t640 + t384 * t658) - (t437 * t647 + t415 * t659)
                 - (t439 * t656 + t430 * t661)) - t442 * t663;
-        let t665 = t441
-            * (t433 * t641 + t385 * t658 - t592 - (t437 * t648 + t417 * t659)
-                - (t438 * t650 - t419 * t660) - (t439 * t657 + t432 * t661))
-            - t444 * t663;
         let t666 = t384 * t603 + t104 * t640;
         let t667 = t408 * t647 - t415 * t643;
         let t668 = t430 * t653 + t425 * t656;
@@ -1968,20 +1965,9 @@ impl Swing4 {
         let t670 = t596 - (t446 * t640 + t384 * t666) - (t450 * t647 + t415 * t667)
             - (t451 * t656 + t430 * t668) - (t452 * t664 + t443 * t669);
         let t671 = t454 * t670 / t453;
-        let t672 = t454
-            * (t446 * t641 + t385 * t666 - t98 - (t450 * t648 + t417 * t667)
-                - (t451 * t657 + t432 * t668) - (t452 * t665 + t445 * t669))
-            - t455 * t671;
-        let t673 = -(omega_y * t608 - omega_z * t606) - 0.6 * t626
-            - (t381 * t635 + t343 * t637);
-        let t674 = -(omega_x * t606 - omega_y * t605) - 0.6 * t627
-            - (t382 * t635 + t343 * t638) - (t468 * t645 + t411 * t673);
-        let t675 = -(vy * t608 - vz * t606 + (omega_y * t619 - omega_z * t616))
-            - 0.6
-                * (0.2 * t627 + (t22 * t181 + t23 * t625) - (t174 * t620 + t172 * t622))
-            + t22 * t261 - t22 * t336 - (t383 * t635 + t343 * t639)
-            - (t468 * t646 + t413 * t673) - (t418 * t628 - t373 * t649)
-            - (t469 * t655 + t428 * t674);
+        let t609 = vy * t96;
+        let t610 = omega_y * t103;
+        let t611 = omega_x * t591 - t609 - t610 - omega_z * t592 + yd_y1 * t593;
         let t676 = t522
             + (-(vz * t605 - vx * t608 + (omega_z * t611 - omega_x * t619))
                 - 0.6
@@ -1990,6 +1976,19 @@ impl Swing4 {
             + (t529 - t11 * t338) - (t384 * t635 + t343 * t640)
             - (t468 * t647 + t415 * t673) - (t469 * t656 + t430 * t674)
             - (t470 * t664 + t443 * t675);
+        let t641 = t380 * t600 - t103 * t636;
+        let t648 = t416 * t644 + t409 * (t404 * t641 + t385 * t642);
+        let t657 = t426 * (t420 * t641 + t385 * t651 - (t424 * t648 + t417 * t652))
+            - t431 * t654;
+        let t650 = t94 * 0.030864197530864192;
+        let t665 = t441
+            * (t433 * t641 + t385 * t658 - t592 - (t437 * t648 + t417 * t659)
+                - (t438 * t650 - t419 * t660) - (t439 * t657 + t432 * t661))
+            - t444 * t663;
+        let t672 = t454
+            * (t446 * t641 + t385 * t666 - t98 - (t450 * t648 + t417 * t667)
+                - (t451 * t657 + t432 * t668) - (t452 * t665 + t445 * t669))
+            - t455 * t671;
         let t677 = t467
             * (-(vx * t606 - vy * t605 + (omega_x * t616 - omega_y * t611))
                 - 0.6
@@ -2014,60 +2013,39 @@ impl Swing4 {
         let t681 = t468 * t644 + t409 * t673 - (t476 * t645 + t411 * t680)
             - (t475 * t646 + t413 * t679) - (t474 * t647 + t415 * t678)
             - (t473 * t648 + t417 * t677);
+        let t477 = t409 * t468 - t411 * t476 - t413 * t475 - t415 * t474 - t417 * t473;
         let t682 = t27 + (t27 + t29);
-        let t683 = t30 + t24 * 0.014785402502202331 + 2.0 * t682;
         let t684 = t31 + (t31 + t24 * t682);
-        let t685 = t38 + (t38 - t40);
-        let t686 = t41 - t24 * 0.04776391810611719 + 2.0 * t685;
-        let t687 = t42 + (t42 + t24 * t685);
         let t688 = 0.6 * t684;
-        let t689 = 0.6 * t687;
-        let t690 = t45 * t46;
-        let t691 = t690 + t690;
-        let t692 = 0.6 * t691;
-        let t693 = 0.6 * (t112 + t113);
-        let t694 = 0.6 * (0.2 * t687);
-        let t695 = t34 * t35;
-        let t696 = t695 + t695;
-        let t697 = 0.6 * (t691 + t696);
-        let t698 = t34 * t45;
-        let t699 = 0.6 * (t46 * t684 + t698 - (t698 + t35 * t687));
-        let t700 = 0.6 * t696;
-        let t701 = 0.6 * (0.2 * t684);
         let t702 = t34 * t684;
+        let t685 = t38 + (t38 - t40);
+        let t687 = t42 + (t42 + t24 * t685);
         let t703 = t45 * t687;
         let t704 = 0.6 * (t702 + t702 + (t703 + t703));
-        let t705 = omega_y * t108;
-        let t706 = t705 + yd_y2 * t688;
-        let t707 = omega_z * t106 - omega_x * t108;
+        let t737 = t386 * t704 / t116;
+        let t738 = t386 * t688 - t106 * t737;
+        let t743 = t387 * t704 + t116 * t738;
+        let t744 = t405 * t738 + t387 * t743;
+        let t745 = t409 * t744 / t408;
         let t708 = omega_y * t106;
+        let t689 = 0.6 * t687;
         let t709 = yd_y2 * t689 - t708;
-        let t710 = vy * t108;
-        let t711 = omega_y * t115;
-        let t712 = omega_x * t692 - t710 + t711 - omega_z * t693 - yd_y2 * t694;
-        let t713 = vx * t108;
-        let t714 = vz * t106;
-        let t715 = omega_x * t115;
-        let t716 = omega_z * t110;
-        let t717 = t713 - t714 + t715 + omega_y * t697 + t716 + yd_y2 * t699;
-        let t718 = vy * t106;
-        let t719 = omega_y * t110;
-        let t720 = t718 - omega_x * t693 + t719 + omega_z * t700 + yd_y2 * t701;
-        let t721 = t209 - t208;
-        let t722 = yd_y2 * t684;
+        let t707 = omega_z * t106 - omega_x * t108;
+        let t683 = t30 + t24 * 0.014785402502202331 + 2.0 * t682;
         let t723 = yd_y2 * t687;
-        let t724 = t207 + t722;
-        let t725 = t723 - t211;
-        let t726 = omega_x * t723 - omega_z * t722;
         let t727 = t178 * t683 + omega_y * t723;
+        let t722 = yd_y2 * t684;
+        let t724 = t207 + t722;
+        let t721 = t209 - t208;
+        let t725 = t723 - t211;
+        let t686 = t41 - t24 * 0.04776391810611719 + 2.0 * t685;
         let t728 = t178 * t686 - omega_y * t722;
-        let t729 = 0.6 * t726 - (omega_z * t706 - omega_x * t709);
-        let t730 = if t279 >= 0.0 { 1.0 } else { 0.0 };
         let t731 = if t281 >= 0.0 { 1.0 } else { 0.0 };
-        let t732 = if 1.0 >= t283 { 1.0 } else { 0.0 };
-        let t733 = if 0.0 >= t286 { 1.0 } else { 0.0 };
         let t734 = if 1.0 >= t288 { 1.0 } else { 0.0 };
         let t735 = if t291 >= 0.0 { 1.0 } else { 0.0 };
+        let t730 = if t279 >= 0.0 { 1.0 } else { 0.0 };
+        let t732 = if 1.0 >= t283 { 1.0 } else { 0.0 };
+        let t733 = if 0.0 >= t286 { 1.0 } else { 0.0 };
         let t736 = 0.6
             * (t214 * t724 + t199 * (omega_y * t687 + yd_y2 * t683)
                 - (t210 * t721 + t196 * (omega_x * t687 - omega_z * t684))
@@ -2080,46 +2058,65 @@ impl Swing4 {
                 + ((-(500.0 * t730)
                     - yd_y2 * (6.92820323027551 * (10000.0 * t730 * t732))) * t733
                     - 5.0)) + (t346 * t684 + t349 * t687);
-        let t737 = t386 * t704 / t116;
-        let t738 = t386 * t688 - t106 * t737;
+        let t774 = -(omega_y * t709 - omega_z * t707) - 0.6 * t727
+            - (t387 * t736 + t354 * t738);
         let t739 = t386 * t689 - t108 * t737;
-        let t740 = t386 * t694 - t110 * t737;
-        let t741 = t386 * t699 - t114 * t737;
-        let t742 = t386 * t701 - t115 * t737;
-        let t743 = t387 * t704 + t116 * t738;
-        let t744 = t405 * t738 + t387 * t743;
-        let t745 = t409 * t744 / t408;
         let t746 = t410 * t745 - t409 * (t405 * t739 + t388 * t743);
-        let t747 = t412 * t745 + t409 * (t405 * t740 + t389 * t743);
-        let t748 = t414 * t745 + t409 * (t108 - (t405 * t741 + t390 * t743));
-        let t749 = t416 * t745 - t409 * (t405 * t742 + t391 * t743);
-        let t750 = t108 * 0.030864197530864192;
-        let t751 = t106 * 0.030864197530864192;
         let t752 = t388 * t704 + t116 * t739;
         let t753 = t408 * t746 - t411 * t744;
         let t754 = -(t421 * t739 + t388 * t752) - (t424 * t746 + t411 * t753);
         let t755 = t426 * t754 / t425;
+        let t705 = omega_y * t108;
+        let t706 = t705 + yd_y2 * t688;
+        let t775 = -(omega_x * t707 - omega_y * t706) - 0.6 * t728
+            - (t388 * t736 + t354 * t739) - (t468 * t746 + t411 * t774);
+        let t694 = 0.6 * (0.2 * t687);
+        let t740 = t386 * t694 - t110 * t737;
+        let t747 = t412 * t745 + t409 * (t405 * t740 + t389 * t743);
         let t756 = t426 * (t421 * t740 + t389 * t752 - (t424 * t747 + t413 * t753))
             - t427 * t755;
-        let t757 = t426
-            * (-t106 - (t421 * t741 + t390 * t752) - (t424 * t748 + t415 * t753))
-            - t429 * t755;
-        let t758 = t426 * (-(t421 * t742 + t391 * t752) - (t424 * t749 + t417 * t753))
-            - t431 * t755;
+        let t690 = t45 * t46;
+        let t691 = t690 + t690;
+        let t692 = 0.6 * t691;
         let t759 = t389 * t704 + t116 * t740;
         let t760 = t408 * t747 - t413 * t744;
+        let t750 = t108 * 0.030864197530864192;
         let t761 = 32.400000000000006 * t750;
         let t762 = t428 * t754 + t425 * t756;
         let t763 = t692 - (t434 * t740 + t389 * t759) - (t437 * t747 + t413 * t760)
             - (-(t438 * t750) - t418 * t761) - (t439 * t756 + t428 * t762);
         let t764 = t441 * t763 / t440;
+        let t718 = vy * t106;
+        let t693 = 0.6 * (t112 + t113);
+        let t719 = omega_y * t110;
+        let t695 = t34 * t35;
+        let t696 = t695 + t695;
+        let t700 = 0.6 * t696;
+        let t701 = 0.6 * (0.2 * t684);
+        let t720 = t718 - omega_x * t693 + t719 + omega_z * t700 + yd_y2 * t701;
+        let t713 = vx * t108;
+        let t714 = vz * t106;
+        let t715 = omega_x * t115;
+        let t697 = 0.6 * (t691 + t696);
+        let t716 = omega_z * t110;
+        let t698 = t34 * t45;
+        let t699 = 0.6 * (t46 * t684 + t698 - (t698 + t35 * t687));
+        let t717 = t713 - t714 + t715 + omega_y * t697 + t716 + yd_y2 * t699;
+        let t726 = omega_x * t723 - omega_z * t722;
+        let t729 = 0.6 * t726 - (omega_z * t706 - omega_x * t709);
+        let t776 = -(vy * t709 - vz * t707 + (omega_y * t720 - omega_z * t717))
+            - 0.6 * (t45 * t201 + t46 * t726 - 0.2 * t728 - (t198 * t721 + t196 * t723))
+            + t45 * t261 - t45 * t347 + (t389 * t736 + t354 * t740)
+            - (t468 * t747 + t413 * t774) - (t418 * t729 - t373 * t750)
+            - (t469 * t756 + t428 * t775);
+        let t741 = t386 * t699 - t114 * t737;
+        let t748 = t414 * t745 + t409 * (t108 - (t405 * t741 + t390 * t743));
+        let t757 = t426
+            * (-t106 - (t421 * t741 + t390 * t752) - (t424 * t748 + t415 * t753))
+            - t429 * t755;
         let t765 = t441
             * (t115 + (t434 * t741 + t390 * t759) - (t437 * t748 + t415 * t760)
                 - (t439 * t757 + t430 * t762)) - t442 * t764;
-        let t766 = t441
-            * (t434 * t742 + t391 * t759 - t693 - (t437 * t749 + t417 * t760)
-                - (t438 * t751 - t419 * t761) - (t439 * t758 + t432 * t762))
-            - t444 * t764;
         let t767 = t390 * t704 + t116 * t741;
         let t768 = t408 * t748 - t415 * t744;
         let t769 = t430 * t754 + t425 * t757;
@@ -2127,19 +2124,9 @@ impl Swing4 {
         let t771 = t697 - (t447 * t741 + t390 * t767) - (t450 * t748 + t415 * t768)
             - (t451 * t757 + t430 * t769) - (t452 * t765 + t443 * t770);
         let t772 = t454 * t771 / t453;
-        let t773 = t454
-            * (t110 - (t447 * t742 + t391 * t767) - (t450 * t749 + t417 * t768)
-                - (t451 * t758 + t432 * t769) - (t452 * t766 + t445 * t770))
-            - t455 * t772;
-        let t774 = -(omega_y * t709 - omega_z * t707) - 0.6 * t727
-            - (t387 * t736 + t354 * t738);
-        let t775 = -(omega_x * t707 - omega_y * t706) - 0.6 * t728
-            - (t388 * t736 + t354 * t739) - (t468 * t746 + t411 * t774);
-        let t776 = -(vy * t709 - vz * t707 + (omega_y * t720 - omega_z * t717))
-            - 0.6 * (t45 * t201 + t46 * t726 - 0.2 * t728 - (t198 * t721 + t196 * t723))
-            + t45 * t261 - t45 * t347 + (t389 * t736 + t354 * t740)
-            - (t468 * t747 + t413 * t774) - (t418 * t729 - t373 * t750)
-            - (t469 * t756 + t428 * t775);
+        let t710 = vy * t108;
+        let t711 = omega_y * t115;
+        let t712 = omega_x * t692 - t710 + t711 - omega_z * t693 - yd_y2 * t694;
         let t777 = t523
             + (-(vz * t706 - vx * t709 + (omega_z * t712 - omega_x * t720))
                 - 0.6
@@ -2148,6 +2135,19 @@ impl Swing4 {
             + (t532 - t34 * t349) - (t390 * t736 + t354 * t741)
             - (t468 * t748 + t415 * t774) - (t469 * t757 + t430 * t775)
             - (t470 * t765 + t443 * t776);
+        let t742 = t386 * t701 - t115 * t737;
+        let t749 = t416 * t745 - t409 * (t405 * t742 + t391 * t743);
+        let t758 = t426 * (-(t421 * t742 + t391 * t752) - (t424 * t749 + t417 * t753))
+            - t431 * t755;
+        let t751 = t106 * 0.030864197530864192;
+        let t766 = t441
+            * (t434 * t742 + t391 * t759 - t693 - (t437 * t749 + t417 * t760)
+                - (t438 * t751 - t419 * t761) - (t439 * t758 + t432 * t762))
+            - t444 * t764;
+        let t773 = t454
+            * (t110 - (t447 * t742 + t391 * t767) - (t450 * t749 + t417 * t768)
+                - (t451 * t758 + t432 * t769) - (t452 * t766 + t445 * t770))
+            - t455 * t772;
         let t778 = t467
             * (-(vx * t707 - vy * t706 + (omega_x * t717 - omega_y * t712))
                 - 0.6
@@ -2173,59 +2173,37 @@ impl Swing4 {
             - (t475 * t747 + t413 * t780) - (t474 * t748 + t415 * t779)
             - (t473 * t749 + t417 * t778);
         let t783 = t50 + (t50 - t52);
-        let t784 = t53 - t47 * 0.014785402502202331 + 2.0 * t783;
         let t785 = t54 + (t54 + t47 * t783);
-        let t786 = t61 + (t61 - t63);
-        let t787 = t64 - t47 * 0.04776391810611719 + 2.0 * t786;
-        let t788 = t65 + (t65 + t47 * t786);
         let t789 = 0.6 * t785;
-        let t790 = 0.6 * t788;
-        let t791 = t68 * t69;
-        let t792 = t791 + t791;
-        let t793 = 0.6 * t792;
-        let t794 = 0.6 * (t124 + t125);
-        let t795 = 0.6 * (0.2 * t788);
-        let t796 = t57 * t58;
-        let t797 = t796 + t796;
-        let t798 = 0.6 * (t792 + t797);
-        let t799 = t57 * t68;
-        let t800 = 0.6 * (t69 * t785 + t799 - (t799 + t58 * t788));
-        let t801 = 0.6 * t797;
-        let t802 = 0.6 * (0.2 * t785);
         let t803 = t57 * t785;
+        let t786 = t61 + (t61 - t63);
+        let t788 = t65 + (t65 + t47 * t786);
         let t804 = t68 * t788;
         let t805 = 0.6 * (t803 + t803 + (t804 + t804));
-        let t806 = omega_y * t120;
-        let t807 = t806 + yd_y3 * t789;
-        let t808 = omega_z * t118 - omega_x * t120;
+        let t838 = t392 * t805 / t128;
+        let t839 = t392 * t789 - t118 * t838;
+        let t844 = t393 * t805 + t128 * t839;
+        let t845 = t406 * t839 + t393 * t844;
+        let t846 = t409 * t845 / t408;
         let t809 = omega_y * t118;
+        let t790 = 0.6 * t788;
         let t810 = yd_y3 * t790 - t809;
-        let t811 = vy * t120;
-        let t812 = omega_y * t127;
-        let t813 = omega_x * t793 - t811 - t812 - omega_z * t794 + yd_y3 * t795;
-        let t814 = vx * t120;
-        let t815 = vz * t118;
-        let t816 = omega_x * t127;
-        let t817 = omega_z * t122;
-        let t818 = t814 - t815 - t816 + omega_y * t798 - t817 + yd_y3 * t800;
-        let t819 = vy * t118;
-        let t820 = omega_y * t122;
-        let t821 = t819 - omega_x * t794 - t820 + omega_z * t801 - yd_y3 * t802;
-        let t822 = t229 - t228;
-        let t823 = yd_y3 * t785;
+        let t808 = omega_z * t118 - omega_x * t120;
+        let t784 = t53 - t47 * 0.014785402502202331 + 2.0 * t783;
         let t824 = yd_y3 * t788;
-        let t825 = t227 + t823;
-        let t826 = t824 - t231;
-        let t827 = omega_x * t824 - omega_z * t823;
         let t828 = t179 * t784 + omega_y * t824;
+        let t823 = yd_y3 * t785;
+        let t825 = t227 + t823;
+        let t822 = t229 - t228;
+        let t826 = t824 - t231;
+        let t787 = t64 - t47 * 0.04776391810611719 + 2.0 * t786;
         let t829 = t179 * t787 - omega_y * t823;
-        let t830 = 0.6 * t827 - (omega_z * t807 - omega_x * t810);
-        let t831 = if t293 >= 0.0 { 1.0 } else { 0.0 };
         let t832 = if t295 >= 0.0 { 1.0 } else { 0.0 };
-        let t833 = if 1.0 >= t297 { 1.0 } else { 0.0 };
-        let t834 = if 0.0 >= t300 { 1.0 } else { 0.0 };
         let t835 = if 1.0 >= t302 { 1.0 } else { 0.0 };
         let t836 = if t305 >= 0.0 { 1.0 } else { 0.0 };
+        let t831 = if t293 >= 0.0 { 1.0 } else { 0.0 };
+        let t833 = if 1.0 >= t297 { 1.0 } else { 0.0 };
+        let t834 = if 0.0 >= t300 { 1.0 } else { 0.0 };
         let t837 = 0.6
             * (t234 * t825 + t219 * (omega_y * t788 + yd_y3 * t784)
                 - (t230 * t822 + t216 * (omega_x * t788 - omega_z * t785))
@@ -2238,46 +2216,66 @@ impl Swing4 {
                 + ((-(500.0 * t831)
                     - yd_y3 * (6.92820323027551 * (10000.0 * t831 * t833))) * t834
                     - 5.0)) + (t357 * t785 + t360 * t788);
-        let t838 = t392 * t805 / t128;
-        let t839 = t392 * t789 - t118 * t838;
+        let t875 = -(omega_y * t810 - omega_z * t808) - 0.6 * t828
+            - (t393 * t837 + t365 * t839);
         let t840 = t392 * t790 - t120 * t838;
-        let t841 = t392 * t795 - t122 * t838;
-        let t842 = t392 * t800 - t126 * t838;
-        let t843 = t392 * t802 - t127 * t838;
-        let t844 = t393 * t805 + t128 * t839;
-        let t845 = t406 * t839 + t393 * t844;
-        let t846 = t409 * t845 / t408;
         let t847 = t410 * t846 - t409 * (t406 * t840 + t394 * t844);
-        let t848 = t412 * t846 - t409 * (t406 * t841 + t395 * t844);
-        let t849 = t414 * t846 + t409 * (t120 - (t406 * t842 + t396 * t844));
-        let t850 = t416 * t846 + t409 * (t406 * t843 + t397 * t844);
-        let t851 = t120 * 0.030864197530864192;
-        let t852 = t118 * 0.030864197530864192;
         let t853 = t394 * t805 + t128 * t840;
         let t854 = t408 * t847 - t411 * t845;
         let t855 = -(t422 * t840 + t394 * t853) - (t424 * t847 + t411 * t854);
         let t856 = t426 * t855 / t425;
+        let t806 = omega_y * t120;
+        let t807 = t806 + yd_y3 * t789;
+        let t876 = -(omega_x * t808 - omega_y * t807) - 0.6 * t829
+            - (t394 * t837 + t365 * t840) - (t468 * t847 + t411 * t875);
+        let t795 = 0.6 * (0.2 * t788);
+        let t841 = t392 * t795 - t122 * t838;
+        let t848 = t412 * t846 - t409 * (t406 * t841 + t395 * t844);
         let t857 = t426 * (-(t422 * t841 + t395 * t853) - (t424 * t848 + t413 * t854))
             - t427 * t856;
-        let t858 = t426
-            * (-t118 - (t422 * t842 + t396 * t853) - (t424 * t849 + t415 * t854))
-            - t429 * t856;
-        let t859 = t426 * (t422 * t843 + t397 * t853 - (t424 * t850 + t417 * t854))
-            - t431 * t856;
+        let t791 = t68 * t69;
+        let t792 = t791 + t791;
+        let t793 = 0.6 * t792;
         let t860 = t395 * t805 + t128 * t841;
         let t861 = t408 * t848 - t413 * t845;
+        let t851 = t120 * 0.030864197530864192;
         let t862 = 32.400000000000006 * t851;
         let t863 = t428 * t855 + t425 * t857;
         let t864 = t793 - (t435 * t841 + t395 * t860) - (t437 * t848 + t413 * t861)
             - (-(t438 * t851) - t418 * t862) - (t439 * t857 + t428 * t863);
         let t865 = t441 * t864 / t440;
+        let t819 = vy * t118;
+        let t794 = 0.6 * (t124 + t125);
+        let t820 = omega_y * t122;
+        let t796 = t57 * t58;
+        let t797 = t796 + t796;
+        let t801 = 0.6 * t797;
+        let t802 = 0.6 * (0.2 * t785);
+        let t821 = t819 - omega_x * t794 - t820 + omega_z * t801 - yd_y3 * t802;
+        let t814 = vx * t120;
+        let t815 = vz * t118;
+        let t816 = omega_x * t127;
+        let t798 = 0.6 * (t792 + t797);
+        let t817 = omega_z * t122;
+        let t799 = t57 * t68;
+        let t800 = 0.6 * (t69 * t785 + t799 - (t799 + t58 * t788));
+        let t818 = t814 - t815 - t816 + omega_y * t798 - t817 + yd_y3 * t800;
+        let t827 = omega_x * t824 - omega_z * t823;
+        let t830 = 0.6 * t827 - (omega_z * t807 - omega_x * t810);
+        let t877 = -(vy * t810 - vz * t808 + (omega_y * t821 - omega_z * t818))
+            - 0.6
+                * (0.2 * t829 + (t68 * t221 + t69 * t827) - (t218 * t822 + t216 * t824))
+            + t68 * t261 - t68 * t358 - (t395 * t837 + t365 * t841)
+            - (t468 * t848 + t413 * t875) - (t418 * t830 - t373 * t851)
+            - (t469 * t857 + t428 * t876);
+        let t842 = t392 * t800 - t126 * t838;
+        let t849 = t414 * t846 + t409 * (t120 - (t406 * t842 + t396 * t844));
+        let t858 = t426
+            * (-t118 - (t422 * t842 + t396 * t853) - (t424 * t849 + t415 * t854))
+            - t429 * t856;
         let t866 = t441
             * (-t127 - (t435 * t842 + t396 * t860) - (t437 * t849 + t415 * t861)
                 - (t439 * t858 + t430 * t863)) - t442 * t865;
-        let t867 = t441
-            * (t435 * t843 + t397 * t860 - t794 - (t437 * t850 + t417 * t861)
-                - (t438 * t852 - t419 * t862) - (t439 * t859 + t432 * t863))
-            - t444 * t865;
         let t868 = t396 * t805 + t128 * t842;
         let t869 = t408 * t849 - t415 * t845;
         let t870 = t430 * t855 + t425 * t858;
@@ -2285,20 +2283,9 @@ impl Swing4 {
         let t872 = t798 - (t448 * t842 + t396 * t868) - (t450 * t849 + t415 * t869)
             - (t451 * t858 + t430 * t870) - (t452 * t866 + t443 * t871);
         let t873 = t454 * t872 / t453;
-        let t874 = t454
-            * (t448 * t843 + t397 * t868 - t122 - (t450 * t850 + t417 * t869)
-                - (t451 * t859 + t432 * t870) - (t452 * t867 + t445 * t871))
-            - t455 * t873;
-        let t875 = -(omega_y * t810 - omega_z * t808) - 0.6 * t828
-            - (t393 * t837 + t365 * t839);
-        let t876 = -(omega_x * t808 - omega_y * t807) - 0.6 * t829
-            - (t394 * t837 + t365 * t840) - (t468 * t847 + t411 * t875);
-        let t877 = -(vy * t810 - vz * t808 + (omega_y * t821 - omega_z * t818))
-            - 0.6
-                * (0.2 * t829 + (t68 * t221 + t69 * t827) - (t218 * t822 + t216 * t824))
-            + t68 * t261 - t68 * t358 - (t395 * t837 + t365 * t841)
-            - (t468 * t848 + t413 * t875) - (t418 * t830 - t373 * t851)
-            - (t469 * t857 + t428 * t876);
+        let t811 = vy * t120;
+        let t812 = omega_y * t127;
+        let t813 = omega_x * t793 - t811 - t812 - omega_z * t794 + yd_y3 * t795;
         let t878 = t524
             + (-(vz * t807 - vx * t810 + (omega_z * t813 - omega_x * t821))
                 - 0.6
@@ -2307,6 +2294,19 @@ impl Swing4 {
             + (t535 - t57 * t360) - (t396 * t837 + t365 * t842)
             - (t468 * t849 + t415 * t875) - (t469 * t858 + t430 * t876)
             - (t470 * t866 + t443 * t877);
+        let t843 = t392 * t802 - t127 * t838;
+        let t850 = t416 * t846 + t409 * (t406 * t843 + t397 * t844);
+        let t859 = t426 * (t422 * t843 + t397 * t853 - (t424 * t850 + t417 * t854))
+            - t431 * t856;
+        let t852 = t118 * 0.030864197530864192;
+        let t867 = t441
+            * (t435 * t843 + t397 * t860 - t794 - (t437 * t850 + t417 * t861)
+                - (t438 * t852 - t419 * t862) - (t439 * t859 + t432 * t863))
+            - t444 * t865;
+        let t874 = t454
+            * (t448 * t843 + t397 * t868 - t122 - (t450 * t850 + t417 * t869)
+                - (t451 * t859 + t432 * t870) - (t452 * t867 + t445 * t871))
+            - t455 * t873;
         let t879 = t467
             * (-(vx * t808 - vy * t807 + (omega_x * t818 - omega_y * t813))
                 - 0.6
@@ -2332,59 +2332,37 @@ impl Swing4 {
             - (t475 * t848 + t413 * t881) - (t474 * t849 + t415 * t880)
             - (t473 * t850 + t417 * t879);
         let t884 = t73 + (t73 - t75);
-        let t885 = t76 - t70 * 0.014785402502202331 + 2.0 * t884;
         let t886 = t77 + (t77 + t70 * t884);
-        let t887 = t84 + (t84 - t86);
-        let t888 = t87 - t70 * 0.04776391810611719 + 2.0 * t887;
-        let t889 = t88 + (t88 + t70 * t887);
         let t890 = 0.6 * t886;
-        let t891 = 0.6 * t889;
-        let t892 = t91 * t92;
-        let t893 = t892 + t892;
-        let t894 = 0.6 * t893;
-        let t895 = 0.6 * (t145 + t146);
-        let t896 = 0.6 * (0.2 * t889);
-        let t897 = t80 * t81;
-        let t898 = t897 + t897;
-        let t899 = 0.6 * (t893 + t898);
-        let t900 = t80 * t91;
-        let t901 = 0.6 * (t92 * t886 + t900 - (t900 + t81 * t889));
-        let t902 = 0.6 * t898;
-        let t903 = 0.6 * (0.2 * t886);
         let t904 = t80 * t886;
+        let t887 = t84 + (t84 - t86);
+        let t889 = t88 + (t88 + t70 * t887);
         let t905 = t91 * t889;
         let t906 = 0.6 * (t904 + t904 + (t905 + t905));
-        let t907 = omega_y * t136;
-        let t908 = t907 + yd_y4 * t890;
-        let t909 = omega_z * t131 - omega_x * t136;
+        let t939 = t398 * t906 / t150;
+        let t940 = t398 * t890 - t131 * t939;
+        let t945 = t399 * t906 + t150 * t940;
+        let t946 = t407 * t940 + t399 * t945;
+        let t947 = t409 * t946 / t408;
         let t910 = omega_y * t131;
+        let t891 = 0.6 * t889;
         let t911 = yd_y4 * t891 - t910;
-        let t912 = vy * t136;
-        let t913 = omega_y * t149;
-        let t914 = omega_x * t894 - t912 + t913 - omega_z * t895 - yd_y4 * t896;
-        let t915 = vx * t136;
-        let t916 = vz * t131;
-        let t917 = omega_x * t149;
-        let t918 = omega_z * t141;
-        let t919 = t915 - t916 + t917 + omega_y * t899 + t918 + yd_y4 * t901;
-        let t920 = vy * t131;
-        let t921 = omega_y * t141;
-        let t922 = t920 - omega_x * t895 + t921 + omega_z * t902 + yd_y4 * t903;
-        let t923 = t249 - t248;
-        let t924 = yd_y4 * t886;
+        let t909 = omega_z * t131 - omega_x * t136;
+        let t885 = t76 - t70 * 0.014785402502202331 + 2.0 * t884;
         let t925 = yd_y4 * t889;
-        let t926 = t247 + t924;
-        let t927 = t925 - t251;
-        let t928 = omega_x * t925 - omega_z * t924;
         let t929 = t180 * t885 + omega_y * t925;
+        let t924 = yd_y4 * t886;
+        let t926 = t247 + t924;
+        let t923 = t249 - t248;
+        let t927 = t925 - t251;
+        let t888 = t87 - t70 * 0.04776391810611719 + 2.0 * t887;
         let t930 = t180 * t888 - omega_y * t924;
-        let t931 = 0.6 * t928 - (omega_z * t908 - omega_x * t911);
-        let t932 = if t307 >= 0.0 { 1.0 } else { 0.0 };
         let t933 = if t309 >= 0.0 { 1.0 } else { 0.0 };
-        let t934 = if 1.0 >= t311 { 1.0 } else { 0.0 };
-        let t935 = if 0.0 >= t314 { 1.0 } else { 0.0 };
         let t936 = if 1.0 >= t316 { 1.0 } else { 0.0 };
         let t937 = if t319 >= 0.0 { 1.0 } else { 0.0 };
+        let t932 = if t307 >= 0.0 { 1.0 } else { 0.0 };
+        let t934 = if 1.0 >= t311 { 1.0 } else { 0.0 };
+        let t935 = if 0.0 >= t314 { 1.0 } else { 0.0 };
         let t938 = 0.6
             * (t254 * t926 + t239 * (omega_y * t889 + yd_y4 * t885)
                 - (t250 * t923 + t236 * (omega_x * t889 - omega_z * t886))
@@ -2397,46 +2375,65 @@ impl Swing4 {
                 + ((-(500.0 * t932)
                     - yd_y4 * (6.92820323027551 * (10000.0 * t932 * t934))) * t935
                     - 5.0)) + (t368 * t886 + t371 * t889);
-        let t939 = t398 * t906 / t150;
-        let t940 = t398 * t890 - t131 * t939;
+        let t976 = -(omega_y * t911 - omega_z * t909) - 0.6 * t929
+            - (t399 * t938 + t377 * t940);
         let t941 = t398 * t891 - t136 * t939;
-        let t942 = t398 * t896 - t141 * t939;
-        let t943 = t398 * t901 - t147 * t939;
-        let t944 = t398 * t903 - t149 * t939;
-        let t945 = t399 * t906 + t150 * t940;
-        let t946 = t407 * t940 + t399 * t945;
-        let t947 = t409 * t946 / t408;
         let t948 = t410 * t947 - t409 * (t407 * t941 + t400 * t945);
-        let t949 = t412 * t947 + t409 * (t407 * t942 + t401 * t945);
-        let t950 = t414 * t947 + t409 * (t136 - (t407 * t943 + t402 * t945));
-        let t951 = t416 * t947 - t409 * (t407 * t944 + t403 * t945);
-        let t952 = t136 * 0.030864197530864192;
-        let t953 = t131 * 0.030864197530864192;
         let t954 = t400 * t906 + t150 * t941;
         let t955 = t408 * t948 - t411 * t946;
         let t956 = -(t423 * t941 + t400 * t954) - (t424 * t948 + t411 * t955);
         let t957 = t426 * t956 / t425;
+        let t907 = omega_y * t136;
+        let t908 = t907 + yd_y4 * t890;
+        let t977 = -(omega_x * t909 - omega_y * t908) - 0.6 * t930
+            - (t400 * t938 + t377 * t941) - (t468 * t948 + t411 * t976);
+        let t896 = 0.6 * (0.2 * t889);
+        let t942 = t398 * t896 - t141 * t939;
+        let t949 = t412 * t947 + t409 * (t407 * t942 + t401 * t945);
         let t958 = t426 * (t423 * t942 + t401 * t954 - (t424 * t949 + t413 * t955))
             - t427 * t957;
-        let t959 = t426
-            * (-t131 - (t423 * t943 + t402 * t954) - (t424 * t950 + t415 * t955))
-            - t429 * t957;
-        let t960 = t426 * (-(t423 * t944 + t403 * t954) - (t424 * t951 + t417 * t955))
-            - t431 * t957;
+        let t892 = t91 * t92;
+        let t893 = t892 + t892;
+        let t894 = 0.6 * t893;
         let t961 = t401 * t906 + t150 * t942;
         let t962 = t408 * t949 - t413 * t946;
+        let t952 = t136 * 0.030864197530864192;
         let t963 = 32.400000000000006 * t952;
         let t964 = t428 * t956 + t425 * t958;
         let t965 = t894 - (t436 * t942 + t401 * t961) - (t437 * t949 + t413 * t962)
             - (-(t438 * t952) - t418 * t963) - (t439 * t958 + t428 * t964);
         let t966 = t441 * t965 / t440;
+        let t920 = vy * t131;
+        let t895 = 0.6 * (t145 + t146);
+        let t921 = omega_y * t141;
+        let t897 = t80 * t81;
+        let t898 = t897 + t897;
+        let t902 = 0.6 * t898;
+        let t903 = 0.6 * (0.2 * t886);
+        let t922 = t920 - omega_x * t895 + t921 + omega_z * t902 + yd_y4 * t903;
+        let t915 = vx * t136;
+        let t916 = vz * t131;
+        let t917 = omega_x * t149;
+        let t899 = 0.6 * (t893 + t898);
+        let t918 = omega_z * t141;
+        let t900 = t80 * t91;
+        let t901 = 0.6 * (t92 * t886 + t900 - (t900 + t81 * t889));
+        let t919 = t915 - t916 + t917 + omega_y * t899 + t918 + yd_y4 * t901;
+        let t928 = omega_x * t925 - omega_z * t924;
+        let t931 = 0.6 * t928 - (omega_z * t908 - omega_x * t911);
+        let t978 = -(vy * t911 - vz * t909 + (omega_y * t922 - omega_z * t919))
+            - 0.6 * (t91 * t241 + t92 * t928 - 0.2 * t930 - (t238 * t923 + t236 * t925))
+            + t91 * t261 - t91 * t369 + (t401 * t938 + t377 * t942)
+            - (t468 * t949 + t413 * t976) - (t418 * t931 - t373 * t952)
+            - (t469 * t958 + t428 * t977);
+        let t943 = t398 * t901 - t147 * t939;
+        let t950 = t414 * t947 + t409 * (t136 - (t407 * t943 + t402 * t945));
+        let t959 = t426
+            * (-t131 - (t423 * t943 + t402 * t954) - (t424 * t950 + t415 * t955))
+            - t429 * t957;
         let t967 = t441
             * (t149 + (t436 * t943 + t402 * t961) - (t437 * t950 + t415 * t962)
                 - (t439 * t959 + t430 * t964)) - t442 * t966;
-        let t968 = t441
-            * (t436 * t944 + t403 * t961 - t895 - (t437 * t951 + t417 * t962)
-                - (t438 * t953 - t419 * t963) - (t439 * t960 + t432 * t964))
-            - t444 * t966;
         let t969 = t402 * t906 + t150 * t943;
         let t970 = t408 * t950 - t415 * t946;
         let t971 = t430 * t956 + t425 * t959;
@@ -2444,19 +2441,9 @@ impl Swing4 {
         let t973 = t899 - (t449 * t943 + t402 * t969) - (t450 * t950 + t415 * t970)
             - (t451 * t959 + t430 * t971) - (t452 * t967 + t443 * t972);
         let t974 = t454 * t973 / t453;
-        let t975 = t454
-            * (t141 - (t449 * t944 + t403 * t969) - (t450 * t951 + t417 * t970)
-                - (t451 * t960 + t432 * t971) - (t452 * t968 + t445 * t972))
-            - t455 * t974;
-        let t976 = -(omega_y * t911 - omega_z * t909) - 0.6 * t929
-            - (t399 * t938 + t377 * t940);
-        let t977 = -(omega_x * t909 - omega_y * t908) - 0.6 * t930
-            - (t400 * t938 + t377 * t941) - (t468 * t948 + t411 * t976);
-        let t978 = -(vy * t911 - vz * t909 + (omega_y * t922 - omega_z * t919))
-            - 0.6 * (t91 * t241 + t92 * t928 - 0.2 * t930 - (t238 * t923 + t236 * t925))
-            + t91 * t261 - t91 * t369 + (t401 * t938 + t377 * t942)
-            - (t468 * t949 + t413 * t976) - (t418 * t931 - t373 * t952)
-            - (t469 * t958 + t428 * t977);
+        let t912 = vy * t136;
+        let t913 = omega_y * t149;
+        let t914 = omega_x * t894 - t912 + t913 - omega_z * t895 - yd_y4 * t896;
         let t979 = t525
             + (-(vz * t908 - vx * t911 + (omega_z * t914 - omega_x * t922))
                 - 0.6
@@ -2465,6 +2452,19 @@ impl Swing4 {
             + (t538 - t80 * t371) - (t402 * t938 + t377 * t943)
             - (t468 * t950 + t415 * t976) - (t469 * t959 + t430 * t977)
             - (t470 * t967 + t443 * t978);
+        let t944 = t398 * t903 - t149 * t939;
+        let t951 = t416 * t947 - t409 * (t407 * t944 + t403 * t945);
+        let t960 = t426 * (-(t423 * t944 + t403 * t954) - (t424 * t951 + t417 * t955))
+            - t431 * t957;
+        let t953 = t131 * 0.030864197530864192;
+        let t968 = t441
+            * (t436 * t944 + t403 * t961 - t895 - (t437 * t951 + t417 * t962)
+                - (t438 * t953 - t419 * t963) - (t439 * t960 + t432 * t964))
+            - t444 * t966;
+        let t975 = t454
+            * (t141 - (t449 * t944 + t403 * t969) - (t450 * t951 + t417 * t970)
+                - (t451 * t960 + t432 * t971) - (t452 * t968 + t445 * t972))
+            - t455 * t974;
         let t980 = t467
             * (-(vx * t909 - vy * t908 + (omega_x * t919 - omega_y * t914))
                 - 0.6
@@ -2489,22 +2489,22 @@ impl Swing4 {
         let t984 = t468 * t947 + t409 * t976 - (t476 * t948 + t411 * t983)
             - (t475 * t949 + t413 * t982) - (t474 * t950 + t415 * t981)
             - (t473 * t951 + t417 * t980);
-        let t985 = omega_z * 32.400000000000006;
-        let t986 = omega_y * 32.400000000000006;
-        let t987 = omega_z * t130;
-        let t988 = 0.6 * t174;
         let t989 = 0.6 * (t194 - t192);
-        let t990 = 0.6 * t198;
         let t991 = 0.6 * (t214 - t212);
-        let t992 = 0.6 * t218;
         let t993 = 0.6 * (t234 - t232);
-        let t994 = 0.6 * t238;
         let t995 = 0.6 * (t254 - t252);
         let t996 = -(t381 * t989) - t387 * t991 - t393 * t993 - t399 * t995;
+        let t986 = omega_y * 32.400000000000006;
         let t997 = t986 - t382 * t989 - t388 * t991 - t394 * t993 - t400 * t995
             - t411 * t996;
+        let t987 = omega_z * t130;
+        let t985 = omega_z * 32.400000000000006;
         let t998 = t987 - t383 * t989 + t389 * t991 - t395 * t993 + t401 * t995
             - t413 * t996 + t418 * t985 - t428 * t997;
+        let t988 = 0.6 * t174;
+        let t990 = 0.6 * t198;
+        let t992 = 0.6 * t218;
+        let t994 = 0.6 * t238;
         let t999 = -(t158 - t160) - t988 - t990 - t992 - t994 - t384 * t989 - t390 * t991
             - t396 * t993 - t402 * t995 - t415 * t996 - t430 * t997 - t443 * t998;
         let t1000 = t467
@@ -2516,25 +2516,25 @@ impl Swing4 {
         let t1003 = t426 * t997 - t428 * t1002 - t430 * t1001 - t432 * t1000;
         let t1004 = t409 * t996 - t411 * t1003 - t413 * t1002 - t415 * t1001
             - t417 * t1000;
-        let t1005 = omega_x * 32.400000000000006;
-        let t1006 = omega_z * t132;
-        let t1007 = omega_x * t134;
-        let t1008 = 0.6 * t173;
         let t1009 = 0.6 * t190;
-        let t1010 = 0.6 * t197;
         let t1011 = 0.6 * t210;
-        let t1012 = 0.6 * t217;
         let t1013 = 0.6 * t230;
-        let t1014 = 0.6 * t237;
         let t1015 = 0.6 * t250;
         let t1016 = t985 + t381 * t1009 + t387 * t1011 + t393 * t1013 + t399 * t1015;
+        let t1005 = omega_x * 32.400000000000006;
         let t1017 = t382 * t1009 - t1005 + t388 * t1011 + t394 * t1013 + t400 * t1015
             - t411 * t1016;
         let t1018 = t994 + (t992 + (t990 + (t988 - (t160 - t158 + omega_y * t134))))
             + t383 * t1009 - t389 * t1011 + t395 * t1013 - t401 * t1015 - t413 * t1016
             - t428 * t1017;
+        let t1006 = omega_z * t132;
+        let t1007 = omega_x * t134;
         let t1019 = t384 * t1009 - (t1006 - t1007) + t390 * t1011 + t396 * t1013
             + t402 * t1015 - t415 * t1016 - t430 * t1017 - t443 * t1018;
+        let t1008 = 0.6 * t173;
+        let t1010 = 0.6 * t197;
+        let t1012 = 0.6 * t217;
+        let t1014 = 0.6 * t237;
         let t1020 = t467
             * (-(t151 - t153 - omega_y * t132) - t1008 - t1010 - t1012 - t1014
                 - t385 * t1009 + t391 * t1011 - t397 * t1013 + t403 * t1015
@@ -2544,7 +2544,6 @@ impl Swing4 {
         let t1023 = t426 * t1017 - t428 * t1022 - t430 * t1021 - t432 * t1020;
         let t1024 = t409 * t1016 - t411 * t1023 - t413 * t1022 - t415 * t1021
             - t417 * t1020;
-        let t1025 = omega_x * t135;
         let t1026 = 0.6 * (t195 - t193);
         let t1027 = 0.6 * (t215 - t213);
         let t1028 = 0.6 * (t235 - t233);
@@ -2557,6 +2556,7 @@ impl Swing4 {
         let t1033 = t1014 + (t1012 + (t1010 + (t1008 - (t153 - t151)))) - t384 * t1026
             - t390 * t1027 - t396 * t1028 - t402 * t1029 - t415 * t1030 - t430 * t1031
             - t443 * t1032;
+        let t1025 = omega_x * t135;
         let t1034 = t467
             * (t385 * t1026 - t1025 - t391 * t1027 + t397 * t1028 - t403 * t1029
                 - t417 * t1030 - t419 * t1005 - t432 * t1031 - t445 * t1032
@@ -2566,43 +2566,44 @@ impl Swing4 {
         let t1037 = t426 * t1031 - t428 * t1036 - t430 * t1035 - t432 * t1034;
         let t1038 = t409 * t1030 - t411 * t1037 - t413 * t1036 - t415 * t1035
             - t417 * t1034;
-        let t1039 = omega_y * t140;
-        let t1040 = omega_z * t139;
-        let t1041 = t23 * t174;
-        let t1042 = 0.6 * (0.2 * t173);
-        let t1043 = 0.6 * (-(t23 * t173) - t12 * t174);
+        let t1075 = s_theta / c_phi;
         let t1044 = t23 * t190;
         let t1045 = t22 * t172;
         let t1046 = 0.6 * (0.2 * t195 - (t1045 - t1044) - yd_y1 * (0.2 * t21));
-        let t1047 = t46 * t198;
-        let t1048 = 0.6 * (0.2 * t197);
-        let t1049 = 0.6 * (-(t46 * t197) - t35 * t198);
         let t1050 = t46 * t210;
         let t1051 = t45 * t196;
         let t1052 = 0.6 * (yd_y2 * (0.2 * t44) + (-(t1051 - t1050) - 0.2 * t215));
-        let t1053 = t69 * t218;
-        let t1054 = 0.6 * (0.2 * t217);
-        let t1055 = 0.6 * (-(t69 * t217) - t58 * t218);
         let t1056 = t69 * t230;
         let t1057 = t68 * t216;
         let t1058 = 0.6 * (0.2 * t235 - (t1057 - t1056) - yd_y3 * (0.2 * t67));
-        let t1059 = t92 * t238;
-        let t1060 = t994 + (t992 + (t990 + (t160 + t988)));
-        let t1061 = 0.6 * (0.2 * t237);
-        let t1062 = 0.6 * (-(t92 * t237) - t81 * t238);
         let t1063 = t92 * t250;
         let t1064 = t91 * t236;
         let t1065 = 0.6 * (yd_y4 * (0.2 * t90) + (-(t1064 - t1063) - 0.2 * t255));
         let t1066 = t1006 - t381 * t1046 - t387 * t1052 - t393 * t1058 - t399 * t1065;
         let t1067 = -(t155 + t157) - t382 * t1046 - t388 * t1052 - t394 * t1058
             - t400 * t1065 - t411 * t1066;
+        let t1039 = omega_y * t140;
+        let t1040 = omega_z * t139;
+        let t1041 = t23 * t174;
+        let t1047 = t46 * t198;
+        let t1053 = t69 * t218;
+        let t1059 = t92 * t238;
+        let t1060 = t994 + (t992 + (t990 + (t160 + t988)));
         let t1068 = -(t1039 - t1040 - vz * t132) - 0.6 * (t1041 + t1041)
             - 0.6 * (t1047 + t1047) - 0.6 * (t1053 + t1053) - 0.6 * (t1059 + t1059)
             - t383 * t1046 + t389 * t1052 - t395 * t1058 + t401 * t1065 - t413 * t1066
             - t418 * t1060 - t428 * t1067;
+        let t1042 = 0.6 * (0.2 * t173);
+        let t1048 = 0.6 * (0.2 * t197);
+        let t1054 = 0.6 * (0.2 * t217);
+        let t1061 = 0.6 * (0.2 * t237);
         let t1069 = t1042 - (omega_z * t138 - (t167 + t169)) - t1048 + t1054 - t1061
             - t384 * t1046 - t390 * t1052 - t396 * t1058 - t402 * t1065 - t415 * t1066
             - t430 * t1067 - t443 * t1068;
+        let t1043 = 0.6 * (-(t23 * t173) - t12 * t174);
+        let t1049 = 0.6 * (-(t46 * t197) - t35 * t198);
+        let t1055 = 0.6 * (-(t69 * t217) - t58 * t218);
+        let t1062 = 0.6 * (-(t92 * t237) - t81 * t238);
         let t1070 = t467
             * (-(vx * t132 + (t164 + t166 - omega_y * t138)) - t1043 - t1049 - t1055
                 - t1062 + t385 * t1046 - t391 * t1052 + t397 * t1058 - t403 * t1065
@@ -2613,46 +2614,31 @@ impl Swing4 {
         let t1073 = t426 * t1067 - t428 * t1072 - t430 * t1071 - t432 * t1070;
         let t1074 = t409 * t1066 - t411 * t1073 - t413 * t1072 - t415 * t1071
             - t417 * t1070;
-        let t1075 = s_theta / c_phi;
-        let t1076 = t987 - t1025;
-        let t1077 = omega_x * t144;
-        let t1078 = t12 * t173;
-        let t1079 = t1041 + t1078;
-        let t1080 = 0.6 * (0.2 * t174);
-        let t1081 = t11 * t174;
-        let t1082 = t22 * t173;
         let t1083 = t22 * t175;
         let t1084 = t11 * t176;
+        let t1081 = t11 * t174;
+        let t1082 = t22 * t173;
         let t1085 = 0.6
             * (t23 * t194 + t1083 + (-(t12 * t195) - t1084)
                 - (yd_y1 * (t10 * t23 - t12 * t21) + (t1081 - t1082)));
-        let t1086 = t35 * t197;
-        let t1087 = t1047 + t1086;
-        let t1088 = 0.6 * (0.2 * t198);
-        let t1089 = t34 * t198;
-        let t1090 = t45 * t197;
         let t1091 = t45 * t199;
         let t1092 = t34 * t200;
+        let t1089 = t34 * t198;
+        let t1090 = t45 * t197;
         let t1093 = 0.6
             * (t46 * t214 + t1091 + (-(t35 * t215) - t1092)
                 - (yd_y2 * (t33 * t46 - t35 * t44) + (t1089 - t1090)));
-        let t1094 = t58 * t217;
-        let t1095 = t1053 + t1094;
-        let t1096 = 0.6 * (0.2 * t218);
-        let t1097 = t57 * t218;
-        let t1098 = t68 * t217;
         let t1099 = t68 * t219;
         let t1100 = t57 * t220;
+        let t1097 = t57 * t218;
+        let t1098 = t68 * t217;
         let t1101 = 0.6
             * (t69 * t234 + t1099 + (-(t58 * t235) - t1100)
                 - (yd_y3 * (t56 * t69 - t58 * t67) + (t1097 - t1098)));
-        let t1102 = t81 * t237;
-        let t1103 = t1059 + t1102;
-        let t1104 = 0.6 * (0.2 * t238);
-        let t1105 = t80 * t238;
-        let t1106 = t91 * t237;
         let t1107 = t91 * t239;
         let t1108 = t80 * t240;
+        let t1105 = t80 * t238;
+        let t1106 = t91 * t237;
         let t1109 = 0.6
             * (t92 * t254 + t1107 + (-(t81 * t255) - t1108)
                 - (yd_y4 * (t79 * t92 - t81 * t90) + (t1105 - t1106)));
@@ -2660,14 +2646,28 @@ impl Swing4 {
             - t387 * t1093 - t393 * t1101 - t399 * t1109;
         let t1111 = t1014 + (t1012 + (t1010 + (t1008 + (t152 + t153)))) - t382 * t1085
             - t388 * t1093 - t394 * t1101 - t400 * t1109 - t411 * t1110;
+        let t1076 = t987 - t1025;
         let t1112 = t1054
             + (t1042 - (vy * t135 + (t168 + t169 - omega_z * t143)) - t1048) - t1061
             - t383 * t1085 + t389 * t1093 - t395 * t1101 + t401 * t1109 - t413 * t1110
             + t418 * t1076 - t428 * t1111;
+        let t1077 = omega_x * t144;
+        let t1078 = t12 * t173;
+        let t1079 = t1041 + t1078;
+        let t1086 = t35 * t197;
+        let t1087 = t1047 + t1086;
+        let t1094 = t58 * t217;
+        let t1095 = t1053 + t1094;
+        let t1102 = t81 * t237;
+        let t1103 = t1059 + t1102;
         let t1113 = -(vz * t130 - vx * t135 + (t1040 - t1077)) - 0.6 * (t1079 + t1079)
             - 0.6 * (t1087 + t1087) - 0.6 * (t1095 + t1095) - 0.6 * (t1103 + t1103)
             - t384 * t1085 - t390 * t1093 - t396 * t1101 - t402 * t1109 - t415 * t1110
             - t430 * t1111 - t443 * t1112;
+        let t1080 = 0.6 * (0.2 * t174);
+        let t1088 = 0.6 * (0.2 * t198);
+        let t1096 = 0.6 * (0.2 * t218);
+        let t1104 = 0.6 * (0.2 * t238);
         let t1114 = t467
             * (t1080 - (omega_x * t143 - (t161 + t163) - vy * t130) - t1088 + t1096
                 - t1104 + t385 * t1085 - t391 * t1093 + t397 * t1101 - t403 * t1109
@@ -2678,6 +2678,7 @@ impl Swing4 {
         let t1117 = t426 * t1111 - t428 * t1116 - t430 * t1115 - t432 * t1114;
         let t1118 = t409 * t1110 - t411 * t1117 - t413 * t1116 - t415 * t1115
             - t417 * t1114;
+        let t1141 = c_theta / c_phi;
         let t1119 = t12 * t190;
         let t1120 = t11 * t172;
         let t1121 = 0.6 * (yd_y1 * (0.2 * t10) + (-(0.2 * t194) - (t1119 - t1120)));
@@ -2687,7 +2688,6 @@ impl Swing4 {
         let t1125 = t58 * t230;
         let t1126 = t57 * t216;
         let t1127 = 0.6 * (yd_y3 * (0.2 * t56) + (-(0.2 * t234) - (t1125 - t1126)));
-        let t1128 = -t153 - t1008 - t1010 - t1012 - t1014;
         let t1129 = t81 * t250;
         let t1130 = t80 * t236;
         let t1131 = 0.6 * (0.2 * t254 - (t1129 - t1130) - yd_y4 * (0.2 * t79));
@@ -2695,6 +2695,7 @@ impl Swing4 {
             - t399 * t1131;
         let t1133 = -t1007 - t382 * t1121 - t388 * t1124 - t394 * t1127 - t400 * t1131
             - t411 * t1132;
+        let t1128 = -t153 - t1008 - t1010 - t1012 - t1014;
         let t1134 = -t1043 - (omega_y * t148 - (t165 + t166) - vz * t134) - t1049 - t1055
             - t1062 - t383 * t1121 + t389 * t1124 - t395 * t1127 + t401 * t1131
             - t413 * t1132 - t418 * t1128 - t428 * t1133;
@@ -2712,17 +2713,16 @@ impl Swing4 {
         let t1139 = t426 * t1133 - t428 * t1138 - t430 * t1137 - t432 * t1136;
         let t1140 = t409 * t1132 - t411 * t1139 - t413 * t1138 - t415 * t1137
             - t417 * t1136;
-        let t1141 = c_theta / c_phi;
         let t1142 = yd_y1 + yd_y1;
         let t1143 = t187 + t10 * t1142;
         let t1144 = t21 * t1142 - t191;
-        let t1145 = t1009 - t606;
         let t1146 = 0.6
             * (t184 + t11 * t194 + (t185 + t22 * t195)
                 - (t186 + yd_y1 * (t10 * t11 + t21 * t22) + (t11 * t1143 + t22 * t1144)))
             + (-3.5 - t271 * t632 - t276 * t634);
         let t1147 = -t604 - 0.6 * t1143 - t381 * t1146;
         let t1148 = t607 - 0.6 * t1144 - t382 * t1146 - t411 * t1147;
+        let t1145 = t1009 - t606;
         let t1149 = -(t609 + (-t610 - omega_z * t102))
             - 0.6 * (t1044 + 0.2 * t1144 - t1045) - t383 * t1146 - t413 * t1147
             - t418 * t1145 - t428 * t1148;
@@ -2741,13 +2741,13 @@ impl Swing4 {
         let t1156 = yd_y2 + yd_y2;
         let t1157 = t207 + t33 * t1156;
         let t1158 = t44 * t1156 - t211;
-        let t1159 = t1011 - t707;
         let t1160 = 0.6
             * (t204 + t34 * t214 + (t205 + t45 * t215)
                 - (t206 + yd_y2 * (t33 * t34 + t44 * t45) + (t34 * t1157 + t45 * t1158)))
             + (-3.5 - t285 * t733 - t290 * t735);
         let t1161 = -t705 - 0.6 * t1157 - t387 * t1160;
         let t1162 = t708 - 0.6 * t1158 - t388 * t1160 - t411 * t1161;
+        let t1159 = t1011 - t707;
         let t1163 = -(t710 + (t711 - omega_z * t114))
             - 0.6 * (t1050 - 0.2 * t1158 - t1051) + t389 * t1160 - t413 * t1161
             - t418 * t1159 - t428 * t1162;
@@ -2766,13 +2766,13 @@ impl Swing4 {
         let t1170 = yd_y3 + yd_y3;
         let t1171 = t227 + t56 * t1170;
         let t1172 = t67 * t1170 - t231;
-        let t1173 = t1013 - t808;
         let t1174 = 0.6
             * (t224 + t57 * t234 + (t225 + t68 * t235)
                 - (t226 + yd_y3 * (t56 * t57 + t67 * t68) + (t57 * t1171 + t68 * t1172)))
             + (-3.5 - t299 * t834 - t304 * t836);
         let t1175 = -t806 - 0.6 * t1171 - t393 * t1174;
         let t1176 = t809 - 0.6 * t1172 - t394 * t1174 - t411 * t1175;
+        let t1173 = t1013 - t808;
         let t1177 = -(t811 + (-t812 - omega_z * t126))
             - 0.6 * (t1056 + 0.2 * t1172 - t1057) - t395 * t1174 - t413 * t1175
             - t418 * t1173 - t428 * t1176;
@@ -2791,13 +2791,13 @@ impl Swing4 {
         let t1184 = yd_y4 + yd_y4;
         let t1185 = t247 + t79 * t1184;
         let t1186 = t90 * t1184 - t251;
-        let t1187 = t1015 - t909;
         let t1188 = 0.6
             * (t244 + t80 * t254 + (t245 + t91 * t255)
                 - (t246 + yd_y4 * (t79 * t80 + t90 * t91) + (t80 * t1185 + t91 * t1186)))
             + (-3.5 - t313 * t935 - t318 * t937);
         let t1189 = -t907 - 0.6 * t1185 - t399 * t1188;
         let t1190 = t910 - 0.6 * t1186 - t400 * t1188 - t411 * t1189;
+        let t1187 = t1015 - t909;
         let t1191 = -(t912 + (t913 - omega_z * t147))
             - 0.6 * (t1063 - 0.2 * t1186 - t1064) + t401 * t1188 - t413 * t1189
             - t418 * t1187 - t428 * t1190;

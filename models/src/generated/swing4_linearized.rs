@@ -73,126 +73,93 @@ impl Swing4Linearized {
         wdot: &mut [f64; 10],
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
         // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
-        let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
-        let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_left_z = loads[2].moment[2];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let mu_rear_right_x = loads[3].moment[0];
-        let mu_rear_right_y = loads[3].moment[1];
-        let mu_rear_right_z = loads[3].moment[2];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let y0_y1 = self.neutral[0];
-        let y0_y2 = self.neutral[1];
-        let y0_y3 = self.neutral[2];
-        let y0_y4 = self.neutral[3];
-        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let theta = x[4];
         let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
         let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t1 = theta * 0.972;
-        let t2 = phi * 0.972;
-        let t3 = 0.2 * t1;
-        let t4 = f64::max(y1 + 0.03490658503988659, 0.0);
-        let t5 = f64::max(-1.0471975511965976 - y1, 0.0);
-        let t6 = f64::min(10000.0 * t4, 1.0);
-        let t7 = f64::min(-(500.0 * t4) - yd_y1 * (6.92820323027551 * t6), 0.0);
-        let t8 = f64::min(10000.0 * t5, 1.0);
-        let t9 = f64::max(500.0 * t5 - yd_y1 * (6.92820323027551 * t8), 0.0);
-        let t10 = f64::max(y2 + 0.03490658503988659, 0.0);
-        let t11 = f64::max(-1.0471975511965976 - y2, 0.0);
-        let t12 = f64::min(10000.0 * t10, 1.0);
-        let t13 = f64::min(-(500.0 * t10) - yd_y2 * (6.92820323027551 * t12), 0.0);
-        let t14 = f64::min(10000.0 * t11, 1.0);
-        let t15 = f64::max(500.0 * t11 - yd_y2 * (6.92820323027551 * t14), 0.0);
-        let t16 = f64::max(y3 - 1.0471975511965976, 0.0);
-        let t17 = f64::max(0.03490658503988659 - y3, 0.0);
-        let t18 = f64::min(10000.0 * t16, 1.0);
-        let t19 = f64::min(-(500.0 * t16) - yd_y3 * (6.92820323027551 * t18), 0.0);
-        let t20 = f64::min(10000.0 * t17, 1.0);
-        let t21 = f64::max(500.0 * t17 - yd_y3 * (6.92820323027551 * t20), 0.0);
-        let t22 = f64::max(y4 - 1.0471975511965976, 0.0);
-        let t23 = f64::max(0.03490658503988659 - y4, 0.0);
-        let t24 = f64::min(10000.0 * t22, 1.0);
-        let t25 = f64::min(-(500.0 * t22) - yd_y4 * (6.92820323027551 * t24), 0.0);
-        let t26 = f64::min(10000.0 * t23, 1.0);
-        let t27 = f64::max(500.0 * t23 - yd_y4 * (6.92820323027551 * t26), 0.0);
+        let phi = x[3];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let t28 = s_phi * s_theta;
-        let t29 = s_phi * c_theta;
-        let t30 = c_phi * s_theta;
-        let t31 = c_phi * c_theta;
         let t32 = c_theta * c_psi - s_psi * t28;
+        let vy = w[1];
         let t33 = c_phi * s_psi;
+        let vz = w[2];
+        let t29 = s_phi * c_theta;
         let t34 = s_theta * c_psi + s_psi * t29;
         let t35 = c_theta * s_psi + c_psi * t28;
         let t36 = c_phi * c_psi;
         let t37 = s_theta * s_psi - c_psi * t29;
+        let t30 = c_phi * s_theta;
+        let t31 = c_phi * c_theta;
+        let omega_x = w[3];
+        let omega_z = w[5];
+        let omega_y = w[4];
+        let yd_y1 = w[6];
+        let yd_y2 = w[7];
+        let yd_y3 = w[8];
+        let yd_y4 = w[9];
+        let t1 = theta * 0.972;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
         let t38 = f_front_left_x * t32 + f_front_left_y * t35 - f_front_left_z * t30;
-        let t39 = f_front_left_y * t36 - f_front_left_x * t33 + f_front_left_z * s_phi;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
+        let t42 = f_front_right_x * t32 + f_front_right_y * t35 - f_front_right_z * t30;
+        let f_rear_left_x = loads[2].force[0];
+        let f_rear_left_y = loads[2].force[1];
+        let f_rear_left_z = loads[2].force[2];
+        let t46 = f_rear_left_x * t32 + f_rear_left_y * t35 - f_rear_left_z * t30;
+        let f_rear_right_x = loads[3].force[0];
+        let f_rear_right_y = loads[3].force[1];
+        let f_rear_right_z = loads[3].force[2];
+        let t50 = f_rear_right_x * t32 + f_rear_right_y * t35 - f_rear_right_z * t30;
+        let t53 = t1 + (t1 + (t1 + (theta * 48.6 + t1))) + t38 + t42 + t46 + t50;
         let t40 = f_front_left_x * t34 + f_front_left_y * t37 + f_front_left_z * t31;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
         let t41 = mu_front_left_y * t36 - mu_front_left_x * t33
             + mu_front_left_z * s_phi;
-        let t42 = f_front_right_x * t32 + f_front_right_y * t35 - f_front_right_z * t30;
-        let t43 = f_front_right_y * t36 - f_front_right_x * t33
-            + f_front_right_z * s_phi;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
         let t44 = f_front_right_x * t34 + f_front_right_y * t37 + f_front_right_z * t31;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
         let t45 = mu_front_right_y * t36 - mu_front_right_x * t33
             + mu_front_right_z * s_phi;
-        let t46 = f_rear_left_x * t32 + f_rear_left_y * t35 - f_rear_left_z * t30;
-        let t47 = f_rear_left_y * t36 - f_rear_left_x * t33 + f_rear_left_z * s_phi;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
         let t48 = f_rear_left_x * t34 + f_rear_left_y * t37 + f_rear_left_z * t31;
+        let mu_rear_left_x = loads[2].moment[0];
+        let mu_rear_left_y = loads[2].moment[1];
+        let mu_rear_left_z = loads[2].moment[2];
         let t49 = mu_rear_left_y * t36 - mu_rear_left_x * t33 + mu_rear_left_z * s_phi;
-        let t50 = f_rear_right_x * t32 + f_rear_right_y * t35 - f_rear_right_z * t30;
-        let t51 = f_rear_right_y * t36 - f_rear_right_x * t33 + f_rear_right_z * s_phi;
+        let tau_rear_left_x = loads[2].stator_torque[0];
+        let tau_rear_left_y = loads[2].stator_torque[1];
+        let tau_rear_left_z = loads[2].stator_torque[2];
         let t52 = f_rear_right_x * t34 + f_rear_right_y * t37 + f_rear_right_z * t31;
-        let t53 = t1 + (t1 + (t1 + (theta * 48.6 + t1))) + t38 + t42 + t46 + t50;
-        let t54 = -(phi * 48.6) - t2 - t2 - t2 - t2 + t39 + t43 + t47 + t51;
-        let t55 = t40 - 52.48800000000001 + t44 + t48 + t52;
+        let mu_rear_right_x = loads[3].moment[0];
+        let mu_rear_right_y = loads[3].moment[1];
+        let mu_rear_right_z = loads[3].moment[2];
         let t56 = mu_rear_right_y * t36 - mu_rear_right_x * t33
             + mu_rear_right_z * s_phi;
+        let tau_rear_right_x = loads[3].stator_torque[0];
+        let tau_rear_right_y = loads[3].stator_torque[1];
+        let tau_rear_right_z = loads[3].stator_torque[2];
+        let t55 = t40 - 52.48800000000001 + t44 + t48 + t52;
+        let t2 = phi * 0.972;
+        let t39 = f_front_left_y * t36 - f_front_left_x * t33 + f_front_left_z * s_phi;
+        let t43 = f_front_right_y * t36 - f_front_right_x * t33
+            + f_front_right_z * s_phi;
+        let t47 = f_rear_left_y * t36 - f_rear_left_x * t33 + f_rear_left_z * s_phi;
+        let t51 = f_rear_right_y * t36 - f_rear_right_x * t33 + f_rear_right_z * s_phi;
+        let t54 = -(phi * 48.6) - t2 - t2 - t2 - t2 + t39 + t43 + t47 + t51;
         let t57 = -0.19440000000000002 - 0.17752077761500876 * t2
             + (0.19440000000000002 - 0.1775207776150087 * t2)
             + (-0.19440000000000002 - 0.18181525931872997 * t2)
@@ -226,6 +193,7 @@ impl Swing4Linearized {
             + (tau_rear_right_y * t36 - tau_rear_right_x * t33
                 + tau_rear_right_z * s_phi) + 0.013308742108656988 * t53
             - 0.0012264656757205363 * t55 - 2.3989379730044985e-17 * t57;
+        let t3 = 0.2 * t1;
         let t59 = -(0.2892544579916192 * t2) - t3 + (t3 - 0.2892544579916193 * t2)
             + (0.3223690312360738 * t2 - t3) + (t3 + 0.3223690312360737 * t2)
             + (0.2892544579916192 * t39 - 0.2 * t38)
@@ -242,18 +210,42 @@ impl Swing4Linearized {
             + (tau_rear_right_x * t34 + tau_rear_right_y * t37 + tau_rear_right_z * t31)
             + 0.0012264656757205363 * t54 + t57 * 0.00943440344632173
             - 1.640977340505082e-19 * t58;
+        let y1 = x[6];
+        let t5 = f64::max(-1.0471975511965976 - y1, 0.0);
+        let t8 = f64::min(10000.0 * t5, 1.0);
+        let t9 = f64::max(500.0 * t5 - yd_y1 * (6.92820323027551 * t8), 0.0);
+        let t4 = f64::max(y1 + 0.03490658503988659, 0.0);
+        let t6 = f64::min(10000.0 * t4, 1.0);
+        let t7 = f64::min(-(500.0 * t4) - yd_y1 * (6.92820323027551 * t6), 0.0);
+        let y0_y1 = self.neutral[0];
         let t60 = 0.10618108315704364 - t1 * 0.16747341717570624
             + (t9 + (t7 + (-((y1 - y0_y1) * 5.0) - yd_y1 * 3.5)))
             + (-(0.16747341717570624 * t38) - t40 * 0.10923979748667041) + t41
             + t53 * 0.003101359577327893 + t55 * 0.002022959212716118
             + t57 * 0.015106701556945941 - 0.029695681001778374 * t58
             - 0.010968333106806475 * t59;
+        let y2 = x[7];
+        let t11 = f64::max(-1.0471975511965976 - y2, 0.0);
+        let t14 = f64::min(10000.0 * t11, 1.0);
+        let t15 = f64::max(500.0 * t11 - yd_y2 * (6.92820323027551 * t14), 0.0);
+        let t10 = f64::max(y2 + 0.03490658503988659, 0.0);
+        let t12 = f64::min(10000.0 * t10, 1.0);
+        let t13 = f64::min(-(500.0 * t10) - yd_y2 * (6.92820323027551 * t12), 0.0);
+        let y0_y2 = self.neutral[1];
         let t61 = 0.10618108315704373 - t1 * 0.16747341717570619
             + (t15 + (t13 + (-(5.0 * (y2 - y0_y2)) - yd_y2 * 3.5)))
             + (-(0.16747341717570619 * t42) - t44 * 0.10923979748667051) + t45
             + t53 * 0.003101359577327892 + t55 * 0.00202295921271612
             - 0.015106701556945955 * t57 - 0.029695681001778388 * t58
             + t59 * 0.010968333106806474 + t60 * 0.04904517459143361;
+        let y3 = x[8];
+        let t17 = f64::max(0.03490658503988659 - y3, 0.0);
+        let t20 = f64::min(10000.0 * t17, 1.0);
+        let t21 = f64::max(500.0 * t17 - yd_y3 * (6.92820323027551 * t20), 0.0);
+        let t16 = f64::max(y3 - 1.0471975511965976, 0.0);
+        let t18 = f64::min(10000.0 * t16, 1.0);
+        let t19 = f64::min(-(500.0 * t16) - yd_y3 * (6.92820323027551 * t18), 0.0);
+        let y0_y3 = self.neutral[2];
         let t62 = -0.09949512343799766 - t1 * 0.17179008377972066
             + (t21 + (t19 + (-(5.0 * (y3 - y0_y3)) - yd_y3 * 3.5)))
             + (0.10236123810493586 * t48 - 0.17179008377972066 * t46) + t49
@@ -261,6 +253,14 @@ impl Swing4Linearized {
             - 0.014155469990132813 * t57 - 0.030992669995789788 * t58
             - 0.011384350156411613 * t59 + t60 * 0.060653434639849964
             + t61 * 0.059982981352721836;
+        let y4 = x[9];
+        let t23 = f64::max(0.03490658503988659 - y4, 0.0);
+        let t26 = f64::min(10000.0 * t23, 1.0);
+        let t27 = f64::max(500.0 * t23 - yd_y4 * (6.92820323027551 * t26), 0.0);
+        let t22 = f64::max(y4 - 1.0471975511965976, 0.0);
+        let t24 = f64::min(10000.0 * t22, 1.0);
+        let t25 = f64::min(-(500.0 * t22) - yd_y4 * (6.92820323027551 * t24), 0.0);
+        let y0_y4 = self.neutral[3];
         let t63 = (-0.09949512343799753 - t1 * 0.17179008377972071
             + (t27 + (t25 + (-(5.0 * (y4 - y0_y4)) - yd_y4 * 3.5)))
             + (0.10236123810493573 * t52 - 0.17179008377972071 * t50) + t56
@@ -432,50 +432,50 @@ impl Swing4Linearized {
         }; 4];
         // inputs
         let pos_x = x[0];
-        let pos_y = x[1];
-        let pos_z = x[2];
-        let phi = x[3];
+        let y1 = x[6];
         let theta = x[4];
         let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
+        let phi = x[3];
+        let pos_y = x[1];
+        let pos_z = x[2];
+        let yd_y1 = w[6];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
         let omega_y = w[4];
         let omega_z = w[5];
-        let yd_y1 = w[6];
+        let vy = w[1];
+        let omega_x = w[3];
+        let vz = w[2];
+        let y2 = x[7];
         let yd_y2 = w[7];
+        let y3 = x[8];
         let yd_y3 = w[8];
+        let y4 = x[9];
         let yd_y4 = w[9];
         // terms shared by the wheels
-        let (s_phi, c_phi) = ::libm::sincos(phi);
         let (s_theta, c_theta) = ::libm::sincos(theta);
         let (s_psi, c_psi) = ::libm::sincos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let t1 = s_phi * s_theta;
-        let t2 = s_phi * c_theta;
-        let t3 = c_phi * s_theta;
-        let t4 = c_phi * c_theta;
         let t5 = c_theta * c_psi - s_psi * t1;
         let t6 = c_phi * s_psi;
+        let t11 = 0.2 * t6;
+        let t2 = s_phi * c_theta;
         let t7 = s_theta * c_psi + s_psi * t2;
         let t8 = c_theta * s_psi + c_psi * t1;
         let t9 = c_phi * c_psi;
-        let t10 = s_theta * s_psi - c_psi * t2;
-        let t11 = 0.2 * t6;
         let t12 = 0.2 * t9;
+        let t10 = s_theta * s_psi - c_psi * t2;
+        let t3 = c_phi * s_theta;
         let t13 = 0.2 * s_phi;
+        let t4 = c_phi * c_theta;
         let t14 = omega_z * 0.2;
         let t15 = omega_x * 0.2;
         // wheel `front_left`: r_G, V, a_w (MODEL.md §3, eq. 7, 12)
         let t16 = y1 + 0.30019663134302466;
         let t17 = 0.2892544579916192 - t16 * 0.16747341717570624;
         let t18 = -0.17752077761500876 - t16 * 0.10923979748667041;
-        let t19 = vy + (omega_z * t17 - omega_x * t18);
         let t20 = vx + (omega_y * t18 - t14) - yd_y1 * 0.16747341717570624;
+        let t19 = vy + (omega_z * t17 - omega_x * t18);
         let t21 = vz + (t15 - omega_y * t17) - yd_y1 * 0.10923979748667041;
         out[0].centre[0] = pos_x + (t17 * t5 - t11 + t18 * t7);
         out[0].centre[1] = pos_y + (t17 * t8 + t12 + t18 * t10);
@@ -490,8 +490,8 @@ impl Swing4Linearized {
         let t22 = y2 + 0.30019663134302466;
         let t23 = 0.2892544579916193 - t22 * 0.16747341717570619;
         let t24 = -0.1775207776150087 - t22 * 0.10923979748667051;
-        let t25 = vy + (omega_z * t23 - omega_x * t24);
         let t26 = vx + (t14 + omega_y * t24) - yd_y2 * 0.16747341717570619;
+        let t25 = vy + (omega_z * t23 - omega_x * t24);
         let t27 = vz + (-t15 - omega_y * t23) - yd_y2 * 0.10923979748667051;
         out[1].centre[0] = pos_x + (t11 + t5 * t23 + t7 * t24);
         out[1].centre[1] = pos_y + (t8 * t23 - t12 + t10 * t24);
@@ -506,8 +506,8 @@ impl Swing4Linearized {
         let t28 = y3 - 0.30019663134302466;
         let t29 = -0.3223690312360738 - t28 * 0.17179008377972066;
         let t30 = t28 * 0.10236123810493586 - 0.18181525931872997;
-        let t31 = vy + (omega_z * t29 - omega_x * t30);
         let t32 = vx + (omega_y * t30 - t14) - yd_y3 * 0.17179008377972066;
+        let t31 = vy + (omega_z * t29 - omega_x * t30);
         let t33 = yd_y3 * 0.10236123810493586 + (vz + (t15 - omega_y * t29));
         out[2].centre[0] = pos_x + (t5 * t29 - t11 + t7 * t30);
         out[2].centre[1] = pos_y + (t12 + t8 * t29 + t10 * t30);
@@ -522,8 +522,8 @@ impl Swing4Linearized {
         let t34 = y4 - 0.30019663134302466;
         let t35 = -0.3223690312360737 - t34 * 0.17179008377972071;
         let t36 = t34 * 0.10236123810493573 - 0.18181525931873005;
-        let t37 = vy + (omega_z * t35 - omega_x * t36);
         let t38 = vx + (t14 + omega_y * t36) - yd_y4 * 0.17179008377972071;
+        let t37 = vy + (omega_z * t35 - omega_x * t36);
         let t39 = yd_y4 * 0.10236123810493573 + (vz + (-t15 - omega_y * t35));
         out[3].centre[0] = pos_x + (t11 + t5 * t35 + t7 * t36);
         out[3].centre[1] = pos_y + (t8 * t35 - t12 + t10 * t36);
@@ -548,149 +548,85 @@ impl Swing4Linearized {
     ) -> [[f64; 20]; 20] {
         let mut jac = [[0.0; 20]; 20];
         // ∂(ẋ, ẇ)/∂(x, w) at fixed wheel loads
-        let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
-        let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_left_z = loads[2].moment[2];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let mu_rear_right_x = loads[3].moment[0];
-        let mu_rear_right_y = loads[3].moment[1];
-        let mu_rear_right_z = loads[3].moment[2];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
         let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t1 = y1 + 0.03490658503988659;
-        let t2 = f64::max(t1, 0.0);
-        let t3 = -1.0471975511965976 - y1;
-        let t4 = f64::max(t3, 0.0);
-        let t5 = 10000.0 * t2;
-        let t6 = f64::min(t5, 1.0);
-        let t7 = 6.92820323027551 * t6;
-        let t8 = 10000.0 * t4;
-        let t9 = f64::min(t8, 1.0);
-        let t10 = 6.92820323027551 * t9;
-        let t11 = y2 + 0.03490658503988659;
-        let t12 = f64::max(t11, 0.0);
-        let t13 = -1.0471975511965976 - y2;
-        let t14 = f64::max(t13, 0.0);
-        let t15 = 10000.0 * t12;
-        let t16 = f64::min(t15, 1.0);
-        let t17 = 6.92820323027551 * t16;
-        let t18 = 10000.0 * t14;
-        let t19 = f64::min(t18, 1.0);
-        let t20 = 6.92820323027551 * t19;
-        let t21 = y3 - 1.0471975511965976;
-        let t22 = f64::max(t21, 0.0);
-        let t23 = 0.03490658503988659 - y3;
-        let t24 = f64::max(t23, 0.0);
-        let t25 = 10000.0 * t22;
-        let t26 = f64::min(t25, 1.0);
-        let t27 = 6.92820323027551 * t26;
-        let t28 = 10000.0 * t24;
-        let t29 = f64::min(t28, 1.0);
-        let t30 = 6.92820323027551 * t29;
-        let t31 = y4 - 1.0471975511965976;
-        let t32 = f64::max(t31, 0.0);
-        let t33 = 0.03490658503988659 - y4;
-        let t34 = f64::max(t33, 0.0);
-        let t35 = 10000.0 * t32;
-        let t36 = f64::min(t35, 1.0);
-        let t37 = 6.92820323027551 * t36;
-        let t38 = 10000.0 * t34;
-        let t39 = f64::min(t38, 1.0);
-        let t40 = 6.92820323027551 * t39;
-        let t41 = s_phi * s_theta;
-        let t42 = s_phi * c_theta;
+        let phi = x[3];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let theta = x[4];
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let t43 = c_phi * s_theta;
-        let t44 = c_phi * c_theta;
-        let t45 = c_theta * c_psi - s_psi * t41;
-        let t46 = c_phi * s_psi;
-        let t47 = s_theta * c_psi;
-        let t48 = s_psi * t42;
-        let t49 = t47 + t48;
-        let t50 = c_theta * s_psi;
-        let t51 = c_psi * t41;
-        let t52 = t50 + t51;
-        let t53 = c_phi * c_psi;
-        let t54 = s_theta * s_psi;
-        let t55 = c_psi * t42;
-        let t56 = f_front_left_x * t45 + f_front_left_y * t52 - f_front_left_z * t43;
-        let t57 = f_front_right_x * t45 + f_front_right_y * t52 - f_front_right_z * t43;
-        let t58 = f_rear_left_x * t45 + f_rear_left_y * t52 - f_rear_left_z * t43;
-        let t59 = f_rear_right_x * t45 + f_rear_right_y * t52 - f_rear_right_z * t43;
         let t60 = s_psi * t43;
+        let vy = w[1];
         let t61 = s_phi * s_psi;
+        let vz = w[2];
+        let t44 = c_phi * c_theta;
         let t62 = s_psi * t44;
         let t63 = c_psi * t43;
         let t64 = s_phi * c_psi;
         let t65 = c_psi * t44;
+        let t41 = s_phi * s_theta;
+        let t42 = s_phi * c_theta;
+        let omega_z = w[5];
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
         let t66 = f_front_left_y * t63 - f_front_left_x * t60 + f_front_left_z * t41;
-        let t67 = f_front_left_x * t61 - f_front_left_y * t64 + f_front_left_z * c_phi;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
+        let t70 = f_front_right_y * t63 - f_front_right_x * t60 + f_front_right_z * t41;
+        let f_rear_left_x = loads[2].force[0];
+        let f_rear_left_y = loads[2].force[1];
+        let f_rear_left_z = loads[2].force[2];
+        let t74 = f_rear_left_y * t63 - f_rear_left_x * t60 + f_rear_left_z * t41;
+        let f_rear_right_x = loads[3].force[0];
+        let f_rear_right_y = loads[3].force[1];
+        let f_rear_right_z = loads[3].force[2];
+        let t78 = f_rear_right_y * t63 - f_rear_right_x * t60 + f_rear_right_z * t41;
+        let t81 = t66 + t70 + t74 + t78;
         let t68 = f_front_left_x * t62 - f_front_left_y * t65 - f_front_left_z * t42;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
         let t69 = mu_front_left_x * t61 - mu_front_left_y * t64
             + mu_front_left_z * c_phi;
-        let t70 = f_front_right_y * t63 - f_front_right_x * t60 + f_front_right_z * t41;
-        let t71 = f_front_right_x * t61 - f_front_right_y * t64
-            + f_front_right_z * c_phi;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
         let t72 = f_front_right_x * t62 - f_front_right_y * t65 - f_front_right_z * t42;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
         let t73 = mu_front_right_x * t61 - mu_front_right_y * t64
             + mu_front_right_z * c_phi;
-        let t74 = f_rear_left_y * t63 - f_rear_left_x * t60 + f_rear_left_z * t41;
-        let t75 = f_rear_left_x * t61 - f_rear_left_y * t64 + f_rear_left_z * c_phi;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
         let t76 = f_rear_left_x * t62 - f_rear_left_y * t65 - f_rear_left_z * t42;
+        let mu_rear_left_x = loads[2].moment[0];
+        let mu_rear_left_y = loads[2].moment[1];
+        let mu_rear_left_z = loads[2].moment[2];
         let t77 = mu_rear_left_x * t61 - mu_rear_left_y * t64 + mu_rear_left_z * c_phi;
-        let t78 = f_rear_right_y * t63 - f_rear_right_x * t60 + f_rear_right_z * t41;
-        let t79 = f_rear_right_x * t61 - f_rear_right_y * t64 + f_rear_right_z * c_phi;
+        let tau_rear_left_x = loads[2].stator_torque[0];
+        let tau_rear_left_y = loads[2].stator_torque[1];
+        let tau_rear_left_z = loads[2].stator_torque[2];
         let t80 = f_rear_right_x * t62 - f_rear_right_y * t65 - f_rear_right_z * t42;
-        let t81 = t66 + t70 + t74 + t78;
-        let t82 = t67 - 52.48800000000001 + t71 + t75 + t79;
-        let t83 = t68 + t72 + t76 + t80;
+        let mu_rear_right_x = loads[3].moment[0];
+        let mu_rear_right_y = loads[3].moment[1];
+        let mu_rear_right_z = loads[3].moment[2];
         let t84 = mu_rear_right_x * t61 - mu_rear_right_y * t64
             + mu_rear_right_z * c_phi;
+        let tau_rear_right_x = loads[3].stator_torque[0];
+        let tau_rear_right_y = loads[3].stator_torque[1];
+        let tau_rear_right_z = loads[3].stator_torque[2];
+        let t83 = t68 + t72 + t76 + t80;
+        let t67 = f_front_left_x * t61 - f_front_left_y * t64 + f_front_left_z * c_phi;
+        let t71 = f_front_right_x * t61 - f_front_right_y * t64
+            + f_front_right_z * c_phi;
+        let t75 = f_rear_left_x * t61 - f_rear_left_y * t64 + f_rear_left_z * c_phi;
+        let t79 = f_rear_right_x * t61 - f_rear_right_y * t64 + f_rear_right_z * c_phi;
+        let t82 = t67 - 52.48800000000001 + t71 + t75 + t79;
         let t85 = 0.2 * t68 + 0.17752077761500876 * t67 - 0.6985492557991881
             + (mu_front_left_y * t63 - mu_front_left_x * t60 + mu_front_left_z * t41)
             + (tau_front_left_y * t63 - tau_front_left_x * t60 + tau_front_left_z * t41)
@@ -764,13 +700,26 @@ impl Swing4Linearized {
             + 0.00943440344632173 * t95 + 0.015106701556945941 * t94
             - 0.015106701556945955 * t93 - 0.014155469990132813 * t92
             + 0.014155469990132794 * t91;
+        let t48 = s_psi * t42;
+        let t47 = s_theta * c_psi;
         let t98 = -t48 - t47;
+        let t45 = c_theta * c_psi - s_psi * t41;
+        let t55 = c_psi * t42;
+        let t54 = s_theta * s_psi;
         let t99 = t55 - t54;
+        let t50 = c_theta * s_psi;
+        let t51 = c_psi * t41;
+        let t52 = t50 + t51;
+        let omega_x = w[3];
         let t100 = f_front_left_x * t98 + f_front_left_y * t99 - f_front_left_z * t44;
         let t101 = f_front_right_x * t98 + f_front_right_y * t99 - f_front_right_z * t44;
         let t102 = f_rear_left_x * t98 + f_rear_left_y * t99 - f_rear_left_z * t44;
         let t103 = f_rear_right_x * t98 + f_rear_right_y * t99 - f_rear_right_z * t44;
         let t104 = 52.48800000000001 + t100 + t101 + t102 + t103;
+        let t56 = f_front_left_x * t45 + f_front_left_y * t52 - f_front_left_z * t43;
+        let t57 = f_front_right_x * t45 + f_front_right_y * t52 - f_front_right_z * t43;
+        let t58 = f_rear_left_x * t45 + f_rear_left_y * t52 - f_rear_left_z * t43;
+        let t59 = f_rear_right_x * t45 + f_rear_right_y * t52 - f_rear_right_z * t43;
         let t105 = t59 + (t58 + (t56 + t57));
         let t106 = 0.2 * t58
             + (0.2 * t56
@@ -844,25 +793,28 @@ impl Swing4Linearized {
             - 0.015106701556945955 * t114 - 0.014155469990132813 * t113
             + 0.014155469990132794 * t112;
         let t119 = -t51 - t50;
+        let t53 = c_phi * c_psi;
+        let t46 = c_phi * s_psi;
+        let t49 = t47 + t48;
         let t120 = f_front_left_x * t119 + f_front_left_y * t45;
-        let t121 = -(f_front_left_x * t53) - f_front_left_y * t46;
+        let t124 = f_front_right_x * t119 + f_front_right_y * t45;
+        let t128 = f_rear_left_x * t119 + f_rear_left_y * t45;
+        let t132 = f_rear_right_x * t119 + f_rear_right_y * t45;
+        let t135 = t120 + t124 + t128 + t132;
         let t122 = f_front_left_x * t99 + f_front_left_y * t49;
         let t123 = -(mu_front_left_x * t53) - mu_front_left_y * t46;
-        let t124 = f_front_right_x * t119 + f_front_right_y * t45;
-        let t125 = -(f_front_right_x * t53) - f_front_right_y * t46;
         let t126 = f_front_right_x * t99 + f_front_right_y * t49;
         let t127 = -(mu_front_right_x * t53) - mu_front_right_y * t46;
-        let t128 = f_rear_left_x * t119 + f_rear_left_y * t45;
-        let t129 = -(f_rear_left_x * t53) - f_rear_left_y * t46;
         let t130 = f_rear_left_x * t99 + f_rear_left_y * t49;
         let t131 = -(mu_rear_left_x * t53) - mu_rear_left_y * t46;
-        let t132 = f_rear_right_x * t119 + f_rear_right_y * t45;
-        let t133 = -(f_rear_right_x * t53) - f_rear_right_y * t46;
         let t134 = f_rear_right_x * t99 + f_rear_right_y * t49;
-        let t135 = t120 + t124 + t128 + t132;
-        let t136 = t121 + t125 + t129 + t133;
-        let t137 = t122 + t126 + t130 + t134;
         let t138 = -(mu_rear_right_x * t53) - mu_rear_right_y * t46;
+        let t137 = t122 + t126 + t130 + t134;
+        let t121 = -(f_front_left_x * t53) - f_front_left_y * t46;
+        let t125 = -(f_front_right_x * t53) - f_front_right_y * t46;
+        let t129 = -(f_rear_left_x * t53) - f_rear_left_y * t46;
+        let t133 = -(f_rear_right_x * t53) - f_rear_right_y * t46;
+        let t136 = t121 + t125 + t129 + t133;
         let t139 = 0.2 * t122 + 0.17752077761500876 * t121
             + (mu_front_left_x * t119 + mu_front_left_y * t45)
             + (tau_front_left_x * t119 + tau_front_left_y * t45)
@@ -934,12 +886,24 @@ impl Swing4Linearized {
             + 0.00943440344632173 * t149 + 0.015106701556945941 * t148
             - 0.015106701556945955 * t147 - 0.014155469990132813 * t146
             + 0.014155469990132794 * t145;
-        let t152 = if t1 >= 0.0 { 1.0 } else { 0.0 };
+        let y1 = x[6];
+        let t3 = -1.0471975511965976 - y1;
         let t153 = if t3 >= 0.0 { 1.0 } else { 0.0 };
-        let t154 = if 1.0 >= t5 { 1.0 } else { 0.0 };
-        let t155 = if 0.0 >= -(500.0 * t2) - yd_y1 * t7 { 1.0 } else { 0.0 };
+        let yd_y1 = w[6];
+        let t4 = f64::max(t3, 0.0);
+        let t8 = 10000.0 * t4;
         let t156 = if 1.0 >= t8 { 1.0 } else { 0.0 };
+        let t9 = f64::min(t8, 1.0);
+        let t10 = 6.92820323027551 * t9;
         let t157 = if 500.0 * t4 - yd_y1 * t10 >= 0.0 { 1.0 } else { 0.0 };
+        let t1 = y1 + 0.03490658503988659;
+        let t152 = if t1 >= 0.0 { 1.0 } else { 0.0 };
+        let t2 = f64::max(t1, 0.0);
+        let t5 = 10000.0 * t2;
+        let t154 = if 1.0 >= t5 { 1.0 } else { 0.0 };
+        let t6 = f64::min(t5, 1.0);
+        let t7 = 6.92820323027551 * t6;
+        let t155 = if 0.0 >= -(500.0 * t2) - yd_y1 * t7 { 1.0 } else { 0.0 };
         let t158 = (yd_y1 * (6.92820323027551 * (10000.0 * t153 * t156)) - 500.0 * t153)
             * t157
             + ((-(500.0 * t152) - yd_y1 * (6.92820323027551 * (10000.0 * t152 * t154)))
@@ -961,12 +925,24 @@ impl Swing4Linearized {
         let t167 = 0.00943440344632173 * t165 - 2.3989379730044985e-17 * t166
             + 0.015106701556945941 * t164 - 0.015106701556945955 * t163
             - 0.014155469990132813 * t162 + 0.014155469990132794 * t161;
-        let t168 = if t11 >= 0.0 { 1.0 } else { 0.0 };
+        let y2 = x[7];
+        let t13 = -1.0471975511965976 - y2;
         let t169 = if t13 >= 0.0 { 1.0 } else { 0.0 };
-        let t170 = if 1.0 >= t15 { 1.0 } else { 0.0 };
-        let t171 = if 0.0 >= -(500.0 * t12) - yd_y2 * t17 { 1.0 } else { 0.0 };
+        let yd_y2 = w[7];
+        let t14 = f64::max(t13, 0.0);
+        let t18 = 10000.0 * t14;
         let t172 = if 1.0 >= t18 { 1.0 } else { 0.0 };
+        let t19 = f64::min(t18, 1.0);
+        let t20 = 6.92820323027551 * t19;
         let t173 = if 500.0 * t14 - yd_y2 * t20 >= 0.0 { 1.0 } else { 0.0 };
+        let t11 = y2 + 0.03490658503988659;
+        let t168 = if t11 >= 0.0 { 1.0 } else { 0.0 };
+        let t12 = f64::max(t11, 0.0);
+        let t15 = 10000.0 * t12;
+        let t170 = if 1.0 >= t15 { 1.0 } else { 0.0 };
+        let t16 = f64::min(t15, 1.0);
+        let t17 = 6.92820323027551 * t16;
+        let t171 = if 0.0 >= -(500.0 * t12) - yd_y2 * t17 { 1.0 } else { 0.0 };
         let t174 = (yd_y2 * (6.92820323027551 * (10000.0 * t169 * t172)) - 500.0 * t169)
             * t173
             + ((-(500.0 * t168) - yd_y2 * (6.92820323027551 * (10000.0 * t168 * t170)))
@@ -987,12 +963,24 @@ impl Swing4Linearized {
         let t182 = 0.00943440344632173 * t180 - 2.3989379730044985e-17 * t181
             + 0.015106701556945941 * t179 - 0.015106701556945955 * t178
             - 0.014155469990132813 * t177 + 0.014155469990132794 * t176;
-        let t183 = if t21 >= 0.0 { 1.0 } else { 0.0 };
+        let y3 = x[8];
+        let t23 = 0.03490658503988659 - y3;
         let t184 = if t23 >= 0.0 { 1.0 } else { 0.0 };
-        let t185 = if 1.0 >= t25 { 1.0 } else { 0.0 };
-        let t186 = if 0.0 >= -(500.0 * t22) - yd_y3 * t27 { 1.0 } else { 0.0 };
+        let yd_y3 = w[8];
+        let t24 = f64::max(t23, 0.0);
+        let t28 = 10000.0 * t24;
         let t187 = if 1.0 >= t28 { 1.0 } else { 0.0 };
+        let t29 = f64::min(t28, 1.0);
+        let t30 = 6.92820323027551 * t29;
         let t188 = if 500.0 * t24 - yd_y3 * t30 >= 0.0 { 1.0 } else { 0.0 };
+        let t21 = y3 - 1.0471975511965976;
+        let t183 = if t21 >= 0.0 { 1.0 } else { 0.0 };
+        let t22 = f64::max(t21, 0.0);
+        let t25 = 10000.0 * t22;
+        let t185 = if 1.0 >= t25 { 1.0 } else { 0.0 };
+        let t26 = f64::min(t25, 1.0);
+        let t27 = 6.92820323027551 * t26;
+        let t186 = if 0.0 >= -(500.0 * t22) - yd_y3 * t27 { 1.0 } else { 0.0 };
         let t189 = (yd_y3 * (6.92820323027551 * (10000.0 * t184 * t187)) - 500.0 * t184)
             * t188
             + ((-(500.0 * t183) - yd_y3 * (6.92820323027551 * (10000.0 * t183 * t185)))
@@ -1010,12 +998,24 @@ impl Swing4Linearized {
         let t196 = 0.00943440344632173 * t194 - 2.3989379730044985e-17 * t195
             + 0.015106701556945941 * t193 - 0.015106701556945955 * t192
             - 0.014155469990132813 * t191 + 0.014155469990132794 * t190;
-        let t197 = if t31 >= 0.0 { 1.0 } else { 0.0 };
+        let y4 = x[9];
+        let t33 = 0.03490658503988659 - y4;
         let t198 = if t33 >= 0.0 { 1.0 } else { 0.0 };
-        let t199 = if 1.0 >= t35 { 1.0 } else { 0.0 };
-        let t200 = if 0.0 >= -(500.0 * t32) - yd_y4 * t37 { 1.0 } else { 0.0 };
+        let yd_y4 = w[9];
+        let t34 = f64::max(t33, 0.0);
+        let t38 = 10000.0 * t34;
         let t201 = if 1.0 >= t38 { 1.0 } else { 0.0 };
+        let t39 = f64::min(t38, 1.0);
+        let t40 = 6.92820323027551 * t39;
         let t202 = if 500.0 * t34 - yd_y4 * t40 >= 0.0 { 1.0 } else { 0.0 };
+        let t31 = y4 - 1.0471975511965976;
+        let t197 = if t31 >= 0.0 { 1.0 } else { 0.0 };
+        let t32 = f64::max(t31, 0.0);
+        let t35 = 10000.0 * t32;
+        let t199 = if 1.0 >= t35 { 1.0 } else { 0.0 };
+        let t36 = f64::min(t35, 1.0);
+        let t37 = 6.92820323027551 * t36;
+        let t200 = if 0.0 >= -(500.0 * t32) - yd_y4 * t37 { 1.0 } else { 0.0 };
         let t203 = ((yd_y4 * (6.92820323027551 * (10000.0 * t198 * t201)) - 500.0 * t198)
             * t202
             + ((-(500.0 * t197) - yd_y4 * (6.92820323027551 * (10000.0 * t197 * t199)))

@@ -74,150 +74,118 @@ impl Swing4Simplified {
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
         // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
         let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
-        let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
-        let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_left_z = loads[2].moment[2];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let mu_rear_right_x = loads[3].moment[0];
-        let mu_rear_right_y = loads[3].moment[1];
-        let mu_rear_right_z = loads[3].moment[2];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let y0_y1 = self.neutral[0];
-        let y0_y2 = self.neutral[1];
-        let y0_y3 = self.neutral[2];
-        let y0_y4 = self.neutral[3];
         let (s_phi, c_phi) = ::libm::sincos(phi);
+        let vx = w[0];
+        let theta = x[4];
         let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
         let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t1 = vx * 32.400000000000006 - omega_y * 0.4312032443204865
-            - yd_y1 * 0.10048405030542375 - yd_y2 * 0.1004840503054237
-            - yd_y3 * 0.1030740502678324 - yd_y4 * 0.10307405026783242;
-        let t2 = vy * 32.400000000000006 + omega_x * 0.4312032443204865
-            - omega_z * 0.039737487893345386;
-        let t3 = vz * 32.400000000000006 + omega_y * 0.039737487893345386
-            - yd_y1 * 0.06554387849200224 - yd_y2 * 0.0655438784920023
-            + yd_y3 * 0.06141674286296151 + yd_y4 * 0.061416742862961435;
-        let t4 = vy * 0.4312032443204865 + omega_x * 0.8734844980074093
-            + omega_y * 2.0816681711721685e-17 - omega_z * 0.008715519239081274
-            - yd_y1 * 0.01310877569840045 + yd_y2 * 0.013108775698400462
-            + yd_y3 * 0.012283348572592305 - yd_y4 * 0.012283348572592289;
-        let t5 = vz * 0.039737487893345386 - vx * 0.4312032443204865
-            + omega_x * 2.0816681711721685e-17 + omega_y * 1.2025924185291414
-            + yd_y1 * 0.036796865795997134 + yd_y2 * 0.03679686579599715
-            + yd_y3 * 0.0385392910768857 + yd_y4 * 0.03853929107688569;
-        let t6 = -(vy * 0.039737487893345386) - omega_x * 0.008715519239081274
-            + omega_z * 1.8211079205217322 + yd_y1 * 0.020096810061084748
-            - yd_y2 * 0.020096810061084745 + yd_y3 * 0.02061481005356648
-            - yd_y4 * 0.020614810053566485;
-        let t7 = c_phi * s_theta;
-        let t8 = c_phi * c_theta;
-        let t9 = t7 * 0.972;
-        let t10 = s_phi * 0.972;
-        let t11 = t8 * 0.972;
-        let t12 = 0.2 * t11;
-        let t13 = 0.2 * t9;
-        let t14 = f64::max(y1 + 0.03490658503988659, 0.0);
-        let t15 = f64::max(-1.0471975511965976 - y1, 0.0);
-        let t16 = f64::min(10000.0 * t14, 1.0);
-        let t17 = f64::min(-(500.0 * t14) - yd_y1 * (6.92820323027551 * t16), 0.0);
-        let t18 = f64::min(10000.0 * t15, 1.0);
-        let t19 = f64::max(500.0 * t15 - yd_y1 * (6.92820323027551 * t18), 0.0);
-        let t20 = f64::max(y2 + 0.03490658503988659, 0.0);
-        let t21 = f64::max(-1.0471975511965976 - y2, 0.0);
-        let t22 = f64::min(10000.0 * t20, 1.0);
-        let t23 = f64::min(-(500.0 * t20) - yd_y2 * (6.92820323027551 * t22), 0.0);
-        let t24 = f64::min(10000.0 * t21, 1.0);
-        let t25 = f64::max(500.0 * t21 - yd_y2 * (6.92820323027551 * t24), 0.0);
-        let t26 = f64::max(y3 - 1.0471975511965976, 0.0);
-        let t27 = f64::max(0.03490658503988659 - y3, 0.0);
-        let t28 = f64::min(10000.0 * t26, 1.0);
-        let t29 = f64::min(-(500.0 * t26) - yd_y3 * (6.92820323027551 * t28), 0.0);
-        let t30 = f64::min(10000.0 * t27, 1.0);
-        let t31 = f64::max(500.0 * t27 - yd_y3 * (6.92820323027551 * t30), 0.0);
-        let t32 = f64::max(y4 - 1.0471975511965976, 0.0);
-        let t33 = f64::max(0.03490658503988659 - y4, 0.0);
-        let t34 = f64::min(10000.0 * t32, 1.0);
-        let t35 = f64::min(-(500.0 * t32) - yd_y4 * (6.92820323027551 * t34), 0.0);
-        let t36 = f64::min(10000.0 * t33, 1.0);
-        let t37 = f64::max(500.0 * t33 - yd_y4 * (6.92820323027551 * t36), 0.0);
         let t38 = s_phi * s_theta;
-        let t39 = s_phi * c_theta;
         let t40 = c_theta * c_psi - s_psi * t38;
+        let vy = w[1];
         let t41 = c_phi * s_psi;
+        let vz = w[2];
+        let t39 = s_phi * c_theta;
         let t42 = s_theta * c_psi + s_psi * t39;
         let t43 = c_theta * s_psi + c_psi * t38;
         let t44 = c_phi * c_psi;
         let t45 = s_theta * s_psi - c_psi * t39;
+        let t7 = c_phi * s_theta;
+        let t8 = c_phi * c_theta;
+        let omega_x = w[3];
+        let omega_z = w[5];
+        let omega_y = w[4];
+        let t78 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let yd_y1 = w[6];
+        let yd_y2 = w[7];
+        let yd_y3 = w[8];
+        let yd_y4 = w[9];
+        let t9 = t7 * 0.972;
+        let t3 = vz * 32.400000000000006 + omega_y * 0.039737487893345386
+            - yd_y1 * 0.06554387849200224 - yd_y2 * 0.0655438784920023
+            + yd_y3 * 0.06141674286296151 + yd_y4 * 0.061416742862961435;
+        let t2 = vy * 32.400000000000006 + omega_x * 0.4312032443204865
+            - omega_z * 0.039737487893345386;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
         let t46 = f_front_left_x * t40 + f_front_left_y * t43 - f_front_left_z * t7;
-        let t47 = f_front_left_y * t44 - f_front_left_x * t41 + f_front_left_z * s_phi;
-        let t48 = f_front_left_x * t42 + f_front_left_y * t45 + f_front_left_z * t8;
-        let t49 = mu_front_left_y * t44 - mu_front_left_x * t41
-            + mu_front_left_z * s_phi;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
         let t50 = f_front_right_x * t40 + f_front_right_y * t43 - f_front_right_z * t7;
-        let t51 = f_front_right_y * t44 - f_front_right_x * t41
-            + f_front_right_z * s_phi;
-        let t52 = f_front_right_x * t42 + f_front_right_y * t45 + f_front_right_z * t8;
-        let t53 = mu_front_right_y * t44 - mu_front_right_x * t41
-            + mu_front_right_z * s_phi;
+        let f_rear_left_x = loads[2].force[0];
+        let f_rear_left_y = loads[2].force[1];
+        let f_rear_left_z = loads[2].force[2];
         let t54 = f_rear_left_x * t40 + f_rear_left_y * t43 - f_rear_left_z * t7;
-        let t55 = f_rear_left_y * t44 - f_rear_left_x * t41 + f_rear_left_z * s_phi;
-        let t56 = f_rear_left_x * t42 + f_rear_left_y * t45 + f_rear_left_z * t8;
-        let t57 = mu_rear_left_y * t44 - mu_rear_left_x * t41 + mu_rear_left_z * s_phi;
+        let f_rear_right_x = loads[3].force[0];
+        let f_rear_right_y = loads[3].force[1];
+        let f_rear_right_z = loads[3].force[2];
         let t58 = f_rear_right_x * t40 + f_rear_right_y * t43 - f_rear_right_z * t7;
-        let t59 = f_rear_right_y * t44 - f_rear_right_x * t41 + f_rear_right_z * s_phi;
-        let t60 = f_rear_right_x * t42 + f_rear_right_y * t45 + f_rear_right_z * t8;
         let t61 = t9 + (t9 + (t9 + (t7 * 48.6 - (omega_y * t3 - omega_z * t2) + t9)))
             + t46 + t50 + t54 + t58;
-        let t62 = -(omega_z * t1 - omega_x * t3) - s_phi * 48.6 - t10 - t10 - t10 - t10
-            + t47 + t51 + t55 + t59;
-        let t63 = -(omega_x * t2 - omega_y * t1) - t8 * 48.6 - t11 - t11 - t11 - t11
-            + t48 + t52 + t56 + t60;
+        let t1 = vx * 32.400000000000006 - omega_y * 0.4312032443204865
+            - yd_y1 * 0.10048405030542375 - yd_y2 * 0.1004840503054237
+            - yd_y3 * 0.1030740502678324 - yd_y4 * 0.10307405026783242;
+        let t4 = vy * 0.4312032443204865 + omega_x * 0.8734844980074093
+            + omega_y * 2.0816681711721685e-17 - omega_z * 0.008715519239081274
+            - yd_y1 * 0.01310877569840045 + yd_y2 * 0.013108775698400462
+            + yd_y3 * 0.012283348572592305 - yd_y4 * 0.012283348572592289;
+        let t6 = -(vy * 0.039737487893345386) - omega_x * 0.008715519239081274
+            + omega_z * 1.8211079205217322 + yd_y1 * 0.020096810061084748
+            - yd_y2 * 0.020096810061084745 + yd_y3 * 0.02061481005356648
+            - yd_y4 * 0.020614810053566485;
+        let t11 = t8 * 0.972;
+        let t48 = f_front_left_x * t42 + f_front_left_y * t45 + f_front_left_z * t8;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
+        let t49 = mu_front_left_y * t44 - mu_front_left_x * t41
+            + mu_front_left_z * s_phi;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
+        let t52 = f_front_right_x * t42 + f_front_right_y * t45 + f_front_right_z * t8;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
+        let t53 = mu_front_right_y * t44 - mu_front_right_x * t41
+            + mu_front_right_z * s_phi;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
+        let t56 = f_rear_left_x * t42 + f_rear_left_y * t45 + f_rear_left_z * t8;
+        let mu_rear_left_x = loads[2].moment[0];
+        let mu_rear_left_y = loads[2].moment[1];
+        let mu_rear_left_z = loads[2].moment[2];
+        let t57 = mu_rear_left_y * t44 - mu_rear_left_x * t41 + mu_rear_left_z * s_phi;
+        let tau_rear_left_x = loads[2].stator_torque[0];
+        let tau_rear_left_y = loads[2].stator_torque[1];
+        let tau_rear_left_z = loads[2].stator_torque[2];
+        let t60 = f_rear_right_x * t42 + f_rear_right_y * t45 + f_rear_right_z * t8;
+        let mu_rear_right_x = loads[3].moment[0];
+        let mu_rear_right_y = loads[3].moment[1];
+        let mu_rear_right_z = loads[3].moment[2];
         let t64 = mu_rear_right_y * t44 - mu_rear_right_x * t41
             + mu_rear_right_z * s_phi;
+        let tau_rear_right_x = loads[3].stator_torque[0];
+        let tau_rear_right_y = loads[3].stator_torque[1];
+        let tau_rear_right_z = loads[3].stator_torque[2];
+        let t63 = -(omega_x * t2 - omega_y * t1) - t8 * 48.6 - t11 - t11 - t11 - t11
+            + t48 + t52 + t56 + t60;
+        let t5 = vz * 0.039737487893345386 - vx * 0.4312032443204865
+            + omega_x * 2.0816681711721685e-17 + omega_y * 1.2025924185291414
+            + yd_y1 * 0.036796865795997134 + yd_y2 * 0.03679686579599715
+            + yd_y3 * 0.0385392910768857 + yd_y4 * 0.03853929107688569;
+        let t12 = 0.2 * t11;
+        let t10 = s_phi * 0.972;
+        let t47 = f_front_left_y * t44 - f_front_left_x * t41 + f_front_left_z * s_phi;
+        let t51 = f_front_right_y * t44 - f_front_right_x * t41
+            + f_front_right_z * s_phi;
+        let t55 = f_rear_left_y * t44 - f_rear_left_x * t41 + f_rear_left_z * s_phi;
+        let t59 = f_rear_right_y * t44 - f_rear_right_x * t41 + f_rear_right_z * s_phi;
+        let t62 = -(omega_z * t1 - omega_x * t3) - s_phi * 48.6 - t10 - t10 - t10 - t10
+            + t47 + t51 + t55 + t59;
         let t65 = -t12 - 0.17752077761500876 * t10
             - (vy * t3 - vz * t2 + (omega_y * t6 - omega_z * t5))
             + (t12 - 0.1775207776150087 * t10) + (-t12 - 0.18181525931872997 * t10)
@@ -251,6 +219,7 @@ impl Swing4Simplified {
             + (tau_rear_right_y * t44 - tau_rear_right_x * t41
                 + tau_rear_right_z * s_phi) + 0.013308742108656988 * t61
             - 0.0012264656757205363 * t63 - 2.3989379730044985e-17 * t65;
+        let t13 = 0.2 * t9;
         let t67 = -(0.2892544579916192 * t10) - t13
             - (vx * t2 - vy * t1 + (omega_x * t5 - omega_y * t4))
             + (t13 - 0.2892544579916193 * t10) + (0.3223690312360738 * t10 - t13)
@@ -268,18 +237,42 @@ impl Swing4Simplified {
             + (tau_rear_right_x * t42 + tau_rear_right_y * t45 + tau_rear_right_z * t8)
             + 0.0012264656757205363 * t62 + t65 * 0.00943440344632173
             - 1.640977340505082e-19 * t66;
+        let y1 = x[6];
+        let t15 = f64::max(-1.0471975511965976 - y1, 0.0);
+        let t18 = f64::min(10000.0 * t15, 1.0);
+        let t19 = f64::max(500.0 * t15 - yd_y1 * (6.92820323027551 * t18), 0.0);
+        let t14 = f64::max(y1 + 0.03490658503988659, 0.0);
+        let t16 = f64::min(10000.0 * t14, 1.0);
+        let t17 = f64::min(-(500.0 * t14) - yd_y1 * (6.92820323027551 * t16), 0.0);
+        let y0_y1 = self.neutral[0];
         let t68 = t11 * 0.10923979748667041 - t9 * 0.16747341717570624
             + (t19 + (t17 + (-((y1 - y0_y1) * 5.0) - yd_y1 * 3.5)))
             + (-(0.16747341717570624 * t46) - 0.10923979748667041 * t48) + t49
             + t61 * 0.003101359577327893 + t63 * 0.002022959212716118
             + t65 * 0.015106701556945941 - 0.029695681001778374 * t66
             - 0.010968333106806475 * t67;
+        let y2 = x[7];
+        let t21 = f64::max(-1.0471975511965976 - y2, 0.0);
+        let t24 = f64::min(10000.0 * t21, 1.0);
+        let t25 = f64::max(500.0 * t21 - yd_y2 * (6.92820323027551 * t24), 0.0);
+        let t20 = f64::max(y2 + 0.03490658503988659, 0.0);
+        let t22 = f64::min(10000.0 * t20, 1.0);
+        let t23 = f64::min(-(500.0 * t20) - yd_y2 * (6.92820323027551 * t22), 0.0);
+        let y0_y2 = self.neutral[1];
         let t69 = t11 * 0.10923979748667051 - t9 * 0.16747341717570619
             + (t25 + (t23 + (-(5.0 * (y2 - y0_y2)) - yd_y2 * 3.5)))
             + (-(0.16747341717570619 * t50) - 0.10923979748667051 * t52) + t53
             + t61 * 0.003101359577327892 + t63 * 0.00202295921271612
             - 0.015106701556945955 * t65 - 0.029695681001778388 * t66
             + t67 * 0.010968333106806474 + t68 * 0.04904517459143361;
+        let y3 = x[8];
+        let t27 = f64::max(0.03490658503988659 - y3, 0.0);
+        let t30 = f64::min(10000.0 * t27, 1.0);
+        let t31 = f64::max(500.0 * t27 - yd_y3 * (6.92820323027551 * t30), 0.0);
+        let t26 = f64::max(y3 - 1.0471975511965976, 0.0);
+        let t28 = f64::min(10000.0 * t26, 1.0);
+        let t29 = f64::min(-(500.0 * t26) - yd_y3 * (6.92820323027551 * t28), 0.0);
+        let y0_y3 = self.neutral[2];
         let t70 = -(t9 * 0.17179008377972066) - 0.10236123810493586 * t11
             + (t31 + (t29 + (-(5.0 * (y3 - y0_y3)) - yd_y3 * 3.5)))
             + (0.10236123810493586 * t56 - 0.17179008377972066 * t54) + t57
@@ -287,6 +280,14 @@ impl Swing4Simplified {
             - 0.014155469990132813 * t65 - 0.030992669995789788 * t66
             - 0.011384350156411613 * t67 + t68 * 0.060653434639849964
             + t69 * 0.059982981352721836;
+        let y4 = x[9];
+        let t33 = f64::max(0.03490658503988659 - y4, 0.0);
+        let t36 = f64::min(10000.0 * t33, 1.0);
+        let t37 = f64::max(500.0 * t33 - yd_y4 * (6.92820323027551 * t36), 0.0);
+        let t32 = f64::max(y4 - 1.0471975511965976, 0.0);
+        let t34 = f64::min(10000.0 * t32, 1.0);
+        let t35 = f64::min(-(500.0 * t32) - yd_y4 * (6.92820323027551 * t34), 0.0);
+        let y0_y4 = self.neutral[3];
         let t71 = (-(t9 * 0.17179008377972071) - 0.10236123810493573 * t11
             + (t37 + (t35 + (-(5.0 * (y4 - y0_y4)) - yd_y4 * 3.5)))
             + (0.10236123810493573 * t60 - 0.17179008377972071 * t58) + t64
@@ -310,7 +311,6 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t75 + 0.015106701556945941 * t74
             - 0.015106701556945955 * t73 - 0.014155469990132813 * t72
             + 0.014155469990132794 * t71;
-        let t78 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
         let cos_roll = c_phi;
         let pivot_6 = 0.0220716925210835;
         let pivot_7 = 0.022018600628487907;
@@ -459,42 +459,42 @@ impl Swing4Simplified {
         }; 4];
         // inputs
         let pos_x = x[0];
-        let pos_y = x[1];
-        let pos_z = x[2];
-        let phi = x[3];
+        let y1 = x[6];
         let theta = x[4];
         let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
+        let phi = x[3];
+        let pos_y = x[1];
+        let pos_z = x[2];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
         let omega_y = w[4];
         let omega_z = w[5];
         let yd_y1 = w[6];
+        let vy = w[1];
+        let omega_x = w[3];
+        let vz = w[2];
+        let y2 = x[7];
         let yd_y2 = w[7];
+        let y3 = x[8];
         let yd_y3 = w[8];
+        let y4 = x[9];
         let yd_y4 = w[9];
         // terms shared by the wheels
-        let (s_phi, c_phi) = ::libm::sincos(phi);
         let (s_theta, c_theta) = ::libm::sincos(theta);
         let (s_psi, c_psi) = ::libm::sincos(psi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let t1 = s_phi * s_theta;
-        let t2 = s_phi * c_theta;
-        let t3 = c_phi * s_theta;
-        let t4 = c_phi * c_theta;
         let t5 = c_theta * c_psi - s_psi * t1;
         let t6 = c_phi * s_psi;
+        let t11 = 0.2 * t6;
+        let t2 = s_phi * c_theta;
         let t7 = s_theta * c_psi + s_psi * t2;
         let t8 = c_theta * s_psi + c_psi * t1;
         let t9 = c_phi * c_psi;
-        let t10 = s_theta * s_psi - c_psi * t2;
-        let t11 = 0.2 * t6;
         let t12 = 0.2 * t9;
+        let t10 = s_theta * s_psi - c_psi * t2;
+        let t3 = c_phi * s_theta;
         let t13 = 0.2 * s_phi;
+        let t4 = c_phi * c_theta;
         let t14 = omega_z * 0.2;
         let t15 = omega_x * 0.2;
         // wheel `front_left`: r_G, V, a_w (MODEL.md §3, eq. 7, 12)
@@ -509,9 +509,9 @@ impl Swing4Simplified {
         let t24 = t16 * t23 + 0.09552783621223437;
         let t25 = t16 * t24 - 0.059141610008809326;
         let t26 = t16 * t25 - 0.20105567242446876;
-        let t27 = vy + (omega_z * t21 - omega_x * t26);
         let t28 = vx + (omega_y * t26 - t14)
             + yd_y1 * (t20 + t16 * (t19 + t16 * (t17 + t18)));
+        let t27 = vy + (omega_z * t21 - omega_x * t26);
         let t29 = vz + (t15 - omega_y * t21)
             + yd_y1 * (t25 + t16 * (t24 + t16 * (t23 - t22)));
         out[0].centre[0] = pos_x + (t21 * t5 - t11 + t26 * t7);
@@ -535,9 +535,9 @@ impl Swing4Simplified {
         let t38 = 0.09552783621223437 + t30 * t37;
         let t39 = t30 * t38 - 0.059141610008809326;
         let t40 = t30 * t39 - 0.20105567242446876;
-        let t41 = vy + (omega_z * t35 - omega_x * t40);
         let t42 = vx + (t14 + omega_y * t40)
             + yd_y2 * (t34 + t30 * (t33 + t30 * (t31 + t32)));
+        let t41 = vy + (omega_z * t35 - omega_x * t40);
         let t43 = vz + (-t15 - omega_y * t35)
             + yd_y2 * (t39 + t30 * (t38 + t30 * (t37 - t36)));
         out[1].centre[0] = pos_x + (t11 + t35 * t5 + t40 * t7);
@@ -561,9 +561,9 @@ impl Swing4Simplified {
         let t52 = 0.09552783621223437 + t44 * t51;
         let t53 = t44 * t52 + 0.059141610008809326;
         let t54 = t44 * t53 - 0.20105567242446876;
-        let t55 = vy + (omega_z * t49 - omega_x * t54);
         let t56 = vx + (omega_y * t54 - t14)
             + yd_y3 * (t48 + t44 * (t47 + t44 * (t46 - t45)));
+        let t55 = vy + (omega_z * t49 - omega_x * t54);
         let t57 = vz + (t15 - omega_y * t49)
             + yd_y3 * (t53 + t44 * (t52 + t44 * (t51 - t50)));
         out[2].centre[0] = pos_x + (t49 * t5 - t11 + t54 * t7);
@@ -587,9 +587,9 @@ impl Swing4Simplified {
         let t66 = 0.09552783621223437 + t58 * t65;
         let t67 = 0.059141610008809326 + t58 * t66;
         let t68 = t58 * t67 - 0.20105567242446876;
-        let t69 = vy + (omega_z * t63 - omega_x * t68);
         let t70 = vx + (t14 + omega_y * t68)
             + yd_y4 * (t62 + t58 * (t61 + t58 * (t60 - t59)));
+        let t69 = vy + (omega_z * t63 - omega_x * t68);
         let t71 = vz + (-t15 - omega_y * t63)
             + yd_y4 * (t67 + t58 * (t66 + t58 * (t65 - t64)));
         out[3].centre[0] = pos_x + (t11 + t63 * t5 + t68 * t7);
@@ -615,188 +615,93 @@ impl Swing4Simplified {
     ) -> [[f64; 20]; 20] {
         let mut jac = [[0.0; 20]; 20];
         // ∂(ẋ, ẇ)/∂(x, w) at fixed wheel loads
-        let phi = x[3];
-        let theta = x[4];
-        let psi = x[5];
-        let y1 = x[6];
-        let y2 = x[7];
-        let y3 = x[8];
-        let y4 = x[9];
         let vx = w[0];
-        let vy = w[1];
-        let vz = w[2];
-        let omega_x = w[3];
-        let omega_y = w[4];
-        let omega_z = w[5];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_z = loads[0].moment[2];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_z = loads[1].moment[2];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_left_z = loads[2].moment[2];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let mu_rear_right_x = loads[3].moment[0];
-        let mu_rear_right_y = loads[3].moment[1];
-        let mu_rear_right_z = loads[3].moment[2];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let (s_theta, c_theta) = ::libm::sincos(theta);
+        let psi = x[5];
         let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t1 = vx * 32.400000000000006;
-        let t2 = omega_y * 0.4312032443204865;
-        let t3 = t1 - t2 - yd_y1 * 0.10048405030542375 - yd_y2 * 0.1004840503054237
-            - yd_y3 * 0.1030740502678324 - yd_y4 * 0.10307405026783242;
-        let t4 = vy * 32.400000000000006;
-        let t5 = omega_x * 0.4312032443204865;
-        let t6 = omega_z * 0.039737487893345386;
-        let t7 = t4 + t5 - t6;
-        let t8 = vz * 32.400000000000006;
-        let t9 = omega_y * 0.039737487893345386;
-        let t10 = t8 + t9 - yd_y1 * 0.06554387849200224 - yd_y2 * 0.0655438784920023
-            + yd_y3 * 0.06141674286296151 + yd_y4 * 0.061416742862961435;
-        let t11 = vy * 0.4312032443204865;
-        let t12 = omega_y * 2.0816681711721685e-17;
-        let t13 = omega_z * 0.008715519239081274;
-        let t14 = t11 + omega_x * 0.8734844980074093 + t12 - t13
-            - yd_y1 * 0.01310877569840045 + yd_y2 * 0.013108775698400462
-            + yd_y3 * 0.012283348572592305 - yd_y4 * 0.012283348572592289;
-        let t15 = vx * 0.4312032443204865;
-        let t16 = vz * 0.039737487893345386;
-        let t17 = omega_x * 2.0816681711721685e-17;
-        let t18 = t16 - t15 + t17 + omega_y * 1.2025924185291414
-            + yd_y1 * 0.036796865795997134 + yd_y2 * 0.03679686579599715
-            + yd_y3 * 0.0385392910768857 + yd_y4 * 0.03853929107688569;
-        let t19 = vy * 0.039737487893345386;
-        let t20 = omega_x * 0.008715519239081274;
-        let t21 = -t19 - t20 + omega_z * 1.8211079205217322
-            + yd_y1 * 0.020096810061084748 - yd_y2 * 0.020096810061084745
-            + yd_y3 * 0.02061481005356648 - yd_y4 * 0.020614810053566485;
+        let phi = x[3];
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let theta = x[4];
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let t22 = c_phi * s_theta;
-        let t23 = c_phi * c_theta;
-        let t24 = t22 * 0.972;
-        let t25 = t23 * 0.972;
-        let t26 = y1 + 0.03490658503988659;
-        let t27 = f64::max(t26, 0.0);
-        let t28 = -1.0471975511965976 - y1;
-        let t29 = f64::max(t28, 0.0);
-        let t30 = 10000.0 * t27;
-        let t31 = f64::min(t30, 1.0);
-        let t32 = 6.92820323027551 * t31;
-        let t33 = 10000.0 * t29;
-        let t34 = f64::min(t33, 1.0);
-        let t35 = 6.92820323027551 * t34;
-        let t36 = y2 + 0.03490658503988659;
-        let t37 = f64::max(t36, 0.0);
-        let t38 = -1.0471975511965976 - y2;
-        let t39 = f64::max(t38, 0.0);
-        let t40 = 10000.0 * t37;
-        let t41 = f64::min(t40, 1.0);
-        let t42 = 6.92820323027551 * t41;
-        let t43 = 10000.0 * t39;
-        let t44 = f64::min(t43, 1.0);
-        let t45 = 6.92820323027551 * t44;
-        let t46 = y3 - 1.0471975511965976;
-        let t47 = f64::max(t46, 0.0);
-        let t48 = 0.03490658503988659 - y3;
-        let t49 = f64::max(t48, 0.0);
-        let t50 = 10000.0 * t47;
-        let t51 = f64::min(t50, 1.0);
-        let t52 = 6.92820323027551 * t51;
-        let t53 = 10000.0 * t49;
-        let t54 = f64::min(t53, 1.0);
-        let t55 = 6.92820323027551 * t54;
-        let t56 = y4 - 1.0471975511965976;
-        let t57 = f64::max(t56, 0.0);
-        let t58 = 0.03490658503988659 - y4;
-        let t59 = f64::max(t58, 0.0);
-        let t60 = 10000.0 * t57;
-        let t61 = f64::min(t60, 1.0);
-        let t62 = 6.92820323027551 * t61;
-        let t63 = 10000.0 * t59;
-        let t64 = f64::min(t63, 1.0);
-        let t65 = 6.92820323027551 * t64;
-        let t66 = s_phi * s_theta;
-        let t67 = s_phi * c_theta;
-        let t68 = c_theta * c_psi - s_psi * t66;
-        let t69 = c_phi * s_psi;
-        let t70 = s_theta * c_psi;
-        let t71 = s_psi * t67;
-        let t72 = t70 + t71;
-        let t73 = c_theta * s_psi;
-        let t74 = c_psi * t66;
-        let t75 = t73 + t74;
-        let t76 = c_phi * c_psi;
-        let t77 = s_theta * s_psi;
-        let t78 = c_psi * t67;
-        let t79 = f_front_left_x * t68 + f_front_left_y * t75 - f_front_left_z * t22;
-        let t80 = f_front_right_x * t68 + f_front_right_y * t75 - f_front_right_z * t22;
-        let t81 = f_rear_left_x * t68 + f_rear_left_y * t75 - f_rear_left_z * t22;
-        let t82 = f_rear_right_x * t68 + f_rear_right_y * t75 - f_rear_right_z * t22;
-        let t83 = omega_z * c_theta - omega_x * s_theta;
-        let t84 = t83 / c_phi;
-        let t85 = 0.972 * t66;
-        let t86 = c_phi * 0.972;
-        let t87 = 0.972 * t67;
-        let t88 = 0.2 * t87;
-        let t89 = 0.2 * t85;
         let t90 = s_psi * t22;
+        let vy = w[1];
         let t91 = s_phi * s_psi;
+        let vz = w[2];
+        let t23 = c_phi * c_theta;
         let t92 = s_psi * t23;
         let t93 = c_psi * t22;
         let t94 = s_phi * c_psi;
         let t95 = c_psi * t23;
+        let t66 = s_phi * s_theta;
+        let t67 = s_phi * c_theta;
+        let omega_z = w[5];
+        let omega_x = w[3];
+        let t83 = omega_z * c_theta - omega_x * s_theta;
+        let t84 = t83 / c_phi;
+        let t128 = s_phi * t84 / c_phi;
+        let t85 = 0.972 * t66;
+        let f_front_left_x = loads[0].force[0];
+        let f_front_left_y = loads[0].force[1];
+        let f_front_left_z = loads[0].force[2];
         let t96 = f_front_left_y * t93 - f_front_left_x * t90 + f_front_left_z * t66;
-        let t97 = f_front_left_x * t91 - f_front_left_y * t94 + f_front_left_z * c_phi;
+        let f_front_right_x = loads[1].force[0];
+        let f_front_right_y = loads[1].force[1];
+        let f_front_right_z = loads[1].force[2];
+        let t100 = f_front_right_y * t93 - f_front_right_x * t90 + f_front_right_z * t66;
+        let f_rear_left_x = loads[2].force[0];
+        let f_rear_left_y = loads[2].force[1];
+        let f_rear_left_z = loads[2].force[2];
+        let t104 = f_rear_left_y * t93 - f_rear_left_x * t90 + f_rear_left_z * t66;
+        let f_rear_right_x = loads[3].force[0];
+        let f_rear_right_y = loads[3].force[1];
+        let f_rear_right_z = loads[3].force[2];
+        let t108 = f_rear_right_y * t93 - f_rear_right_x * t90 + f_rear_right_z * t66;
+        let t111 = -(48.6 * t66) - t85 - t85 - t85 - t85 + t96 + t100 + t104 + t108;
+        let t87 = 0.972 * t67;
         let t98 = f_front_left_x * t92 - f_front_left_y * t95 - f_front_left_z * t67;
+        let mu_front_left_x = loads[0].moment[0];
+        let mu_front_left_y = loads[0].moment[1];
+        let mu_front_left_z = loads[0].moment[2];
         let t99 = mu_front_left_x * t91 - mu_front_left_y * t94
             + mu_front_left_z * c_phi;
-        let t100 = f_front_right_y * t93 - f_front_right_x * t90 + f_front_right_z * t66;
-        let t101 = f_front_right_x * t91 - f_front_right_y * t94
-            + f_front_right_z * c_phi;
+        let tau_front_left_x = loads[0].stator_torque[0];
+        let tau_front_left_y = loads[0].stator_torque[1];
+        let tau_front_left_z = loads[0].stator_torque[2];
         let t102 = f_front_right_x * t92 - f_front_right_y * t95 - f_front_right_z * t67;
+        let mu_front_right_x = loads[1].moment[0];
+        let mu_front_right_y = loads[1].moment[1];
+        let mu_front_right_z = loads[1].moment[2];
         let t103 = mu_front_right_x * t91 - mu_front_right_y * t94
             + mu_front_right_z * c_phi;
-        let t104 = f_rear_left_y * t93 - f_rear_left_x * t90 + f_rear_left_z * t66;
-        let t105 = f_rear_left_x * t91 - f_rear_left_y * t94 + f_rear_left_z * c_phi;
+        let tau_front_right_x = loads[1].stator_torque[0];
+        let tau_front_right_y = loads[1].stator_torque[1];
+        let tau_front_right_z = loads[1].stator_torque[2];
         let t106 = f_rear_left_x * t92 - f_rear_left_y * t95 - f_rear_left_z * t67;
+        let mu_rear_left_x = loads[2].moment[0];
+        let mu_rear_left_y = loads[2].moment[1];
+        let mu_rear_left_z = loads[2].moment[2];
         let t107 = mu_rear_left_x * t91 - mu_rear_left_y * t94 + mu_rear_left_z * c_phi;
-        let t108 = f_rear_right_y * t93 - f_rear_right_x * t90 + f_rear_right_z * t66;
-        let t109 = f_rear_right_x * t91 - f_rear_right_y * t94 + f_rear_right_z * c_phi;
+        let tau_rear_left_x = loads[2].stator_torque[0];
+        let tau_rear_left_y = loads[2].stator_torque[1];
+        let tau_rear_left_z = loads[2].stator_torque[2];
         let t110 = f_rear_right_x * t92 - f_rear_right_y * t95 - f_rear_right_z * t67;
-        let t111 = -(48.6 * t66) - t85 - t85 - t85 - t85 + t96 + t100 + t104 + t108;
-        let t112 = -(c_phi * 48.6) - t86 - t86 - t86 - t86 + t97 + t101 + t105 + t109;
-        let t113 = t87 + (t87 + (t87 + (48.6 * t67 + t87))) + t98 + t102 + t106 + t110;
+        let mu_rear_right_x = loads[3].moment[0];
+        let mu_rear_right_y = loads[3].moment[1];
+        let mu_rear_right_z = loads[3].moment[2];
         let t114 = mu_rear_right_x * t91 - mu_rear_right_y * t94
             + mu_rear_right_z * c_phi;
+        let tau_rear_right_x = loads[3].stator_torque[0];
+        let tau_rear_right_y = loads[3].stator_torque[1];
+        let tau_rear_right_z = loads[3].stator_torque[2];
+        let t113 = t87 + (t87 + (t87 + (48.6 * t67 + t87))) + t98 + t102 + t106 + t110;
+        let t88 = 0.2 * t87;
+        let t86 = c_phi * 0.972;
+        let t97 = f_front_left_x * t91 - f_front_left_y * t94 + f_front_left_z * c_phi;
+        let t101 = f_front_right_x * t91 - f_front_right_y * t94
+            + f_front_right_z * c_phi;
+        let t105 = f_rear_left_x * t91 - f_rear_left_y * t94 + f_rear_left_z * c_phi;
+        let t109 = f_rear_right_x * t91 - f_rear_right_y * t94 + f_rear_right_z * c_phi;
+        let t112 = -(c_phi * 48.6) - t86 - t86 - t86 - t86 + t97 + t101 + t105 + t109;
         let t115 = t88 - 0.17752077761500876 * t86 + (-t88 - 0.1775207776150087 * t86)
             + (t88 - 0.18181525931872997 * t86) + (-t88 - 0.18181525931873005 * t86)
             + (0.2 * t98 + 0.17752077761500876 * t97)
@@ -828,6 +733,7 @@ impl Swing4Simplified {
             + (tau_rear_right_x * t91 - tau_rear_right_y * t94
                 + tau_rear_right_z * c_phi) + 0.013308742108656988 * t111
             - 0.0012264656757205363 * t113 - 2.3989379730044985e-17 * t115;
+        let t89 = 0.2 * t85;
         let t117 = t89 - 0.2892544579916192 * t86 + (-t89 - 0.2892544579916193 * t86)
             + (t89 + 0.3223690312360738 * t86) + (0.3223690312360737 * t86 - t89)
             + (0.2892544579916192 * t97 - 0.2 * t96)
@@ -882,15 +788,29 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t125 + 0.015106701556945941 * t124
             - 0.015106701556945955 * t123 - 0.014155469990132813 * t122
             + 0.014155469990132794 * t121;
-        let t128 = s_phi * t84 / c_phi;
+        let t71 = s_psi * t67;
+        let t70 = s_theta * c_psi;
         let t129 = -t71 - t70;
+        let t68 = c_theta * c_psi - s_psi * t66;
+        let t78 = c_psi * t67;
+        let t77 = s_theta * s_psi;
         let t130 = t78 - t77;
+        let t73 = c_theta * s_psi;
+        let t74 = c_psi * t66;
+        let t75 = t73 + t74;
+        let t150 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
+        let t25 = t23 * 0.972;
         let t131 = f_front_left_x * t129 + f_front_left_y * t130 - f_front_left_z * t23;
         let t132 = f_front_right_x * t129 + f_front_right_y * t130
             - f_front_right_z * t23;
         let t133 = f_rear_left_x * t129 + f_rear_left_y * t130 - f_rear_left_z * t23;
         let t134 = f_rear_right_x * t129 + f_rear_right_y * t130 - f_rear_right_z * t23;
         let t135 = t25 + (t25 + (t25 + (t23 * 48.6 + t25))) + t131 + t132 + t133 + t134;
+        let t24 = t22 * 0.972;
+        let t79 = f_front_left_x * t68 + f_front_left_y * t75 - f_front_left_z * t22;
+        let t80 = f_front_right_x * t68 + f_front_right_y * t75 - f_front_right_z * t22;
+        let t81 = f_rear_left_x * t68 + f_rear_left_y * t75 - f_rear_left_z * t22;
+        let t82 = f_rear_right_x * t68 + f_rear_right_y * t75 - f_rear_right_z * t22;
         let t136 = t82
             + (t81 + (t80 + (t79 + (t24 + (t24 + (t24 + (t22 * 48.6 + t24)))))));
         let t137 = 0.2 * t81
@@ -972,27 +892,29 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t147 + 0.015106701556945941 * t146
             - 0.015106701556945955 * t145 - 0.014155469990132813 * t144
             + 0.014155469990132794 * t143;
-        let t150 = (-(omega_z * s_theta) - omega_x * c_theta) / c_phi;
         let t151 = -t74 - t73;
+        let t76 = c_phi * c_psi;
+        let t69 = c_phi * s_psi;
+        let t72 = t70 + t71;
         let t152 = f_front_left_x * t151 + f_front_left_y * t68;
-        let t153 = -(f_front_left_x * t76) - f_front_left_y * t69;
+        let t156 = f_front_right_x * t151 + f_front_right_y * t68;
+        let t160 = f_rear_left_x * t151 + f_rear_left_y * t68;
+        let t164 = f_rear_right_x * t151 + f_rear_right_y * t68;
+        let t167 = t152 + t156 + t160 + t164;
         let t154 = f_front_left_x * t130 + f_front_left_y * t72;
         let t155 = -(mu_front_left_x * t76) - mu_front_left_y * t69;
-        let t156 = f_front_right_x * t151 + f_front_right_y * t68;
-        let t157 = -(f_front_right_x * t76) - f_front_right_y * t69;
         let t158 = f_front_right_x * t130 + f_front_right_y * t72;
         let t159 = -(mu_front_right_x * t76) - mu_front_right_y * t69;
-        let t160 = f_rear_left_x * t151 + f_rear_left_y * t68;
-        let t161 = -(f_rear_left_x * t76) - f_rear_left_y * t69;
         let t162 = f_rear_left_x * t130 + f_rear_left_y * t72;
         let t163 = -(mu_rear_left_x * t76) - mu_rear_left_y * t69;
-        let t164 = f_rear_right_x * t151 + f_rear_right_y * t68;
-        let t165 = -(f_rear_right_x * t76) - f_rear_right_y * t69;
         let t166 = f_rear_right_x * t130 + f_rear_right_y * t72;
-        let t167 = t152 + t156 + t160 + t164;
-        let t168 = t153 + t157 + t161 + t165;
-        let t169 = t154 + t158 + t162 + t166;
         let t170 = -(mu_rear_right_x * t76) - mu_rear_right_y * t69;
+        let t169 = t154 + t158 + t162 + t166;
+        let t153 = -(f_front_left_x * t76) - f_front_left_y * t69;
+        let t157 = -(f_front_right_x * t76) - f_front_right_y * t69;
+        let t161 = -(f_rear_left_x * t76) - f_rear_left_y * t69;
+        let t165 = -(f_rear_right_x * t76) - f_rear_right_y * t69;
+        let t168 = t153 + t157 + t161 + t165;
         let t171 = 0.2 * t154 + 0.17752077761500876 * t153
             + (mu_front_left_x * t151 + mu_front_left_y * t68)
             + (tau_front_left_x * t151 + tau_front_left_y * t68)
@@ -1064,12 +986,24 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t181 + 0.015106701556945941 * t180
             - 0.015106701556945955 * t179 - 0.014155469990132813 * t178
             + 0.014155469990132794 * t177;
-        let t184 = if t26 >= 0.0 { 1.0 } else { 0.0 };
+        let y1 = x[6];
+        let t28 = -1.0471975511965976 - y1;
         let t185 = if t28 >= 0.0 { 1.0 } else { 0.0 };
-        let t186 = if 1.0 >= t30 { 1.0 } else { 0.0 };
-        let t187 = if 0.0 >= -(500.0 * t27) - yd_y1 * t32 { 1.0 } else { 0.0 };
+        let yd_y1 = w[6];
+        let t29 = f64::max(t28, 0.0);
+        let t33 = 10000.0 * t29;
         let t188 = if 1.0 >= t33 { 1.0 } else { 0.0 };
+        let t34 = f64::min(t33, 1.0);
+        let t35 = 6.92820323027551 * t34;
         let t189 = if 500.0 * t29 - yd_y1 * t35 >= 0.0 { 1.0 } else { 0.0 };
+        let t26 = y1 + 0.03490658503988659;
+        let t184 = if t26 >= 0.0 { 1.0 } else { 0.0 };
+        let t27 = f64::max(t26, 0.0);
+        let t30 = 10000.0 * t27;
+        let t186 = if 1.0 >= t30 { 1.0 } else { 0.0 };
+        let t31 = f64::min(t30, 1.0);
+        let t32 = 6.92820323027551 * t31;
+        let t187 = if 0.0 >= -(500.0 * t27) - yd_y1 * t32 { 1.0 } else { 0.0 };
         let t190 = (yd_y1 * (6.92820323027551 * (10000.0 * t185 * t188)) - 500.0 * t185)
             * t189
             + ((-(500.0 * t184) - yd_y1 * (6.92820323027551 * (10000.0 * t184 * t186)))
@@ -1091,12 +1025,24 @@ impl Swing4Simplified {
         let t199 = 0.00943440344632173 * t197 - 2.3989379730044985e-17 * t198
             + 0.015106701556945941 * t196 - 0.015106701556945955 * t195
             - 0.014155469990132813 * t194 + 0.014155469990132794 * t193;
-        let t200 = if t36 >= 0.0 { 1.0 } else { 0.0 };
+        let y2 = x[7];
+        let t38 = -1.0471975511965976 - y2;
         let t201 = if t38 >= 0.0 { 1.0 } else { 0.0 };
-        let t202 = if 1.0 >= t40 { 1.0 } else { 0.0 };
-        let t203 = if 0.0 >= -(500.0 * t37) - yd_y2 * t42 { 1.0 } else { 0.0 };
+        let yd_y2 = w[7];
+        let t39 = f64::max(t38, 0.0);
+        let t43 = 10000.0 * t39;
         let t204 = if 1.0 >= t43 { 1.0 } else { 0.0 };
+        let t44 = f64::min(t43, 1.0);
+        let t45 = 6.92820323027551 * t44;
         let t205 = if 500.0 * t39 - yd_y2 * t45 >= 0.0 { 1.0 } else { 0.0 };
+        let t36 = y2 + 0.03490658503988659;
+        let t200 = if t36 >= 0.0 { 1.0 } else { 0.0 };
+        let t37 = f64::max(t36, 0.0);
+        let t40 = 10000.0 * t37;
+        let t202 = if 1.0 >= t40 { 1.0 } else { 0.0 };
+        let t41 = f64::min(t40, 1.0);
+        let t42 = 6.92820323027551 * t41;
+        let t203 = if 0.0 >= -(500.0 * t37) - yd_y2 * t42 { 1.0 } else { 0.0 };
         let t206 = (yd_y2 * (6.92820323027551 * (10000.0 * t201 * t204)) - 500.0 * t201)
             * t205
             + ((-(500.0 * t200) - yd_y2 * (6.92820323027551 * (10000.0 * t200 * t202)))
@@ -1117,12 +1063,24 @@ impl Swing4Simplified {
         let t214 = 0.00943440344632173 * t212 - 2.3989379730044985e-17 * t213
             + 0.015106701556945941 * t211 - 0.015106701556945955 * t210
             - 0.014155469990132813 * t209 + 0.014155469990132794 * t208;
-        let t215 = if t46 >= 0.0 { 1.0 } else { 0.0 };
+        let y3 = x[8];
+        let t48 = 0.03490658503988659 - y3;
         let t216 = if t48 >= 0.0 { 1.0 } else { 0.0 };
-        let t217 = if 1.0 >= t50 { 1.0 } else { 0.0 };
-        let t218 = if 0.0 >= -(500.0 * t47) - yd_y3 * t52 { 1.0 } else { 0.0 };
+        let yd_y3 = w[8];
+        let t49 = f64::max(t48, 0.0);
+        let t53 = 10000.0 * t49;
         let t219 = if 1.0 >= t53 { 1.0 } else { 0.0 };
+        let t54 = f64::min(t53, 1.0);
+        let t55 = 6.92820323027551 * t54;
         let t220 = if 500.0 * t49 - yd_y3 * t55 >= 0.0 { 1.0 } else { 0.0 };
+        let t46 = y3 - 1.0471975511965976;
+        let t215 = if t46 >= 0.0 { 1.0 } else { 0.0 };
+        let t47 = f64::max(t46, 0.0);
+        let t50 = 10000.0 * t47;
+        let t217 = if 1.0 >= t50 { 1.0 } else { 0.0 };
+        let t51 = f64::min(t50, 1.0);
+        let t52 = 6.92820323027551 * t51;
+        let t218 = if 0.0 >= -(500.0 * t47) - yd_y3 * t52 { 1.0 } else { 0.0 };
         let t221 = (yd_y3 * (6.92820323027551 * (10000.0 * t216 * t219)) - 500.0 * t216)
             * t220
             + ((-(500.0 * t215) - yd_y3 * (6.92820323027551 * (10000.0 * t215 * t217)))
@@ -1140,12 +1098,24 @@ impl Swing4Simplified {
         let t228 = 0.00943440344632173 * t226 - 2.3989379730044985e-17 * t227
             + 0.015106701556945941 * t225 - 0.015106701556945955 * t224
             - 0.014155469990132813 * t223 + 0.014155469990132794 * t222;
-        let t229 = if t56 >= 0.0 { 1.0 } else { 0.0 };
+        let y4 = x[9];
+        let t58 = 0.03490658503988659 - y4;
         let t230 = if t58 >= 0.0 { 1.0 } else { 0.0 };
-        let t231 = if 1.0 >= t60 { 1.0 } else { 0.0 };
-        let t232 = if 0.0 >= -(500.0 * t57) - yd_y4 * t62 { 1.0 } else { 0.0 };
+        let yd_y4 = w[9];
+        let t59 = f64::max(t58, 0.0);
+        let t63 = 10000.0 * t59;
         let t233 = if 1.0 >= t63 { 1.0 } else { 0.0 };
+        let t64 = f64::min(t63, 1.0);
+        let t65 = 6.92820323027551 * t64;
         let t234 = if 500.0 * t59 - yd_y4 * t65 >= 0.0 { 1.0 } else { 0.0 };
+        let t56 = y4 - 1.0471975511965976;
+        let t229 = if t56 >= 0.0 { 1.0 } else { 0.0 };
+        let t57 = f64::max(t56, 0.0);
+        let t60 = 10000.0 * t57;
+        let t231 = if 1.0 >= t60 { 1.0 } else { 0.0 };
+        let t61 = f64::min(t60, 1.0);
+        let t62 = 6.92820323027551 * t61;
+        let t232 = if 0.0 >= -(500.0 * t57) - yd_y4 * t62 { 1.0 } else { 0.0 };
         let t235 = ((yd_y4 * (6.92820323027551 * (10000.0 * t230 * t233)) - 500.0 * t230)
             * t234
             + ((-(500.0 * t229) - yd_y4 * (6.92820323027551 * (10000.0 * t229 * t231)))
@@ -1162,13 +1132,22 @@ impl Swing4Simplified {
         let t241 = 0.00943440344632173 * t239 - 2.3989379730044985e-17 * t240
             + 0.015106701556945941 * t238 - 0.015106701556945955 * t237
             - 0.014155469990132813 * t236 + 0.014155469990132794 * t235;
-        let t242 = omega_z * 32.400000000000006;
+        let t8 = vz * 32.400000000000006;
+        let omega_y = w[4];
+        let t9 = omega_y * 0.039737487893345386;
+        let t10 = t8 + t9 - yd_y1 * 0.06554387849200224 - yd_y2 * 0.0655438784920023
+            + yd_y3 * 0.06141674286296151 + yd_y4 * 0.061416742862961435;
         let t243 = omega_y * 32.400000000000006;
         let t244 = omega_z * 0.4312032443204865;
+        let t242 = omega_z * 32.400000000000006;
         let t245 = 0.013308742108656988 * t242;
         let t246 = t245 - t244;
         let t247 = -(t8 - t10) - 0.0012264656757205363 * t243
             - 2.3989379730044985e-17 * t246;
+        let t4 = vy * 32.400000000000006;
+        let t5 = omega_x * 0.4312032443204865;
+        let t6 = omega_z * 0.039737487893345386;
+        let t7 = t4 + t5 - t6;
         let t248 = -(t7 - t4 - t5) - 0.0012264656757205363 * t242
             + 0.00943440344632173 * t246 - 1.640977340505082e-19 * t247;
         let t249 = 0.002022959212716118 * t243 + 0.015106701556945941 * t246
@@ -1179,8 +1158,6 @@ impl Swing4Simplified {
         let t251 = -(0.0018955784834247377 * t243) - 0.014155469990132813 * t246
             - 0.030992669995789788 * t247 - 0.011384350156411613 * t248
             + 0.060653434639849964 * t249 + 0.059982981352721836 * t250;
-        let t252 = t242 / 32.400000000000006;
-        let t253 = t243 / 32.400000000000006;
         let t254 = (0.014155469990132794 * t246 - 0.0018955784834247353 * t243
             - 0.030992669995789777 * t247 + 0.011384350156411616 * t248
             + 0.05686393824934829 * t249 + 0.06359531043280892 * t250
@@ -1196,15 +1173,21 @@ impl Swing4Simplified {
         let t259 = t247 / 1.1968049090891233 - 1.640977340505082e-19 * t258
             - 0.029695681001778374 * t257 - 0.029695681001778388 * t256
             - 0.030992669995789788 * t255 - 0.030992669995789777 * t254;
+        let t252 = t242 / 32.400000000000006;
         let t260 = t246 / 0.8677457252323317 - 2.3989379730044985e-17 * t259
             + 0.00943440344632173 * t258 + 0.015106701556945941 * t257
             - 0.015106701556945955 * t256 - 0.014155469990132813 * t255
             + 0.014155469990132794 * t254;
-        let t261 = omega_x * 32.400000000000006;
+        let t253 = t243 / 32.400000000000006;
         let t262 = omega_x * 0.039737487893345386;
-        let t263 = t10 - t8 - t9;
+        let t261 = omega_x * 32.400000000000006;
         let t264 = 0.0012264656757205363 * t261;
+        let t263 = t10 - t8 - t9;
         let t265 = t245 - (t244 + t262) + t264 + 2.3989379730044985e-17 * t263;
+        let t2 = omega_y * 0.4312032443204865;
+        let t1 = vx * 32.400000000000006;
+        let t3 = t1 - t2 - yd_y1 * 0.10048405030542375 - yd_y2 * 0.1004840503054237
+            - yd_y3 * 0.1030740502678324 - yd_y4 * 0.10307405026783242;
         let t266 = -(t1 - t3 - t2) - 0.00943440344632173 * t263
             - 1.640977340505082e-19 * t265;
         let t267 = 0.003101359577327893 * t242 - 0.002022959212716118 * t261
@@ -1217,7 +1200,6 @@ impl Swing4Simplified {
             + 0.014155469990132813 * t263 - 0.030992669995789788 * t265
             - 0.011384350156411613 * t266 + 0.060653434639849964 * t267
             + 0.059982981352721836 * t268;
-        let t270 = t261 / 32.400000000000006;
         let t271 = (0.003181297847772605 * t242 + 0.0018955784834247353 * t261
             - 0.014155469990132794 * t263 - 0.030992669995789777 * t265
             + 0.011384350156411616 * t266 + 0.05686393824934829 * t267
@@ -1238,6 +1220,7 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t275 + 0.015106701556945941 * t274
             - 0.015106701556945955 * t273 - 0.014155469990132813 * t272
             + 0.014155469990132794 * t271;
+        let t270 = t261 / 32.400000000000006;
         let t278 = -(t4 - t7 - t6) - 0.013308742108656988 * t261;
         let t279 = -(t3 - t1) - 0.013308742108656988 * t243
             - 2.3989379730044985e-17 * t278;
@@ -1270,6 +1253,12 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t288 + 0.015106701556945941 * t287
             - 0.015106701556945955 * t286 - 0.014155469990132813 * t285
             + 0.014155469990132794 * t284;
+        let t308 = s_theta / c_phi;
+        let t20 = omega_x * 0.008715519239081274;
+        let t19 = vy * 0.039737487893345386;
+        let t21 = -t19 - t20 + omega_z * 1.8211079205217322
+            + yd_y1 * 0.020096810061084748 - yd_y2 * 0.020096810061084745
+            + yd_y3 * 0.02061481005356648 - yd_y4 * 0.020614810053566485;
         let t291 = t5 + t7;
         let t292 = vz * 0.4312032443204865;
         let t293 = omega_y * 0.008715519239081274;
@@ -1278,6 +1267,12 @@ impl Swing4Simplified {
         let t296 = 0.013308742108656988 * t244
             - (omega_z * 0.8734844980074093 - (t21 - t20)) + 0.0012264656757205363 * t291
             - 2.3989379730044985e-17 * t295;
+        let t15 = vx * 0.4312032443204865;
+        let t17 = omega_x * 2.0816681711721685e-17;
+        let t16 = vz * 0.039737487893345386;
+        let t18 = t16 - t15 + t17 + omega_y * 1.2025924185291414
+            + yd_y1 * 0.036796865795997134 + yd_y2 * 0.03679686579599715
+            + yd_y3 * 0.0385392910768857 + yd_y4 * 0.03853929107688569;
         let t297 = 0.0012264656757205363 * t10
             - (t15 + (t17 + t18 - omega_y * 0.8734844980074093))
             + 0.00943440344632173 * t295 - 1.640977340505082e-19 * t296;
@@ -1311,15 +1306,20 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t305 + 0.015106701556945941 * t304
             - 0.015106701556945955 * t303 - 0.014155469990132813 * t302
             + 0.014155469990132794 * t301;
-        let t308 = s_theta / c_phi;
         let t309 = t9 + t10;
-        let t310 = -t244 - t262;
-        let t311 = t3 - t2;
         let t312 = vx * 0.039737487893345386;
+        let t311 = t3 - t2;
+        let t310 = -t244 - t262;
         let t313 = 0.013308742108656988 * t310
             - (t19 + (t21 - omega_z * 1.2025924185291414));
         let t314 = -(t294 + (-t292 - t312)) - 0.013308742108656988 * t309
             - 0.0012264656757205363 * t311 - 2.3989379730044985e-17 * t313;
+        let t11 = vy * 0.4312032443204865;
+        let t12 = omega_y * 2.0816681711721685e-17;
+        let t13 = omega_z * 0.008715519239081274;
+        let t14 = t11 + omega_x * 0.8734844980074093 + t12 - t13
+            - yd_y1 * 0.01310877569840045 + yd_y2 * 0.013108775698400462
+            + yd_y3 * 0.012283348572592305 - yd_y4 * 0.012283348572592289;
         let t315 = -(t11 + (omega_x * 1.2025924185291414 - (t12 + t14)))
             - 0.0012264656757205363 * t310 + 0.00943440344632173 * t313
             - 1.640977340505082e-19 * t314;
@@ -1353,6 +1353,7 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t323 + 0.015106701556945941 * t322
             - 0.015106701556945955 * t321 - 0.014155469990132813 * t320
             + 0.014155469990132794 * t319;
+        let t340 = c_theta / c_phi;
         let t326 = t7 - t6;
         let t327 = 0.013308742108656988 * t3
             - (t16 + (omega_y * 1.8211079205217322 - t18));
@@ -1391,10 +1392,9 @@ impl Swing4Simplified {
             + 0.00943440344632173 * t337 + 0.015106701556945941 * t336
             - 0.015106701556945955 * t335 - 0.014155469990132813 * t334
             + 0.014155469990132794 * t333;
-        let t340 = c_theta / c_phi;
         let t341 = omega_y * 0.06554387849200224;
-        let t342 = omega_x * 0.06554387849200224 - omega_z * 0.10048405030542375;
         let t343 = omega_y * 0.10048405030542375;
+        let t342 = omega_x * 0.06554387849200224 - omega_z * 0.10048405030542375;
         let t344 = 0.013308742108656988 * t342
             - (omega_y * 0.020096810061084748 - omega_z * 0.036796865795997134
                 - vy * 0.06554387849200224);
@@ -1437,8 +1437,8 @@ impl Swing4Simplified {
             - 0.015106701556945955 * t352 - 0.014155469990132813 * t351
             + 0.014155469990132794 * t350;
         let t357 = omega_y * 0.0655438784920023;
-        let t358 = omega_x * 0.0655438784920023 - omega_z * 0.1004840503054237;
         let t359 = omega_y * 0.1004840503054237;
+        let t358 = omega_x * 0.0655438784920023 - omega_z * 0.1004840503054237;
         let t360 = 0.013308742108656988 * t358
             - (-(omega_y * 0.020096810061084745) - omega_z * 0.03679686579599715
                 - vy * 0.0655438784920023);
@@ -1482,8 +1482,8 @@ impl Swing4Simplified {
             - 0.015106701556945955 * t368 - 0.014155469990132813 * t367
             + 0.014155469990132794 * t366;
         let t373 = omega_y * 0.06141674286296151;
-        let t374 = -(omega_z * 0.1030740502678324) - omega_x * 0.06141674286296151;
         let t375 = omega_y * 0.1030740502678324;
+        let t374 = -(omega_z * 0.1030740502678324) - omega_x * 0.06141674286296151;
         let t376 = 0.013308742108656988 * t374
             - (vy * 0.06141674286296151
                 + (omega_y * 0.02061481005356648 - omega_z * 0.0385392910768857));
@@ -1526,8 +1526,8 @@ impl Swing4Simplified {
             - 0.015106701556945955 * t384 - 0.014155469990132813 * t383
             + 0.014155469990132794 * t382;
         let t389 = omega_y * 0.061416742862961435;
-        let t390 = -(omega_z * 0.10307405026783242) - omega_x * 0.061416742862961435;
         let t391 = omega_y * 0.10307405026783242;
+        let t390 = -(omega_z * 0.10307405026783242) - omega_x * 0.061416742862961435;
         let t392 = 0.013308742108656988 * t390
             - (vy * 0.061416742862961435
                 + (-(omega_y * 0.020614810053566485) - omega_z * 0.03853929107688569));
