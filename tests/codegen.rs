@@ -11,7 +11,8 @@ use rover_dynamics::Model;
 use rover_dynamics::dual::Dual;
 use rover_dynamics::eom::derivatives;
 use rover_dynamics::forces::Load;
-use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
+use rover_dynamics::nalgebra::SVector;
+use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad, WheelState};
 use rover_dynamics::workspace::Workspace;
 use rover_runtime::GenericPlant;
 
@@ -247,6 +248,70 @@ fn wrong_slice_lengths_give_nan_not_a_panic() {
 }
 
 /// ∂(ẋ, ẇ)/∂(x, w) through the generic equations with duals, column `col`.
+/// The nalgebra interface (`FixedPlant`) is the slice interface (`Plant`)
+/// bit for bit: same derivatives, the same mass matrix (column storage of a
+/// symmetric matrix), the same wheels, and the Jacobian not transposed.
+fn check_fixed<P: FixedPlant<N, K>, const N: usize, const K: usize>(
+    name: &str,
+    mut plant: P,
+    jacobian: impl Fn(&P, &SVector<f64, N>, &SVector<f64, N>, &[WheelLoad; K]) -> (f64, f64),
+) {
+    let model = spec(name).model;
+    let mut rng = Rng::new(90 + N as u64);
+    for _ in 0..50 {
+        let s = random_state(&model, &mut rng);
+        let x = SVector::<f64, N>::from_column_slice(&s.x);
+        let w = SVector::<f64, N>::from_column_slice(&s.w);
+        let steer = SVector::<f64, K>::from_column_slice(&s.steer);
+        let loads: [WheelLoad; K] = s.loads.clone().try_into().unwrap();
+        let (mut xd, mut wd) = (SVector::zeros(), SVector::zeros());
+        let fixed = plant.derivatives_fixed(&x, &w, &loads, &mut xd, &mut wd);
+        let (mut xs, mut ws) = (vec![0.0; N], vec![0.0; N]);
+        let sliced = plant.derivatives(&s.x, &s.w, &s.loads, &mut xs, &mut ws);
+        assert_eq!(fixed, sliced, "{name}: outcome");
+        assert_eq!(xd.as_slice(), &xs[..], "{name}: ẋ");
+        assert_eq!(wd.as_slice(), &ws[..], "{name}: ẇ");
+        let m = plant.mass_matrix_fixed(&x);
+        let mut rows = vec![0.0; N * N];
+        plant.mass_matrix(&s.x, &mut rows);
+        for (i, row) in rows.chunks(N).enumerate() {
+            for (j, v) in row.iter().enumerate() {
+                assert_eq!(m[(i, j)], *v, "{name}: M[{i}][{j}]");
+            }
+        }
+        let mut states = vec![WheelState::default(); K];
+        plant.wheels(&s.x, &s.w, &s.steer, &mut states);
+        assert_eq!(
+            plant.wheels_fixed(&x, &w, &steer).to_vec(),
+            states,
+            "{name}: wheels"
+        );
+        let (by_index, by_row) = jacobian(&plant, &x, &w, &loads);
+        assert!(by_row != 0.0, "{name}: gravity makes ∂v̇x/∂θ nonzero");
+        assert_eq!(by_index, by_row, "{name}: Jacobian orientation");
+    }
+}
+
+macro_rules! jacobian_entry {
+    ($ty:ty) => {
+        |p: &$ty, x: &SVector<f64, _>, w: &SVector<f64, _>, loads: &[WheelLoad; _]| {
+            // ∂ẇ_0/∂x_4 (pitch): a row of ẇ, a column of x, far from the diagonal.
+            let n = x.len();
+            let rows = p.jacobian_array(&x.data.0[0], &w.data.0[0], loads);
+            (p.jacobian_fixed(x, w, loads)[(n, 4)], rows[n][4])
+        }
+    };
+}
+
+#[test]
+fn the_nalgebra_interface_is_the_slice_interface() {
+    use rover_models::{Exomars, Lrv, Mer, Swing4};
+    check_fixed("exomars", Exomars::new(), jacobian_entry!(Exomars));
+    check_fixed("swing4", Swing4::new(), jacobian_entry!(Swing4));
+    check_fixed("mer", Mer::new(), jacobian_entry!(Mer));
+    check_fixed("lrv", Lrv::new(), jacobian_entry!(Lrv));
+}
+
 fn dual_column(model: &Model, s: &State, col: usize) -> Vec<f64> {
     let n = model.dof();
     let d = |v: f64, k: usize| {
@@ -307,7 +372,7 @@ macro_rules! jacobian_of {
             let w: [f64; $n] = s.w.clone().try_into().unwrap();
             let loads: [WheelLoad; $k] = s.loads.clone().try_into().unwrap();
             plant
-                .jacobian_fixed(&x, &w, &loads)
+                .jacobian_array(&x, &w, &loads)
                 .iter()
                 .flatten()
                 .copied()

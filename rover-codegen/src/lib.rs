@@ -25,7 +25,9 @@
 //! assert!(module.contains("pub struct Swing4"));
 //! // One block per wheel in the kinematics, no heap, no std.
 //! assert!(module.contains("// wheel `rear_right`"));
-//! assert!(!module.contains("Vec") && !module.contains("std::"));
+//! assert!(!module.contains("Vec<") && !module.contains("std::"));
+//! // Fixed-size nalgebra types, sized by the rover.
+//! assert!(module.contains("FixedPlant<10, 4> for Swing4"));
 //! ```
 #![warn(missing_docs)]
 

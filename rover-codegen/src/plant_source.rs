@@ -15,6 +15,8 @@ use crate::trace::{Function, Traced, trace_spec_at};
 
 /// The path of `rover_dynamics::plant` in generated code.
 const PLANT: &str = "::rover_dynamics::plant";
+/// nalgebra as rover-dynamics re-exports it (one version for every user).
+const NA: &str = "::rover_dynamics::nalgebra";
 /// The path of libm in generated code.
 const LIBM: &str = "::libm";
 
@@ -157,13 +159,14 @@ impl {name} {{
     }}
 
     /// `ẋ = B·w` and `ẇ = M⁻¹·(−Ṁ·w − f1 + f2 + Q)` (MODEL.md §5) on
-    /// fixed-size arrays. The outputs are written in any case; the error says
+    /// plain arrays ([`{PLANT}::FixedPlant::derivatives_fixed`] is the
+    /// same on nalgebra vectors). The outputs are written in any case; the error says
     /// the attitude is singular (|cos φ| < 1e-6) or M is not positive
     /// definite (an LDLᵀ pivot not > 0), as the generic plant does; the
     /// suspension rows are eliminated first, so a failing pivot is checked
     /// in that order and reported with its row of M.
     #[inline]
-    pub fn derivatives_fixed(
+    pub fn derivatives_array(
         &self,
         x: &[f64; {n}],
         w: &[f64; {n}],
@@ -184,18 +187,19 @@ impl {name} {{
         Ok(())
     }}
 
-    /// The mass matrix M(y) (MODEL.md §4); structural zeros are not computed.
+    /// The mass matrix M(y) (MODEL.md §4) as rows; structural zeros are
+    /// not computed.
     #[inline]
-    pub fn mass_matrix_fixed(&self, x: &[f64; {n}]) -> [[f64; {n}]; {n}] {{
+    pub fn mass_matrix_array(&self, x: &[f64; {n}]) -> [[f64; {n}]; {n}] {{
         let mut m = [[0.0; {n}]; {n}];
         {mass}
         m
     }}
 
     /// Wheel-centre kinematics for the steering angles `steer` (ignored for
-    /// wheels that are not steerable), MODEL.md §3.
+    /// wheels that are not steerable), MODEL.md §3, on plain arrays.
     #[inline]
-    pub fn wheels_fixed(
+    pub fn wheels_array(
         &self,
         x: &[f64; {n}],
         w: &[f64; {n}],
@@ -223,9 +227,9 @@ impl {name} {{
             r#"
     /// The exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` at fixed wheel loads,
     /// `jac[i][j] = ∂f_i/∂s_j` with `f = [ẋ; ẇ]`, `s = [x; w]`
-    /// (symbolic differentiation of the traced equations).
+    /// (symbolic differentiation of the traced equations), as rows.
     #[inline]
-    pub fn jacobian_fixed(
+    pub fn jacobian_array(
         &self,
         x: &[f64; {n}],
         w: &[f64; {n}],
@@ -234,6 +238,20 @@ impl {name} {{
         let mut jac = [[0.0; {two_n}]; {two_n}];
         {code}
         jac
+    }}
+
+    /// The exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` at fixed wheel loads as a
+    /// nalgebra matrix, `jac[(i, j)] = ∂f_i/∂s_j`.
+    #[inline]
+    pub fn jacobian_fixed(
+        &self,
+        x: &{NA}::SVector<f64, {n}>,
+        w: &{NA}::SVector<f64, {n}>,
+        loads: &[{PLANT}::WheelLoad; {k}],
+    ) -> {NA}::SMatrix<f64, {two_n}, {two_n}> {{
+        let rows = self.jacobian_array(&x.data.0[0], &w.data.0[0], loads);
+        // nalgebra stores columns: the rows read as columns are the transpose.
+        {NA}::SMatrix::from_array_storage({NA}::ArrayStorage(rows)).transpose()
     }}
 "#
         );
@@ -266,7 +284,7 @@ impl {PLANT}::Plant for {name} {{
         for (a, s) in angles.iter_mut().zip(steer) {{
             *a = *s;
         }}
-        for (o, s) in out.iter_mut().zip(self.wheels_fixed(x, w, &angles)) {{
+        for (o, s) in out.iter_mut().zip(self.wheels_array(x, w, &angles)) {{
             *o = s;
         }}
     }}
@@ -293,7 +311,7 @@ impl {PLANT}::Plant for {name} {{
         for (f, l) in fixed.iter_mut().zip(loads) {{
             *f = *l;
         }}
-        self.derivatives_fixed(x, w, &fixed, xdot, wdot)
+        self.derivatives_array(x, w, &fixed, xdot, wdot)
     }}
 
     fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {{
@@ -301,7 +319,7 @@ impl {PLANT}::Plant for {name} {{
             out.iter_mut().for_each(|v| *v = f64::NAN);
             return;
         }};
-        let m = self.mass_matrix_fixed(x);
+        let m = self.mass_matrix_array(x);
         for (o, v) in out.iter_mut().zip(m.iter().flatten()) {{
             *o = *v;
         }}
@@ -311,6 +329,47 @@ impl {PLANT}::Plant for {name} {{
         if let Some(n) = self.neutral.get_mut(coord) {{
             *n = neutral;
         }}
+    }}
+}}
+"#
+    );
+    let _ = write!(
+        s,
+        r#"
+/// The same plant on nalgebra's fixed-size types (no length checks, no heap).
+impl {PLANT}::FixedPlant<{n}, {k}> for {name} {{
+    #[inline]
+    fn derivatives_fixed(
+        &self,
+        x: &{NA}::SVector<f64, {n}>,
+        w: &{NA}::SVector<f64, {n}>,
+        loads: &[{PLANT}::WheelLoad; {k}],
+        xdot: &mut {NA}::SVector<f64, {n}>,
+        wdot: &mut {NA}::SVector<f64, {n}>,
+    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
+        self.derivatives_array(
+            &x.data.0[0],
+            &w.data.0[0],
+            loads,
+            &mut xdot.data.0[0],
+            &mut wdot.data.0[0],
+        )
+    }}
+
+    #[inline]
+    fn mass_matrix_fixed(&self, x: &{NA}::SVector<f64, {n}>) -> {NA}::SMatrix<f64, {n}, {n}> {{
+        // M is symmetric: its rows are its columns.
+        {NA}::SMatrix::from_array_storage({NA}::ArrayStorage(self.mass_matrix_array(&x.data.0[0])))
+    }}
+
+    #[inline]
+    fn wheels_fixed(
+        &self,
+        x: &{NA}::SVector<f64, {n}>,
+        w: &{NA}::SVector<f64, {n}>,
+        steer: &{NA}::SVector<f64, {k}>,
+    ) -> [{PLANT}::WheelState; {k}] {{
+        self.wheels_array(&x.data.0[0], &w.data.0[0], &steer.data.0[0])
     }}
 }}
 "#

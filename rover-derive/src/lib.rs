@@ -9,12 +9,12 @@
 //! #[rover(file = "models/toy.toml")] // relative to this crate's Cargo.toml
 //! pub struct Toy;
 //!
-//! let mut plant = Toy::plant(); // a `ToyPlant`: rover_dynamics::Plant
+//! let mut plant = Toy::plant(); // a `ToyPlant`: rover_dynamics::{Plant, FixedPlant<N, W>}
 //! ```
 //! The same description inline, as Rust tokens with the TOML fields:
 //! `#[rover(name = "toy", gravity = 1.62, body = { mass = 30.0, inertia = [0.7, 0.9, 1.5] },
 //! suspension = [{ … }], wheel = [{ … }])]`. Add `jacobian = true` for the exact
-//! Jacobian `jacobian_fixed`. The crate using it needs `rover-dynamics`
+//! Jacobian `jacobian_fixed` (nalgebra) and `jacobian_array`. The crate using it needs `rover-dynamics`
 //! (`default-features = false` is enough) and `libm`.
 //!
 //! Mistakes are compile errors at the offending token, or at the `file`

@@ -32,7 +32,10 @@ pub mod model;
 #[cfg(feature = "alloc")]
 pub mod poly;
 
-pub use plant::Plant;
+/// The nalgebra this crate's fixed-size types come from, so that generated
+/// code and its users name one version.
+pub use nalgebra;
+pub use plant::{FixedPlant, Plant};
 pub use scalar::Scalar;
 
 #[cfg(feature = "alloc")]

@@ -89,3 +89,34 @@ pub trait Plant {
     /// Set the neutral value y_0 of coordinate i's spring (active suspension, eq. 42).
     fn set_spring_neutral(&mut self, coord: usize, neutral: f64);
 }
+
+/// A plant whose sizes are known at compile time: `N` generalized
+/// coordinates (6 + m) and `W` wheels. Generated plants implement it on
+/// nalgebra's fixed-size types, so a caller gets stack-allocated vectors
+/// and matrices, no length checks and no allocation (firmware, `no_std`).
+///
+/// The methods compute what [`Plant`]'s methods compute; they take `&self`
+/// because a fixed plant keeps no workspace.
+pub trait FixedPlant<const N: usize, const W: usize>: Plant {
+    /// The derivatives `ẋ = B·w` and `ẇ = M⁻¹·(−Ṁ·w − f1 + f2 + Q)` under
+    /// the wheel loads `loads`. The outputs are written in any case; the
+    /// error says the attitude is singular or M is not positive definite.
+    fn derivatives_fixed(
+        &self,
+        x: &nalgebra::SVector<f64, N>,
+        w: &nalgebra::SVector<f64, N>,
+        loads: &[WheelLoad; W],
+        xdot: &mut nalgebra::SVector<f64, N>,
+        wdot: &mut nalgebra::SVector<f64, N>,
+    ) -> Result<(), PlantError>;
+    /// The mass matrix M(y), symmetric, `N × N`.
+    fn mass_matrix_fixed(&self, x: &nalgebra::SVector<f64, N>) -> nalgebra::SMatrix<f64, N, N>;
+    /// Wheel-centre kinematics for the steering angles `steer` (one per
+    /// wheel, ignored for wheels that are not steerable).
+    fn wheels_fixed(
+        &self,
+        x: &nalgebra::SVector<f64, N>,
+        w: &nalgebra::SVector<f64, N>,
+        steer: &nalgebra::SVector<f64, W>,
+    ) -> [WheelState; W];
+}

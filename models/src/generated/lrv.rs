@@ -62,13 +62,14 @@ impl Lrv {
         &self.neutral
     }
     /// `ẋ = B·w` and `ẇ = M⁻¹·(−Ṁ·w − f1 + f2 + Q)` (MODEL.md §5) on
-    /// fixed-size arrays. The outputs are written in any case; the error says
+    /// plain arrays ([`::rover_dynamics::plant::FixedPlant::derivatives_fixed`] is the
+    /// same on nalgebra vectors). The outputs are written in any case; the error says
     /// the attitude is singular (|cos φ| < 1e-6) or M is not positive
     /// definite (an LDLᵀ pivot not > 0), as the generic plant does; the
     /// suspension rows are eliminated first, so a failing pivot is checked
     /// in that order and reported with its row of M.
     #[inline]
-    pub fn derivatives_fixed(
+    pub fn derivatives_array(
         &self,
         x: &[f64; 10],
         w: &[f64; 10],
@@ -712,9 +713,10 @@ impl Lrv {
         }
         Ok(())
     }
-    /// The mass matrix M(y) (MODEL.md §4); structural zeros are not computed.
+    /// The mass matrix M(y) (MODEL.md §4) as rows; structural zeros are
+    /// not computed.
     #[inline]
-    pub fn mass_matrix_fixed(&self, x: &[f64; 10]) -> [[f64; 10]; 10] {
+    pub fn mass_matrix_array(&self, x: &[f64; 10]) -> [[f64; 10]; 10] {
         let mut m = [[0.0; 10]; 10];
         // M(y), upper triangle mirrored (MODEL.md §4, eq. 11–19)
         let front_left = x[6];
@@ -885,9 +887,9 @@ impl Lrv {
         m
     }
     /// Wheel-centre kinematics for the steering angles `steer` (ignored for
-    /// wheels that are not steerable), MODEL.md §3.
+    /// wheels that are not steerable), MODEL.md §3, on plain arrays.
     #[inline]
-    pub fn wheels_fixed(
+    pub fn wheels_array(
         &self,
         x: &[f64; 10],
         w: &[f64; 10],
@@ -1091,9 +1093,9 @@ impl Lrv {
     }
     /// The exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` at fixed wheel loads,
     /// `jac[i][j] = ∂f_i/∂s_j` with `f = [ẋ; ẇ]`, `s = [x; w]`
-    /// (symbolic differentiation of the traced equations).
+    /// (symbolic differentiation of the traced equations), as rows.
     #[inline]
-    pub fn jacobian_fixed(
+    pub fn jacobian_array(
         &self,
         x: &[f64; 10],
         w: &[f64; 10],
@@ -3307,6 +3309,21 @@ impl Lrv {
             - t426 * t1240 + t427 * t1239;
         jac
     }
+    /// The exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` at fixed wheel loads as a
+    /// nalgebra matrix, `jac[(i, j)] = ∂f_i/∂s_j`.
+    #[inline]
+    pub fn jacobian_fixed(
+        &self,
+        x: &::rover_dynamics::nalgebra::SVector<f64, 10>,
+        w: &::rover_dynamics::nalgebra::SVector<f64, 10>,
+        loads: &[::rover_dynamics::plant::WheelLoad; 4],
+    ) -> ::rover_dynamics::nalgebra::SMatrix<f64, 20, 20> {
+        let rows = self.jacobian_array(&x.data.0[0], &w.data.0[0], loads);
+        ::rover_dynamics::nalgebra::SMatrix::from_array_storage(
+                ::rover_dynamics::nalgebra::ArrayStorage(rows),
+            )
+            .transpose()
+    }
 }
 /// Slices of the wrong length are not a panic: the outputs are filled with
 /// NaN (the runtime's finiteness check then stops the run). Missing
@@ -3340,7 +3357,7 @@ impl ::rover_dynamics::plant::Plant for Lrv {
         for (a, s) in angles.iter_mut().zip(steer) {
             *a = *s;
         }
-        for (o, s) in out.iter_mut().zip(self.wheels_fixed(x, w, &angles)) {
+        for (o, s) in out.iter_mut().zip(self.wheels_array(x, w, &angles)) {
             *o = s;
         }
     }
@@ -3370,14 +3387,14 @@ impl ::rover_dynamics::plant::Plant for Lrv {
         for (f, l) in fixed.iter_mut().zip(loads) {
             *f = *l;
         }
-        self.derivatives_fixed(x, w, &fixed, xdot, wdot)
+        self.derivatives_array(x, w, &fixed, xdot, wdot)
     }
     fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {
         let Ok(x) = <&[f64; 10]>::try_from(x) else {
             out.iter_mut().for_each(|v| *v = f64::NAN);
             return;
         };
-        let m = self.mass_matrix_fixed(x);
+        let m = self.mass_matrix_array(x);
         for (o, v) in out.iter_mut().zip(m.iter().flatten()) {
             *o = *v;
         }
@@ -3386,5 +3403,45 @@ impl ::rover_dynamics::plant::Plant for Lrv {
         if let Some(n) = self.neutral.get_mut(coord) {
             *n = neutral;
         }
+    }
+}
+/// The same plant on nalgebra's fixed-size types (no length checks, no heap).
+impl ::rover_dynamics::plant::FixedPlant<10, 4> for Lrv {
+    #[inline]
+    fn derivatives_fixed(
+        &self,
+        x: &::rover_dynamics::nalgebra::SVector<f64, 10>,
+        w: &::rover_dynamics::nalgebra::SVector<f64, 10>,
+        loads: &[::rover_dynamics::plant::WheelLoad; 4],
+        xdot: &mut ::rover_dynamics::nalgebra::SVector<f64, 10>,
+        wdot: &mut ::rover_dynamics::nalgebra::SVector<f64, 10>,
+    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+        self.derivatives_array(
+            &x.data.0[0],
+            &w.data.0[0],
+            loads,
+            &mut xdot.data.0[0],
+            &mut wdot.data.0[0],
+        )
+    }
+    #[inline]
+    fn mass_matrix_fixed(
+        &self,
+        x: &::rover_dynamics::nalgebra::SVector<f64, 10>,
+    ) -> ::rover_dynamics::nalgebra::SMatrix<f64, 10, 10> {
+        ::rover_dynamics::nalgebra::SMatrix::from_array_storage(
+            ::rover_dynamics::nalgebra::ArrayStorage(
+                self.mass_matrix_array(&x.data.0[0]),
+            ),
+        )
+    }
+    #[inline]
+    fn wheels_fixed(
+        &self,
+        x: &::rover_dynamics::nalgebra::SVector<f64, 10>,
+        w: &::rover_dynamics::nalgebra::SVector<f64, 10>,
+        steer: &::rover_dynamics::nalgebra::SVector<f64, 4>,
+    ) -> [::rover_dynamics::plant::WheelState; 4] {
+        self.wheels_array(&x.data.0[0], &w.data.0[0], &steer.data.0[0])
     }
 }

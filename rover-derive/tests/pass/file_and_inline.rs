@@ -1,5 +1,6 @@
 use rover_derive::Rover;
-use rover_dynamics::plant::{Plant, WheelLoad};
+use rover_dynamics::nalgebra::SVector;
+use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
 
 #[derive(Rover)]
 #[rover(file = "../../../../rover-derive/tests/ui/good.toml")]
@@ -32,7 +33,15 @@ fn main() {
     b.derivatives(&x, &w, &loads, &mut xb, &mut wb).unwrap();
     assert_eq!(wa, wb);
     assert!(wa[2] != 0.0);
-    let jac = b.jacobian_fixed(&x, &w, &loads);
+    let jac = b.jacobian_array(&x, &w, &loads);
     // ∂Ẋ/∂v_x = R[0][0] = 1 at θ = ψ = 0.
     assert_eq!(jac[0][7], 1.0);
+    // The same plant on nalgebra's fixed-size types.
+    let (xs, ws) = (SVector::<f64, 7>::from(x), SVector::<f64, 7>::from(w));
+    let (mut xd, mut wd) = (SVector::<f64, 7>::zeros(), SVector::<f64, 7>::zeros());
+    b.derivatives_fixed(&xs, &ws, &loads, &mut xd, &mut wd).unwrap();
+    assert_eq!(wd.as_slice(), &wb[..]);
+    assert_eq!(b.jacobian_fixed(&xs, &ws, &loads)[(0, 7)], 1.0);
+    let m = b.mass_matrix_fixed(&xs);
+    assert_eq!(m, m.transpose());
 }

@@ -4,10 +4,12 @@
 #[path = "../../../models/src/generated/swing4.rs"]
 pub mod swing4;
 
-use rover_dynamics::plant::{Plant, WheelLoad};
+use rover_dynamics::nalgebra::SVector;
+use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
 
 /// Vertical acceleration of swing4 in free fall at roll `phi`, through the
-/// fixed-size method and the `Plant` trait (C ABI, so the code is kept).
+/// `Plant` trait and through `FixedPlant` on nalgebra vectors (C ABI, so
+/// the code is kept).
 #[unsafe(no_mangle)]
 pub extern "C" fn rover_canary_free_fall(phi: f64) -> f64 {
     let mut plant = swing4::Swing4::new();
@@ -20,8 +22,16 @@ pub extern "C" fn rover_canary_free_fall(phi: f64) -> f64 {
     if plant.derivatives(&x, &w, &loads, &mut xdot, &mut wdot).is_err() {
         return f64::NAN;
     }
-    let m = plant.mass_matrix_fixed(&x);
-    wdot[2] + 0.0 * m[0][0]
+    let xs = SVector::<f64, 10>::from(x);
+    let (mut xd, mut wd) = (SVector::<f64, 10>::zeros(), SVector::<f64, 10>::zeros());
+    if plant
+        .derivatives_fixed(&xs, &SVector::zeros(), &loads, &mut xd, &mut wd)
+        .is_err()
+    {
+        return f64::NAN;
+    }
+    let m = plant.mass_matrix_fixed(&xs);
+    (wdot[2] + wd[2]) / 2.0 + 0.0 * m[(0, 0)]
 }
 
 #[panic_handler]
