@@ -269,3 +269,181 @@ fn contact_follows_a_bump_and_both_methods_agree() {
         );
     }
 }
+
+/// A terrain that hides its height bound: the contact search then samples
+/// the whole half rim, as it did before the bound existed. Counts queries.
+struct Unbounded<'a>(&'a rover_runtime::terrain::Terrain, std::cell::Cell<usize>);
+
+impl rover_runtime::terrain::HeightField for Unbounded<'_> {
+    fn height(&self, x: f64, y: f64) -> Result<f64, rover_runtime::terrain::OffMap> {
+        self.1.set(self.1.get() + 1);
+        self.0.height(x, y)
+    }
+    fn height_gradient(
+        &self,
+        x: f64,
+        y: f64,
+    ) -> Result<(f64, [f64; 2]), rover_runtime::terrain::OffMap> {
+        self.0.height_gradient(x, y)
+    }
+}
+
+/// The terrains of the library with their bounds: analytic kinds, a random
+/// field (bicubic, error edge), and a bilinear clamped grid.
+fn bounded_terrains() -> Vec<(&'static str, Terrain)> {
+    use rover_runtime::terrain::{EdgePolicy, Grid, Interpolation, TerrainConfig};
+    let config = |text: &str| -> Terrain {
+        let c: TerrainConfig = toml::from_str(text).unwrap();
+        c.build(std::path::Path::new(".")).unwrap()
+    };
+    let bumpy = |x: f64, y: f64| 0.03 * (7.0 * x).sin() * (5.0 * y).cos() + 0.01 * (23.0 * y).sin();
+    vec![
+        ("flat", Terrain::default()),
+        (
+            "slope",
+            config("kind = \"slope\"\nangle_deg = 12.0\ndirection_deg = 30.0"),
+        ),
+        (
+            "bump",
+            config("kind = \"bump\"\nheight = 0.05\nwidth = 0.6\ncenter = [0.3, 0.0]"),
+        ),
+        (
+            "ditch",
+            config("kind = \"ditch\"\ndepth = 0.05\nwidth = 0.5\ncenter = [-0.4, 0.0]"),
+        ),
+        (
+            "step",
+            config("kind = \"step\"\nheight = 0.04\nposition = [0.2, 0.0]\nramp_width = 0.01"),
+        ),
+        (
+            "sinusoid",
+            config("kind = \"sinusoid\"\namplitude = 0.02\nwavelength = 0.7"),
+        ),
+        (
+            "random",
+            config("kind = \"random\"\nz_r = 0.3\nseed = 7\nextent = [-2.0, 2.0, -2.0, 2.0]"),
+        ),
+        (
+            "grid",
+            Terrain::Grid(
+                Grid::from_fn([-1.6, -1.6], [0.05, 0.04], 65, 81, bumpy)
+                    .unwrap()
+                    .with_interpolation(Interpolation::Bilinear)
+                    .with_edge_policy(EdgePolicy::Clamp),
+            ),
+        ),
+    ]
+}
+
+#[test]
+fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
+    use rover_runtime::contact::MeridionalContact;
+    use rover_runtime::terrain::HeightField;
+    use std::cell::Cell;
+    let mut rng = crate::support::rng::Rng::new(2026);
+    let search = MeridionalContact::default();
+    for (name, terrain) in bounded_terrains() {
+        let full = Unbounded(&terrain, Cell::new(0));
+        let mut touching = 0;
+        for trial in 0..400 {
+            let (x, y) = (rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
+            let radius = rng.uniform(0.08, 0.4);
+            // From 3 cm clear to 10 cm deep, tilted up to 30° about X and Y.
+            let depth = rng.uniform(-0.03, 0.1);
+            let z = terrain.height(x, y).unwrap() + radius - depth;
+            let (roll, yaw) = (rng.uniform(-0.5, 0.5), rng.uniform(-3.1, 3.1));
+            let axis = [-yaw.sin() * roll.cos(), yaw.cos() * roll.cos(), roll.sin()];
+            let bounded = search.find(&terrain, [x, y, z], axis, radius);
+            let sampled = search.find(&full, [x, y, z], axis, radius);
+            assert_eq!(bounded, sampled, "{name}, trial {trial}");
+            touching += usize::from(matches!(bounded, Ok(c) if c.count > 0));
+        }
+        assert!(
+            touching > 200,
+            "{name}: only {touching} of 400 wheels touch"
+        );
+    }
+}
+
+#[test]
+fn a_wheel_on_flat_ground_samples_only_the_rim_near_the_ground() {
+    use rover_runtime::contact::MeridionalContact;
+    use rover_runtime::terrain::HeightField;
+    use std::cell::Cell;
+    // A bound that the search may use, counted: the same terrain, but the
+    // queries go through a counter.
+    struct Counted<'a>(Unbounded<'a>);
+    impl HeightField for Counted<'_> {
+        fn height(&self, x: f64, y: f64) -> Result<f64, rover_runtime::terrain::OffMap> {
+            self.0.height(x, y)
+        }
+        fn height_gradient(
+            &self,
+            x: f64,
+            y: f64,
+        ) -> Result<(f64, [f64; 2]), rover_runtime::terrain::OffMap> {
+            self.0.height_gradient(x, y)
+        }
+        fn max_height_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {
+            self.0.0.max_height_in(area)
+        }
+    }
+    let flat = Terrain::default();
+    let search = MeridionalContact::default();
+    // 2 mm into the ground, as a rover at rest: the rim within 2.2 mm of the
+    // ground is 2·7.5° of the 180° sampled.
+    let (culled, full) = (
+        Counted(Unbounded(&flat, Cell::new(0))),
+        Unbounded(&flat, Cell::new(0)),
+    );
+    let centre = [0.0, 0.0, 0.25 - 2e-3];
+    let a = search.find(&culled, centre, [0.0, 1.0, 0.0], 0.25).unwrap();
+    let b = search.find(&full, centre, [0.0, 1.0, 0.0], 0.25).unwrap();
+    assert_eq!(a, b);
+    assert_eq!(a.count, 1);
+    let (used, all) = (culled.0.1.get(), full.1.get());
+    assert!(
+        all >= 181,
+        "the full search samples the whole half rim ({all})"
+    );
+    assert!(
+        used < 50,
+        "the bounded search evaluated {used} heights (full: {all})"
+    );
+}
+
+#[test]
+fn terrain_height_bounds_hold() {
+    use rover_runtime::terrain::{Bounds, HeightField};
+    let mut rng = crate::support::rng::Rng::new(77);
+    for (name, terrain) in bounded_terrains() {
+        for _ in 0..300 {
+            let (x, y) = (rng.uniform(-1.8, 1.6), rng.uniform(-1.8, 1.6));
+            let (w, h) = (rng.uniform(0.0, 0.8), rng.uniform(0.0, 0.8));
+            let area = Bounds {
+                x_min: x,
+                x_max: x + w,
+                y_min: y,
+                y_max: y + h,
+            };
+            let Some(top) = terrain.max_height_in(&area) else {
+                continue;
+            };
+            for _ in 0..50 {
+                let (px, py) = (rng.uniform(x, x + w), rng.uniform(y, y + h));
+                let z = terrain.height(px, py).unwrap();
+                assert!(
+                    z <= top + 1e-12,
+                    "{name}: {z} above its bound {top} in {area:?}"
+                );
+            }
+        }
+        let nan = Bounds {
+            x_min: f64::NAN,
+            x_max: 0.0,
+            y_min: 0.0,
+            y_max: 0.0,
+        };
+        assert_eq!(terrain.max_height_in(&nan), None, "{name}: NaN area");
+    }
+}

@@ -6,8 +6,15 @@
 //! ```
 //! Every maximal run of samples with h < 0 is a patch; its crossings A and B
 //! are refined between samples by a safeguarded secant (Illinois) search.
+//!
+//! Only the samples that can reach the ground are evaluated: when the
+//! terrain bounds its height under the wheel ([`HeightField::max_height_in`]),
+//! the rim arc above that bound is skipped. Every skipped sample would have
+//! had a clearance above the dip threshold, where it can start no patch, end
+//! none and hide no dip, so the result is the same, bit for bit, as sampling
+//! all of them (a test holds the two against each other).
 
-use crate::terrain::{HeightField, OffMap};
+use crate::terrain::{Bounds, HeightField, OffMap};
 
 use super::patch::{Contact, RimFrame};
 
@@ -44,8 +51,34 @@ pub(crate) fn clearance<H: HeightField + ?Sized>(
     frame: &RimFrame,
     beta: f64,
 ) -> Result<f64, OffMap> {
-    let p = frame.point(beta);
+    let (sin, cos) = beta.sin_cos();
+    clearance_sc(terrain, frame, sin, cos)
+}
+
+/// [`clearance`] from sin β and cos β.
+#[inline]
+fn clearance_sc<H: HeightField + ?Sized>(
+    terrain: &H,
+    frame: &RimFrame,
+    sin: f64,
+    cos: f64,
+) -> Result<f64, OffMap> {
+    let p = frame.point_sc(sin, cos);
     Ok(p[2] - terrain.height(p[0], p[1])?)
+}
+
+/// Samples of the default sampling (MODEL.md §11), whose sines and cosines
+/// are tabulated once.
+const DEFAULT_SAMPLES: usize = 181;
+
+/// `(sin β_i, cos β_i)` of the default sampling's angles, computed by the
+/// same expression as an untabulated sample, so the results do not change.
+fn default_table() -> &'static [(f64, f64); DEFAULT_SAMPLES] {
+    static TABLE: std::sync::OnceLock<[(f64, f64); DEFAULT_SAMPLES]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let step = core::f64::consts::PI / (DEFAULT_SAMPLES - 1) as f64;
+        core::array::from_fn(|i| (-core::f64::consts::FRAC_PI_2 + i as f64 * step).sin_cos())
+    })
 }
 
 /// Root of h between `lo` (h_lo) and `hi` (h_hi) of opposite signs, by the
@@ -103,22 +136,12 @@ impl MeridionalContact {
         axis: [f64; 3],
         radius: f64,
     ) -> Result<Contact, OffMap> {
-        let mut contact = Contact::default();
+        let contact = Contact::default();
         let Some(frame) = RimFrame::new(centre, axis, radius) else {
             return Ok(contact);
         };
         let n = self.sampling.samples.max(3);
         let step = core::f64::consts::PI / (n - 1) as f64;
-        let beta = |i: usize| -core::f64::consts::FRAC_PI_2 + i as f64 * step;
-        let tol = self.sampling.tolerance;
-        let mut prev = clearance(terrain, &frame, beta(0))?;
-        // Start of the current run below ground: (angle, is it a sample end?)
-        let mut start: Option<f64> = if prev < 0.0 {
-            contact.deep = true;
-            Some(beta(0))
-        } else {
-            None
-        };
         // A dip between samples: a local minimum of the sampled clearance
         // that is shallow enough to hide a crossing is refined, so a patch
         // is born with zero deflection instead of appearing at the depth
@@ -126,10 +149,48 @@ impl MeridionalContact {
         // step-size control). Smooth ground cannot hide more than the rim's
         // sagitta over one interval, R·Δβ²/2; four times that is searched.
         let hidden = 2.0 * radius * step * step;
+        let (first, last) = match reach(terrain, &frame, n, step, hidden) {
+            Reach::Samples(first, last) => (first, last),
+            Reach::Nothing => return Ok(contact),
+        };
+        self.scan(terrain, &frame, [first, last], step, hidden)
+    }
+
+    /// The original search over samples `range[0] ..= range[1]` only; the
+    /// caller guarantees that every sample outside has a clearance above
+    /// `hidden`.
+    fn scan<H: HeightField + ?Sized>(
+        &self,
+        terrain: &H,
+        frame: &RimFrame,
+        range: [usize; 2],
+        step: f64,
+        hidden: f64,
+    ) -> Result<Contact, OffMap> {
+        let frame = *frame;
+        let n = self.sampling.samples.max(3);
+        let mut contact = Contact::default();
+        let beta = |i: usize| -core::f64::consts::FRAC_PI_2 + i as f64 * step;
+        let table = (n == DEFAULT_SAMPLES).then(default_table);
+        let sample = |i: usize| -> Result<f64, OffMap> {
+            match table.and_then(|t| t.get(i)) {
+                Some(&(sin, cos)) => clearance_sc(terrain, &frame, sin, cos),
+                None => clearance(terrain, &frame, beta(i)),
+            }
+        };
+        let tol = self.sampling.tolerance;
+        let mut prev = sample(range[0])?;
+        // Start of the current run below ground: (angle, is it a sample end?)
+        let mut start: Option<f64> = if prev < 0.0 {
+            contact.deep = true;
+            Some(beta(0))
+        } else {
+            None
+        };
         let mut prev2 = f64::NAN;
-        for i in 1..n {
+        for i in range[0] + 1..=range[1] {
             let b = beta(i);
-            let h = clearance(terrain, &frame, b)?;
+            let h = sample(i)?;
             if prev >= 0.0 && h >= 0.0 && prev < prev2 && prev < h && prev < hidden {
                 let (lo, hi) = (beta(i - 2), b);
                 let (bm, hm) = dip_minimum(terrain, &frame, lo, hi)?;
@@ -156,6 +217,71 @@ impl MeridionalContact {
         }
         Ok(contact)
     }
+}
+
+/// Which rim samples can reach the ground.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Reach {
+    /// Samples `first ..= last` (the others stay above the dip threshold).
+    Samples(usize, usize),
+    /// No sample comes within the dip threshold of the ground: no contact.
+    Nothing,
+}
+
+/// The samples of the rim that can come within `hidden` of the ground, from
+/// the terrain's height bound under the wheel, widened by two samples on
+/// each side (the search looks two samples back) and one for rounding. All
+/// samples when the terrain gives no bound.
+///
+/// The rim height is `Z(β) = Z_G + R·(cos β·d_z + sin β·f_z) = Z_G − R·A·cos(β − β_m)`
+/// with `A = |(d_z, f_z)|` and `β_m` the lowest point, so `Z(β) ≤ z` on the
+/// arc `|β − β_m| ≤ acos((Z_G − z)/(R·A))`.
+fn reach<H: HeightField + ?Sized>(
+    terrain: &H,
+    frame: &RimFrame,
+    n: usize,
+    step: f64,
+    hidden: f64,
+) -> Reach {
+    let all = Reach::Samples(0, n - 1);
+    let [cx, cy, cz] = frame.centre;
+    let r = frame.radius;
+    // The half rim lies within R of the centre.
+    let area = Bounds {
+        x_min: cx - r,
+        x_max: cx + r,
+        y_min: cy - r,
+        y_max: cy + r,
+    };
+    let Some(top) = terrain.max_height_in(&area) else {
+        return all;
+    };
+    // Rounding of the rim points and of the interpolant: far below 1 nm.
+    let z = top + hidden + 1e-9 * (1.0 + top.abs() + cz.abs());
+    let (dz, fz) = (frame.down[2], frame.forward[2]);
+    let a = dz.hypot(fz);
+    if !(a > 1e-6 && z.is_finite() && cz.is_finite() && r > 0.0) {
+        return all;
+    }
+    let c = (cz - z) / (r * a);
+    if c > 1.0 {
+        return Reach::Nothing;
+    }
+    let half = core::f64::consts::FRAC_PI_2;
+    // Beyond a quarter turn the arc could wrap onto both ends of the half rim.
+    let width = c.clamp(-1.0, 1.0).acos();
+    if width > half - 0.01 {
+        return all;
+    }
+    let lowest = (-fz).atan2(-dz);
+    let last = (n - 1) as f64;
+    let from = ((lowest - width + half) / step).floor() - 3.0;
+    let to = ((lowest + width + half) / step).ceil() + 3.0;
+    if to < 0.0 || from > last {
+        return Reach::Nothing;
+    }
+    // Clamped into [0, n − 1]: the casts are exact.
+    Reach::Samples(from.clamp(0.0, last) as usize, to.clamp(0.0, last) as usize)
 }
 
 /// Minimum of the clearance on [lo, hi] by golden-section search (the

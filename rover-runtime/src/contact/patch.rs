@@ -91,7 +91,18 @@ impl RimFrame {
     /// Rim point P(β) = G + R·(cos β·d + sin β·f).
     pub fn point(&self, beta: f64) -> [f64; 3] {
         let (s, c) = beta.sin_cos();
-        [0, 1, 2].map(|k| self.centre[k] + self.radius * (c * self.down[k] + s * self.forward[k]))
+        self.point_sc(s, c)
+    }
+
+    /// [`RimFrame::point`] from sin β and cos β.
+    #[inline]
+    pub fn point_sc(&self, s: f64, c: f64) -> [f64; 3] {
+        let (g, d, f, r) = (self.centre, self.down, self.forward, self.radius);
+        [
+            g[0] + r * (c * d[0] + s * f[0]),
+            g[1] + r * (c * d[1] + s * f[1]),
+            g[2] + r * (c * d[2] + s * f[2]),
+        ]
     }
 
     /// Build the patch from its crossings A, B (rim angles).

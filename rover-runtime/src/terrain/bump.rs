@@ -1,7 +1,7 @@
 //! A raised-cosine bump.
 
 use super::error::TerrainError;
-use super::height_field::{HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, finite_point};
 use super::profile::{Footprint, Profile};
 
 /// A bump of `height` on flat ground at Z = 0 (MODEL.md §6, the terrain
@@ -56,5 +56,9 @@ impl HeightField for Bump {
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         finite_point(x, y)?;
         Ok(self.profile.evaluate(x, y))
+    }
+
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then(|| self.profile.max_height())
     }
 }

@@ -1,7 +1,7 @@
 //! A trench with a flat bottom and raised-cosine walls.
 
 use super::error::TerrainError;
-use super::height_field::{HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, finite_point};
 use super::profile::{Footprint, Profile};
 
 /// A ditch `depth` deep in flat ground at Z = 0 (MODEL.md §6, the terrain
@@ -63,5 +63,9 @@ impl HeightField for Ditch {
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         finite_point(x, y)?;
         Ok(self.profile.evaluate(x, y))
+    }
+
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then(|| self.profile.max_height())
     }
 }

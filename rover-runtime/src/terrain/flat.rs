@@ -1,7 +1,7 @@
 //! Flat horizontal ground.
 
 use super::error::TerrainError;
-use super::height_field::{HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, finite_point};
 use super::param::finite;
 
 /// Horizontal ground at a constant height: `Z_G = z0`. Unbounded
@@ -43,5 +43,9 @@ impl HeightField for Flat {
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         finite_point(x, y)?;
         Ok((self.height, [0.0, 0.0]))
+    }
+
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then_some(self.height)
     }
 }

@@ -18,6 +18,17 @@ pub trait HeightField {
 
     /// Height `Z_G` [m] and gradient `[∂Z_G/∂X, ∂Z_G/∂Y]` [m/m] at (`x`, `y`).
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap>;
+
+    /// An upper bound of `Z_G` [m] over the rectangle `area`, given only when
+    /// every point of it can be queried (no [`OffMap`]); `None` when either
+    /// is unknown. The contact search samples only the part of the rim that
+    /// can reach below this bound, so a tight bound saves time and a loose one
+    /// costs only time: results are the same either way. The default knows
+    /// nothing.
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        let _ = area;
+        None
+    }
 }
 
 impl<H: HeightField + ?Sized> HeightField for &H {
@@ -27,6 +38,10 @@ impl<H: HeightField + ?Sized> HeightField for &H {
 
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         (**self).height_gradient(x, y)
+    }
+
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        (**self).max_height_in(area)
     }
 }
 
@@ -57,6 +72,14 @@ impl Bounds {
     /// Whether (`x`, `y`) lies inside, edges included; false for NaN.
     pub fn contains(&self, x: f64, y: f64) -> bool {
         x >= self.x_min && x <= self.x_max && y >= self.y_min && y <= self.y_max
+    }
+
+    /// Whether every corner is a finite number (so is every point inside).
+    pub fn is_finite(&self) -> bool {
+        self.x_min.is_finite()
+            && self.x_max.is_finite()
+            && self.y_min.is_finite()
+            && self.y_max.is_finite()
     }
 }
 

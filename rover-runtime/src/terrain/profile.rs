@@ -76,6 +76,11 @@ impl Profile {
     }
 
     /// Height and gradient at (x, y); the point must be finite.
+    /// The largest height anywhere: the top, or the surrounding ground at 0.
+    pub(crate) fn max_height(&self) -> f64 {
+        self.amplitude.max(0.0)
+    }
+
     #[inline]
     pub(crate) fn evaluate(&self, x: f64, y: f64) -> (f64, [f64; 2]) {
         let dx = x - self.centre[0];

@@ -1,7 +1,7 @@
 //! Sinusoidal corrugations.
 
 use super::error::TerrainError;
-use super::height_field::{HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, finite_point};
 use super::param::{finite, positive, unit_vector};
 
 /// Straight sinusoidal waves along `direction_deg` (MODEL.md §6, the
@@ -59,5 +59,9 @@ impl HeightField for Sinusoid {
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         finite_point(x, y)?;
         Ok(self.evaluate(x, y))
+    }
+
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then(|| self.amplitude.abs())
     }
 }

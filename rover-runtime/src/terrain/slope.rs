@@ -1,7 +1,7 @@
 //! A plane inclined in any direction.
 
 use super::error::TerrainError;
-use super::height_field::{HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, finite_point};
 use super::param::{finite, unit_vector};
 
 /// A plane rising at `angle_deg` towards the azimuth `direction_deg`
@@ -73,5 +73,23 @@ impl HeightField for Slope {
             });
         }
         Ok((z, self.gradient))
+    }
+
+    /// The plane's largest value is at a corner of the area.
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        if !area.is_finite() {
+            return None;
+        }
+        let x = if self.gradient[0] > 0.0 {
+            area.x_max
+        } else {
+            area.x_min
+        };
+        let y = if self.gradient[1] > 0.0 {
+            area.y_max
+        } else {
+            area.y_min
+        };
+        self.height(x, y).ok()
     }
 }

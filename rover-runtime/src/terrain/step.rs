@@ -1,7 +1,7 @@
 //! A straight step, smoothed by a short cosine ramp or kept sharp.
 
 use super::error::TerrainError;
-use super::height_field::{HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, finite_point};
 use super::param::{finite, non_negative, unit_vector};
 
 /// A straight step (MODEL.md §6, the terrain library) of `height` across
@@ -75,5 +75,9 @@ impl HeightField for Step {
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         finite_point(x, y)?;
         Ok(self.evaluate(x, y))
+    }
+
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then(|| self.height.max(0.0))
     }
 }

@@ -78,6 +78,19 @@ impl HeightField for Terrain {
             Terrain::Grid(t) => t.height_gradient(x, y),
         }
     }
+
+    #[inline]
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        match self {
+            Terrain::Flat(t) => t.max_height_in(area),
+            Terrain::Slope(t) => t.max_height_in(area),
+            Terrain::Bump(t) => t.max_height_in(area),
+            Terrain::Ditch(t) => t.max_height_in(area),
+            Terrain::Step(t) => t.max_height_in(area),
+            Terrain::Sinusoid(t) => t.max_height_in(area),
+            Terrain::Grid(t) => t.max_height_in(area),
+        }
+    }
 }
 
 impl From<Grid> for Terrain {
