@@ -164,6 +164,9 @@ fn codegen_writes_a_module_that_names_its_source() {
     let text = rover::cli::codegen(&rover::cli::CodegenArgs {
         rover: "swing4".into(),
         out: Some(out.clone()),
+        fidelity: rover::cli::CodegenLevel::Full,
+        type_name: None,
+        no_jacobian: false,
     })
     .unwrap();
     assert_eq!(std::fs::read_to_string(&out).unwrap(), text);
@@ -178,6 +181,65 @@ fn codegen_writes_a_module_that_names_its_source() {
     assert!(
         !text.contains("Vec<") && !text.contains("unwrap()"),
         "no heap, no panics"
+    );
+}
+
+#[test]
+fn codegen_at_a_reduced_level_is_the_checked_in_module() {
+    use rover::cli::{CodegenArgs, CodegenLevel, codegen};
+    // The CLI freezes reduced levels where `simulate` does (the loaded
+    // equilibrium), so for swing4 it writes the checked-in modules exactly.
+    for (level, name, file) in [
+        (
+            CodegenLevel::Simplified,
+            "Swing4Simplified",
+            "swing4_simplified.rs",
+        ),
+        (
+            CodegenLevel::Linearized,
+            "Swing4Linearized",
+            "swing4_linearized.rs",
+        ),
+    ] {
+        let text = codegen(&CodegenArgs {
+            rover: "swing4".into(),
+            out: Some(scratch("codegen_level").join(file)),
+            fidelity: level,
+            type_name: Some(name.into()),
+            no_jacobian: false,
+        })
+        .unwrap();
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let checked_in =
+            std::fs::read_to_string(root.join("models/src/generated").join(file)).unwrap();
+        assert!(
+            text == checked_in,
+            "{file}: the CLI and the checked-in module differ"
+        );
+    }
+    // Any rover, without the Jacobian; a bad type name is refused, not emitted.
+    let text = codegen(&CodegenArgs {
+        rover: "mer".into(),
+        out: Some(scratch("codegen_level").join("mer.rs")),
+        fidelity: CodegenLevel::Linearized,
+        type_name: None,
+        no_jacobian: true,
+    })
+    .unwrap();
+    assert!(text.contains("// Fidelity: Linearized") && text.contains("pub struct Mer"));
+    assert!(!text.contains("jacobian"));
+    let err = codegen(&CodegenArgs {
+        rover: "mer".into(),
+        out: None,
+        fidelity: CodegenLevel::Full,
+        type_name: Some("mer plant".into()),
+        no_jacobian: false,
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("--type-name") && err.contains("MyRover"),
+        "{err}"
     );
 }
 

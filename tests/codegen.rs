@@ -410,3 +410,42 @@ fn generated_reduced_fidelity_levels_equal_generic() {
         68,
     );
 }
+
+/// A reduced level from the derive: frozen at the description's rest y_c
+/// by default, or at an explicit `y_ref`.
+mod derived_levels {
+    use rover_derive::Rover;
+
+    #[derive(Rover)]
+    #[rover(file = "models/exomars.toml", fidelity = "simplified")]
+    pub struct ExomarsSimplified;
+
+    #[derive(Rover)]
+    #[rover(
+        file = "models/swing4.toml",
+        fidelity = "linearized",
+        y_ref = [-0.55, -0.57, 0.56, 0.58],
+        jacobian = false
+    )]
+    pub struct Swing4Linearized;
+}
+
+#[test]
+fn derived_reduced_levels_equal_generic() {
+    use rover_dynamics::fidelity::Fidelity;
+    let exomars = spec("exomars").model;
+    compare_with(
+        "exomars",
+        derived_levels::ExomarsSimplified::plant(),
+        GenericPlant::with_fidelity(exomars, Fidelity::Simplified).unwrap(),
+        81,
+    );
+    let swing4 = spec("swing4").model;
+    compare_with(
+        "swing4",
+        derived_levels::Swing4Linearized::plant(),
+        GenericPlant::with_fidelity_at(swing4, Fidelity::Linearized, &[-0.55, -0.57, 0.56, 0.58])
+            .unwrap(),
+        82,
+    );
+}

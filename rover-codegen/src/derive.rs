@@ -15,15 +15,21 @@
 //! state (the spring neutrals that active suspension moves), so the plant
 //! is a companion type `<Name>Plant` with the struct's visibility;
 //! `<Name>::plant()` makes one. `jacobian = true` in the attribute adds the
-//! exact Jacobian.
+//! exact Jacobian; `fidelity = "simplified"` or `"linearized"` generates a
+//! reduced level (MODEL.md §9), frozen at `y_ref = [...]` (one value per
+//! suspension coordinate, rad or m) or, without it, at the description's
+//! rest configuration y_c. These three combine with `file`.
 
 use std::path::{Path, PathBuf};
 
 use proc_macro2::{Span, TokenStream};
 use quote::{format_ident, quote};
 
+use rover_dynamics::fidelity::Fidelity;
+
 use crate::plant_source::{Options, plant_source};
 use crate::tokens::{Entry, Value, parse_entries, span_at, to_toml};
+use crate::trace::Level;
 
 /// Expand `#[derive(Rover)]` on `input`, reading files relative to the
 /// `CARGO_MANIFEST_DIR` of the crate being compiled.
@@ -52,6 +58,8 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
     let list = attr.meta.require_list()?;
     let mut entries = parse_entries(list.tokens.clone())?;
     let jacobian = take_bool(&mut entries, "jacobian")?.unwrap_or(false);
+    let fidelity = take_fidelity(&mut entries)?;
+    let y_ref = take_numbers(&mut entries, "y_ref")?;
     let file = entries.iter().position(|e| e.key == "file");
     let (spec, include) = match file {
         Some(k) => {
@@ -93,6 +101,7 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
             (spec, None)
         }
     };
+    let level = level(fidelity, y_ref, &spec)?;
     let name = &input.ident;
     let plant = format_ident!("{}Plant", name);
     let vis = &input.vis;
@@ -103,7 +112,7 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
             jacobian,
             comments: false,
             visibility: quote!(#vis).to_string(),
-            level: None,
+            level,
         },
     );
     let items: TokenStream = source.code.parse().map_err(|e| {
@@ -186,6 +195,91 @@ fn take_bool(entries: &mut Vec<Entry>, key: &str) -> syn::Result<Option<bool>> {
             v.span(),
             format!("`{key}` takes `true` or `false`"),
         )),
+    }
+}
+
+/// `fidelity = "full" | "simplified" | "linearized"` (MODEL.md §9).
+fn take_fidelity(entries: &mut Vec<Entry>) -> syn::Result<Option<(Fidelity, Span)>> {
+    let Some(k) = entries.iter().position(|e| e.key == "fidelity") else {
+        return Ok(None);
+    };
+    let value = entries.remove(k).value;
+    let level = match &value {
+        Value::Str(s, _) if s == "full" => Fidelity::Full,
+        Value::Str(s, _) if s == "simplified" => Fidelity::Simplified,
+        Value::Str(s, _) if s == "linearized" => Fidelity::Linearized,
+        v => {
+            return Err(syn::Error::new(
+                v.span(),
+                "`fidelity` takes \"full\", \"simplified\" or \"linearized\" (MODEL.md §9)",
+            ));
+        }
+    };
+    Ok(Some((level, value.span())))
+}
+
+/// An array of numbers, such as `y_ref = [-0.52, -0.52, 0.52, 0.52]`.
+fn take_numbers(entries: &mut Vec<Entry>, key: &str) -> syn::Result<Option<(Vec<f64>, Span)>> {
+    let Some(k) = entries.iter().position(|e| e.key == key) else {
+        return Ok(None);
+    };
+    let value = entries.remove(k).value;
+    let bad = |span| {
+        syn::Error::new(
+            span,
+            format!("`{key}` takes an array of numbers, one per suspension coordinate (rad or m)"),
+        )
+    };
+    let Value::Array(items, span) = &value else {
+        return Err(bad(value.span()));
+    };
+    let numbers = items
+        .iter()
+        .map(|v| match v {
+            Value::Number(text, span) => text
+                .replace('_', "")
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| bad(*span)),
+            other => Err(bad(other.span())),
+        })
+        .collect::<syn::Result<Vec<f64>>>()?;
+    Ok(Some((numbers, *span)))
+}
+
+/// The fidelity level to trace: none for the full model; a reduced level
+/// frozen at `y_ref`, or at the description's rest configuration y_c
+/// (MODEL.md §9) when `y_ref` is not given.
+fn level(
+    fidelity: Option<(Fidelity, Span)>,
+    y_ref: Option<(Vec<f64>, Span)>,
+    spec: &rover_spec::Spec,
+) -> syn::Result<Option<Level>> {
+    let m = spec.model.coordinates.len();
+    match (fidelity, y_ref) {
+        (None | Some((Fidelity::Full, _)), Some((_, span))) => Err(syn::Error::new(
+            span,
+            "`y_ref` is the configuration a reduced level is frozen at: add `fidelity = \"simplified\"` or `\"linearized\"`, or remove it",
+        )),
+        (None | Some((Fidelity::Full, _)), None) => Ok(None),
+        (Some((fidelity, _)), Some((y, span))) => {
+            if y.len() != m {
+                return Err(syn::Error::new(
+                    span,
+                    format!(
+                        "`y_ref` has {} values but the rover has {m} suspension coordinates ({})",
+                        y.len(),
+                        spec.coordinate_names.join(", ")
+                    ),
+                ));
+            }
+            Ok(Some(Level { fidelity, y_ref: y }))
+        }
+        (Some((fidelity, _)), None) => Ok(Some(Level {
+            fidelity,
+            y_ref: spec.model.rest(),
+        })),
     }
 }
 
@@ -338,5 +432,27 @@ mod tests {
             "{msg}"
         );
         assert!(msg.contains("\n  4 | gravity = -1.0\n"), "{msg}");
+    }
+
+    #[test]
+    fn reduced_levels_are_checked_where_written() {
+        let toy = r#"#[rover(file = "tests/data/toy.toml", fidelity = "#;
+        let out = expand_str(&format!(r#"{toy}"medium")] struct T;"#));
+        assert!(out.contains("`fidelity` takes"), "{out}");
+        let out = expand_str(r#"#[rover(file = "tests/data/toy.toml", y_ref = [0.1])] struct T;"#);
+        assert!(out.contains("add `fidelity"), "{out}");
+        let out = expand_str(&format!(
+            r#"{toy}"simplified", y_ref = [0.1, 0.2, 0.3])] struct T;"#
+        ));
+        assert!(
+            out.contains("`y_ref` has 3 values but the rover has"),
+            "{out}"
+        );
+        let out = expand_str(&format!(r#"{toy}"simplified", y_ref = ["a"])] struct T;"#));
+        assert!(out.contains("`y_ref` takes an array of numbers"), "{out}");
+        // A good one: the reduced plant, no error.
+        let out = expand_str(&format!(r#"{toy}"linearized")] struct T;"#));
+        assert!(!out.contains("compile_error"), "{out}");
+        assert!(out.contains("struct TPlant"), "{out}");
     }
 }

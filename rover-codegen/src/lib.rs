@@ -39,6 +39,7 @@ pub mod graph;
 pub mod module;
 pub mod ordered_solve;
 pub mod plant_source;
+pub mod simplify;
 pub mod sym;
 pub mod tokens;
 pub mod trace;

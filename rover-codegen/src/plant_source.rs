@@ -11,6 +11,7 @@ use std::fmt::Write;
 use rover_spec::Spec;
 
 use crate::emit::{Block, OpCount, emit};
+use crate::simplify::simplify;
 use crate::trace::{Function, Traced, trace_spec_at};
 
 /// The path of `rover_dynamics::plant` in generated code.
@@ -68,7 +69,7 @@ fn body(blocks: &[Block], comments: bool) -> String {
 }
 
 fn emit_fn(f: &Function, comments: bool) -> (String, OpCount) {
-    let (blocks, ops) = emit(f, LIBM);
+    let (blocks, ops) = emit(&simplify(f), LIBM);
     (body(&blocks, comments), ops)
 }
 

@@ -1,12 +1,26 @@
-//! `rover codegen <file-or-builtin> [--out <file>]`: the generated plant of a
-//! rover as a formatted, standalone Rust module (docs/CODEGEN.md).
+//! `rover codegen <file-or-builtin> [--out <file>] [--fidelity <level>]
+//! [--type-name <Name>] [--no-jacobian]`: the generated plant of a rover as
+//! a formatted, standalone Rust module (docs/CODEGEN.md).
 
 use std::path::PathBuf;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
+use rover_dynamics::fidelity::Fidelity;
 
 use super::CliError;
 use crate::rover_source::load_rover;
+
+/// The dynamic fidelity levels a plant can be generated at (MODEL.md §9).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum CodegenLevel {
+    /// Level 1, the full model.
+    #[default]
+    Full,
+    /// Level 2: kinematics frozen, M constant, Ṁ = f2 = 0.
+    Simplified,
+    /// Level 3: as level 2, plus attitude and wheel positions to first order.
+    Linearized,
+}
 
 /// Arguments of `rover codegen`.
 #[derive(Debug, Args)]
@@ -16,13 +30,55 @@ pub struct CodegenArgs {
     /// Write the module here instead of standard output.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Fidelity level; the reduced levels are frozen at the rover's loaded
+    /// static equilibrium on flat ground, as `simulate` freezes them.
+    #[arg(long, value_enum, default_value_t = CodegenLevel::Full)]
+    pub fidelity: CodegenLevel,
+    /// Name of the plant type (default: the rover's name in UpperCamelCase).
+    #[arg(long)]
+    pub type_name: Option<String>,
+    /// Leave out the exact Jacobian (a smaller module that compiles faster).
+    #[arg(long)]
+    pub no_jacobian: bool,
 }
 
 /// Generate the module and write it to `--out` or standard output.
 pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
     let spec = load_rover(&args.rover, None)?;
     let source = rover_models::builtin_path(&args.rover).unwrap_or(&args.rover);
-    let text = rover_codegen::generate_module(&spec, source)
+    let fidelity = match args.fidelity {
+        CodegenLevel::Full => None,
+        CodegenLevel::Simplified => Some(Fidelity::Simplified),
+        CodegenLevel::Linearized => Some(Fidelity::Linearized),
+    };
+    let level = match fidelity {
+        None => None,
+        Some(fidelity) => Some(rover_codegen::trace::Level {
+            fidelity,
+            y_ref: rover_runtime::quasi_static::flat_ground_equilibrium(&spec.model).map_err(
+                |e| {
+                    CliError::Other(format!(
+                        "{}: cannot find the loaded equilibrium to freeze the {:?} level at: {e}",
+                        args.rover, fidelity
+                    ))
+                },
+            )?,
+        }),
+    };
+    if let Some(name) = &args.type_name
+        && !is_type_name(name)
+    {
+        return Err(CliError::Other(format!(
+            "--type-name {name:?} is not a Rust type name: use letters, digits and \
+             underscores, starting with an uppercase letter (e.g. MyRover)"
+        )));
+    }
+    let options = rover_codegen::ModuleOptions {
+        type_name: args.type_name.clone(),
+        jacobian: !args.no_jacobian,
+        level,
+    };
+    let text = rover_codegen::generate_module_with(&spec, source, &options)
         .map_err(|e| CliError::Other(e.to_string()))?;
     match &args.out {
         Some(p) => std::fs::write(p, &text)
@@ -30,4 +86,11 @@ pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
         None => print!("{text}"),
     }
     Ok(text)
+}
+
+/// An UpperCamelCase-style identifier: `[A-Z][A-Za-z0-9_]*`.
+fn is_type_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars.next().is_some_and(|c| c.is_ascii_uppercase())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }

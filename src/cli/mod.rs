@@ -13,7 +13,7 @@ use clap::{Parser, Subcommand};
 
 pub use check::{CheckArgs, check};
 #[cfg(feature = "codegen")]
-pub use codegen::{CodegenArgs, codegen};
+pub use codegen::{CodegenArgs, CodegenLevel, codegen};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, reproduce};
 pub use simulate::{SimulateArgs, SimulateReport, build_plant, simulate};
