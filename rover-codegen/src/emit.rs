@@ -409,6 +409,21 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
 /// expression that needs it, so fewer values are live at once and the
 /// compiler spills fewer registers than with the tracing order.
 fn use_order(g: &Graph, f: &Function, top: usize) -> Vec<usize> {
+    let mut need = vec![1u32; top];
+    for k in 0..top {
+        let mut kids: Vec<u32> = g
+            .node(Id(k as u32))
+            .children()
+            .map(|c| need[c.0 as usize])
+            .collect();
+        kids.sort_unstable_by(|a, b| b.cmp(a));
+        need[k] = match kids.as_slice() {
+            [] => 1,
+            [a] => *a,
+            [a, b, ..] if a == b => a + 1,
+            [a, ..] => *a,
+        };
+    }
     let mut rank = vec![usize::MAX; top];
     let mut next = 0;
     let mut stack: Vec<(usize, bool)> = Vec::new();
@@ -424,7 +439,10 @@ fn use_order(g: &Graph, f: &Function, top: usize) -> Vec<usize> {
                 continue;
             }
             stack.push((k, true));
-            let children: Vec<Id> = g.node(Id(k as u32)).children().collect();
+            let mut children: Vec<Id> = g.node(Id(k as u32)).children().collect();
+            // The operand that needs more registers first (Sethi–Ullman):
+            // its temporaries are dead before the other one starts.
+            children.sort_by_key(|c| core::cmp::Reverse(need[c.0 as usize]));
             for c in children.into_iter().rev() {
                 if rank[c.0 as usize] == usize::MAX {
                     stack.push((c.0 as usize, false));

@@ -5,7 +5,7 @@
 //! contributes `Uᵀ·μ`.
 
 use crate::attitude::Attitude;
-use crate::linalg::{V3, cross, dot, mul_t, scale};
+use crate::linalg::{V3, add, cross, dot, mul_t, scale};
 use crate::model::{Coordinate, Model, MotorMount, Spring};
 use crate::scalar::Scalar;
 use crate::workspace::Workspace;
@@ -143,18 +143,31 @@ pub fn add_wheel_loads<S: Scalar>(
     q: &mut [S],
 ) {
     let r = att.rotation();
+    // Motor reactions on the body, summed in inertial components and
+    // rotated once.
+    let mut on_body: Option<V3<S>> = None;
     for (wheel, load) in model.wheels.iter().zip(loads) {
         let j = wheel.body;
         add_point_force(ws, j, mul_t(&r, load.force), q);
-        add_member_moment(ws, j, mul_t(&r, load.moment), q);
-        let tau = mul_t(&r, load.stator_torque);
         match wheel.motor {
-            MotorMount::Hub => add_member_moment(ws, j, tau, q),
-            MotorMount::Body => {
-                for k in 0..3 {
-                    q[3 + k] += tau[k];
-                }
+            // Both act on the carrier: one rotation, one mapping.
+            MotorMount::Hub => {
+                let mu = add(load.moment, load.stator_torque);
+                add_member_moment(ws, j, mul_t(&r, mu), q);
             }
+            MotorMount::Body => {
+                add_member_moment(ws, j, mul_t(&r, load.moment), q);
+                on_body = Some(match on_body {
+                    Some(sum) => add(sum, load.stator_torque),
+                    None => load.stator_torque,
+                });
+            }
+        }
+    }
+    if let Some(tau) = on_body {
+        let tau = mul_t(&r, tau);
+        for k in 0..3 {
+            q[3 + k] += tau[k];
         }
     }
 }
