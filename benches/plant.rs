@@ -8,7 +8,8 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rover_dynamics::Model;
-use rover_dynamics::plant::{Plant, WheelLoad};
+use rover_dynamics::nalgebra::SVector;
+use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
 use rover_runtime::GenericPlant;
 use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
@@ -167,9 +168,43 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
     group.finish();
 }
 
+/// The generated plant through its typed API (`FixedPlant`, nalgebra
+/// vectors, no slice checks or load copies), same states.
+fn fixed_api<P: FixedPlant<N, W>, const N: usize, const W: usize>(
+    c: &mut Criterion,
+    name: &str,
+    plant: P,
+) {
+    let samples: Vec<_> = samples(&model(name), 64)
+        .into_iter()
+        .map(|s| {
+            let loads: [WheelLoad; W] = core::array::from_fn(|j| s.loads[j]);
+            (
+                SVector::<f64, N>::from_column_slice(&s.x),
+                SVector::<f64, N>::from_column_slice(&s.w),
+                loads,
+            )
+        })
+        .collect();
+    let (mut xd, mut wd) = (SVector::<f64, N>::zeros(), SVector::<f64, N>::zeros());
+    let mut k = 0;
+    c.benchmark_group(name)
+        .bench_function(BenchmarkId::new("rhs_plant", "generated_fixed"), |b| {
+            b.iter(|| {
+                let (x, w, loads) = &samples[k % samples.len()];
+                k += 1;
+                let r =
+                    plant.derivatives_fixed(black_box(x), black_box(w), loads, &mut xd, &mut wd);
+                black_box(&r);
+                black_box(&wd);
+            })
+        });
+}
+
 fn per_model(c: &mut Criterion) {
     one_model(c, "exomars", rover_models::Exomars::new());
     one_model(c, "swing4", rover_models::Swing4::new());
+    fixed_api(c, "swing4", rover_models::Swing4::new());
     one_model(c, "mer", rover_models::Mer::new());
     one_model(c, "lrv", rover_models::Lrv::new());
 }
