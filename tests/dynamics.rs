@@ -210,8 +210,11 @@ fn mass_matrix_derivative_matches_finite_differences() {
     }
 }
 
+/// The bias as computed (Newton–Euler: each body's acceleration at ẇ = 0
+/// pulled back by its partial velocities) against the paper's eq. 25–28
+/// built literally from p = M·w and ∂M/∂y_i.
 #[test]
-fn momentum_form_of_the_bias_equals_the_explicit_form() {
+fn newton_euler_form_of_the_bias_equals_the_papers_form() {
     let mut rng = Rng::new(3);
     for (name, model) in models() {
         let n = model.dof();

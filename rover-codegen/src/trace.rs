@@ -20,7 +20,7 @@ use rover_spec::Spec;
 
 use crate::diff::derivative;
 use crate::graph::{Graph, Id};
-use crate::ordered_solve::{ordered_ldlt_solve, suspension_first};
+use crate::ordered_solve::{block_solve, suspension_first};
 use crate::sym::{Sym, trace};
 
 /// An input of a traced function: its name in the generated code and the
@@ -273,7 +273,7 @@ fn trace_derivatives(
         add_gravity(model, &ws, &att, &mut rhs);
         add_suspension(model, &neutral, y, &w[6..], &mut rhs);
         add_wheel_loads(model, &ws, &att, &loads, &mut rhs);
-        let (wdot, pivots) = ordered_ldlt_solve(&ws.mass, &rhs, &order);
+        let (wdot, pivots) = block_solve(&ws.mass, &rhs);
         let mut xdot = vec![Sym::zero(); n];
         position_rates(&x, &w, &mut xdot);
         (xdot, wdot, pivots, x[3].cos())
