@@ -31,6 +31,9 @@ pub struct OpCount {
     pub sqrt: usize,
     /// Other calls (exp, atan2, abs, min, max, copysign, comparisons).
     pub other: usize,
+    /// The longest chain of dependent operations (negations not counted):
+    /// straight-line code is bound by its latency as much as by its count.
+    pub depth: usize,
 }
 
 impl std::ops::AddAssign for OpCount {
@@ -42,6 +45,7 @@ impl std::ops::AddAssign for OpCount {
         self.trig += o.trig;
         self.sqrt += o.sqrt;
         self.other += o.other;
+        self.depth = self.depth.max(o.depth);
     }
 }
 
@@ -49,8 +53,8 @@ impl std::fmt::Display for OpCount {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} mul, {} add, {} div, {} neg, {} sin/cos, {} sqrt, {} other",
-            self.mul, self.add, self.div, self.neg, self.trig, self.sqrt, self.other
+            "{} mul, {} add, {} div, {} neg, {} sin/cos, {} sqrt, {} other, depth {}",
+            self.mul, self.add, self.div, self.neg, self.trig, self.sqrt, self.other, self.depth
         )
     }
 }
@@ -221,6 +225,26 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
     }
     let mut names: Vec<Option<String>> = vec![None; top];
     let mut ops = OpCount::default();
+    let mut depth = vec![0usize; top];
+    for k in 0..top {
+        let node = g.node(Id(k as u32));
+        let below = node
+            .children()
+            .map(|c| depth[c.0 as usize])
+            .max()
+            .unwrap_or(0);
+        depth[k] = match node {
+            Node::Const(_) | Node::Input(_) => 0,
+            Node::Neg(_) => below,
+            _ => below + 1,
+        };
+    }
+    ops.depth = f
+        .outputs
+        .iter()
+        .map(|o| depth[o.id.0 as usize])
+        .max()
+        .unwrap_or(0);
     let mut bound = vec![false; top];
     for k in 0..top {
         if !reach[k] {

@@ -129,7 +129,10 @@ impl Rebuild<'_> {
         built
     }
 
-    /// `c0 + Σ c·(Σ ± t)`: one product per distinct |coefficient|.
+    /// `c0 + Σ c·(Σ ± t)`: one product per distinct |coefficient|, every
+    /// sum a balanced tree (depth log₂ of its terms, not their number:
+    /// the generated code is bound by its longest chain of dependent
+    /// operations more than by their count).
     fn emit(&mut self, form: &Linear) -> Id {
         let mut groups: Vec<(f64, Vec<(Id, bool)>)> = Vec::new();
         for &(t, c) in &form.terms {
@@ -143,38 +146,63 @@ impl Rebuild<'_> {
             }
         }
         let g = &mut self.new;
-        let mut total: Option<Id> = None;
-        for (m, members) in groups {
-            // Keep the first member's sign outside, so that a group of
-            // negative terms is −m·(t1 + t2), not m·(−t1 − t2).
-            let flip = members[0].1;
-            let mut sum: Option<Id> = None;
-            for (t, negative) in members {
-                sum = Some(match sum {
-                    None => t,
-                    Some(s) if negative != flip => g.sub(s, t),
-                    Some(s) => g.add(s, t),
-                });
+        let mut scaled: Vec<(Id, bool)> = groups
+            .into_iter()
+            .map(|(m, members)| {
+                let (sum, negative) = balanced(g, &members);
+                if m == 1.0 {
+                    (sum, negative)
+                } else {
+                    let c = g.cst(m);
+                    (g.mul(c, sum), negative)
+                }
+            })
+            .collect();
+        if form.constant != 0.0 {
+            let c = g.cst(form.constant.abs());
+            scaled.push((c, form.constant < 0.0));
+        }
+        if scaled.is_empty() {
+            return g.cst(0.0);
+        }
+        let (sum, negative) = balanced(g, &scaled);
+        if negative { g.neg(sum) } else { sum }
+    }
+}
+
+/// `Σ ±t` as a balanced tree of additions and subtractions; returns the
+/// sum and whether it is to be negated.
+fn balanced(g: &mut Graph, leaves: &[(Id, bool)]) -> (Id, bool) {
+    match leaves {
+        [] => (g.cst(0.0), false),
+        [one] => *one,
+        // Short sums stay chains: a tree keeps more partial sums live.
+        _ if leaves.len() <= CHAIN => {
+            let (mut acc, mut neg) = leaves[0];
+            for &(t, n) in &leaves[1..] {
+                (acc, neg) = join(g, (acc, neg), (t, n));
             }
-            let Some(sum) = sum else { continue };
-            let scaled = if m == 1.0 {
-                sum
-            } else {
-                let c = g.cst(m);
-                g.mul(c, sum)
-            };
-            total = Some(match total {
-                None if flip => g.neg(scaled),
-                None => scaled,
-                Some(acc) if flip => g.sub(acc, scaled),
-                Some(acc) => g.add(acc, scaled),
-            });
+            (acc, neg)
         }
-        let c0 = g.cst(form.constant);
-        match total {
-            None => c0,
-            Some(t) => g.add(t, c0),
+        _ => {
+            let (left, right) = leaves.split_at(leaves.len() / 2);
+            let a = balanced(g, left);
+            let b = balanced(g, right);
+            join(g, a, b)
         }
+    }
+}
+
+/// Longest sum kept as a chain of additions.
+const CHAIN: usize = 8;
+
+/// `±a ± b` as one addition or subtraction and a sign.
+fn join(g: &mut Graph, (a, na): (Id, bool), (b, nb): (Id, bool)) -> (Id, bool) {
+    match (na, nb) {
+        (false, false) => (g.add(a, b), false),
+        (true, true) => (g.add(a, b), true),
+        (false, true) => (g.sub(a, b), false),
+        (true, false) => (g.sub(b, a), false),
     }
 }
 
