@@ -86,10 +86,10 @@ pub fn ordered_ldlt_solve<S: Scalar>(a: &[S], b: &[S], order: &[usize]) -> (Vec<
 /// dependent divisions becomes two independent 3×3 inversions whose
 /// cofactors are computed side by side: the straight-line code is bound by
 /// that chain's latency, not by its operation count. The pivots returned
-/// are the LDLᵀ pivots in the same order (the body's six from the leading
-/// minors of A and C', `d = [a00, minor₂/a00, det/minor₂]`), off the
-/// solution's critical path, for the positive-definiteness check.
-pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<S>) {
+/// are the LDLᵀ pivots in the same order, each as a (numerator,
+/// denominator) pair (the body's six from the leading minors of A and C',
+/// see [`adjugate`]), for the positive-definiteness check.
+pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<(S, S)>) {
     let n = b.len();
     let order = suspension_first(n);
     let p = n - 6;
@@ -163,8 +163,6 @@ pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<S>) {
     for k in 0..3 {
         z[p + k] = xv[k];
         z[p + 3 + k] = xw[k];
-        d[p + k] = piv_a[k];
-        d[p + 3 + k] = piv_c[k];
     }
     // Back to the suspension rows.
     for i in 0..p {
@@ -180,11 +178,21 @@ pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<S>) {
     for (q, &r) in order.iter().enumerate() {
         out[r] = z[q];
     }
-    (out, d)
+    let pivots = d[..p]
+        .iter()
+        .map(|&v| (v, S::one()))
+        .chain(piv_a)
+        .chain(piv_c)
+        .collect();
+    (out, pivots)
 }
 
-/// Adjugate, determinant and LDLᵀ pivots of a symmetric 3×3 matrix.
-fn adjugate<S: Scalar>(a: &[[S; 3]; 3]) -> ([[S; 3]; 3], S, [S; 3]) {
+/// Adjugate, determinant and LDLᵀ pivots of a symmetric 3×3 matrix, the
+/// pivots as (numerator, denominator): the ratios of its leading minors,
+/// `[a00/1, minor₂/a00, det/minor₂]`. Each pivot has the sign of its
+/// numerator once the earlier ones are positive, so the check needs no
+/// division; only a failing pivot's value is divided out, to report it.
+fn adjugate<S: Scalar>(a: &[[S; 3]; 3]) -> ([[S; 3]; 3], S, [(S, S); 3]) {
     let c00 = a[1][1] * a[2][2] - a[1][2] * a[1][2];
     let c01 = a[0][2] * a[1][2] - a[0][1] * a[2][2];
     let c02 = a[0][1] * a[1][2] - a[0][2] * a[1][1];
@@ -192,7 +200,7 @@ fn adjugate<S: Scalar>(a: &[[S; 3]; 3]) -> ([[S; 3]; 3], S, [S; 3]) {
     let c12 = a[0][1] * a[0][2] - a[0][0] * a[1][2];
     let c22 = a[0][0] * a[1][1] - a[0][1] * a[0][1];
     let det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
-    let pivots = [a[0][0], c22 / a[0][0], det / c22];
+    let pivots = [(a[0][0], S::one()), (c22, a[0][0]), (det, c22)];
     (
         [[c00, c01, c02], [c01, c11, c12], [c02, c12, c22]],
         det,
@@ -259,11 +267,11 @@ mod tests {
                 z1[i],
                 z2[i]
             );
+            let d = d2[i].0 / d2[i].1;
             assert!(
-                (d1[i] - d2[i]).abs() < 1e-12 * d1[i],
-                "pivot {i}: {} vs {}",
-                d1[i],
-                d2[i]
+                (d1[i] - d).abs() < 1e-12 * d1[i],
+                "pivot {i}: {} vs {d}",
+                d1[i]
             );
         }
     }

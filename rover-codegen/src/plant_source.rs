@@ -102,7 +102,7 @@ pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
     let pivot_list: Vec<String> = traced
         .pivot_rows
         .iter()
-        .map(|r| format!("({r}, pivot_{r})"))
+        .map(|r| format!("({r}, pivot_{r}, pivot_den_{r})"))
         .collect();
     let steer_used = model.wheels.iter().any(|w| w.steerable);
     let steer_param = if steer_used { "steer" } else { "_steer" };
@@ -179,10 +179,13 @@ impl {name} {{
         if f64::abs(cos_roll) < Self::MIN_COS_ROLL {{
             return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
         }}
-        let pivots: [(usize, f64); {n}] = [{pivots}];
-        for (row, pivot) in pivots {{
-            if pivot.is_nan() || pivot <= 0.0 {{
-                return Err({PLANT}::PlantError::SingularMass {{ row, pivot }});
+        // Each pivot is a ratio whose denominator the earlier checks made
+        // positive: its numerator's sign decides, the value is only divided
+        // out to be reported.
+        let pivots: [(usize, f64, f64); {n}] = [{pivots}];
+        for (row, num, den) in pivots {{
+            if num.is_nan() || num <= 0.0 {{
+                return Err({PLANT}::PlantError::SingularMass {{ row, pivot: num / den }});
             }}
         }}
         Ok(())
@@ -307,6 +310,9 @@ impl {PLANT}::Plant for {name} {{
             xdot.iter_mut().chain(wdot.iter_mut()).for_each(|v| *v = f64::NAN);
             return Ok(());
         }};
+        if let Ok(loads) = <&[{PLANT}::WheelLoad; {k}]>::try_from(loads) {{
+            return self.derivatives_array(x, w, loads, xdot, wdot);
+        }}
         let zero = {PLANT}::WheelLoad {{ force: [0.0; 3], moment: [0.0; 3], stator_torque: [0.0; 3] }};
         let mut fixed = [zero; {k}];
         for (f, l) in fixed.iter_mut().zip(loads) {{

@@ -253,7 +253,10 @@ fn trace_derivatives(
                 &mut xdot,
                 &mut wdot,
             );
-            let pivots: Vec<Sym> = order.iter().map(|&r| frozen.factor[r * n + r]).collect();
+            let pivots: Vec<(Sym, Sym)> = order
+                .iter()
+                .map(|&r| (frozen.factor[r * n + r], Sym::one()))
+                .collect();
             let cos_roll = match level.fidelity {
                 // The linearized attitude has no cos φ: never singular.
                 Fidelity::Linearized => Sym::one(),
@@ -283,10 +286,15 @@ fn trace_derivatives(
         place: "let cos_roll =".into(),
         group: 0,
     }];
-    for (&r, p) in order.iter().zip(&pivots) {
+    for (&r, (num, den)) in order.iter().zip(&pivots) {
         outputs.push(OutputVar {
-            id: p.0,
+            id: num.0,
             place: format!("let pivot_{r} ="),
+            group: 0,
+        });
+        outputs.push(OutputVar {
+            id: den.0,
+            place: format!("let pivot_den_{r} ="),
             group: 0,
         });
     }

@@ -336,15 +336,25 @@ impl Swing4Simplified {
                 - 0.015106701556945955 * t74 - 0.014155469990132813 * t73);
         let cos_roll = c_phi;
         let pivot_6 = 0.0220716925210835;
+        let pivot_den_6 = 1.0;
         let pivot_7 = 0.022018600628487907;
+        let pivot_den_7 = 1.0;
         let pivot_8 = 0.021829576095287684;
+        let pivot_den_8 = 1.0;
         let pivot_9 = 0.021746810291452496;
+        let pivot_den_9 = 1.0;
         let pivot_0 = 32.400000000000006;
+        let pivot_den_0 = 1.0;
         let pivot_1 = 32.400000000000006;
+        let pivot_den_1 = 1.0;
         let pivot_2 = 32.400000000000006;
+        let pivot_den_2 = 1.0;
         let pivot_3 = 0.8677457252323317;
+        let pivot_den_3 = 1.0;
         let pivot_4 = 1.1968049090891233;
+        let pivot_den_4 = 1.0;
         let pivot_5 = 1.8209819475727114;
+        let pivot_den_5 = 1.0;
         xdot[0] = vz * t40 + (vx * t38 - vy * t39);
         xdot[1] = vz * t43 + (vx * t41 + vy * t42);
         xdot[2] = vz * t8 + (vy * s_phi - vx * t7);
@@ -378,23 +388,23 @@ impl Swing4Simplified {
                 roll: x[3],
             });
         }
-        let pivots: [(usize, f64); 10] = [
-            (6, pivot_6),
-            (7, pivot_7),
-            (8, pivot_8),
-            (9, pivot_9),
-            (0, pivot_0),
-            (1, pivot_1),
-            (2, pivot_2),
-            (3, pivot_3),
-            (4, pivot_4),
-            (5, pivot_5),
+        let pivots: [(usize, f64, f64); 10] = [
+            (6, pivot_6, pivot_den_6),
+            (7, pivot_7, pivot_den_7),
+            (8, pivot_8, pivot_den_8),
+            (9, pivot_9, pivot_den_9),
+            (0, pivot_0, pivot_den_0),
+            (1, pivot_1, pivot_den_1),
+            (2, pivot_2, pivot_den_2),
+            (3, pivot_3, pivot_den_3),
+            (4, pivot_4, pivot_den_4),
+            (5, pivot_5, pivot_den_5),
         ];
-        for (row, pivot) in pivots {
-            if pivot.is_nan() || pivot <= 0.0 {
+        for (row, num, den) in pivots {
+            if num.is_nan() || num <= 0.0 {
                 return Err(::rover_dynamics::plant::PlantError::SingularMass {
                     row,
-                    pivot,
+                    pivot: num / den,
                 });
             }
         }
@@ -2119,6 +2129,9 @@ impl ::rover_dynamics::plant::Plant for Swing4Simplified {
             xdot.iter_mut().chain(wdot.iter_mut()).for_each(|v| *v = f64::NAN);
             return Ok(());
         };
+        if let Ok(loads) = <&[::rover_dynamics::plant::WheelLoad; 4]>::try_from(loads) {
+            return self.derivatives_array(x, w, loads, xdot, wdot);
+        }
         let zero = ::rover_dynamics::plant::WheelLoad {
             force: [0.0; 3],
             moment: [0.0; 3],
