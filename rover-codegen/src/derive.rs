@@ -268,8 +268,9 @@ fn level(
                 return Err(syn::Error::new(
                     span,
                     format!(
-                        "`y_ref` has {} values but the rover has {m} suspension coordinates ({})",
+                        "`y_ref` has {} values but the rover has {m} suspension coordinate{} ({}): give one per coordinate, in this order",
                         y.len(),
+                        if m == 1 { "" } else { "s" },
                         spec.coordinate_names.join(", ")
                     ),
                 ));

@@ -1,0 +1,11 @@
+use rover_derive::Rover;
+
+#[derive(Rover)]
+#[rover(
+    file = "../../../../rover-derive/tests/ui/good.toml",
+    fidelity = "linearized",
+    y_ref = [-0.3, 0.1]
+)]
+struct Frozen;
+
+fn main() {}
