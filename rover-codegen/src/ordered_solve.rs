@@ -1,12 +1,12 @@
-//! The linear solve `M·ẇ = b` of the generated right-hand side: LDLᵀ of M
-//! with the suspension coordinates eliminated first.
+//! The linear solve `M·ẇ = b` of the generated right-hand side: LDLᵀ of
+//! the suspension rows first, then the body's 6×6 Schur complement by two
+//! 3×3 adjugates ([`block_solve`]).
 //!
 //! ```text
-//! P·M·Pᵀ = L·D·Lᵀ,   P: order [y1 … ym, v, Ω]
+//! P·M·Pᵀ = L·D·Lᵀ on the first m columns,   P: order [y1 … ym, v, Ω]
 //! v_k   = L_jk·D_k                      (shared by every row i > j)
 //! D_j   = A_jj − Σ_{k<j} L_jk·v_k
 //! L_ij  = (A_ij − Σ_{k<j} L_ik·v_k) · (1/D_j)
-//! L·z = P·b,  z ← z·(1/D),  Lᵀ·u = z,  ẇ = Pᵀ·u
 //! ```
 //! Why not `rover_dynamics::solve::ldlt_solve` as the generic plant: traced,
 //! its order (v, Ω, then y) makes every suspension row fill in, and its
@@ -26,15 +26,16 @@ pub fn suspension_first(n: usize) -> Vec<usize> {
     (6..n).chain(0..6.min(n)).collect()
 }
 
-/// Solve `a·z = b` (`a` row-major N×N, symmetric) eliminating the rows
-/// in `order`; returns z and the pivots D in elimination order.
-pub fn ordered_ldlt_solve<S: Scalar>(a: &[S], b: &[S], order: &[usize]) -> (Vec<S>, Vec<S>) {
+/// LDLᵀ of the first `p` columns of `a` (row-major N×N, symmetric) taken
+/// in `order`: the multipliers L (row-major, every row), the pivots D and
+/// their reciprocals.
+fn eliminate<S: Scalar>(a: &[S], order: &[usize], p: usize) -> (Vec<S>, Vec<S>, Vec<S>) {
     let n = order.len();
     let at = |i: usize, j: usize| a[order[i] * n + order[j]];
     let mut l = vec![S::zero(); n * n];
     let mut d = vec![S::zero(); n];
     let mut inv = vec![S::zero(); n];
-    for j in 0..n {
+    for j in 0..p {
         let v: Vec<S> = (0..j).map(|k| l[j * n + k] * d[k]).collect();
         let mut dj = at(j, j);
         for (k, vk) in v.iter().enumerate() {
@@ -50,27 +51,7 @@ pub fn ordered_ldlt_solve<S: Scalar>(a: &[S], b: &[S], order: &[usize]) -> (Vec<
             l[i * n + j] = s * inv[j];
         }
     }
-    let mut z: Vec<S> = order.iter().map(|&r| b[r]).collect();
-    for i in 0..n {
-        for k in 0..i {
-            let t = l[i * n + k] * z[k];
-            z[i] -= t;
-        }
-    }
-    for i in 0..n {
-        z[i] *= inv[i];
-    }
-    for i in (0..n).rev() {
-        for k in i + 1..n {
-            let t = l[k * n + i] * z[k];
-            z[i] -= t;
-        }
-    }
-    let mut out = vec![S::zero(); n];
-    for (p, &r) in order.iter().enumerate() {
-        out[r] = z[p];
-    }
-    (out, d)
+    (l, d, inv)
 }
 
 /// Solve `a·z = b` (`a` row-major N×N, symmetric positive definite, N ≥ 6)
@@ -95,25 +76,7 @@ pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<(S, S)>) {
     let p = n - 6;
     let at = |i: usize, j: usize| a[order[i] * n + order[j]];
     // LDLᵀ of the suspension rows, with the body rows' multipliers.
-    let mut l = vec![S::zero(); n * n];
-    let mut d = vec![S::zero(); n];
-    let mut inv = vec![S::zero(); n];
-    for j in 0..p {
-        let v: Vec<S> = (0..j).map(|k| l[j * n + k] * d[k]).collect();
-        let mut dj = at(j, j);
-        for (k, vk) in v.iter().enumerate() {
-            dj -= l[j * n + k] * *vk;
-        }
-        d[j] = dj;
-        inv[j] = S::one() / dj;
-        for i in j + 1..n {
-            let mut s = at(i, j);
-            for (k, vk) in v.iter().enumerate() {
-                s -= l[i * n + k] * *vk;
-            }
-            l[i * n + j] = s * inv[j];
-        }
-    }
+    let (l, d, inv) = eliminate(a, &order, p);
     // The body's Schur complement and right-hand side.
     let mut z: Vec<S> = order.iter().map(|&r| b[r]).collect();
     for i in 0..n {
@@ -211,6 +174,32 @@ fn adjugate<S: Scalar>(a: &[[S; 3]; 3]) -> ([[S; 3]; 3], S, [(S, S); 3]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The plain LDLᵀ solve in `order` (every column eliminated): the
+    /// reference the block solve is held against.
+    fn ordered_ldlt_solve(a: &[f64], b: &[f64], order: &[usize]) -> (Vec<f64>, Vec<f64>) {
+        let n = order.len();
+        let (l, d, inv) = eliminate(a, order, n);
+        let mut z: Vec<f64> = order.iter().map(|&r| b[r]).collect();
+        for i in 0..n {
+            for k in 0..i {
+                z[i] -= l[i * n + k] * z[k];
+            }
+        }
+        for i in 0..n {
+            z[i] *= inv[i];
+        }
+        for i in (0..n).rev() {
+            for k in i + 1..n {
+                z[i] -= l[k * n + i] * z[k];
+            }
+        }
+        let mut out = vec![0.0; n];
+        for (p, &r) in order.iter().enumerate() {
+            out[r] = z[p];
+        }
+        (out, d)
+    }
 
     #[test]
     fn solves_a_symmetric_positive_definite_system_in_any_order() {
