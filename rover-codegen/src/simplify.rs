@@ -81,7 +81,11 @@ impl Rebuild<'_> {
             Node::Mul(a, b) => match (self.old.value(a), self.old.value(b)) {
                 (Some(c), _) => self.collect(b, scale * c, form, false),
                 (_, Some(c)) => self.collect(a, scale * c, form, false),
-                _ => unreachable!("a linear node multiplies by a constant"),
+                // Not linear after all: a term.
+                _ => {
+                    let t = self.get(id);
+                    form.add_term(t, scale);
+                }
             },
             _ => {
                 let t = self.get(id);
@@ -122,7 +126,9 @@ impl Rebuild<'_> {
                 Node::Min(..) => g.min(a(), b()),
                 Node::Copysign(..) => g.copysign(a(), b()),
                 Node::Ge(..) => g.ge(a(), b()),
-                Node::Add(..) | Node::Neg(_) => unreachable!("linear nodes are rebuilt as forms"),
+                // Linear nodes are rebuilt as forms above; kept total.
+                Node::Add(..) => g.add(a(), b()),
+                Node::Neg(_) => g.neg(a()),
             }
         };
         self.map[k] = Some(built);

@@ -156,7 +156,7 @@ impl MeridionalContact {
         self.scan(terrain, &frame, [first, last], step, hidden)
     }
 
-    /// The original search over samples `range[0] ..= range[1]` only; the
+    /// The sampled search over samples `range[0] ..= range[1]` only; the
     /// caller guarantees that every sample outside has a clearance above
     /// `hidden`.
     fn scan<H: HeightField + ?Sized>(
