@@ -55,7 +55,7 @@ fn eliminate<S: Scalar>(a: &[S], order: &[usize], p: usize) -> (Vec<S>, Vec<S>, 
 }
 
 /// Solve `a·z = b` (`a` row-major N×N, symmetric positive definite, N ≥ 6)
-/// by eliminating the suspension rows 6.. first ([`ordered_ldlt_solve`]'s
+/// by eliminating the suspension rows 6.. first ([`suspension_first`]
 /// order) and solving the remaining 6×6 Schur complement of the body in
 /// two 3×3 blocks with adjugates instead of six more LDLᵀ pivots:
 /// ```text
@@ -69,7 +69,7 @@ fn eliminate<S: Scalar>(a: &[S], order: &[usize], p: usize) -> (Vec<S>, Vec<S>, 
 /// that chain's latency, not by its operation count. The pivots returned
 /// are the LDLᵀ pivots in the same order, each as a (numerator,
 /// denominator) pair (the body's six from the leading minors of A and C',
-/// see [`adjugate`]), for the positive-definiteness check.
+/// see `adjugate`), for the positive-definiteness check.
 pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<(S, S)>) {
     let n = b.len();
     let order = suspension_first(n);
