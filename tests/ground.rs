@@ -270,21 +270,39 @@ fn contact_follows_a_bump_and_both_methods_agree() {
     }
 }
 
-/// A terrain that hides its height bound: the contact search then samples
-/// the whole half rim, as it did before the bound existed. Counts queries.
-struct Unbounded<'a>(&'a rover_runtime::terrain::Terrain, std::cell::Cell<usize>);
+/// A terrain seen through a probe that counts height queries and, unless
+/// `bounded`, hides the terrain's height bound: the contact search then
+/// samples the whole half rim, as it did before the bound existed.
+struct Probe<'a> {
+    terrain: &'a Terrain,
+    bounded: bool,
+    queries: std::cell::Cell<usize>,
+}
 
-impl rover_runtime::terrain::HeightField for Unbounded<'_> {
+impl<'a> Probe<'a> {
+    fn new(terrain: &'a Terrain, bounded: bool) -> Self {
+        Probe {
+            terrain,
+            bounded,
+            queries: std::cell::Cell::new(0),
+        }
+    }
+}
+
+impl rover_runtime::terrain::HeightField for Probe<'_> {
     fn height(&self, x: f64, y: f64) -> Result<f64, rover_runtime::terrain::OffMap> {
-        self.1.set(self.1.get() + 1);
-        self.0.height(x, y)
+        self.queries.set(self.queries.get() + 1);
+        self.terrain.height(x, y)
     }
     fn height_gradient(
         &self,
         x: f64,
         y: f64,
     ) -> Result<(f64, [f64; 2]), rover_runtime::terrain::OffMap> {
-        self.0.height_gradient(x, y)
+        self.terrain.height_gradient(x, y)
+    }
+    fn max_height_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {
+        self.terrain.max_height_in(area).filter(|_| self.bounded)
     }
 }
 
@@ -339,11 +357,10 @@ fn bounded_terrains() -> Vec<(&'static str, Terrain)> {
 fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
     use rover_runtime::contact::MeridionalContact;
     use rover_runtime::terrain::HeightField;
-    use std::cell::Cell;
     let mut rng = crate::support::rng::Rng::new(2026);
     let search = MeridionalContact::default();
     for (name, terrain) in bounded_terrains() {
-        let full = Unbounded(&terrain, Cell::new(0));
+        let full = Probe::new(&terrain, false);
         let mut touching = 0;
         for trial in 0..400 {
             let (x, y) = (rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
@@ -368,40 +385,17 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
 #[test]
 fn a_wheel_on_flat_ground_samples_only_the_rim_near_the_ground() {
     use rover_runtime::contact::MeridionalContact;
-    use rover_runtime::terrain::HeightField;
-    use std::cell::Cell;
-    // A bound that the search may use, counted: the same terrain, but the
-    // queries go through a counter.
-    struct Counted<'a>(Unbounded<'a>);
-    impl HeightField for Counted<'_> {
-        fn height(&self, x: f64, y: f64) -> Result<f64, rover_runtime::terrain::OffMap> {
-            self.0.height(x, y)
-        }
-        fn height_gradient(
-            &self,
-            x: f64,
-            y: f64,
-        ) -> Result<(f64, [f64; 2]), rover_runtime::terrain::OffMap> {
-            self.0.height_gradient(x, y)
-        }
-        fn max_height_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {
-            self.0.0.max_height_in(area)
-        }
-    }
     let flat = Terrain::default();
     let search = MeridionalContact::default();
     // 2 mm into the ground, as a rover at rest: the rim within 2.2 mm of the
     // ground is 2·7.5° of the 180° sampled.
-    let (culled, full) = (
-        Counted(Unbounded(&flat, Cell::new(0))),
-        Unbounded(&flat, Cell::new(0)),
-    );
+    let (culled, full) = (Probe::new(&flat, true), Probe::new(&flat, false));
     let centre = [0.0, 0.0, 0.25 - 2e-3];
     let a = search.find(&culled, centre, [0.0, 1.0, 0.0], 0.25).unwrap();
     let b = search.find(&full, centre, [0.0, 1.0, 0.0], 0.25).unwrap();
     assert_eq!(a, b);
     assert_eq!(a.count, 1);
-    let (used, all) = (culled.0.1.get(), full.1.get());
+    let (used, all) = (culled.queries.get(), full.queries.get());
     assert!(
         all >= 181,
         "the full search samples the whole half rim ({all})"

@@ -480,32 +480,9 @@ fn use_order(g: &Graph, f: &Function, top: usize) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::{InputVar, OutputVar};
 
     fn function(build: impl FnOnce(&mut Graph) -> Vec<Id>) -> Function {
-        let mut graph = Graph::new();
-        let outs = build(&mut graph);
-        Function {
-            graph,
-            inputs: ["a", "b", "phi"]
-                .iter()
-                .enumerate()
-                .map(|(k, n)| InputVar {
-                    name: n.to_string(),
-                    access: format!("x[{k}]"),
-                })
-                .collect(),
-            outputs: outs
-                .into_iter()
-                .enumerate()
-                .map(|(k, id)| OutputVar {
-                    id,
-                    place: format!("out[{k}] ="),
-                    group: 0,
-                })
-                .collect(),
-            groups: vec!["all".into()],
-        }
+        Function::for_test(&["a", "b", "phi"], build)
     }
 
     #[test]

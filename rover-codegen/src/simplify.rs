@@ -282,30 +282,9 @@ pub fn simplify(f: &Function) -> Function {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::InputVar;
 
     fn function(build: impl FnOnce(&mut Graph) -> Vec<Id>) -> Function {
-        let mut graph = Graph::new();
-        let outs = build(&mut graph);
-        Function {
-            graph,
-            inputs: (0..3)
-                .map(|k| InputVar {
-                    name: format!("x{k}"),
-                    access: format!("x[{k}]"),
-                })
-                .collect(),
-            outputs: outs
-                .into_iter()
-                .enumerate()
-                .map(|(k, id)| OutputVar {
-                    id,
-                    place: format!("out[{k}] ="),
-                    group: 0,
-                })
-                .collect(),
-            groups: vec!["all".into()],
-        }
+        Function::for_test(&["x0", "x1", "x2"], build)
     }
 
     fn ops(f: &Function) -> usize {

@@ -57,6 +57,37 @@ pub struct Function {
     pub groups: Vec<String>,
 }
 
+#[cfg(test)]
+impl Function {
+    /// A one-block function for unit tests: inputs `names[k]` read from
+    /// `x[k]`, the outputs of `build` written to `out[k]`.
+    pub(crate) fn for_test(names: &[&str], build: impl FnOnce(&mut Graph) -> Vec<Id>) -> Function {
+        let mut graph = Graph::new();
+        let outs = build(&mut graph);
+        Function {
+            graph,
+            inputs: names
+                .iter()
+                .enumerate()
+                .map(|(k, n)| InputVar {
+                    name: n.to_string(),
+                    access: format!("x[{k}]"),
+                })
+                .collect(),
+            outputs: outs
+                .into_iter()
+                .enumerate()
+                .map(|(k, id)| OutputVar {
+                    id,
+                    place: format!("out[{k}] ="),
+                    group: 0,
+                })
+                .collect(),
+            groups: vec!["all".into()],
+        }
+    }
+}
+
 /// Every function of a generated plant.
 #[derive(Clone, Debug)]
 pub struct Traced {

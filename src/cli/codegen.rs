@@ -55,14 +55,8 @@ pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
         None => None,
         Some(fidelity) => Some(rover_codegen::trace::Level {
             fidelity,
-            y_ref: rover_runtime::quasi_static::flat_ground_equilibrium(&spec.model).map_err(
-                |e| {
-                    CliError::Other(format!(
-                        "{}: cannot find the loaded equilibrium to freeze the {:?} level at: {e}",
-                        args.rover, fidelity
-                    ))
-                },
-            )?,
+            y_ref: super::simulate::reduced_level_reference(&spec.model)
+                .map_err(|e| CliError::Other(format!("{}: {e}", args.rover)))?,
         }),
     };
     if let Some(name) = &args.type_name

@@ -209,12 +209,22 @@ pub fn build_plant(
 ) -> Result<GenericPlant, CliError> {
     let y_ref = match level {
         rover_dynamics::fidelity::Fidelity::Full => model.rest(),
-        _ => rover_runtime::quasi_static::flat_ground_equilibrium(model).map_err(|e| {
-            CliError::Other(format!("cannot find the reference configuration: {e}"))
-        })?,
+        _ => reduced_level_reference(model)?,
     };
     GenericPlant::with_fidelity_at(model.clone(), level, &y_ref)
         .map_err(|e| CliError::Other(e.to_string()))
+}
+
+/// Where the CLI freezes a reduced level (MODEL.md §9): the rover's loaded
+/// static equilibrium on flat ground, not y_c (docs/FIDELITY.md says why).
+/// `simulate` and `codegen` both freeze here, so a generated reduced plant
+/// is the generic one.
+pub fn reduced_level_reference(model: &rover_dynamics::Model) -> Result<Vec<f64>, CliError> {
+    rover_runtime::quasi_static::flat_ground_equilibrium(model).map_err(|e| {
+        CliError::Other(format!(
+            "cannot find the loaded equilibrium to freeze a reduced fidelity level at: {e}"
+        ))
+    })
 }
 
 /// What every run of `simulate` shares, whichever the plant.
