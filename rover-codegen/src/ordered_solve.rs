@@ -26,32 +26,47 @@ pub fn suspension_first(n: usize) -> Vec<usize> {
     (6..n).chain(0..6.min(n)).collect()
 }
 
+/// The first `p` columns of an LDLᵀ factorization (row-major N×N, rows
+/// and columns taken in the elimination order).
+struct Elimination<S> {
+    /// Multipliers L, every row.
+    l: Vec<S>,
+    /// The same entries before division by their pivot, `U = L·D`: a
+    /// product with U does not wait for the division (for a suspension row
+    /// coupled to no other, U is M's own entry).
+    u: Vec<S>,
+    /// Pivots D.
+    d: Vec<S>,
+    /// Their reciprocals.
+    inv: Vec<S>,
+}
+
 /// LDLᵀ of the first `p` columns of `a` (row-major N×N, symmetric) taken
-/// in `order`: the multipliers L (row-major, every row), the pivots D and
-/// their reciprocals.
-fn eliminate<S: Scalar>(a: &[S], order: &[usize], p: usize) -> (Vec<S>, Vec<S>, Vec<S>) {
+/// in `order`.
+fn eliminate<S: Scalar>(a: &[S], order: &[usize], p: usize) -> Elimination<S> {
     let n = order.len();
     let at = |i: usize, j: usize| a[order[i] * n + order[j]];
     let mut l = vec![S::zero(); n * n];
+    let mut u = vec![S::zero(); n * n];
     let mut d = vec![S::zero(); n];
     let mut inv = vec![S::zero(); n];
     for j in 0..p {
-        let v: Vec<S> = (0..j).map(|k| l[j * n + k] * d[k]).collect();
         let mut dj = at(j, j);
-        for (k, vk) in v.iter().enumerate() {
-            dj -= l[j * n + k] * *vk;
+        for k in 0..j {
+            dj -= l[j * n + k] * u[j * n + k];
         }
         d[j] = dj;
         inv[j] = S::one() / dj;
         for i in j + 1..n {
             let mut s = at(i, j);
-            for (k, vk) in v.iter().enumerate() {
-                s -= l[i * n + k] * *vk;
+            for k in 0..j {
+                s -= l[i * n + k] * u[j * n + k];
             }
+            u[i * n + j] = s;
             l[i * n + j] = s * inv[j];
         }
     }
-    (l, d, inv)
+    Elimination { l, u, d, inv }
 }
 
 /// Solve `a·z = b` (`a` row-major N×N, symmetric positive definite, N ≥ 6)
@@ -76,7 +91,7 @@ pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<(S, S)>) {
     let p = n - 6;
     let at = |i: usize, j: usize| a[order[i] * n + order[j]];
     // LDLᵀ of the suspension rows, with the body rows' multipliers.
-    let (l, d, inv) = eliminate(a, &order, p);
+    let Elimination { l, u, d, inv } = eliminate(a, &order, p);
     // The body's Schur complement and right-hand side.
     let mut z: Vec<S> = order.iter().map(|&r| b[r]).collect();
     for i in 0..n {
@@ -88,7 +103,7 @@ pub fn block_solve<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, Vec<(S, S)>) {
     let schur = |i: usize, k: usize| {
         let mut s = at(p + i, p + k);
         for j in 0..p {
-            s -= l[(p + i) * n + j] * (l[(p + k) * n + j] * d[j]);
+            s -= l[(p + i) * n + j] * u[(p + k) * n + j];
         }
         s
     };
@@ -179,7 +194,7 @@ mod tests {
     /// reference the block solve is held against.
     fn ordered_ldlt_solve(a: &[f64], b: &[f64], order: &[usize]) -> (Vec<f64>, Vec<f64>) {
         let n = order.len();
-        let (l, d, inv) = eliminate(a, order, n);
+        let Elimination { l, d, inv, .. } = eliminate(a, order, n);
         let mut z: Vec<f64> = order.iter().map(|&r| b[r]).collect();
         for i in 0..n {
             for k in 0..i {
