@@ -27,7 +27,7 @@ pub struct Attitude<S> {
 }
 
 impl<S: Scalar> Attitude<S> {
-    /// From the angles φ (roll), θ (pitch), ψ (yaw) [rad].
+    /// From the angles φ (roll), θ (pitch), ψ (yaw) \[rad\].
     pub fn new(phi: S, theta: S, psi: S) -> Self {
         Self {
             sphi: phi.sin(),

@@ -13,7 +13,7 @@ use crate::workspace::Workspace;
 /// Loads on one wheel, inertial components (see [`crate::plant::WheelLoad`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Load<S> {
-    /// Resultant contact force at G_j [N].
+    /// Resultant contact force at G_j \[N\].
     pub force: V3<S>,
     /// Moment about G_j on the carrying member, axle component removed [N·m].
     pub moment: V3<S>,

@@ -83,7 +83,7 @@ pub fn body_velocity<S: Scalar>(ws: &Workspace<S>, j: usize, w: &[S]) -> V3<S> {
 /// Kinematics of one wheel, generic over the scalar (see [`crate::plant::WheelState`]).
 #[derive(Clone, Copy, Debug)]
 pub struct WheelKinematics<S> {
-    /// Wheel centre r_Gj, inertial [m].
+    /// Wheel centre r_Gj, inertial \[m\].
     pub centre: V3<S>,
     /// Absolute velocity of the centre, inertial [m/s].
     pub velocity: V3<S>,

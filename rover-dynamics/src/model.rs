@@ -29,7 +29,7 @@ pub struct Model {
 /// Mass and inertia of the body, at G, body components.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RigidBody {
-    /// Mass m_B [kg], > 0.
+    /// Mass m_B \[kg\], > 0.
     pub mass: f64,
     /// Inertia tensor J_B about G in body components [kg·m²], symmetric
     /// positive definite.
@@ -85,7 +85,7 @@ pub enum Spring {
 /// member (arm, rocker, bogie, upright) that holds it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CarriedBody {
-    /// Mass m_j [kg], ≥ 0 (the paper's arms are massless).
+    /// Mass m_j \[kg\], ≥ 0 (the paper's arms are massless).
     pub mass: f64,
     /// Optional inertia J_j about G_j [kg·m²], in body components at the rest
     /// configuration; it turns with the member (MODEL.md §3). Only allowed
@@ -126,7 +126,7 @@ pub enum MotorMount {
 pub struct Wheel {
     /// Index j of the carried body at the wheel centre.
     pub body: usize,
-    /// Radius R_w [m], > 0.
+    /// Radius R_w \[m\], > 0.
     pub radius: f64,
     /// Radial stiffness k_w [N/m], > 0 (eq. 36).
     pub stiffness: f64,
@@ -144,9 +144,9 @@ pub struct Wheel {
     pub motor: MotorMount,
     /// Whether a steering angle δ_j is commanded on this wheel.
     pub steerable: bool,
-    /// Camber γ_j(y) [rad] (MODEL.md §3, wheel orientation).
+    /// Camber γ_j(y) \[rad\] (MODEL.md §3, wheel orientation).
     pub camber: ScalarPoly,
-    /// Suspension-induced steer ε_j(y) [rad].
+    /// Suspension-induced steer ε_j(y) \[rad\].
     pub toe: ScalarPoly,
 }
 
@@ -159,7 +159,7 @@ impl Model {
     pub fn dof(&self) -> usize {
         6 + self.coordinates.len()
     }
-    /// Total mass m_B + Σ m_j [kg].
+    /// Total mass m_B + Σ m_j \[kg\].
     pub fn total_mass(&self) -> f64 {
         self.body.mass + self.bodies.iter().map(|b| b.mass).sum::<f64>()
     }
@@ -169,7 +169,7 @@ impl Model {
     }
 
     /// Height Z of G at which the rover, level and at rest, has its lowest
-    /// wheel just touching flat ground at Z = 0 [m].
+    /// wheel just touching flat ground at Z = 0 \[m\].
     pub fn touchdown_height(&self) -> f64 {
         let rest = self.rest();
         let lowest = self

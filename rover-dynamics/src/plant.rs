@@ -7,7 +7,7 @@
 /// Kinematics of one wheel centre G_j, inertial components.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct WheelState {
-    /// Position r_Gj [m] (eq. 7).
+    /// Position r_Gj \[m\] (eq. 7).
     pub centre: [f64; 3],
     /// Absolute velocity V_j [m/s] (eq. 12).
     pub velocity: [f64; 3],
@@ -18,7 +18,7 @@ pub struct WheelState {
 /// What the ground does to one wheel, reduced to its centre G_j (MODEL.md §7).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct WheelLoad {
-    /// Resultant contact force F [N], applied at G_j.
+    /// Resultant contact force F \[N\], applied at G_j.
     pub force: [f64; 3],
     /// Moment about G_j of the contact force [N·m], less its component along
     /// the spin axis; it acts on the member carrying the wheel.
@@ -40,7 +40,7 @@ pub enum PlantError {
     },
     /// cos φ vanished: the attitude representation is singular (rolled over).
     AttitudeSingular {
-        /// Roll angle φ [rad].
+        /// Roll angle φ \[rad\].
         roll: f64,
     },
 }

@@ -23,7 +23,7 @@ pub struct Term<T> {
     pub coeffs: Vec<T>,
 }
 
-/// A vector polynomial in the suspension coordinates (u_j, in body components [m]).
+/// A vector polynomial in the suspension coordinates (u_j, in body components \[m\]).
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct PolyVec {
     /// Constant part c_j.

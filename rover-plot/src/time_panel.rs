@@ -32,7 +32,7 @@ pub(crate) struct Line<'a> {
 pub(crate) struct TimePanel<'a> {
     /// Caption above the panel.
     pub caption: String,
-    /// Value axis description with its unit, e.g. `Z [m]`.
+    /// Value axis description with its unit, e.g. `Z \[m\]`.
     pub y_desc: String,
     /// The lines.
     pub lines: Vec<Line<'a>>,

@@ -25,13 +25,13 @@ pub enum ContactMethod {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct WheelReport {
     /// Contact point H of the patch with the largest normal force; the
-    /// wheel centre when the wheel is airborne [m].
+    /// wheel centre when the wheel is airborne \[m\].
     pub point: [f64; 3],
-    /// Sum of the normal forces [N].
+    /// Sum of the normal forces \[N\].
     pub normal: f64,
-    /// Sum of the drawbar pulls [N].
+    /// Sum of the drawbar pulls \[N\].
     pub drawbar: f64,
-    /// Sum of the lateral forces [N].
+    /// Sum of the lateral forces \[N\].
     pub lateral: f64,
     /// Torque the ground took from the motor, Σ |G_jH|·F_d [N·m].
     pub torque: f64,

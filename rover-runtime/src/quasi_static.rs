@@ -29,9 +29,9 @@ pub enum QuasiStaticError {
          (residual {residual:.3e} N): the rover may have lost contact or tipped; use a dynamic fidelity level here"
     )]
     NoConvergence {
-        /// Imposed X [m].
+        /// Imposed X \[m\].
         x: f64,
-        /// Imposed Y [m].
+        /// Imposed Y \[m\].
         y: f64,
         /// Iterations made.
         iterations: usize,
@@ -276,7 +276,7 @@ pub fn flat_ground_equilibrium(model: &Model) -> Result<Vec<f64>, QuasiStaticErr
     Ok(flat_ground_solution(model)?.0)
 }
 
-/// Each wheel's vertical load [N] in the static equilibrium on flat ground
+/// Each wheel's vertical load \[N\] in the static equilibrium on flat ground
 /// (the weights of a torque distribution "by static load", MODEL.md §8).
 pub fn flat_ground_loads(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
     Ok(flat_ground_solution(model)?.1)

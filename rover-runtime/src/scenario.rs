@@ -3,9 +3,9 @@
 //!
 //! ```toml
 //! rover = "exomars"          # a built-in name or a file, relative to this file
-//! duration = 40.0            # [s], settling included
-//! settle = 6.0               # [s] commands held at zero first (the paper's settling)
-//! output_rate = 20.0         # [Hz]
+//! duration = 40.0            # \[s\], settling included
+//! settle = 6.0               # \[s\] commands held at zero first (the paper's settling)
+//! output_rate = 20.0         # \[Hz\]
 //!
 //! [terrain]                  # see docs/TERRAIN.md; default flat
 //! kind = "random"
@@ -40,13 +40,13 @@ pub struct Scenario {
     /// scenario file). The command line's rover argument overrides it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rover: Option<String>,
-    /// Simulated time [s], settling included; > 0.
+    /// Simulated time \[s\], settling included; > 0.
     pub duration: f64,
-    /// Settling time [s]: commands (speed, steering, Δτ, active suspension)
+    /// Settling time \[s\]: commands (speed, steering, Δτ, active suspension)
     /// stay at zero until then, so the rover comes to rest on its wheels.
     #[serde(default)]
     pub settle: f64,
-    /// Output rows per second [Hz]; > 0.
+    /// Output rows per second \[Hz\]; > 0.
     #[serde(default = "default_rate")]
     pub output_rate: f64,
     /// No ground at all (free flight, issue 3's first use): the terrain is ignored.
@@ -67,7 +67,7 @@ pub struct Scenario {
     /// Contact search and wheel law.
     #[serde(default)]
     pub contact: ContactConfig,
-    /// |roll| or |pitch| beyond this stops the run as a roll-over [deg].
+    /// |roll| or |pitch| beyond this stops the run as a roll-over \[deg\].
     #[serde(default = "default_rollover")]
     pub rollover_limit_deg: f64,
     /// Model fidelity (MODEL.md §9): `"full"` (default), `"simplified"`,
@@ -133,13 +133,13 @@ fn default_integrator() -> IntegratorConfig {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InitialState {
-    /// X, Y of G [m].
+    /// X, Y of G \[m\].
     #[serde(default)]
     pub xy: [f64; 2],
-    /// Z of G [m]; absent: the lowest wheel just touches the ground.
+    /// Z of G \[m\]; absent: the lowest wheel just touches the ground.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub z: Option<f64>,
-    /// Roll φ, pitch θ, yaw ψ [deg].
+    /// Roll φ, pitch θ, yaw ψ \[deg\].
     #[serde(default)]
     pub attitude_deg: [f64; 3],
     /// Suspension coordinates y [rad or m]; absent: the rest values.

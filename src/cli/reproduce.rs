@@ -92,7 +92,7 @@ fn slip(z_r: f64, speed: f64, delta_tau: f64, duration: f64, extra: &str) -> Str
     )
 }
 
-/// Front-left steering angle of the Figs. 6–7 sweeps [deg] (the paper does
+/// Front-left steering angle of the Figs. 6–7 sweeps \[deg\] (the paper does
 /// not give it): R_k ≈ 1.2 m, so the 2 m run covers a ~90° arc and the
 /// fitted radius is well conditioned.
 const FIG67_DELTA: f64 = 20.0;

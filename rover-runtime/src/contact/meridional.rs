@@ -25,7 +25,7 @@ pub struct RimSampling {
     /// (MODEL.md §11), fine enough that a bump narrower than 1° of rim
     /// (1.6 mm on a 9 cm wheel) is the smallest feature missed.
     pub samples: usize,
-    /// Crossings are located to this height residual [m] (1e-9).
+    /// Crossings are located to this height residual \[m\] (1e-9).
     pub tolerance: f64,
 }
 

@@ -7,7 +7,7 @@ pub const MAX_PATCHES: usize = 4;
 /// One contact patch: the chord AB of the rim below ground (MODEL.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Patch {
-    /// Contact point H, the midpoint of AB, inertial [m].
+    /// Contact point H, the midpoint of AB, inertial \[m\].
     pub point: [f64; 3],
     /// Unit normal n = (G_j − H)/|G_j − H|, towards the wheel centre.
     pub normal: [f64; 3],
@@ -15,11 +15,11 @@ pub struct Patch {
     pub tangent: [f64; 3],
     /// Unit lateral c = n × t, to the wheel's left.
     pub lateral: [f64; 3],
-    /// Radial deflection Δ = R_w − |G_jH| [m].
+    /// Radial deflection Δ = R_w − |G_jH| \[m\].
     pub deflection: f64,
-    /// Distance |G_jH| [m]: the lever arm of the drive force.
+    /// Distance |G_jH| \[m\]: the lever arm of the drive force.
     pub lever: f64,
-    /// Rim angle of H, β from the downward direction d towards f [rad].
+    /// Rim angle of H, β from the downward direction d towards f \[rad\].
     pub angle: f64,
 }
 

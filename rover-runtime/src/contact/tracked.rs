@@ -12,7 +12,7 @@ use crate::terrain::{HeightField, OffMap};
 use super::meridional::{MeridionalContact, clearance, crossing};
 use super::patch::{Contact, RimFrame};
 
-/// March step of the crossing search [rad] (2°).
+/// March step of the crossing search \[rad\] (2°).
 const MARCH: f64 = 2.0 * core::f64::consts::PI / 180.0;
 /// Secant iterations on dh/dβ = 0.
 const NEWTON_STEPS: usize = 8;

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ActiveSuspensionConfig {
-    /// Update period Δt_c [s] (the paper's 0.1 s).
+    /// Update period Δt_c \[s\] (the paper's 0.1 s).
     #[serde(default = "default_sample")]
     pub sample_time: f64,
     /// Pitch gain K_p1 [rad of y0 per rad, per update].

@@ -167,7 +167,7 @@ impl Controller {
         })
     }
 
-    /// Time commands start (end of settling) [s].
+    /// Time commands start (end of settling) \[s\].
     pub fn settle_time(&self) -> f64 {
         self.settle
     }
@@ -237,7 +237,7 @@ impl Controller {
         }
     }
 
-    /// Steering angles δ_j [rad] at time t.
+    /// Steering angles δ_j \[rad\] at time t.
     pub fn steer(&self, t: f64, out: &mut [f64]) {
         out.iter_mut().for_each(|o| *o = 0.0);
         let Steering::Ackermann(a) = &self.config.steering else {

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 pub enum Profile {
     /// The same value at all times.
     Constant(f64),
-    /// A table of (time [s], value) pairs, times increasing.
+    /// A table of (time \[s\], value) pairs, times increasing.
     Table {
         /// The (t, value) points.
         points: Vec<[f64; 2]>,
@@ -41,7 +41,7 @@ impl Default for Profile {
 }
 
 impl Profile {
-    /// The value at time t [s] (before the first point: the first value).
+    /// The value at time t \[s\] (before the first point: the first value).
     pub fn at(&self, t: f64) -> f64 {
         match self {
             Profile::Constant(v) => *v,

@@ -30,15 +30,15 @@ pub enum Steering {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ackermann {
-    /// Lateral position R of the turn centre [m], R > 0 turns left
+    /// Lateral position R of the turn centre \[m\], R > 0 turns left
     /// (the kinematic radius is `sqrt(x_c² + R²)`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<Profile>,
-    /// Steering angle of the first steerable wheel [deg] (eq. 46's δ_1),
+    /// Steering angle of the first steerable wheel \[deg\] (eq. 46's δ_1),
     /// converted to κ with the general formula.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub front_left_deg: Option<Profile>,
-    /// Longitudinal position x_c of the turn centre [m]. Default: the mean
+    /// Longitudinal position x_c of the turn centre \[m\]. Default: the mean
     /// rest x of the non-steerable wheels, or when all steer, the rest x of
     /// the wheel nearest to G along x (the middle axle of a 6-wheeler).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -3,13 +3,13 @@
 /// A circle in the XY plane.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Circle {
-    /// Centre X [m].
+    /// Centre X \[m\].
     pub x: f64,
-    /// Centre Y [m].
+    /// Centre Y \[m\].
     pub y: f64,
-    /// Radius [m].
+    /// Radius \[m\].
     pub radius: f64,
-    /// RMS distance of the points from the circle [m].
+    /// RMS distance of the points from the circle \[m\].
     pub rms_residual: f64,
 }
 

@@ -29,26 +29,26 @@ pub struct Summary {
     pub error: Option<String>,
     /// Whether the CSV covers the whole requested duration.
     pub complete: bool,
-    /// Requested duration [s].
+    /// Requested duration \[s\].
     pub duration: f64,
-    /// Time reached [s].
+    /// Time reached \[s\].
     pub t_end: f64,
     /// Final state, by CSV column name (a JSON object in column order).
     #[serde(serialize_with = "as_map")]
     pub final_state: Vec<(String, f64)>,
-    /// Largest |roll| at output instants [deg].
+    /// Largest |roll| at output instants \[deg\].
     pub max_roll_deg: f64,
-    /// Largest |pitch| at output instants [deg].
+    /// Largest |pitch| at output instants \[deg\].
     pub max_pitch_deg: f64,
     /// Circle fitted to G's path after settling.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub turning_circle: Option<Circle>,
-    /// Kinematic turning radius R_k of the Ackermann command [m].
+    /// Kinematic turning radius R_k of the Ackermann command \[m\].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub kinematic_radius: Option<f64>,
     /// Wheels (1-based) that had their whole lower half below ground at some output instant.
     pub deep_penetration_wheels: Vec<usize>,
-    /// Wall-clock time of the integration [s].
+    /// Wall-clock time of the integration \[s\].
     pub wall_time_s: f64,
     /// Simulated seconds per wall-clock second.
     pub real_time_factor: f64,
@@ -89,13 +89,13 @@ pub struct RunEnd {
     pub status: Status,
     /// The error or interruption, if any.
     pub error: Option<String>,
-    /// Requested duration [s].
+    /// Requested duration \[s\].
     pub duration: f64,
-    /// Time reached [s].
+    /// Time reached \[s\].
     pub t_end: f64,
-    /// Kinematic turning radius R_k, if steering kinematically [m].
+    /// Kinematic turning radius R_k, if steering kinematically \[m\].
     pub kinematic_radius: Option<f64>,
-    /// Wall-clock time [s].
+    /// Wall-clock time \[s\].
     pub wall_time_s: f64,
     /// Method name.
     pub integrator: String,

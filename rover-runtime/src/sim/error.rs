@@ -23,19 +23,19 @@ pub enum RunError {
         "the rover rolled over at t = {t:.3} s: roll {roll_deg:.1}°, pitch {pitch_deg:.1}° (limit {limit_deg:.0}°)"
     )]
     RolledOver {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
-        /// Roll φ [deg].
+        /// Roll φ \[deg\].
         roll_deg: f64,
-        /// Pitch θ [deg].
+        /// Pitch θ \[deg\].
         pitch_deg: f64,
-        /// The limit [deg].
+        /// The limit \[deg\].
         limit_deg: f64,
     },
     /// The integrator stopped (divergence, failing right-hand side, step too small).
     #[error("the run stopped at t = {t:.6} s: {message}")]
     Integration {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
         /// What happened.
         message: String,
@@ -43,7 +43,7 @@ pub enum RunError {
     /// The output sink failed (disk full, closed pipe).
     #[error("writing the output failed at t = {t:.3} s: {message}")]
     Output {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
         /// The I/O error.
         message: String,
@@ -51,7 +51,7 @@ pub enum RunError {
 }
 
 impl RunError {
-    /// The simulation time of the failure [s].
+    /// The simulation time of the failure \[s\].
     pub fn time(&self) -> f64 {
         match self {
             RunError::RolledOver { t, .. }

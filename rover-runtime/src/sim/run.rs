@@ -14,18 +14,18 @@ use super::system::RoverSystem;
 /// Options of a run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunOptions {
-    /// End time [s].
+    /// End time \[s\].
     pub duration: f64,
-    /// Interval between output rows [s].
+    /// Interval between output rows \[s\].
     pub output_step: f64,
-    /// |φ| or |θ| beyond this is a roll-over [rad] (MODEL.md §1: 80°).
+    /// |φ| or |θ| beyond this is a roll-over \[rad\] (MODEL.md §1: 80°).
     pub rollover_limit: f64,
 }
 
 /// One output instant: the state and what the contact and the controller did.
 #[derive(Debug)]
 pub struct OutputRow<'a, P, H> {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
     /// The full state `[x; w; ζ]`.
     pub y: &'a [f64],
@@ -40,7 +40,7 @@ pub enum Stop {
     Completed,
     /// The user interrupted (Ctrl-C): what was computed is kept.
     Interrupted {
-        /// Time reached [s].
+        /// Time reached \[s\].
         t: f64,
     },
     /// The run failed.
@@ -52,11 +52,11 @@ pub enum Stop {
 pub struct RunOutcome {
     /// Why it ended.
     pub stop: Stop,
-    /// Time reached [s].
+    /// Time reached \[s\].
     pub t: f64,
-    /// Largest |φ| seen at output instants [rad].
+    /// Largest |φ| seen at output instants \[rad\].
     pub max_roll: f64,
-    /// Largest |θ| seen at output instants [rad].
+    /// Largest |θ| seen at output instants \[rad\].
     pub max_pitch: f64,
 }
 

@@ -66,7 +66,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     pub fn torques(&self) -> &[f64] {
         &self.torques
     }
-    /// Steering angles of the last evaluation [rad].
+    /// Steering angles of the last evaluation \[rad\].
     pub fn steering(&self) -> &[f64] {
         &self.steer
     }

@@ -3,7 +3,7 @@
 //! ```text
 //! ncols         4            header: one `key value` per line, keys in any
 //! nrows         3            order and any letter case
-//! xllcorner     0.0          or xllcenter: the south-west cell's corner / centre [m]
+//! xllcorner     0.0          or xllcenter: the south-west cell's corner / centre \[m\]
 //! yllcorner     0.0          or yllcenter
 //! cellsize      0.5          or `dx` and `dy` (GDAL's extension for non-square cells)
 //! NODATA_value  -9999        optional

@@ -21,8 +21,8 @@ pub struct Bump {
 }
 
 impl Bump {
-    /// A bump `height` [m] high (negative digs a dip), `width` [m] at the base,
-    /// `top_width` [m] flat on top, centred on `center` [m].
+    /// A bump `height` \[m\] high (negative digs a dip), `width` \[m\] at the base,
+    /// `top_width` \[m\] flat on top, centred on `center` \[m\].
     pub fn new(
         height: f64,
         width: f64,

@@ -60,7 +60,7 @@ impl Default for TerrainConfig {
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FlatConfig {
-    /// Ground height [m] (default 0).
+    /// Ground height \[m\] (default 0).
     #[serde(default)]
     pub height: f64,
 }
@@ -74,10 +74,10 @@ pub struct SlopeConfig {
     /// Direction of ascent [°] (default 0: rising towards +X).
     #[serde(default)]
     pub direction_deg: f64,
-    /// A point of the plane [m] (default the origin) ...
+    /// A point of the plane \[m\] (default the origin) ...
     #[serde(default)]
     pub origin: [f64; 2],
-    /// ... and its height [m] (default 0).
+    /// ... and its height \[m\] (default 0).
     #[serde(default)]
     pub height: f64,
 }
@@ -86,14 +86,14 @@ pub struct SlopeConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BumpConfig {
-    /// Height [m].
+    /// Height \[m\].
     pub height: f64,
-    /// Full width at the base [m].
+    /// Full width at the base \[m\].
     pub width: f64,
-    /// Flat top [m] (default 0).
+    /// Flat top \[m\] (default 0).
     #[serde(default)]
     pub top_width: f64,
-    /// Centre [m].
+    /// Centre \[m\].
     pub center: [f64; 2],
     /// Direction across the ridge [°] (default 0).
     #[serde(default)]
@@ -107,14 +107,14 @@ pub struct BumpConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DitchConfig {
-    /// Depth [m], > 0.
+    /// Depth \[m\], > 0.
     pub depth: f64,
-    /// Width at ground level [m].
+    /// Width at ground level \[m\].
     pub width: f64,
-    /// Flat floor [m] (default 0).
+    /// Flat floor \[m\] (default 0).
     #[serde(default)]
     pub bottom_width: f64,
-    /// Centre [m].
+    /// Centre \[m\].
     pub center: [f64; 2],
     /// Direction across the trench [°] (default 0).
     #[serde(default)]
@@ -128,14 +128,14 @@ pub struct DitchConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepConfig {
-    /// Rise [m] (negative: a step down).
+    /// Rise \[m\] (negative: a step down).
     pub height: f64,
-    /// A point of the step line [m].
+    /// A point of the step line \[m\].
     pub position: [f64; 2],
     /// Direction in which the ground rises [°] (default 0).
     #[serde(default)]
     pub direction_deg: f64,
-    /// Width of the cosine ramp [m] (default 0.01; 0 keeps the step sharp).
+    /// Width of the cosine ramp \[m\] (default 0.01; 0 keeps the step sharp).
     #[serde(default = "default_ramp_width")]
     pub ramp_width: f64,
 }
@@ -148,9 +148,9 @@ fn default_ramp_width() -> f64 {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SinusoidConfig {
-    /// Amplitude [m].
+    /// Amplitude \[m\].
     pub amplitude: f64,
-    /// Wavelength [m].
+    /// Wavelength \[m\].
     pub wavelength: f64,
     /// Direction the waves run along [°] (default 0).
     #[serde(default)]
@@ -170,25 +170,25 @@ pub struct RandomConfig {
     /// Seed (default 1).
     #[serde(default = "default_seed")]
     pub seed: u64,
-    /// Random node spacing L [m] (default 0.5).
+    /// Random node spacing L \[m\] (default 0.5).
     #[serde(default = "default_node_spacing")]
     pub node_spacing: f64,
-    /// Node values uniform in [−a, a] [m] (default a = 0.5).
+    /// Node values uniform in [−a, a] \[m\] (default a = 0.5).
     #[serde(default = "default_node_amplitude")]
     pub node_amplitude: f64,
-    /// Terrain grid spacing [m] (default 0.05).
+    /// Terrain grid spacing \[m\] (default 0.05).
     #[serde(default = "default_grid_spacing")]
     pub grid_spacing: f64,
-    /// Centre of the flat start patch [m] (default the origin).
+    /// Centre of the flat start patch \[m\] (default the origin).
     #[serde(default)]
     pub patch_center: [f64; 2],
-    /// Radius of the flat start patch [m] (default 0.3).
+    /// Radius of the flat start patch \[m\] (default 0.3).
     #[serde(default = "default_patch_radius")]
     pub patch_radius: f64,
-    /// Blend ring width [m] (default 0.5).
+    /// Blend ring width \[m\] (default 0.5).
     #[serde(default = "default_patch_blend")]
     pub patch_blend: f64,
-    /// `[x_min, x_max, y_min, y_max]` [m] (default [−20, 20, −20, 20]).
+    /// `[x_min, x_max, y_min, y_max]` \[m\] (default [−20, 20, −20, 20]).
     #[serde(default = "default_extent")]
     pub extent: [f64; 4],
     /// `"bicubic"` (default) or `"bilinear"`.
@@ -256,17 +256,17 @@ pub struct FileConfig {
     /// `"asc"`, `"csv"`, `"png"` or `"geotiff"` (default: from the extension).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub format: Option<FileFormat>,
-    /// Heights are `offset + scale·value` [m]; required for PNG (m per count),
+    /// Heights are `offset + scale·value` \[m\]; required for PNG (m per count),
     /// default 1 otherwise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<f64>,
-    /// See `scale` [m] (default 0).
+    /// See `scale` \[m\] (default 0).
     #[serde(default)]
     pub offset: f64,
-    /// South-west node `[X, Y]` [m], for PNG and header-less CSV.
+    /// South-west node `[X, Y]` \[m\], for PNG and header-less CSV.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub origin: Option<[f64; 2]>,
-    /// Node spacing `[dx, dy]` [m], with `origin`.
+    /// Node spacing `[dx, dy]` \[m\], with `origin`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spacing: Option<[f64; 2]>,
     /// `"bicubic"` (default) or `"bilinear"`.

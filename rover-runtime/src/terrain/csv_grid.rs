@@ -3,7 +3,7 @@
 //! ```text
 //! # comment lines start with '#' and may appear anywhere; blank lines are ignored
 //! x0,y0,dx,dy              optional header: these four keys, any order and case
-//! 0.0,0.0,0.5,0.5          ... and their values on the next line [m]
+//! 0.0,0.0,0.5,0.5          ... and their values on the next line \[m\]
 //! 1.0,1.1,1.2,1.3          row 1: Y = y0 (the south row), X = x0, x0 + dx, ... (west to east)
 //! 0.9,1.0,1.1,1.2          row 2: Y = y0 + dy
 //! 0.8,0.9,1.0,1.1          ...

@@ -21,8 +21,8 @@ pub struct Ditch {
 }
 
 impl Ditch {
-    /// A ditch `depth` [m] deep (> 0), `width` [m] wide at the top,
-    /// `bottom_width` [m] of flat floor, centred on `center` [m].
+    /// A ditch `depth` \[m\] deep (> 0), `width` \[m\] wide at the top,
+    /// `bottom_width` \[m\] of flat floor, centred on `center` \[m\].
     pub fn new(
         depth: f64,
         width: f64,

@@ -55,9 +55,9 @@ impl FileFormat {
 pub struct LoadOptions {
     /// Placement for files without one (PNG always, CSV without header).
     pub georeference: Option<Georeference>,
-    /// Heights are `offset + scale·value` [m]; required for PNG.
+    /// Heights are `offset + scale·value` \[m\]; required for PNG.
     pub scale: Option<f64>,
-    /// See `scale` [m].
+    /// See `scale` \[m\].
     pub offset: f64,
 }
 

@@ -12,14 +12,14 @@ pub struct Flat {
 }
 
 impl Flat {
-    /// Flat ground at `height` [m].
+    /// Flat ground at `height` \[m\].
     pub fn new(height: f64) -> Result<Flat, TerrainError> {
         Ok(Flat {
             height: finite("height", height, "m")?,
         })
     }
 
-    /// The ground height [m].
+    /// The ground height \[m\].
     pub fn level(&self) -> f64 {
         self.height
     }

@@ -10,10 +10,10 @@ use super::param::{finite, positive};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Georeference {
-    /// `[X, Y]` [m] of the south-west node (for an image, the centre of the
+    /// `[X, Y]` \[m\] of the south-west node (for an image, the centre of the
     /// bottom-left pixel).
     pub origin: [f64; 2],
-    /// `[dx, dy]` [m] between neighbouring nodes (pixel centres).
+    /// `[dx, dy]` \[m\] between neighbouring nodes (pixel centres).
     pub spacing: [f64; 2],
 }
 

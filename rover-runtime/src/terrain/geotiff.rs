@@ -4,7 +4,7 @@
 //! integers, 32/64-bit floats, any compression the crate knows). The
 //! georeference comes from the tags
 //! ```text
-//! ModelPixelScale (33550)  [sx, sy, sz]         pixel size [m]; sx, sy > 0
+//! ModelPixelScale (33550)  [sx, sy, sz]         pixel size \[m\]; sx, sy > 0
 //! ModelTiepoint   (33922)  [I, J, K, X, Y, Z]   raster point (I, J) is at model (X, Y)
 //! GeoKeyDirectory (34735)  key 1025 GTRasterTypeGeoKey: 1 PixelIsArea (default), 2 PixelIsPoint
 //! GDAL_NODATA     (42113)  optional ASCII number marking cells without data
@@ -41,7 +41,7 @@ const TRANSFORMATION: (&str, u16) = ("ModelTransformation", 34264);
 const RASTER_TYPE_KEY: u16 = 1025;
 const PIXEL_IS_POINT: u16 = 2;
 
-/// Reads a GeoTIFF DEM; heights are `offset + scale·value` [m].
+/// Reads a GeoTIFF DEM; heights are `offset + scale·value` \[m\].
 pub fn read_geotiff(path: &Path, scale: f64, offset: f64) -> Result<Grid, TerrainError> {
     decode_geotiff(&read_bytes(path)?, path, scale, offset)
 }

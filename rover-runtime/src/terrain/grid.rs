@@ -87,7 +87,7 @@ pub enum EdgePolicy {
     Clamp,
 }
 
-/// A regular grid of heights `Z_G` [m] at nodes `(X0 + i·dx, Y0 + j·dy)`,
+/// A regular grid of heights `Z_G` \[m\] at nodes `(X0 + i·dx, Y0 + j·dy)`,
 /// `i = 0 … nx−1` eastward, `j = 0 … ny−1` northward.
 ///
 /// Heights are stored row by row from the south row (`j = 0`), west to east:
@@ -107,7 +107,7 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// A grid from its south-west node `origin` [m], node `spacing` `[dx, dy]` [m],
+    /// A grid from its south-west node `origin` \[m\], node `spacing` `[dx, dy]` \[m\],
     /// node counts and `heights` (south row first, see [`Grid`]).
     ///
     /// Needs at least 2 × 2 nodes, finite origin, finite positive spacing, and
@@ -219,12 +219,12 @@ impl Grid {
         self
     }
 
-    /// The south-west node `[X0, Y0]` [m].
+    /// The south-west node `[X0, Y0]` \[m\].
     pub fn origin(&self) -> [f64; 2] {
         self.origin
     }
 
-    /// The node spacing `[dx, dy]` [m].
+    /// The node spacing `[dx, dy]` \[m\].
     pub fn spacing(&self) -> [f64; 2] {
         self.spacing
     }

@@ -6,20 +6,20 @@ use core::fmt;
 ///
 /// The contact search calls these about 181 times per wheel per right-hand-side
 /// evaluation, so implementations do no allocation, take no lock and return in a
-/// few tens of nanoseconds. Coordinates are inertial `X`, `Y` [m]; heights are
-/// inertial `Z` [m], positive up.
+/// few tens of nanoseconds. Coordinates are inertial `X`, `Y` \[m\]; heights are
+/// inertial `Z` \[m\], positive up.
 ///
 /// A query that cannot be answered — a point outside a finite map under the
 /// default edge policy, or a non-finite coordinate — returns [`OffMap`]; an
 /// implementation never returns a NaN or infinite height.
 pub trait HeightField {
-    /// Ground height `Z_G` [m] at inertial (`x`, `y`) [m], or the off-map error.
+    /// Ground height `Z_G` \[m\] at inertial (`x`, `y`) \[m\], or the off-map error.
     fn height(&self, x: f64, y: f64) -> Result<f64, OffMap>;
 
-    /// Height `Z_G` [m] and gradient `[∂Z_G/∂X, ∂Z_G/∂Y]` [m/m] at (`x`, `y`).
+    /// Height `Z_G` \[m\] and gradient `[∂Z_G/∂X, ∂Z_G/∂Y]` [m/m] at (`x`, `y`).
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap>;
 
-    /// An upper bound of `Z_G` [m] over the rectangle `area`, given only when
+    /// An upper bound of `Z_G` \[m\] over the rectangle `area`, given only when
     /// every point of it can be queried (no [`OffMap`]); `None` when either
     /// is unknown. The contact search samples only the part of the rim that
     /// can reach below this bound, so a tight bound saves time and a loose one
@@ -45,18 +45,18 @@ impl<H: HeightField + ?Sized> HeightField for &H {
     }
 }
 
-/// A rectangle of the horizontal plane, `[x_min, x_max] × [y_min, y_max]` [m].
+/// A rectangle of the horizontal plane, `[x_min, x_max] × [y_min, y_max]` \[m\].
 ///
 /// Unbounded terrains (the analytic library) report infinite bounds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounds {
-    /// Smallest `X` [m].
+    /// Smallest `X` \[m\].
     pub x_min: f64,
-    /// Largest `X` [m].
+    /// Largest `X` \[m\].
     pub x_max: f64,
-    /// Smallest `Y` [m].
+    /// Smallest `Y` \[m\].
     pub y_min: f64,
-    /// Largest `Y` [m].
+    /// Largest `Y` \[m\].
     pub y_max: f64,
 }
 
@@ -89,9 +89,9 @@ impl Bounds {
 /// which wheel left the map, when and where (MODEL.md §11).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OffMap {
-    /// Queried `X` [m].
+    /// Queried `X` \[m\].
     pub x: f64,
-    /// Queried `Y` [m].
+    /// Queried `Y` \[m\].
     pub y: f64,
     /// The area the terrain covers.
     pub bounds: Bounds,

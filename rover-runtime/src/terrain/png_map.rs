@@ -4,7 +4,7 @@
 //! at `Y = y0 + (height−1)·dy`), its left column the west edge. A sample `k`
 //! (0 … 65535, stored big-endian as PNG requires) is the height
 //! ```text
-//! Z = offset + scale·k      [m]
+//! Z = offset + scale·k      \[m\]
 //! ```
 //! A PNG carries no georeference: the scenario gives `origin` (the centre of
 //! the bottom-left pixel) and `spacing`. Only 16-bit grayscale is accepted:
@@ -25,7 +25,7 @@ use super::param::finite;
 pub struct SampleScale {
     /// Metres per count (non-zero; negative flips the relief).
     pub scale: f64,
-    /// Height [m] of sample 0.
+    /// Height \[m\] of sample 0.
     pub offset: f64,
 }
 

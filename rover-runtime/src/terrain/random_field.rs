@@ -44,17 +44,17 @@ pub struct RandomField {
     pub z_r: f64,
     /// Seed of the node values.
     pub seed: u64,
-    /// Lattice spacing `L` of the random nodes [m].
+    /// Lattice spacing `L` of the random nodes \[m\].
     pub node_spacing: f64,
-    /// Half-range `a` of the node values [m]: uniform in `[−a, a]`.
+    /// Half-range `a` of the node values \[m\]: uniform in `[−a, a]`.
     pub node_amplitude: f64,
-    /// Spacing of the terrain grid the field is sampled onto [m].
+    /// Spacing of the terrain grid the field is sampled onto \[m\].
     pub grid_spacing: f64,
-    /// Centre of the flat start patch [m].
+    /// Centre of the flat start patch \[m\].
     pub patch_center: [f64; 2],
-    /// Radius of the flat start patch [m].
+    /// Radius of the flat start patch \[m\].
     pub patch_radius: f64,
-    /// Width of the ring over which the patch blends into the field [m].
+    /// Width of the ring over which the patch blends into the field \[m\].
     pub patch_blend: f64,
     /// The area the terrain grid covers (the grid may reach up to one
     /// `grid_spacing` beyond `x_max`, `y_max`).
@@ -90,7 +90,7 @@ impl Default for RandomField {
 }
 
 impl RandomField {
-    /// The value `u_ij` [m] of lattice node (`i`, `j`), uniform in `[−a, a]`.
+    /// The value `u_ij` \[m\] of lattice node (`i`, `j`), uniform in `[−a, a]`.
     pub fn node_value(&self, i: i64, j: i64) -> f64 {
         self.node_amplitude * (2.0 * unit_f64(lattice_bits(self.seed, i, j)) - 1.0)
     }
@@ -184,7 +184,7 @@ impl RandomField {
         Grid::new([i_min * l, j_min * l], [l, l], nx, ny, values)
     }
 
-    /// The unscaled field `Z_ran` [m] at (`x`, `y`) (no patch, no `Z_R`),
+    /// The unscaled field `Z_ran` \[m\] at (`x`, `y`) (no patch, no `Z_R`),
     /// evaluated from the lattice directly (the terrain grid samples this).
     /// Builds the lattice over the extent on every call: for many points,
     /// use [`RandomField::grid`].

@@ -9,7 +9,7 @@ use super::param::{finite, positive, unit_vector};
 /// ```text
 /// Z_G = A·sin(2π·s/λ + φ),  s = X·cos ψ + Y·sin ψ
 /// ```
-/// A the amplitude [m], λ the wavelength [m], φ the phase; crests run
+/// A the amplitude \[m\], λ the wavelength \[m\], φ the phase; crests run
 /// perpendicular to ψ. Steepest slope `atan(2π·A/λ)`. Unbounded.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sinusoid {
@@ -20,7 +20,7 @@ pub struct Sinusoid {
 }
 
 impl Sinusoid {
-    /// Waves of `amplitude` [m] and `wavelength` [m] along `direction_deg`,
+    /// Waves of `amplitude` \[m\] and `wavelength` \[m\] along `direction_deg`,
     /// phase `phase_deg` at the origin.
     pub fn new(
         amplitude: f64,

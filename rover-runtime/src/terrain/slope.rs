@@ -19,7 +19,7 @@ pub struct Slope {
 }
 
 impl Slope {
-    /// A plane through `origin` at `height` [m], inclined `angle_deg` (|α| < 90°)
+    /// A plane through `origin` at `height` \[m\], inclined `angle_deg` (|α| < 90°)
     /// with ascent towards `direction_deg`.
     pub fn new(
         angle_deg: f64,

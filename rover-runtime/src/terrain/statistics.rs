@@ -10,15 +10,15 @@ use super::param::positive;
 pub struct TerrainStatistics {
     /// Number of sample points.
     pub samples: usize,
-    /// Mean height [m].
+    /// Mean height \[m\].
     pub mean_height: f64,
-    /// RMS height about the mean, `√(mean((Z − Z̄)²))` [m].
+    /// RMS height about the mean, `√(mean((Z − Z̄)²))` \[m\].
     pub rms_height: f64,
     /// RMS slope, `√(mean(|∇Z|²))` [m/m] (a tangent, not an angle).
     pub rms_slope: f64,
     /// Steepest slope, `atan(max |∇Z|)` [°].
     pub max_slope_deg: f64,
-    /// Correlation lengths along X and Y [m]: the lag at which the
+    /// Correlation lengths along X and Y \[m\]: the lag at which the
     /// autocorrelation `mean((Z(p) − Z̄)(Z(p + τ) − Z̄))/var` first falls below
     /// 1/e (linear between samples); `None` if it does not within half the
     /// sampled span, or the terrain is flat.
@@ -46,7 +46,7 @@ impl TerrainStatistics {
         finish(grid.heights(), nx, ny, [dx, dy], slope_sq, max_slope)
     }
 
-    /// Statistics of any height field sampled at `step` `[sx, sy]` [m] over
+    /// Statistics of any height field sampled at `step` `[sx, sy]` \[m\] over
     /// `bounds` (from the south-west corner, as many whole steps as fit).
     pub fn sample<H: HeightField + ?Sized>(
         field: &H,

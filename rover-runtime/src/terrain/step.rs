@@ -26,8 +26,8 @@ pub struct Step {
 }
 
 impl Step {
-    /// A step `height` [m] at `position` [m], rising towards `direction_deg`,
-    /// smoothed over `ramp_width` [m] (0 keeps it sharp).
+    /// A step `height` \[m\] at `position` \[m\], rising towards `direction_deg`,
+    /// smoothed over `ramp_width` \[m\] (0 keeps it sharp).
     pub fn new(
         height: f64,
         position: [f64; 2],

@@ -31,7 +31,7 @@ impl Default for ChenGenta {
 }
 
 /// Sideslip angle α between the heading t and the centre's velocity,
-/// regularized at standstill: `α = atan2(V_c, max(|V_t|, v_ε))` [rad].
+/// regularized at standstill: `α = atan2(V_c, max(|V_t|, v_ε))` \[rad\].
 pub fn sideslip(motion: &PatchMotion, v_eps: f64) -> f64 {
     motion.v_c.atan2(motion.v_t.abs().max(v_eps))
 }
@@ -40,7 +40,7 @@ pub fn sideslip(motion: &PatchMotion, v_eps: f64) -> f64 {
 /// ```text
 /// F_c = −μy·F_n·sgn(α)·(1 − exp(−C·|α| / (μy·F_n)))
 /// ```
-/// α sideslip [rad], F_n normal force [N] (> 0), C cornering stiffness [N/rad].
+/// α sideslip \[rad\], F_n normal force \[N\] (> 0), C cornering stiffness [N/rad].
 /// Positive result points along c = n × t, i.e. to the wheel's left; it
 /// opposes the sideslip.
 pub fn cornering_force(tyre: &Tyre, normal: f64, alpha: f64) -> f64 {

@@ -22,7 +22,7 @@ pub struct Tyre {
 /// The motion of one patch, in its own frame (n, t, c).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PatchMotion {
-    /// Radial deflection Δ [m].
+    /// Radial deflection Δ \[m\].
     pub deflection: f64,
     /// Deflection rate Δ̇ = −V_j·n [m/s].
     pub deflection_rate: f64,
@@ -30,7 +30,7 @@ pub struct PatchMotion {
     pub v_t: f64,
     /// Velocity of the wheel centre along c [m/s].
     pub v_c: f64,
-    /// Lever arm |G_jH| [m].
+    /// Lever arm |G_jH| \[m\].
     pub lever: f64,
     /// Drive torque assigned to this patch [N·m].
     pub torque: f64,
@@ -39,11 +39,11 @@ pub struct PatchMotion {
 /// Forces on one patch, in its frame: `F = F_n·n + F_d·t + F_c·c`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PatchForces {
-    /// Normal force F_n ≥ 0 [N].
+    /// Normal force F_n ≥ 0 \[N\].
     pub normal: f64,
-    /// Drawbar pull F_d along t, after saturation [N].
+    /// Drawbar pull F_d along t, after saturation \[N\].
     pub drawbar: f64,
-    /// Lateral force along c, after combined slip [N].
+    /// Lateral force along c, after combined slip \[N\].
     pub lateral: f64,
 }
 
@@ -55,7 +55,7 @@ pub trait WheelLaw {
     fn forces(&self, tyre: &Tyre, motion: &PatchMotion) -> PatchForces;
 }
 
-/// Depth over which the tyre damper ramps in [m]. Eq. 37's damper acting in
+/// Depth over which the tyre damper ramps in \[m\]. Eq. 37's damper acting in
 /// full at the first touch makes the normal force jump from 0 to c_w·Δ̇ when
 /// a wheel lands, a discontinuity that stalls step-size control (a rover
 /// hopping at 1 m/s on rough ground did). Ramping the damper in over the

@@ -6,6 +6,7 @@ mod magic_formula;
 
 pub use chen_genta::ChenGenta;
 pub use law::{
-    PatchForces, PatchMotion, Tyre, WheelLaw, WheelLawConfig, normal_force as normal_force_of,
+    DAMPING_RAMP, PatchForces, PatchMotion, Tyre, WheelLaw, WheelLawConfig,
+    normal_force as normal_force_of,
 };
 pub use magic_formula::MagicFormula;
