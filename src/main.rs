@@ -9,7 +9,11 @@ fn main() -> ExitCode {
     match rover::cli::run(args) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e}");
+            if e.is_rendered() {
+                eprintln!("{e}");
+            } else {
+                eprintln!("error: {e}");
+            }
             ExitCode::from(2)
         }
     }

@@ -79,7 +79,13 @@ fn simulate_writes_every_output_for_both_paper_rovers() {
 }
 
 fn bad_scenario(text: &str) -> String {
-    let dir = scratch("bad");
+    bad_scenario_in("bad", text)
+}
+
+/// The error of simulating swing4 with scenario `text` in scratch folder
+/// `name` (outputs in `name/out`).
+fn bad_scenario_in(name: &str, text: &str) -> String {
+    let dir = scratch(name);
     let scenario = write(&dir, "bad.toml", text);
     let args = SimulateArgs {
         rover: Some("swing4".into()),
@@ -91,6 +97,22 @@ fn bad_scenario(text: &str) -> String {
     };
     let e = simulate(&args).expect_err("the scenario is bad");
     e.to_string().replace(&dir.display().to_string(), "<dir>")
+}
+
+#[test]
+fn a_run_that_cannot_start_leaves_a_failed_summary_and_no_csv() {
+    let text = bad_scenario_in(
+        "cannot_start",
+        "duration = 5.0\n[control.steering]\nkind = \"ackermann\"\nradius = 2.0\n",
+    );
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli/cannot_start/out");
+    assert!(!out.join("run.csv").exists(), "an empty CSV is left behind");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["status"], "failed");
+    assert_eq!(summary["complete"], false);
+    let error = summary["error"].as_str().unwrap();
+    assert!(error.contains("steerable"), "{error} (CLI: {text})");
 }
 
 #[test]
@@ -148,6 +170,11 @@ fn check_prints_the_rover_and_bad_files_exit_with_status_2() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("bad.toml:4:8") && err.contains("mass"),
+        "{err}"
+    );
+    // One `error:` per diagnostic, not the CLI's prefix on top of it.
+    assert!(
+        err.starts_with("error: body.mass") && !err.contains("error: error"),
         "{err}"
     );
     let ok = Command::new(env!("CARGO_BIN_EXE_rover"))

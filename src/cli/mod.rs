@@ -64,6 +64,14 @@ pub enum CliError {
     Other(String),
 }
 
+impl CliError {
+    /// Whether the message is already rendered as diagnostics, each headed
+    /// `error:` (a description's), so that the caller adds no prefix.
+    pub fn is_rendered(&self) -> bool {
+        matches!(self, CliError::Spec(_))
+    }
+}
+
 /// Run a parsed command line; the exit code says how it went (0 success,
 /// 1 a run that stopped early, 2 bad input).
 pub fn run(cli: Cli) -> Result<ExitCode, CliError> {

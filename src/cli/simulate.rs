@@ -142,7 +142,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
             Some(l) => format!("{}:{l}: ", args.scenario.display()),
             None => format!("{}: ", args.scenario.display()),
         };
-        CliError::Setup { location, source }
+        let e = CliError::Setup { location, source };
+        // Nothing was computed: no CSV, and a summary that says why.
+        fail_outputs(&csv_path, &summary_path, &e);
+        e
     })?;
     summary.plant = backend;
     bar.finish_and_clear();
@@ -170,6 +173,22 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         ),
     });
     Ok(SimulateReport { summary, files })
+}
+
+/// The outputs of a run that could not start: the CSV (created before the
+/// setup, holding not even its header) is removed and the "running"
+/// summary replaced by a failed one carrying the error. Best effort: the
+/// error itself is what the caller reports.
+fn fail_outputs(csv: &Path, summary: &Path, e: &CliError) {
+    if std::fs::metadata(csv).is_ok_and(|m| m.len() == 0) {
+        let _ = std::fs::remove_file(csv);
+    }
+    let json = serde_json::json!({
+        "status": "failed",
+        "complete": false,
+        "error": e.to_string(),
+    });
+    let _ = std::fs::write(summary, format!("{json:#}\n"));
 }
 
 /// The run's plots (PNG and SVG), when built with the `plots` feature.
