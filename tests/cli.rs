@@ -116,6 +116,25 @@ fn a_run_that_cannot_start_leaves_a_failed_summary_and_no_csv() {
 }
 
 #[test]
+fn an_output_path_that_is_a_file_is_refused_with_a_fix() {
+    let dir = scratch("out_is_a_file");
+    let out = write(&dir, "taken", "not a folder");
+    let args = SimulateArgs {
+        rover: Some("swing4".into()),
+        scenario: write(&dir, "s.toml", "duration = 0.1\n"),
+        out: out.clone(),
+        quiet: true,
+        no_plots: true,
+        generic: false,
+    };
+    let e = simulate(&args)
+        .expect_err("the output is a file")
+        .to_string();
+    assert!(e.contains("taken: is a file") && e.contains("--out"), "{e}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "not a folder");
+}
+
+#[test]
 fn bad_scenario_files_get_located_errors() {
     insta::assert_snapshot!(
         "unknown_field",

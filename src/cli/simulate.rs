@@ -64,8 +64,10 @@ fn interrupt_flag() -> Arc<AtomicBool> {
     .clone()
 }
 
-fn io_err(path: &Path, e: std::io::Error) -> CliError {
-    CliError::Other(format!("{}: {e}", path.display()))
+/// An output that cannot be written: the path, what was being done, the
+/// system's reason.
+fn io_err(path: &Path, doing: &str, e: std::io::Error) -> CliError {
+    CliError::Other(format!("{}: cannot {doing}: {e}", path.display()))
 }
 
 /// Run the scenario and write `run.csv` and `summary.json` into `args.out`.
@@ -84,7 +86,14 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         ))
     })?;
     let spec = load_rover(&rover, Some(&base))?;
-    std::fs::create_dir_all(&args.out).map_err(|e| io_err(&args.out, e))?;
+    if args.out.exists() && !args.out.is_dir() {
+        return Err(CliError::Other(format!(
+            "{}: is a file, not a folder; give `--out` a folder (it is created if missing)",
+            args.out.display()
+        )));
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| io_err(&args.out, "create the output folder", e))?;
     let csv_path = args.out.join("run.csv");
     let summary_path = args.out.join("summary.json");
     // A summary saying "running" first: a run killed hard leaves no
@@ -93,8 +102,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         &summary_path,
         "{\"status\": \"running\", \"complete\": false}\n",
     )
-    .map_err(|e| io_err(&summary_path, e))?;
-    let csv = BufWriter::new(File::create(&csv_path).map_err(|e| io_err(&csv_path, e))?);
+    .map_err(|e| io_err(&summary_path, "write the summary", e))?;
+    let csv = BufWriter::new(
+        File::create(&csv_path).map_err(|e| io_err(&csv_path, "create the CSV", e))?,
+    );
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -151,7 +162,8 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     bar.finish_and_clear();
     let json =
         serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
-    std::fs::write(&summary_path, json + "\n").map_err(|e| io_err(&summary_path, e))?;
+    std::fs::write(&summary_path, json + "\n")
+        .map_err(|e| io_err(&summary_path, "write the summary", e))?;
     let mut files = vec![csv_path.clone(), summary_path];
     if !args.no_plots {
         files.extend(plots(&csv_path, &args.out, &spec, scenario.settle)?);
