@@ -105,6 +105,13 @@ impl RimFrame {
         ]
     }
 
+    /// dP/dβ = R·(−sin β·d + cos β·f), from sin β and cos β.
+    #[inline]
+    pub fn tangent_sc(&self, s: f64, c: f64) -> [f64; 3] {
+        let (d, f, r) = (self.down, self.forward, self.radius);
+        [0, 1, 2].map(|k| r * (c * f[k] - s * d[k]))
+    }
+
     /// Build the patch from its crossings A, B (rim angles).
     pub fn patch(&self, beta_a: f64, beta_b: f64) -> Patch {
         let a = self.point(beta_a);
