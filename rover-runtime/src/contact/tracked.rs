@@ -2,10 +2,10 @@
 //! our form of the paper's eq. 35, whose extracted text is garbled).
 //!
 //! From the previous rim angle β* of H, a few secant steps on dh/dβ = 0 (the
-//! slope from the terrain's gradient) reach the deepest rim point; A and B are then found by marching outwards from it
-//! and refining with the meridional crossing search. One patch per wheel; the
-//! meridional search is the fallback when there is no previous contact or the
-//! iteration fails.
+//! slope from the terrain's gradient) reach the deepest rim point; A and B
+//! are then found by marching outwards from it and refining with the
+//! meridional crossing search. One patch per wheel; the meridional search is
+//! the fallback when there is no previous contact or the iteration fails.
 
 use crate::terrain::{HeightField, OffMap};
 
