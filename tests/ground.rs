@@ -299,6 +299,7 @@ impl rover_runtime::terrain::HeightField for Probe<'_> {
         x: f64,
         y: f64,
     ) -> Result<(f64, [f64; 2]), rover_runtime::terrain::OffMap> {
+        self.queries.set(self.queries.get() + 1);
         self.terrain.height_gradient(x, y)
     }
     fn max_height_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {

@@ -9,27 +9,13 @@
 
 use crate::terrain::{HeightField, OffMap};
 
-use super::meridional::{MeridionalContact, clearance, crossing};
+use super::meridional::{MeridionalContact, clearance, clearance_slope, crossing};
 use super::patch::{Contact, RimFrame};
 
 /// March step of the crossing search \[rad\] (2°).
 const MARCH: f64 = 2.0 * core::f64::consts::PI / 180.0;
 /// Secant iterations on dh/dβ = 0.
 const NEWTON_STEPS: usize = 8;
-
-/// dh/dβ = dZ_P/dβ − ∇Z_G·(dX_P/dβ, dY_P/dβ) at rim angle β: one terrain
-/// query with its gradient instead of two for a finite difference.
-fn clearance_slope<H: HeightField + ?Sized>(
-    terrain: &H,
-    frame: &RimFrame,
-    beta: f64,
-) -> Result<f64, OffMap> {
-    let (s, c) = beta.sin_cos();
-    let p = frame.point_sc(s, c);
-    let (_, [zx, zy]) = terrain.height_gradient(p[0], p[1])?;
-    let t = frame.tangent_sc(s, c);
-    Ok(t[2] - zx * t[0] - zy * t[1])
-}
 
 /// The tracking search; holds the previous contact angle of one wheel.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -89,7 +75,7 @@ impl TrackedContact {
     ) -> Result<Option<Contact>, OffMap> {
         let half = core::f64::consts::FRAC_PI_2;
         let tol = self.fallback.sampling.tolerance;
-        let slope = |b: f64| clearance_slope(terrain, frame, b);
+        let slope = |b: f64| clearance_slope(terrain, frame, b).map(|(_, g)| g);
         // Secant on g(β) = dh/dβ.
         let (mut b_prev, mut b) = (b0 - 0.01, b0);
         let (mut g_prev, mut g) = (slope(b_prev)?, slope(b)?);
@@ -153,7 +139,8 @@ mod tests {
             let fd = (clearance(&terrain, &frame, b + e).unwrap()
                 - clearance(&terrain, &frame, b - e).unwrap())
                 / (2.0 * e);
-            let exact = clearance_slope(&terrain, &frame, b).unwrap();
+            let (h, exact) = clearance_slope(&terrain, &frame, b).unwrap();
+            assert_eq!(h, clearance(&terrain, &frame, b).unwrap());
             assert!((exact - fd).abs() < 1e-7, "β = {b}: {exact} vs {fd}");
         }
     }
