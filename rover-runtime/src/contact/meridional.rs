@@ -17,7 +17,7 @@
 
 use crate::terrain::{Bounds, HeightField, OffMap};
 
-use super::patch::{Contact, RimFrame};
+use super::patch::{Contact, RimAngle, RimFrame};
 
 /// How the rim is sampled and how precisely crossings are located.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,9 +88,9 @@ fn default_table() -> &'static [(f64, f64); DEFAULT_SAMPLES] {
 pub(crate) fn clearance_slope<H: HeightField + ?Sized>(
     terrain: &H,
     frame: &RimFrame,
-    beta: f64,
+    at: RimAngle,
 ) -> Result<(f64, f64), OffMap> {
-    let (s, c) = beta.sin_cos();
+    let (s, c) = (at.sin, at.cos);
     let p = frame.point_sc(s, c);
     let (z, [zx, zy]) = terrain.height_gradient(p[0], p[1])?;
     let t = frame.tangent_sc(s, c);
@@ -110,7 +110,7 @@ pub(crate) fn crossing<H: HeightField + ?Sized>(
     mut hi: f64,
     mut h_hi: f64,
     tolerance: f64,
-) -> Result<f64, OffMap> {
+) -> Result<RimAngle, OffMap> {
     let mut side = 0i8;
     let mut newton = None;
     for _ in 0..60 {
@@ -127,9 +127,10 @@ pub(crate) fn crossing<H: HeightField + ?Sized>(
                 if inside(b) { b } else { 0.5 * (lo + hi) }
             }
         };
-        let (hb, slope) = clearance_slope(terrain, frame, b)?;
+        let at = RimAngle::new(b);
+        let (hb, slope) = clearance_slope(terrain, frame, at)?;
         if hb.abs() <= tolerance || (hi - lo).abs() < 1e-15 {
-            return Ok(b);
+            return Ok(at);
         }
         newton = (slope != 0.0).then(|| b - hb / slope);
         if (hb < 0.0) == (h_hi < 0.0) {
@@ -148,7 +149,7 @@ pub(crate) fn crossing<H: HeightField + ?Sized>(
             side = 1;
         }
     }
-    Ok(0.5 * (lo + hi))
+    Ok(RimAngle::new(0.5 * (lo + hi)))
 }
 
 impl MeridionalContact {
@@ -206,9 +207,9 @@ impl MeridionalContact {
         let tol = self.sampling.tolerance;
         let mut prev = sample(range[0])?;
         // Start of the current run below ground: (angle, is it a sample end?)
-        let mut start: Option<f64> = if prev < 0.0 {
+        let mut start: Option<RimAngle> = if prev < 0.0 {
             contact.deep = true;
-            Some(beta(0))
+            Some(RimAngle::new(beta(0)))
         } else {
             None
         };
@@ -238,7 +239,7 @@ impl MeridionalContact {
         }
         if let Some(a) = start {
             contact.deep = true;
-            contact.push(frame.patch(a, beta(n - 1)));
+            contact.push(frame.patch(a, RimAngle::new(beta(n - 1))));
         }
         Ok(contact)
     }

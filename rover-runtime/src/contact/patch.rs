@@ -55,6 +55,22 @@ impl Contact {
     }
 }
 
+/// A rim angle β with its sine and cosine, computed once: a crossing found
+/// by the search is also a patch end, and its point is needed again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct RimAngle {
+    pub beta: f64,
+    pub sin: f64,
+    pub cos: f64,
+}
+
+impl RimAngle {
+    pub fn new(beta: f64) -> Self {
+        let (sin, cos) = beta.sin_cos();
+        Self { beta, sin, cos }
+    }
+}
+
 /// The wheel's mid-plane frame: `d` downward in the plane, `f = d × a` forward.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RimFrame {
@@ -113,9 +129,10 @@ impl RimFrame {
     }
 
     /// Build the patch from its crossings A, B (rim angles).
-    pub fn patch(&self, beta_a: f64, beta_b: f64) -> Patch {
-        let a = self.point(beta_a);
-        let b = self.point(beta_b);
+    pub fn patch(&self, end_a: RimAngle, end_b: RimAngle) -> Patch {
+        let (beta_a, beta_b) = (end_a.beta, end_b.beta);
+        let a = self.point_sc(end_a.sin, end_a.cos);
+        let b = self.point_sc(end_b.sin, end_b.cos);
         let h = [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]));
         let gh = [0, 1, 2].map(|k| self.centre[k] - h[k]);
         let lever = norm(gh);

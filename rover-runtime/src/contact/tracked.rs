@@ -10,7 +10,7 @@
 use crate::terrain::{HeightField, OffMap};
 
 use super::meridional::{MeridionalContact, clearance, clearance_slope, crossing};
-use super::patch::{Contact, RimFrame};
+use super::patch::{Contact, RimAngle, RimFrame};
 
 /// March step of the crossing search \[rad\] (2°).
 const MARCH: f64 = 2.0 * core::f64::consts::PI / 180.0;
@@ -75,7 +75,7 @@ impl TrackedContact {
     ) -> Result<Option<Contact>, OffMap> {
         let half = core::f64::consts::FRAC_PI_2;
         let tol = self.fallback.sampling.tolerance;
-        let slope = |b: f64| clearance_slope(terrain, frame, b).map(|(_, g)| g);
+        let slope = |b: f64| clearance_slope(terrain, frame, RimAngle::new(b)).map(|(_, g)| g);
         // Secant on g(β) = dh/dβ.
         let (mut b_prev, mut b) = (b0 - 0.01, b0);
         let (mut g_prev, mut g) = (slope(b_prev)?, slope(b)?);
@@ -94,7 +94,7 @@ impl TrackedContact {
             return Ok(None);
         }
         let mut contact = Contact::default();
-        let mut edge = |dir: f64| -> Result<f64, OffMap> {
+        let mut edge = |dir: f64| -> Result<RimAngle, OffMap> {
             let (mut inner, mut h_in) = (b, h_min);
             loop {
                 let outer = (inner + dir * MARCH).clamp(-half, half);
@@ -104,7 +104,7 @@ impl TrackedContact {
                 }
                 if outer.abs() >= half {
                     contact.deep = true;
-                    return Ok(outer);
+                    return Ok(RimAngle::new(outer));
                 }
                 inner = outer;
                 h_in = h_out;
@@ -139,7 +139,7 @@ mod tests {
             let fd = (clearance(&terrain, &frame, b + e).unwrap()
                 - clearance(&terrain, &frame, b - e).unwrap())
                 / (2.0 * e);
-            let (h, exact) = clearance_slope(&terrain, &frame, b).unwrap();
+            let (h, exact) = clearance_slope(&terrain, &frame, RimAngle::new(b)).unwrap();
             assert_eq!(h, clearance(&terrain, &frame, b).unwrap());
             assert!((exact - fd).abs() < 1e-7, "β = {b}: {exact} vs {fd}");
         }
