@@ -384,6 +384,29 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
 }
 
 #[test]
+fn a_contact_found_in_place_forgets_the_previous_one() {
+    use rover_runtime::contact::{Contact, MeridionalContact};
+    let search = MeridionalContact::default();
+    // 5 cm high, 0.6 m wide, centred at X = 0.3 m.
+    let (_, bump) = bounded_terrains()
+        .into_iter()
+        .find(|(name, _)| *name == "bump")
+        .unwrap();
+    let axis = [0.0, 1.0, 0.0];
+    // A deep contact on the bump, then a wheel in the air, a shallow one on
+    // flat ground and one on the bump's flank, each into the same value.
+    let mut kept = search.find(&bump, [0.3, 0.0, 0.12], axis, 0.09).unwrap();
+    assert!(kept.count > 0);
+    for centre in [[3.0, 0.0, 0.5], [3.0, 0.0, 0.089], [0.5, 0.0, 0.1]] {
+        search
+            .find_into(&bump, centre, axis, 0.09, &mut kept)
+            .unwrap();
+        assert_eq!(kept, search.find(&bump, centre, axis, 0.09).unwrap());
+    }
+    assert_ne!(kept, Contact::default());
+}
+
+#[test]
 fn a_wheel_on_flat_ground_samples_only_the_rim_near_the_ground() {
     use rover_runtime::contact::MeridionalContact;
     let flat = Terrain::default();

@@ -121,15 +121,26 @@ impl<H: HeightField> Ground<H> {
         normals: &mut [f64],
     ) -> Result<(), WheelOffMap> {
         for (k, s) in states.iter().enumerate() {
-            let c = self
-                .contact(k, s)
-                .map_err(|off| WheelOffMap { wheel: k, off })?;
-            normals[k] = c
+            let (terrain, radius) = (&self.terrain, self.radii[k]);
+            let found = match self.method {
+                // Written in place: a contact is a few hundred bytes.
+                ContactMethod::Meridional => self.meridional.find_into(
+                    terrain,
+                    s.centre,
+                    s.spin_axis,
+                    radius,
+                    &mut self.contacts[k],
+                ),
+                ContactMethod::Tracked => self.trackers[k]
+                    .find(terrain, s.centre, s.spin_axis, radius)
+                    .map(|c| self.contacts[k] = c),
+            };
+            found.map_err(|off| WheelOffMap { wheel: k, off })?;
+            normals[k] = self.contacts[k]
                 .patches()
                 .iter()
                 .map(|p| normal_force(&self.tyres[k], s, p))
                 .sum();
-            self.contacts[k] = c;
         }
         Ok(())
     }

@@ -162,9 +162,25 @@ impl MeridionalContact {
         axis: [f64; 3],
         radius: f64,
     ) -> Result<Contact, OffMap> {
-        let contact = Contact::default();
+        let mut contact = Contact::default();
+        self.find_into(terrain, centre, axis, radius, &mut contact)?;
+        Ok(contact)
+    }
+
+    /// [`MeridionalContact::find`] written into `out` (reset first), for a
+    /// caller that keeps its contacts: no copy of the patches on the way
+    /// back. On `Err`, `out` holds what was found before the failure.
+    pub fn find_into<H: HeightField + ?Sized>(
+        &self,
+        terrain: &H,
+        centre: [f64; 3],
+        axis: [f64; 3],
+        radius: f64,
+        out: &mut Contact,
+    ) -> Result<(), OffMap> {
+        *out = Contact::default();
         let Some(frame) = RimFrame::new(centre, axis, radius) else {
-            return Ok(contact);
+            return Ok(());
         };
         let n = self.sampling.samples.max(3);
         let step = core::f64::consts::PI / (n - 1) as f64;
@@ -177,14 +193,14 @@ impl MeridionalContact {
         let hidden = 2.0 * radius * step * step;
         let (first, last) = match reach(terrain, &frame, n, step, hidden) {
             Reach::Samples(first, last) => (first, last),
-            Reach::Nothing => return Ok(contact),
+            Reach::Nothing => return Ok(()),
         };
-        self.scan(terrain, &frame, [first, last], step, hidden)
+        self.scan(terrain, &frame, [first, last], step, hidden, out)
     }
 
-    /// The sampled search over samples `range[0] ..= range[1]` only; the
-    /// caller guarantees that every sample outside has a clearance above
-    /// `hidden`.
+    /// The sampled search over samples `range[0] ..= range[1]` only, into
+    /// `contact` (empty); the caller guarantees that every sample outside
+    /// has a clearance above `hidden`.
     fn scan<H: HeightField + ?Sized>(
         &self,
         terrain: &H,
@@ -192,10 +208,10 @@ impl MeridionalContact {
         range: [usize; 2],
         step: f64,
         hidden: f64,
-    ) -> Result<Contact, OffMap> {
+        contact: &mut Contact,
+    ) -> Result<(), OffMap> {
         let frame = *frame;
         let n = self.sampling.samples.max(3);
-        let mut contact = Contact::default();
         let beta = |i: usize| -core::f64::consts::FRAC_PI_2 + i as f64 * step;
         let table = (n == DEFAULT_SAMPLES).then(default_table);
         let sample = |i: usize| -> Result<f64, OffMap> {
@@ -241,7 +257,7 @@ impl MeridionalContact {
             contact.deep = true;
             contact.push(frame.patch(a, RimAngle::new(beta(n - 1))));
         }
-        Ok(contact)
+        Ok(())
     }
 }
 
