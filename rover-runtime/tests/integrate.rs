@@ -971,3 +971,47 @@ fn out_of_range_settings_get_a_message_naming_method_field_value_and_fix() {
          seconds, got NaN; the real-time path typically uses 1e-4 to 1e-3 s"
     );
 }
+
+/// `y' = −k·y + ε·u(y)`, with `u ∈ [−1, 1]` a deterministic hash of y's bits: a stiff
+/// system at rest whose right-hand side carries rounding-level noise that does not shrink
+/// from one Newton iteration to the next (like a contact search's located crossings).
+struct NoisyRest {
+    k: f64,
+    eps: f64,
+}
+
+impl OdeSystem for NoisyRest {
+    type Error = Infallible;
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Infallible> {
+        let mut h = 0x9e37_79b9_7f4a_7c15_u64;
+        for v in y {
+            h = (h ^ v.to_bits()).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            h ^= h >> 31;
+        }
+        let u = (h >> 11) as f64 / (1u64 << 52) as f64 - 1.0;
+        for (d, v) in dy.iter_mut().zip(y) {
+            *d = -self.k * v + self.eps * u;
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn bdf_rests_on_a_noisy_equilibrium_without_collapsing_its_step() {
+    // Noise 1e-6 against atol 1e-8: Newton corrections near the rest point are the noise
+    // itself, whose "rate" of decrease is about 1 at every step size. They are below the
+    // Newton tolerance once the step is small enough, and must be accepted there.
+    let mut sys = NoisyRest { k: 1e3, eps: 1e-6 };
+    let config = bdf(1e-6, 1e-8);
+    let (states, stats) = run(&config, &mut sys, &[0.0, 0.0], &outputs(1.0, 200));
+    let last = states.last().unwrap();
+    // The equilibrium is |y| ≤ ε/k, give or take the integration error.
+    assert!(
+        last.iter().all(|v| v.abs() < 1e-8),
+        "{last:?} after {} steps",
+        stats.steps
+    );
+}

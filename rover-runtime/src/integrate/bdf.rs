@@ -279,8 +279,17 @@ impl Bdf {
                 break;
             }
             let rate = norm / norm_prev; // NaN on the first iteration
-            if rate >= 1.0
-                || rate.powi((NEWTON_MAXITER - iter) as i32) / (1.0 - rate) * norm > newton_tol
+            // A correction already below the tolerance is the right-hand
+            // side's own rounding (the contact search's crossings, say),
+            // which does not shrink from one iteration to the next: accept
+            // it rather than read its rate ≈ 1 as divergence. Otherwise a
+            // rover at rest, whose predictor is already exact, fails every
+            // step size down to `min_step` (as SUNDIALS does, after Hairer
+            // & Wanner's rate test).
+            let noise_floor = iter > 0 && norm < newton_tol;
+            if !noise_floor
+                && (rate >= 1.0
+                    || rate.powi((NEWTON_MAXITER - iter) as i32) / (1.0 - rate) * norm > newton_tol)
             {
                 break;
             }
@@ -288,7 +297,7 @@ impl Bdf {
                 self.y_new[i] += self.delta[i];
                 self.d[i] += self.delta[i];
             }
-            if norm == 0.0 || rate / (1.0 - rate) * norm < newton_tol {
+            if norm == 0.0 || noise_floor || rate / (1.0 - rate) * norm < newton_tol {
                 converged = true;
                 break;
             }
