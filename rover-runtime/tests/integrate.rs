@@ -800,8 +800,9 @@ fn too_many_steps_stops_the_run_where_it_got_to() {
     assert_eq!(
         err.to_string(),
         format!(
-            "5 step attempts reached only t = {t} s on the way to 100 s: raise `max_steps`, \
-             loosen the tolerances, or use the `bdf` method if the problem is stiff"
+            "5 step attempts reached only t = {t} s on the way to 100 s: raise `max_steps` or \
+             loosen the tolerances; with an explicit method, `[integrator.bdf]` takes stiff \
+             contact in larger steps"
         )
     );
 }

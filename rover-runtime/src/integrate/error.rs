@@ -89,8 +89,8 @@ impl<E: fmt::Display> fmt::Display for IntegrateError<E> {
             Self::StepTooSmall { t, h, min_step } => write!(
                 f,
                 "step size {h:e} s at t = {t} s is below the minimum step {min_step:e} s: \
-                 the solution changes too fast here (a stiff contact? try the `bdf` method, \
-                 or lower `min_step`)"
+                 the solution changes too fast here (a stiff or chattering contact?); \
+                 lower `min_step`, or, with an explicit method, use `[integrator.bdf]`"
             ),
             Self::TooManySteps {
                 t,
@@ -99,8 +99,8 @@ impl<E: fmt::Display> fmt::Display for IntegrateError<E> {
             } => write!(
                 f,
                 "{max_steps} step attempts reached only t = {t} s on the way to {t_target} s: \
-                 raise `max_steps`, loosen the tolerances, or use the `bdf` method if the \
-                 problem is stiff"
+                 raise `max_steps` or loosen the tolerances; with an explicit method, \
+                 `[integrator.bdf]` takes stiff contact in larger steps"
             ),
             Self::NonFinite {
                 t,
