@@ -100,13 +100,23 @@ impl<H: HeightField> Ground<H> {
 
     /// Contact of wheel k in state `s`.
     pub fn contact(&mut self, k: usize, s: &WheelState) -> Result<Contact, OffMap> {
+        let mut c = Contact::default();
+        self.contact_into(k, s, &mut c)?;
+        Ok(c)
+    }
+
+    /// [`Ground::contact`] written into `out`: a contact is a few hundred
+    /// bytes, not worth returning by value on every right-hand side.
+    fn contact_into(&mut self, k: usize, s: &WheelState, out: &mut Contact) -> Result<(), OffMap> {
+        let (terrain, radius) = (&self.terrain, self.radii[k]);
         match self.method {
             ContactMethod::Meridional => {
                 self.meridional
-                    .find(&self.terrain, s.centre, s.spin_axis, self.radii[k])
+                    .find_into(terrain, s.centre, s.spin_axis, radius, out)
             }
             ContactMethod::Tracked => {
-                self.trackers[k].find(&self.terrain, s.centre, s.spin_axis, self.radii[k])
+                *out = self.trackers[k].find(terrain, s.centre, s.spin_axis, radius)?;
+                Ok(())
             }
         }
     }
@@ -120,29 +130,21 @@ impl<H: HeightField> Ground<H> {
         states: &[WheelState],
         normals: &mut [f64],
     ) -> Result<(), WheelOffMap> {
-        for (k, s) in states.iter().enumerate() {
-            let (terrain, radius) = (&self.terrain, self.radii[k]);
-            let found = match self.method {
-                // Written in place: a contact is a few hundred bytes.
-                ContactMethod::Meridional => self.meridional.find_into(
-                    terrain,
-                    s.centre,
-                    s.spin_axis,
-                    radius,
-                    &mut self.contacts[k],
-                ),
-                ContactMethod::Tracked => self.trackers[k]
-                    .find(terrain, s.centre, s.spin_axis, radius)
-                    .map(|c| self.contacts[k] = c),
-            };
-            found.map_err(|off| WheelOffMap { wheel: k, off })?;
-            normals[k] = self.contacts[k]
+        // Out of `self` for the loop (a move of the Vec, not of its items),
+        // so that each contact is written in place.
+        let mut contacts = std::mem::take(&mut self.contacts);
+        let found = states.iter().enumerate().try_for_each(|(k, s)| {
+            self.contact_into(k, s, &mut contacts[k])
+                .map_err(|off| WheelOffMap { wheel: k, off })?;
+            normals[k] = contacts[k]
                 .patches()
                 .iter()
                 .map(|p| normal_force(&self.tyres[k], s, p))
                 .sum();
-        }
-        Ok(())
+            Ok(())
+        });
+        self.contacts = contacts;
+        found
     }
 
     /// Loads on every wheel from the contacts of [`Ground::find_contacts`]

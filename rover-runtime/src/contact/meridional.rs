@@ -214,18 +214,25 @@ impl MeridionalContact {
         let n = self.sampling.samples.max(3);
         let beta = |i: usize| -core::f64::consts::FRAC_PI_2 + i as f64 * step;
         let table = (n == DEFAULT_SAMPLES).then(default_table);
+        // Sample i's angle, its sine and cosine from the table when there is one.
+        let angle = |i: usize| match table.and_then(|t| t.get(i)) {
+            Some(&(sin, cos)) => RimAngle {
+                beta: beta(i),
+                sin,
+                cos,
+            },
+            None => RimAngle::new(beta(i)),
+        };
         let sample = |i: usize| -> Result<f64, OffMap> {
-            match table.and_then(|t| t.get(i)) {
-                Some(&(sin, cos)) => clearance_sc(terrain, &frame, sin, cos),
-                None => clearance(terrain, &frame, beta(i)),
-            }
+            let a = angle(i);
+            clearance_sc(terrain, &frame, a.sin, a.cos)
         };
         let tol = self.sampling.tolerance;
         let mut prev = sample(range[0])?;
         // Start of the current run below ground: (angle, is it a sample end?)
         let mut start: Option<RimAngle> = if prev < 0.0 {
             contact.deep = true;
-            Some(RimAngle::new(beta(0)))
+            Some(angle(0))
         } else {
             None
         };
@@ -255,7 +262,7 @@ impl MeridionalContact {
         }
         if let Some(a) = start {
             contact.deep = true;
-            contact.push(frame.patch(a, RimAngle::new(beta(n - 1))));
+            contact.push(frame.patch(a, angle(n - 1)));
         }
         Ok(())
     }
