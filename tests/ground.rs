@@ -465,3 +465,45 @@ fn terrain_height_bounds_hold() {
         assert_eq!(terrain.max_height_in(&nan), None, "{name}: NaN area");
     }
 }
+
+#[test]
+fn a_patch_splitting_over_a_ridge_hands_over_its_force_continuously() {
+    use rover_runtime::contact::MeridionalContact;
+    use rover_runtime::terrain::Sinusoid;
+    // Crests at X = ±3 cm, a trough at X = 0: a 13 cm wheel lowered over
+    // the trough touches both crests (two patches), then the rim reaches
+    // the trough and the two become one (at a centre height of 0.12 m).
+    // The paper's chord law alone makes the summed deflection, hence the
+    // normal force, jump there by about 3 mm (a rover can come to rest on
+    // that jump, where no implicit integrator converges); the split is
+    // blended in over the ridge's clearance instead.
+    let ground = Sinusoid::new(0.01, 0.06, 0.0, -90.0).unwrap();
+    let search = MeridionalContact::default();
+    let radius = 0.13;
+    let dz = 1e-5;
+    for x in [0.0, 0.0011] {
+        let (mut counts, mut worst, mut prev) = ([false; 3], 0.0_f64, None::<f64>);
+        for k in 0..=1000 {
+            let z = 0.125 - k as f64 * dz;
+            let c = search
+                .find(&ground, [x, 0.0, z], [0.0, 1.0, 0.0], radius)
+                .unwrap();
+            counts[c.count.min(2)] = true;
+            let total: f64 = c.patches().iter().map(|p| p.deflection).sum();
+            if let Some(p) = prev {
+                worst = worst.max((total - p).abs());
+            }
+            prev = Some(total);
+        }
+        assert!(
+            counts[1] && counts[2],
+            "x = {x}: the scan must cross the split"
+        );
+        // Away from the split the sum moves by at most ~2·dz per step; the
+        // blend adds about 3 mm over 1 mm of height (3·dz); a jump is 3 mm.
+        assert!(
+            worst < 10.0 * dz,
+            "x = {x}: summed deflection jumps by {worst:e} m"
+        );
+    }
+}

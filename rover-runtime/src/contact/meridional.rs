@@ -228,6 +228,7 @@ impl MeridionalContact {
             clearance_sc(terrain, &frame, a.sin, a.cos)
         };
         let tol = self.sampling.tolerance;
+        let mut runs = Runs::default();
         let mut prev = sample(range[0])?;
         // Start of the current run below ground: (angle, is it a sample end?)
         let mut start: Option<RimAngle> = if prev < 0.0 {
@@ -242,11 +243,24 @@ impl MeridionalContact {
             let h = sample(i)?;
             if prev >= 0.0 && h >= 0.0 && prev < prev2 && prev < h && prev < hidden {
                 let (lo, hi) = (beta(i - 2), b);
-                let (bm, hm) = dip_minimum(terrain, &frame, lo, hi)?;
+                let (bm, hm) = extremum(terrain, &frame, lo, hi, Extremum::Lowest)?;
                 if hm < 0.0 {
                     let a = crossing(terrain, &frame, lo, prev2, bm, hm, tol)?;
                     let e = crossing(terrain, &frame, bm, hm, hi, h, tol)?;
-                    contact.push(frame.patch(a, e));
+                    runs.push(a, e);
+                }
+            }
+            // A ridge between samples, the mirror image of a dip: the rim
+            // clears it between two samples below ground, which splits the
+            // patch there (and the split is blended in, see `emit`).
+            if prev < 0.0 && h < 0.0 && prev > prev2 && prev > h && prev > -hidden {
+                let (lo, hi) = (beta(i - 2), b);
+                let (bm, hm) = extremum(terrain, &frame, lo, hi, Extremum::Highest)?;
+                if hm >= 0.0
+                    && let Some(a) = start.take()
+                {
+                    runs.push(a, crossing(terrain, &frame, lo, prev2, bm, hm, tol)?);
+                    start = Some(crossing(terrain, &frame, bm, hm, hi, h, tol)?);
                 }
             }
             prev2 = prev;
@@ -255,17 +269,109 @@ impl MeridionalContact {
             } else if prev < 0.0 && h >= 0.0 {
                 let end = crossing(terrain, &frame, beta(i - 1), prev, b, h, tol)?;
                 if let Some(a) = start.take() {
-                    contact.push(frame.patch(a, end));
+                    runs.push(a, end);
                 }
             }
             prev = h;
         }
         if let Some(a) = start {
             contact.deep = true;
-            contact.push(frame.patch(a, angle(n - 1)));
+            runs.push(a, angle(n - 1));
+        }
+        runs.emit(terrain, &frame, contact)
+    }
+}
+
+/// Width of the ridge clearance over which a patch that splits in two
+/// hands over from one chord to two \[m\] (see [`Runs::emit`]).
+pub const SPLIT_BAND: f64 = 1e-3;
+
+/// Most runs below ground one search keeps (more than [`MAX_PATCHES`]
+/// can merge into fewer patches while a split blends in).
+///
+/// [`MAX_PATCHES`]: super::MAX_PATCHES
+const MAX_RUNS: usize = 8;
+
+/// The runs below ground found by the scan, in rim order: the crossings
+/// (A, B) of each.
+#[derive(Clone, Copy, Default)]
+struct Runs {
+    ends: [Option<(RimAngle, RimAngle)>; MAX_RUNS],
+    count: usize,
+}
+
+impl Runs {
+    fn push(&mut self, a: RimAngle, b: RimAngle) {
+        if self.count < MAX_RUNS {
+            self.ends[self.count] = Some((a, b));
+            self.count += 1;
+        }
+    }
+
+    /// The patches of the runs. The paper's chord law makes the normal
+    /// force jump when a ridge rises through the rim inside a patch: one
+    /// chord AB of deflection Δ becomes two shorter chords whose
+    /// deflections sum to about Δ/2. A rover can come to rest on that
+    /// jump (the force on one side pushes it to the other), where no
+    /// implicit integrator converges. So a split is blended in over the
+    /// ridge's clearance g ∈ [0, SPLIT_BAND]: with w = smoothstep(g/band),
+    /// the inner ends of the two patches move from the merged chord's end
+    /// B (w = 0: one chord AB and a chord of zero length at B, which
+    /// carries no force) to their crossings (w = 1), along the rim.
+    /// Gaps whose ridge clears the rim by a band or more, and single
+    /// patches, are exactly the paper's.
+    fn emit<H: HeightField + ?Sized>(
+        &self,
+        terrain: &H,
+        frame: &RimFrame,
+        contact: &mut Contact,
+    ) -> Result<(), OffMap> {
+        let runs = &self.ends[..self.count];
+        // Walk from the last run back: `end` is where the patch of run i
+        // ends once the splits to its right are blended in.
+        let mut patches: [Option<(RimAngle, RimAngle)>; MAX_RUNS] = [None; MAX_RUNS];
+        let Some(Some((mut start, mut end))) = runs.last().copied() else {
+            return Ok(());
+        };
+        for i in (0..runs.len().saturating_sub(1)).rev() {
+            let Some((a, b)) = runs[i] else { continue };
+            let w = split_weight(terrain, frame, b.beta, start.beta)?;
+            if w >= 1.0 {
+                patches[i + 1] = Some((start, end));
+                end = b;
+            } else if w > 0.0 {
+                let along = |to: RimAngle| RimAngle::new(end.beta + w * (to.beta - end.beta));
+                patches[i + 1] = Some((along(start), end));
+                end = along(b);
+            }
+            start = a;
+        }
+        patches[0] = Some((start, end));
+        for (a, b) in patches.iter().flatten() {
+            contact.push(frame.patch(*a, *b));
         }
         Ok(())
     }
+}
+
+/// The blend weight of the split between a patch ending at `from` and the
+/// next starting at `to`: smoothstep of the ridge's clearance over
+/// [`SPLIT_BAND`], 1 (a plain split) as soon as the rim clears it by that.
+fn split_weight<H: HeightField + ?Sized>(
+    terrain: &H,
+    frame: &RimFrame,
+    from: f64,
+    to: f64,
+) -> Result<f64, OffMap> {
+    // A ridge wider than a few degrees of rim clears it by far more than
+    // the band on any ground the samples resolve.
+    let mid = clearance(terrain, frame, 0.5 * (from + to))?;
+    if mid >= SPLIT_BAND {
+        return Ok(1.0);
+    }
+    let (_, g) = extremum(terrain, frame, from, to, Extremum::Highest)?;
+    let x = (g.max(mid) / SPLIT_BAND).clamp(0.0, 1.0);
+    Ok(x * x * (3.0 - 2.0 * x))
 }
 
 /// Which rim samples can reach the ground.
@@ -333,33 +439,48 @@ fn reach<H: HeightField + ?Sized>(
     Reach::Samples(from.clamp(0.0, last) as usize, to.clamp(0.0, last) as usize)
 }
 
-/// Minimum of the clearance on [lo, hi] by golden-section search (the
-/// bracket holds one sampled local minimum).
-fn dip_minimum<H: HeightField + ?Sized>(
+/// Which extremum [`extremum`] looks for.
+#[derive(Clone, Copy, PartialEq)]
+enum Extremum {
+    Lowest,
+    Highest,
+}
+
+/// Minimum (a dip) or maximum (a ridge) of the clearance on [lo, hi] by
+/// golden-section search (the bracket holds one sampled local extremum).
+fn extremum<H: HeightField + ?Sized>(
     terrain: &H,
     frame: &RimFrame,
     mut lo: f64,
     mut hi: f64,
+    which: Extremum,
 ) -> Result<(f64, f64), OffMap> {
     const G: f64 = 0.618_033_988_749_894_8;
+    // Searching the maximum of h is searching the minimum of −h.
+    let sign = if which == Extremum::Lowest { 1.0 } else { -1.0 };
+    let h = |b: f64| clearance(terrain, frame, b).map(|v| sign * v);
     let mut c = hi - G * (hi - lo);
     let mut d = lo + G * (hi - lo);
-    let mut hc = clearance(terrain, frame, c)?;
-    let mut hd = clearance(terrain, frame, d)?;
+    let mut hc = h(c)?;
+    let mut hd = h(d)?;
     for _ in 0..30 {
         if hc < hd {
             hi = d;
             d = c;
             hd = hc;
             c = hi - G * (hi - lo);
-            hc = clearance(terrain, frame, c)?;
+            hc = h(c)?;
         } else {
             lo = c;
             c = d;
             hc = hd;
             d = lo + G * (hi - lo);
-            hd = clearance(terrain, frame, d)?;
+            hd = h(d)?;
         }
     }
-    Ok(if hc < hd { (c, hc) } else { (d, hd) })
+    Ok(if hc < hd {
+        (c, sign * hc)
+    } else {
+        (d, sign * hd)
+    })
 }
