@@ -65,6 +65,11 @@ fn simulate_writes_every_output_for_both_paper_rovers() {
                 .unwrap();
         assert_eq!(summary["status"], "completed");
         assert_eq!(summary["final_state"]["t"], 3.0);
+        // Driving as commanded (0.05 m/s for the 2 s after settling): no stall.
+        let (went, asked) = (&summary["distance_m"], &summary["commanded_distance_m"]);
+        assert!((asked.as_f64().unwrap() - 0.1).abs() < 1e-9, "{asked}");
+        assert!((went.as_f64().unwrap() - 0.1).abs() < 0.03, "{went}");
+        assert!(summary.get("stalled").is_none(), "{summary}");
         assert!(
             summary["plant"].as_str().unwrap().starts_with("generated"),
             "built-in rovers run their generated plant"
@@ -97,6 +102,42 @@ fn bad_scenario_in(name: &str, text: &str) -> String {
     };
     let e = simulate(&args).expect_err("the scenario is bad");
     e.to_string().replace(&dir.display().to_string(), "<dir>")
+}
+
+#[test]
+fn a_rover_against_a_wall_is_reported_stalled() {
+    // A 30 cm step 0.6 m ahead: swing4's wheels push against it.
+    let dir = scratch("stalled");
+    let scenario = write(
+        &dir,
+        "wall.toml",
+        "duration = 15.0\n[terrain]\nkind = \"step\"\nheight = 0.3\nposition = [0.6, 0.0]\nramp_width = 0.02\n[control.speed]\nspeed = 0.2\n",
+    );
+    let out = dir.join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_rover"))
+        .args(["simulate", "swing4", "--quiet", "--no-plots", "--scenario"])
+        .arg(&scenario)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    // The run is valid and complete; the warning says it is not the traverse asked for.
+    assert_eq!(run.status.code(), Some(0), "{err}");
+    assert!(err.contains("warning: swing4 stalled"), "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["status"], "completed");
+    let stall = &summary["stalled"];
+    let (moved, asked) = (
+        stall["moved_m"].as_f64().unwrap(),
+        stall["commanded_m"].as_f64().unwrap(),
+    );
+    assert!(
+        (asked - 2.0).abs() < 1e-9,
+        "0.2 m/s over the last 10 s: {stall}"
+    );
+    assert!(moved < 0.01, "{stall}");
 }
 
 #[test]

@@ -168,7 +168,8 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     if !args.no_plots {
         files.extend(plots(&csv_path, &args.out, &spec, scenario.settle)?);
     }
-    bar.suspend(|| match summary.status {
+    bar.suspend(|| {
+        match summary.status {
         Status::Completed => eprintln!(
             "{}: {:.1} s simulated in {:.2} s (real-time factor {:.1}); outputs in {}",
             spec.name,
@@ -183,8 +184,23 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
             summary.t_end,
             summary.error.as_deref().unwrap_or("stopped")
         ),
+        }
+        stalled_warning(&spec.name, &summary);
     });
     Ok(SimulateReport { summary, files })
+}
+
+/// A warning when the rover stalled (`summary.json` has the numbers): the
+/// run is valid, but it is not the traverse the scenario describes.
+fn stalled_warning(rover: &str, summary: &rover_runtime::output::Summary) {
+    if let Some(s) = &summary.stalled {
+        eprintln!(
+            "warning: {rover} stalled: G moved {:.1} mm in the last {:.1} s of the run, where its speed command asked for {:.3} m (a wheel against an obstacle, or the drive torque too low for the slope: see the torques and Fd columns of the CSV)",
+            1e3 * s.moved_m,
+            s.window_s,
+            s.commanded_m
+        );
+    }
 }
 
 /// The outputs of a run that could not start: the CSV (created before the
