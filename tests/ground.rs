@@ -507,3 +507,88 @@ fn a_patch_splitting_over_a_ridge_hands_over_its_force_continuously() {
         );
     }
 }
+
+#[test]
+fn patches_born_beside_a_patch_over_shallow_troughs_appear_continuously() {
+    use rover_runtime::contact::MeridionalContact;
+    use rover_runtime::terrain::Sinusoid;
+    // Ripples 2 cm apart and 0.8 mm deep, more curved than the rim: as the
+    // wheel sinks, patches are born on the crests beside the first one,
+    // across troughs that clear the rim by less than the split band, and
+    // later merge over them. A patch born half-merged with its neighbour
+    // would make the summed deflection jump.
+    let ground = Sinusoid::new(0.0004, 0.02, 0.0, -90.0).unwrap();
+    let search = MeridionalContact::default();
+    let radius = 0.13;
+    let dz = 1e-7;
+    for x in [0.0013, 0.0031] {
+        let (mut births, mut count, mut worst, mut prev) = (0, 0, 0.0_f64, None::<f64>);
+        for k in 0..=20_000 {
+            let z = 0.1305 - k as f64 * dz;
+            let c = search
+                .find(&ground, [x, 0.0, z], [0.0, 1.0, 0.0], radius)
+                .unwrap();
+            if count > 0 && c.count > count {
+                births += 1;
+            }
+            count = c.count;
+            let total: f64 = c.patches().iter().map(|p| p.deflection).sum();
+            if let Some(p) = prev {
+                worst = worst.max((total - p).abs());
+            }
+            prev = Some(total);
+        }
+        assert!(births >= 1, "x = {x}: a patch must be born beside another");
+        assert!(
+            worst < 10.0 * dz,
+            "x = {x}: summed deflection jumps by {worst:e} m"
+        );
+    }
+}
+
+#[test]
+fn a_wheel_buried_to_its_centre_pulls_continuously_in_its_drive_torque() {
+    use rover_dynamics::plant::WheelState;
+    use rover_runtime::contact::{Contact, Patch};
+    use rover_runtime::ground::wheel_load;
+    use rover_runtime::wheel_law::{ChenGenta, Tyre};
+    // The chord of a wheel buried to its centre passes through G_j: eq. 38's
+    // F_d = τ/|G_jH| would saturate at ±μx·F_n for any torque, flipping
+    // sign with it. With the lever floored at R/2 the pull is 2τ/R.
+    let radius = 0.13;
+    let patch = Patch {
+        point: [0.0, 0.0, 0.0],
+        normal: [0.0, 0.0, 1.0],
+        tangent: [1.0, 0.0, 0.0],
+        lateral: [0.0, 1.0, 0.0],
+        deflection: radius,
+        lever: 0.0,
+        angle: 0.0,
+    };
+    let mut contact = Contact::default();
+    contact.patches[0] = patch;
+    contact.count = 1;
+    let tyre = Tyre {
+        stiffness: 5e4,
+        damping: 500.0,
+        mu_x: 0.5,
+        mu_y: 0.5,
+        cornering_stiffness: 1e3,
+    };
+    let state = WheelState {
+        centre: [0.0, 0.0, 0.0],
+        velocity: [0.0; 3],
+        spin_axis: [0.0, 1.0, 0.0],
+    };
+    let lever = 0.5 * radius;
+    for torque in [-1e-9, 0.0, 1e-9, 0.5, -0.5] {
+        let (_, report) = wheel_load(&ChenGenta::default(), &tyre, &state, &contact, torque);
+        assert!(
+            (report.drawbar - torque / lever).abs() <= 1e-12,
+            "τ = {torque}: F_d = {}",
+            report.drawbar
+        );
+        // The motor reacts with the torque that drives the pull.
+        assert!((report.torque - torque).abs() <= 1e-12, "{}", report.torque);
+    }
+}

@@ -171,13 +171,25 @@ impl<H: HeightField> Ground<H> {
     }
 }
 
+/// Smallest drive lever, as a fraction of the wheel radius. Eq. 38's
+/// `F_d = τ/|G_jH|` is singular for a wheel buried to its centre (a chord
+/// through G_j, `|G_jH| = 0`): any drive torque saturates the pull at
+/// `±μx·F_n`, which flips sign with the torque (a 58 N jump on ExoMars when
+/// its speed loop was at its setpoint), and no motor reaction balances it.
+/// A deflection beyond half the radius is far outside the tyre law anyway
+/// (the run summary lists such wheels as deep penetrations); the floor keeps
+/// the pull continuous there and the paper's law untouched elsewhere.
+pub const MIN_LEVER_FRACTION: f64 = 0.5;
+
 fn motion(s: &WheelState, p: &crate::contact::Patch, torque: f64) -> PatchMotion {
+    // R = |G_jH| + Δ for every patch.
+    let radius = p.lever + p.deflection;
     PatchMotion {
         deflection: p.deflection,
         deflection_rate: -dot(s.velocity, p.normal),
         v_t: dot(s.velocity, p.tangent),
         v_c: dot(s.velocity, p.lateral),
-        lever: p.lever,
+        lever: p.lever.max(MIN_LEVER_FRACTION * radius),
         torque,
     }
 }
@@ -218,13 +230,15 @@ pub fn wheel_load<L: WheelLaw>(
         } else {
             0.0
         };
-        let f = law.forces(tyre, &motion(s, p, share));
+        let patch_motion = motion(s, p, share);
+        let f = law.forces(tyre, &patch_motion);
         let force = [0, 1, 2]
             .map(|k| f.normal * p.normal[k] + f.drawbar * p.tangent[k] + f.lateral * p.lateral[k]);
         let arm = [0, 1, 2].map(|k| p.point[k] - s.centre[k]);
         let m = cross(arm, force);
         let axial = dot(m, s.spin_axis);
-        let tau = p.lever * f.drawbar;
+        // The motor's reaction: the torque that drives the pull.
+        let tau = patch_motion.lever * f.drawbar;
         for k in 0..3 {
             load.force[k] += force[k];
             load.moment[k] += m[k] - axial * s.spin_axis[k];

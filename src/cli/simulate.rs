@@ -195,7 +195,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
 fn stalled_warning(rover: &str, summary: &rover_runtime::output::Summary) {
     if let Some(s) = &summary.stalled {
         eprintln!(
-            "warning: {rover} stalled: G moved {:.1} mm in the last {:.1} s of the run, where its speed command asked for {:.3} m (a wheel against an obstacle, or the drive torque too low for the slope: see the torques and Fd columns of the CSV)",
+            "warning: {rover} stalled: G moved {:.1} mm in the last {:.1} s of the run, where its speed command asked for {:.3} m: the drive does not overcome the ground. If the motor torques (CSV `tau` columns) are below their limit, the speed loop is too weak for this rover and ground: raise `kp` or give it an integral gain `ki` in `[control.speed]`; if they are at it, the rover is against an obstacle or a slope beyond its motors",
             1e3 * s.moved_m,
             s.window_s,
             s.commanded_m

@@ -237,6 +237,8 @@ impl MeridionalContact {
         } else {
             None
         };
+        // Deepest sampled penetration of the current run (see `Runs::emit`).
+        let mut depth = (-prev).max(0.0);
         let mut prev2 = f64::NAN;
         for i in range[0] + 1..=range[1] {
             let b = beta(i);
@@ -247,7 +249,7 @@ impl MeridionalContact {
                 if hm < 0.0 {
                     let a = crossing(terrain, &frame, lo, prev2, bm, hm, tol)?;
                     let e = crossing(terrain, &frame, bm, hm, hi, h, tol)?;
-                    runs.push(a, e);
+                    runs.push(a, e, -hm);
                 }
             }
             // A ridge between samples, the mirror image of a dip: the rim
@@ -259,24 +261,29 @@ impl MeridionalContact {
                 if hm >= 0.0
                     && let Some(a) = start.take()
                 {
-                    runs.push(a, crossing(terrain, &frame, lo, prev2, bm, hm, tol)?);
+                    runs.push(a, crossing(terrain, &frame, lo, prev2, bm, hm, tol)?, depth);
                     start = Some(crossing(terrain, &frame, bm, hm, hi, h, tol)?);
+                    depth = -h;
                 }
             }
             prev2 = prev;
+            if prev < 0.0 && h < 0.0 {
+                depth = depth.max(-h);
+            }
             if prev >= 0.0 && h < 0.0 {
                 start = Some(crossing(terrain, &frame, beta(i - 1), prev, b, h, tol)?);
+                depth = -h;
             } else if prev < 0.0 && h >= 0.0 {
                 let end = crossing(terrain, &frame, beta(i - 1), prev, b, h, tol)?;
                 if let Some(a) = start.take() {
-                    runs.push(a, end);
+                    runs.push(a, end, depth);
                 }
             }
             prev = h;
         }
         if let Some(a) = start {
             contact.deep = true;
-            runs.push(a, angle(n - 1));
+            runs.push(a, angle(n - 1), depth);
         }
         runs.emit(terrain, &frame, contact)
     }
@@ -293,17 +300,19 @@ pub const SPLIT_BAND: f64 = 1e-3;
 const MAX_RUNS: usize = 8;
 
 /// The runs below ground found by the scan, in rim order: the crossings
-/// (A, B) of each.
+/// (A, B) of each, and its deepest sampled penetration.
 #[derive(Clone, Copy, Default)]
 struct Runs {
     ends: [Option<(RimAngle, RimAngle)>; MAX_RUNS],
+    depths: [f64; MAX_RUNS],
     count: usize,
 }
 
 impl Runs {
-    fn push(&mut self, a: RimAngle, b: RimAngle) {
+    fn push(&mut self, a: RimAngle, b: RimAngle, depth: f64) {
         if self.count < MAX_RUNS {
             self.ends[self.count] = Some((a, b));
+            self.depths[self.count] = depth.max(0.0);
             self.count += 1;
         }
     }
@@ -314,12 +323,14 @@ impl Runs {
     /// deflections sum to about Δ/2. A rover can come to rest on that
     /// jump (the force on one side pushes it to the other), where no
     /// implicit integrator converges. So a split is blended in over the
-    /// ridge's clearance g ∈ [0, SPLIT_BAND]: with w = smoothstep(g/band),
-    /// the inner ends of the two patches move from the merged chord's end
-    /// B (w = 0: one chord AB and a chord of zero length at B, which
-    /// carries no force) to their crossings (w = 1), along the rim.
-    /// Gaps whose ridge clears the rim by a band or more, and single
-    /// patches, are exactly the paper's.
+    /// ridge's clearance g: with w = smoothstep(g/s), the inner ends of the
+    /// two patches move from the merged chord's end B (w = 0: one chord AB
+    /// and a chord of zero length at B, which carries no force) to their
+    /// crossings (w = 1), along the rim. The scale s is SPLIT_BAND, or the
+    /// shallower run's depth if less: a patch being born next to another
+    /// (depth 0) is then a separate patch of zero length, so its birth
+    /// stays continuous too. Gaps whose ridge clears the rim by a band or
+    /// more, and single patches, are exactly the paper's.
     fn emit<H: HeightField + ?Sized>(
         &self,
         terrain: &H,
@@ -335,7 +346,8 @@ impl Runs {
         };
         for i in (0..runs.len().saturating_sub(1)).rev() {
             let Some((a, b)) = runs[i] else { continue };
-            let w = split_weight(terrain, frame, b.beta, start.beta)?;
+            let scale = SPLIT_BAND.min(self.depths[i]).min(self.depths[i + 1]);
+            let w = split_weight(terrain, frame, b.beta, start.beta, scale)?;
             if w >= 1.0 {
                 patches[i + 1] = Some((start, end));
                 end = b;
@@ -355,22 +367,25 @@ impl Runs {
 }
 
 /// The blend weight of the split between a patch ending at `from` and the
-/// next starting at `to`: smoothstep of the ridge's clearance over
-/// [`SPLIT_BAND`], 1 (a plain split) as soon as the rim clears it by that.
+/// next starting at `to`: smoothstep of the ridge's clearance over `scale`
+/// (at most [`SPLIT_BAND`]), 1 (a plain split) as soon as the rim clears it
+/// by that, and for a scale of 0.
 fn split_weight<H: HeightField + ?Sized>(
     terrain: &H,
     frame: &RimFrame,
     from: f64,
     to: f64,
+    scale: f64,
 ) -> Result<f64, OffMap> {
-    // A ridge wider than a few degrees of rim clears it by far more than
-    // the band on any ground the samples resolve.
+    if scale <= 0.0 {
+        return Ok(1.0);
+    }
     let mid = clearance(terrain, frame, 0.5 * (from + to))?;
-    if mid >= SPLIT_BAND {
+    if mid >= scale {
         return Ok(1.0);
     }
     let (_, g) = extremum(terrain, frame, from, to, Extremum::Highest)?;
-    let x = (g.max(mid) / SPLIT_BAND).clamp(0.0, 1.0);
+    let x = (g.max(mid) / scale).clamp(0.0, 1.0);
     Ok(x * x * (3.0 - 2.0 * x))
 }
 
