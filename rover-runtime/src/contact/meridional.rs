@@ -255,7 +255,7 @@ impl MeridionalContact {
             // A ridge between samples, the mirror image of a dip: the rim
             // clears it between two samples below ground, which splits the
             // patch there (and the split is blended in, see `emit`).
-            if prev < 0.0 && h < 0.0 && prev > prev2 && prev > h && prev > -hidden {
+            if prev < 0.0 && prev > -hidden && h < prev && prev > prev2 {
                 let (lo, hi) = (beta(i - 2), b);
                 let (bm, hm) = extremum(terrain, &frame, lo, hi, Extremum::Highest)?;
                 if hm >= 0.0
@@ -267,9 +267,8 @@ impl MeridionalContact {
                 }
             }
             prev2 = prev;
-            if prev < 0.0 && h < 0.0 {
-                depth = depth.max(-h);
-            }
+            // Reset where a run starts, so this only ever counts its samples.
+            depth = depth.max(-h);
             if prev >= 0.0 && h < 0.0 {
                 start = Some(crossing(terrain, &frame, beta(i - 1), prev, b, h, tol)?);
                 depth = -h;
@@ -293,26 +292,34 @@ impl MeridionalContact {
 /// hands over from one chord to two \[m\] (see [`Runs::emit`]).
 pub const SPLIT_BAND: f64 = 1e-3;
 
-/// Most runs below ground one search keeps (more than [`MAX_PATCHES`]
-/// can merge into fewer patches while a split blends in).
-///
-/// [`MAX_PATCHES`]: super::MAX_PATCHES
-const MAX_RUNS: usize = 8;
+/// Most runs below ground one search keeps: one patch per run (a blend
+/// never merges two runs, whose gap always clears the rim).
+const MAX_RUNS: usize = super::MAX_PATCHES;
 
-/// The runs below ground found by the scan, in rim order: the crossings
-/// (A, B) of each, and its deepest sampled penetration.
+/// One run below ground: its crossings A, B and its deepest sampled
+/// penetration \[m\].
+#[derive(Clone, Copy, Default)]
+struct Run {
+    a: RimAngle,
+    b: RimAngle,
+    depth: f64,
+}
+
+/// The runs below ground found by the scan, in rim order.
 #[derive(Clone, Copy, Default)]
 struct Runs {
-    ends: [Option<(RimAngle, RimAngle)>; MAX_RUNS],
-    depths: [f64; MAX_RUNS],
+    runs: [Run; MAX_RUNS],
     count: usize,
 }
 
 impl Runs {
     fn push(&mut self, a: RimAngle, b: RimAngle, depth: f64) {
         if self.count < MAX_RUNS {
-            self.ends[self.count] = Some((a, b));
-            self.depths[self.count] = depth.max(0.0);
+            self.runs[self.count] = Run {
+                a,
+                b,
+                depth: depth.max(0.0),
+            };
             self.count += 1;
         }
     }
@@ -332,35 +339,54 @@ impl Runs {
     /// stays continuous too. Gaps whose ridge clears the rim by a band or
     /// more, and single patches, are exactly the paper's.
     fn emit<H: HeightField + ?Sized>(
-        &self,
+        self,
         terrain: &H,
         frame: &RimFrame,
         contact: &mut Contact,
     ) -> Result<(), OffMap> {
-        let runs = &self.ends[..self.count];
-        // Walk from the last run back: `end` is where the patch of run i
-        // ends once the splits to its right are blended in.
-        let mut patches: [Option<(RimAngle, RimAngle)>; MAX_RUNS] = [None; MAX_RUNS];
-        let Some(Some((mut start, mut end))) = runs.last().copied() else {
-            return Ok(());
-        };
-        for i in (0..runs.len().saturating_sub(1)).rev() {
-            let Some((a, b)) = runs[i] else { continue };
-            let scale = SPLIT_BAND.min(self.depths[i]).min(self.depths[i + 1]);
-            let w = split_weight(terrain, frame, b.beta, start.beta, scale)?;
-            if w >= 1.0 {
-                patches[i + 1] = Some((start, end));
-                end = b;
-            } else if w > 0.0 {
-                let along = |to: RimAngle| RimAngle::new(end.beta + w * (to.beta - end.beta));
-                patches[i + 1] = Some((along(start), end));
-                end = along(b);
+        let n = self.count;
+        if n <= 1 {
+            // The common case: nothing to blend.
+            if let Some(run) = self.runs[..n].first() {
+                contact.push(frame.patch(run.a, run.b));
             }
-            start = a;
+            return Ok(());
         }
-        patches[0] = Some((start, end));
-        for (a, b) in patches.iter().flatten() {
-            contact.push(frame.patch(*a, *b));
+        self.blend(terrain, frame, contact)
+    }
+
+    /// [`Runs::emit`] for two runs or more.
+    #[cold]
+    #[inline(never)]
+    fn blend<H: HeightField + ?Sized>(
+        mut self,
+        terrain: &H,
+        frame: &RimFrame,
+        contact: &mut Contact,
+    ) -> Result<(), OffMap> {
+        let n = self.count;
+        // Walk from the last run back, moving the ends in place: once the
+        // splits to its right are blended in, run i + 1 is final.
+        let mut merged = [false; MAX_RUNS];
+        for i in (0..n.saturating_sub(1)).rev() {
+            let (left, right) = (self.runs[i], self.runs[i + 1]);
+            let scale = SPLIT_BAND.min(left.depth).min(right.depth);
+            let w = split_weight(terrain, frame, left.b.beta, right.a.beta, scale)?;
+            if w <= 0.0 {
+                // One chord over both.
+                self.runs[i].b = right.b;
+                merged[i + 1] = true;
+            } else if w < 1.0 {
+                let end = right.b;
+                let along = |to: RimAngle| RimAngle::new(end.beta + w * (to.beta - end.beta));
+                self.runs[i + 1].a = along(right.a);
+                self.runs[i].b = along(left.b);
+            }
+        }
+        for (run, merged) in self.runs[..n].iter().zip(merged) {
+            if !merged {
+                contact.push(frame.patch(run.a, run.b));
+            }
         }
         Ok(())
     }

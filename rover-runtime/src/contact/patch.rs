@@ -57,7 +57,7 @@ impl Contact {
 
 /// A rim angle β with its sine and cosine, computed once: a crossing found
 /// by the search is also a patch end, and its point is needed again.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct RimAngle {
     pub beta: f64,
     pub sin: f64,
