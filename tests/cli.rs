@@ -106,38 +106,48 @@ fn bad_scenario_in(name: &str, text: &str) -> String {
 
 #[test]
 fn a_rover_against_a_wall_is_reported_stalled() {
-    // A 30 cm step 0.6 m ahead: swing4's wheels push against it.
-    let dir = scratch("stalled");
-    let scenario = write(
-        &dir,
-        "wall.toml",
-        "duration = 15.0\n[terrain]\nkind = \"step\"\nheight = 0.3\nposition = [0.6, 0.0]\nramp_width = 0.02\n[control.speed]\nspeed = 0.2\n",
-    );
-    let out = dir.join("out");
-    let run = Command::new(env!("CARGO_BIN_EXE_rover"))
-        .args(["simulate", "swing4", "--quiet", "--no-plots", "--scenario"])
-        .arg(&scenario)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&run.stderr);
-    // The run is valid and complete; the warning says it is not the traverse asked for.
-    assert_eq!(run.status.code(), Some(0), "{err}");
-    assert!(err.contains("warning: swing4 stalled"), "{err}");
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(summary["status"], "completed");
-    let stall = &summary["stalled"];
-    let (moved, asked) = (
-        stall["moved_m"].as_f64().unwrap(),
-        stall["commanded_m"].as_f64().unwrap(),
-    );
-    assert!(
-        (asked - 2.0).abs() < 1e-9,
-        "0.2 m/s over the last 10 s: {stall}"
-    );
-    assert!(moved < 0.01, "{stall}");
+    // A 30 cm step 0.6 m ahead: swing4's wheels push against it, at their
+    // torque limit with the default speed loop, far below it with a weak one.
+    for (kp, cause) in [
+        ("", "at their torque limit"),
+        ("kp = 0.5\n", "below their torque limit"),
+    ] {
+        let dir = scratch(&format!("stalled{}", kp.len()));
+        let scenario = write(
+            &dir,
+            "wall.toml",
+            &format!(
+                "duration = 15.0\n[terrain]\nkind = \"step\"\nheight = 0.3\nposition = [0.6, 0.0]\nramp_width = 0.02\n[control.speed]\nspeed = 0.2\n{kp}"
+            ),
+        );
+        let out = dir.join("out");
+        let run = Command::new(env!("CARGO_BIN_EXE_rover"))
+            .args(["simulate", "swing4", "--quiet", "--no-plots", "--scenario"])
+            .arg(&scenario)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&run.stderr);
+        // The run is valid and complete; the warning says it is not the
+        // traverse asked for, and why.
+        assert_eq!(run.status.code(), Some(0), "{err}");
+        assert!(err.contains("warning: swing4 stalled"), "{err}");
+        assert!(err.contains(cause), "{kp}: {err}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["status"], "completed");
+        let stall = &summary["stalled"];
+        let moved = stall["moved_m"].as_f64().unwrap();
+        let asked = stall["commanded_m"].as_f64().unwrap();
+        assert!(
+            (asked - 2.0).abs() < 1e-9,
+            "0.2 m/s over the last 10 s: {stall}"
+        );
+        assert!(moved < 0.01, "{stall}");
+        assert_eq!(stall["final_torques"].as_array().unwrap().len(), 4);
+    }
 }
 
 #[test]

@@ -185,22 +185,35 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
             summary.error.as_deref().unwrap_or("stopped")
         ),
         }
-        stalled_warning(&spec.name, &summary);
+        stalled_warning(&spec, &summary);
     });
     Ok(SimulateReport { summary, files })
 }
 
 /// A warning when the rover stalled (`summary.json` has the numbers): the
-/// run is valid, but it is not the traverse the scenario describes.
-fn stalled_warning(rover: &str, summary: &rover_runtime::output::Summary) {
-    if let Some(s) = &summary.stalled {
-        eprintln!(
-            "warning: {rover} stalled: G moved {:.1} mm in the last {:.1} s of the run, where its speed command asked for {:.3} m: the drive does not overcome the ground. If the motor torques (CSV `tau` columns) are below their limit, the speed loop is too weak for this rover and ground: raise `kp` or give it an integral gain `ki` in `[control.speed]`; if they are at it, the rover is against an obstacle or a slope beyond its motors",
-            1e3 * s.moved_m,
-            s.window_s,
-            s.commanded_m
-        );
-    }
+/// run is valid, but it is not the traverse the scenario describes. The
+/// motors' last torques against their limits tell which cause it is.
+fn stalled_warning(spec: &rover_spec::Spec, summary: &rover_runtime::output::Summary) {
+    let Some(s) = &summary.stalled else { return };
+    let limits = spec.model.wheels.iter().map(|w| w.max_torque);
+    // A motor within 5 % of its limit is at it.
+    let at_limit = s
+        .final_torques
+        .iter()
+        .zip(limits)
+        .any(|(t, max)| t.abs() >= 0.95 * max);
+    let cause = if at_limit {
+        "its motors are at their torque limit: it is against an obstacle or on a slope beyond them"
+    } else {
+        "its motors are below their torque limit: the speed loop asks too little for this rover and ground; raise `kp` or give it an integral gain `ki` in `[control.speed]`"
+    };
+    eprintln!(
+        "warning: {} stalled: G moved {:.1} mm in the last {:.1} s of the run, where its speed command asked for {:.3} m; {cause}",
+        spec.name,
+        1e3 * s.moved_m,
+        s.window_s,
+        s.commanded_m
+    );
 }
 
 /// The outputs of a run that could not start: the CSV (created before the

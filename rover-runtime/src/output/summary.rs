@@ -88,6 +88,10 @@ pub struct Stall {
     pub moved_m: f64,
     /// What the speed command asked for over the window \[m\].
     pub commanded_m: f64,
+    /// Each motor's torque at the last output [N·m]: at its limit, the
+    /// rover is against something it cannot climb; well below, the speed
+    /// loop asks too little.
+    pub final_torques: Vec<f64>,
 }
 
 /// Window over which a stall is judged \[s\].
@@ -99,7 +103,12 @@ pub const STALL_MIN_DISTANCE: f64 = 0.01;
 
 /// The stall over the end of a run from its rows after settling: times,
 /// horizontal positions of G and speed setpoints.
-fn stall(times: &[f64], path: &[[f64; 2]], setpoints: &[f64]) -> Option<Stall> {
+fn stall(
+    times: &[f64],
+    path: &[[f64; 2]],
+    setpoints: &[f64],
+    final_torques: Vec<f64>,
+) -> Option<Stall> {
     let end = *times.last()?;
     let from = times.partition_point(|&t| t < end - STALL_WINDOW);
     let commanded = commanded_distance(&times[from..], &setpoints[from..]);
@@ -109,6 +118,7 @@ fn stall(times: &[f64], path: &[[f64; 2]], setpoints: &[f64]) -> Option<Stall> {
         window_s: end - times[from],
         moved_m: moved,
         commanded_m: commanded,
+        final_torques,
     })
 }
 
@@ -226,7 +236,17 @@ impl RunLog {
                 .map(|p| (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]))
                 .sum(),
             commanded_distance_m: commanded_distance(&self.times, &self.setpoints),
-            stalled: stall(&self.times, &self.path, &self.setpoints),
+            stalled: stall(
+                &self.times,
+                &self.path,
+                &self.setpoints,
+                header
+                    .iter()
+                    .zip(&self.last)
+                    .filter(|(name, _)| name.starts_with("tau"))
+                    .map(|(_, v)| *v)
+                    .collect(),
+            ),
             wall_time_s: end.wall_time_s,
             real_time_factor: if end.wall_time_s > 0.0 {
                 end.t_end / end.wall_time_s
@@ -257,7 +277,7 @@ mod tests {
     #[test]
     fn a_rover_following_its_command_has_not_stalled() {
         let (t, p, v) = rows(30.0, 0.2, |t| 0.2 * t);
-        assert_eq!(stall(&t, &p, &v), None);
+        assert_eq!(stall(&t, &p, &v, vec![]), None);
         assert!((commanded_distance(&t, &v) - 6.0).abs() < 1e-9);
     }
 
@@ -265,14 +285,14 @@ mod tests {
     fn a_rover_stuck_at_the_end_has_stalled_over_the_last_window() {
         // Drives 20 s, then stops dead for the last 10 s.
         let (t, p, v) = rows(30.0, 0.2, |t| 0.2 * t.min(20.0));
-        let s = stall(&t, &p, &v).expect("stalled");
+        let s = stall(&t, &p, &v, vec![]).expect("stalled");
         assert!((s.window_s - STALL_WINDOW).abs() < 1e-9);
         assert!((s.commanded_m - 2.0).abs() < 1e-9);
         assert!(s.moved_m < 1e-12);
         // Still crawling at 9 % of the command: stalled; at 11 %: not.
         for (share, stalled) in [(0.09, true), (0.11, false)] {
             let (t, p, v) = rows(30.0, 0.2, |t| share * 0.2 * t);
-            assert_eq!(stall(&t, &p, &v).is_some(), stalled, "{share}");
+            assert_eq!(stall(&t, &p, &v, vec![]).is_some(), stalled, "{share}");
         }
     }
 
@@ -280,15 +300,15 @@ mod tests {
     fn a_rover_without_speed_command_or_with_a_short_run_is_judged_fairly() {
         // Parked on purpose: nothing was asked, nothing is reported.
         let (t, p, v) = rows(30.0, 0.0, |_| 0.0);
-        assert_eq!(stall(&t, &p, &v), None);
+        assert_eq!(stall(&t, &p, &v, vec![]), None);
         // A run shorter than the window is judged over all of it.
         let (t, p, v) = rows(4.0, 0.2, |_| 0.0);
-        let s = stall(&t, &p, &v).expect("stalled");
+        let s = stall(&t, &p, &v, vec![]).expect("stalled");
         assert!((s.window_s - 4.0).abs() < 1e-9 && (s.commanded_m - 0.8).abs() < 1e-9);
         // Too little asked to judge (under 1 cm).
         let (t, p, v) = rows(4.0, 0.002, |_| 0.0);
-        assert_eq!(stall(&t, &p, &v), None);
+        assert_eq!(stall(&t, &p, &v, vec![]), None);
         // No rows after settling.
-        assert_eq!(stall(&[], &[], &[]), None);
+        assert_eq!(stall(&[], &[], &[], vec![]), None);
     }
 }
