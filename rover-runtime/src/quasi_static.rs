@@ -272,9 +272,22 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 /// The suspension coordinates of the rover's static equilibrium on flat
 /// ground, level and at rest: the configuration the reduced fidelity levels
 /// freeze at (a loaded rover moves about it, not about its unloaded rest).
+///
+/// Rounded to [`EQUILIBRIUM_GRID`]: the solve converges to the contact
+/// search's own tolerance, and a change of 2e-11 rad in its last digits
+/// (from a different crossing refinement, say) rewrote every constant of a
+/// checked-in reduced plant. On the grid such noise changes nothing, unless
+/// a coordinate sits within the noise of a grid midpoint.
 pub fn flat_ground_equilibrium(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
-    Ok(flat_ground_solution(model)?.0)
+    let y = flat_ground_solution(model)?.0;
+    Ok(y.into_iter()
+        .map(|v| (v / EQUILIBRIUM_GRID).round() * EQUILIBRIUM_GRID)
+        .collect())
 }
+
+/// Step of the grid the frozen equilibrium is rounded to \[rad or m\]:
+/// far below any physical effect, far above the solver's noise.
+pub const EQUILIBRIUM_GRID: f64 = 1e-9;
 
 /// Each wheel's vertical load \[N\] in the static equilibrium on flat ground
 /// (the weights of a torque distribution "by static load", MODEL.md §8).
