@@ -460,7 +460,8 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
          (the rim samples near the ground, refined crossings, on a bicubic terrain: a few microseconds for four \
          wheels), not the dynamics (1.4 µs full, 0.5 µs reduced, generic plant), and the step counts differ \
          from level to level; the quasi-static level saves by taking one Newton solve per output instant \
-         instead of an ODE.\n",
+         instead of an ODE. These are wall-clock times of single runs, with sweeps running in parallel: \
+         they move by up to ±15 % from one regeneration to the next on the same machine.\n",
     );
 
     // Fig. 12: agreement at Z_R = 0.1.
