@@ -135,3 +135,23 @@ fn a_patch_born_beside_another_on_very_rough_ground_does_not_stop_the_integrator
     );
     assert_eq!(r.summary.status, Status::Completed, "{:?}", r.summary.error);
 }
+
+#[test]
+fn a_tracked_contact_that_stops_the_integrator_names_the_search_to_use() {
+    // The LRV's large wheels meet this ground at two places at once; the
+    // tracked search's single patch jumps between them and BDF stops at
+    // t ≈ 5.27 s (the meridional search runs through: see the sweep in
+    // docs/TERRAIN.md). The error says which search keeps forces continuous.
+    let r = run(
+        "lrv",
+        "duration = 5.5\n[terrain]\nkind = \"random\"\nz_r = 0.3\nseed = 2\n\
+         extent = [-5.0, 40.0, -15.0, 15.0]\n[control.speed]\nspeed = 0.2\nki = 100.0\n\
+         [contact]\nmethod = \"tracked\"\n",
+    );
+    let e = r.summary.error.as_deref().unwrap_or("");
+    assert_eq!(r.summary.status, Status::Failed);
+    assert!(
+        e.contains("step size") && e.contains("method = \"meridional\""),
+        "{e}"
+    );
+}

@@ -12,11 +12,11 @@ use rover_dynamics::attitude::Attitude;
 use rover_dynamics::plant::Plant;
 
 use crate::control::Controller;
-use crate::ground::Ground;
+use crate::ground::{ContactMethod, Ground};
 use crate::integrate::{Integrator, OdeSystem};
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
 use crate::scenario::{FidelityLevel, Scenario};
-use crate::sim::{RoverSystem, RunOptions, Stop, run};
+use crate::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use crate::terrain::{HeightField, Terrain};
 
 /// A run that could not start: the scenario does not fit the rover, or a
@@ -215,7 +215,7 @@ pub fn simulate<P: Plant, W: Write>(
             Status::Interrupted,
             Some(format!("interrupted by the user at t = {t:.3} s")),
         ),
-        Stop::Failed(e) => (Status::Failed, Some(e.to_string())),
+        Stop::Failed(e) => (Status::Failed, Some(with_contact_hint(e, scenario))),
     };
     let stats = integ.stats();
     Ok(log.summary(
@@ -235,6 +235,22 @@ pub fn simulate<P: Plant, W: Write>(
             rejected_steps: stats.rejected_steps,
         },
     ))
+}
+
+/// The error of a failed run, with a hint when the tracking contact search
+/// is the likely cause: it follows one patch per wheel, which jumps where a
+/// wheel meets the ground at two places (docs/TERRAIN.md), and step-size
+/// control cannot follow a jump.
+fn with_contact_hint(e: &RunError, scenario: &Scenario) -> String {
+    let text = e.to_string();
+    match e {
+        RunError::Integration {
+            step_control: true, ..
+        } if scenario.contact.method == ContactMethod::Tracked => format!(
+            "{text}; the tracked contact search follows one patch per wheel and jumps where a wheel meets the ground at two places: the meridional search (`[contact] method = \"meridional\"`, the default) keeps the forces continuous there"
+        ),
+        _ => text,
+    }
 }
 
 /// The horizontal motion a quasi-static run imposes: (t, X, Y, ψ) samples.
@@ -426,4 +442,35 @@ fn quasi_static_run<W: Write>(
             rejected_steps: 0,
         },
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn failure(step_control: bool) -> RunError {
+        RunError::Integration {
+            t: 5.0,
+            message: "step size 5e-11 s is below the minimum step 1e-10 s".into(),
+            step_control,
+        }
+    }
+
+    #[test]
+    fn a_tracked_run_that_step_control_gave_up_on_points_to_the_meridional_search() {
+        let path = Path::new("s.toml");
+        let tracked =
+            Scenario::parse("duration = 1.0\n[contact]\nmethod = \"tracked\"\n", path).unwrap();
+        let meridional = Scenario::parse("duration = 1.0\n", path).unwrap();
+        let hinted = with_contact_hint(&failure(true), &tracked);
+        assert!(
+            hinted.starts_with("the run stopped at t = 5.000000 s: step size")
+                && hinted.contains("method = \"meridional\""),
+            "{hinted}"
+        );
+        // Not for the default search, nor for failures of another kind.
+        for (e, s) in [(failure(true), &meridional), (failure(false), &tracked)] {
+            assert_eq!(with_contact_hint(&e, s), e.to_string());
+        }
+    }
 }

@@ -67,6 +67,13 @@ pub enum IntegrateError<E> {
 }
 
 impl<E> IntegrateError<E> {
+    /// The step-size control gave up (a step below the minimum, or the
+    /// attempts used up): the solution, or the right-hand side, changes
+    /// faster than any step can follow, as at a discontinuity.
+    pub fn is_step_control(&self) -> bool {
+        matches!(self, Self::StepTooSmall { .. } | Self::TooManySteps { .. })
+    }
+
     /// The simulation time the error refers to, when it has one.
     pub fn time(&self) -> Option<f64> {
         match self {

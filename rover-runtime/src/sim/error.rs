@@ -39,6 +39,9 @@ pub enum RunError {
         t: f64,
         /// What happened.
         message: String,
+        /// The step-size control gave up (see
+        /// [`IntegrateError::is_step_control`](crate::integrate::IntegrateError::is_step_control)).
+        step_control: bool,
     },
     /// The output sink failed (disk full, closed pipe).
     #[error("writing the output failed at t = {t:.3} s: {message}")]

@@ -122,6 +122,7 @@ where
                     RunError::Integration {
                         t,
                         message: e.to_string(),
+                        step_control: false,
                     },
                 );
                 return outcome;
@@ -167,6 +168,7 @@ where
                 RunError::Integration {
                     t: te,
                     message: e.to_string(),
+                    step_control: e.is_step_control(),
                 },
             );
             return outcome;
