@@ -7,6 +7,9 @@
 //! Every maximal run of samples with h < 0 is a patch; its crossings A and B
 //! are refined between samples by Newton steps on h with its exact slope
 //! (from the terrain's gradient), safeguarded by a secant (Illinois) search.
+//! Two patches whose gap the rim clears by less than [`SPLIT_BAND`] are
+//! blended towards one chord (ours, see [`Runs::emit`]): the paper's chord
+//! law would make the force jump where a patch splits.
 //!
 //! Only the samples that can reach the ground are evaluated: when the
 //! terrain bounds its height under the wheel ([`HeightField::max_height_in`]),
