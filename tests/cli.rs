@@ -139,7 +139,7 @@ fn a_rover_against_a_wall_is_reported_stalled() {
                 .unwrap();
         assert_eq!(summary["status"], "completed");
         let stall = &summary["stalled"];
-        let moved = stall["moved_m"].as_f64().unwrap();
+        let moved = stall["progress_m"].as_f64().unwrap().abs();
         let asked = stall["commanded_m"].as_f64().unwrap();
         assert!(
             (asked - 2.0).abs() < 1e-9,

@@ -186,7 +186,7 @@ pub fn simulate<P: Plant, W: Write>(
         output_step: 1.0 / scenario.output_rate,
         rollover_limit: scenario.rollover_limit_deg.to_radians(),
     };
-    let mut log = RunLog::new(scenario.settle, k);
+    let mut log = RunLog::new(scenario.settle, model.dof(), k);
     let started = Instant::now();
     let outcome = run(&mut sys, &mut integ, &mut y, &opts, interrupt, |row| {
         let s = row.system;
@@ -378,7 +378,7 @@ fn quasi_static_run<W: Write>(
     let cols = header(model.m(), k);
     let mut writer = CsvWriter::new(csv, &cols)?;
     let started = Instant::now();
-    let mut log = RunLog::new(scenario.settle, k);
+    let mut log = RunLog::imposed(scenario.settle, k);
     let mut stop = (Status::Completed, None, scenario.duration);
     let mut normals = vec![0.0; k];
     let mut wheels = vec![rover_dynamics::plant::WheelState::default(); k];

@@ -208,9 +208,13 @@ fn stalled_warning(spec: &rover_spec::Spec, summary: &rover_runtime::output::Sum
         "its motors are below their torque limit: the speed loop asks too little for this rover and ground; raise `kp` or give it an integral gain `ki` in `[control.speed]`"
     };
     eprintln!(
-        "warning: {} stalled: G moved {:.1} mm in the last {:.1} s of the run, where its speed command asked for {:.3} m; {cause}",
+        "warning: {} stalled: {} of progress in the last {:.1} s of the run, where its speed command asked for {:.3} m; {cause}",
         spec.name,
-        1e3 * s.moved_m,
+        if s.progress_m.abs() < 1.0 {
+            format!("{:.1} mm", 1e3 * s.progress_m)
+        } else {
+            format!("{:.3} m", s.progress_m)
+        },
         s.window_s,
         s.commanded_m
     );

@@ -75,15 +75,20 @@ pub struct Summary {
 
 /// A rover that no longer follows its speed command: over the last
 /// [`STALL_WINDOW`] seconds of the run (or all of it after settling, if
-/// shorter) G's net horizontal displacement was below [`STALL_FRACTION`] of
-/// the distance the command asked for, and that distance was at least
-/// [`STALL_MIN_DISTANCE`]. Typically wheels against an obstacle or the
-/// drive torque limit on a slope: the run itself is valid, but it is not
-/// the traverse its scenario describes.
+/// shorter) its progress in the commanded direction, `∫ v_x dt` with v_x
+/// G's forward speed in body axes, was below [`STALL_FRACTION`] of the
+/// distance the command asked for, `|∫ V dt|`, and that distance was at
+/// least [`STALL_MIN_DISTANCE`]. Typically wheels against an obstacle, a
+/// slope beyond the motors (the rover may even slide back: negative
+/// progress) or a speed loop too weak: the run itself is valid, but it is
+/// not the traverse its scenario describes.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Stall {
     /// Length of the window \[s\].
     pub window_s: f64,
+    /// Progress in the commanded direction over the window \[m\]
+    /// (negative: the rover went back).
+    pub progress_m: f64,
     /// G's net horizontal displacement over the window \[m\].
     pub moved_m: f64,
     /// What the speed command asked for over the window \[m\].
@@ -101,32 +106,40 @@ pub const STALL_FRACTION: f64 = 0.1;
 /// Commanded distances below this are too short to judge \[m\].
 pub const STALL_MIN_DISTANCE: f64 = 0.01;
 
-/// The stall over the end of a run from its rows after settling: times,
-/// horizontal positions of G and speed setpoints.
-fn stall(
-    times: &[f64],
-    path: &[[f64; 2]],
-    setpoints: &[f64],
-    final_torques: Vec<f64>,
-) -> Option<Stall> {
-    let end = *times.last()?;
-    let from = times.partition_point(|&t| t < end - STALL_WINDOW);
-    let commanded = commanded_distance(&times[from..], &setpoints[from..]);
-    let (a, b) = (path[from], path[path.len() - 1]);
-    let moved = (b[0] - a[0]).hypot(b[1] - a[1]);
-    (commanded >= STALL_MIN_DISTANCE && moved < STALL_FRACTION * commanded).then(|| Stall {
-        window_s: end - times[from],
-        moved_m: moved,
+/// What a run's rows after settling hold for the stall judgement.
+struct Track<'a> {
+    times: &'a [f64],
+    /// G's horizontal position.
+    path: &'a [[f64; 2]],
+    /// Speed set-point V.
+    setpoints: &'a [f64],
+    /// G's forward speed v_x (body axes).
+    forward: &'a [f64],
+}
+
+/// The stall over the end of a run.
+fn stall(track: &Track, final_torques: Vec<f64>) -> Option<Stall> {
+    let end = *track.times.last()?;
+    let from = track.times.partition_point(|&t| t < end - STALL_WINDOW);
+    let t = &track.times[from..];
+    let asked = integral(t, &track.setpoints[from..], |v| v);
+    let commanded = asked.abs();
+    let progress = integral(t, &track.forward[from..], |v| v) * asked.signum();
+    let (a, b) = (track.path[from], track.path[track.path.len() - 1]);
+    (commanded >= STALL_MIN_DISTANCE && progress < STALL_FRACTION * commanded).then(|| Stall {
+        window_s: end - t[0],
+        progress_m: progress,
+        moved_m: (b[0] - a[0]).hypot(b[1] - a[1]),
         commanded_m: commanded,
         final_torques,
     })
 }
 
-/// `∫|V| dt` by the trapezoidal rule over output rows.
-fn commanded_distance(times: &[f64], setpoints: &[f64]) -> f64 {
-    let (t, v) = (times, setpoints);
+/// `∫ f(v) dt` by the trapezoidal rule over output rows.
+fn integral(times: &[f64], values: &[f64], f: impl Fn(f64) -> f64) -> f64 {
+    let (t, v) = (times, values);
     (1..t.len())
-        .map(|i| 0.5 * (v[i - 1].abs() + v[i].abs()) * (t[i] - t[i - 1]))
+        .map(|i| 0.5 * (f(v[i - 1]) + f(v[i])) * (t[i] - t[i - 1]))
         .sum()
 }
 
@@ -139,11 +152,14 @@ fn as_map<S: serde::Serializer>(v: &[(String, f64)], s: S) -> Result<S::Ok, S::E
 #[derive(Clone, Debug, Default)]
 pub struct RunLog {
     settle: f64,
-    /// G's horizontal position, the time and the speed setpoint of every
-    /// row after settling.
+    /// G's horizontal position, the time, the speed setpoint and G's
+    /// forward speed of every row after settling.
     path: Vec<[f64; 2]>,
     times: Vec<f64>,
     setpoints: Vec<f64>,
+    forward: Vec<f64>,
+    /// Column of v_x in a row; None when the motion is imposed.
+    forward_column: Option<usize>,
     last: Vec<f64>,
     max_roll: f64,
     max_pitch: f64,
@@ -178,8 +194,21 @@ pub struct RunEnd {
 }
 
 impl RunLog {
-    /// A log for a run whose commands start at `settle`, with `wheels` wheels.
-    pub fn new(settle: f64, wheels: usize) -> Self {
+    /// A log for a run whose commands start at `settle`, of a rover with
+    /// `dof` degrees of freedom and `wheels` wheels.
+    pub fn new(settle: f64, dof: usize, wheels: usize) -> Self {
+        Self {
+            settle,
+            deep: vec![false; wheels],
+            // t, then x (dof columns), then w starting with v_x.
+            forward_column: Some(1 + dof),
+            ..Self::default()
+        }
+    }
+
+    /// A log for a run that imposes the rover's motion (the quasi-static
+    /// level): it cannot stall, and its rows carry no velocities.
+    pub fn imposed(settle: f64, wheels: usize) -> Self {
         Self {
             settle,
             deep: vec![false; wheels],
@@ -201,6 +230,9 @@ impl RunLog {
             self.path.push([row[1], row[2]]);
             self.times.push(row[0]);
             self.setpoints.push(row.last().copied().unwrap_or(0.0));
+            if let Some(k) = self.forward_column {
+                self.forward.push(row.get(k).copied().unwrap_or(0.0));
+            }
         }
     }
 
@@ -235,18 +267,23 @@ impl RunLog {
                 .windows(2)
                 .map(|p| (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]))
                 .sum(),
-            commanded_distance_m: commanded_distance(&self.times, &self.setpoints),
-            stalled: stall(
-                &self.times,
-                &self.path,
-                &self.setpoints,
-                header
-                    .iter()
-                    .zip(&self.last)
-                    .filter(|(name, _)| name.starts_with("tau"))
-                    .map(|(_, v)| *v)
-                    .collect(),
-            ),
+            commanded_distance_m: integral(&self.times, &self.setpoints, f64::abs),
+            stalled: self.forward_column.and_then(|_| {
+                stall(
+                    &Track {
+                        times: &self.times,
+                        path: &self.path,
+                        setpoints: &self.setpoints,
+                        forward: &self.forward,
+                    },
+                    header
+                        .iter()
+                        .zip(&self.last)
+                        .filter(|(name, _)| name.starts_with("tau"))
+                        .map(|(_, v)| *v)
+                        .collect(),
+                )
+            }),
             wall_time_s: end.wall_time_s,
             real_time_factor: if end.wall_time_s > 0.0 {
                 end.t_end / end.wall_time_s
@@ -266,49 +303,82 @@ impl RunLog {
 mod tests {
     use super::*;
 
-    /// Rows every 0.1 s over `seconds`: G at `x(t)`, setpoint `v`.
-    fn rows(seconds: f64, v: f64, x: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<[f64; 2]>, Vec<f64>) {
+    /// Rows every 0.1 s over `seconds`: G at `x(t)` driving along X, with
+    /// the forward speed x'(t), and the setpoint `v`.
+    struct Rows {
+        t: Vec<f64>,
+        p: Vec<[f64; 2]>,
+        v: Vec<f64>,
+        fwd: Vec<f64>,
+    }
+
+    fn rows(seconds: f64, v: f64, x: impl Fn(f64) -> f64) -> Rows {
         let n = (seconds * 10.0).round() as usize;
         let t: Vec<f64> = (0..=n).map(|i| i as f64 * 0.1).collect();
-        let p = t.iter().map(|&t| [x(t), 0.0]).collect();
-        (t, p, vec![v; n + 1])
+        let h = 1e-6;
+        Rows {
+            p: t.iter().map(|&t| [x(t), 0.0]).collect(),
+            fwd: t
+                .iter()
+                .map(|&t| (x(t + h) - x(t - h)) / (2.0 * h))
+                .collect(),
+            v: vec![v; n + 1],
+            t,
+        }
+    }
+
+    fn judge(r: &Rows) -> Option<Stall> {
+        let track = Track {
+            times: &r.t,
+            path: &r.p,
+            setpoints: &r.v,
+            forward: &r.fwd,
+        };
+        stall(&track, vec![])
     }
 
     #[test]
     fn a_rover_following_its_command_has_not_stalled() {
-        let (t, p, v) = rows(30.0, 0.2, |t| 0.2 * t);
-        assert_eq!(stall(&t, &p, &v, vec![]), None);
-        assert!((commanded_distance(&t, &v) - 6.0).abs() < 1e-9);
+        let r = rows(30.0, 0.2, |t| 0.2 * t);
+        assert_eq!(judge(&r), None);
+        assert!((integral(&r.t, &r.v, f64::abs) - 6.0).abs() < 1e-9);
+        // Backwards as commanded.
+        assert_eq!(judge(&rows(30.0, -0.2, |t| -0.2 * t)), None);
     }
 
     #[test]
     fn a_rover_stuck_at_the_end_has_stalled_over_the_last_window() {
         // Drives 20 s, then stops dead for the last 10 s.
-        let (t, p, v) = rows(30.0, 0.2, |t| 0.2 * t.min(20.0));
-        let s = stall(&t, &p, &v, vec![]).expect("stalled");
+        let s = judge(&rows(30.0, 0.2, |t| 0.2 * t.min(20.0))).expect("stalled");
         assert!((s.window_s - STALL_WINDOW).abs() < 1e-9);
         assert!((s.commanded_m - 2.0).abs() < 1e-9);
-        assert!(s.moved_m < 1e-12);
+        // (The first interval of the window still holds the last 5 mm.)
+        assert!(s.moved_m < 1e-12 && s.progress_m.abs() < 0.006, "{s:?}");
         // Still crawling at 9 % of the command: stalled; at 11 %: not.
         for (share, stalled) in [(0.09, true), (0.11, false)] {
-            let (t, p, v) = rows(30.0, 0.2, |t| share * 0.2 * t);
-            assert_eq!(stall(&t, &p, &v, vec![]).is_some(), stalled, "{share}");
+            let r = rows(30.0, 0.2, |t| share * 0.2 * t);
+            assert_eq!(judge(&r).is_some(), stalled, "{share}");
         }
+    }
+
+    #[test]
+    fn a_rover_sliding_back_has_stalled_though_it_moved() {
+        // Commanded forward, sliding back down a slope at 5 cm/s.
+        let s = judge(&rows(30.0, 0.2, |t| -0.05 * t)).expect("stalled");
+        assert!((s.moved_m - 0.5).abs() < 1e-9, "{s:?}");
+        assert!((s.progress_m + 0.5).abs() < 1e-6, "{s:?}");
     }
 
     #[test]
     fn a_rover_without_speed_command_or_with_a_short_run_is_judged_fairly() {
         // Parked on purpose: nothing was asked, nothing is reported.
-        let (t, p, v) = rows(30.0, 0.0, |_| 0.0);
-        assert_eq!(stall(&t, &p, &v, vec![]), None);
+        assert_eq!(judge(&rows(30.0, 0.0, |_| 0.0)), None);
         // A run shorter than the window is judged over all of it.
-        let (t, p, v) = rows(4.0, 0.2, |_| 0.0);
-        let s = stall(&t, &p, &v, vec![]).expect("stalled");
+        let s = judge(&rows(4.0, 0.2, |_| 0.0)).expect("stalled");
         assert!((s.window_s - 4.0).abs() < 1e-9 && (s.commanded_m - 0.8).abs() < 1e-9);
         // Too little asked to judge (under 1 cm).
-        let (t, p, v) = rows(4.0, 0.002, |_| 0.0);
-        assert_eq!(stall(&t, &p, &v, vec![]), None);
+        assert_eq!(judge(&rows(4.0, 0.002, |_| 0.0)), None);
         // No rows after settling.
-        assert_eq!(stall(&[], &[], &[], vec![]), None);
+        assert_eq!(judge(&rows(-1.0, 0.2, |_| 0.0)), None);
     }
 }
