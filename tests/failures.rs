@@ -8,7 +8,7 @@ use rover_runtime::GenericPlant;
 use rover_runtime::output::Status;
 use rover_runtime::scenario::Scenario;
 
-use crate::support::run::run;
+use crate::support::run::{Run, run};
 
 #[test]
 fn a_rover_that_rolls_over_stops_with_the_time_and_the_cause() {
@@ -100,6 +100,19 @@ fn an_interrupted_run_keeps_what_was_computed_marked_partial() {
     );
 }
 
+/// `rover` driving on the seeded random ground of roughness `z_r` for
+/// `duration` seconds, with `more` scenario text (the speed loop, the
+/// contact search) appended.
+fn on_rough_ground(rover: &str, z_r: f64, seed: u64, duration: f64, more: &str) -> Run {
+    run(
+        rover,
+        &format!(
+            "duration = {duration}\n[terrain]\nkind = \"random\"\nz_r = {z_r}\nseed = {seed}\n\
+             extent = [-5.0, 40.0, -15.0, 15.0]\n{more}"
+        ),
+    )
+}
+
 #[test]
 fn a_wheel_buried_on_very_rough_ground_does_not_stop_the_integrator() {
     // ExoMars at 0.15 m/s on the roughest ground of the paper's range: at
@@ -108,11 +121,7 @@ fn a_wheel_buried_on_very_rough_ground_does_not_stop_the_integrator() {
     // used to flip by ±μx·F_n with the sign of a 1e-10 N·m torque, and BDF
     // stopped there ("step size below the minimum"); with the lever
     // floored the run goes on (the wheel is reported as a deep penetration).
-    let r = run(
-        "exomars",
-        "duration = 6.6\n[terrain]\nkind = \"random\"\nz_r = 1.0\nseed = 2\n\
-         extent = [-5.0, 30.0, -10.0, 10.0]\n[control.speed]\nspeed = 0.15\n",
-    );
+    let r = on_rough_ground("exomars", 1.0, 2, 6.6, "[control.speed]\nspeed = 0.15\n");
     let s = &r.summary;
     assert_eq!(s.status, Status::Completed, "{:?}", s.error);
     assert!(
@@ -128,11 +137,7 @@ fn a_patch_born_beside_another_on_very_rough_ground_does_not_stop_the_integrator
     // in at once, it added 2.4 mm of deflection within 1e-10 m of motion,
     // and BDF made 100,000 attempts without passing it; born as a separate
     // chord of zero length, it passes.
-    let r = run(
-        "mer",
-        "duration = 3.5\n[terrain]\nkind = \"random\"\nz_r = 1.0\nseed = 1\n\
-         extent = [-5.0, 30.0, -10.0, 10.0]\n[control.speed]\nspeed = 0.15\n",
-    );
+    let r = on_rough_ground("mer", 1.0, 1, 3.5, "[control.speed]\nspeed = 0.15\n");
     assert_eq!(r.summary.status, Status::Completed, "{:?}", r.summary.error);
 }
 
@@ -142,11 +147,12 @@ fn a_tracked_contact_that_stops_the_integrator_names_the_search_to_use() {
     // tracked search's single patch jumps between them and BDF stops at
     // t ≈ 5.27 s (the meridional search runs through: see the sweep in
     // docs/TERRAIN.md). The error says which search keeps forces continuous.
-    let r = run(
+    let r = on_rough_ground(
         "lrv",
-        "duration = 5.5\n[terrain]\nkind = \"random\"\nz_r = 0.3\nseed = 2\n\
-         extent = [-5.0, 40.0, -15.0, 15.0]\n[control.speed]\nspeed = 0.2\nki = 100.0\n\
-         [contact]\nmethod = \"tracked\"\n",
+        0.3,
+        2,
+        5.5,
+        "[control.speed]\nspeed = 0.2\nki = 100.0\n[contact]\nmethod = \"tracked\"\n",
     );
     let e = r.summary.error.as_deref().unwrap_or("");
     assert_eq!(r.summary.status, Status::Failed);
