@@ -466,9 +466,35 @@ fn terrain_height_bounds_hold() {
     }
 }
 
+/// A 13 cm wheel, level and across X, lowered from centre height `top` by
+/// `steps` steps of `dz` at X = `x`: the patch count at every height and
+/// the largest change of the summed deflection from one height to the next.
+fn lowered(
+    ground: &rover_runtime::terrain::Sinusoid,
+    x: f64,
+    top: f64,
+    dz: f64,
+    steps: usize,
+) -> (Vec<usize>, f64) {
+    let search = rover_runtime::contact::MeridionalContact::default();
+    let (mut counts, mut worst, mut prev) = (Vec::new(), 0.0_f64, None::<f64>);
+    for k in 0..=steps {
+        let z = top - k as f64 * dz;
+        let c = search
+            .find(ground, [x, 0.0, z], [0.0, 1.0, 0.0], 0.13)
+            .unwrap();
+        counts.push(c.count);
+        let total: f64 = c.patches().iter().map(|p| p.deflection).sum();
+        if let Some(p) = prev {
+            worst = worst.max((total - p).abs());
+        }
+        prev = Some(total);
+    }
+    (counts, worst)
+}
+
 #[test]
 fn a_patch_splitting_over_a_ridge_hands_over_its_force_continuously() {
-    use rover_runtime::contact::MeridionalContact;
     use rover_runtime::terrain::Sinusoid;
     // Crests at X = ±3 cm, a trough at X = 0: a 13 cm wheel lowered over
     // the trough touches both crests (two patches), then the rim reaches
@@ -478,25 +504,11 @@ fn a_patch_splitting_over_a_ridge_hands_over_its_force_continuously() {
     // that jump, where no implicit integrator converges); the split is
     // blended in over the ridge's clearance instead.
     let ground = Sinusoid::new(0.01, 0.06, 0.0, -90.0).unwrap();
-    let search = MeridionalContact::default();
-    let radius = 0.13;
     let dz = 1e-5;
     for x in [0.0, 0.0011] {
-        let (mut counts, mut worst, mut prev) = ([false; 3], 0.0_f64, None::<f64>);
-        for k in 0..=1000 {
-            let z = 0.125 - k as f64 * dz;
-            let c = search
-                .find(&ground, [x, 0.0, z], [0.0, 1.0, 0.0], radius)
-                .unwrap();
-            counts[c.count.min(2)] = true;
-            let total: f64 = c.patches().iter().map(|p| p.deflection).sum();
-            if let Some(p) = prev {
-                worst = worst.max((total - p).abs());
-            }
-            prev = Some(total);
-        }
+        let (counts, worst) = lowered(&ground, x, 0.125, dz, 1000);
         assert!(
-            counts[1] && counts[2],
+            counts.contains(&1) && counts.iter().any(|&c| c >= 2),
             "x = {x}: the scan must cross the split"
         );
         // Away from the split the sum moves by at most ~2·dz per step; the
@@ -510,7 +522,6 @@ fn a_patch_splitting_over_a_ridge_hands_over_its_force_continuously() {
 
 #[test]
 fn patches_born_beside_a_patch_over_shallow_troughs_appear_continuously() {
-    use rover_runtime::contact::MeridionalContact;
     use rover_runtime::terrain::Sinusoid;
     // Ripples 2 cm apart and 0.8 mm deep, more curved than the rim: as the
     // wheel sinks, patches are born on the crests beside the first one,
@@ -518,26 +529,13 @@ fn patches_born_beside_a_patch_over_shallow_troughs_appear_continuously() {
     // later merge over them. A patch born half-merged with its neighbour
     // would make the summed deflection jump.
     let ground = Sinusoid::new(0.0004, 0.02, 0.0, -90.0).unwrap();
-    let search = MeridionalContact::default();
-    let radius = 0.13;
     let dz = 1e-7;
     for x in [0.0013, 0.0031] {
-        let (mut births, mut count, mut worst, mut prev) = (0, 0, 0.0_f64, None::<f64>);
-        for k in 0..=20_000 {
-            let z = 0.1305 - k as f64 * dz;
-            let c = search
-                .find(&ground, [x, 0.0, z], [0.0, 1.0, 0.0], radius)
-                .unwrap();
-            if count > 0 && c.count > count {
-                births += 1;
-            }
-            count = c.count;
-            let total: f64 = c.patches().iter().map(|p| p.deflection).sum();
-            if let Some(p) = prev {
-                worst = worst.max((total - p).abs());
-            }
-            prev = Some(total);
-        }
+        let (counts, worst) = lowered(&ground, x, 0.1305, dz, 20_000);
+        let births = counts
+            .windows(2)
+            .filter(|c| c[0] > 0 && c[1] > c[0])
+            .count();
         assert!(births >= 1, "x = {x}: a patch must be born beside another");
         assert!(
             worst < 10.0 * dz,

@@ -169,31 +169,34 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         files.extend(plots(&csv_path, &args.out, &spec, scenario.settle)?);
     }
     bar.suspend(|| {
-        match summary.status {
-        Status::Completed => eprintln!(
-            "{}: {:.1} s simulated in {:.2} s (real-time factor {:.1}); outputs in {}",
-            spec.name,
-            summary.t_end,
-            summary.wall_time_s,
-            summary.real_time_factor,
-            args.out.display()
-        ),
-        _ => eprintln!(
-            "{}: run incomplete at t = {:.3} s: {}; the CSV holds what was computed (marked incomplete in summary.json)",
-            spec.name,
-            summary.t_end,
-            summary.error.as_deref().unwrap_or("stopped")
-        ),
-        }
+        report_end(&spec.name, &summary, &args.out);
         stalled_warning(&spec, &summary);
     });
     Ok(SimulateReport { summary, files })
 }
 
+/// The line that says how the run ended and where its outputs are.
+fn report_end(rover: &str, summary: &Summary, out: &Path) {
+    match summary.status {
+        Status::Completed => eprintln!(
+            "{rover}: {:.1} s simulated in {:.2} s (real-time factor {:.1}); outputs in {}",
+            summary.t_end,
+            summary.wall_time_s,
+            summary.real_time_factor,
+            out.display()
+        ),
+        _ => eprintln!(
+            "{rover}: run incomplete at t = {:.3} s: {}; the CSV holds what was computed (marked incomplete in summary.json)",
+            summary.t_end,
+            summary.error.as_deref().unwrap_or("stopped")
+        ),
+    }
+}
+
 /// A warning when the rover stalled (`summary.json` has the numbers): the
 /// run is valid, but it is not the traverse the scenario describes. The
 /// motors' last torques against their limits tell which cause it is.
-fn stalled_warning(spec: &rover_spec::Spec, summary: &rover_runtime::output::Summary) {
+fn stalled_warning(spec: &rover_spec::Spec, summary: &Summary) {
     let Some(s) = &summary.stalled else { return };
     let limits = spec.model.wheels.iter().map(|w| w.max_torque);
     // A motor within 5 % of its limit is at it.

@@ -295,8 +295,8 @@ impl MeridionalContact {
 /// hands over from one chord to two \[m\] (see [`Runs::emit`]).
 pub const SPLIT_BAND: f64 = 1e-3;
 
-/// Most runs below ground one search keeps: one patch per run (a blend
-/// never merges two runs, whose gap always clears the rim).
+/// Most runs below ground one search keeps: each gives at most one patch
+/// (fewer where a blend merges two), so more could not be reported.
 const MAX_RUNS: usize = super::MAX_PATCHES;
 
 /// One run below ground: its crossings A, B and its deepest sampled

@@ -210,9 +210,8 @@ impl RunLog {
     /// level): it cannot stall, and its rows carry no velocities.
     pub fn imposed(settle: f64, wheels: usize) -> Self {
         Self {
-            settle,
-            deep: vec![false; wheels],
-            ..Self::default()
+            forward_column: None,
+            ..Self::new(settle, 0, wheels)
         }
     }
 
