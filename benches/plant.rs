@@ -1,6 +1,9 @@
 //! Generated vs generic plant (issue 6): per built-in rover, the plant's
 //! right-hand side alone, plant + contact through `RoverSystem::rhs` on flat
-//! ground (meridional and tracked contact), and the mass matrix alone; and whole 40 s runs of swing4 on flat
+//! ground (meridional and tracked contact; the meridional search cuts the
+//! rim with the ground plane in closed form) and on the same flat ground
+//! given as a grid (the meridional search samples the rim, as on any rough
+//! map), and the mass matrix alone; and whole 40 s runs of swing4 on flat
 //! ground with RK4. Same seeded states for both back ends, setup outside
 //! the timing. `cargo bench --bench plant -- --warm-up-time 1 --measurement-time 3`.
 
@@ -78,9 +81,29 @@ fn system<P: Plant>(
     plant: P,
     method: ContactMethod,
 ) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+    system_on(Terrain::default(), model, plant, method)
+}
+
+/// Flat ground at Z = 0 as a 4 m × 4 m bicubic grid (5 cm spacing): the
+/// geometry of [`system`], but the contact search samples the rim as on
+/// any rough map instead of cutting it with a plane in closed form.
+fn flat_grid() -> Terrain {
+    Terrain::Grid(
+        rover_runtime::terrain::Grid::from_fn([-2.0, -2.0], [0.05, 0.05], 81, 81, |_, _| 0.0)
+            .unwrap(),
+    )
+}
+
+/// [`system`] on `terrain`.
+fn system_on<P: Plant>(
+    terrain: Terrain,
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
     let n = model.dof();
     let ground = Ground::new(
-        Terrain::default(),
+        terrain,
         model,
         method,
         RimSampling::default(),
@@ -139,13 +162,26 @@ fn bench_contact<P: Plant>(
     plant: P,
     method: ContactMethod,
 ) {
-    let (mut sys, y) = system(model, plant, method);
-    let mut dy = vec![0.0; y.len()];
-    sys.rhs(0.0, &y, &mut dy).unwrap();
     let what = match method {
         ContactMethod::Meridional => "rhs_contact",
         ContactMethod::Tracked => "rhs_contact_tracked",
     };
+    bench_contact_on(group, what, id, Terrain::default(), model, plant, method);
+}
+
+/// The right-hand side with contact on `terrain`, as benchmark `what`/`id`.
+fn bench_contact_on<P: Plant>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    what: &str,
+    id: &str,
+    terrain: Terrain,
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+) {
+    let (mut sys, y) = system_on(terrain, model, plant, method);
+    let mut dy = vec![0.0; y.len()];
+    sys.rhs(0.0, &y, &mut dy).unwrap();
     group.bench_function(BenchmarkId::new(what, id), |b| {
         b.iter(|| {
             sys.rhs(0.0, black_box(&y), &mut dy).unwrap();
@@ -165,6 +201,25 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
         bench_contact(&mut group, "generated", &model, generated.clone(), method);
         bench_contact(&mut group, "generic", &model, generic.clone(), method);
     }
+    let (what, method) = ("rhs_contact_grid", ContactMethod::Meridional);
+    bench_contact_on(
+        &mut group,
+        what,
+        "generated",
+        flat_grid(),
+        &model,
+        generated,
+        method,
+    );
+    bench_contact_on(
+        &mut group,
+        what,
+        "generic",
+        flat_grid(),
+        &model,
+        generic,
+        method,
+    );
     group.finish();
 }
 

@@ -361,7 +361,10 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
     let mut rng = crate::support::rng::Rng::new(2026);
     let search = MeridionalContact::default();
     for (name, terrain) in bounded_terrains() {
-        let full = Probe::new(&terrain, false);
+        // Both through the probe, which hides a plane's closed form (held
+        // against the sampled search on its own below): sampling, bounded
+        // and not.
+        let (culled, full) = (Probe::new(&terrain, true), Probe::new(&terrain, false));
         let mut touching = 0;
         for trial in 0..400 {
             let (x, y) = (rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
@@ -371,7 +374,7 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
             let z = terrain.height(x, y).unwrap() + radius - depth;
             let (roll, yaw) = (rng.uniform(-0.5, 0.5), rng.uniform(-3.1, 3.1));
             let axis = [-yaw.sin() * roll.cos(), yaw.cos() * roll.cos(), roll.sin()];
-            let bounded = search.find(&terrain, [x, y, z], axis, radius);
+            let bounded = search.find(&culled, [x, y, z], axis, radius);
             let sampled = search.find(&full, [x, y, z], axis, radius);
             assert_eq!(bounded, sampled, "{name}, trial {trial}");
             touching += usize::from(matches!(bounded, Ok(c) if c.count > 0));
@@ -589,4 +592,84 @@ fn a_wheel_buried_to_its_centre_pulls_continuously_in_its_drive_torque() {
         // The motor reacts with the torque that drives the pull.
         assert!((report.torque - torque).abs() <= 1e-12, "{}", report.torque);
     }
+}
+
+#[test]
+fn a_plane_cuts_the_rim_in_closed_form_where_the_sampled_search_finds_it() {
+    use rover_runtime::contact::MeridionalContact;
+    use rover_runtime::terrain::{HeightField, TerrainConfig};
+    let config = |text: &str| -> Terrain {
+        let c: TerrainConfig = toml::from_str(text).unwrap();
+        c.build(std::path::Path::new(".")).unwrap()
+    };
+    let planes = [
+        ("flat", config("kind = \"flat\"\nheight = 0.37")),
+        (
+            "slope",
+            config("kind = \"slope\"\nangle_deg = 12.0\ndirection_deg = 30.0"),
+        ),
+        (
+            "steep",
+            config("kind = \"slope\"\nangle_deg = -35.0\ndirection_deg = 200.0\nheight = -1.0"),
+        ),
+    ];
+    let mut rng = crate::support::rng::Rng::new(77);
+    let search = MeridionalContact::default();
+    let (mut worst_deflection, mut worst_point) = (0.0f64, 0.0f64);
+    for (name, terrain) in &planes {
+        // Its heights are the plane's, bit for bit.
+        let plane = terrain.plane().expect("a plane");
+        // The probe hides the plane: the sampled search.
+        let sampled_ground = Probe::new(terrain, true);
+        let (mut touching, mut deep) = (0, 0);
+        for trial in 0..1000 {
+            let (x, y) = (rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0));
+            assert_eq!(
+                terrain.height(x, y).unwrap().to_bits(),
+                plane.height_at(x, y).to_bits()
+            );
+            let radius = rng.uniform(0.08, 0.4);
+            // From 3 cm clear to 7 cm deep (past the centre of the smallest
+            // wheels: the sampled search then takes over), tilted up to 30°.
+            let z = terrain.height(x, y).unwrap() + radius - rng.uniform(-0.03, 0.07);
+            let (roll, yaw) = (rng.uniform(-0.5, 0.5), rng.uniform(-3.1, 3.1));
+            let axis = [-yaw.sin() * roll.cos(), yaw.cos() * roll.cos(), roll.sin()];
+            let cut = search.find(terrain, [x, y, z], axis, radius).unwrap();
+            let sampled = search
+                .find(&sampled_ground, [x, y, z], axis, radius)
+                .unwrap();
+            assert_eq!(cut.count, sampled.count, "{name}, trial {trial}");
+            assert_eq!(cut.deep, sampled.deep, "{name}, trial {trial}");
+            for (p, q) in cut.patches().iter().zip(sampled.patches()) {
+                let gap = |a: [f64; 3], b: [f64; 3]| {
+                    (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
+                };
+                worst_deflection = worst_deflection.max((p.deflection - q.deflection).abs());
+                worst_point = worst_point.max(gap(p.point, q.point));
+                // The sampled ends have a height residual of at most 1e-9 m
+                // (RimSampling::tolerance): the deflections agree to that.
+                assert!(
+                    (p.deflection - q.deflection).abs() <= 2e-9,
+                    "{name}, trial {trial}: deflection {} vs {}",
+                    p.deflection,
+                    q.deflection
+                );
+                assert!(gap(p.normal, q.normal) < 1e-6, "{name}, trial {trial}");
+                assert!(gap(p.point, q.point) < 1e-6, "{name}, trial {trial}");
+            }
+            touching += usize::from(cut.count > 0);
+            deep += usize::from(cut.deep);
+        }
+        assert!(
+            touching > 500,
+            "{name}: only {touching} of 1000 wheels touch"
+        );
+        // On flat ground the half rim's ends are level with the centre, so
+        // only a wheel buried past it reaches them (the sampled search's
+        // case); on a slope the downhill end dips below sooner.
+        if *name == "steep" {
+            assert!(deep > 10, "{name}: {deep} wheels reached a half-rim end");
+        }
+    }
+    eprintln!("closed form vs sampled: deflection {worst_deflection:e} m, point {worst_point:e} m");
 }

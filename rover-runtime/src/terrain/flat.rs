@@ -1,7 +1,7 @@
 //! Flat horizontal ground.
 
 use super::error::TerrainError;
-use super::height_field::{Bounds, HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, Plane, finite_point};
 use super::param::finite;
 
 /// Horizontal ground at a constant height: `Z_G = z0`. Unbounded
@@ -47,5 +47,13 @@ impl HeightField for Flat {
 
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
         area.is_finite().then_some(self.height)
+    }
+
+    fn plane(&self) -> Option<Plane> {
+        Some(Plane {
+            origin: [0.0, 0.0],
+            height: self.height,
+            gradient: [0.0, 0.0],
+        })
     }
 }

@@ -29,6 +29,36 @@ pub trait HeightField {
         let _ = area;
         None
     }
+
+    /// The plane the whole terrain is, when it is one (flat ground, a
+    /// slope): the contact search then cuts the rim with it in closed form
+    /// instead of sampling it. `None` (the default) for any other surface;
+    /// a terrain that says `Some` must give exactly that plane's heights
+    /// at every finite point.
+    fn plane(&self) -> Option<Plane> {
+        None
+    }
+}
+
+/// A plane `Z = height + gradient·((X, Y) − origin)` \[m\].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plane {
+    /// A point (X0, Y0) of the plane's horizontal projection \[m\].
+    pub origin: [f64; 2],
+    /// The plane's height at `origin` \[m\].
+    pub height: f64,
+    /// `[∂Z/∂X, ∂Z/∂Y]` [m/m].
+    pub gradient: [f64; 2],
+}
+
+impl Plane {
+    /// The height at (`x`, `y`) \[m\].
+    #[inline]
+    pub fn height_at(&self, x: f64, y: f64) -> f64 {
+        self.height
+            + self.gradient[0] * (x - self.origin[0])
+            + self.gradient[1] * (y - self.origin[1])
+    }
 }
 
 impl<H: HeightField + ?Sized> HeightField for &H {
@@ -42,6 +72,10 @@ impl<H: HeightField + ?Sized> HeightField for &H {
 
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
         (**self).max_height_in(area)
+    }
+
+    fn plane(&self) -> Option<Plane> {
+        (**self).plane()
     }
 }
 

@@ -1,7 +1,7 @@
 //! A plane inclined in any direction.
 
 use super::error::TerrainError;
-use super::height_field::{Bounds, HeightField, OffMap, finite_point};
+use super::height_field::{Bounds, HeightField, OffMap, Plane, finite_point};
 use super::param::{finite, unit_vector};
 
 /// A plane rising at `angle_deg` towards the azimuth `direction_deg`
@@ -46,6 +46,16 @@ impl Slope {
         })
     }
 
+    /// The slope as a [`Plane`] (its heights are that plane's, bit for bit).
+    #[inline]
+    pub fn as_plane(&self) -> Plane {
+        Plane {
+            origin: self.origin,
+            height: self.height,
+            gradient: self.gradient,
+        }
+    }
+
     /// The gradient `[∂Z/∂X, ∂Z/∂Y]`, the same everywhere.
     pub fn gradient(&self) -> [f64; 2] {
         self.gradient
@@ -61,9 +71,7 @@ impl HeightField for Slope {
     #[inline]
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         finite_point(x, y)?;
-        let z = self.height
-            + self.gradient[0] * (x - self.origin[0])
-            + self.gradient[1] * (y - self.origin[1]);
+        let z = self.as_plane().height_at(x, y);
         if !z.is_finite() {
             // Only for points ~1e300 m away on a steep slope.
             return Err(OffMap {
@@ -91,5 +99,9 @@ impl HeightField for Slope {
             area.y_min
         };
         self.height(x, y).ok()
+    }
+
+    fn plane(&self) -> Option<Plane> {
+        Some(self.as_plane())
     }
 }

@@ -4,7 +4,7 @@ use super::bump::Bump;
 use super::ditch::Ditch;
 use super::flat::Flat;
 use super::grid::Grid;
-use super::height_field::{Bounds, HeightField, OffMap};
+use super::height_field::{Bounds, HeightField, OffMap, Plane};
 use super::sinusoid::Sinusoid;
 use super::slope::Slope;
 use super::step::Step;
@@ -89,6 +89,15 @@ impl HeightField for Terrain {
             Terrain::Step(t) => t.max_height_in(area),
             Terrain::Sinusoid(t) => t.max_height_in(area),
             Terrain::Grid(t) => t.max_height_in(area),
+        }
+    }
+
+    #[inline]
+    fn plane(&self) -> Option<Plane> {
+        match self {
+            Terrain::Flat(t) => t.plane(),
+            Terrain::Slope(t) => t.plane(),
+            _ => None,
         }
     }
 }
