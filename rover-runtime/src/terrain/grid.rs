@@ -344,6 +344,55 @@ impl Grid {
         Ok((z, [dz_dt / self.spacing[0], dz_ds / self.spacing[1]]))
     }
 
+    /// The height alone: what [`Grid::evaluate`] gives as its first value,
+    /// bit for bit (the same operations in the same order), without the
+    /// gradient's and, inside the map, the ghost nodes' work. The contact
+    /// search asks this for every rim sample.
+    #[inline]
+    fn height_only(&self, x: f64, y: f64) -> Result<f64, OffMap> {
+        let off = || OffMap {
+            x,
+            y,
+            bounds: self.bounds(),
+        };
+        let (i, t, _) = self
+            .locate(x, self.origin[0], self.spacing[0], self.nx)
+            .ok_or_else(off)?;
+        let (j, s, _) = self
+            .locate(y, self.origin[1], self.spacing[1], self.ny)
+            .ok_or_else(off)?;
+        Ok(match self.interpolation {
+            Interpolation::Bicubic => match self.interior_block(i, j) {
+                Some(block) => {
+                    let (wx, _) = catmull_rom(t);
+                    let (wy, _) = catmull_rom(s);
+                    let mut z = 0.0;
+                    for k in 0..4 {
+                        let p = block[k];
+                        z += wy[k] * (wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3]);
+                    }
+                    z
+                }
+                None => self.bicubic(i, t, j, s).0,
+            },
+            Interpolation::Bilinear => self.bilinear(i, t, j, s).0,
+        })
+    }
+
+    /// The 4 × 4 nodes around cell (i, j), rows of increasing Y, when none is
+    /// a ghost (the cell is not on the map's edge).
+    #[inline]
+    fn interior_block(&self, i: usize, j: usize) -> Option<[&[f64; 4]; 4]> {
+        if i == 0 || i + 2 >= self.nx || j == 0 || j + 2 >= self.ny {
+            return None;
+        }
+        let row = |r: usize| -> Option<&[f64; 4]> {
+            let start = r * self.nx + i - 1;
+            self.heights.get(start..start + 4)?.try_into().ok()
+        };
+        Some([row(j - 1)?, row(j)?, row(j + 1)?, row(j + 2)?])
+    }
+
     /// Height and derivatives with respect to the local cell coordinates.
     #[inline]
     fn bicubic(&self, i: usize, t: f64, j: usize, s: f64) -> (f64, f64, f64) {
@@ -389,7 +438,7 @@ impl Grid {
 impl HeightField for Grid {
     #[inline]
     fn height(&self, x: f64, y: f64) -> Result<f64, OffMap> {
-        self.evaluate(x, y).map(|(z, _)| z)
+        self.height_only(x, y)
     }
 
     #[inline]
@@ -441,5 +490,41 @@ impl HeightField for Grid {
             Interpolation::Bilinear => hi,
             Interpolation::Bicubic => hi + BICUBIC_OVERSHOOT * (hi - lo),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The height-only query is the full query's height, bit for bit, inside
+    /// the map, in its edge cells (ghost nodes) and beyond a clamped edge.
+    #[test]
+    fn height_alone_is_the_height_of_the_full_query() {
+        let f = |x: f64, y: f64| 0.03 * (7.0 * x).sin() * (5.0 * y).cos() + 0.01 * (23.0 * y).sin();
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut uniform = |lo: f64, hi: f64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        for interpolation in [Interpolation::Bicubic, Interpolation::Bilinear] {
+            for edge in [EdgePolicy::Error, EdgePolicy::Clamp] {
+                let grid = Grid::from_fn([-1.0, -0.5], [0.1, 0.05], 21, 23, f)
+                    .unwrap()
+                    .with_interpolation(interpolation)
+                    .with_edge_policy(edge);
+                let mut interior = 0;
+                for _ in 0..5000 {
+                    let (x, y) = (uniform(-1.2, 1.2), uniform(-0.7, 0.8));
+                    let full = grid.evaluate(x, y).map(|(z, _)| z.to_bits());
+                    let alone = grid.height(x, y).map(f64::to_bits);
+                    assert_eq!(full, alone, "{interpolation:?} {edge:?} at ({x}, {y})");
+                    interior += usize::from(x.abs() < 0.85 && (y - 0.05).abs() < 0.45);
+                }
+                assert!(interior > 2000);
+            }
+        }
     }
 }
