@@ -318,19 +318,27 @@ impl Grid {
         Some((k, u - k as f64, clamped))
     }
 
+    /// The cell of (`x`, `y`) along both axes ([`Grid::locate`] each), or
+    /// the off-map error.
     #[inline]
-    fn evaluate(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
+    fn cell(&self, x: f64, y: f64) -> Result<[(usize, f64, bool); 2], OffMap> {
         let off = || OffMap {
             x,
             y,
             bounds: self.bounds(),
         };
-        let (i, t, clamp_x) = self
+        let along_x = self
             .locate(x, self.origin[0], self.spacing[0], self.nx)
             .ok_or_else(off)?;
-        let (j, s, clamp_y) = self
+        let along_y = self
             .locate(y, self.origin[1], self.spacing[1], self.ny)
             .ok_or_else(off)?;
+        Ok([along_x, along_y])
+    }
+
+    #[inline]
+    fn evaluate(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
+        let [(i, t, clamp_x), (j, s, clamp_y)] = self.cell(x, y)?;
         let (z, mut dz_dt, mut dz_ds) = match self.interpolation {
             Interpolation::Bicubic => self.bicubic(i, t, j, s),
             Interpolation::Bilinear => self.bilinear(i, t, j, s),
@@ -350,17 +358,7 @@ impl Grid {
     /// search asks this for every rim sample.
     #[inline]
     fn height_only(&self, x: f64, y: f64) -> Result<f64, OffMap> {
-        let off = || OffMap {
-            x,
-            y,
-            bounds: self.bounds(),
-        };
-        let (i, t, _) = self
-            .locate(x, self.origin[0], self.spacing[0], self.nx)
-            .ok_or_else(off)?;
-        let (j, s, _) = self
-            .locate(y, self.origin[1], self.spacing[1], self.ny)
-            .ok_or_else(off)?;
+        let [(i, t, _), (j, s, _)] = self.cell(x, y)?;
         Ok(match self.interpolation {
             Interpolation::Bicubic => match self.interior_block(i, j) {
                 Some(block) => {
