@@ -319,8 +319,9 @@ impl Grid {
     }
 
     /// The cell of (`x`, `y`) along both axes ([`Grid::locate`] each), or
-    /// the off-map error.
-    #[inline]
+    /// the off-map error. Always inlined: as a call it cost the contact
+    /// search on a grid 6 % more instructions (callgrind).
+    #[inline(always)]
     fn cell(&self, x: f64, y: f64) -> Result<[(usize, f64, bool); 2], OffMap> {
         let off = || OffMap {
             x,
