@@ -108,28 +108,33 @@ fn tabulated_angle(table: Option<&[(f64, f64); DEFAULT_SAMPLES]>, step: f64, i: 
     }
 }
 
-/// The rim cut by a plane, in closed form: the one run of the half rim
-/// below it, its ends A, B and whether an end is a sample end of the half
-/// rim (`deep`), or `Some(None)` when no point of the half rim is below.
-/// `None` asks for the sampled search: a wheel buried past its centre (the
-/// run could wrap round onto both ends), a wheel plane parallel to the
-/// ground plane, a non-finite state.
+/// What [`plane_cut`] found.
+enum PlaneCut {
+    /// The one run of the half rim below the plane: its ends A, B, and
+    /// whether an end is an end of the half rim (`deep`).
+    Run(RimAngle, RimAngle, bool),
+    /// No point of the half rim is below the plane.
+    Clear,
+    /// A case for the sampled search: a wheel buried past its centre (the
+    /// run could wrap round onto both ends), a wheel plane parallel to the
+    /// ground plane, a non-finite state.
+    Sample,
+}
+
+/// The rim cut by a plane, in closed form.
 ///
 /// On a plane the clearance is a sinusoid of β,
 /// ```text
 /// h(β) = c0 + R·(A·cos β + B·sin β) = c0 + R·ρ·cos(β − φ)
 /// c0 = Z_G − Z(X_G, Y_G),  A = d_z − ∇Z·d_xy,  B = f_z − ∇Z·f_xy,  ρ = |(A, B)|
 /// ```
-/// lowest at β_m = φ ± π, below ground on `|β − β_m| < acos(c0/(R·ρ))`.
-/// The sampled search finds the same run (a plane has no dip or ridge
+/// lowest at β_m = φ ± π, below ground on `|β − β_m| < w = acos(c0/(R·ρ))`.
+/// The ends' sines and cosines follow from those of β_m (−B/ρ, −A/ρ) and
+/// of w (c0/(R·ρ), its complement) by the angle sums, without evaluating
+/// any. The sampled search finds the same run (a plane has no dip or ridge
 /// between samples to miss) with its ends to the crossing tolerance
 /// (1e-9 m of height); here they are exact to rounding.
-fn plane_cut(
-    plane: &crate::terrain::Plane,
-    frame: &RimFrame,
-    n: usize,
-    step: f64,
-) -> Option<Option<(RimAngle, RimAngle, bool)>> {
+fn plane_cut(plane: &crate::terrain::Plane, frame: &RimFrame, n: usize, step: f64) -> PlaneCut {
     let (g, d, f, r) = (frame.centre, frame.down, frame.forward, frame.radius);
     let [gx, gy] = plane.gradient;
     let c0 = g[2] - plane.height_at(g[0], g[1]);
@@ -137,14 +142,14 @@ fn plane_cut(
     let b = f[2] - gx * f[0] - gy * f[1];
     let rho = a.hypot(b);
     if !(c0.is_finite() && rho.is_finite() && rho > 1e-9 && r > 0.0) {
-        return None;
+        return PlaneCut::Sample;
     }
     let ratio = c0 / (r * rho);
     if ratio >= 1.0 {
-        return Some(None);
+        return PlaneCut::Clear;
     }
     if ratio <= -1.0 {
-        return None;
+        return PlaneCut::Sample;
     }
     let half = core::f64::consts::FRAC_PI_2;
     let phi = b.atan2(a);
@@ -155,20 +160,30 @@ fn plane_cut(
     };
     let width = ratio.acos();
     if !(lowest.abs() <= half && width < half) {
-        return None;
+        return PlaneCut::Sample;
     }
+    let (sin_m, cos_m) = (-b / rho, -a / rho);
+    let (cos_w, sin_w) = (ratio, ((1.0 - ratio) * (1.0 + ratio)).sqrt());
     let (lo, hi) = (lowest - width, lowest + width);
     let start = if lo <= -half {
         sample_angle(n, step, 0)
     } else {
-        RimAngle::new(lo)
+        RimAngle {
+            beta: lo,
+            sin: sin_m * cos_w - cos_m * sin_w,
+            cos: cos_m * cos_w + sin_m * sin_w,
+        }
     };
     let end = if hi >= half {
         sample_angle(n, step, n - 1)
     } else {
-        RimAngle::new(hi)
+        RimAngle {
+            beta: hi,
+            sin: sin_m * cos_w + cos_m * sin_w,
+            cos: cos_m * cos_w - sin_m * sin_w,
+        }
     };
-    Some(Some((start, end, lo <= -half || hi >= half)))
+    PlaneCut::Run(start, end, lo <= -half || hi >= half)
 }
 
 /// Height of rim point β above the ground and its slope,
@@ -273,14 +288,16 @@ impl MeridionalContact {
         };
         let n = self.sampling.samples.max(3);
         let step = core::f64::consts::PI / (n - 1) as f64;
-        if let Some(plane) = terrain.plane()
-            && let Some(run) = plane_cut(&plane, &frame, n, step)
-        {
-            if let Some((a, b, deep)) = run {
-                out.deep = deep;
-                out.push(frame.patch(a, b));
+        if let Some(plane) = terrain.plane() {
+            match plane_cut(&plane, &frame, n, step) {
+                PlaneCut::Run(a, b, deep) => {
+                    out.deep = deep;
+                    out.push(frame.patch(a, b));
+                    return Ok(());
+                }
+                PlaneCut::Clear => return Ok(()),
+                PlaneCut::Sample => {}
             }
-            return Ok(());
         }
         // A dip between samples: a local minimum of the sampled clearance
         // that is shallow enough to hide a crossing is refined, so a patch
