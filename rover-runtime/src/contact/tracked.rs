@@ -5,7 +5,9 @@
 //! slope from the terrain's gradient) reach the deepest rim point; A and B
 //! are then found by marching outwards from it and refining with the
 //! meridional crossing search. One patch per wheel; the meridional search is
-//! the fallback when there is no previous contact or the iteration fails.
+//! the fallback when there is no previous contact or the iteration fails,
+//! and the search itself on a plane (flat ground, a slope), where it cuts
+//! the rim in closed form.
 
 use crate::terrain::{HeightField, OffMap};
 
@@ -42,8 +44,12 @@ impl TrackedContact {
         axis: [f64; 3],
         radius: f64,
     ) -> Result<Contact, OffMap> {
+        // On a plane the rim's run below the ground is one arc that the
+        // meridional search cuts in closed form, exactly and at a third of
+        // the cost of tracking it: nothing to track.
+        let on_plane = terrain.plane().is_some();
         let found = match (self.previous, RimFrame::new(centre, axis, radius)) {
-            (Some(b0), Some(frame)) => self.track(terrain, &frame, b0)?,
+            (Some(b0), Some(frame)) if !on_plane => self.track(terrain, &frame, b0)?,
             _ => None,
         };
         let contact = match found {
