@@ -115,8 +115,7 @@ impl<H: HeightField> Ground<H> {
                     .find_into(terrain, s.centre, s.spin_axis, radius, out)
             }
             ContactMethod::Tracked => {
-                *out = self.trackers[k].find(terrain, s.centre, s.spin_axis, radius)?;
-                Ok(())
+                self.trackers[k].find_into(terrain, s.centre, s.spin_axis, radius, out)
             }
         }
     }
