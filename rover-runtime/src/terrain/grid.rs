@@ -7,56 +7,16 @@ use serde::{Deserialize, Serialize};
 use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap};
 use super::kernel::{catmull_rom, stencil};
+use super::range_pyramid::RangePyramid;
 
 /// Tolerance, in cells, for a query on the map's edge.
 const EDGE_SLACK: f64 = 1e-9;
-
-/// Nodes per side of a tile of [`TileRange`].
-const TILE: usize = 8;
 
 /// How far the bicubic interpolant can rise above its nodes, as a share of
 /// their range: the Catmull–Rom weights' negative lobes sum to at most
 /// 1/8 in one dimension (Σ|w| ≤ 1.25, ghost nodes included), so the tensor
 /// product's to (1.25² − 1)/2 = 0.28125; rounded up.
 const BICUBIC_OVERSHOOT: f64 = 0.3;
-
-/// The highest and lowest node of every `TILE × TILE` tile, so that an upper
-/// bound of the ground under a wheel costs a few tiles, not every node.
-#[derive(Debug, Clone, PartialEq)]
-struct TileRange {
-    columns: usize,
-    max: Vec<f64>,
-    min: Vec<f64>,
-}
-
-impl TileRange {
-    fn new(nx: usize, ny: usize, heights: &[f64]) -> TileRange {
-        let columns = nx.div_ceil(TILE);
-        let rows = ny.div_ceil(TILE);
-        let mut max = vec![f64::NEG_INFINITY; columns * rows];
-        let mut min = vec![f64::INFINITY; columns * rows];
-        for (k, &z) in heights.iter().enumerate() {
-            let t = (k / nx / TILE) * columns + (k % nx) / TILE;
-            max[t] = max[t].max(z);
-            min[t] = min[t].min(z);
-        }
-        TileRange { columns, max, min }
-    }
-
-    /// Highest and lowest node over nodes `i0..=i1` × `j0..=j1` (a superset:
-    /// whole tiles).
-    fn span(&self, i: [usize; 2], j: [usize; 2]) -> (f64, f64) {
-        let (mut hi, mut lo) = (f64::NEG_INFINITY, f64::INFINITY);
-        for row in j[0] / TILE..=j[1] / TILE {
-            for col in i[0] / TILE..=i[1] / TILE {
-                let t = row * self.columns + col;
-                hi = hi.max(self.max.get(t).copied().unwrap_or(f64::INFINITY));
-                lo = lo.min(self.min.get(t).copied().unwrap_or(f64::NEG_INFINITY));
-            }
-        }
-        (hi, lo)
-    }
-}
 
 /// How heights between grid nodes are computed (MODEL.md §6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -105,7 +65,7 @@ pub struct Grid {
     /// the baseline x86-64 target, and every height query needs both).
     last: [f64; 2],
     heights: Arc<[f64]>,
-    tiles: Arc<TileRange>,
+    tiles: Arc<RangePyramid>,
     interpolation: Interpolation,
     edge: EdgePolicy,
 }
@@ -178,7 +138,7 @@ impl Grid {
             nx,
             ny,
             last: [(nx - 1) as f64, (ny - 1) as f64],
-            tiles: Arc::new(TileRange::new(nx, ny, &heights)),
+            tiles: Arc::new(RangePyramid::new(nx, ny, &heights)),
             heights: heights.into(),
             interpolation: Interpolation::default(),
             edge: EdgePolicy::default(),
@@ -450,7 +410,7 @@ impl HeightField for Grid {
     }
 
     /// The highest node whose cell's stencil reaches into `area` (plus the
-    /// bicubic overshoot), read from the tiles; `None` if part of the area is
+    /// bicubic overshoot), read from the range pyramid; `None` if part of the area is
     /// off the map under the `error` edge policy.
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
         if !area.is_finite() {

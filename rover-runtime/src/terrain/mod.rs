@@ -38,6 +38,7 @@ pub mod png_map;
 pub mod prng;
 mod profile;
 mod random_field;
+mod range_pyramid;
 mod sinusoid;
 mod slope;
 mod statistics;
