@@ -1,6 +1,12 @@
 //! The no_std canary: a generated plant in a crate without std (see Cargo.toml).
 #![no_std]
 
+#[path = "../../../models/src/generated/exomars.rs"]
+pub mod exomars;
+#[path = "../../../models/src/generated/lrv.rs"]
+pub mod lrv;
+#[path = "../../../models/src/generated/mer.rs"]
+pub mod mer;
 #[path = "../../../models/src/generated/swing4.rs"]
 pub mod swing4;
 
@@ -19,7 +25,10 @@ pub extern "C" fn rover_canary_free_fall(phi: f64) -> f64 {
     let w = [0.0; 10];
     let loads = [WheelLoad::default(); 4];
     let (mut xdot, mut wdot) = ([0.0; 10], [0.0; 10]);
-    if plant.derivatives(&x, &w, &loads, &mut xdot, &mut wdot).is_err() {
+    if plant
+        .derivatives(&x, &w, &loads, &mut xdot, &mut wdot)
+        .is_err()
+    {
         return f64::NAN;
     }
     let xs = SVector::<f64, 10>::from(x);
@@ -33,6 +42,75 @@ pub extern "C" fn rover_canary_free_fall(phi: f64) -> f64 {
     let m = plant.mass_matrix_fixed(&xs);
     (wdot[2] + wd[2]) / 2.0 + 0.0 * m[(0, 0)]
 }
+
+/// Every entry of a generated plant with inputs the compiler cannot see
+/// (C ABI, so each body is kept and nothing is constant-folded), one
+/// function per built-in rover: tests/no_std.rs reads this crate's release
+/// assembly and checks that no path of it can reach a panic. `len` picks
+/// the slice lengths handed to the `Plant` trait, so that its length
+/// checks are compiled too.
+macro_rules! every_entry {
+    ($name:ident, $module:ident :: $plant:ident, $n:literal, $w:literal) => {
+        #[unsafe(no_mangle)]
+        pub extern "C" fn $name(
+            plant: &mut $module::$plant,
+            x: &[f64; 16],
+            w: &[f64; 16],
+            loads: &[WheelLoad; 6],
+            len: usize,
+            out: &mut [f64; 512],
+        ) -> i32 {
+            let n = len.min(16);
+            let (head, rest) = out.split_at_mut(16);
+            let (wdot, rest) = rest.split_at_mut(16);
+            let mut status = 0;
+            if plant
+                .derivatives(
+                    &x[..n],
+                    &w[..n],
+                    &loads[..n.min(6)],
+                    &mut head[..n],
+                    &mut wdot[..n],
+                )
+                .is_err()
+            {
+                status |= 1;
+            }
+            plant.mass_matrix(&x[..n], &mut rest[..n * n]);
+            plant.set_spring_neutral(len, x[0]);
+            let mut states = [rover_dynamics::plant::WheelState::default(); 6];
+            plant.wheels(&x[..n], &w[..n], &w[..n.min(6)], &mut states[..n.min(6)]);
+            let Ok(fixed) = <&[WheelLoad; $w]>::try_from(&loads[..$w]) else {
+                return -1;
+            };
+            let xs = SVector::<f64, $n>::from_fn(|i, _| x[i]);
+            let ws = SVector::<f64, $n>::from_fn(|i, _| w[i]);
+            let (mut xd, mut wd) = (SVector::<f64, $n>::zeros(), SVector::<f64, $n>::zeros());
+            if plant
+                .derivatives_fixed(&xs, &ws, fixed, &mut xd, &mut wd)
+                .is_err()
+            {
+                status |= 2;
+            }
+            let m = plant.mass_matrix_fixed(&xs);
+            let j = plant.jacobian_fixed(&xs, &ws, fixed);
+            let steer = SVector::<f64, $w>::from_fn(|i, _| w[i]);
+            let wheels = plant.wheels_fixed(&xs, &ws, &steer);
+            rest[256] = xd[0]
+                + wd[$n - 1]
+                + m[($n - 1, $n - 1)]
+                + j[(2 * $n - 1, 0)]
+                + wheels[$w - 1].velocity[2]
+                + states[5].centre[0];
+            status
+        }
+    };
+}
+
+every_entry!(rover_canary_swing4, swing4::Swing4, 10, 4);
+every_entry!(rover_canary_exomars, exomars::Exomars, 9, 6);
+every_entry!(rover_canary_mer, mer::Mer, 9, 6);
+every_entry!(rover_canary_lrv, lrv::Lrv, 10, 4);
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
