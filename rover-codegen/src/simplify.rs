@@ -205,7 +205,8 @@ impl Rebuild<'_> {
         loop {
             let mut count: Vec<(Id, usize)> = Vec::new();
             for &(a, b, _) in &rest {
-                for f in if a == b { vec![a] } else { vec![a, b] } {
+                // A square a·a holds its factor once.
+                for f in [a, b].into_iter().take(if a == b { 1 } else { 2 }) {
                     match count.iter_mut().find(|(g, _)| *g == f) {
                         Some((_, n)) => *n += 1,
                         None => count.push((f, 1)),
