@@ -235,6 +235,57 @@ fn a_rolled_over_state_is_the_generic_error() {
     assert_eq!(err, expect);
 }
 
+/// A state whose mass matrix has no LDLᵀ factors (a suspension coordinate
+/// that is NaN, so pivots are NaN, not > 0) is the generic plant's error
+/// for every built-in rover: the same variant with a NaN pivot, not a
+/// silent `Ok` (the generated plant tests all pivots in one branch and
+/// builds the error out of line). Each reports the first failing pivot of
+/// its own elimination order (the generated one eliminates the suspension
+/// rows first, docs/CODEGEN.md), so the rows may differ; both are rows of
+/// M that the NaN reaches.
+#[test]
+fn a_mass_matrix_without_factors_is_the_generic_error() {
+    use rover_dynamics::plant::PlantError;
+    for name in ["exomars", "swing4", "mer", "lrv"] {
+        let model = spec(name).model;
+        let (n, k) = (model.dof(), model.wheels.len());
+        let mut generated = rover_models::plant(name).unwrap();
+        let mut generic = GenericPlant::new(model.clone()).unwrap();
+        for coordinate in 6..n {
+            let mut x = vec![0.0; n];
+            x[6..].copy_from_slice(&model.rest());
+            x[coordinate] = f64::NAN;
+            let (w, loads) = (vec![0.0; n], vec![WheelLoad::default(); k]);
+            let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+            let got = generated.derivatives(&x, &w, &loads, &mut a, &mut b);
+            let expect = generic.derivatives(&x, &w, &loads, &mut a, &mut b);
+            match (got, expect) {
+                (
+                    Err(PlantError::SingularMass { row, pivot }),
+                    Err(PlantError::SingularMass {
+                        row: generic_row,
+                        pivot: generic_pivot,
+                    }),
+                ) => {
+                    let mut m = vec![0.0; n * n];
+                    generic.mass_matrix(&x, &mut m);
+                    for r in [row, generic_row] {
+                        assert!(
+                            m[r * n..(r + 1) * n].iter().any(|v| v.is_nan()),
+                            "{name}, coordinate {coordinate} NaN: row {r} of M has no NaN"
+                        );
+                    }
+                    assert!(
+                        pivot.is_nan() && generic_pivot.is_nan(),
+                        "{name}: {pivot}, {generic_pivot}"
+                    );
+                }
+                other => panic!("{name}, coordinate {coordinate} NaN: {other:?}"),
+            }
+        }
+    }
+}
+
 #[test]
 fn wrong_slice_lengths_give_nan_not_a_panic() {
     let mut p = rover_models::Swing4::new();

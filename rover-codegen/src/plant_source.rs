@@ -180,9 +180,23 @@ impl {name} {{
             return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
         }}
         // Each pivot is a ratio whose denominator the earlier checks made
-        // positive: its numerator's sign decides, the value is only divided
-        // out to be reported.
-        let pivots: [(usize, f64, f64); {n}] = [{pivots}];
+        // positive: its numerator's sign decides. One test for all of them
+        // (`&`, not `&&`: one branch; false for NaN), and the error, which
+        // divides the failing value out to report it, built out of line.
+        if {all_positive} {{
+            return Ok(());
+        }}
+        Self::singular_mass([{pivots}])
+    }}
+
+    /// The first pivot (row, numerator, denominator) whose numerator is not
+    /// > 0, as the error; out of line, so that the pivots are not stored
+    /// on the way to `Ok` (M is positive definite on every sane state).
+    #[cold]
+    #[inline(never)]
+    fn singular_mass(
+        pivots: [(usize, f64, f64); {n}],
+    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
         for (row, num, den) in pivots {{
             if num.is_nan() || num <= 0.0 {{
                 return Err({PLANT}::PlantError::SingularMass {{ row, pivot: num / den }});
@@ -221,6 +235,12 @@ impl {name} {{
         wheel_list_q = str_list(&spec.wheel_names),
         neutrals = neutrals.join(", "),
         pivots = pivot_list.join(", "),
+        all_positive = traced
+            .pivot_rows
+            .iter()
+            .map(|r| format!("(pivot_{r} > 0.0)"))
+            .collect::<Vec<_>>()
+            .join(" & "),
     );
     if let Some(jac) = &traced.jacobian {
         let (code, jac_ops) = emit_fn(jac, c);

@@ -616,7 +616,13 @@ impl Lrv {
                 roll: x[3],
             });
         }
-        let pivots: [(usize, f64, f64); 10] = [
+        if (pivot_6 > 0.0) & (pivot_7 > 0.0) & (pivot_8 > 0.0) & (pivot_9 > 0.0)
+            & (pivot_0 > 0.0) & (pivot_1 > 0.0) & (pivot_2 > 0.0) & (pivot_3 > 0.0)
+            & (pivot_4 > 0.0) & (pivot_5 > 0.0)
+        {
+            return Ok(());
+        }
+        Self::singular_mass([
             (6, pivot_6, pivot_den_6),
             (7, pivot_7, pivot_den_7),
             (8, pivot_8, pivot_den_8),
@@ -627,7 +633,16 @@ impl Lrv {
             (3, pivot_3, pivot_den_3),
             (4, pivot_4, pivot_den_4),
             (5, pivot_5, pivot_den_5),
-        ];
+        ])
+    }
+    /// The first pivot (row, numerator, denominator) whose numerator is not
+    /// > 0, as the error; out of line, so that the pivots are not stored
+    /// on the way to `Ok` (M is positive definite on every sane state).
+    #[cold]
+    #[inline(never)]
+    fn singular_mass(
+        pivots: [(usize, f64, f64); 10],
+    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
         for (row, num, den) in pivots {
             if num.is_nan() || num <= 0.0 {
                 return Err(::rover_dynamics::plant::PlantError::SingularMass {
