@@ -308,6 +308,13 @@ impl {PLANT}::Plant for {name} {{
         for (a, s) in angles.iter_mut().zip(steer) {{
             *a = *s;
         }}
+        // The usual call, one state per wheel, gets the states written in
+        // place instead of copied element by element (swing4: 765 → 729
+        // instructions per call, callgrind).
+        if let Ok(out) = <&mut [{PLANT}::WheelState; {k}]>::try_from(&mut *out) {{
+            *out = self.wheels_array(x, w, &angles);
+            return;
+        }}
         for (o, s) in out.iter_mut().zip(self.wheels_array(x, w, &angles)) {{
             *o = s;
         }}

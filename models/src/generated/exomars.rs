@@ -3272,6 +3272,12 @@ impl ::rover_dynamics::plant::Plant for Exomars {
         for (a, s) in angles.iter_mut().zip(steer) {
             *a = *s;
         }
+        if let Ok(out) = <&mut [::rover_dynamics::plant::WheelState; 6]>::try_from(
+            &mut *out,
+        ) {
+            *out = self.wheels_array(x, w, &angles);
+            return;
+        }
         for (o, s) in out.iter_mut().zip(self.wheels_array(x, w, &angles)) {
             *o = s;
         }

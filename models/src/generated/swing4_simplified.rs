@@ -1898,6 +1898,12 @@ impl ::rover_dynamics::plant::Plant for Swing4Simplified {
         for (a, s) in angles.iter_mut().zip(steer) {
             *a = *s;
         }
+        if let Ok(out) = <&mut [::rover_dynamics::plant::WheelState; 4]>::try_from(
+            &mut *out,
+        ) {
+            *out = self.wheels_array(x, w, &angles);
+            return;
+        }
         for (o, s) in out.iter_mut().zip(self.wheels_array(x, w, &angles)) {
             *o = s;
         }
