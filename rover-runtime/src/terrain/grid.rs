@@ -138,7 +138,7 @@ impl Grid {
             nx,
             ny,
             last: [(nx - 1) as f64, (ny - 1) as f64],
-            tiles: Arc::new(RangePyramid::new(nx, ny, &heights)),
+            tiles: Arc::new(RangePyramid::new(nx, &heights)),
             heights: heights.into(),
             interpolation: Interpolation::default(),
             edge: EdgePolicy::default(),
@@ -424,8 +424,8 @@ impl HeightField for Grid {
         }
         // Cells touched, widened by the stencil (one node before, two after);
         // clamping also covers queries held at the edge.
-        let nodes = |lo: f64, hi: f64, origin: f64, spacing: f64, n: usize| {
-            let last = (n - 1) as f64;
+        let nodes = |lo: f64, hi: f64, axis: usize| {
+            let (origin, spacing, last) = (self.origin[axis], self.spacing[axis], self.last[axis]);
             let first = ((lo - origin) / spacing).floor() - 1.0;
             let end = ((hi - origin) / spacing).floor() + 2.0;
             // Clamped into [0, n − 1]: the casts are exact.
@@ -434,20 +434,8 @@ impl HeightField for Grid {
                 end.clamp(0.0, last) as usize,
             ]
         };
-        let i = nodes(
-            area.x_min,
-            area.x_max,
-            self.origin[0],
-            self.spacing[0],
-            self.nx,
-        );
-        let j = nodes(
-            area.y_min,
-            area.y_max,
-            self.origin[1],
-            self.spacing[1],
-            self.ny,
-        );
+        let i = nodes(area.x_min, area.x_max, 0);
+        let j = nodes(area.y_min, area.y_max, 1);
         let (hi, lo) = self.tiles.span(i, j);
         Some(match self.interpolation {
             Interpolation::Bilinear => hi,
@@ -465,13 +453,8 @@ mod tests {
     #[test]
     fn height_alone_is_the_height_of_the_full_query() {
         let f = |x: f64, y: f64| 0.03 * (7.0 * x).sin() * (5.0 * y).cos() + 0.01 * (23.0 * y).sin();
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut uniform = |lo: f64, hi: f64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
-        };
+        let mut rng = crate::terrain::prng::SplitMix64::new(0x2545_f491_4f6c_dd1d);
+        let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * rng.next_f64();
         for interpolation in [Interpolation::Bicubic, Interpolation::Bilinear] {
             for edge in [EdgePolicy::Error, EdgePolicy::Clamp] {
                 let grid = Grid::from_fn([-1.0, -0.5], [0.1, 0.05], 21, 23, f)

@@ -38,38 +38,17 @@ pub(crate) struct RangePyramid {
 
 impl RangePyramid {
     /// The pyramid of `heights` (`nx` nodes per row, south row first).
-    pub(crate) fn new(nx: usize, ny: usize, heights: &[f64]) -> RangePyramid {
-        let (columns, rows) = (nx.div_ceil(2), ny.div_ceil(2));
-        let mut first = Level {
-            size: 2,
-            columns,
-            max: vec![f64::NEG_INFINITY; columns * rows],
-            min: vec![f64::INFINITY; columns * rows],
-        };
-        for (k, &z) in heights.iter().enumerate() {
-            let t = (k / nx / 2) * columns + (k % nx) / 2;
-            first.max[t] = first.max[t].max(z);
-            first.min[t] = first.min[t].min(z);
-        }
-        let mut levels = vec![first];
-        let mut rows = rows;
-        while let Some(below) = levels.last().filter(|l| l.columns > 1 || rows > 1) {
-            let (columns, up_rows) = (below.columns.div_ceil(2), rows.div_ceil(2));
-            let mut up = Level {
-                size: 2 * below.size,
-                columns,
-                max: vec![f64::NEG_INFINITY; columns * up_rows],
-                min: vec![f64::INFINITY; columns * up_rows],
-            };
-            for (t, (&hi, &lo)) in below.max.iter().zip(&below.min).enumerate() {
-                let u = (t / below.columns / 2) * columns + (t % below.columns) / 2;
-                up.max[u] = up.max[u].max(hi);
-                up.min[u] = up.min[u].min(lo);
+    pub(crate) fn new(nx: usize, heights: &[f64]) -> RangePyramid {
+        // The nodes are level "−1": tiles of one node, max = min = height.
+        let mut levels = vec![reduce(heights, heights, nx, 2)];
+        loop {
+            let top = &levels[levels.len() - 1];
+            if top.max.len() <= 1 {
+                return RangePyramid { levels };
             }
+            let up = reduce(&top.max, &top.min, top.columns, 2 * top.size);
             levels.push(up);
-            rows = up_rows;
         }
-        RangePyramid { levels }
     }
 
     /// Highest and lowest node over nodes `i[0]..=i[1]` × `j[0]..=j[1]` (a
@@ -98,6 +77,26 @@ impl RangePyramid {
     }
 }
 
+/// The ranges of every 2 × 2 block of a level of `columns` columns
+/// (`max`, `min` row by row, south row first), as the level of tiles of
+/// `size` nodes a side.
+fn reduce(max: &[f64], min: &[f64], columns: usize, size: usize) -> Level {
+    let rows = max.len() / columns;
+    let (up_columns, up_rows) = (columns.div_ceil(2), rows.div_ceil(2));
+    let mut up = Level {
+        size,
+        columns: up_columns,
+        max: vec![f64::NEG_INFINITY; up_columns * up_rows],
+        min: vec![f64::INFINITY; up_columns * up_rows],
+    };
+    for (t, (&hi, &lo)) in max.iter().zip(min).enumerate() {
+        let u = (t / columns / 2) * up_columns + (t % columns) / 2;
+        up.max[u] = up.max[u].max(hi);
+        up.min[u] = up.min[u].min(lo);
+    }
+    up
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,18 +106,13 @@ mod tests {
     /// with the tiles.
     #[test]
     fn a_span_bounds_the_nodes_of_its_rectangle() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move |n: usize| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state % n as u64) as usize
-        };
+        let mut rng = crate::terrain::prng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
+        let mut next = move |n: usize| (rng.next_u64() % n as u64) as usize;
         for (nx, ny) in [(2, 2), (3, 7), (17, 5), (64, 64), (101, 37)] {
             let heights: Vec<f64> = (0..nx * ny)
                 .map(|k| ((k * 7919) % 1013) as f64 * 0.001 - 0.5)
                 .collect();
-            let p = RangePyramid::new(nx, ny, &heights);
+            let p = RangePyramid::new(nx, &heights);
             assert_eq!(
                 p.levels.last().map(|l| l.max.len()),
                 Some(1),
