@@ -10,6 +10,7 @@ mod failures;
 mod fidelity;
 mod free_flight;
 mod ground;
+mod linearize;
 mod models;
 mod no_std;
 mod reproduction;

@@ -8,6 +8,7 @@ pub mod control;
 pub mod generic_plant;
 pub mod ground;
 pub mod integrate;
+pub mod linearize;
 pub mod output;
 pub mod quasi_static;
 pub mod scenario;

@@ -295,8 +295,17 @@ pub fn flat_ground_loads(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
     Ok(flat_ground_solution(model)?.1)
 }
 
-/// Suspension coordinates and wheel loads of the flat-ground equilibrium.
-fn flat_ground_solution(model: &Model) -> Result<(Vec<f64>, Vec<f64>), QuasiStaticError> {
+/// The full coordinates x = [X, Y, Z, φ, θ, ψ, y…] of the static
+/// equilibrium on flat ground at X = Y = ψ = 0, to the solver's own
+/// tolerance (not rounded as [`flat_ground_equilibrium`] is): the point a
+/// linearization is taken about.
+pub fn flat_ground_pose(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
+    Ok(flat_ground_solution(model)?.2)
+}
+
+/// Suspension coordinates, wheel loads and full coordinates of the
+/// flat-ground equilibrium.
+fn flat_ground_solution(model: &Model) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), QuasiStaticError> {
     let flat = crate::terrain::Terrain::default();
     let mut q0 = vec![model.touchdown_height(), 0.0, 0.0];
     q0.extend_from_slice(&model.rest());
@@ -304,5 +313,6 @@ fn flat_ground_solution(model: &Model) -> Result<(Vec<f64>, Vec<f64>), QuasiStat
     solver.solve([0.0; 3])?;
     let mut loads = vec![0.0; model.wheels.len()];
     solver.normal_forces([0.0; 3], &mut loads)?;
-    Ok((solver.q[3..].to_vec(), loads))
+    let x = solver.coordinates([0.0; 3], &solver.q);
+    Ok((solver.q[3..].to_vec(), loads, x))
 }

@@ -1,0 +1,352 @@
+//! Small motions of a parked rover about its static equilibrium on flat
+//! ground: the state matrix of the whole right-hand side and its modes.
+//!
+//! The rover stands on flat ground with no command (motors off, no
+//! steering, passive suspension); `x_e` is its quasi-static equilibrium
+//! ([`flat_ground_pose`]) and `w = 0`. For small `z = (x − x_e, w)`,
+//! `ż ≈ A·z` with `A = ∂(ẋ, ẇ)/∂(x, w)` taken by central differences of the
+//! very [`RoverSystem::rhs`] a run integrates: plant, contact search and
+//! wheel law together. A generated plant's exact Jacobian is at fixed wheel
+//! loads, but what makes a rover stand on its wheels is how the loads change
+//! with the state, and the contact search has no closed-form derivative, so
+//! the whole right-hand side is differenced. Tests hold the differences to
+//! the exact Jacobian in free flight and the linear response to a nonlinear
+//! run started a little off the equilibrium.
+//!
+//! The eigenvalues of `A` are the rover's modes: oscillatory pairs (bounce,
+//! pitch, roll, suspension) with their natural frequency and damping ratio,
+//! real ones (the wheels' lateral creep, overdamped suspensions; a positive
+//! one means the rover falls over), and neutral ones, motions with no
+//! restoring force (X, Y and heading on flat ground; rolling, since the
+//! wheel law has no rolling resistance).
+
+use nalgebra::{Complex, DMatrix, DVector};
+use rover_dynamics::Model;
+use rover_dynamics::plant::Plant;
+
+use crate::contact::RimSampling;
+use crate::control::{ControlError, Controller, ControllerConfig};
+use crate::ground::{ContactMethod, Ground};
+use crate::integrate::OdeSystem;
+use crate::output::header;
+use crate::quasi_static::{QuasiStaticError, flat_ground_pose};
+use crate::sim::{RoverSystem, SimError};
+use crate::terrain::{HeightField, Terrain};
+use crate::wheel_law::WheelLawConfig;
+
+/// Why a rover could not be linearized.
+#[derive(Debug, thiserror::Error)]
+pub enum LinearizeError {
+    /// No static equilibrium on flat ground.
+    #[error("no static equilibrium on flat ground: {0}")]
+    Equilibrium(#[from] QuasiStaticError),
+    /// The right-hand side failed at or near the equilibrium.
+    #[error("the right-hand side failed near the equilibrium: {0}")]
+    Rhs(#[from] SimError),
+    /// The (empty) controller of a parked rover does not fit the model.
+    #[error("{0}")]
+    Control(#[from] ControlError),
+    /// A difference quotient came out NaN or infinite.
+    #[error(
+        "∂f/∂{state} is not finite: the right-hand side is not differentiable there \
+         (a wheel on the edge of contact?)"
+    )]
+    NotFinite {
+        /// The state whose column failed.
+        state: String,
+    },
+}
+
+/// Below this |λ| \[1/s\] a mode counts as neutral: a motion with no
+/// restoring force (a time constant or period above 100 s means nothing for
+/// a rover's dynamics, and the difference quotients of the exactly neutral
+/// directions come out below 1e-5 for the built-in rovers).
+pub const NEUTRAL_RATE: f64 = 1e-2;
+
+/// A pseudo-velocity is listed among a mode's dominant ones when it carries
+/// at least this share of the mode's kinetic energy.
+pub const DOMINANT_SHARE: f64 = 0.1;
+
+/// How a mode moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ModeKind {
+    /// A decaying (or growing) oscillation: a complex pair, listed once.
+    Oscillatory,
+    /// A real eigenvalue: creep, overdamped return, or a fall if positive.
+    Real,
+    /// |λ| < [`NEUTRAL_RATE`]: no restoring force.
+    Neutral,
+}
+
+/// One mode of the linearized rover.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Mode {
+    /// Oscillatory, real or neutral.
+    pub kind: ModeKind,
+    /// The eigenvalue λ \[1/s\] (Im λ > 0 for an oscillatory pair).
+    pub eigenvalue: [f64; 2],
+    /// Undamped natural frequency |λ|/2π \[Hz\].
+    pub natural_hz: f64,
+    /// Damped frequency Im λ/2π \[Hz\] (0 for real modes).
+    pub damped_hz: f64,
+    /// Damping ratio −Re λ/|λ| (1 for a decaying real mode, < 0 unstable).
+    pub damping_ratio: f64,
+    /// Time constant −1/Re λ \[s\] (negative: the mode grows).
+    pub time_constant: f64,
+    /// The position part of the eigenvector, `[re, im]` per coordinate
+    /// (m or rad), scaled so that its largest entry is 1 (phase 0); empty
+    /// for neutral modes.
+    pub shape: Vec<[f64; 2]>,
+    /// Each pseudo-velocity's share of the mode's kinetic energy,
+    /// `M_ii·|w_i|² / Σ_j M_jj·|w_j|²` (units agree, unlike the shape's m
+    /// and rad); empty for neutral modes.
+    pub energy: Vec<f64>,
+    /// The pseudo-velocities with an energy share ≥ [`DOMINANT_SHARE`],
+    /// largest first, with their shares.
+    pub dominant: Vec<(String, f64)>,
+}
+
+/// The linearized rover.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Linearization {
+    /// Names of the 2N states, as the run CSV's columns (`X` … `ym`, `vx` … `dym`).
+    pub states: Vec<String>,
+    /// The equilibrium x_e (w_e = 0).
+    pub equilibrium: Vec<f64>,
+    /// max |ẇ| at the equilibrium [m/s² or rad/s²]: how static it is.
+    pub residual: f64,
+    /// The state matrix A, row-major (`a[i][j] = ∂f_i/∂z_j`).
+    pub a: Vec<Vec<f64>>,
+    /// Every mode: oscillatory by frequency, then real by |λ|, then neutral.
+    pub modes: Vec<Mode>,
+}
+
+/// Linearize `model`, with `plant` as its plant, about its equilibrium
+/// parked on flat ground (default contact search and wheel law).
+pub fn linearize<P: Plant>(model: &Model, plant: P) -> Result<Linearization, LinearizeError> {
+    let n = model.dof();
+    let (mut sys, y) = parked(model, plant)?;
+    let mut f = vec![0.0; y.len()];
+    sys.rhs(0.0, &y, &mut f)?;
+    let residual = f[n..2 * n].iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+    let names: Vec<String> = header(model.m(), 0)[1..].to_vec();
+    let a = state_matrix(&mut sys, &y, &names)?;
+    let mut mass = vec![0.0; n * n];
+    sys.plant.mass_matrix(&y[..n], &mut mass);
+    let inertia: Vec<f64> = (0..n).map(|i| mass[i * n + i]).collect();
+    let modes = modes(&a, &inertia, &names[n..]);
+    Ok(Linearization {
+        states: names,
+        equilibrium: y[..n].to_vec(),
+        residual,
+        a: a.row_iter().map(|r| r.iter().copied().collect()).collect(),
+        modes,
+    })
+}
+
+/// The parked rover as a system (flat ground, default contact search and
+/// wheel law, no command) and its equilibrium state `y_e = [x_e; 0; 0]`
+/// (the speed loop's integral last): what [`linearize`] differentiates.
+pub fn parked<P: Plant>(
+    model: &Model,
+    plant: P,
+) -> Result<(RoverSystem<P, Terrain>, Vec<f64>), LinearizeError> {
+    let n = model.dof();
+    let x_e = flat_ground_pose(model)?;
+    let ground = Ground::new(
+        Terrain::default(),
+        model,
+        ContactMethod::Meridional,
+        RimSampling::default(),
+        WheelLawConfig::default(),
+    );
+    let control = Controller::new(ControllerConfig::default(), model, 0.0)?;
+    let sys = RoverSystem::new(plant, Some(ground), control);
+    let mut y = vec![0.0; sys.dim()];
+    y[..n].copy_from_slice(&x_e);
+    Ok((sys, y))
+}
+
+/// `∂(ẋ, ẇ)/∂(x, w)` of `sys` at `y` (the speed loop's integral state is
+/// held), by central differences; `names` label the columns in errors.
+///
+/// Steps: 1e-7 for coordinates (m, rad: a ten-thousandth of a typical
+/// tyre deflection, well inside the smooth part of the contact) and 1e-8
+/// for rates, each scaled by max(1, |y_j|). The rates' step is small
+/// because the cornering force at standstill, `−μF_n·sgn α·(1 − e^{−C|α|/μF_n})`
+/// with `α ≈ V_c/v_ε`, has an `α·|α|` term that central differences do not
+/// cancel: their error grows in proportion to the step (5e-4 of the lateral
+/// damping at 1e-6 m/s, 5e-6 at 1e-8; roundoff stays below 1e-7).
+pub fn state_matrix<P: Plant, H: HeightField>(
+    sys: &mut RoverSystem<P, H>,
+    y: &[f64],
+    names: &[String],
+) -> Result<DMatrix<f64>, LinearizeError> {
+    let n = sys.dof();
+    let mut a = DMatrix::zeros(2 * n, 2 * n);
+    let mut probe = y.to_vec();
+    let (mut plus, mut minus) = (vec![0.0; y.len()], vec![0.0; y.len()]);
+    for j in 0..2 * n {
+        let h = if j < n { 1e-7 } else { 1e-8 } * y[j].abs().max(1.0);
+        probe[j] = y[j] + h;
+        sys.rhs(0.0, &probe, &mut plus)?;
+        probe[j] = y[j] - h;
+        sys.rhs(0.0, &probe, &mut minus)?;
+        probe[j] = y[j];
+        for i in 0..2 * n {
+            let d = (plus[i] - minus[i]) / (2.0 * h);
+            if !d.is_finite() {
+                return Err(LinearizeError::NotFinite {
+                    state: names.get(j).cloned().unwrap_or_else(|| j.to_string()),
+                });
+            }
+            a[(i, j)] = d;
+        }
+    }
+    Ok(a)
+}
+
+/// The modes of `a` (2N × 2N, states x then w); `inertia` is the diagonal
+/// of the mass matrix M (the kinetic energy's weights of w) and
+/// `velocities` names the last N states.
+pub fn modes(a: &DMatrix<f64>, inertia: &[f64], velocities: &[String]) -> Vec<Mode> {
+    let n = velocities.len();
+    let mut out: Vec<Mode> = Vec::new();
+    for lambda in a.complex_eigenvalues().iter().copied() {
+        let magnitude = abs(lambda);
+        let kind = if magnitude < NEUTRAL_RATE {
+            ModeKind::Neutral
+        } else if lambda.im.abs() > 1e-9 * magnitude {
+            if lambda.im < 0.0 {
+                continue; // the conjugate is listed
+            }
+            ModeKind::Oscillatory
+        } else {
+            ModeKind::Real
+        };
+        let vector = match kind {
+            ModeKind::Neutral => None,
+            _ => eigenvector(a, lambda),
+        };
+        let (shape, energy) = match &vector {
+            Some(v) => (position_shape(v, n), energy_shares(v, inertia)),
+            None => (Vec::new(), Vec::new()),
+        };
+        let dominant = dominant(&energy, velocities);
+        let two_pi = 2.0 * std::f64::consts::PI;
+        out.push(Mode {
+            kind,
+            eigenvalue: [
+                lambda.re,
+                if kind == ModeKind::Real {
+                    0.0
+                } else {
+                    lambda.im
+                },
+            ],
+            natural_hz: magnitude / two_pi,
+            damped_hz: if kind == ModeKind::Oscillatory {
+                lambda.im / two_pi
+            } else {
+                0.0
+            },
+            damping_ratio: if magnitude > 0.0 {
+                -lambda.re / magnitude
+            } else {
+                0.0
+            },
+            time_constant: -1.0 / lambda.re,
+            shape,
+            energy,
+            dominant,
+        });
+    }
+    let rank = |m: &Mode| match m.kind {
+        ModeKind::Oscillatory => 0,
+        ModeKind::Real => 1,
+        ModeKind::Neutral => 2,
+    };
+    out.sort_by(|p, q| {
+        rank(p)
+            .cmp(&rank(q))
+            .then(p.natural_hz.total_cmp(&q.natural_hz))
+    });
+    out
+}
+
+/// The eigenvector of `a` for `lambda` by inverse iteration, shifted just
+/// off λ so that the factorization exists; `None` if it fails.
+fn eigenvector(a: &DMatrix<f64>, lambda: Complex<f64>) -> Option<DVector<Complex<f64>>> {
+    let dim = a.nrows();
+    let shift = lambda + Complex::new(1e-9 * abs(lambda).max(1.0), 0.0);
+    let zero = Complex::new(0.0, 0.0);
+    let m = DMatrix::from_fn(dim, dim, |i, j| {
+        Complex::new(a[(i, j)], 0.0) - if i == j { shift } else { zero }
+    });
+    let lu = m.lu();
+    // A fixed, generic start (not orthogonal to any structured eigenvector).
+    let mut v = DVector::from_fn(dim, |i, _| Complex::new(1.0 + 0.1 * i as f64, 0.0));
+    for _ in 0..3 {
+        let next = lu.solve(&v)?;
+        let norm = next.iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt();
+        if !(norm.is_finite() && norm > 0.0) {
+            return None;
+        }
+        v = next / Complex::new(norm, 0.0);
+    }
+    Some(v)
+}
+
+/// The first `n` entries of `v`, scaled so that the largest is 1 with phase 0.
+fn position_shape(v: &DVector<Complex<f64>>, n: usize) -> Vec<[f64; 2]> {
+    let p = v.rows(0, n);
+    let big = p
+        .iter()
+        .copied()
+        .max_by(|x, y| abs(*x).total_cmp(&abs(*y)))
+        .unwrap_or(Complex::new(0.0, 0.0));
+    if abs(big) == 0.0 {
+        return vec![[0.0, 0.0]; n];
+    }
+    p.iter()
+        .map(|c| {
+            let s = c / big;
+            [s.re, s.im]
+        })
+        .collect()
+}
+
+/// Kinetic-energy shares of the velocity part (last `inertia.len()`
+/// entries) of `v`, weighted by the diagonal of M.
+fn energy_shares(v: &DVector<Complex<f64>>, inertia: &[f64]) -> Vec<f64> {
+    let n = inertia.len();
+    let e: Vec<f64> = (0..n)
+        .map(|i| inertia[i] * v[v.len() - n + i].norm_sqr())
+        .collect();
+    let total: f64 = e.iter().sum();
+    if total > 0.0 {
+        e.iter().map(|x| x / total).collect()
+    } else {
+        e
+    }
+}
+
+/// |c| (num-complex's `norm` needs its std feature).
+fn abs(c: Complex<f64>) -> f64 {
+    c.re.hypot(c.im)
+}
+
+/// Names with an energy share ≥ [`DOMINANT_SHARE`], largest first.
+fn dominant(energy: &[f64], names: &[String]) -> Vec<(String, f64)> {
+    let mut idx: Vec<(usize, f64)> = energy
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|&(_, s)| s >= DOMINANT_SHARE)
+        .collect();
+    idx.sort_by(|p, q| q.1.total_cmp(&p.1));
+    idx.into_iter()
+        .filter_map(|(i, s)| names.get(i).map(|name| (name.clone(), s)))
+        .collect()
+}
