@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use rover::cli::{CheckArgs, SimulateArgs, check, simulate};
+use rover::cli::{CheckArgs, LinearizeArgs, SimulateArgs, check, linearize_cmd, simulate};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
@@ -376,4 +376,59 @@ fn reduced_levels_of_example_2_run_their_generated_plant_and_match_the_generic_o
             "final states differ: {a} vs {b}"
         );
     }
+}
+
+/// `rover linearize`: the table for a built-in rover (generated plant), the
+/// JSON for the same rover loaded from a file (generic plant), the same
+/// modes from both; a missing file exits with status 2.
+#[test]
+fn linearize_prints_the_modes_and_writes_them_as_json() {
+    let report = linearize_cmd(&LinearizeArgs {
+        rover: "exomars".into(),
+        out: None,
+        generic: false,
+    })
+    .unwrap();
+    assert!(
+        report.contains("oscillatory modes")
+            && report.contains("-25.0000")
+            && report.contains("neutral: 4"),
+        "{report}"
+    );
+    assert!(report.contains("generated plant"), "{report}");
+    let dir = scratch("linearize");
+    let file = write(
+        &dir,
+        "exomars.toml",
+        rover_models::builtin("exomars").unwrap(),
+    );
+    let json = dir.join("modes.json");
+    let from_file = linearize_cmd(&LinearizeArgs {
+        rover: file.display().to_string(),
+        out: Some(json.clone()),
+        generic: false,
+    })
+    .unwrap();
+    assert!(from_file.contains("generic plant"), "{from_file}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let states = v["states"].as_array().unwrap().len();
+    assert_eq!(states, 2 * 9, "X … y3, vx … dy3");
+    assert_eq!(v["a"].as_array().unwrap().len(), states);
+    let eigen = |text: &str| -> Vec<String> {
+        text.lines()
+            .filter(|l| l.starts_with("  ") && !l.contains('='))
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(
+        eigen(&report),
+        eigen(&from_file),
+        "generated and generic plants, same modes to the printed digits"
+    );
+    let missing = Command::new(env!("CARGO_BIN_EXE_rover"))
+        .args(["linearize", "no_such_rover.toml"])
+        .output()
+        .unwrap();
+    assert_eq!(missing.status.code(), Some(2));
 }

@@ -212,3 +212,40 @@ fn modes_are_eigenpairs_of_a_stable_parked_rover() {
         }
     }
 }
+
+/// ExoMars' heave is a closed-form case: its bogies do not move when the
+/// body rises (the two real `v_z` modes carry all of the kinetic energy), so
+/// it is the whole mass on six tyres, `m·s² + 6c_w·s + 6k_w = 0`: with
+/// m = 33.6 kg, c_w = 300 N·s/m, k_w = 4000 N/m the roots are −25 and
+/// −200/7 1/s (just past critical damping, ζ = 1.003).
+#[test]
+fn exomars_heave_is_the_mass_on_its_six_tyres() {
+    let m = model("exomars");
+    let lin = linearize(&m, rover_models::plant("exomars").unwrap()).unwrap();
+    let (k, c) = (m.wheels[0].stiffness, m.wheels[0].damping);
+    assert!(m.wheels.iter().all(|w| w.stiffness == k && w.damping == c));
+    let (mass, wheels) = (m.total_mass(), m.wheels.len() as f64);
+    let disc = ((wheels * c).powi(2) - 4.0 * mass * wheels * k).sqrt();
+    let roots = [
+        (-wheels * c + disc) / (2.0 * mass),
+        (-wheels * c - disc) / (2.0 * mass),
+    ];
+    assert!((roots[0] + 25.0).abs() < 1e-9 && (roots[1] + 200.0 / 7.0).abs() < 1e-9);
+    let heave: Vec<f64> = lin
+        .modes
+        .iter()
+        .filter(|md| {
+            md.dominant
+                .first()
+                .is_some_and(|(name, share)| name == "vz" && *share > 0.99)
+        })
+        .map(|md| md.eigenvalue[0])
+        .collect();
+    assert_eq!(heave.len(), 2, "two heave modes, got {heave:?}");
+    for (got, want) in heave.iter().zip(roots) {
+        assert!(
+            (got - want).abs() < 1e-6 * want.abs(),
+            "heave λ {got} vs closed form {want}"
+        );
+    }
+}

@@ -279,7 +279,7 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 /// checked-in reduced plant. On the grid such noise changes nothing, unless
 /// a coordinate sits within the noise of a grid midpoint.
 pub fn flat_ground_equilibrium(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
-    let y = flat_ground_solution(model)?.0;
+    let y = flat_ground_solution(model)?.coordinates;
     Ok(y.into_iter()
         .map(|v| (v / EQUILIBRIUM_GRID).round() * EQUILIBRIUM_GRID)
         .collect())
@@ -292,7 +292,7 @@ pub const EQUILIBRIUM_GRID: f64 = 1e-9;
 /// Each wheel's vertical load \[N\] in the static equilibrium on flat ground
 /// (the weights of a torque distribution "by static load", MODEL.md §8).
 pub fn flat_ground_loads(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
-    Ok(flat_ground_solution(model)?.1)
+    Ok(flat_ground_solution(model)?.loads)
 }
 
 /// The full coordinates x = [X, Y, Z, φ, θ, ψ, y…] of the static
@@ -300,12 +300,21 @@ pub fn flat_ground_loads(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
 /// tolerance (not rounded as [`flat_ground_equilibrium`] is): the point a
 /// linearization is taken about.
 pub fn flat_ground_pose(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
-    Ok(flat_ground_solution(model)?.2)
+    Ok(flat_ground_solution(model)?.pose)
 }
 
-/// Suspension coordinates, wheel loads and full coordinates of the
-/// flat-ground equilibrium.
-fn flat_ground_solution(model: &Model) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>), QuasiStaticError> {
+/// The static equilibrium on flat ground.
+struct FlatGround {
+    /// Suspension coordinates y.
+    coordinates: Vec<f64>,
+    /// Each wheel's normal load \[N\].
+    loads: Vec<f64>,
+    /// Full coordinates x at X = Y = ψ = 0.
+    pose: Vec<f64>,
+}
+
+/// Solve the static equilibrium on flat ground.
+fn flat_ground_solution(model: &Model) -> Result<FlatGround, QuasiStaticError> {
     let flat = crate::terrain::Terrain::default();
     let mut q0 = vec![model.touchdown_height(), 0.0, 0.0];
     q0.extend_from_slice(&model.rest());
@@ -313,6 +322,9 @@ fn flat_ground_solution(model: &Model) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>),
     solver.solve([0.0; 3])?;
     let mut loads = vec![0.0; model.wheels.len()];
     solver.normal_forces([0.0; 3], &mut loads)?;
-    let x = solver.coordinates([0.0; 3], &solver.q);
-    Ok((solver.q[3..].to_vec(), loads, x))
+    Ok(FlatGround {
+        coordinates: solver.q[3..].to_vec(),
+        loads,
+        pose: solver.coordinates([0.0; 3], &solver.q),
+    })
 }

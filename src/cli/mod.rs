@@ -3,6 +3,7 @@
 mod check;
 #[cfg(feature = "codegen")]
 mod codegen;
+mod linearize;
 #[cfg(feature = "reproduce")]
 mod reproduce;
 mod simulate;
@@ -14,6 +15,7 @@ use clap::{Parser, Subcommand};
 pub use check::{CheckArgs, check};
 #[cfg(feature = "codegen")]
 pub use codegen::{CodegenArgs, CodegenLevel, codegen};
+pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, reproduce};
 pub use simulate::{SimulateArgs, SimulateReport, build_plant, simulate};
@@ -34,6 +36,8 @@ pub enum Command {
     Check(CheckArgs),
     /// Run a scenario: CSV time histories, plots and a summary.
     Simulate(SimulateArgs),
+    /// The parked rover's modes: frequencies, damping and shapes of its small motions on flat ground.
+    Linearize(LinearizeArgs),
     /// Write a rover's generated, allocation-free plant as a standalone Rust module.
     #[cfg(feature = "codegen")]
     Codegen(CodegenArgs),
@@ -89,6 +93,10 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
         Command::Reproduce(a) => {
             let out = reproduce(&a)?;
             eprintln!("wrote {}", out.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Linearize(a) => {
+            print!("{}", linearize_cmd(&a)?);
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate(a) => {

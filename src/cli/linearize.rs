@@ -1,0 +1,155 @@
+//! `rover linearize <rover> [--out file.json] [--generic]`: the parked
+//! rover's small motions about its static equilibrium on flat ground.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use clap::Args;
+use rover_runtime::linearize::{Linearization, Mode, ModeKind, linearize};
+
+use crate::rover_source::load_rover;
+
+use super::CliError;
+use super::simulate::build_plant;
+
+/// Arguments of `rover linearize`.
+#[derive(Debug, Args)]
+pub struct LinearizeArgs {
+    /// A built-in rover (exomars, swing4, mer, lrv) or a description file.
+    pub rover: String,
+    /// Also write the state matrix, the equilibrium and every mode (with its
+    /// shape) as JSON to this file.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Use the generic plant even for a built-in rover.
+    #[arg(long)]
+    pub generic: bool,
+}
+
+/// Linearize the rover, write the JSON if asked, and return the report
+/// `rover linearize` prints.
+pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
+    let spec = load_rover(&args.rover, None)?;
+    let model = &spec.model;
+    let fail = |e: rover_runtime::linearize::LinearizeError| {
+        CliError::Other(format!("{}: cannot linearize: {e}", spec.name))
+    };
+    let generated = if args.generic {
+        None
+    } else {
+        rover_models::plant(&args.rover)
+    };
+    let (lin, backend) = match generated {
+        Some(p) => (
+            linearize(model, p).map_err(fail)?,
+            format!("generated plant {}", p.name()),
+        ),
+        None => (
+            linearize(
+                model,
+                build_plant(model, rover_dynamics::fidelity::Fidelity::Full)?,
+            )
+            .map_err(fail)?,
+            "generic plant".to_string(),
+        ),
+    };
+    if let Some(path) = &args.out {
+        #[derive(serde::Serialize)]
+        struct Output<'a> {
+            rover: &'a str,
+            plant: &'a str,
+            #[serde(flatten)]
+            linearization: &'a Linearization,
+        }
+        let json = serde_json::to_string_pretty(&Output {
+            rover: &spec.name,
+            plant: &backend,
+            linearization: &lin,
+        })
+        .map_err(|e| CliError::Other(e.to_string()))?;
+        std::fs::write(path, json + "\n")
+            .map_err(|e| CliError::Other(format!("{}: cannot write: {e}", path.display())))?;
+    }
+    Ok(report(&spec.name, &backend, &lin))
+}
+
+/// The printed table.
+fn report(rover: &str, backend: &str, lin: &Linearization) -> String {
+    let n = lin.equilibrium.len();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{rover} parked on flat ground, motors off: small motions about its static equilibrium"
+    );
+    let pose: Vec<String> = lin.states[2..n]
+        .iter()
+        .zip(&lin.equilibrium[2..])
+        .map(|(name, v)| format!("{name} = {v:.4}"))
+        .collect();
+    let _ = writeln!(
+        s,
+        "  equilibrium (m, rad): {}; |ẇ| ≤ {:.1e} there (the quasi-static solution refined by {:.1e})",
+        pose.join(", "),
+        lin.residual,
+        lin.refinement
+    );
+    let _ = writeln!(
+        s,
+        "  A = ∂(ẋ, ẇ)/∂(x, w), {0} × {0}, by central differences of the whole right-hand side ({backend} + contact)",
+        2 * n
+    );
+    let of = |kind| lin.modes.iter().filter(move |m: &&Mode| m.kind == kind);
+    if of(ModeKind::Oscillatory).next().is_some() {
+        let _ = writeln!(
+            s,
+            "\noscillatory modes\n  {:>9}  {:>9}  {:>7}  kinetic energy",
+            "f_n [Hz]", "f_d [Hz]", "damping"
+        );
+        for m in of(ModeKind::Oscillatory) {
+            let _ = writeln!(
+                s,
+                "  {:>9.3}  {:>9.3}  {:>7.3}  {}",
+                m.natural_hz,
+                m.damped_hz,
+                m.damping_ratio,
+                shares(m)
+            );
+        }
+    }
+    if of(ModeKind::Real).next().is_some() {
+        let _ = writeln!(
+            s,
+            "\nreal modes (no oscillation)\n  {:>11}  {:>10}  kinetic energy",
+            "λ [1/s]", "τ [ms]"
+        );
+        for m in of(ModeKind::Real) {
+            let _ = writeln!(
+                s,
+                "  {:>11.4}  {:>10.3}  {}{}",
+                m.eigenvalue[0],
+                1e3 * m.time_constant,
+                shares(m),
+                if m.eigenvalue[0] > 0.0 {
+                    "  (grows: the rover falls over)"
+                } else {
+                    ""
+                }
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\nneutral: {} (no restoring force: on flat ground X, Y and heading; and rolling, the wheel law has no rolling resistance)",
+        of(ModeKind::Neutral).count()
+    );
+    s
+}
+
+/// `vz 95%, Oy 3%` for a mode's dominant pseudo-velocities.
+fn shares(m: &Mode) -> String {
+    m.dominant
+        .iter()
+        .map(|(name, share)| format!("{name} {:.0}%", 100.0 * share))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
