@@ -249,3 +249,37 @@ fn exomars_heave_is_the_mass_on_its_six_tyres() {
         );
     }
 }
+
+/// The input matrix of the spring neutrals (what an active suspension
+/// moves): a linear spring's neutral enters only its own generalized force,
+/// `Q_i = −k_i·(y_i − y0_i)`, so its column is `[0; M⁻¹·k_i·e_i]`.
+#[test]
+fn spring_neutral_inputs_are_the_springs_through_the_mass_matrix() {
+    let mut checked = 0;
+    for name in rover_models::NAMES {
+        let m = model(name);
+        let n = m.dof();
+        let mut plant = rover_models::plant(name).unwrap();
+        let lin = linearize(&m, plant).unwrap();
+        assert_eq!((lin.b.len(), lin.inputs.len()), (2 * n, m.m()));
+        let mut mass = vec![0.0; n * n];
+        plant.mass_matrix(&lin.equilibrium, &mut mass);
+        let lu = DMatrix::from_row_slice(n, n, &mass).lu();
+        for (j, c) in m.coordinates.iter().enumerate() {
+            let column: Vec<f64> = lin.b.iter().map(|row| row[j]).collect();
+            let rover_dynamics::model::Spring::Linear { stiffness } = c.spring else {
+                continue;
+            };
+            let mut q = DVector::zeros(n);
+            q[6 + j] = stiffness;
+            let want: Vec<f64> = vec![0.0; n]
+                .into_iter()
+                .chain(lu.solve(&q).unwrap().iter().copied())
+                .collect();
+            let err = rel(&want, &column);
+            assert!(err < 1e-7, "{name}: y0_{} column off by {err:.2e}", j + 1);
+            checked += 1;
+        }
+    }
+    assert!(checked >= 8, "linear springs checked: {checked}");
+}

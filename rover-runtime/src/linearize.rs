@@ -122,6 +122,12 @@ pub struct Linearization {
     pub refinement: f64,
     /// The state matrix A, row-major (`a[i][j] = ∂f_i/∂z_j`).
     pub a: Vec<Vec<f64>>,
+    /// Names of the inputs of [`b`](Linearization::b): the spring neutrals
+    /// `y0_1` … `y0_m`, what an active suspension moves (MODEL.md §8).
+    pub inputs: Vec<String>,
+    /// The input matrix B = ∂(ẋ, ẇ)/∂y_0, row-major (2N × m; the columns of
+    /// coordinates without a spring are zero).
+    pub b: Vec<Vec<f64>>,
     /// Every mode: oscillatory by frequency, then real by |λ|, then neutral.
     pub modes: Vec<Mode>,
 }
@@ -148,6 +154,7 @@ pub fn linearize<P: Plant>(model: &Model, plant: P) -> Result<Linearization, Lin
     sys.plant.mass_matrix(&y[..n], &mut mass);
     let inertia: Vec<f64> = (0..n).map(|i| mass[i * n + i]).collect();
     let modes = modes(&a, &inertia, &names[n..]);
+    let b = neutral_inputs(&mut sys, &y, model)?;
     Ok(Linearization {
         states: names,
         equilibrium: y[..n].to_vec(),
@@ -157,6 +164,8 @@ pub fn linearize<P: Plant>(model: &Model, plant: P) -> Result<Linearization, Lin
             .zip(&quasi_static)
             .fold(0.0, |m: f64, (p, q)| m.max((p - q).abs())),
         a: a.row_iter().map(|r| r.iter().copied().collect()).collect(),
+        inputs: (1..=model.m()).map(|i| format!("y0_{i}")).collect(),
+        b: b.row_iter().map(|r| r.iter().copied().collect()).collect(),
         modes,
     })
 }
@@ -167,6 +176,34 @@ const MAX_SETTLE: usize = 4;
 
 /// max |ẇ| at which the equilibrium counts as settled [m/s², rad/s²].
 const SETTLED: f64 = 1e-10;
+
+/// `∂(ẋ, ẇ)/∂y_0` at `y` by central differences of the spring neutrals
+/// (step 1e-7 rad or m; the neutrals enter through the spring law only, so
+/// linearly for linear springs), the plant's neutrals restored after.
+fn neutral_inputs<P: Plant, H: HeightField>(
+    sys: &mut RoverSystem<P, H>,
+    y: &[f64],
+    model: &Model,
+) -> Result<DMatrix<f64>, LinearizeError> {
+    let n = sys.dof();
+    let m = model.m();
+    let mut b = DMatrix::zeros(2 * n, m);
+    let (mut plus, mut minus) = (vec![0.0; y.len()], vec![0.0; y.len()]);
+    for (j, c) in model.coordinates.iter().enumerate() {
+        let h = 1e-7 * c.neutral.abs().max(1.0);
+        sys.plant.set_spring_neutral(j, c.neutral + h);
+        let up = sys.rhs(0.0, y, &mut plus);
+        sys.plant.set_spring_neutral(j, c.neutral - h);
+        let down = sys.rhs(0.0, y, &mut minus);
+        sys.plant.set_spring_neutral(j, c.neutral);
+        up?;
+        down?;
+        for i in 0..2 * n {
+            b[(i, j)] = (plus[i] - minus[i]) / (2.0 * h);
+        }
+    }
+    Ok(b)
+}
 
 /// `f = f(0, y)` and max |ẇ| there.
 fn rest_residual<P: Plant, H: HeightField>(
