@@ -312,10 +312,10 @@ fn imposed_path(
     }
     if matches!(
         scenario.control.steering,
-        crate::control::Steering::Slip { .. }
+        crate::control::Steering::Slip { .. } | crate::control::Steering::Heading(_)
     ) {
         return Err(SetupError::Path(
-            "a quasi-static run with slip steering needs `path_from = \"<run.csv>\"`: the path of a dynamic run of the same scenario".into(),
+            "a quasi-static run with slip steering or heading hold needs `path_from = \"<run.csv>\"`: the path of a dynamic run of the same scenario".into(),
         ));
     }
     // The kinematic path: G moves with body velocity [V, −ω·x_c], ω = κ·V.

@@ -90,6 +90,41 @@ impl Controller {
             Steering::Slip { delta_tau } => delta_tau
                 .validate()
                 .map_err(|m| err("steering.delta_tau", m))?,
+            Steering::Heading(h) => {
+                h.heading_deg
+                    .validate()
+                    .map_err(|m| err("steering.heading_deg", m))?;
+                if !(h.kp.is_finite() && h.kp > 0.0) {
+                    return Err(err(
+                        "steering.kp",
+                        format!("must be > 0 N·m/rad, got {}", h.kp),
+                    ));
+                }
+                if !(h.cross_track.is_finite() && h.cross_track >= 0.0) {
+                    return Err(err(
+                        "steering.cross_track",
+                        format!("must be ≥ 0 rad/m, got {}", h.cross_track),
+                    ));
+                }
+                if !h.line_origin.iter().all(|v| v.is_finite()) {
+                    return Err(err(
+                        "steering.line_origin",
+                        format!("must be finite, got {:?}", h.line_origin),
+                    ));
+                }
+                if !(h.kd.is_finite() && h.kd >= 0.0) {
+                    return Err(err(
+                        "steering.kd",
+                        format!("must be ≥ 0 N·m·s/rad, got {}", h.kd),
+                    ));
+                }
+                if config.speed.is_none() {
+                    return Err(err(
+                        "steering",
+                        "heading hold steers by a torque difference on top of the speed loop's torque: add a [control.speed] table",
+                    ));
+                }
+            }
             Steering::Ackermann(a) => {
                 if !steerable.iter().any(|&s| s) {
                     return Err(err(
@@ -207,8 +242,18 @@ impl Controller {
     }
 
     /// Motor torques per wheel [N·m] from the forward speed `w[0]`, the
-    /// integral state and the wheels' normal loads `normals` (this evaluation).
-    pub fn torques(&self, t: f64, w: &[f64], integral: f64, normals: &[f64], out: &mut [f64]) {
+    /// integral state and the wheels' normal loads `normals` (this
+    /// evaluation); heading hold also reads the attitude `x[3..6]` and the
+    /// angular velocity `w[3..6]`.
+    pub fn torques(
+        &self,
+        t: f64,
+        x: &[f64],
+        w: &[f64],
+        integral: f64,
+        normals: &[f64],
+        out: &mut [f64],
+    ) {
         let Some(s) = &self.config.speed else {
             out.iter_mut().for_each(|o| *o = 0.0);
             return;
@@ -222,12 +267,23 @@ impl Controller {
                 None => share(tau0, normals, out),
             },
         }
-        if let Steering::Slip { delta_tau } = &self.config.steering {
-            let dt = if t >= self.settle {
+        let settled = t >= self.settle;
+        let dt = match &self.config.steering {
+            Steering::Slip { delta_tau } => Some(if settled {
                 delta_tau.at(t - self.settle)
             } else {
                 0.0
-            };
+            }),
+            Steering::Heading(h) => Some(if settled {
+                let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
+                let psi_rate = att.rates([w[3], w[4], w[5]])[2];
+                h.delta_tau(t - self.settle, [x[0], x[1]], x[5], psi_rate)
+            } else {
+                0.0
+            }),
+            Steering::None | Steering::Ackermann(_) => None,
+        };
+        if let Some(dt) = dt {
             for (o, &left) in out.iter_mut().zip(&self.left) {
                 *o += if left { -dt } else { dt };
             }
@@ -333,6 +389,7 @@ impl Controller {
         }
         match &self.config.steering {
             Steering::Slip { delta_tau } => b.extend(shift(delta_tau.breakpoints())),
+            Steering::Heading(h) => b.extend(shift(h.heading_deg.breakpoints())),
             Steering::Ackermann(a) => {
                 for p in a.radius.iter().chain(a.front_left_deg.iter()) {
                     b.extend(shift(p.breakpoints()));

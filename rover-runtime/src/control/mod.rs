@@ -1,6 +1,7 @@
 //! Controllers (MODEL.md §8, paper §5): the speed loop and the torque
-//! distribution, kinematic (Ackermann) and slip steering, active suspension,
-//! and the time schedule of set-points that drives them.
+//! distribution, kinematic (Ackermann) and slip steering, heading hold with
+//! line following (ours: slip steering closed on the heading), active
+//! suspension, and the time schedule of set-points that drives them.
 
 mod active_suspension;
 mod controller;
@@ -14,4 +15,4 @@ pub use controller::{ControlError, Controller, ControllerConfig};
 pub use distribution::Distribution;
 pub use profile::Profile;
 pub use speed::SpeedConfig;
-pub use steering::{Ackermann, Steering};
+pub use steering::{Ackermann, HeadingHold, Steering, wrap_angle};

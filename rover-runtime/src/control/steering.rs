@@ -20,6 +20,64 @@ pub enum Steering {
         /// Δτ [N·m] against time after settling.
         delta_tau: Profile,
     },
+    /// Heading hold by slip steering (ours, not the paper's): the torque
+    /// difference of [`Steering::Slip`] from the heading error,
+    /// `Δτ = K_p·(ψ_ref − ψ) − K_d·ψ̇`, the error wrapped to (−π, π].
+    Heading(HeadingHold),
+}
+
+/// The gains and set-point of [`Steering::Heading`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeadingHold {
+    /// Heading set-point ψ_ref \[deg\] against time after settling (yaw,
+    /// positive turns left); default 0, the X axis.
+    #[serde(default)]
+    pub heading_deg: Profile,
+    /// Torque difference per radian of heading error [N·m/rad], > 0.
+    pub kp: f64,
+    /// Torque difference per rad/s of heading rate [N·m·s/rad], ≥ 0;
+    /// default 0.
+    #[serde(default)]
+    pub kd: f64,
+    /// Line following: heading correction per metre of lateral offset from
+    /// the line through `line_origin` along ψ_ref \[rad/m\], ≥ 0; default
+    /// 0 (heading alone; a rover sliding sideways down a slope keeps its
+    /// heading but leaves its line).
+    #[serde(default)]
+    pub cross_track: f64,
+    /// A point of the line \[m\] (X, Y); default the origin.
+    #[serde(default)]
+    pub line_origin: [f64; 2],
+}
+
+impl HeadingHold {
+    /// Δτ [N·m] at time `tc` after settling, for G at (X, Y), heading ψ
+    /// and heading rate ψ̇:
+    /// ```text
+    /// e     = −sin ψ_ref·(X − X_0) + cos ψ_ref·(Y − Y_0)   (left of the line > 0)
+    /// ψ_cmd = ψ_ref − atan(k_e·e)
+    /// Δτ    = K_p·wrap(ψ_cmd − ψ) − K_d·ψ̇
+    /// ```
+    pub fn delta_tau(&self, tc: f64, position: [f64; 2], psi: f64, psi_rate: f64) -> f64 {
+        let reference = self.heading_deg.at(tc).to_radians();
+        let command = if self.cross_track > 0.0 {
+            let (s, c) = reference.sin_cos();
+            let offset =
+                -s * (position[0] - self.line_origin[0]) + c * (position[1] - self.line_origin[1]);
+            reference - (self.cross_track * offset).atan()
+        } else {
+            reference
+        };
+        self.kp * wrap_angle(command - psi) - self.kd * psi_rate
+    }
+}
+
+/// `a` wrapped to (−π, π].
+pub fn wrap_angle(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let r = a.rem_euclid(TAU);
+    if r > PI { r - TAU } else { r }
 }
 
 /// Ackermann steering: the turn centre at body point (x_c, R).

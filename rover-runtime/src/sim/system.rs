@@ -83,7 +83,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 g.find_contacts(&self.wheels, &mut self.normals)
                     .map_err(SimError::OffMap)?;
                 self.control
-                    .torques(t, w, z[0], &self.normals, &mut self.torques);
+                    .torques(t, x, w, z[0], &self.normals, &mut self.torques);
                 g.loads(
                     &self.wheels,
                     &self.torques,
@@ -94,7 +94,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             None => {
                 self.normals.iter_mut().for_each(|v| *v = 0.0);
                 self.control
-                    .torques(t, w, z[0], &self.normals, &mut self.torques);
+                    .torques(t, x, w, z[0], &self.normals, &mut self.torques);
                 self.loads
                     .iter_mut()
                     .for_each(|l| *l = WheelLoad::default());
