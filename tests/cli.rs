@@ -213,6 +213,16 @@ fn bad_scenario_files_get_located_errors() {
         bad_scenario("duration = 5.0\n[integrator.rk4]\nstep = 0.0\n")
     );
     insta::assert_snapshot!(
+        "rolling_resistance",
+        bad_scenario("duration = 5.0\n[contact]\nrolling_resistance = -0.1\n")
+    );
+    insta::assert_snapshot!(
+        "heading_gain",
+        bad_scenario(
+            "duration = 5.0\n[control.speed]\nspeed = 0.1\n[control.steering]\nkind = \"heading\"\nkp = -1.0\n"
+        )
+    );
+    insta::assert_snapshot!(
         "malformed_toml",
         bad_scenario("duration = 5.0\n[terrain\nkind = \"flat\"\n")
     );

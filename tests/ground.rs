@@ -575,6 +575,7 @@ fn a_wheel_buried_to_its_centre_pulls_continuously_in_its_drive_torque() {
         mu_x: 0.5,
         mu_y: 0.5,
         cornering_stiffness: 1e3,
+        rolling_resistance: 0.0,
     };
     let state = WheelState {
         centre: [0.0, 0.0, 0.0],

@@ -84,6 +84,7 @@ impl<H: HeightField> Ground<H> {
                 mu_x: w.mu_x,
                 mu_y: w.mu_y,
                 cornering_stiffness: w.cornering_stiffness,
+                rolling_resistance: 0.0,
             })
             .collect();
         Self {
@@ -96,6 +97,15 @@ impl<H: HeightField> Ground<H> {
             tyres,
             radii: model.wheels.iter().map(|w| w.radius).collect(),
         }
+    }
+
+    /// The same ground with rolling-resistance coefficient `c_rr` on every
+    /// wheel ([`crate::wheel_law::rolling_resistance`]; 0 by default).
+    pub fn with_rolling_resistance(mut self, c_rr: f64) -> Self {
+        for t in &mut self.tyres {
+            t.rolling_resistance = c_rr;
+        }
+        self
     }
 
     /// Contact of wheel k in state `s`.
@@ -231,8 +241,16 @@ pub fn wheel_load<L: WheelLaw>(
         };
         let patch_motion = motion(s, p, share);
         let f = law.forces(tyre, &patch_motion);
+        // The ground's longitudinal force: the pull, less the rolling
+        // resistance (exactly the pull without it, bit for bit).
+        let rolling = crate::wheel_law::rolling_resistance(tyre, &patch_motion, f.normal);
+        let along = if rolling != 0.0 {
+            f.drawbar + rolling
+        } else {
+            f.drawbar
+        };
         let force = [0, 1, 2]
-            .map(|k| f.normal * p.normal[k] + f.drawbar * p.tangent[k] + f.lateral * p.lateral[k]);
+            .map(|k| f.normal * p.normal[k] + along * p.tangent[k] + f.lateral * p.lateral[k]);
         let arm = [0, 1, 2].map(|k| p.point[k] - s.centre[k]);
         let m = cross(arm, force);
         let axial = dot(m, s.spin_axis);
@@ -244,7 +262,7 @@ pub fn wheel_load<L: WheelLaw>(
             load.stator_torque[k] -= tau * s.spin_axis[k];
         }
         report.normal += f.normal;
-        report.drawbar += f.drawbar;
+        report.drawbar += along;
         report.lateral += f.lateral;
         report.torque += tau;
         if f.normal > strongest || i == 0 {

@@ -169,6 +169,11 @@ pub struct ContactConfig {
     /// The wheel law (`{ kind = "chen_genta" }` by default, or `"magic_formula"`).
     #[serde(default)]
     pub law: WheelLawConfig,
+    /// Rolling-resistance coefficient C_rr (ours, not the paper's): a force
+    /// `C_rr·F_n` against each patch's rolling, on top of either law;
+    /// default 0, the paper's law (see [`crate::wheel_law::rolling_resistance`]).
+    #[serde(default)]
+    pub rolling_resistance: f64,
 }
 
 fn default_samples() -> usize {
@@ -181,6 +186,7 @@ impl Default for ContactConfig {
             method: ContactMethod::default(),
             samples: default_samples(),
             law: WheelLawConfig::default(),
+            rolling_resistance: 0.0,
         }
     }
 }
@@ -267,6 +273,15 @@ impl Scenario {
                 format!(
                     "rollover_limit_deg must lie in (0, 90), got {}\n  = help: the attitude is singular at 90° of roll (MODEL.md §1)",
                     self.rollover_limit_deg
+                ),
+            ));
+        }
+        let c_rr = self.contact.rolling_resistance;
+        if !(c_rr.is_finite() && (0.0..1.0).contains(&c_rr)) {
+            return Err((
+                "contact.rolling_resistance",
+                format!(
+                    "contact.rolling_resistance must lie in [0, 1), got {c_rr}\n  = help: a coefficient of rolling resistance, C_rr = force / normal load (0.05–0.3 on loose soil)"
                 ),
             ));
         }

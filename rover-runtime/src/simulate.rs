@@ -172,6 +172,7 @@ pub fn simulate<P: Plant, W: Write>(
             scenario.contact.sampling(),
             scenario.contact.law,
         )
+        .with_rolling_resistance(scenario.contact.rolling_resistance)
     });
     let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
     let kinematic_radius = control.kinematic_radius(scenario.duration);

@@ -17,6 +17,9 @@ pub struct Tyre {
     pub mu_y: f64,
     /// Cornering stiffness C [N/rad].
     pub cornering_stiffness: f64,
+    /// Rolling-resistance coefficient C_rr (a scenario's
+    /// `contact.rolling_resistance`; 0 in the paper).
+    pub rolling_resistance: f64,
 }
 
 /// The motion of one patch, in its own frame (n, t, c).
@@ -68,6 +71,26 @@ pub const DAMPING_RAMP: f64 = 1e-4;
 pub fn normal_force(tyre: &Tyre, motion: &PatchMotion) -> f64 {
     let ramp = (motion.deflection / DAMPING_RAMP).clamp(0.0, 1.0);
     (tyre.stiffness * motion.deflection + tyre.damping * motion.deflection_rate * ramp).max(0.0)
+}
+
+/// Speed below which the rolling resistance is regularized [m/s]: its
+/// direction is `v_t/sqrt(v_t² + v_ε²)`, the sign of the rolling speed made
+/// continuous (a sign would jump at standstill and stall step-size
+/// control), as the sideslip is at the same 1 mm/s.
+pub const ROLLING_V_EPS: f64 = 1e-3;
+
+/// Rolling resistance along t (ours, not the paper's):
+/// `F_rr = −C_rr·F_n·v_t/sqrt(v_t² + v_ε²)`, a ground force against the
+/// wheel's rolling, on top of the drawbar pull and not through the motor
+/// (its moment about the axle is the soil's, like the pressure offset it
+/// stands for: the carrier does not receive it, the stator neither). Exactly
+/// 0 when C_rr = 0. A rover parked on a slope below atan(C_rr) creeps at
+/// about `v_ε·tan α/sqrt(C_rr² − tan² α)` instead of standing still.
+pub fn rolling_resistance(tyre: &Tyre, motion: &PatchMotion, normal: f64) -> f64 {
+    if tyre.rolling_resistance == 0.0 {
+        return 0.0;
+    }
+    -tyre.rolling_resistance * normal * motion.v_t / motion.v_t.hypot(ROLLING_V_EPS)
 }
 
 /// Drawbar pull (eq. 38–39): `F_d = τ/|G_jH|`, saturated at `|F_d| ≤ μx_max·F_n`.
