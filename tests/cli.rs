@@ -397,6 +397,7 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
         rover: "exomars".into(),
         out: None,
         generic: false,
+        scenario: None,
     })
     .unwrap();
     assert!(
@@ -417,6 +418,7 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
         rover: file.display().to_string(),
         out: Some(json.clone()),
         generic: false,
+        scenario: None,
     })
     .unwrap();
     assert!(from_file.contains("generic plant"), "{from_file}");

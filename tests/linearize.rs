@@ -283,3 +283,38 @@ fn spring_neutral_inputs_are_the_springs_through_the_mass_matrix() {
     }
     assert!(checked >= 8, "linear springs checked: {checked}");
 }
+
+/// With rolling resistance (a scenario's `[contact]` table) rolling is no
+/// longer free: three neutral motions remain (X, Y, ψ), and v_x moves in
+/// stable modes only. (Near standstill the regularized resistance is a
+/// damper of `C_rr·F_n/v_ε` per wheel, −162 1/s on ExoMars alone, but it
+/// acts at ground level, so it pitches the body and turns the bogies: the
+/// modes that carry v_x are pitch–surge mixtures, not that closed form.)
+#[test]
+fn rolling_resistance_damps_the_rolling_mode() {
+    let m = model("exomars");
+    let contact = rover_runtime::scenario::ContactConfig {
+        rolling_resistance: 0.1,
+        ..Default::default()
+    };
+    let lin = rover_runtime::linearize::linearize_with(
+        &m,
+        rover_models::plant("exomars").unwrap(),
+        &contact,
+    )
+    .unwrap();
+    let neutral = lin
+        .modes
+        .iter()
+        .filter(|md| md.kind == ModeKind::Neutral)
+        .count();
+    assert_eq!(neutral, 3, "X, Y, ψ");
+    let vx = |md: &rover_runtime::linearize::Mode| md.energy.first().copied().unwrap_or(0.0);
+    let surging: Vec<_> = lin
+        .modes
+        .iter()
+        .filter(|md| md.kind != ModeKind::Neutral && vx(md) > 0.2)
+        .collect();
+    assert!(!surging.is_empty() && surging.iter().all(|md| md.eigenvalue[0] < 0.0));
+    // Without it four are neutral (`modes_are_eigenpairs_of_a_stable_parked_rover`).
+}

@@ -24,15 +24,14 @@ use nalgebra::{Complex, DMatrix, DVector};
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
-use crate::contact::RimSampling;
 use crate::control::{ControlError, Controller, ControllerConfig};
-use crate::ground::{ContactMethod, Ground};
+use crate::ground::Ground;
 use crate::integrate::OdeSystem;
 use crate::output::header;
 use crate::quasi_static::{QuasiStaticError, flat_ground_pose};
+use crate::scenario::ContactConfig;
 use crate::sim::{RoverSystem, SimError};
 use crate::terrain::{HeightField, Terrain};
-use crate::wheel_law::WheelLawConfig;
 
 /// Why a rover could not be linearized.
 #[derive(Debug, thiserror::Error)]
@@ -135,8 +134,18 @@ pub struct Linearization {
 /// Linearize `model`, with `plant` as its plant, about its equilibrium
 /// parked on flat ground (default contact search and wheel law).
 pub fn linearize<P: Plant>(model: &Model, plant: P) -> Result<Linearization, LinearizeError> {
+    linearize_with(model, plant, &ContactConfig::default())
+}
+
+/// [`linearize`] with a scenario's `[contact]` table: search, sampling,
+/// wheel law, rolling resistance.
+pub fn linearize_with<P: Plant>(
+    model: &Model,
+    plant: P,
+    contact: &ContactConfig,
+) -> Result<Linearization, LinearizeError> {
     let n = model.dof();
-    let (mut sys, mut y) = parked(model, plant)?;
+    let (mut sys, mut y) = parked_with(model, plant, contact)?;
     let names: Vec<String> = header(model.m(), 0)[1..=2 * n].to_vec();
     let mut a = state_matrix(&mut sys, &y, &names)?;
     let mut f = vec![0.0; y.len()];
@@ -244,15 +253,25 @@ pub fn parked<P: Plant>(
     model: &Model,
     plant: P,
 ) -> Result<(RoverSystem<P, Terrain>, Vec<f64>), LinearizeError> {
+    parked_with(model, plant, &ContactConfig::default())
+}
+
+/// [`parked`] with a scenario's `[contact]` table.
+pub fn parked_with<P: Plant>(
+    model: &Model,
+    plant: P,
+    contact: &ContactConfig,
+) -> Result<(RoverSystem<P, Terrain>, Vec<f64>), LinearizeError> {
     let n = model.dof();
     let x_e = flat_ground_pose(model)?;
     let ground = Ground::new(
         Terrain::default(),
         model,
-        ContactMethod::Meridional,
-        RimSampling::default(),
-        WheelLawConfig::default(),
-    );
+        contact.method,
+        contact.sampling(),
+        contact.law,
+    )
+    .with_rolling_resistance(contact.rolling_resistance);
     let control = Controller::new(ControllerConfig::default(), model, 0.0)?;
     let sys = RoverSystem::new(plant, Some(ground), control);
     let mut y = vec![0.0; sys.dim()];

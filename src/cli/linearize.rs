@@ -5,7 +5,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Args;
-use rover_runtime::linearize::{Linearization, Mode, ModeKind, linearize};
+use rover_runtime::linearize::{Linearization, Mode, ModeKind, linearize_with};
+use rover_runtime::scenario::{ContactConfig, Scenario};
 
 use crate::rover_source::load_rover;
 
@@ -24,6 +25,11 @@ pub struct LinearizeArgs {
     /// Use the generic plant even for a built-in rover.
     #[arg(long)]
     pub generic: bool,
+    /// Take the contact search, wheel law and rolling resistance from this
+    /// scenario's `[contact]` table (its terrain, control and initial state
+    /// are not used: the rover is parked on flat ground).
+    #[arg(long)]
+    pub scenario: Option<PathBuf>,
 }
 
 /// Linearize the rover, write the JSON if asked, and return the report
@@ -31,6 +37,10 @@ pub struct LinearizeArgs {
 pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
     let spec = load_rover(&args.rover, None)?;
     let model = &spec.model;
+    let contact = match &args.scenario {
+        Some(path) => Scenario::load(path)?.contact,
+        None => ContactConfig::default(),
+    };
     let fail = |e: rover_runtime::linearize::LinearizeError| {
         CliError::Other(format!("{}: cannot linearize: {e}", spec.name))
     };
@@ -41,13 +51,14 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
     };
     let (lin, backend) = match generated {
         Some(p) => (
-            linearize(model, p).map_err(fail)?,
+            linearize_with(model, p, &contact).map_err(fail)?,
             format!("generated plant {}", p.name()),
         ),
         None => (
-            linearize(
+            linearize_with(
                 model,
                 build_plant(model, rover_dynamics::fidelity::Fidelity::Full)?,
+                &contact,
             )
             .map_err(fail)?,
             "generic plant".to_string(),
@@ -70,11 +81,11 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
         std::fs::write(path, json + "\n")
             .map_err(|e| CliError::Other(format!("{}: cannot write: {e}", path.display())))?;
     }
-    Ok(report(&spec.name, &backend, &lin))
+    Ok(report(&spec.name, &backend, &lin, &contact))
 }
 
 /// The printed table.
-fn report(rover: &str, backend: &str, lin: &Linearization) -> String {
+fn report(rover: &str, backend: &str, lin: &Linearization, contact: &ContactConfig) -> String {
     let n = lin.equilibrium.len();
     let mut s = String::new();
     let _ = writeln!(
@@ -139,8 +150,13 @@ fn report(rover: &str, backend: &str, lin: &Linearization) -> String {
     }
     let _ = writeln!(
         s,
-        "\nneutral: {} (no restoring force: on flat ground X, Y and heading; and rolling, the wheel law has no rolling resistance)",
-        of(ModeKind::Neutral).count()
+        "\nneutral: {} (no restoring force: on flat ground X, Y and heading{})",
+        of(ModeKind::Neutral).count(),
+        if contact.rolling_resistance == 0.0 {
+            "; and rolling: no rolling resistance (`[contact] rolling_resistance` in a --scenario adds one)"
+        } else {
+            ""
+        }
     );
     s
 }
