@@ -318,3 +318,58 @@ fn rolling_resistance_damps_the_rolling_mode() {
     assert!(!surging.is_empty() && surging.iter().all(|md| md.eigenvalue[0] < 0.0));
     // Without it four are neutral (`modes_are_eigenpairs_of_a_stable_parked_rover`).
 }
+
+/// A rover that cannot stand: two wheels on one axle, the body's centre
+/// 0.3 m above it, is an inverted pendulum on a free-rolling axle. Its
+/// equilibrium exists (balanced), and the linearization finds exactly one
+/// growing mode, pitch; a nonlinear run started a hair along that mode
+/// grows at its rate. (Yaw is neutral too: turning on the spot rolls both
+/// wheels without sideslip, and they roll freely.)
+#[test]
+fn a_rover_balanced_on_one_axle_has_one_growing_pitch_mode() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/support/pendulum.toml"
+    ))
+    .unwrap();
+    let m = rover_spec::load_str(&text, "pendulum.toml").unwrap().model;
+    let n = m.dof();
+    let plant = || rover_runtime::GenericPlant::new(m.clone()).unwrap();
+    let lin = linearize(&m, plant()).unwrap();
+    let growing: Vec<_> = lin
+        .modes
+        .iter()
+        .filter(|md| md.kind != ModeKind::Neutral && md.eigenvalue[0] > 0.0)
+        .collect();
+    assert_eq!(
+        growing.len(),
+        1,
+        "{:?}",
+        growing.iter().map(|md| md.eigenvalue).collect::<Vec<_>>()
+    );
+    let fall = growing[0];
+    assert_eq!(fall.kind, ModeKind::Real);
+    assert_eq!(fall.dominant[0].0, "Oy", "{:?}", fall.dominant);
+    let lambda = fall.eigenvalue[0];
+    // Start 1e-6 along the mode (positions; rates λ times as much, through B).
+    let (mut sys, y_e) = parked(&m, plant()).unwrap();
+    let a = DMatrix::from_fn(2 * n, 2 * n, |i, j| lin.a[i][j]);
+    let p = DVector::from_fn(n, |i, _| fall.shape[i][0]);
+    let q = a.view((0, n), (n, n)).clone_owned().try_inverse().unwrap() * &p * lambda;
+    let mut y = y_e.clone();
+    for i in 0..n {
+        y[i] += 1e-6 * p[i];
+        y[n + i] += 1e-6 * q[i];
+    }
+    let mut rk = Rk4::new(y.len(), &FixedStepConfig { step: 2.5e-5 }).unwrap();
+    let mut t = 0.0;
+    let theta = |y: &[f64]| y[4] - y_e[4];
+    rk.advance(&mut sys, &mut t, &mut y, 0.5).unwrap();
+    let early = theta(&y);
+    rk.advance(&mut sys, &mut t, &mut y, 1.0).unwrap();
+    let rate = (theta(&y) / early).ln() / 0.5;
+    assert!(
+        (rate - lambda).abs() < 1e-3 * lambda,
+        "nonlinear growth {rate} 1/s vs λ = {lambda}"
+    );
+}
