@@ -17,8 +17,8 @@
 //! pitch, roll, suspension) with their natural frequency and damping ratio,
 //! real ones (the wheels' lateral creep, overdamped suspensions; a positive
 //! one means the rover falls over), and neutral ones, motions with no
-//! restoring force (X, Y and heading on flat ground; rolling, since the
-//! wheel law has no rolling resistance).
+//! restoring force (X, Y and heading on flat ground; rolling too, unless
+//! the scenario's contact has a rolling resistance).
 
 use nalgebra::{Complex, DMatrix, DVector};
 use rover_dynamics::Model;
@@ -172,11 +172,16 @@ pub fn linearize_with<P: Plant>(
             .iter()
             .zip(&quasi_static)
             .fold(0.0, |m: f64, (p, q)| m.max((p - q).abs())),
-        a: a.row_iter().map(|r| r.iter().copied().collect()).collect(),
+        a: rows(&a),
         inputs: (1..=model.m()).map(|i| format!("y0_{i}")).collect(),
-        b: b.row_iter().map(|r| r.iter().copied().collect()).collect(),
+        b: rows(&b),
         modes,
     })
+}
+
+/// A matrix as its rows, for the JSON.
+fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+    m.row_iter().map(|r| r.iter().copied().collect()).collect()
 }
 
 /// Newton steps on the dynamic equilibrium ẇ(x, 0) = 0 at most, after the
