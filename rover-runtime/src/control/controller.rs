@@ -8,7 +8,9 @@ use serde::{Deserialize, Serialize};
 use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
 use super::distribution::{Distribution, share};
 use super::speed::SpeedConfig;
-use super::steering::{Steering, ackermann_angle, curvature_from_angle};
+use super::steering::{
+    HeadingActuator, HeadingHold, Steering, ackermann_angle, curvature_from_angle,
+};
 
 /// The `[control]` table of a scenario.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -91,38 +93,9 @@ impl Controller {
                 .validate()
                 .map_err(|m| err("steering.delta_tau", m))?,
             Steering::Heading(h) => {
-                h.heading_deg
-                    .validate()
-                    .map_err(|m| err("steering.heading_deg", m))?;
-                if !(h.kp.is_finite() && h.kp > 0.0) {
-                    return Err(err(
-                        "steering.kp",
-                        format!("must be > 0 N·m/rad, got {}", h.kp),
-                    ));
-                }
-                if !(h.cross_track.is_finite() && h.cross_track >= 0.0) {
-                    return Err(err(
-                        "steering.cross_track",
-                        format!("must be ≥ 0 rad/m, got {}", h.cross_track),
-                    ));
-                }
-                if !h.line_origin.iter().all(|v| v.is_finite()) {
-                    return Err(err(
-                        "steering.line_origin",
-                        format!("must be finite, got {:?}", h.line_origin),
-                    ));
-                }
-                if !(h.kd.is_finite() && h.kd >= 0.0) {
-                    return Err(err(
-                        "steering.kd",
-                        format!("must be ≥ 0 N·m·s/rad, got {}", h.kd),
-                    ));
-                }
-                if config.speed.is_none() {
-                    return Err(err(
-                        "steering",
-                        "heading hold steers by a torque difference on top of the speed loop's torque: add a [control.speed] table",
-                    ));
+                validate_heading(h, config.speed.is_some(), &steerable)?;
+                if h.via == HeadingActuator::Ackermann {
+                    centre_x = heading_centre_x(&rest_xy, &steerable);
                 }
             }
             Steering::Ackermann(a) => {
@@ -274,14 +247,14 @@ impl Controller {
             } else {
                 0.0
             }),
-            Steering::Heading(h) => Some(if settled {
+            Steering::Heading(h) if h.via == HeadingActuator::Slip => Some(if settled {
                 let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
                 let psi_rate = att.rates([w[3], w[4], w[5]])[2];
                 h.delta_tau(t - self.settle, [x[0], x[1]], x[5], psi_rate)
             } else {
                 0.0
             }),
-            Steering::None | Steering::Ackermann(_) => None,
+            Steering::None | Steering::Ackermann(_) | Steering::Heading(_) => None,
         };
         if let Some(dt) = dt {
             for (o, &left) in out.iter_mut().zip(&self.left) {
@@ -293,29 +266,33 @@ impl Controller {
         }
     }
 
-    /// Steering angles δ_j \[rad\] at time t.
-    pub fn steer(&self, t: f64, out: &mut [f64]) {
+    /// Steering angles δ_j \[rad\] at time t for coordinates `x` (a heading
+    /// hold via Ackermann reads G's X, Y and the heading ψ).
+    pub fn steer(&self, t: f64, x: &[f64], out: &mut [f64]) {
         out.iter_mut().for_each(|o| *o = 0.0);
-        let Steering::Ackermann(a) = &self.config.steering else {
-            return;
-        };
         if t < self.settle {
             return;
         }
         let tc = t - self.settle;
-        let kappa = match (&a.radius, &a.front_left_deg) {
-            (Some(r), _) => {
-                let r = r.at(tc);
-                if r == 0.0 { 0.0 } else { 1.0 / r }
+        let kappa = match &self.config.steering {
+            Steering::Ackermann(a) => match (&a.radius, &a.front_left_deg) {
+                (Some(r), _) => {
+                    let r = r.at(tc);
+                    if r == 0.0 { 0.0 } else { 1.0 / r }
+                }
+                (None, Some(d)) => {
+                    let Some(k) = self.steerable.iter().position(|&s| s) else {
+                        return;
+                    };
+                    let (x1, y1) = self.rest_xy[k];
+                    curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x)
+                }
+                (None, None) => 0.0,
+            },
+            Steering::Heading(h) if h.via == HeadingActuator::Ackermann => {
+                h.curvature(tc, [x[0], x[1]], x[5])
             }
-            (None, Some(d)) => {
-                let Some(k) = self.steerable.iter().position(|&s| s) else {
-                    return;
-                };
-                let (x1, y1) = self.rest_xy[k];
-                curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x)
-            }
-            (None, None) => 0.0,
+            _ => return,
         };
         for (k, o) in out.iter_mut().enumerate() {
             if self.steerable[k] {
@@ -421,6 +398,105 @@ impl Controller {
         for (i, &n) in self.neutral.iter().enumerate() {
             plant.set_spring_neutral(i, n);
         }
+    }
+}
+
+/// The checks of a heading hold: finite set-point and line, the gains its
+/// actuator needs and no other, and what the actuator needs of the rover.
+fn validate_heading(
+    h: &HeadingHold,
+    has_speed: bool,
+    steerable: &[bool],
+) -> Result<(), ControlError> {
+    h.heading_deg
+        .validate()
+        .map_err(|m| err("steering.heading_deg", m))?;
+    if !(h.cross_track.is_finite() && h.cross_track >= 0.0) {
+        return Err(err(
+            "steering.cross_track",
+            format!("must be ≥ 0 rad/m, got {}", h.cross_track),
+        ));
+    }
+    if !h.line_origin.iter().all(|v| v.is_finite()) {
+        return Err(err(
+            "steering.line_origin",
+            format!("must be finite, got {:?}", h.line_origin),
+        ));
+    }
+    match h.via {
+        HeadingActuator::Slip => {
+            let Some(kp) = h.kp else {
+                return Err(err(
+                    "steering.kp",
+                    "missing: the torque difference per radian of heading error [N·m/rad] (or via = \"ackermann\" with a `lookahead`)",
+                ));
+            };
+            if !(kp.is_finite() && kp > 0.0) {
+                return Err(err("steering.kp", format!("must be > 0 N·m/rad, got {kp}")));
+            }
+            let kd = h.kd.unwrap_or(0.0);
+            if !(kd.is_finite() && kd >= 0.0) {
+                return Err(err(
+                    "steering.kd",
+                    format!("must be ≥ 0 N·m·s/rad, got {kd}"),
+                ));
+            }
+            if h.lookahead.is_some() {
+                return Err(err(
+                    "steering.lookahead",
+                    "only for via = \"ackermann\"; slip steering takes `kp` and `kd`",
+                ));
+            }
+            if !has_speed {
+                return Err(err(
+                    "steering",
+                    "heading hold by slip steers by a torque difference on top of the speed loop's torque: add a [control.speed] table",
+                ));
+            }
+        }
+        HeadingActuator::Ackermann => {
+            if !steerable.iter().any(|&s| s) {
+                return Err(err(
+                    "steering",
+                    "heading hold via = \"ackermann\" needs steerable wheels; this rover has none (use via = \"slip\")",
+                ));
+            }
+            let Some(l) = h.lookahead else {
+                return Err(err(
+                    "steering.lookahead",
+                    "missing: the distance ahead [m] at which the steering meets the commanded heading (about twice the wheelbase)",
+                ));
+            };
+            if !(l.is_finite() && l > 0.0) {
+                return Err(err("steering.lookahead", format!("must be > 0 m, got {l}")));
+            }
+            if h.kp.is_some() || h.kd.is_some() {
+                return Err(err(
+                    "steering.kp",
+                    "`kp` and `kd` are the slip law's gains; via = \"ackermann\" steers by `lookahead` alone",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// x_c of a heading hold via Ackermann: the mean rest x of the
+/// non-steerable wheels, or, when all steer, of all wheels (front and rear
+/// steer opposite ways; Ackermann steering's default would hold one axle
+/// straight on a four-wheeler whose axles are equally far from G).
+fn heading_centre_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> f64 {
+    let mean = |xs: Vec<f64>| xs.iter().sum::<f64>() / xs.len().max(1) as f64;
+    let fixed: Vec<f64> = rest_xy
+        .iter()
+        .zip(steerable)
+        .filter(|(_, s)| !**s)
+        .map(|(p, _)| p.0)
+        .collect();
+    if fixed.is_empty() {
+        mean(rest_xy.iter().map(|p| p.0).collect())
+    } else {
+        mean(fixed)
     }
 }
 

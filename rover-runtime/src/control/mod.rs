@@ -15,4 +15,4 @@ pub use controller::{ControlError, Controller, ControllerConfig};
 pub use distribution::Distribution;
 pub use profile::Profile;
 pub use speed::SpeedConfig;
-pub use steering::{Ackermann, HeadingHold, Steering, wrap_angle};
+pub use steering::{Ackermann, HeadingActuator, HeadingHold, Steering, wrap_angle};

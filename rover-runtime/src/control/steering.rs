@@ -20,30 +20,56 @@ pub enum Steering {
         /// Δτ [N·m] against time after settling.
         delta_tau: Profile,
     },
-    /// Heading hold by slip steering (ours, not the paper's): the torque
-    /// difference of [`Steering::Slip`] from the heading error,
-    /// `Δτ = K_p·(ψ_ref − ψ) − K_d·ψ̇`, the error wrapped to (−π, π].
+    /// Heading hold (ours, not the paper's), with optional line
+    /// following: the torque difference of [`Steering::Slip`] or the
+    /// Ackermann angles of the steerable wheels, from the heading error.
     Heading(HeadingHold),
 }
 
-/// The gains and set-point of [`Steering::Heading`].
+/// What a [`HeadingHold`] moves.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HeadingActuator {
+    /// A torque difference, `Δτ = K_p·e − K_d·ψ̇` (any rover).
+    #[default]
+    Slip,
+    /// The steerable wheels at the curvature `κ = 2·sin(e)/L` that meets the
+    /// commanded heading a lookahead L ahead (pure pursuit of a heading).
+    Ackermann,
+}
+
+/// The set-point, line and gains of [`Steering::Heading`]. The heading
+/// error is `e = wrap(ψ_cmd − ψ)` with
+/// ```text
+/// e_y   = −sin ψ_ref·(X − X_0) + cos ψ_ref·(Y − Y_0)   (left of the line > 0)
+/// ψ_cmd = ψ_ref − atan(k_e·e_y)                        (ψ_ref alone when k_e = 0)
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HeadingHold {
+    /// `"slip"` (default) or `"ackermann"`.
+    #[serde(default)]
+    pub via: HeadingActuator,
     /// Heading set-point ψ_ref \[deg\] against time after settling (yaw,
     /// positive turns left); default 0, the X axis.
     #[serde(default)]
     pub heading_deg: Profile,
-    /// Torque difference per radian of heading error [N·m/rad], > 0.
-    pub kp: f64,
-    /// Torque difference per rad/s of heading rate [N·m·s/rad], ≥ 0;
+    /// Slip: torque difference per radian of heading error [N·m/rad], > 0;
+    /// required with `via = "slip"`, not accepted with `"ackermann"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kp: Option<f64>,
+    /// Slip: torque difference per rad/s of heading rate [N·m·s/rad], ≥ 0;
     /// default 0.
-    #[serde(default)]
-    pub kd: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kd: Option<f64>,
+    /// Ackermann: the lookahead L \[m\], > 0; required with
+    /// `via = "ackermann"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lookahead: Option<f64>,
     /// Line following: heading correction per metre of lateral offset from
-    /// the line through `line_origin` along ψ_ref \[rad/m\], ≥ 0; default
-    /// 0 (heading alone; a rover sliding sideways down a slope keeps its
-    /// heading but leaves its line).
+    /// the line through `line_origin` along ψ_ref, k_e \[rad/m\], ≥ 0;
+    /// default 0 (heading alone; a rover sliding sideways down a slope keeps
+    /// its heading but leaves its line).
     #[serde(default)]
     pub cross_track: f64,
     /// A point of the line \[m\] (X, Y); default the origin.
@@ -52,14 +78,9 @@ pub struct HeadingHold {
 }
 
 impl HeadingHold {
-    /// Δτ [N·m] at time `tc` after settling, for G at (X, Y), heading ψ
-    /// and heading rate ψ̇:
-    /// ```text
-    /// e     = −sin ψ_ref·(X − X_0) + cos ψ_ref·(Y − Y_0)   (left of the line > 0)
-    /// ψ_cmd = ψ_ref − atan(k_e·e)
-    /// Δτ    = K_p·wrap(ψ_cmd − ψ) − K_d·ψ̇
-    /// ```
-    pub fn delta_tau(&self, tc: f64, position: [f64; 2], psi: f64, psi_rate: f64) -> f64 {
+    /// The heading error e \[rad\] at time `tc` after settling, for G at
+    /// (X, Y) and heading ψ.
+    pub fn error(&self, tc: f64, position: [f64; 2], psi: f64) -> f64 {
         let reference = self.heading_deg.at(tc).to_radians();
         let command = if self.cross_track > 0.0 {
             let (s, c) = reference.sin_cos();
@@ -69,7 +90,21 @@ impl HeadingHold {
         } else {
             reference
         };
-        self.kp * wrap_angle(command - psi) - self.kd * psi_rate
+        wrap_angle(command - psi)
+    }
+
+    /// Slip: Δτ [N·m] at time `tc` after settling, for G at (X, Y), heading
+    /// ψ and heading rate ψ̇.
+    pub fn delta_tau(&self, tc: f64, position: [f64; 2], psi: f64, psi_rate: f64) -> f64 {
+        self.kp.unwrap_or(0.0) * self.error(tc, position, psi) - self.kd.unwrap_or(0.0) * psi_rate
+    }
+
+    /// Ackermann: the path curvature κ \[1/m\] at time `tc` after settling.
+    pub fn curvature(&self, tc: f64, position: [f64; 2], psi: f64) -> f64 {
+        match self.lookahead {
+            Some(l) if l > 0.0 => 2.0 * self.error(tc, position, psi).sin() / l,
+            _ => 0.0,
+        }
     }
 }
 

@@ -76,7 +76,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let n = self.n;
         let (x, rest) = y.split_at(n);
         let (w, z) = rest.split_at(n);
-        self.control.steer(t, &mut self.steer);
+        self.control.steer(t, x, &mut self.steer);
         self.plant.wheels(x, w, &self.steer, &mut self.wheels);
         match &mut self.ground {
             Some(g) => {
