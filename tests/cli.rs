@@ -398,6 +398,7 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
         out: None,
         generic: false,
         scenario: None,
+        speed: 0.0,
     })
     .unwrap();
     assert!(
@@ -419,6 +420,7 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
         out: Some(json.clone()),
         generic: false,
         scenario: None,
+        speed: 0.0,
     })
     .unwrap();
     assert!(from_file.contains("generic plant"), "{from_file}");

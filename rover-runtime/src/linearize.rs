@@ -45,6 +45,9 @@ pub enum LinearizeError {
     /// The (empty) controller of a parked rover does not fit the model.
     #[error("{0}")]
     Control(#[from] ControlError),
+    /// The operating point asked for is not a steady state.
+    #[error("{0}")]
+    NotSteady(String),
     /// A difference quotient came out NaN or infinite.
     #[error(
         "∂f/∂{state} is not finite: the right-hand side is not differentiable there \
@@ -109,10 +112,15 @@ pub struct Mode {
 /// The linearized rover.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Linearization {
-    /// Names of the 2N states, as the run CSV's columns (`X` … `ym`, `vx` … `dym`).
+    /// Names of the states, as the run CSV's columns (`X` … `ym`, `vx` …
+    /// `dym`), and `zeta`, the speed loop's integral, when it has a gain.
     pub states: Vec<String>,
-    /// The equilibrium x_e (w_e = 0).
+    /// The operating point's coordinates x_e (w_e = [V, 0, …]).
     pub equilibrium: Vec<f64>,
+    /// Its forward speed V \[m/s\].
+    pub speed: f64,
+    /// The whole state there, `[x_e; w_e; ζ]` (the right-hand side's `y`).
+    pub state: Vec<f64>,
     /// max |ẇ| at the equilibrium [m/s² or rad/s²]: how static it is.
     pub residual: f64,
     /// How far the quasi-static solution was from this equilibrium, the
@@ -131,23 +139,45 @@ pub struct Linearization {
     pub modes: Vec<Mode>,
 }
 
-/// Linearize `model`, with `plant` as its plant, about its equilibrium
-/// parked on flat ground (default contact search and wheel law).
-pub fn linearize<P: Plant>(model: &Model, plant: P) -> Result<Linearization, LinearizeError> {
-    linearize_with(model, plant, &ContactConfig::default())
+/// Where a rover is linearized: straight, steady driving on flat ground
+/// (parked at speed 0), with the scenario's contact and controllers.
+#[derive(Clone, Debug, Default)]
+pub struct OperatingPoint {
+    /// Forward speed V \[m/s\]; 0 parks the rover.
+    pub speed: f64,
+    /// Contact search, wheel law and rolling resistance.
+    pub contact: ContactConfig,
+    /// The controllers in the loop; none: motors off. A speed loop's
+    /// set-point becomes `speed`; the steering must keep the rover straight
+    /// (none, or a heading hold, whose set-point at t = 0 and line give the
+    /// heading and the position). The active suspension is sampled, not
+    /// part of the right-hand side, so it is not in the linearization.
+    pub control: ControllerConfig,
 }
 
-/// [`linearize`] with a scenario's `[contact]` table: search, sampling,
-/// wheel law, rolling resistance.
-pub fn linearize_with<P: Plant>(
+/// Linearize `model`, with `plant` as its plant, about its equilibrium
+/// parked on flat ground (default contact search and wheel law, motors off).
+pub fn linearize<P: Plant>(model: &Model, plant: P) -> Result<Linearization, LinearizeError> {
+    linearize_at(model, plant, &OperatingPoint::default())
+}
+
+/// [`linearize`] about an [`OperatingPoint`]: at speed, with a scenario's
+/// contact table and controllers (then the modes are the closed loop's).
+pub fn linearize_at<P: Plant>(
     model: &Model,
     plant: P,
-    contact: &ContactConfig,
+    point: &OperatingPoint,
 ) -> Result<Linearization, LinearizeError> {
     let n = model.dof();
-    let (mut sys, mut y) = parked_with(model, plant, contact)?;
-    let names: Vec<String> = header(model.m(), 0)[1..=2 * n].to_vec();
-    let mut a = state_matrix(&mut sys, &y, &names)?;
+    let (mut sys, mut y) = operating_system(model, plant, point)?;
+    // The speed loop's integral is a state of the loop only when it acts.
+    let integral = point.control.speed.as_ref().is_some_and(|s| s.ki > 0.0);
+    let dim = 2 * n + usize::from(integral);
+    let mut names: Vec<String> = header(model.m(), 0)[1..=2 * n].to_vec();
+    if integral {
+        names.push("zeta".into());
+    }
+    let mut a = state_matrix(&mut sys, &y, &names, dim)?;
     let mut f = vec![0.0; y.len()];
     let mut residual = rest_residual(&mut sys, &y, &mut f)?;
     let quasi_static = y[..n].to_vec();
@@ -156,17 +186,20 @@ pub fn linearize_with<P: Plant>(
             break;
         }
         settle(n, &a, &f, &mut y);
-        a = state_matrix(&mut sys, &y, &names)?;
+        drive(&mut y, n, point.speed);
+        a = state_matrix(&mut sys, &y, &names, dim)?;
         residual = rest_residual(&mut sys, &y, &mut f)?;
     }
     let mut mass = vec![0.0; n * n];
     sys.plant.mass_matrix(&y[..n], &mut mass);
     let inertia: Vec<f64> = (0..n).map(|i| mass[i * n + i]).collect();
-    let modes = modes(&a, &inertia, &names[n..]);
-    let b = neutral_inputs(&mut sys, &y, model)?;
+    let modes = modes(&a, &inertia, &names[n..2 * n]);
+    let b = neutral_inputs(&mut sys, &y, model, dim)?;
     Ok(Linearization {
         states: names,
         equilibrium: y[..n].to_vec(),
+        speed: point.speed,
+        state: y.clone(),
         residual,
         refinement: y[..n]
             .iter()
@@ -198,10 +231,10 @@ fn neutral_inputs<P: Plant, H: HeightField>(
     sys: &mut RoverSystem<P, H>,
     y: &[f64],
     model: &Model,
+    dim: usize,
 ) -> Result<DMatrix<f64>, LinearizeError> {
-    let n = sys.dof();
     let m = model.m();
-    let mut b = DMatrix::zeros(2 * n, m);
+    let mut b = DMatrix::zeros(dim, m);
     let (mut plus, mut minus) = (vec![0.0; y.len()], vec![0.0; y.len()]);
     for (j, c) in model.coordinates.iter().enumerate() {
         let h = 1e-7 * c.neutral.abs().max(1.0);
@@ -212,7 +245,7 @@ fn neutral_inputs<P: Plant, H: HeightField>(
         sys.plant.set_spring_neutral(j, c.neutral);
         up?;
         down?;
-        for i in 0..2 * n {
+        for i in 0..dim {
             b[(i, j)] = (plus[i] - minus[i]) / (2.0 * h);
         }
     }
@@ -230,7 +263,7 @@ fn rest_residual<P: Plant, H: HeightField>(
     Ok(f[n..2 * n].iter().fold(0.0, |m: f64, v| m.max(v.abs())))
 }
 
-/// One Newton step of the coordinates Z, φ, θ, y… on ẇ(x, 0) = 0 with the
+/// One Newton step of the coordinates Z, φ, θ, y… on ẇ(x, w_e) = 0 with the
 /// stiffness block of `a` and the rates `f` at `y`: the quasi-static
 /// solution refined on the very right-hand side that is linearized (the
 /// two agree to the quasi-static tolerance for most rovers, to 2e-3 rad/s²
@@ -258,34 +291,80 @@ pub fn parked<P: Plant>(
     model: &Model,
     plant: P,
 ) -> Result<(RoverSystem<P, Terrain>, Vec<f64>), LinearizeError> {
-    parked_with(model, plant, &ContactConfig::default())
+    operating_system(model, plant, &OperatingPoint::default())
 }
 
-/// [`parked`] with a scenario's `[contact]` table.
-pub fn parked_with<P: Plant>(
+/// The system of an [`OperatingPoint`] and its state (before the
+/// equilibrium is refined): the parked pose, turned to the heading hold's
+/// set-point and moved onto its line, at `w = [V, 0, …]`.
+pub fn operating_system<P: Plant>(
     model: &Model,
     plant: P,
-    contact: &ContactConfig,
+    point: &OperatingPoint,
 ) -> Result<(RoverSystem<P, Terrain>, Vec<f64>), LinearizeError> {
+    use crate::control::{Profile, Steering};
     let n = model.dof();
-    let x_e = flat_ground_pose(model)?;
+    let not_steady = |why: &str| Err(LinearizeError::NotSteady(why.to_string()));
+    if !point.speed.is_finite() {
+        return not_steady("the speed must be finite");
+    }
+    if point.speed != 0.0 && point.contact.rolling_resistance > 0.0 {
+        return not_steady(
+            "driving at a steady speed against rolling resistance is not covered (the torque that balances it is not solved for): linearize at speed 0, or without rolling resistance",
+        );
+    }
+    let mut control = point.control.clone();
+    if let Some(s) = &mut control.speed {
+        s.speed = Profile::Constant(point.speed);
+    }
+    let mut x_e = flat_ground_pose(model)?;
+    match &control.steering {
+        Steering::None => {}
+        Steering::Heading(h) => {
+            x_e[0] = h.line_origin[0];
+            x_e[1] = h.line_origin[1];
+            x_e[5] = h.heading_deg.at(0.0).to_radians();
+        }
+        Steering::Slip { .. } | Steering::Ackermann(_) => {
+            return not_steady(
+                "the linearization is about straight, steady driving: give no steering or a heading hold (slip and Ackermann commands turn the rover)",
+            );
+        }
+    }
     let ground = Ground::new(
         Terrain::default(),
         model,
-        contact.method,
-        contact.sampling(),
-        contact.law,
+        point.contact.method,
+        point.contact.sampling(),
+        point.contact.law,
     )
-    .with_rolling_resistance(contact.rolling_resistance);
-    let control = Controller::new(ControllerConfig::default(), model, 0.0)?;
-    let sys = RoverSystem::new(plant, Some(ground), control);
+    .with_rolling_resistance(point.contact.rolling_resistance);
+    let controller = Controller::new(control, model, 0.0)?;
+    let sys = RoverSystem::new(plant, Some(ground), controller);
     let mut y = vec![0.0; sys.dim()];
     y[..n].copy_from_slice(&x_e);
+    drive(&mut y, n, point.speed);
     Ok((sys, y))
 }
 
-/// `∂(ẋ, ẇ)/∂(x, w)` of `sys` at `y` (the speed loop's integral state is
-/// held), by central differences; `names` label the columns in errors.
+/// Set the body velocity of `y` to a horizontal one along the heading ψ
+/// whose forward body component is `speed` (what a speed loop holds): with
+/// the body pitched, `[V, 0, 0]` in body axes would climb or sink.
+fn drive(y: &mut [f64], n: usize, speed: f64) {
+    let att = rover_dynamics::attitude::Attitude::new(y[3], y[4], y[5]);
+    let r = att.rotation();
+    let (s, c) = y[5].sin_cos();
+    // Rᵀ·(cos ψ, sin ψ, 0): the heading in body axes.
+    let along: [f64; 3] = [0, 1, 2].map(|k| r[0][k] * c + r[1][k] * s);
+    let scale = if speed == 0.0 { 0.0 } else { speed / along[0] };
+    for k in 0..3 {
+        y[n + k] = scale * along[k];
+    }
+}
+
+/// `∂f/∂y` of `sys` at `y` over its first `dim` states (2N: x and w, the
+/// speed loop's integral held; 2N + 1 with it), by central differences;
+/// `names` label the columns in errors.
 ///
 /// Steps: 1e-7 for coordinates (m, rad: a ten-thousandth of a typical
 /// tyre deflection, well inside the smooth part of the contact) and 1e-8
@@ -298,19 +377,20 @@ pub fn state_matrix<P: Plant, H: HeightField>(
     sys: &mut RoverSystem<P, H>,
     y: &[f64],
     names: &[String],
+    dim: usize,
 ) -> Result<DMatrix<f64>, LinearizeError> {
     let n = sys.dof();
-    let mut a = DMatrix::zeros(2 * n, 2 * n);
+    let mut a = DMatrix::zeros(dim, dim);
     let mut probe = y.to_vec();
     let (mut plus, mut minus) = (vec![0.0; y.len()], vec![0.0; y.len()]);
-    for j in 0..2 * n {
+    for j in 0..dim {
         let h = if j < n { 1e-7 } else { 1e-8 } * y[j].abs().max(1.0);
         probe[j] = y[j] + h;
         sys.rhs(0.0, &probe, &mut plus)?;
         probe[j] = y[j] - h;
         sys.rhs(0.0, &probe, &mut minus)?;
         probe[j] = y[j];
-        for i in 0..2 * n {
+        for i in 0..dim {
             let d = (plus[i] - minus[i]) / (2.0 * h);
             if !d.is_finite() {
                 return Err(LinearizeError::NotFinite {
@@ -323,9 +403,9 @@ pub fn state_matrix<P: Plant, H: HeightField>(
     Ok(a)
 }
 
-/// The modes of `a` (2N × 2N, states x then w); `inertia` is the diagonal
-/// of the mass matrix M (the kinetic energy's weights of w) and
-/// `velocities` names the last N states.
+/// The modes of `a` (states x, then w, then possibly the speed loop's
+/// integral); `inertia` is the diagonal of the mass matrix M (the kinetic
+/// energy's weights of w) and `velocities` names the N states of w.
 pub fn modes(a: &DMatrix<f64>, inertia: &[f64], velocities: &[String]) -> Vec<Mode> {
     let n = velocities.len();
     let mut out: Vec<Mode> = Vec::new();
@@ -433,13 +513,11 @@ fn position_shape(v: &DVector<Complex<f64>>, n: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// Kinetic-energy shares of the velocity part (last `inertia.len()`
-/// entries) of `v`, weighted by the diagonal of M.
+/// Kinetic-energy shares of the velocity part of `v` (entries N … 2N − 1,
+/// N = `inertia.len()`), weighted by the diagonal of M.
 fn energy_shares(v: &DVector<Complex<f64>>, inertia: &[f64]) -> Vec<f64> {
     let n = inertia.len();
-    let e: Vec<f64> = (0..n)
-        .map(|i| inertia[i] * v[v.len() - n + i].norm_sqr())
-        .collect();
+    let e: Vec<f64> = (0..n).map(|i| inertia[i] * v[n + i].norm_sqr()).collect();
     let total: f64 = e.iter().sum();
     if total > 0.0 {
         e.iter().map(|x| x / total).collect()

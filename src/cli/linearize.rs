@@ -5,8 +5,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Args;
-use rover_runtime::linearize::{Linearization, Mode, ModeKind, linearize_with};
-use rover_runtime::scenario::{ContactConfig, Scenario};
+use rover_runtime::linearize::{Linearization, Mode, ModeKind, OperatingPoint, linearize_at};
+use rover_runtime::scenario::Scenario;
 
 use crate::rover_source::load_rover;
 
@@ -25,11 +25,15 @@ pub struct LinearizeArgs {
     /// Use the generic plant even for a built-in rover.
     #[arg(long)]
     pub generic: bool,
-    /// Take the contact search, wheel law and rolling resistance from this
-    /// scenario's `[contact]` table (its terrain, control and initial state
-    /// are not used: the rover is parked on flat ground).
+    /// Take the contact search, wheel law, rolling resistance and the
+    /// controllers (speed loop, heading hold) from this scenario (its
+    /// terrain and initial state are not used: the ground is flat).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
+    /// Forward speed of the straight, steady drive to linearize about [m/s]
+    /// (0: parked); a scenario's speed loop holds it.
+    #[arg(long, default_value_t = 0.0)]
+    pub speed: f64,
 }
 
 /// Linearize the rover, write the JSON if asked, and return the report
@@ -37,10 +41,15 @@ pub struct LinearizeArgs {
 pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
     let spec = load_rover(&args.rover, None)?;
     let model = &spec.model;
-    let contact = match &args.scenario {
-        Some(path) => Scenario::load(path)?.contact,
-        None => ContactConfig::default(),
+    let mut point = OperatingPoint {
+        speed: args.speed,
+        ..Default::default()
     };
+    if let Some(path) = &args.scenario {
+        let scenario = Scenario::load(path)?;
+        point.contact = scenario.contact;
+        point.control = scenario.control;
+    }
     let fail = |e: rover_runtime::linearize::LinearizeError| {
         CliError::Other(format!("{}: cannot linearize: {e}", spec.name))
     };
@@ -51,14 +60,14 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
     };
     let (lin, backend) = match generated {
         Some(p) => (
-            linearize_with(model, p, &contact).map_err(fail)?,
+            linearize_at(model, p, &point).map_err(fail)?,
             format!("generated plant {}", p.name()),
         ),
         None => (
-            linearize_with(
+            linearize_at(
                 model,
                 build_plant(model, rover_dynamics::fidelity::Fidelity::Full)?,
-                &contact,
+                &point,
             )
             .map_err(fail)?,
             "generic plant".to_string(),
@@ -81,16 +90,28 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
         std::fs::write(path, json + "\n")
             .map_err(|e| CliError::Other(format!("{}: cannot write: {e}", path.display())))?;
     }
-    Ok(report(&spec.name, &backend, &lin, &contact))
+    Ok(report(&spec.name, &backend, &lin, &point))
 }
 
 /// The printed table.
-fn report(rover: &str, backend: &str, lin: &Linearization, contact: &ContactConfig) -> String {
+fn report(rover: &str, backend: &str, lin: &Linearization, point: &OperatingPoint) -> String {
     let n = lin.equilibrium.len();
     let mut s = String::new();
+    let what = if point.speed != 0.0 {
+        format!("driving straight at {} m/s on flat ground", point.speed)
+    } else {
+        "parked on flat ground".to_string()
+    };
+    let loop_ = if point.control.speed.is_some()
+        || point.control.steering != rover_runtime::control::Steering::None
+    {
+        "with its scenario's controllers in the loop"
+    } else {
+        "motors off"
+    };
     let _ = writeln!(
         s,
-        "{rover} parked on flat ground, motors off: small motions about its static equilibrium"
+        "{rover} {what}, {loop_}: small motions about its steady state"
     );
     let pose: Vec<String> = lin.states[2..n]
         .iter()
@@ -152,7 +173,7 @@ fn report(rover: &str, backend: &str, lin: &Linearization, contact: &ContactConf
         s,
         "\nneutral: {} (no restoring force: on flat ground X, Y and heading{})",
         of(ModeKind::Neutral).count(),
-        if contact.rolling_resistance == 0.0 {
+        if point.contact.rolling_resistance == 0.0 {
             "; and rolling: no rolling resistance (`[contact] rolling_resistance` in a --scenario adds one)"
         } else {
             ""
