@@ -9,7 +9,7 @@
 //! ```text
 //! simplified:  M_c·ẇ = −f1 + Q(x, w; T_c),                      ẋ = B(x)·w
 //! linearized:  M_c·ẇ = Q(x_lin, w; T_c),  R ≈ Rz(ψ)·(I + skew([φ, θ, 0])),
-//!              ẋ = B_lin(x)·w,  wheel centres from u_c + S_c·(y − y_c)
+//!              ẋ = B_lin(x)·w,  wheel centres from u_c + S_c·(y − y_ref)
 //! ```
 //! Dropping f1 drops the centripetal term Ω × p, which the paper accepts
 //! for slow rovers.
@@ -127,8 +127,9 @@ pub fn reduced_derivatives<S: Scalar>(
     }
 }
 
-/// Wheel-centre kinematics of level 3: `u_j ≈ u_j(y_c) + S_j(y_c)·(y − y_c)`
-/// with the linearized attitude (orientation polynomials kept exact).
+/// Wheel-centre kinematics of level 3: `u_j ≈ u_j(y_ref) + S_j(y_ref)·(y − y_ref)`,
+/// tangent at the configuration frozen at (y_c for [`Frozen::new`]), with
+/// the linearized attitude (orientation polynomials kept exact).
 pub fn linear_wheel_kinematics<S: Scalar>(
     model: &Model,
     frozen: &Frozen<S>,
@@ -145,10 +146,7 @@ pub fn linear_wheel_kinematics<S: Scalar>(
     let mut u: V3<S> = ws.u[j];
     let mut rel = [S::zero(); 3];
     for i in 0..m {
-        u = add(
-            u,
-            scale(y[i] - S::cst(model.coordinates[i].rest), ws.s[j * m + i]),
-        );
+        u = add(u, scale(y[i] - frozen.y_ref[i], ws.s[j * m + i]));
         rel = add(rel, scale(w[6 + i], ws.s[j * m + i]));
     }
     let att = Attitude::linear(x[3], x[4], x[5]);

@@ -219,7 +219,7 @@ fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
 
 /// Newton steps on the dynamic equilibrium ẇ(x, 0) = 0 at most, after the
 /// quasi-static solve.
-const MAX_SETTLE: usize = 4;
+const MAX_SETTLE: usize = 8;
 
 /// max |ẇ| at which the equilibrium counts as settled [m/s², rad/s²].
 const SETTLED: f64 = 1e-10;

@@ -11,7 +11,7 @@ use rover_runtime::scenario::Scenario;
 use crate::rover_source::load_rover;
 
 use super::CliError;
-use super::simulate::build_plant;
+use super::simulate::{build_plant, generated_plant};
 
 /// Arguments of `rover linearize`.
 #[derive(Debug, Args)]
@@ -25,9 +25,10 @@ pub struct LinearizeArgs {
     /// Use the generic plant even for a built-in rover.
     #[arg(long)]
     pub generic: bool,
-    /// Take the contact search, wheel law, rolling resistance and the
-    /// controllers (speed loop, heading hold) from this scenario (its
-    /// terrain and initial state are not used: the ground is flat).
+    /// Take the contact search, wheel law, rolling resistance, the
+    /// controllers (speed loop, heading hold) and the fidelity level from
+    /// this scenario (its terrain and initial state are not used: the
+    /// ground is flat).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// Forward speed of the straight, steady drive to linearize about [m/s]
@@ -45,32 +46,36 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
         speed: args.speed,
         ..Default::default()
     };
+    let mut level = rover_dynamics::fidelity::Fidelity::Full;
     if let Some(path) = &args.scenario {
         let scenario = Scenario::load(path)?;
         point.contact = scenario.contact;
         point.control = scenario.control;
+        level = scenario.fidelity.dynamic().ok_or_else(|| {
+            CliError::Other(format!(
+                "{}: fidelity = \"quasi_static\" has no dynamics to linearize; use full, simplified or linearized",
+                path.display()
+            ))
+        })?;
     }
     let fail = |e: rover_runtime::linearize::LinearizeError| {
         CliError::Other(format!("{}: cannot linearize: {e}", spec.name))
     };
-    let generated = if args.generic {
-        None
-    } else {
-        rover_models::plant(&args.rover)
-    };
+    let generated = generated_plant(&args.rover, level, args.generic);
     let (lin, backend) = match generated {
         Some(p) => (
             linearize_at(model, p, &point).map_err(fail)?,
             format!("generated plant {}", p.name()),
         ),
         None => (
-            linearize_at(
-                model,
-                build_plant(model, rover_dynamics::fidelity::Fidelity::Full)?,
-                &point,
-            )
-            .map_err(fail)?,
-            "generic plant".to_string(),
+            linearize_at(model, build_plant(model, level)?, &point).map_err(fail)?,
+            match level {
+                rover_dynamics::fidelity::Fidelity::Full => "generic plant".to_string(),
+                other => format!(
+                    "generic plant, {} level",
+                    format!("{other:?}").to_lowercase()
+                ),
+            },
         ),
     };
     if let Some(path) = &args.out {

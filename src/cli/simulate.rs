@@ -120,14 +120,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
     let level = scenario.fidelity.dynamic().unwrap_or_default();
     let flag = interrupt_flag();
     let progress = |t: f64| bar.set_position((1000.0 * t / duration) as u64);
-    // Built-in rovers run their generated plant where one exists for the level.
-    use rover_dynamics::fidelity::Fidelity;
-    let generated = match level {
-        _ if args.generic => None,
-        Fidelity::Full => rover_models::plant(&rover),
-        Fidelity::Simplified => rover_models::plant_at(&rover, "simplified"),
-        Fidelity::Linearized => rover_models::plant_at(&rover, "linearized"),
-    };
+    let generated = generated_plant(&rover, level, args.generic);
     let run = Run {
         spec: &spec,
         scenario: &scenario,
@@ -270,6 +263,25 @@ fn plots(
 
 /// The generic plant at a fidelity level; reduced levels are frozen at the
 /// loaded static equilibrium on flat ground (docs/FIDELITY.md says why).
+/// The generated plant of a built-in rover at `level`, where one exists
+/// (and `generic` is not asked for): built-in rovers run it, others the
+/// generic plant.
+pub fn generated_plant(
+    rover: &str,
+    level: rover_dynamics::fidelity::Fidelity,
+    generic: bool,
+) -> Option<rover_models::BuiltinPlant> {
+    use rover_dynamics::fidelity::Fidelity;
+    match level {
+        _ if generic => None,
+        Fidelity::Full => rover_models::plant(rover),
+        Fidelity::Simplified => rover_models::plant_at(rover, "simplified"),
+        Fidelity::Linearized => rover_models::plant_at(rover, "linearized"),
+    }
+}
+
+/// The generic plant of `model` at `level` (reduced levels frozen where the
+/// CLI freezes them, [`reduced_level_reference`]).
 pub fn build_plant(
     model: &rover_dynamics::Model,
     level: rover_dynamics::fidelity::Fidelity,
