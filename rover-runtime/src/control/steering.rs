@@ -69,7 +69,9 @@ pub struct HeadingHold {
     /// Line following: heading correction per metre of lateral offset from
     /// the line through `line_origin` along ψ_ref, k_e \[rad/m\], ≥ 0;
     /// default 0 (heading alone; a rover sliding sideways down a slope keeps
-    /// its heading but leaves its line).
+    /// its heading but leaves its line). With a time table for ψ_ref the
+    /// line turns about `line_origin` with it: a path of several legs needs
+    /// one run per leg.
     #[serde(default)]
     pub cross_track: f64,
     /// A point of the line \[m\] (X, Y); default the origin.
