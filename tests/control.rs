@@ -202,14 +202,20 @@ fn heading_hold_wraps_the_error_and_steers_back_to_its_line() {
         lookahead: None,
         cross_track,
         line_origin: [0.0, 0.0],
+        waypoints: Vec::new(),
     };
-    let dt = law(0.0).delta_tau(0.0, [0.0, 0.0], (-170.0f64).to_radians(), 0.1);
+    let dt = law(0.0).delta_tau(
+        law(0.0).line(0.0, 0),
+        [0.0, 0.0],
+        (-170.0f64).to_radians(),
+        0.1,
+    );
     let want = 2.0 * (-20.0f64).to_radians() - 0.5 * 0.1;
     assert!((dt - want).abs() < 1e-12, "Δτ {dt} vs {want}");
     // Heading 0 along +X: a rover at Y = +1 m (left of the line) turns right.
     let mut along_x = law(1.0);
     along_x.heading_deg = rover_runtime::control::Profile::Constant(0.0);
-    let left_of_line = along_x.delta_tau(0.0, [5.0, 1.0], 0.0, 0.0);
+    let left_of_line = along_x.delta_tau(along_x.line(0.0, 0), [5.0, 1.0], 0.0, 0.0);
     assert!(
         (left_of_line - 2.0 * -(1.0f64.atan())).abs() < 1e-12,
         "Δτ {left_of_line}"
@@ -412,5 +418,66 @@ fn heading_hold_actuators_take_their_own_settings() {
     assert!(
         lookahead.contains("control.steering.lookahead"),
         "{lookahead}"
+    );
+    let one = error(
+        "swing4",
+        &format!("{speed}kp = 1.0\nwaypoints = [[0.0, 0.0]]\n"),
+    );
+    assert!(
+        one.contains("control.steering.waypoints") && one.contains("two"),
+        "{one}"
+    );
+    let same = error(
+        "swing4",
+        &format!("{speed}kp = 1.0\nwaypoints = [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0]]\n"),
+    );
+    assert!(same.contains("waypoints 2 and 3 coincide"), "{same}");
+    let both = error(
+        "swing4",
+        &format!("{speed}kp = 1.0\nheading_deg = 10.0\nwaypoints = [[0.0, 0.0], [1.0, 0.0]]\n"),
+    );
+    assert!(both.contains("replace"), "{both}");
+}
+
+/// A path of waypoints: swing4 drives three legs of a 6 m square at 0.3 m/s,
+/// each followed as a line until G passes the perpendicular through its
+/// end; it passes within centimetres of both corners (it reaches each on
+/// its line, then turns, overshooting by about half a metre) and ends on
+/// the last leg's line, heading back along −X.
+#[test]
+fn heading_hold_follows_a_path_of_waypoints() {
+    let r = run(
+        "swing4",
+        "duration = 60.0\nsettle = 2.0\noutput_rate = 10.0\n[control.speed]\nspeed = 0.3\n\
+         [control.steering]\nkind = \"heading\"\nkp = 5.0\nkd = 2.0\ncross_track = 2.0\n\
+         waypoints = [[0.0, 0.0], [6.0, 0.0], [6.0, 6.0], [0.0, 6.0]]\n",
+    );
+    let (x, y) = (r.col("X"), r.col("Y"));
+    let closest = |cx: f64, cy: f64| {
+        x.iter()
+            .zip(&y)
+            .map(|(a, b)| (a - cx).hypot(b - cy))
+            .fold(f64::MAX, f64::min)
+    };
+    assert!(
+        closest(6.0, 0.0) < 0.03,
+        "first corner missed by {} m",
+        closest(6.0, 0.0)
+    );
+    assert!(
+        closest(6.0, 6.0) < 0.03,
+        "second corner missed by {} m",
+        closest(6.0, 6.0)
+    );
+    for v in r.after("Y", 52.0) {
+        assert!((v - 6.0).abs() < 0.05, "off the last leg: Y = {v}");
+    }
+    let psi = r.col("psi");
+    let heading = psi[psi.len() - 1].to_degrees().rem_euclid(360.0);
+    assert!((heading - 180.0).abs() < 3.0, "final heading {heading}°");
+    assert!(
+        x[x.len() - 1] < 3.0,
+        "moving along the last leg: X = {}",
+        x[x.len() - 1]
     );
 }

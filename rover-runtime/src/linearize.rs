@@ -321,9 +321,11 @@ pub fn operating_system<P: Plant>(
     match &control.steering {
         Steering::None => {}
         Steering::Heading(h) => {
-            x_e[0] = h.line_origin[0];
-            x_e[1] = h.line_origin[1];
-            x_e[5] = h.heading_deg.at(0.0).to_radians();
+            // On the first line (the first leg of waypoints), along it.
+            let (heading, origin) = h.line(0.0, 0);
+            x_e[0] = origin[0];
+            x_e[1] = origin[1];
+            x_e[5] = heading;
         }
         Steering::Slip { .. } | Steering::Ackermann(_) => {
             return not_steady(

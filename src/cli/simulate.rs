@@ -281,7 +281,7 @@ pub fn generated_plant(
 }
 
 /// The generic plant of `model` at `level` (reduced levels frozen where the
-/// CLI freezes them, [`reduced_level_reference`]).
+/// CLI freezes them: the loaded flat-ground equilibrium).
 pub fn build_plant(
     model: &rover_dynamics::Model,
     level: rover_dynamics::fidelity::Fidelity,

@@ -59,6 +59,8 @@ pub struct Controller {
     neutral: Vec<f64>,
     lo: Vec<f64>,
     hi: Vec<f64>,
+    /// The heading hold's current leg of its waypoints.
+    leg: usize,
 }
 
 impl Controller {
@@ -172,6 +174,7 @@ impl Controller {
             hi: model.coordinates.iter().map(|c| c.max).collect(),
             config,
             settle,
+            leg: 0,
         })
     }
 
@@ -250,7 +253,12 @@ impl Controller {
             Steering::Heading(h) if h.via == HeadingActuator::Slip => Some(if settled {
                 let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
                 let psi_rate = att.rates([w[3], w[4], w[5]])[2];
-                h.delta_tau(t - self.settle, [x[0], x[1]], x[5], psi_rate)
+                h.delta_tau(
+                    h.line(t - self.settle, self.leg),
+                    [x[0], x[1]],
+                    x[5],
+                    psi_rate,
+                )
             } else {
                 0.0
             }),
@@ -290,7 +298,7 @@ impl Controller {
                 (None, None) => 0.0,
             },
             Steering::Heading(h) if h.via == HeadingActuator::Ackermann => {
-                h.curvature(tc, [x[0], x[1]], x[5])
+                h.curvature(h.line(tc, self.leg), [x[0], x[1]], x[5])
             }
             _ => return,
         };
@@ -354,7 +362,17 @@ impl Controller {
 
     /// Period of the sampled part (active suspension), if any.
     pub fn sample_period(&self) -> Option<f64> {
-        self.active.as_ref().map(|a| a.config.sample_time)
+        let legs = matches!(&self.config.steering, Steering::Heading(h) if h.waypoints.len() > 2);
+        match &self.active {
+            Some(a) => Some(a.config.sample_time),
+            None if legs => Some(crate::control::LEG_CHECK_PERIOD),
+            None => None,
+        }
+    }
+
+    /// The heading hold's current leg of its waypoints (0 without them).
+    pub fn leg(&self) -> usize {
+        self.leg
     }
 
     /// Times at which commands jump (step profiles, end of settling).
@@ -377,13 +395,31 @@ impl Controller {
         b
     }
 
-    /// The sampled update (active suspension, eq. 42) at time t; moves the
-    /// plant's spring neutrals. Inactive while settling.
-    pub fn sample<P: Plant + ?Sized>(&mut self, t: f64, x: &[f64], w: &[f64], plant: &mut P) {
-        let Some(active) = &self.active else { return };
+    /// The sampled update at time t: the active suspension (eq. 42) moves
+    /// the plant's spring neutrals, a heading hold on waypoints moves on to
+    /// its next leg once G has passed the end of its current one. Inactive
+    /// while settling. Returns whether anything changed (the integrator
+    /// restarts then).
+    pub fn sample<P: Plant + ?Sized>(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        w: &[f64],
+        plant: &mut P,
+    ) -> bool {
         if t < self.settle {
-            return;
+            return false;
         }
+        let mut changed = false;
+        if let Steering::Heading(h) = &self.config.steering {
+            while h.passed(self.leg, [x[0], x[1]]) {
+                self.leg += 1;
+                changed = true;
+            }
+        }
+        let Some(active) = &self.active else {
+            return changed;
+        };
         let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
         let rates = att.rates([w[3], w[4], w[5]]);
         active.update(
@@ -398,6 +434,7 @@ impl Controller {
         for (i, &n) in self.neutral.iter().enumerate() {
             plant.set_spring_neutral(i, n);
         }
+        true
     }
 }
 
@@ -422,6 +459,33 @@ fn validate_heading(
             "steering.line_origin",
             format!("must be finite, got {:?}", h.line_origin),
         ));
+    }
+    if !h.waypoints.is_empty() {
+        if h.waypoints.len() < 2 {
+            return Err(err(
+                "steering.waypoints",
+                "give at least two waypoints [[X, Y], …] (one leg), or none",
+            ));
+        }
+        if !h.waypoints.iter().flatten().all(|v| v.is_finite()) {
+            return Err(err("steering.waypoints", "every coordinate must be finite"));
+        }
+        if let Some(k) = h.waypoints.windows(2).position(|p| p[0] == p[1]) {
+            return Err(err(
+                "steering.waypoints",
+                format!(
+                    "waypoints {} and {} coincide: a leg needs a length",
+                    k + 1,
+                    k + 2
+                ),
+            ));
+        }
+        if h.heading_deg != crate::control::Profile::Constant(0.0) || h.line_origin != [0.0, 0.0] {
+            return Err(err(
+                "steering.waypoints",
+                "waypoints replace `heading_deg` and `line_origin`: give one or the other",
+            ));
+        }
     }
     match h.via {
         HeadingActuator::Slip => {

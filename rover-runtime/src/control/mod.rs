@@ -15,4 +15,6 @@ pub use controller::{ControlError, Controller, ControllerConfig};
 pub use distribution::Distribution;
 pub use profile::Profile;
 pub use speed::SpeedConfig;
-pub use steering::{Ackermann, HeadingActuator, HeadingHold, Steering, wrap_angle};
+pub use steering::{
+    Ackermann, HeadingActuator, HeadingHold, LEG_CHECK_PERIOD, Steering, wrap_angle,
+};

@@ -77,17 +77,53 @@ pub struct HeadingHold {
     /// A point of the line \[m\] (X, Y); default the origin.
     #[serde(default)]
     pub line_origin: [f64; 2],
+    /// A path instead of one line: waypoints `[[X, Y], …]` \[m\], ≥ 2, each
+    /// leg followed as a line (with `cross_track`) until G passes the
+    /// perpendicular through its end, checked every
+    /// [`LEG_CHECK_PERIOD`] (or at the active suspension's sample times);
+    /// the last leg's line is held beyond its end. Replaces `heading_deg`
+    /// and `line_origin`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub waypoints: Vec<[f64; 2]>,
 }
 
+/// How often a heading hold on waypoints checks whether G has passed the
+/// end of its leg \[s\] (a switch is a jump of the command: the integrator
+/// restarts there, as at a step of a set-point).
+pub const LEG_CHECK_PERIOD: f64 = 0.1;
+
 impl HeadingHold {
-    /// The heading error e \[rad\] at time `tc` after settling, for G at
-    /// (X, Y) and heading ψ.
-    pub fn error(&self, tc: f64, position: [f64; 2], psi: f64) -> f64 {
-        let reference = self.heading_deg.at(tc).to_radians();
+    /// The line followed at time `tc` after settling on leg `leg`: its
+    /// heading ψ_ref \[rad\] and a point of it.
+    pub fn line(&self, tc: f64, leg: usize) -> (f64, [f64; 2]) {
+        if self.waypoints.len() >= 2 {
+            let k = leg.min(self.waypoints.len() - 2);
+            let (a, b) = (self.waypoints[k], self.waypoints[k + 1]);
+            ((b[1] - a[1]).atan2(b[0] - a[0]), a)
+        } else {
+            (self.heading_deg.at(tc).to_radians(), self.line_origin)
+        }
+    }
+
+    /// Whether G at `position` has passed the end of leg `leg` and a next
+    /// leg exists.
+    pub fn passed(&self, leg: usize, position: [f64; 2]) -> bool {
+        if leg + 2 >= self.waypoints.len() {
+            return false;
+        }
+        let (a, b) = (self.waypoints[leg], self.waypoints[leg + 1]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let along = d[0] * (position[0] - a[0]) + d[1] * (position[1] - a[1]);
+        along >= d[0] * d[0] + d[1] * d[1]
+    }
+
+    /// The heading error e \[rad\] on `line` (from [`HeadingHold::line`])
+    /// for G at (X, Y) and heading ψ.
+    pub fn error(&self, line: (f64, [f64; 2]), position: [f64; 2], psi: f64) -> f64 {
+        let (reference, origin) = line;
         let command = if self.cross_track > 0.0 {
             let (s, c) = reference.sin_cos();
-            let offset =
-                -s * (position[0] - self.line_origin[0]) + c * (position[1] - self.line_origin[1]);
+            let offset = -s * (position[0] - origin[0]) + c * (position[1] - origin[1]);
             reference - (self.cross_track * offset).atan()
         } else {
             reference
@@ -95,16 +131,22 @@ impl HeadingHold {
         wrap_angle(command - psi)
     }
 
-    /// Slip: Δτ [N·m] at time `tc` after settling, for G at (X, Y), heading
-    /// ψ and heading rate ψ̇.
-    pub fn delta_tau(&self, tc: f64, position: [f64; 2], psi: f64, psi_rate: f64) -> f64 {
-        self.kp.unwrap_or(0.0) * self.error(tc, position, psi) - self.kd.unwrap_or(0.0) * psi_rate
+    /// Slip: Δτ [N·m] on `line` for G at (X, Y), heading ψ and heading
+    /// rate ψ̇.
+    pub fn delta_tau(
+        &self,
+        line: (f64, [f64; 2]),
+        position: [f64; 2],
+        psi: f64,
+        psi_rate: f64,
+    ) -> f64 {
+        self.kp.unwrap_or(0.0) * self.error(line, position, psi) - self.kd.unwrap_or(0.0) * psi_rate
     }
 
-    /// Ackermann: the path curvature κ \[1/m\] at time `tc` after settling.
-    pub fn curvature(&self, tc: f64, position: [f64; 2], psi: f64) -> f64 {
+    /// Ackermann: the path curvature κ \[1/m\] on `line`.
+    pub fn curvature(&self, line: (f64, [f64; 2]), position: [f64; 2], psi: f64) -> f64 {
         match self.lookahead {
-            Some(l) if l > 0.0 => 2.0 * self.error(tc, position, psi).sin() / l,
+            Some(l) if l > 0.0 => 2.0 * self.error(line, position, psi).sin() / l,
             _ => 0.0,
         }
     }

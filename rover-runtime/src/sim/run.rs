@@ -107,8 +107,9 @@ where
             && (k_sample as f64 * dt - t).abs() <= 1e-12 * (1.0 + t)
         {
             let (x, rest) = y.split_at(n);
-            sys.control.sample(t, x, &rest[..n], &mut sys.plant);
-            integ.restart();
+            if sys.control.sample(t, x, &rest[..n], &mut sys.plant) {
+                integ.restart();
+            }
             k_sample += 1;
         }
         if (t_out - t).abs() <= 1e-12 * (1.0 + t) {
