@@ -440,6 +440,28 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
         eigen(&from_file),
         "generated and generic plants, same modes to the printed digits"
     );
+    // At speed, with the scenario's speed loop and line following closed:
+    // only X is left without a restoring force.
+    let scenario = write(
+        &dir,
+        "drive.toml",
+        "duration = 1.0\n[control.speed]\nspeed = 0.1\n[control.steering]\nkind = \"heading\"\n\
+         kp = 5.0\nkd = 0.5\ncross_track = 2.0\n",
+    );
+    let driving = linearize_cmd(&LinearizeArgs {
+        rover: "swing4".into(),
+        out: None,
+        generic: false,
+        scenario: Some(scenario),
+        speed: 0.1,
+    })
+    .unwrap();
+    assert!(
+        driving.contains("driving straight at 0.1 m/s")
+            && driving.contains("controllers in the loop")
+            && driving.contains("neutral: 1"),
+        "{driving}"
+    );
     let missing = Command::new(env!("CARGO_BIN_EXE_rover"))
         .args(["linearize", "no_such_rover.toml"])
         .output()
