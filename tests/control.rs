@@ -269,6 +269,21 @@ fn heading_hold_turns_to_its_set_point_and_holds_a_line_across_a_slope() {
         "heading alone slides down: Y {}",
         last(held.col("Y"))
     );
+    // The summary's path deviation is |Y| here (the line Y = 0 along X).
+    let dev = line.summary.path_deviation.expect("a line is followed");
+    let max_y = line
+        .after("Y", 2.0)
+        .iter()
+        .fold(0.0f64, |m, y| m.max(y.abs()));
+    assert!(
+        (dev.max_m - max_y).abs() < 1e-12,
+        "{} vs {max_y}",
+        dev.max_m
+    );
+    assert!(
+        held.summary.path_deviation.is_none(),
+        "no line without cross_track"
+    );
     let y_line = line.after("Y", 20.0);
     let spread = y_line.iter().cloned().fold(f64::MIN, f64::max)
         - y_line.iter().cloned().fold(f64::MAX, f64::min);
@@ -479,5 +494,12 @@ fn heading_hold_follows_a_path_of_waypoints() {
         x[x.len() - 1] < 3.0,
         "moving along the last leg: X = {}",
         x[x.len() - 1]
+    );
+    // The summary's deviation from the path: on it at the end, half a
+    // metre out at the corners' overshoot.
+    let dev = r.summary.path_deviation.expect("a path is followed");
+    assert!(
+        dev.final_m < 0.05 && dev.max_m > 0.3 && dev.rms_m < dev.max_m,
+        "{dev:?}"
     );
 }

@@ -219,7 +219,8 @@ pub fn simulate<P: Plant, W: Write>(
         Stop::Failed(e) => (Status::Failed, Some(with_contact_hint(e, scenario))),
     };
     let stats = integ.stats();
-    Ok(log.summary(
+    let path_deviation = path_deviation(&log, scenario);
+    let mut summary = log.summary(
         &cols,
         n,
         RunEnd {
@@ -235,7 +236,9 @@ pub fn simulate<P: Plant, W: Write>(
             steps: stats.steps,
             rejected_steps: stats.rejected_steps,
         },
-    ))
+    );
+    summary.path_deviation = path_deviation;
+    Ok(summary)
 }
 
 /// The error of a failed run, with a hint when the tracking contact search
@@ -252,6 +255,27 @@ fn with_contact_hint(e: &RunError, scenario: &Scenario) -> String {
         ),
         _ => text,
     }
+}
+
+/// G's distance from the path its heading hold follows, over the output
+/// instants after settling; `None` without one.
+fn path_deviation(log: &RunLog, scenario: &Scenario) -> Option<crate::output::PathDeviation> {
+    let crate::control::Steering::Heading(h) = &scenario.control.steering else {
+        return None;
+    };
+    if !h.follows_a_path() {
+        return None;
+    }
+    let d: Vec<f64> = log
+        .track()
+        .map(|(t, p)| h.deviation(t - scenario.settle, p))
+        .collect();
+    let last = *d.last()?;
+    Some(crate::output::PathDeviation {
+        max_m: d.iter().fold(0.0, |m: f64, v| m.max(*v)),
+        rms_m: (d.iter().map(|v| v * v).sum::<f64>() / d.len() as f64).sqrt(),
+        final_m: last,
+    })
 }
 
 /// The horizontal motion a quasi-static run imposes: (t, X, Y, ψ) samples.

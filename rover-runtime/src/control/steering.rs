@@ -117,6 +117,38 @@ impl HeadingHold {
         along >= d[0] * d[0] + d[1] * d[1]
     }
 
+    /// Whether the law follows a line or a path (and a deviation from it
+    /// means something): `cross_track > 0` or waypoints.
+    pub fn follows_a_path(&self) -> bool {
+        self.cross_track > 0.0 || !self.waypoints.is_empty()
+    }
+
+    /// Distance \[m\] of G at `position`, at time `tc` after settling, from
+    /// the commanded path: the line, or the nearest leg of the waypoints
+    /// (the last one extended beyond its end, as it is held there).
+    pub fn deviation(&self, tc: f64, position: [f64; 2]) -> f64 {
+        if self.waypoints.len() < 2 {
+            let (reference, origin) = self.line(tc, 0);
+            let (s, c) = reference.sin_cos();
+            return (-s * (position[0] - origin[0]) + c * (position[1] - origin[1])).abs();
+        }
+        let last = self.waypoints.len() - 2;
+        (0..=last)
+            .map(|k| {
+                let (a, b) = (self.waypoints[k], self.waypoints[k + 1]);
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let p = [position[0] - a[0], position[1] - a[1]];
+                let t = (d[0] * p[0] + d[1] * p[1]) / (d[0] * d[0] + d[1] * d[1]);
+                let t = if k == last {
+                    t.max(0.0)
+                } else {
+                    t.clamp(0.0, 1.0)
+                };
+                (p[0] - t * d[0]).hypot(p[1] - t * d[1])
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// The heading error e \[rad\] on `line` (from [`HeadingHold::line`])
     /// for G at (X, Y) and heading ψ.
     pub fn error(&self, line: (f64, [f64; 2]), position: [f64; 2], psi: f64) -> f64 {

@@ -7,5 +7,6 @@ mod summary;
 pub use circle_fit::{Circle, fit_circle};
 pub use csv_writer::{CsvWriter, header};
 pub use summary::{
-    RunEnd, RunLog, STALL_FRACTION, STALL_MIN_DISTANCE, STALL_WINDOW, Stall, Status, Summary,
+    PathDeviation, RunEnd, RunLog, STALL_FRACTION, STALL_MIN_DISTANCE, STALL_WINDOW, Stall, Status,
+    Summary,
 };

@@ -57,6 +57,10 @@ pub struct Summary {
     /// asked for at the end of the run (see [`Stall`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stalled: Option<Stall>,
+    /// How far G strayed from the path a heading hold follows (a line or
+    /// waypoints), at output instants after settling (set by the caller).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path_deviation: Option<PathDeviation>,
     /// Wall-clock time of the integration \[s\].
     pub wall_time_s: f64,
     /// Simulated seconds per wall-clock second.
@@ -71,6 +75,18 @@ pub struct Summary {
     pub steps: u64,
     /// Rejected steps.
     pub rejected_steps: u64,
+}
+
+/// G's distance from a heading hold's path at output instants after
+/// settling.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PathDeviation {
+    /// Largest distance \[m\].
+    pub max_m: f64,
+    /// Root mean square \[m\].
+    pub rms_m: f64,
+    /// Distance at the last output instant \[m\].
+    pub final_m: f64,
 }
 
 /// A rover that no longer follows its speed command: over the last
@@ -235,6 +251,12 @@ impl RunLog {
         }
     }
 
+    /// G's horizontal position at each output instant after settling, with
+    /// its time.
+    pub fn track(&self) -> impl Iterator<Item = (f64, [f64; 2])> + '_ {
+        self.times.iter().copied().zip(self.path.iter().copied())
+    }
+
     /// The summary, with the final state named by `header` (state columns only).
     pub fn summary(self, header: &[String], dof: usize, end: RunEnd) -> Summary {
         Summary {
@@ -283,6 +305,7 @@ impl RunLog {
                         .collect(),
                 )
             }),
+            path_deviation: None,
             wall_time_s: end.wall_time_s,
             real_time_factor: if end.wall_time_s > 0.0 {
                 end.t_end / end.wall_time_s
