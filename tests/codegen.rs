@@ -16,6 +16,7 @@ use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad, WheelState};
 use rover_dynamics::workspace::Workspace;
 use rover_runtime::GenericPlant;
 
+use crate::support::rel;
 use crate::support::rng::Rng;
 
 const TOL: f64 = 1e-12;
@@ -23,17 +24,6 @@ const STATES: usize = 1000;
 
 fn spec(name: &str) -> rover_spec::Spec {
     rover_spec::load_str(rover_models::builtin(name).unwrap(), name).unwrap()
-}
-
-/// Largest |a − b| over the largest |a|, |b| (0 when both are 0).
-fn rel(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = a.iter().chain(b).fold(0.0f64, |m, v| m.max(v.abs()));
-    let diff = a
-        .iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    if scale == 0.0 { diff } else { diff / scale }
 }
 
 struct State {

@@ -25,7 +25,6 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
 use crate::control::{ControlError, Controller, ControllerConfig};
-use crate::ground::Ground;
 use crate::integrate::OdeSystem;
 use crate::output::header;
 use crate::quasi_static::{QuasiStaticError, flat_ground_pose};
@@ -333,14 +332,7 @@ pub fn operating_system<P: Plant>(
             );
         }
     }
-    let ground = Ground::new(
-        Terrain::default(),
-        model,
-        point.contact.method,
-        point.contact.sampling(),
-        point.contact.law,
-    )
-    .with_rolling_resistance(point.contact.rolling_resistance);
+    let ground = point.contact.ground(Terrain::default(), model);
     let controller = Controller::new(control, model, 0.0)?;
     let sys = RoverSystem::new(plant, Some(ground), controller);
     let mut y = vec![0.0; sys.dim()];

@@ -200,6 +200,17 @@ impl ContactConfig {
             ..RimSampling::default()
         }
     }
+
+    /// The ground of this table on `terrain`: search, sampling, law and
+    /// rolling resistance.
+    pub fn ground<H: crate::terrain::HeightField>(
+        &self,
+        terrain: H,
+        model: &rover_dynamics::Model,
+    ) -> crate::ground::Ground<H> {
+        crate::ground::Ground::new(terrain, model, self.method, self.sampling(), self.law)
+            .with_rolling_resistance(self.rolling_resistance)
+    }
 }
 
 /// A scenario file that cannot be used: the file, where, what, how to fix.

@@ -12,7 +12,7 @@ use rover_dynamics::attitude::Attitude;
 use rover_dynamics::plant::Plant;
 
 use crate::control::Controller;
-use crate::ground::{ContactMethod, Ground};
+use crate::ground::ContactMethod;
 use crate::integrate::{Integrator, OdeSystem};
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
 use crate::scenario::{FidelityLevel, Scenario};
@@ -164,16 +164,7 @@ pub fn simulate<P: Plant, W: Write>(
         Some(scenario.terrain.build(base_dir)?)
     };
     let mut y = initial_state(model, scenario, terrain.as_ref())?;
-    let ground = terrain.map(|t| {
-        Ground::new(
-            t,
-            model,
-            scenario.contact.method,
-            scenario.contact.sampling(),
-            scenario.contact.law,
-        )
-        .with_rolling_resistance(scenario.contact.rolling_resistance)
-    });
+    let ground = terrain.map(|t| scenario.contact.ground(t, model));
     let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
     let kinematic_radius = control.kinematic_radius(scenario.duration);
     let mut sys = RoverSystem::new(plant, ground, control);

@@ -9,7 +9,7 @@ use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
 use super::distribution::{Distribution, share};
 use super::speed::SpeedConfig;
 use super::steering::{
-    HeadingActuator, HeadingHold, Steering, ackermann_angle, curvature_from_angle,
+    Ackermann, HeadingActuator, HeadingHold, Steering, ackermann_angle, curvature_from_angle,
 };
 
 /// The `[control]` table of a scenario.
@@ -283,20 +283,7 @@ impl Controller {
         }
         let tc = t - self.settle;
         let kappa = match &self.config.steering {
-            Steering::Ackermann(a) => match (&a.radius, &a.front_left_deg) {
-                (Some(r), _) => {
-                    let r = r.at(tc);
-                    if r == 0.0 { 0.0 } else { 1.0 / r }
-                }
-                (None, Some(d)) => {
-                    let Some(k) = self.steerable.iter().position(|&s| s) else {
-                        return;
-                    };
-                    let (x1, y1) = self.rest_xy[k];
-                    curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x)
-                }
-                (None, None) => 0.0,
-            },
+            Steering::Ackermann(a) => self.ackermann_curvature(a, tc),
             Steering::Heading(h) if h.via == HeadingActuator::Ackermann => {
                 h.curvature(h.line(tc, self.leg), [x[0], x[1]], x[5])
             }
@@ -310,17 +297,11 @@ impl Controller {
         }
     }
 
-    /// Commanded path curvature κ = 1/R at time t (Ackermann; 0 otherwise or
-    /// while settling), and the turn centre's body x, x_c.
-    pub fn curvature(&self, t: f64) -> (f64, f64) {
-        let Steering::Ackermann(a) = &self.config.steering else {
-            return (0.0, 0.0);
-        };
-        if t < self.settle {
-            return (0.0, self.centre_x);
-        }
-        let tc = t - self.settle;
-        let kappa = match (&a.radius, &a.front_left_deg) {
+    /// The Ackermann command's curvature κ = 1/R at time `tc` after
+    /// settling: from the radius, or from the first steerable wheel's angle
+    /// (0 without one).
+    fn ackermann_curvature(&self, a: &Ackermann, tc: f64) -> f64 {
+        match (&a.radius, &a.front_left_deg) {
             (Some(r), _) => {
                 let r = r.at(tc);
                 if r == 0.0 { 0.0 } else { 1.0 / r }
@@ -333,7 +314,19 @@ impl Controller {
                 None => 0.0,
             },
             (None, None) => 0.0,
+        }
+    }
+
+    /// Commanded path curvature κ = 1/R at time t (Ackermann; 0 otherwise or
+    /// while settling), and the turn centre's body x, x_c.
+    pub fn curvature(&self, t: f64) -> (f64, f64) {
+        let Steering::Ackermann(a) = &self.config.steering else {
+            return (0.0, 0.0);
         };
+        if t < self.settle {
+            return (0.0, self.centre_x);
+        }
+        let kappa = self.ackermann_curvature(a, t - self.settle);
         (kappa, self.centre_x)
     }
 
@@ -550,37 +543,31 @@ fn validate_heading(
 /// steer opposite ways; Ackermann steering's default would hold one axle
 /// straight on a four-wheeler whose axles are equally far from G).
 fn heading_centre_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> f64 {
-    let mean = |xs: Vec<f64>| xs.iter().sum::<f64>() / xs.len().max(1) as f64;
-    let fixed: Vec<f64> = rest_xy
-        .iter()
-        .zip(steerable)
-        .filter(|(_, s)| !**s)
-        .map(|(p, _)| p.0)
-        .collect();
-    if fixed.is_empty() {
-        mean(rest_xy.iter().map(|p| p.0).collect())
-    } else {
-        mean(fixed)
-    }
+    fixed_mean_x(rest_xy, steerable)
+        .unwrap_or_else(|| rest_xy.iter().map(|p| p.0).sum::<f64>() / rest_xy.len().max(1) as f64)
 }
 
 /// Default x_c: the mean rest x of the non-steerable wheels, or, when all
 /// steer, the rest x of the wheel nearest to G along x.
 fn default_centre_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> f64 {
+    fixed_mean_x(rest_xy, steerable).unwrap_or_else(|| {
+        rest_xy
+            .iter()
+            .map(|p| p.0)
+            .min_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap_or(0.0)
+    })
+}
+
+/// The mean rest x of the non-steerable wheels; `None` when all steer.
+fn fixed_mean_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> Option<f64> {
     let fixed: Vec<f64> = rest_xy
         .iter()
         .zip(steerable)
         .filter(|(_, s)| !**s)
         .map(|(p, _)| p.0)
         .collect();
-    if !fixed.is_empty() {
-        return fixed.iter().sum::<f64>() / fixed.len() as f64;
-    }
-    rest_xy
-        .iter()
-        .map(|p| p.0)
-        .min_by(|a, b| a.abs().total_cmp(&b.abs()))
-        .unwrap_or(0.0)
+    (!fixed.is_empty()).then(|| fixed.iter().sum::<f64>() / fixed.len() as f64)
 }
 
 /// Per coordinate: each wheel's rest (x, y) and ∂u_z/∂y_i at rest.

@@ -128,9 +128,7 @@ impl HeadingHold {
     /// (the last one extended beyond its end, as it is held there).
     pub fn deviation(&self, tc: f64, position: [f64; 2]) -> f64 {
         if self.waypoints.len() < 2 {
-            let (reference, origin) = self.line(tc, 0);
-            let (s, c) = reference.sin_cos();
-            return (-s * (position[0] - origin[0]) + c * (position[1] - origin[1])).abs();
+            return offset(self.line(tc, 0), position).abs();
         }
         let last = self.waypoints.len() - 2;
         (0..=last)
@@ -152,11 +150,9 @@ impl HeadingHold {
     /// The heading error e \[rad\] on `line` (from [`HeadingHold::line`])
     /// for G at (X, Y) and heading ψ.
     pub fn error(&self, line: (f64, [f64; 2]), position: [f64; 2], psi: f64) -> f64 {
-        let (reference, origin) = line;
+        let reference = line.0;
         let command = if self.cross_track > 0.0 {
-            let (s, c) = reference.sin_cos();
-            let offset = -s * (position[0] - origin[0]) + c * (position[1] - origin[1]);
-            reference - (self.cross_track * offset).atan()
+            reference - (self.cross_track * offset(line, position)).atan()
         } else {
             reference
         };
@@ -182,6 +178,14 @@ impl HeadingHold {
             _ => 0.0,
         }
     }
+}
+
+/// The signed distance \[m\] of `position` from `line` (heading, point),
+/// left of it positive: `e_y` of [`HeadingHold`].
+fn offset(line: (f64, [f64; 2]), position: [f64; 2]) -> f64 {
+    let (reference, origin) = line;
+    let (s, c) = reference.sin_cos();
+    -s * (position[0] - origin[0]) + c * (position[1] - origin[1])
 }
 
 /// `a` wrapped to (−π, π].
