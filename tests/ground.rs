@@ -666,6 +666,10 @@ fn a_plane_cuts_the_rim_in_closed_form_where_the_sampled_search_finds_it() {
                 );
                 assert!(gap(p.normal, q.normal) < 1e-6, "{name}, trial {trial}");
                 assert!(gap(p.point, q.point) < 1e-6, "{name}, trial {trial}");
+                assert!(gap(p.tangent, q.tangent) < 1e-6, "{name}, trial {trial}");
+                assert!(gap(p.lateral, q.lateral) < 1e-6, "{name}, trial {trial}");
+                assert!((p.lever - q.lever).abs() <= 2e-9, "{name}, trial {trial}");
+                assert!((p.angle - q.angle).abs() < 1e-6, "{name}, trial {trial}");
             }
             touching += usize::from(cut.count > 0);
             deep += usize::from(cut.deep);

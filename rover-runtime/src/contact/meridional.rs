@@ -27,7 +27,7 @@
 
 use crate::terrain::{Bounds, HeightField, OffMap};
 
-use super::patch::{Contact, RimAngle, RimFrame};
+use super::patch::{Contact, Patch, RimAngle, RimFrame, cross};
 
 /// How the rim is sampled and how precisely crossings are located.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,6 +110,8 @@ fn tabulated_angle(table: Option<&[(f64, f64); DEFAULT_SAMPLES]>, step: f64, i: 
 
 /// What [`plane_cut`] found.
 enum PlaneCut {
+    /// The one run below the plane lies inside the half rim: its patch.
+    Inside(Patch),
     /// The one run of the half rim below the plane: its ends A, B, and
     /// whether an end is an end of the half rim (`deep`).
     Run(RimAngle, RimAngle, bool),
@@ -129,9 +131,13 @@ enum PlaneCut {
 /// c0 = Z_G − Z(X_G, Y_G),  A = d_z − ∇Z·d_xy,  B = f_z − ∇Z·f_xy,  ρ = |(A, B)|
 /// ```
 /// lowest at β_m = φ ± π, below ground on `|β − β_m| < w = acos(c0/(R·ρ))`.
-/// The ends' sines and cosines follow from those of β_m (−B/ρ, −A/ρ) and
-/// of w (c0/(R·ρ), its complement) by the angle sums, without evaluating
-/// any. The sampled search finds the same run (a plane has no dip or ridge
+/// When the run lies inside the half rim (the usual case: both ends of
+/// the half rim above the plane), its chord's midpoint H is at distance
+/// `R·cos w = c0/ρ` from G along the lowest direction, so the patch
+/// follows without its ends (one `atan2`, for β_m itself). Otherwise (an
+/// end of the half rim below the plane) the ends' sines and cosines follow
+/// from those of β_m (−B/ρ, −A/ρ) and of w (c0/(R·ρ), its complement) by
+/// the angle sums, without evaluating any. The sampled search finds the same run (a plane has no dip or ridge
 /// between samples to miss) with its ends to the crossing tolerance
 /// (1e-9 m of height); here they are exact to rounding.
 fn plane_cut(plane: &crate::terrain::Plane, frame: &RimFrame, n: usize, step: f64) -> PlaneCut {
@@ -140,7 +146,7 @@ fn plane_cut(plane: &crate::terrain::Plane, frame: &RimFrame, n: usize, step: f6
     let c0 = g[2] - plane.height_at(g[0], g[1]);
     let a = d[2] - gx * d[0] - gy * d[1];
     let b = f[2] - gx * f[0] - gy * f[1];
-    let rho = a.hypot(b);
+    let rho = (a * a + b * b).sqrt();
     if !(c0.is_finite() && rho.is_finite() && rho > 1e-9 && r > 0.0) {
         return PlaneCut::Sample;
     }
@@ -148,21 +154,34 @@ fn plane_cut(plane: &crate::terrain::Plane, frame: &RimFrame, n: usize, step: f6
     if ratio >= 1.0 {
         return PlaneCut::Clear;
     }
-    if ratio <= -1.0 {
+    // (sin β_m, cos β_m): the lowest rim point's direction is
+    // cos β_m·d + sin β_m·f. It lies in the half rim when cos β_m ≥ 0, and
+    // the run is narrower than a quarter turn (w < 90°) when c0 > 0.
+    let (sin_m, cos_m) = (-b / rho, -a / rho);
+    if !(ratio > 0.0 && cos_m >= 0.0) {
         return PlaneCut::Sample;
+    }
+    // Both ends of the half rim (β = ∓90°, h = c0 ∓ R·B) above the plane:
+    // the run lies inside, and its chord's midpoint is the lowest
+    // direction's point at the distance c0/ρ = R·cos w from G. Nothing
+    // else is needed: no end, no inverse trigonometry but β_m itself.
+    if r * b.abs() < c0 {
+        let lever = c0 / rho;
+        let normal = [0, 1, 2].map(|k| -(cos_m * d[k] + sin_m * f[k]));
+        let tangent = [0, 1, 2].map(|k| cos_m * f[k] - sin_m * d[k]);
+        return PlaneCut::Inside(Patch {
+            point: [0, 1, 2].map(|k| g[k] - lever * normal[k]),
+            normal,
+            tangent,
+            lateral: cross(normal, tangent),
+            deflection: r - lever,
+            lever,
+            angle: sin_m.atan2(cos_m),
+        });
     }
     let half = core::f64::consts::FRAC_PI_2;
-    let phi = b.atan2(a);
-    let lowest = if phi > 0.0 {
-        phi - core::f64::consts::PI
-    } else {
-        phi + core::f64::consts::PI
-    };
+    let lowest = sin_m.atan2(cos_m);
     let width = ratio.acos();
-    if !(lowest.abs() <= half && width < half) {
-        return PlaneCut::Sample;
-    }
-    let (sin_m, cos_m) = (-b / rho, -a / rho);
     let (cos_w, sin_w) = (ratio, ((1.0 - ratio) * (1.0 + ratio)).sqrt());
     let (lo, hi) = (lowest - width, lowest + width);
     let start = if lo <= -half {
@@ -290,6 +309,10 @@ impl MeridionalContact {
         let step = core::f64::consts::PI / (n - 1) as f64;
         if let Some(plane) = terrain.plane() {
             match plane_cut(&plane, &frame, n, step) {
+                PlaneCut::Inside(patch) => {
+                    out.push(patch);
+                    return Ok(());
+                }
                 PlaneCut::Run(a, b, deep) => {
                     out.deep = deep;
                     out.push(frame.patch(a, b));
