@@ -462,6 +462,28 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
             && driving.contains("neutral: 1"),
         "{driving}"
     );
+    // A line integral too strong for its loop: the line mode grows, and the
+    // table says so (k_y = 1 rad/(m·s) here; 0.2 is stable, ζ = 0.29).
+    let windy = write(
+        &dir,
+        "windy.toml",
+        "duration = 1.0\n[control.speed]\nspeed = 0.1\n[control.steering]\nkind = \"heading\"\n\
+         kp = 5.0\nkd = 0.5\ncross_track = 2.0\ncross_track_integral = 1.0\n",
+    );
+    let unstable = linearize_cmd(&LinearizeArgs {
+        rover: "swing4".into(),
+        out: None,
+        generic: false,
+        scenario: Some(windy),
+        speed: 0.1,
+    })
+    .unwrap();
+    assert!(
+        unstable.contains("∂(x, w, zeta_line), 21 × 21")
+            && unstable.contains("(grows: an unstable oscillation)")
+            && !driving.contains("grows"),
+        "{unstable}"
+    );
     let missing = Command::new(env!("CARGO_BIN_EXE_rover"))
         .args(["linearize", "no_such_rover.toml"])
         .output()

@@ -173,7 +173,14 @@ fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
     let w = vec![0.0; n];
     let mut tau = vec![0.0; 4];
     // Measured loads are ignored: the static ones decide.
-    control.torques(1.0, &vec![0.0; n], &w, 0.0, &[1.0, 0.0, 0.0, 0.0], &mut tau);
+    control.torques(
+        1.0,
+        &vec![0.0; n],
+        &w,
+        &[0.0],
+        &[1.0, 0.0, 0.0, 0.0],
+        &mut tau,
+    );
     let tau0 = 2.0 * 0.1;
     let total: f64 = loads.iter().sum();
     for (t, l) in tau.iter().zip(&loads) {
@@ -199,8 +206,10 @@ fn heading_hold_wraps_the_error_and_steers_back_to_its_line() {
         heading_deg: rover_runtime::control::Profile::Constant(170.0),
         kp: Some(2.0),
         kd: Some(0.5),
+        ki: None,
         lookahead: None,
         cross_track,
+        cross_track_integral: 0.0,
         line_origin: [0.0, 0.0],
         waypoints: Vec::new(),
     };
@@ -209,13 +218,20 @@ fn heading_hold_wraps_the_error_and_steers_back_to_its_line() {
         [0.0, 0.0],
         (-170.0f64).to_radians(),
         0.1,
+        Default::default(),
     );
     let want = 2.0 * (-20.0f64).to_radians() - 0.5 * 0.1;
     assert!((dt - want).abs() < 1e-12, "Δτ {dt} vs {want}");
     // Heading 0 along +X: a rover at Y = +1 m (left of the line) turns right.
     let mut along_x = law(1.0);
     along_x.heading_deg = rover_runtime::control::Profile::Constant(0.0);
-    let left_of_line = along_x.delta_tau(along_x.line(0.0, 0), [5.0, 1.0], 0.0, 0.0);
+    let left_of_line = along_x.delta_tau(
+        along_x.line(0.0, 0),
+        [5.0, 1.0],
+        0.0,
+        0.0,
+        Default::default(),
+    );
     assert!(
         (left_of_line - 2.0 * -(1.0f64.atan())).abs() < 1e-12,
         "Δτ {left_of_line}"
@@ -292,6 +308,38 @@ fn heading_hold_turns_to_its_set_point_and_holds_a_line_across_a_slope() {
         "line following: Y {} m, spread {spread} m over the last 20 s",
         last(line.col("Y"))
     );
+
+    // The integrals take the P laws' steady offsets out: the heading's
+    // (0.13° under the slope's yaw moment) with `ki`, and the line's (5 cm,
+    // where the rover must crab) with `cross_track_integral`.
+    let held_pi = drive(
+        slope,
+        &format!(
+            "{hold}ki = 1.0
+"
+        ),
+    );
+    let line_pi = drive(
+        slope,
+        &format!(
+            "{hold}cross_track = 2.0
+cross_track_integral = 0.2
+"
+        ),
+    );
+    let (p_offset, pi_offset) = (
+        last(held.col("psi")).to_degrees(),
+        last(held_pi.col("psi")).to_degrees(),
+    );
+    assert!(
+        p_offset < -0.1 && pi_offset.abs() < 5e-3,
+        "heading offset: P {p_offset}°, PI {pi_offset}°"
+    );
+    let (p_line, pi_line) = (last(line.col("Y")), last(line_pi.col("Y")));
+    assert!(
+        p_line < -0.04 && pi_line.abs() < 2e-3,
+        "line offset: P {p_line} m, PI {pi_line} m"
+    );
 }
 
 /// Bad heading-hold settings are refused with the field and the fix.
@@ -317,6 +365,25 @@ fn heading_hold_settings_are_validated() {
         "[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\nkp = 1.0\ncross_track = -1.0\n",
     );
     assert!(cross.contains("control.steering.cross_track"), "{cross}");
+    let hold = "[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\nkp = 1.0\n";
+    let ki = error(&format!("{hold}ki = -0.5\n"));
+    assert!(
+        ki.contains("control.steering.ki") && ki.contains("≥ 0"),
+        "{ki}"
+    );
+    let alone = error(&format!("{hold}cross_track_integral = 0.2\n"));
+    assert!(
+        alone.contains("control.steering.cross_track_integral")
+            && alone.contains("cross_track > 0"),
+        "{alone}"
+    );
+    let negative = error(&format!(
+        "{hold}cross_track = 1.0\ncross_track_integral = -1.0\n"
+    ));
+    assert!(
+        negative.contains("control.steering.cross_track_integral"),
+        "{negative}"
+    );
     let unknown: Result<rover_runtime::control::ControllerConfig, _> =
         toml::from_str("[steering]\nkind = \"heading\"\nkp = 1.0\nkq = 2.0\n");
     assert!(unknown.is_err_and(|e| e.to_string().contains("kq")));
@@ -429,6 +496,11 @@ fn heading_hold_actuators_take_their_own_settings() {
         &format!("{speed}via = \"ackermann\"\nlookahead = 2.0\nkp = 1.0\n"),
     );
     assert!(gains.contains("slip law"), "{gains}");
+    let integral = error(
+        "lrv",
+        &format!("{speed}via = \"ackermann\"\nlookahead = 2.0\nki = 1.0\n"),
+    );
+    assert!(integral.contains("slip law"), "{integral}");
     let lookahead = error("lrv", &format!("{speed}kp = 1.0\nlookahead = 2.0\n"));
     assert!(
         lookahead.contains("control.steering.lookahead"),
@@ -502,4 +574,64 @@ fn heading_hold_follows_a_path_of_waypoints() {
         dev.final_m < 0.05 && dev.max_m > 0.3 && dev.rms_m < dev.max_m,
         "{dev:?}"
     );
+}
+
+/// The integral states' rates are their integrands (speed error, heading
+/// error, line offset), zero while settling, and frozen by anti-windup
+/// once their own term saturates in the direction the error pushes.
+#[test]
+fn heading_hold_integrals_integrate_and_stop_winding_up() {
+    use rover_runtime::control::{Controller, ControllerConfig, LINE_INTEGRAL_CAP};
+    let m = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")
+        .unwrap()
+        .model;
+    let n = m.dof();
+    let config: ControllerConfig = toml::from_str(
+        "[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\nkp = 5.0\nki = 2.0\n\
+         cross_track = 1.0\ncross_track_integral = 0.5\n",
+    )
+    .unwrap();
+    let control = Controller::new(config, &m, 1.0).unwrap();
+    assert_eq!(control.states(), 3);
+    let w = vec![0.0; n];
+    // G `y` m left of the line Y = 0 at heading ψ.
+    let rates = |t: f64, (y, psi): (f64, f64), z: [f64; 3]| {
+        let mut x = vec![0.0; n];
+        (x[1], x[5]) = (y, psi);
+        let mut out = [f64::NAN; 3];
+        control.integral_rates(t, &x, &w, &z, &mut out);
+        out
+    };
+    let settled = rates(2.0, (0.3, 0.1), [0.0; 3]);
+    let e = -(0.3f64).atan() - 0.1;
+    assert!(
+        (settled[0] - 0.1).abs() < 1e-15,
+        "speed error {}",
+        settled[0]
+    );
+    assert!(
+        (settled[1] - e).abs() < 1e-15,
+        "heading error {}",
+        settled[1]
+    );
+    assert!(
+        (settled[2] - 0.3).abs() < 1e-15,
+        "line offset {}",
+        settled[2]
+    );
+    assert_eq!(
+        rates(0.5, (0.3, 0.1), [0.0; 3])[1..],
+        [0.0, 0.0],
+        "settling"
+    );
+    // The line integral at its cap: it stops growing with e_y > 0 …
+    let cap = LINE_INTEGRAL_CAP / 0.5;
+    assert_eq!(rates(2.0, (0.3, 0.1), [0.0, 0.0, cap])[2], 0.0);
+    // … and unwinds when e_y turns negative.
+    assert!((rates(2.0, (-0.3, 0.1), [0.0, 0.0, cap])[2] + 0.3).abs() < 1e-15);
+    // The heading integral at the largest motor torque likewise.
+    let tau = m.wheels.iter().map(|w| w.max_torque).fold(0.0, f64::max);
+    let wound = [0.0, -tau / 2.0, 0.0];
+    assert_eq!(rates(2.0, (0.0, 0.1), wound)[1], 0.0, "e < 0 at −cap");
+    assert!(rates(2.0, (0.0, -0.1), wound)[1] > 0.0, "unwinds");
 }

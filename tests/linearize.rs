@@ -40,7 +40,7 @@ fn differences_in_free_flight_are_the_generated_exact_jacobian() {
     let w = [0.3, -0.1, 0.2, 0.4, -0.3, 0.25, 0.5, -0.6, 0.3, -0.2];
     y[..n].copy_from_slice(&x);
     y[n..2 * n].copy_from_slice(&w);
-    let a = state_matrix(&mut sys, &y, &names(n), 2 * n).unwrap();
+    let a = state_matrix(&mut sys, &y, &names(n), &(0..2 * n).collect::<Vec<_>>()).unwrap();
     let exact = rover_models::Swing4::new().jacobian_array(&x, &w, &[WheelLoad::default(); 4]);
     let by_differences: Vec<f64> = a
         .row_iter()
@@ -76,7 +76,7 @@ impl OdeSystem for Linear {
 fn linear_prediction_error<P: Plant>(m: &Model, plant: P, eps: f64) -> f64 {
     let n = m.dof();
     let (mut sys, y_e) = parked(m, plant).unwrap();
-    let a = state_matrix(&mut sys, &y_e, &names(n), 2 * n).unwrap();
+    let a = state_matrix(&mut sys, &y_e, &names(n), &(0..2 * n).collect::<Vec<_>>()).unwrap();
     let mut z = vec![0.0; 2 * n];
     z[2] = eps;
     z[3] = 0.5 * eps;
@@ -467,5 +467,69 @@ fn unsteady_operating_points_are_refused() {
             Err(LinearizeError::NotSteady(message)) => assert!(message.contains(why), "{message}"),
             other => panic!("expected NotSteady, got {:?}", other.map(|l| l.speed)),
         }
+    }
+}
+
+/// A heading hold's integrals are states of the closed loop, after the
+/// speed loop's, and their rows are the integrands' derivatives in closed
+/// form: ζ̇ = V − v_x, ζ̇_heading = e = ψ_ref − atan(k_e·e_y + k_y·ζ_line) − ψ,
+/// ζ̇_line = e_y = Y on the line Y = 0 (ψ_ref = 0). Without a speed-loop
+/// gain its integral is left out and the others keep their places.
+#[test]
+fn heading_hold_integrals_are_states_of_the_closed_loop() {
+    use rover_runtime::linearize::{OperatingPoint, linearize_at};
+    let m = model("swing4");
+    let n = m.dof();
+    let (k_e, k_y) = (2.0, 0.2);
+    for speed_ki in [2.0, 0.0] {
+        let control = toml::from_str(&format!(
+            "[speed]\nspeed = 0.1\nki = {speed_ki}\n[steering]\nkind = \"heading\"\nkp = 5.0\n\
+             kd = 0.5\nki = 1.0\ncross_track = {k_e}\ncross_track_integral = {k_y}\n"
+        ))
+        .unwrap();
+        let point = OperatingPoint {
+            speed: 0.1,
+            control,
+            ..Default::default()
+        };
+        let lin = linearize_at(&m, rover_models::Swing4::new(), &point).unwrap();
+        let extra: Vec<&str> = lin.states[2 * n..].iter().map(|s| s.as_str()).collect();
+        let want: &[&str] = if speed_ki > 0.0 {
+            &["zeta", "zeta_heading", "zeta_line"]
+        } else {
+            &["zeta_heading", "zeta_line"]
+        };
+        assert_eq!(extra, want);
+        let dim = lin.states.len();
+        assert_eq!((lin.a.len(), lin.a[0].len()), (dim, dim));
+        let col = |name: &str| lin.states.iter().position(|s| s == name).unwrap();
+        let row_is = |row: &str, entries: &[(&str, f64)]| {
+            let r = &lin.a[col(row)];
+            for (j, v) in r.iter().enumerate() {
+                let want = entries
+                    .iter()
+                    .find(|(name, _)| col(name) == j)
+                    .map_or(0.0, |e| e.1);
+                assert!(
+                    (v - want).abs() < 1e-6,
+                    "∂{row}/∂{}: {v} vs {want}",
+                    lin.states[j]
+                );
+            }
+        };
+        row_is("zeta_line", &[("Y", 1.0)]);
+        row_is(
+            "zeta_heading",
+            &[("psi", -1.0), ("Y", -k_e), ("zeta_line", -k_y)],
+        );
+        if speed_ki > 0.0 {
+            row_is("zeta", &[("vx", -1.0)]);
+        }
+        assert!(
+            lin.modes
+                .iter()
+                .all(|md| md.kind == ModeKind::Neutral || md.eigenvalue[0] < 0.0),
+            "the tuned loop is stable"
+        );
     }
 }

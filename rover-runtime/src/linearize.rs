@@ -112,7 +112,9 @@ pub struct Mode {
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Linearization {
     /// Names of the states, as the run CSV's columns (`X` … `ym`, `vx` …
-    /// `dym`), and `zeta`, the speed loop's integral, when it has a gain.
+    /// `dym`), then the controller's integrals that act: `zeta`, the speed
+    /// loop's, when it has a gain, and a heading hold's `zeta_heading` and
+    /// `zeta_line`.
     pub states: Vec<String>,
     /// The operating point's coordinates x_e (w_e = [V, 0, …]).
     pub equilibrium: Vec<f64>,
@@ -169,14 +171,17 @@ pub fn linearize_at<P: Plant>(
 ) -> Result<Linearization, LinearizeError> {
     let n = model.dof();
     let (mut sys, mut y) = operating_system(model, plant, point)?;
-    // The speed loop's integral is a state of the loop only when it acts.
-    let integral = point.control.speed.as_ref().is_some_and(|s| s.ki > 0.0);
-    let dim = 2 * n + usize::from(integral);
+    // The controller's integrals are states of the loop when they act (the
+    // speed loop's only with a gain).
     let mut names: Vec<String> = header(model.m(), 0)[1..=2 * n].to_vec();
-    if integral {
-        names.push("zeta".into());
+    let mut states: Vec<usize> = (0..2 * n).collect();
+    for (k, (name, acts)) in sys.control.state_names().into_iter().enumerate() {
+        if acts {
+            states.push(2 * n + k);
+            names.push(name.into());
+        }
     }
-    let mut a = state_matrix(&mut sys, &y, &names, dim)?;
+    let mut a = state_matrix(&mut sys, &y, &names, &states)?;
     let mut f = vec![0.0; y.len()];
     let mut residual = rest_residual(&mut sys, &y, &mut f)?;
     let quasi_static = y[..n].to_vec();
@@ -186,14 +191,14 @@ pub fn linearize_at<P: Plant>(
         }
         settle(n, &a, &f, &mut y);
         drive(&mut y, n, point.speed);
-        a = state_matrix(&mut sys, &y, &names, dim)?;
+        a = state_matrix(&mut sys, &y, &names, &states)?;
         residual = rest_residual(&mut sys, &y, &mut f)?;
     }
     let mut mass = vec![0.0; n * n];
     sys.plant.mass_matrix(&y[..n], &mut mass);
     let inertia: Vec<f64> = (0..n).map(|i| mass[i * n + i]).collect();
     let modes = modes(&a, &inertia, &names[n..2 * n]);
-    let b = neutral_inputs(&mut sys, &y, model, dim)?;
+    let b = neutral_inputs(&mut sys, &y, model, &states)?;
     Ok(Linearization {
         states: names,
         equilibrium: y[..n].to_vec(),
@@ -230,10 +235,10 @@ fn neutral_inputs<P: Plant, H: HeightField>(
     sys: &mut RoverSystem<P, H>,
     y: &[f64],
     model: &Model,
-    dim: usize,
+    states: &[usize],
 ) -> Result<DMatrix<f64>, LinearizeError> {
     let m = model.m();
-    let mut b = DMatrix::zeros(dim, m);
+    let mut b = DMatrix::zeros(states.len(), m);
     let (mut plus, mut minus) = (vec![0.0; y.len()], vec![0.0; y.len()]);
     for (j, c) in model.coordinates.iter().enumerate() {
         let h = 1e-7 * c.neutral.abs().max(1.0);
@@ -244,8 +249,8 @@ fn neutral_inputs<P: Plant, H: HeightField>(
         sys.plant.set_spring_neutral(j, c.neutral);
         up?;
         down?;
-        for i in 0..dim {
-            b[(i, j)] = (plus[i] - minus[i]) / (2.0 * h);
+        for (r, &i) in states.iter().enumerate() {
+            b[(r, j)] = (plus[i] - minus[i]) / (2.0 * h);
         }
     }
     Ok(b)
@@ -285,7 +290,7 @@ fn settle(n: usize, a: &DMatrix<f64>, f: &[f64], y: &mut [f64]) {
 
 /// The parked rover as a system (flat ground, default contact search and
 /// wheel law, no command) and its equilibrium state `y_e = [x_e; 0; 0]`
-/// (the speed loop's integral last): what [`linearize`] differentiates.
+/// (the controller's integrals last): what [`linearize`] differentiates.
 pub fn parked<P: Plant>(
     model: &Model,
     plant: P,
@@ -356,9 +361,9 @@ fn drive(y: &mut [f64], n: usize, speed: f64) {
     }
 }
 
-/// `∂f/∂y` of `sys` at `y` over its first `dim` states (2N: x and w, the
-/// speed loop's integral held; 2N + 1 with it), by central differences;
-/// `names` label the columns in errors.
+/// `∂f/∂y` of `sys` at `y` over the states `states` (indices into y, rows
+/// and columns in that order; `0..2N` for x and w with the integrals
+/// held), by central differences; `names` label the columns in errors.
 ///
 /// Steps: 1e-7 for coordinates (m, rad: a ten-thousandth of a typical
 /// tyre deflection, well inside the smooth part of the contact) and 1e-8
@@ -371,34 +376,35 @@ pub fn state_matrix<P: Plant, H: HeightField>(
     sys: &mut RoverSystem<P, H>,
     y: &[f64],
     names: &[String],
-    dim: usize,
+    states: &[usize],
 ) -> Result<DMatrix<f64>, LinearizeError> {
     let n = sys.dof();
+    let dim = states.len();
     let mut a = DMatrix::zeros(dim, dim);
     let mut probe = y.to_vec();
     let (mut plus, mut minus) = (vec![0.0; y.len()], vec![0.0; y.len()]);
-    for j in 0..dim {
+    for (c, &j) in states.iter().enumerate() {
         let h = if j < n { 1e-7 } else { 1e-8 } * y[j].abs().max(1.0);
         probe[j] = y[j] + h;
         sys.rhs(0.0, &probe, &mut plus)?;
         probe[j] = y[j] - h;
         sys.rhs(0.0, &probe, &mut minus)?;
         probe[j] = y[j];
-        for i in 0..dim {
+        for (r, &i) in states.iter().enumerate() {
             let d = (plus[i] - minus[i]) / (2.0 * h);
             if !d.is_finite() {
                 return Err(LinearizeError::NotFinite {
-                    state: names.get(j).cloned().unwrap_or_else(|| j.to_string()),
+                    state: names.get(c).cloned().unwrap_or_else(|| j.to_string()),
                 });
             }
-            a[(i, j)] = d;
+            a[(r, c)] = d;
         }
     }
     Ok(a)
 }
 
-/// The modes of `a` (states x, then w, then possibly the speed loop's
-/// integral); `inertia` is the diagonal of the mass matrix M (the kinetic
+/// The modes of `a` (states x, then w, then possibly the controller's
+/// integrals); `inertia` is the diagonal of the mass matrix M (the kinetic
 /// energy's weights of w) and `velocities` names the N states of w.
 pub fn modes(a: &DMatrix<f64>, inertia: &[f64], velocities: &[String]) -> Vec<Mode> {
     let n = velocities.len();

@@ -15,8 +15,9 @@
 //! speed = 0.05               # [m/s], or { points = [[0, 0.05], [20, 0.1]] }
 //! [control.steering]
 //! kind = "ackermann"         # or "slip" (delta_tau), or "heading" (heading_deg,
-//! front_left_deg = 5.0       # kp, kd; or via = "ackermann", lookahead; cross_track,
-//!                            # line_origin or waypoints)
+//! front_left_deg = 5.0       # kp, ki, kd; or via = "ackermann", lookahead;
+//!                            # cross_track, cross_track_integral, line_origin
+//!                            # or waypoints)
 //!
 //! [integrator.bdf]            # the default: orders 1–2, like ode15s
 //! rtol = 1e-6

@@ -168,6 +168,8 @@ pub fn simulate<P: Plant, W: Write>(
     let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
     let kinematic_radius = control.kinematic_radius(scenario.duration);
     let mut sys = RoverSystem::new(plant, ground, control);
+    // The integral states beyond the speed loop's start at 0 too.
+    y.resize(sys.dim(), 0.0);
     let mut integ = scenario.integrator.build(sys.dim())?;
     let n = model.dof();
     let k = model.wheels.len();

@@ -130,11 +130,17 @@ fn report(rover: &str, backend: &str, lin: &Linearization, point: &OperatingPoin
         lin.residual,
         lin.refinement
     );
+    let dim = lin.states.len();
+    let integrals = if dim > 2 * n {
+        format!(", {}", lin.states[2 * n..].join(", "))
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         s,
-        "  A = ∂(ẋ, ẇ)/∂(x, w), {0} × {0}, by central differences of the whole right-hand side ({backend} + contact)",
-        2 * n
+        "  A = ∂(ẋ, ẇ{integrals})/∂(x, w{integrals}), {dim} × {dim}, by central differences of the whole right-hand side ({backend} + contact)",
     );
+    let in_loop = loop_ != "motors off";
     let of = |kind| lin.modes.iter().filter(move |m: &&Mode| m.kind == kind);
     if of(ModeKind::Oscillatory).next().is_some() {
         let _ = writeln!(
@@ -145,11 +151,16 @@ fn report(rover: &str, backend: &str, lin: &Linearization, point: &OperatingPoin
         for m in of(ModeKind::Oscillatory) {
             let _ = writeln!(
                 s,
-                "  {:>9.3}  {:>9.3}  {:>7.3}  {}",
+                "  {:>9.3}  {:>9.3}  {:>7.3}  {}{}",
                 m.natural_hz,
                 m.damped_hz,
                 m.damping_ratio,
-                shares(m)
+                shares(m),
+                if m.damping_ratio < 0.0 {
+                    "  (grows: an unstable oscillation)"
+                } else {
+                    ""
+                }
             );
         }
     }
@@ -166,10 +177,10 @@ fn report(rover: &str, backend: &str, lin: &Linearization, point: &OperatingPoin
                 m.eigenvalue[0],
                 1e3 * m.time_constant,
                 shares(m),
-                if m.eigenvalue[0] > 0.0 {
-                    "  (grows: the rover falls over)"
-                } else {
-                    ""
+                match (m.eigenvalue[0] > 0.0, in_loop) {
+                    (false, _) => "",
+                    (true, false) => "  (grows: the rover falls over)",
+                    (true, true) => "  (grows: the rover falls over, or a loop is unstable)",
                 }
             );
         }

@@ -9,7 +9,8 @@ use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
 use super::distribution::{Distribution, share};
 use super::speed::SpeedConfig;
 use super::steering::{
-    Ackermann, HeadingActuator, HeadingHold, Steering, ackermann_angle, curvature_from_angle,
+    Ackermann, HeadingActuator, HeadingHold, HeadingIntegrals, LINE_INTEGRAL_CAP, Steering,
+    ackermann_angle, curvature_from_angle,
 };
 
 /// The `[control]` table of a scenario.
@@ -61,7 +62,17 @@ pub struct Controller {
     hi: Vec<f64>,
     /// The heading hold's current leg of its waypoints.
     leg: usize,
+    /// Indices in ζ of the heading hold's integrals, when it has them.
+    heading_state: Option<usize>,
+    line_state: Option<usize>,
 }
+
+/// Name of the speed loop's integral state (always ζ's first).
+pub const SPEED_INTEGRAL: &str = "zeta";
+/// Name of the heading hold's heading-error integral state.
+pub const HEADING_INTEGRAL: &str = "zeta_heading";
+/// Name of the heading hold's line-offset integral state.
+pub const LINE_INTEGRAL: &str = "zeta_line";
 
 impl Controller {
     /// A controller for `model`; commands start after `settle` seconds.
@@ -151,7 +162,17 @@ impl Controller {
                 ))
             }
         };
+        let hold = match &config.steering {
+            Steering::Heading(h) => Some(h),
+            _ => None,
+        };
+        let heading_state = hold.is_some_and(|h| h.integrates_heading()).then_some(1);
+        let line_state = hold
+            .is_some_and(|h| h.integrates_line())
+            .then_some(1 + usize::from(heading_state.is_some()));
         Ok(Self {
+            heading_state,
+            line_state,
             left: rest_xy.iter().map(|&(_, y)| y > 0.0).collect(),
             rest_xy,
             steerable,
@@ -201,24 +222,82 @@ impl Controller {
         }
     }
 
-    /// Rate of the speed loop's integral state: `V − v_x`, frozen while the
-    /// integral term alone saturates the torque in the same direction (anti-windup).
-    pub fn integral_rate(&self, t: f64, w: &[f64], integral: f64) -> f64 {
-        let Some(s) = &self.config.speed else {
-            return 0.0;
-        };
-        let e = self.speed_setpoint(t) - w[0];
+    /// Number of the controller's integral states ζ, the last entries of
+    /// the state `y = [x; w; ζ]`: the speed loop's (always, first; it acts
+    /// only with a gain `ki`), then the heading hold's heading-error and
+    /// line-offset integrals, each when its gain is set.
+    pub fn states(&self) -> usize {
+        1 + usize::from(self.heading_state.is_some()) + usize::from(self.line_state.is_some())
+    }
+
+    /// The integral states' names ([`SPEED_INTEGRAL`], [`HEADING_INTEGRAL`],
+    /// [`LINE_INTEGRAL`]) in ζ's order, each with whether it acts on the
+    /// rover (the speed loop's does only with `ki > 0`).
+    pub fn state_names(&self) -> Vec<(&'static str, bool)> {
+        let speed = self.config.speed.as_ref().is_some_and(|s| s.ki > 0.0);
+        let mut names = vec![(SPEED_INTEGRAL, speed)];
+        if self.heading_state.is_some() {
+            names.push((HEADING_INTEGRAL, true));
+        }
+        if self.line_state.is_some() {
+            names.push((LINE_INTEGRAL, true));
+        }
+        names
+    }
+
+    /// The heading hold's integrals in `z` (ζ).
+    fn heading_integrals(&self, z: &[f64]) -> HeadingIntegrals {
+        let at = |i: Option<usize>| i.and_then(|i| z.get(i)).copied().unwrap_or(0.0);
+        HeadingIntegrals {
+            heading: at(self.heading_state),
+            line: at(self.line_state),
+        }
+    }
+
+    /// Rates of the integral states `z` into `out` (both [`Controller::states`]
+    /// long), for coordinates `x` and pseudo-velocities `w`:
+    /// - the speed loop's, `V − v_x`;
+    /// - the heading error's, e (0 while settling);
+    /// - the line offset's, e_y (0 while settling).
+    ///
+    /// Each is frozen while its term alone saturates what it drives in the
+    /// same direction (anti-windup): the largest motor torque for the speed
+    /// loop and the torque difference, [`LINE_INTEGRAL_CAP`] for the line.
+    pub fn integral_rates(&self, t: f64, x: &[f64], w: &[f64], z: &[f64], out: &mut [f64]) {
+        out.iter_mut().for_each(|o| *o = 0.0);
         let cap = self.max_torque.iter().cloned().fold(0.0, f64::max);
-        let held = s.ki * integral;
-        if (held >= cap && e > 0.0) || (held <= -cap && e < 0.0) {
-            0.0
-        } else {
-            e
+        let hold = |e: f64, held: f64, cap: f64| {
+            if (held >= cap && e > 0.0) || (held <= -cap && e < 0.0) {
+                0.0
+            } else {
+                e
+            }
+        };
+        if let Some(s) = &self.config.speed {
+            out[0] = hold(self.speed_setpoint(t) - w[0], s.ki * z[0], cap);
+        }
+        let Steering::Heading(h) = &self.config.steering else {
+            return;
+        };
+        if t < self.settle {
+            return;
+        }
+        let line = h.line(t - self.settle, self.leg);
+        let integrals = self.heading_integrals(z);
+        let position = [x[0], x[1]];
+        if let Some(i) = self.heading_state {
+            let e = h.error(line, position, x[5], integrals.line);
+            out[i] = hold(e, h.ki.unwrap_or(0.0) * integrals.heading, cap);
+        }
+        if let Some(i) = self.line_state {
+            let e_y = h.line_offset(line, position);
+            let held = h.cross_track_integral * integrals.line;
+            out[i] = hold(e_y, held, LINE_INTEGRAL_CAP);
         }
     }
 
     /// Motor torques per wheel [N·m] from the forward speed `w[0]`, the
-    /// integral state and the wheels' normal loads `normals` (this
+    /// integral states `z` (ζ) and the wheels' normal loads `normals` (this
     /// evaluation); heading hold also reads the attitude `x[3..6]` and the
     /// angular velocity `w[3..6]`.
     pub fn torques(
@@ -226,7 +305,7 @@ impl Controller {
         t: f64,
         x: &[f64],
         w: &[f64],
-        integral: f64,
+        z: &[f64],
         normals: &[f64],
         out: &mut [f64],
     ) {
@@ -234,7 +313,7 @@ impl Controller {
             out.iter_mut().for_each(|o| *o = 0.0);
             return;
         };
-        let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * integral;
+        let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * z[0];
         match s.distribution {
             Distribution::Even => out.iter_mut().for_each(|o| *o = tau0),
             Distribution::MeasuredLoad => share(tau0, normals, out),
@@ -258,6 +337,7 @@ impl Controller {
                     [x[0], x[1]],
                     x[5],
                     psi_rate,
+                    self.heading_integrals(z),
                 )
             } else {
                 0.0
@@ -274,9 +354,10 @@ impl Controller {
         }
     }
 
-    /// Steering angles δ_j \[rad\] at time t for coordinates `x` (a heading
-    /// hold via Ackermann reads G's X, Y and the heading ψ).
-    pub fn steer(&self, t: f64, x: &[f64], out: &mut [f64]) {
+    /// Steering angles δ_j \[rad\] at time t for coordinates `x` and
+    /// integral states `z` (a heading hold via Ackermann reads G's X, Y, the
+    /// heading ψ and its line integral).
+    pub fn steer(&self, t: f64, x: &[f64], z: &[f64], out: &mut [f64]) {
         out.iter_mut().for_each(|o| *o = 0.0);
         if t < self.settle {
             return;
@@ -284,9 +365,12 @@ impl Controller {
         let tc = t - self.settle;
         let kappa = match &self.config.steering {
             Steering::Ackermann(a) => self.ackermann_curvature(a, tc),
-            Steering::Heading(h) if h.via == HeadingActuator::Ackermann => {
-                h.curvature(h.line(tc, self.leg), [x[0], x[1]], x[5])
-            }
+            Steering::Heading(h) if h.via == HeadingActuator::Ackermann => h.curvature(
+                h.line(tc, self.leg),
+                [x[0], x[1]],
+                x[5],
+                self.heading_integrals(z),
+            ),
             _ => return,
         };
         for (k, o) in out.iter_mut().enumerate() {
@@ -447,6 +531,18 @@ fn validate_heading(
             format!("must be ≥ 0 rad/m, got {}", h.cross_track),
         ));
     }
+    if !(h.cross_track_integral.is_finite() && h.cross_track_integral >= 0.0) {
+        return Err(err(
+            "steering.cross_track_integral",
+            format!("must be ≥ 0 rad/(m·s), got {}", h.cross_track_integral),
+        ));
+    }
+    if h.cross_track_integral > 0.0 && h.cross_track <= 0.0 {
+        return Err(err(
+            "steering.cross_track_integral",
+            "integrates the line offset on top of `cross_track`: set cross_track > 0 too (an integral alone makes the line loop oscillate)",
+        ));
+    }
     if !h.line_origin.iter().all(|v| v.is_finite()) {
         return Err(err(
             "steering.line_origin",
@@ -498,10 +594,17 @@ fn validate_heading(
                     format!("must be ≥ 0 N·m·s/rad, got {kd}"),
                 ));
             }
+            let ki = h.ki.unwrap_or(0.0);
+            if !(ki.is_finite() && ki >= 0.0) {
+                return Err(err(
+                    "steering.ki",
+                    format!("must be ≥ 0 N·m/(rad·s), got {ki}"),
+                ));
+            }
             if h.lookahead.is_some() {
                 return Err(err(
                     "steering.lookahead",
-                    "only for via = \"ackermann\"; slip steering takes `kp` and `kd`",
+                    "only for via = \"ackermann\"; slip steering takes `kp`, `ki` and `kd`",
                 ));
             }
             if !has_speed {
@@ -527,10 +630,10 @@ fn validate_heading(
             if !(l.is_finite() && l > 0.0) {
                 return Err(err("steering.lookahead", format!("must be > 0 m, got {l}")));
             }
-            if h.kp.is_some() || h.kd.is_some() {
+            if h.kp.is_some() || h.kd.is_some() || h.ki.is_some() {
                 return Err(err(
                     "steering.kp",
-                    "`kp` and `kd` are the slip law's gains; via = \"ackermann\" steers by `lookahead` alone",
+                    "`kp`, `ki` and `kd` are the slip law's gains; via = \"ackermann\" steers by `lookahead` (and `cross_track`, `cross_track_integral` for a line)",
                 ));
             }
         }

@@ -11,10 +11,13 @@ mod speed;
 mod steering;
 
 pub use active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
-pub use controller::{ControlError, Controller, ControllerConfig};
+pub use controller::{
+    ControlError, Controller, ControllerConfig, HEADING_INTEGRAL, LINE_INTEGRAL, SPEED_INTEGRAL,
+};
 pub use distribution::Distribution;
 pub use profile::Profile;
 pub use speed::SpeedConfig;
 pub use steering::{
-    Ackermann, HeadingActuator, HeadingHold, LEG_CHECK_PERIOD, Steering, wrap_angle,
+    Ackermann, HeadingActuator, HeadingHold, HeadingIntegrals, LEG_CHECK_PERIOD, LINE_INTEGRAL_CAP,
+    Steering, wrap_angle,
 };

@@ -30,7 +30,7 @@ pub enum Steering {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum HeadingActuator {
-    /// A torque difference, `Δτ = K_p·e − K_d·ψ̇` (any rover).
+    /// A torque difference, `Δτ = K_p·e + K_i·∫e dt − K_d·ψ̇` (any rover).
     #[default]
     Slip,
     /// The steerable wheels at the curvature `κ = 2·sin(e)/L` that meets the
@@ -42,8 +42,10 @@ pub enum HeadingActuator {
 /// error is `e = wrap(ψ_cmd − ψ)` with
 /// ```text
 /// e_y   = −sin ψ_ref·(X − X_0) + cos ψ_ref·(Y − Y_0)   (left of the line > 0)
-/// ψ_cmd = ψ_ref − atan(k_e·e_y)                        (ψ_ref alone when k_e = 0)
+/// ψ_cmd = ψ_ref − atan(k_e·e_y + k_y·∫e_y dt)          (ψ_ref alone when k_e = 0)
 /// ```
+/// The integrals are states of the run ([`HeadingIntegrals`]), present
+/// only when their gains are set.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HeadingHold {
@@ -62,6 +64,11 @@ pub struct HeadingHold {
     /// default 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kd: Option<f64>,
+    /// Slip: torque difference per rad·s of integrated heading error
+    /// [N·m/(rad·s)], ≥ 0; default 0 (no integral). It takes out the P law's
+    /// steady heading offset under a steady yaw moment (a side slope).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ki: Option<f64>,
     /// Ackermann: the lookahead L \[m\], > 0; required with
     /// `via = "ackermann"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -74,6 +81,14 @@ pub struct HeadingHold {
     /// one run per leg.
     #[serde(default)]
     pub cross_track: f64,
+    /// Line following's integral gain k_y: heading correction per m·s of
+    /// integrated lateral offset [rad/(m·s)], ≥ 0; default 0. A rover that
+    /// must crab to hold its line (across a slope) holds it with a steady
+    /// offset `tan(crab)/k_e` under `cross_track` alone; the integral
+    /// supplies the crab angle instead and takes the offset out. Needs
+    /// `cross_track > 0`. On waypoints it carries over from leg to leg.
+    #[serde(default)]
+    pub cross_track_integral: f64,
     /// A point of the line \[m\] (X, Y); default the origin.
     #[serde(default)]
     pub line_origin: [f64; 2],
@@ -148,37 +163,86 @@ impl HeadingHold {
     }
 
     /// The heading error e \[rad\] on `line` (from [`HeadingHold::line`])
-    /// for G at (X, Y) and heading ψ.
-    pub fn error(&self, line: (f64, [f64; 2]), position: [f64; 2], psi: f64) -> f64 {
+    /// for G at (X, Y), heading ψ and the line offset's integral `∫e_y dt`.
+    pub fn error(
+        &self,
+        line: (f64, [f64; 2]),
+        position: [f64; 2],
+        psi: f64,
+        line_integral: f64,
+    ) -> f64 {
         let reference = line.0;
         let command = if self.cross_track > 0.0 {
-            reference - (self.cross_track * offset(line, position)).atan()
+            let correction = self.cross_track * offset(line, position)
+                + self.cross_track_integral * line_integral;
+            reference - correction.atan()
         } else {
             reference
         };
         wrap_angle(command - psi)
     }
 
-    /// Slip: Δτ [N·m] on `line` for G at (X, Y), heading ψ and heading
-    /// rate ψ̇.
+    /// The lateral offset e_y \[m\] of G at (X, Y) from `line`, left of it
+    /// positive: what the line integral integrates.
+    pub fn line_offset(&self, line: (f64, [f64; 2]), position: [f64; 2]) -> f64 {
+        offset(line, position)
+    }
+
+    /// Slip: Δτ [N·m] on `line` for G at (X, Y), heading ψ, heading rate ψ̇
+    /// and the integral states.
     pub fn delta_tau(
         &self,
         line: (f64, [f64; 2]),
         position: [f64; 2],
         psi: f64,
         psi_rate: f64,
+        integrals: HeadingIntegrals,
     ) -> f64 {
-        self.kp.unwrap_or(0.0) * self.error(line, position, psi) - self.kd.unwrap_or(0.0) * psi_rate
+        self.kp.unwrap_or(0.0) * self.error(line, position, psi, integrals.line)
+            + self.ki.unwrap_or(0.0) * integrals.heading
+            - self.kd.unwrap_or(0.0) * psi_rate
     }
 
     /// Ackermann: the path curvature κ \[1/m\] on `line`.
-    pub fn curvature(&self, line: (f64, [f64; 2]), position: [f64; 2], psi: f64) -> f64 {
+    pub fn curvature(
+        &self,
+        line: (f64, [f64; 2]),
+        position: [f64; 2],
+        psi: f64,
+        integrals: HeadingIntegrals,
+    ) -> f64 {
         match self.lookahead {
-            Some(l) if l > 0.0 => 2.0 * self.error(line, position, psi).sin() / l,
+            Some(l) if l > 0.0 => 2.0 * self.error(line, position, psi, integrals.line).sin() / l,
             _ => 0.0,
         }
     }
+
+    /// Whether the heading error is integrated (slip with `ki > 0`).
+    pub fn integrates_heading(&self) -> bool {
+        self.via == HeadingActuator::Slip && self.ki.is_some_and(|k| k > 0.0)
+    }
+
+    /// Whether the line offset is integrated (`cross_track_integral > 0`).
+    pub fn integrates_line(&self) -> bool {
+        self.cross_track_integral > 0.0
+    }
 }
+
+/// The heading hold's integral states, ∫e dt \[rad·s\] and ∫e_y dt
+/// \[m·s\]; 0 for an integral the law does not have.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HeadingIntegrals {
+    /// ∫e dt, the heading error's integral (slip, `ki`).
+    pub heading: f64,
+    /// ∫e_y dt, the line offset's integral (`cross_track_integral`).
+    pub line: f64,
+}
+
+/// Largest heading correction the line integral builds up alone, as
+/// `|k_y·∫e_y dt|` (1: 45° of crab): beyond it the integral stops growing
+/// (anti-windup), so a rover pushed off its line by an obstacle does not
+/// come back turned across it.
+pub const LINE_INTEGRAL_CAP: f64 = 1.0;
 
 /// The signed distance \[m\] of `position` from `line` (heading, point),
 /// left of it positive: `e_y` of [`HeadingHold`].

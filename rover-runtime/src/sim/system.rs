@@ -1,5 +1,6 @@
 //! The rover as a first-order ODE system `ẏ = f(t, y)`, `y = [x; w; ζ]`
-//! (ζ: the speed loop's integral state).
+//! (ζ: the controller's integral states, [`Controller::states`]: the speed
+//! loop's, then a heading hold's when it integrates).
 
 use rover_dynamics::kinematics::position_rates;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
@@ -76,14 +77,14 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let n = self.n;
         let (x, rest) = y.split_at(n);
         let (w, z) = rest.split_at(n);
-        self.control.steer(t, x, &mut self.steer);
+        self.control.steer(t, x, z, &mut self.steer);
         self.plant.wheels(x, w, &self.steer, &mut self.wheels);
         match &mut self.ground {
             Some(g) => {
                 g.find_contacts(&self.wheels, &mut self.normals)
                     .map_err(SimError::OffMap)?;
                 self.control
-                    .torques(t, x, w, z[0], &self.normals, &mut self.torques);
+                    .torques(t, x, w, z, &self.normals, &mut self.torques);
                 g.loads(
                     &self.wheels,
                     &self.torques,
@@ -94,7 +95,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             None => {
                 self.normals.iter_mut().for_each(|v| *v = 0.0);
                 self.control
-                    .torques(t, x, w, z[0], &self.normals, &mut self.torques);
+                    .torques(t, x, w, z, &self.normals, &mut self.torques);
                 self.loads
                     .iter_mut()
                     .for_each(|l| *l = WheelLoad::default());
@@ -111,7 +112,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         self.plant
             .derivatives(x, w, &self.loads, xd, wd)
             .map_err(SimError::Plant)?;
-        zd[0] = self.control.integral_rate(t, w, z[0]);
+        self.control.integral_rates(t, x, w, z, zd);
         Ok(())
     }
 }
@@ -120,7 +121,7 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
     type Error = SimError;
 
     fn dim(&self) -> usize {
-        2 * self.n + 1
+        2 * self.n + self.control.states()
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
