@@ -2,14 +2,14 @@
 //! generated plant (issue 6): swing4 driving on flat ground with terrain
 //! contact, the speed loop and the fixed-step RK4 integrator; and the same
 //! real-time path with the generic plant on random terrain, with RK4 and
-//! semi-implicit Euler (issue 5). Its own test binary: it installs a
+//! semi-implicit Euler (issue 5), under a heading hold with both integrals. Its own test binary: it installs a
 //! counting global allocator.
 
 use rover_dynamics::plant::Plant;
 use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
 use rover_runtime::ground::{ContactMethod, Ground};
-use rover_runtime::integrate::{FixedStepConfig, Integrator, Rk4};
+use rover_runtime::integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use rover_runtime::wheel_law::WheelLawConfig;
@@ -81,7 +81,8 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
         toml::from_str("kind = \"random\"\nz_r = 0.1\nextent = [-3.0, 3.0, -3.0, 3.0]").unwrap();
     let terrain = terrain.build(std::path::Path::new(".")).unwrap();
     let control: ControllerConfig = toml::from_str(
-        "[speed]\nspeed = 0.1\nki = 5.0\ndistribution = \"measured_load\"\n[steering]\nkind = \"slip\"\ndelta_tau = 0.1",
+        "[speed]\nspeed = 0.1\nki = 5.0\ndistribution = \"measured_load\"\n[steering]\nkind = \"heading\"\n\
+         heading_deg = 10.0\nkp = 2.0\nki = 0.5\nkd = 0.2\ncross_track = 1.0\ncross_track_integral = 0.1\n",
     )
     .unwrap();
     for method in ["rk4", "semi_implicit_euler"] {
@@ -99,7 +100,9 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
             controller,
         );
         let n = model.dof();
-        let mut y = vec![0.0; 2 * n + 1];
+        // The speed loop's integral and the heading hold's two.
+        assert_eq!(sys.dim(), 2 * n + 3);
+        let mut y = vec![0.0; sys.dim()];
         y[2] = 0.27;
         y[6..n].copy_from_slice(&model.rest());
         y[n] = 0.1;
@@ -111,7 +114,7 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
                 step: 1e-4,
             }),
         };
-        let mut integ = config.build(2 * n + 1).unwrap();
+        let mut integ = config.build(sys.dim()).unwrap();
         let mut t = 0.0;
         integ.advance(&mut sys, &mut t, &mut y, 1e-4).unwrap();
         let counted = allocation_counter::measure(|| {
