@@ -2,7 +2,8 @@
 //! generated plant (issue 6): swing4 driving on flat ground with terrain
 //! contact, the speed loop and the fixed-step RK4 integrator; and the same
 //! real-time path with the generic plant on random terrain, with RK4 and
-//! semi-implicit Euler (issue 5), under a heading hold with both integrals. Its own test binary: it installs a
+//! semi-implicit Euler (issue 5), under a heading hold with both integrals
+//! and with open-loop torques set between steps. Its own test binary: it installs a
 //! counting global allocator.
 
 use rover_dynamics::plant::Plant;
@@ -117,8 +118,11 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
         let mut integ = config.build(sys.dim()).unwrap();
         let mut t = 0.0;
         integ.advance(&mut sys, &mut t, &mut y, 1e-4).unwrap();
+        // An external controller's torques on top, set every other step.
+        let commands = [[0.01, -0.01, 0.02, 0.0], [0.0; 4]];
         let counted = allocation_counter::measure(|| {
             for k in 2..=10_001 {
+                sys.set_torques(&commands[k % 2]).unwrap();
                 integ
                     .advance(&mut sys, &mut t, &mut y, k as f64 * 1e-4)
                     .unwrap();

@@ -179,6 +179,7 @@ fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
         &w,
         &[0.0],
         &[1.0, 0.0, 0.0, 0.0],
+        &[0.0; 4],
         &mut tau,
     );
     let tau0 = 2.0 * 0.1;

@@ -4,6 +4,7 @@ mod support;
 
 mod cli;
 mod codegen;
+mod commands;
 mod control;
 mod dynamics;
 mod failures;

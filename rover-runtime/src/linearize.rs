@@ -131,10 +131,15 @@ pub struct Linearization {
     /// The state matrix A, row-major (`a[i][j] = ∂f_i/∂z_j`).
     pub a: Vec<Vec<f64>>,
     /// Names of the inputs of [`b`](Linearization::b): the spring neutrals
-    /// `y0_1` … `y0_m`, what an active suspension moves (MODEL.md §8).
+    /// `y0_1` … `y0_m` (what an active suspension moves, MODEL.md §8), the
+    /// motor torques `tau_1` … `tau_k` and the steering angles `delta_j` of
+    /// the steerable wheels (the open-loop commands of
+    /// [`RoverSystem::set_torques`] and [`RoverSystem::set_steering`],
+    /// on top of the loops in the linearization).
     pub inputs: Vec<String>,
-    /// The input matrix B = ∂(ẋ, ẇ)/∂y_0, row-major (2N × m; the columns of
-    /// coordinates without a spring are zero).
+    /// The input matrix B = ∂f/∂u over those inputs, row-major (a row per
+    /// state of [`a`](Linearization::a); the columns of coordinates without
+    /// a spring are zero).
     pub b: Vec<Vec<f64>>,
     /// Every mode: oscillatory by frequency, then real by |λ|, then neutral.
     pub modes: Vec<Mode>,
@@ -198,7 +203,7 @@ pub fn linearize_at<P: Plant>(
     sys.plant.mass_matrix(&y[..n], &mut mass);
     let inertia: Vec<f64> = (0..n).map(|i| mass[i * n + i]).collect();
     let modes = modes(&a, &inertia, &names[n..2 * n]);
-    let b = neutral_inputs(&mut sys, &y, model, &states)?;
+    let (inputs, b) = input_matrix(&mut sys, &y, model, &states)?;
     Ok(Linearization {
         states: names,
         equilibrium: y[..n].to_vec(),
@@ -210,7 +215,7 @@ pub fn linearize_at<P: Plant>(
             .zip(&quasi_static)
             .fold(0.0, |m: f64, (p, q)| m.max((p - q).abs())),
         a: rows(&a),
-        inputs: (1..=model.m()).map(|i| format!("y0_{i}")).collect(),
+        inputs,
         b: rows(&b),
         modes,
     })
@@ -228,32 +233,64 @@ const MAX_SETTLE: usize = 8;
 /// max |ẇ| at which the equilibrium counts as settled [m/s², rad/s²].
 const SETTLED: f64 = 1e-10;
 
-/// `∂(ẋ, ẇ)/∂y_0` at `y` by central differences of the spring neutrals
-/// (step 1e-7 rad or m; the neutrals enter through the spring law only, so
-/// linearly for linear springs), the plant's neutrals restored after.
-fn neutral_inputs<P: Plant, H: HeightField>(
+/// B = ∂f/∂u at `y` over the states `states`, by central differences of
+/// each input about the operating point, restored after: the spring
+/// neutrals (step 1e-7 rad or m; they enter through the spring law only, so
+/// linearly for linear springs), the motor torques (1e-6 N·m: the drawbar
+/// pull τ/|G_jH| is linear below its friction limit) and the steerable
+/// wheels' angles (1e-7 rad). Returns the inputs' names with B.
+fn input_matrix<P: Plant, H: HeightField>(
     sys: &mut RoverSystem<P, H>,
     y: &[f64],
     model: &Model,
     states: &[usize],
-) -> Result<DMatrix<f64>, LinearizeError> {
-    let m = model.m();
-    let mut b = DMatrix::zeros(states.len(), m);
+) -> Result<(Vec<String>, DMatrix<f64>), LinearizeError> {
+    let (m, k) = (model.m(), model.wheels.len());
+    let steerable: Vec<usize> = (0..k).filter(|&j| model.wheels[j].steerable).collect();
+    let mut names: Vec<String> = (1..=m).map(|i| format!("y0_{i}")).collect();
+    names.extend((1..=k).map(|j| format!("tau_{j}")));
+    names.extend(steerable.iter().map(|j| format!("delta_{}", j + 1)));
+    let mut b = DMatrix::zeros(states.len(), names.len());
     let (mut plus, mut minus) = (vec![0.0; y.len()], vec![0.0; y.len()]);
-    for (j, c) in model.coordinates.iter().enumerate() {
-        let h = 1e-7 * c.neutral.abs().max(1.0);
-        sys.plant.set_spring_neutral(j, c.neutral + h);
+    let mut column = |sys: &mut RoverSystem<P, H>,
+                      col: usize,
+                      h: f64,
+                      set: &mut dyn FnMut(&mut RoverSystem<P, H>, f64)|
+     -> Result<(), LinearizeError> {
+        set(sys, h);
         let up = sys.rhs(0.0, y, &mut plus);
-        sys.plant.set_spring_neutral(j, c.neutral - h);
+        set(sys, -h);
         let down = sys.rhs(0.0, y, &mut minus);
-        sys.plant.set_spring_neutral(j, c.neutral);
+        set(sys, 0.0);
         up?;
         down?;
         for (r, &i) in states.iter().enumerate() {
-            b[(r, j)] = (plus[i] - minus[i]) / (2.0 * h);
+            b[(r, col)] = (plus[i] - minus[i]) / (2.0 * h);
         }
+        Ok(())
+    };
+    for (j, c) in model.coordinates.iter().enumerate() {
+        let h = 1e-7 * c.neutral.abs().max(1.0);
+        column(sys, j, h, &mut |sys, d| {
+            sys.plant.set_spring_neutral(j, c.neutral + d)
+        })?;
     }
-    Ok(b)
+    // The commands of the operating point are zero: each column moves one.
+    let mut command = vec![0.0; k];
+    for j in 0..k {
+        column(sys, m + j, 1e-6, &mut |sys, d| {
+            command[j] = d;
+            // One finite value per wheel: cannot fail.
+            let _ = sys.set_torques(&command);
+        })?;
+    }
+    for (c, &j) in steerable.iter().enumerate() {
+        column(sys, m + k + c, 1e-7, &mut |sys, d| {
+            command[j] = d;
+            let _ = sys.set_steering(&command);
+        })?;
+    }
+    Ok((names, b))
 }
 
 /// `f = f(0, y)` and max |ẇ| there.

@@ -18,8 +18,9 @@ use super::simulate::{build_plant, generated_plant};
 pub struct LinearizeArgs {
     /// A built-in rover (exomars, swing4, mer, lrv) or a description file.
     pub rover: String,
-    /// Also write the state matrix, the spring neutrals' input matrix, the
-    /// equilibrium and every mode (with its shape) as JSON to this file.
+    /// Also write the state matrix, the input matrix (spring neutrals, motor
+    /// torques, steering angles), the equilibrium and every mode (with its
+    /// shape) as JSON to this file.
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Use the generic plant even for a built-in rover.

@@ -6,7 +6,7 @@ use rover_dynamics::plant::Plant;
 use serde::{Deserialize, Serialize};
 
 use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
-use super::distribution::{Distribution, share};
+use super::distribution::{Distribution, add_share};
 use super::speed::SpeedConfig;
 use super::steering::{
     Ackermann, HeadingActuator, HeadingHold, HeadingIntegrals, LINE_INTEGRAL_CAP, Steering,
@@ -204,6 +204,11 @@ impl Controller {
         self.settle
     }
 
+    /// Which wheels steer (the description's order).
+    pub fn steerable(&self) -> &[bool] {
+        &self.steerable
+    }
+
     /// The configuration.
     pub fn config(&self) -> &ControllerConfig {
         &self.config
@@ -298,9 +303,30 @@ impl Controller {
 
     /// Motor torques per wheel [N·m] from the forward speed `w[0]`, the
     /// integral states `z` (ζ) and the wheels' normal loads `normals` (this
-    /// evaluation); heading hold also reads the attitude `x[3..6]` and the
-    /// angular velocity `w[3..6]`.
+    /// evaluation), plus the open-loop commands `commanded` (an external
+    /// controller's, one per wheel), all within each motor's limit; heading
+    /// hold also reads the attitude `x[3..6]` and the angular velocity
+    /// `w[3..6]`.
+    #[allow(clippy::too_many_arguments)]
     pub fn torques(
+        &self,
+        t: f64,
+        x: &[f64],
+        w: &[f64],
+        z: &[f64],
+        normals: &[f64],
+        commanded: &[f64],
+        out: &mut [f64],
+    ) {
+        out.copy_from_slice(commanded);
+        self.add_torques(t, x, w, z, normals, out);
+        for (o, &cap) in out.iter_mut().zip(&self.max_torque) {
+            *o = o.clamp(-cap, cap);
+        }
+    }
+
+    /// The built-in loops' torques, added to `out`.
+    fn add_torques(
         &self,
         t: f64,
         x: &[f64],
@@ -310,17 +336,16 @@ impl Controller {
         out: &mut [f64],
     ) {
         let Some(s) = &self.config.speed else {
-            out.iter_mut().for_each(|o| *o = 0.0);
             return;
         };
         let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * z[0];
         match s.distribution {
-            Distribution::Even => out.iter_mut().for_each(|o| *o = tau0),
-            Distribution::MeasuredLoad => share(tau0, normals, out),
-            Distribution::StaticLoad => match &self.static_weights {
-                Some(wts) => share(tau0, wts, out),
-                None => share(tau0, normals, out),
-            },
+            Distribution::Even => out.iter_mut().for_each(|o| *o += tau0),
+            Distribution::MeasuredLoad => add_share(tau0, normals, out),
+            Distribution::StaticLoad => {
+                let weights = self.static_weights.as_deref().unwrap_or(normals);
+                add_share(tau0, weights, out)
+            }
         }
         let settled = t >= self.settle;
         let dt = match &self.config.steering {
@@ -348,9 +373,6 @@ impl Controller {
             for (o, &left) in out.iter_mut().zip(&self.left) {
                 *o += if left { -dt } else { dt };
             }
-        }
-        for (o, &cap) in out.iter_mut().zip(&self.max_torque) {
-            *o = o.clamp(-cap, cap);
         }
     }
 

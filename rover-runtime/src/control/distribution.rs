@@ -18,13 +18,13 @@ pub enum Distribution {
     MeasuredLoad,
 }
 
-/// Share `tau0` (per wheel, mean) by weights into `out`; equal shares when
-/// the weights sum to zero (every wheel airborne).
-pub fn share(tau0: f64, weights: &[f64], out: &mut [f64]) {
+/// Share `tau0` (per wheel, mean) by weights, added to `out`; equal shares
+/// when the weights sum to zero (every wheel airborne).
+pub fn add_share(tau0: f64, weights: &[f64], out: &mut [f64]) {
     let n = out.len() as f64;
     let total: f64 = weights.iter().sum();
     for (o, w) in out.iter_mut().zip(weights) {
-        *o = if total > 0.0 {
+        *o += if total > 0.0 {
             tau0 * n * w / total
         } else {
             tau0

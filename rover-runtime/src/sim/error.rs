@@ -15,6 +15,45 @@ pub enum SimError {
     OffMap(WheelOffMap),
 }
 
+/// An open-loop command the rover cannot take
+/// ([`RoverSystem::set_torques`](crate::sim::RoverSystem::set_torques),
+/// [`RoverSystem::set_steering`](crate::sim::RoverSystem::set_steering)).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CommandError {
+    /// One value per wheel is needed.
+    #[error(
+        "{what}: the rover has {wheels} wheels, {given} values were given (one per wheel, the description's order)"
+    )]
+    Count {
+        /// Which command.
+        what: &'static str,
+        /// Wheels of the rover.
+        wheels: usize,
+        /// Values given.
+        given: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("{what}: wheel {wheel}'s value is {value}; commands must be finite")]
+    NotFinite {
+        /// Which command.
+        what: &'static str,
+        /// Wheel (1-based).
+        wheel: usize,
+        /// The value.
+        value: f64,
+    },
+    /// A steering angle for a wheel that does not steer.
+    #[error(
+        "steering: wheel {wheel} is not steerable (`steerable = true` in the description), its angle must be 0, got {value} rad"
+    )]
+    NotSteerable {
+        /// Wheel (1-based).
+        wheel: usize,
+        /// The angle \[rad\].
+        value: f64,
+    },
+}
+
 /// Why a run stopped before its end time. Every variant names the time.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RunError {

@@ -5,6 +5,6 @@ mod error;
 mod run;
 mod system;
 
-pub use error::{RunError, SimError};
+pub use error::{CommandError, RunError, SimError};
 pub use run::{OutputRow, RunOptions, RunOutcome, Stop, run};
 pub use system::RoverSystem;

@@ -10,7 +10,7 @@ use crate::ground::{Ground, WheelReport};
 use crate::integrate::OdeSystem;
 use crate::terrain::HeightField;
 
-use super::error::SimError;
+use super::error::{CommandError, SimError};
 
 /// Plant, ground and controller, with every buffer a right-hand side needs
 /// (sized once: an evaluation allocates nothing).
@@ -29,6 +29,9 @@ pub struct RoverSystem<P, H> {
     torques: Vec<f64>,
     steer: Vec<f64>,
     normals: Vec<f64>,
+    torque_commands: Vec<f64>,
+    steer_commands: Vec<f64>,
+    steerable: Vec<bool>,
 }
 
 impl<P: Plant, H: HeightField> RoverSystem<P, H> {
@@ -39,7 +42,6 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         Self {
             plant,
             ground,
-            control,
             n,
             wheels: vec![WheelState::default(); k],
             loads: vec![WheelLoad::default(); k],
@@ -47,7 +49,47 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             torques: vec![0.0; k],
             steer: vec![0.0; k],
             normals: vec![0.0; k],
+            torque_commands: vec![0.0; k],
+            steer_commands: vec![0.0; k],
+            steerable: control.steerable().to_vec(),
+            control,
         }
+    }
+
+    /// Open-loop motor torques [N·m] per wheel (the description's order,
+    /// positive drives forward), added to the controller's and held until
+    /// the next call: how an external controller (a hardware-in-the-loop
+    /// rig's, a user's own) drives the rover, with the built-in loops off
+    /// (no `[control.speed]`) or on top of them. The sum is limited to each
+    /// motor's `max_torque`. Zero until set. A variable-step integrator
+    /// should be restarted after a change (a jump of the right-hand side);
+    /// the fixed-step ones need nothing. Allocates nothing.
+    pub fn set_torques(&mut self, torques: &[f64]) -> Result<(), CommandError> {
+        check_command("torques", torques, self.torque_commands.len())?;
+        self.torque_commands.copy_from_slice(torques);
+        Ok(())
+    }
+
+    /// Open-loop steering angles \[rad\] per wheel, added to the
+    /// controller's (positive turns the wheel left, about the body's z);
+    /// a wheel that is not steerable takes 0 only. Held, like
+    /// [`RoverSystem::set_torques`].
+    pub fn set_steering(&mut self, angles: &[f64]) -> Result<(), CommandError> {
+        check_command("steering", angles, self.steer_commands.len())?;
+        if let Some(k) = (0..angles.len()).find(|&k| !self.steerable[k] && angles[k] != 0.0) {
+            return Err(CommandError::NotSteerable {
+                wheel: k + 1,
+                value: angles[k],
+            });
+        }
+        self.steer_commands.copy_from_slice(angles);
+        Ok(())
+    }
+
+    /// The open-loop commands in force: torques [N·m] and steering angles
+    /// \[rad\] per wheel.
+    pub fn commands(&self) -> (&[f64], &[f64]) {
+        (&self.torque_commands, &self.steer_commands)
     }
 
     /// Number of generalized coordinates N.
@@ -78,13 +120,23 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let (x, rest) = y.split_at(n);
         let (w, z) = rest.split_at(n);
         self.control.steer(t, x, z, &mut self.steer);
+        for (s, c) in self.steer.iter_mut().zip(&self.steer_commands) {
+            *s += c;
+        }
         self.plant.wheels(x, w, &self.steer, &mut self.wheels);
         match &mut self.ground {
             Some(g) => {
                 g.find_contacts(&self.wheels, &mut self.normals)
                     .map_err(SimError::OffMap)?;
-                self.control
-                    .torques(t, x, w, z, &self.normals, &mut self.torques);
+                self.control.torques(
+                    t,
+                    x,
+                    w,
+                    z,
+                    &self.normals,
+                    &self.torque_commands,
+                    &mut self.torques,
+                );
                 g.loads(
                     &self.wheels,
                     &self.torques,
@@ -94,8 +146,15 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             }
             None => {
                 self.normals.iter_mut().for_each(|v| *v = 0.0);
-                self.control
-                    .torques(t, x, w, z, &self.normals, &mut self.torques);
+                self.control.torques(
+                    t,
+                    x,
+                    w,
+                    z,
+                    &self.normals,
+                    &self.torque_commands,
+                    &mut self.torques,
+                );
                 self.loads
                     .iter_mut()
                     .for_each(|l| *l = WheelLoad::default());
@@ -141,5 +200,24 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
         let n = self.n;
         position_rates(&y[..n], &y[n..2 * n], dx);
         Some(Ok(()))
+    }
+}
+
+/// One finite value per wheel.
+fn check_command(what: &'static str, values: &[f64], wheels: usize) -> Result<(), CommandError> {
+    if values.len() != wheels {
+        return Err(CommandError::Count {
+            what,
+            wheels,
+            given: values.len(),
+        });
+    }
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(k) => Err(CommandError::NotFinite {
+            what,
+            wheel: k + 1,
+            value: values[k],
+        }),
+        None => Ok(()),
     }
 }
