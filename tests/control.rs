@@ -636,3 +636,27 @@ fn heading_hold_integrals_integrate_and_stop_winding_up() {
     assert_eq!(rates(2.0, (0.0, 0.1), wound)[1], 0.0, "e < 0 at −cap");
     assert!(rates(2.0, (0.0, -0.1), wound)[1] > 0.0, "unwinds");
 }
+
+/// A command that jumps (here the end of settling, on an output instant)
+/// under tight BDF tolerances: the step that ends on the jump takes the
+/// commands' left limit and the integrator restarts there, so the run goes
+/// through. It used to stop at t = 1 s with the step below its minimum
+/// (the implicit step evaluated the post-jump command at its end, an error
+/// estimate of jump × step that only a 1e-11 s step could pass).
+#[test]
+fn a_command_jump_at_tight_tolerances_does_not_stall_the_integrator() {
+    let r = run(
+        "exomars",
+        "duration = 3.0\nsettle = 1.0\noutput_rate = 10.0\n\
+         [integrator.bdf]\nrtol = 1e-9\natol = 1e-11\n\
+         [control.speed]\nspeed = 0.1\nki = 5.0\n\
+         [control.steering]\nkind = \"ackermann\"\nradius = 2.0\n",
+    );
+    let t = r.col("t");
+    assert!(
+        (t[t.len() - 1] - 3.0).abs() < 1e-12,
+        "ends at {}",
+        t[t.len() - 1]
+    );
+    assert!(r.col("delta1").iter().any(|d| d.abs() > 0.05), "it steers");
+}

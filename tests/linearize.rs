@@ -445,20 +445,23 @@ fn closed_loop_at_speed_follows_its_linearization() {
     );
 }
 
-/// Operating points that are not steady are refused with the reason.
+/// Operating points that are not steady are refused with the reason: a
+/// turn commanded by a time table, and coasting at speed against rolling
+/// resistance (no speed loop holds v_x, and it decays).
 #[test]
 fn unsteady_operating_points_are_refused() {
     use rover_runtime::linearize::{LinearizeError, OperatingPoint, linearize_at};
     let m = model("swing4");
-    let turning = OperatingPoint {
+    let timed = OperatingPoint {
         speed: 0.1,
         control: toml::from_str(
-            "[speed]\nspeed = 0.1\n[steering]\nkind = \"slip\"\ndelta_tau = 0.2\n",
+            "[speed]\nspeed = 0.1\n[steering]\nkind = \"slip\"\n\
+             delta_tau = { points = [[0.0, 0.0], [5.0, 0.2]] }\n",
         )
         .unwrap(),
         ..Default::default()
     };
-    let resisted = OperatingPoint {
+    let coasting = OperatingPoint {
         speed: 0.1,
         contact: rover_runtime::scenario::ContactConfig {
             rolling_resistance: 0.1,
@@ -466,7 +469,7 @@ fn unsteady_operating_points_are_refused() {
         },
         ..Default::default()
     };
-    for (point, why) in [(turning, "straight"), (resisted, "rolling resistance")] {
+    for (point, why) in [(timed, "constant"), (coasting, "dvx/dt")] {
         match linearize_at(&m, rover_models::Swing4::new(), &point) {
             Err(LinearizeError::NotSteady(message)) => assert!(message.contains(why), "{message}"),
             other => panic!("expected NotSteady, got {:?}", other.map(|l| l.speed)),
@@ -640,4 +643,107 @@ fn torque_and_steering_inputs_are_what_the_commands_do() {
             "{name}: {fine:.3e} at half the input vs {coarse:.3e}"
         );
     }
+}
+
+/// A steady turn is where a run settles: ExoMars under Ackermann steering
+/// (R = 2 m) and a PI speed loop at 0.1 m/s, swing4 slip-steered by
+/// Δτ = 0.2 N·m. The steady state found by Newton on the right-hand side
+/// (yaw rate, sideslip, roll, pitch, suspension, heave) is the end of a
+/// 60 s run of the same scenario (BDF, rtol 1e-9), to 3e-13.
+#[test]
+fn a_steady_turn_is_where_a_run_settles() {
+    use rover_runtime::linearize::{OperatingPoint, linearize_at};
+    let cases = [
+        (
+            "exomars",
+            "[steering]\nkind = \"ackermann\"\nradius = 2.0\n",
+        ),
+        ("swing4", "[steering]\nkind = \"slip\"\ndelta_tau = 0.2\n"),
+    ];
+    for (name, steering) in cases {
+        let m = model(name);
+        let n = m.dof();
+        let control = format!("[speed]\nspeed = 0.1\nki = 5.0\n{steering}");
+        let point = OperatingPoint {
+            speed: 0.1,
+            control: toml::from_str(&control).unwrap(),
+            ..Default::default()
+        };
+        let lin = linearize_at(&m, rover_models::plant(name).unwrap(), &point).unwrap();
+        let yaw_rate = lin.state[n + 5];
+        assert!(yaw_rate > 0.01, "{name}: it turns left, Ω_z = {yaw_rate}");
+        let run = crate::support::run::run(
+            name,
+            &format!(
+                "duration = 60.0\nsettle = 1.0\noutput_rate = 1.0\n\
+                 [integrator.bdf]\nrtol = 1e-9\natol = 1e-11\n\
+                 {}",
+                control
+                    .replace("[speed]", "[control.speed]")
+                    .replace("[steering]", "[control.steering]")
+            ),
+        );
+        for (i, state) in lin.states.iter().enumerate().take(2 * n) {
+            if matches!(i, 0 | 1 | 5) {
+                continue; // X, Y, ψ go round the circle
+            }
+            let end = *run.col(state).last().unwrap();
+            assert!(
+                // Measured: 3e-13 at most.
+                (end - lin.state[i]).abs() < 1e-10 * (1.0 + lin.state[i].abs()),
+                "{name}: {state} settles at {end}, the steady state has {}",
+                lin.state[i]
+            );
+        }
+        assert!(
+            lin.modes
+                .iter()
+                .all(|md| md.kind == rover_runtime::linearize::ModeKind::Neutral
+                    || md.eigenvalue[0] < 0.0),
+            "{name}: the turn is stable"
+        );
+    }
+}
+
+/// Driving against rolling resistance: with a P speed loop the steady
+/// speed is below its set-point by what the torque must make up. At the
+/// steady state every wheel's torque is the loop's `kp·(V − v_x)`, and the
+/// pulls they drive balance the resistance `C_rr·ΣF_n` (the net
+/// longitudinal ground force vanishes).
+#[test]
+fn a_speed_loop_against_rolling_resistance_settles_below_its_set_point() {
+    use rover_runtime::linearize::{OperatingPoint, linearize_at, operating_system};
+    let m = model("exomars");
+    let n = m.dof();
+    let (speed, kp, c_rr) = (0.1, 10.0, 0.05);
+    let point = OperatingPoint {
+        speed,
+        contact: rover_runtime::scenario::ContactConfig {
+            rolling_resistance: c_rr,
+            ..Default::default()
+        },
+        control: toml::from_str(&format!("[speed]\nspeed = {speed}\nkp = {kp}\n")).unwrap(),
+    };
+    let lin = linearize_at(&m, rover_models::Exomars::new(), &point).unwrap();
+    let v_x = lin.state[n];
+    assert!(v_x < speed && v_x > 0.5 * speed, "v_x = {v_x}");
+    let (mut sys, _) = operating_system(&m, rover_models::Exomars::new(), &point).unwrap();
+    let mut f = vec![0.0; lin.state.len()];
+    sys.rhs(0.0, &lin.state, &mut f).unwrap();
+    for tau in sys.torques() {
+        assert!((tau - kp * (speed - v_x)).abs() < 1e-12, "τ = {tau}");
+    }
+    let normal: f64 = sys.reports().iter().map(|r| r.normal).sum();
+    let net: f64 = sys.reports().iter().map(|r| r.drawbar).sum();
+    assert!(
+        net.abs() < 1e-9 * c_rr * normal,
+        "net pull {net} N against a resistance of {} N",
+        c_rr * normal
+    );
+    assert!(
+        lin.modes
+            .iter()
+            .all(|md| md.eigenvalue[0] < 0.0
+                || md.kind == rover_runtime::linearize::ModeKind::Neutral)
+    );
 }

@@ -1,10 +1,14 @@
-//! Small motions of a parked rover about its static equilibrium on flat
-//! ground: the state matrix of the whole right-hand side and its modes.
+//! Small motions of a rover about a steady state on flat ground — parked,
+//! driving straight or turning steadily — : the state matrix of the whole
+//! right-hand side, its input matrix and its modes.
 //!
-//! The rover stands on flat ground with no command (motors off, no
-//! steering, passive suspension); `x_e` is its quasi-static equilibrium
-//! ([`flat_ground_pose`]) and `w = 0`. For small `z = (x − x_e, w)`,
-//! `ż ≈ A·z` with `A = ∂(ẋ, ẇ)/∂(x, w)` taken by central differences of the
+//! Parked, the rover stands on flat ground with no command (motors off, no
+//! steering, passive suspension) at its quasi-static equilibrium
+//! ([`flat_ground_pose`]) refined on the dynamics, `w = 0`; at speed, or
+//! turning under a constant command, every rate but those of X, Y and ψ
+//! vanishes at the steady state (found by Newton on the right-hand side,
+//! [`linearize_at`]). For small `z = y − y_e`, `ż ≈ A·z` with
+//! `A = ∂(ẋ, ẇ)/∂(x, w)` taken by central differences of the
 //! very [`RoverSystem::rhs`] a run integrates: plant, contact search and
 //! wheel law together. A generated plant's exact Jacobian is at fixed wheel
 //! loads, but what makes a rover stand on its wheels is how the loads change
@@ -116,13 +120,15 @@ pub struct Linearization {
     /// loop's, when it has a gain, and a heading hold's `zeta_heading` and
     /// `zeta_line`.
     pub states: Vec<String>,
-    /// The operating point's coordinates x_e (w_e = [V, 0, …]).
+    /// The steady state's coordinates x_e (its velocities are in
+    /// [`state`](Linearization::state)).
     pub equilibrium: Vec<f64>,
     /// Its forward speed V \[m/s\].
     pub speed: f64,
     /// The whole state there, `[x_e; w_e; ζ]` (the right-hand side's `y`).
     pub state: Vec<f64>,
-    /// max |ẇ| at the equilibrium [m/s² or rad/s²]: how static it is.
+    /// max |f_i| at the steady state over the rates that must vanish (all
+    /// but those of X, Y, ψ) [m/s, rad/s, m/s² or rad/s²]: how steady it is.
     pub residual: f64,
     /// How far the quasi-static solution was from this equilibrium, the
     /// largest change of a coordinate when refined on the right-hand side
@@ -145,8 +151,9 @@ pub struct Linearization {
     pub modes: Vec<Mode>,
 }
 
-/// Where a rover is linearized: straight, steady driving on flat ground
-/// (parked at speed 0), with the scenario's contact and controllers.
+/// Where a rover is linearized: steady driving on flat ground (parked at
+/// speed 0), straight or in a steady turn, with the scenario's contact and
+/// controllers.
 #[derive(Clone, Debug, Default)]
 pub struct OperatingPoint {
     /// Forward speed V \[m/s\]; 0 parks the rover.
@@ -154,10 +161,11 @@ pub struct OperatingPoint {
     /// Contact search, wheel law and rolling resistance.
     pub contact: ContactConfig,
     /// The controllers in the loop; none: motors off. A speed loop's
-    /// set-point becomes `speed`; the steering must keep the rover straight
-    /// (none, or a heading hold, whose set-point at t = 0 and line give the
-    /// heading and the position). The active suspension is sampled, not
-    /// part of the right-hand side, so it is not in the linearization.
+    /// set-point becomes `speed`; the steering is none or a heading hold
+    /// (straight: its set-point at t = 0 and line give the heading and the
+    /// position), or a constant slip or Ackermann command (a steady turn).
+    /// The active suspension is sampled, not part of the right-hand side, so
+    /// it is not in the linearization.
     pub control: ControllerConfig,
 }
 
@@ -186,19 +194,11 @@ pub fn linearize_at<P: Plant>(
             names.push(name.into());
         }
     }
-    let mut a = state_matrix(&mut sys, &y, &names, &states)?;
-    let mut f = vec![0.0; y.len()];
-    let mut residual = rest_residual(&mut sys, &y, &mut f)?;
     let quasi_static = y[..n].to_vec();
-    for _ in 0..MAX_SETTLE {
-        if residual <= SETTLED {
-            break;
-        }
-        settle(n, &a, &f, &mut y);
-        drive(&mut y, n, point.speed);
-        a = state_matrix(&mut sys, &y, &names, &states)?;
-        residual = rest_residual(&mut sys, &y, &mut f)?;
-    }
+    let parked = point.speed == 0.0 && !turns(&point.control.steering);
+    let held_speed = point.control.speed.is_none();
+    let residual = steady(&mut sys, &mut y, &names, &states, parked, held_speed)?;
+    let a = state_matrix(&mut sys, &y, &names, &states)?;
     let mut mass = vec![0.0; n * n];
     sys.plant.mass_matrix(&y[..n], &mut mass);
     let inertia: Vec<f64> = (0..n).map(|i| mass[i * n + i]).collect();
@@ -226,12 +226,114 @@ fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
     m.row_iter().map(|r| r.iter().copied().collect()).collect()
 }
 
-/// Newton steps on the dynamic equilibrium ẇ(x, 0) = 0 at most, after the
-/// quasi-static solve.
-const MAX_SETTLE: usize = 8;
+/// Newton steps on the steady state at most, after the quasi-static solve.
+const MAX_SETTLE: usize = 12;
 
-/// max |ẇ| at which the equilibrium counts as settled [m/s², rad/s²].
+/// max |f| over the steady rows at which the steady state counts as found
+/// [m/s², rad/s², m/s, rad/s].
 const SETTLED: f64 = 1e-10;
+
+/// max |f| over the steady rows below which a Newton solve that stops
+/// short of [`SETTLED`] (a level whose rows cannot all vanish to rounding)
+/// still counts as steady.
+const STEADY_ENOUGH: f64 = 1e-6;
+
+/// Refine `y` to a steady state of `sys`: every rate of `states` vanishes
+/// but those of X, Y and ψ, which a rover driving on flat ground changes
+/// steadily (straight: X, Y; turning: all three) and on which nothing
+/// depends but a heading hold's line, held where the rover started. The
+/// unknowns are the same states (the pose Z, φ, θ, y, the body and
+/// suspension velocities, the integrals that act), or, `parked`, all but
+/// the velocities, which stay exactly 0; with `held_speed` (no speed loop
+/// to set it) v_x stays what it is, so that a rover whose motion decays
+/// (coasting against rolling resistance) has no steady state instead of a
+/// parked one. Newton steps with the
+/// central-difference Jacobian of those rows, least-squares and
+/// minimum-norm (by SVD: a motion with no restoring force, free rolling,
+/// has no row to fix it, so it stays where it started), halved while they
+/// do not lower max |f|. Returns max |f| over those rows.
+fn steady<P: Plant, H: HeightField>(
+    sys: &mut RoverSystem<P, H>,
+    y: &mut [f64],
+    names: &[String],
+    states: &[usize],
+    parked: bool,
+    held_speed: bool,
+) -> Result<f64, LinearizeError> {
+    let n = sys.dof();
+    let fixed: Vec<usize> = (0..states.len())
+        .filter(|&c| !matches!(states[c], 0 | 1 | 5))
+        .collect();
+    let rows: Vec<usize> = fixed.iter().map(|&c| states[c]).collect();
+    let moving: Vec<usize> = fixed
+        .iter()
+        .copied()
+        .filter(|&c| !(parked && (n..2 * n).contains(&states[c])))
+        .filter(|&c| !(held_speed && states[c] == n))
+        .collect();
+    let mut f = vec![0.0; y.len()];
+    let mut residual = |sys: &mut RoverSystem<P, H>, y: &[f64]| -> Result<f64, LinearizeError> {
+        sys.rhs(0.0, y, &mut f)?;
+        Ok(rows.iter().fold(0.0, |m: f64, &i| m.max(f[i].abs())))
+    };
+    let mut r = residual(sys, y)?;
+    for _ in 0..MAX_SETTLE {
+        if r <= SETTLED {
+            break;
+        }
+        let a = state_matrix(sys, y, names, states)?;
+        let j = DMatrix::from_fn(rows.len(), moving.len(), |p, q| a[(fixed[p], moving[q])]);
+        let mut f0 = vec![0.0; y.len()];
+        sys.rhs(0.0, y, &mut f0)?;
+        let rhs = DVector::from_fn(rows.len(), |p, _| -f0[rows[p]]);
+        let svd = j.svd(true, true);
+        let cut = 1e-9 * svd.singular_values.max();
+        let Ok(step) = svd.solve(&rhs, cut) else {
+            break;
+        };
+        if !step.iter().all(|v| v.is_finite()) {
+            break;
+        }
+        let start = y.to_vec();
+        let mut scale = 1.0;
+        let mut improved = false;
+        for _ in 0..12 {
+            for (q, &c) in moving.iter().enumerate() {
+                let i = states[c];
+                y[i] = start[i] + scale * step[q];
+            }
+            match residual(sys, y) {
+                Ok(next) if next < r => {
+                    r = next;
+                    improved = true;
+                    break;
+                }
+                _ => scale *= 0.5,
+            }
+        }
+        if !improved {
+            y.copy_from_slice(&start);
+            break;
+        }
+    }
+    if r > STEADY_ENOUGH {
+        let worst = rows
+            .iter()
+            .map(|&i| (i, f[i].abs()))
+            .max_by(|p, q| p.1.total_cmp(&q.1))
+            .map_or(String::new(), |(i, v)| {
+                let name = states
+                    .iter()
+                    .position(|&s| s == i)
+                    .and_then(|c| names.get(c));
+                format!(" (d{}/dt = {v:.2e})", name.map_or("?", |s| s.as_str()))
+            });
+        return Err(LinearizeError::NotSteady(format!(
+            "no steady state found near the start: the rates stay at {r:.2e}{worst} after {MAX_SETTLE} Newton steps"
+        )));
+    }
+    Ok(r)
+}
 
 /// B = ∂f/∂u at `y` over the states `states`, by central differences of
 /// each input about the operating point, restored after: the spring
@@ -293,36 +395,10 @@ fn input_matrix<P: Plant, H: HeightField>(
     Ok((names, b))
 }
 
-/// `f = f(0, y)` and max |ẇ| there.
-fn rest_residual<P: Plant, H: HeightField>(
-    sys: &mut RoverSystem<P, H>,
-    y: &[f64],
-    f: &mut [f64],
-) -> Result<f64, LinearizeError> {
-    let n = sys.dof();
-    sys.rhs(0.0, y, f)?;
-    Ok(f[n..2 * n].iter().fold(0.0, |m: f64, v| m.max(v.abs())))
-}
-
-/// One Newton step of the coordinates Z, φ, θ, y… on ẇ(x, w_e) = 0 with the
-/// stiffness block of `a` and the rates `f` at `y`: the quasi-static
-/// solution refined on the very right-hand side that is linearized (the
-/// two agree to the quasi-static tolerance for most rovers, to 2e-3 rad/s²
-/// in the LRV's suspension rows). X, Y and ψ stay: nothing depends on them
-/// on flat ground, and neither do the rows of v_x, v_y, Ω_z vanish by
-/// moving the others.
-fn settle(n: usize, a: &DMatrix<f64>, f: &[f64], y: &mut [f64]) {
-    let free: Vec<usize> = (0..n).filter(|&i| !matches!(i, 0 | 1 | 5)).collect();
-    let k = DMatrix::from_fn(free.len(), free.len(), |r, c| a[(n + free[r], free[c])]);
-    let rhs = DVector::from_fn(free.len(), |r, _| -f[n + free[r]]);
-    let Some(step) = k.lu().solve(&rhs) else {
-        return;
-    };
-    if step.iter().all(|v| v.is_finite()) {
-        for (c, &i) in free.iter().enumerate() {
-            y[i] += step[c];
-        }
-    }
+/// Whether the steering turns the rover (slip or Ackermann commands).
+fn turns(steering: &crate::control::Steering) -> bool {
+    use crate::control::Steering;
+    matches!(steering, Steering::Slip { .. } | Steering::Ackermann(_))
 }
 
 /// The parked rover as a system (flat ground, default contact search and
@@ -335,9 +411,10 @@ pub fn parked<P: Plant>(
     operating_system(model, plant, &OperatingPoint::default())
 }
 
-/// The system of an [`OperatingPoint`] and its state (before the
-/// equilibrium is refined): the parked pose, turned to the heading hold's
-/// set-point and moved onto its line, at `w = [V, 0, …]`.
+/// The system of an [`OperatingPoint`] and its state before the steady
+/// state is solved for: the parked pose, turned to the heading hold's
+/// set-point and moved onto its line, driving horizontally at V, and for
+/// Ackermann steering turning kinematically about its centre.
 pub fn operating_system<P: Plant>(
     model: &Model,
     plant: P,
@@ -348,11 +425,6 @@ pub fn operating_system<P: Plant>(
     let not_steady = |why: &str| Err(LinearizeError::NotSteady(why.to_string()));
     if !point.speed.is_finite() {
         return not_steady("the speed must be finite");
-    }
-    if point.speed != 0.0 && point.contact.rolling_resistance > 0.0 {
-        return not_steady(
-            "driving at a steady speed against rolling resistance is not covered (the torque that balances it is not solved for): linearize at speed 0, or without rolling resistance",
-        );
     }
     let mut control = point.control.clone();
     if let Some(s) = &mut control.speed {
@@ -368,10 +440,18 @@ pub fn operating_system<P: Plant>(
             x_e[1] = origin[1];
             x_e[5] = heading;
         }
-        Steering::Slip { .. } | Steering::Ackermann(_) => {
-            return not_steady(
-                "the linearization is about straight, steady driving: give no steering or a heading hold (slip and Ackermann commands turn the rover)",
-            );
+        Steering::Slip { delta_tau } => {
+            if !matches!(delta_tau, Profile::Constant(_)) {
+                return not_steady("a steady turn needs a constant `delta_tau`, not a time table");
+            }
+        }
+        Steering::Ackermann(a) => {
+            let constant = |p: &Option<Profile>| matches!(p, None | Some(Profile::Constant(_)));
+            if !(constant(&a.radius) && constant(&a.front_left_deg)) {
+                return not_steady(
+                    "a steady turn needs a constant `radius` or `front_left_deg`, not a time table",
+                );
+            }
         }
     }
     let ground = point.contact.ground(Terrain::default(), model);
@@ -380,6 +460,11 @@ pub fn operating_system<P: Plant>(
     let mut y = vec![0.0; sys.dim()];
     y[..n].copy_from_slice(&x_e);
     drive(&mut y, n, point.speed);
+    // A kinematic turn about the Ackermann centre (x_c, 1/κ) as the start:
+    // Ω_z = κ·V, and G slips sideways at −Ω_z·x_c so that x_c does not.
+    let (kappa, centre_x) = sys.control.curvature(0.0);
+    y[n + 5] = kappa * point.speed;
+    y[n + 1] -= y[n + 5] * centre_x;
     Ok((sys, y))
 }
 

@@ -103,7 +103,15 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
 fn report(rover: &str, backend: &str, lin: &Linearization, point: &OperatingPoint) -> String {
     let n = lin.equilibrium.len();
     let mut s = String::new();
-    let what = if point.speed != 0.0 {
+    let yaw_rate = lin.state[n + 5];
+    let what = if yaw_rate.abs() > 1e-9 {
+        let ground_speed = lin.state[n].hypot(lin.state[n + 1]);
+        format!(
+            "turning at {} m/s on flat ground (yaw rate {yaw_rate:.4} rad/s, G on a circle of radius {:.3} m)",
+            point.speed,
+            ground_speed / yaw_rate.abs()
+        )
+    } else if point.speed != 0.0 {
         format!("driving straight at {} m/s on flat ground", point.speed)
     } else {
         "parked on flat ground".to_string()
@@ -126,7 +134,7 @@ fn report(rover: &str, backend: &str, lin: &Linearization, point: &OperatingPoin
         .collect();
     let _ = writeln!(
         s,
-        "  equilibrium (m, rad): {}; |ẇ| ≤ {:.1e} there (the quasi-static solution refined by {:.1e})",
+        "  steady state (m, rad): {}; its rates ≤ {:.1e} (the quasi-static pose refined by {:.1e})",
         pose.join(", "),
         lin.residual,
         lin.refinement

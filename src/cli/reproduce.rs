@@ -370,7 +370,7 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
          R < R_k as in the paper. Against speed at Z_R = 0.3 ours does not degrade monotonically: at 0.05 m/s the \
          rover drifts down side slopes (0.89), from 0.1 m/s its momentum carries it over them (≈ 1.0); at 1 m/s it slides out of the \
          turn (R several times R_k; the hops make this run chaotic, so the number moves with the last bits of any \
-         change to the arithmetic: 8·R_k and 12.5·R_k in two versions of the code). There the front wheels hop; their landings made eq. 37's damper jump to c_w·Δ̇ at the first touch and stalled the \
+         change to the arithmetic: between 8 and 15·R_k from one version of the code to the next). There the front wheels hop; their landings made eq. 37's damper jump to c_w·Δ̇ at the first touch and stalled the \
          integrator until the damper was made to ramp in over the first 0.1 mm of deflection \
          (`wheel_law::DAMPING_RAMP`, docs in the code).\n",
     );

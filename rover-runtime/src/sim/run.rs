@@ -157,11 +157,19 @@ where
         if let Some(dt) = sample {
             target = target.min(k_sample as f64 * dt);
         }
-        let at_break = next_break < breaks.len() && breaks[next_break] < target;
+        // A breakpoint on (or within rounding of) the next output instant
+        // is one too: the integrator must restart there, not carry its
+        // history across the jump (a settling time on an output instant
+        // used to, and could stall BDF's step control right before it).
+        let at_break =
+            next_break < breaks.len() && breaks[next_break] <= target + 1e-12 * (1.0 + target);
         if at_break {
             target = breaks[next_break];
         }
-        if let Err(e) = integ.advance(sys, &mut t, y, target) {
+        sys.set_next_break(at_break.then_some(target));
+        let advanced = integ.advance(sys, &mut t, y, target);
+        sys.set_next_break(None);
+        if let Err(e) = advanced {
             let te = e.time().unwrap_or(t);
             fail(
                 &mut outcome,

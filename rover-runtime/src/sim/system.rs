@@ -32,6 +32,7 @@ pub struct RoverSystem<P, H> {
     torque_commands: Vec<f64>,
     steer_commands: Vec<f64>,
     steerable: Vec<bool>,
+    next_break: f64,
 }
 
 impl<P: Plant, H: HeightField> RoverSystem<P, H> {
@@ -53,7 +54,20 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             steer_commands: vec![0.0; k],
             steerable: control.steerable().to_vec(),
             control,
+            next_break: f64::INFINITY,
         }
+    }
+
+    /// The next time the commands jump (a breakpoint of a profile, the end
+    /// of settling), or `None`. Until it is cleared, an evaluation at or
+    /// after it takes the commands just before it, their left limit: the
+    /// step of an implicit integrator that ends on a breakpoint evaluates
+    /// the right-hand side there, and with the command after the jump its
+    /// error estimate would not shrink below the jump times the step (at
+    /// tight tolerances, below the minimum step). The run driver sets it
+    /// while it advances to a breakpoint and restarts the integrator there.
+    pub fn set_next_break(&mut self, t: Option<f64>) {
+        self.next_break = t.unwrap_or(f64::INFINITY);
     }
 
     /// Open-loop motor torques [N·m] per wheel (the description's order,
@@ -117,6 +131,12 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// The full evaluation: wheels, contacts, control, loads, accelerations.
     fn evaluate(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
         let n = self.n;
+        // The commands' time: before the next break, its left limit on it.
+        let t = if t >= self.next_break {
+            self.next_break.next_down()
+        } else {
+            t
+        };
         let (x, rest) = y.split_at(n);
         let (w, z) = rest.split_at(n);
         self.control.steer(t, x, z, &mut self.steer);
