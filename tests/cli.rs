@@ -490,3 +490,46 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
         .unwrap();
     assert_eq!(missing.status.code(), Some(2));
 }
+
+/// Every scenario shipped in scenarios/ loads, and its first 1.5 s run to
+/// completion with the rover it names (files it refers to, such as a
+/// command CSV, found next to it): the examples the README points to work.
+#[test]
+fn every_shipped_scenario_runs() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 9, "{names:?}");
+    for path in names {
+        let mut scenario = rover_runtime::scenario::Scenario::load(&path)
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        scenario.duration = scenario.duration.min(1.5);
+        let rover = scenario
+            .rover
+            .clone()
+            .expect("a shipped scenario names its rover");
+        let spec = rover_spec::load_str(rover_models::builtin(&rover).unwrap(), &rover).unwrap();
+        let plant = rover_runtime::GenericPlant::new(spec.model.clone()).unwrap();
+        let summary = rover_runtime::simulate::simulate(
+            plant,
+            &spec.model,
+            &rover,
+            &scenario,
+            &dir,
+            std::io::sink(),
+            &std::sync::atomic::AtomicBool::new(false),
+            |_| {},
+        )
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert_eq!(
+            summary.status,
+            rover_runtime::output::Status::Completed,
+            "{}",
+            path.display()
+        );
+    }
+}

@@ -426,6 +426,11 @@ pub fn operating_system<P: Plant>(
     if !point.speed.is_finite() {
         return not_steady("the speed must be finite");
     }
+    if point.control.commands.is_some() {
+        return not_steady(
+            "open-loop commands from a file change with time: linearize without `[control.commands]` (the input matrix B has the torque and steering columns)",
+        );
+    }
     let mut control = point.control.clone();
     if let Some(s) = &mut control.speed {
         s.speed = Profile::Constant(point.speed);

@@ -18,6 +18,8 @@
 //! front_left_deg = 5.0       # kp, ki, kd; or via = "ackermann", lookahead;
 //!                            # cross_track, cross_track_integral, line_origin
 //!                            # or waypoints)
+//! [control.commands]         # optional: open-loop torques/steering from a CSV file
+//! file = "drive.csv"         # header t,tau1,…,delta1,…; relative to this file
 //!
 //! [integrator.bdf]            # the default: orders 1–2, like ode15s
 //! rtol = 1e-6

@@ -165,7 +165,7 @@ pub fn simulate<P: Plant, W: Write>(
     };
     let mut y = initial_state(model, scenario, terrain.as_ref())?;
     let ground = terrain.map(|t| scenario.contact.ground(t, model));
-    let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
+    let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
     let kinematic_radius = control.kinematic_radius(scenario.duration);
     let mut sys = RoverSystem::new(plant, ground, control);
     // The integral states beyond the speed loop's start at 0 too.
@@ -331,13 +331,14 @@ fn imposed_path(
     if matches!(
         scenario.control.steering,
         crate::control::Steering::Slip { .. } | crate::control::Steering::Heading(_)
-    ) {
+    ) || scenario.control.commands.is_some()
+    {
         return Err(SetupError::Path(
-            "a quasi-static run with slip steering or heading hold needs `path_from = \"<run.csv>\"`: the path of a dynamic run of the same scenario".into(),
+            "a quasi-static run with slip steering, heading hold or open-loop commands needs `path_from = \"<run.csv>\"`: the path of a dynamic run of the same scenario".into(),
         ));
     }
     // The kinematic path: G moves with body velocity [V, −ω·x_c], ω = κ·V.
-    let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
+    let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
     let mut pose = [y0[0], y0[1], y0[5]];
     let mut out = Vec::with_capacity(times.len());
     let mut t = 0.0;
@@ -381,7 +382,7 @@ fn quasi_static_run<W: Write>(
         .map(|i| (i as f64 / scenario.output_rate).min(scenario.duration))
         .collect();
     let poses = imposed_path(model, scenario, base_dir, &y0, &times)?;
-    let control = Controller::new(scenario.control.clone(), model, scenario.settle)?;
+    let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
     let kinematic_radius = control.kinematic_radius(scenario.duration);
     let mut q0 = vec![y0[2], y0[3], y0[4]];
     q0.extend_from_slice(&y0[6..n]);

@@ -6,6 +6,7 @@ use rover_dynamics::plant::Plant;
 use serde::{Deserialize, Serialize};
 
 use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
+use super::commands::{CommandSchedule, CommandsConfig};
 use super::distribution::{Distribution, add_share};
 use super::speed::SpeedConfig;
 use super::steering::{
@@ -26,6 +27,10 @@ pub struct ControllerConfig {
     /// Active suspension; absent: passive.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub active_suspension: Option<ActiveSuspensionConfig>,
+    /// Open-loop torques and steering angles from a CSV file, added to the
+    /// loops' commands; absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub commands: Option<CommandsConfig>,
 }
 
 /// A controller that cannot run on this rover.
@@ -65,6 +70,8 @@ pub struct Controller {
     /// Indices in ζ of the heading hold's integrals, when it has them.
     heading_state: Option<usize>,
     line_state: Option<usize>,
+    /// The open-loop command schedule, when the configuration has one.
+    schedule: Option<CommandSchedule>,
 }
 
 /// Name of the speed loop's integral state (always ζ's first).
@@ -75,8 +82,20 @@ pub const HEADING_INTEGRAL: &str = "zeta_heading";
 pub const LINE_INTEGRAL: &str = "zeta_line";
 
 impl Controller {
-    /// A controller for `model`; commands start after `settle` seconds.
+    /// A controller for `model`; commands start after `settle` seconds. A
+    /// command file is read relative to the working directory.
     pub fn new(config: ControllerConfig, model: &Model, settle: f64) -> Result<Self, ControlError> {
+        Self::new_in(config, model, settle, std::path::Path::new("."))
+    }
+
+    /// [`Controller::new`], with a command file read relative to `base_dir`
+    /// (the scenario's folder).
+    pub fn new_in(
+        config: ControllerConfig,
+        model: &Model,
+        settle: f64,
+        base_dir: &std::path::Path,
+    ) -> Result<Self, ControlError> {
         let rest = model.rest();
         let rest_xy: Vec<(f64, f64)> = model
             .wheels
@@ -170,7 +189,14 @@ impl Controller {
         let line_state = hold
             .is_some_and(|h| h.integrates_line())
             .then_some(1 + usize::from(heading_state.is_some()));
+        let schedule = match &config.commands {
+            Some(c) => Some(
+                CommandSchedule::load(c, base_dir, model).map_err(|m| err("commands.file", m))?,
+            ),
+            None => None,
+        };
         Ok(Self {
+            schedule,
             heading_state,
             line_state,
             left: rest_xy.iter().map(|&(_, y)| y > 0.0).collect(),
@@ -320,6 +346,11 @@ impl Controller {
     ) {
         out.copy_from_slice(commanded);
         self.add_torques(t, x, w, z, normals, out);
+        if let Some(s) = &self.schedule
+            && t >= self.settle
+        {
+            s.add_torques(t - self.settle, out);
+        }
         for (o, &cap) in out.iter_mut().zip(&self.max_torque) {
             *o = o.clamp(-cap, cap);
         }
@@ -385,6 +416,9 @@ impl Controller {
             return;
         }
         let tc = t - self.settle;
+        if let Some(s) = &self.schedule {
+            s.add_steering(tc, out);
+        }
         let kappa = match &self.config.steering {
             Steering::Ackermann(a) => self.ackermann_curvature(a, tc),
             Steering::Heading(h) if h.via == HeadingActuator::Ackermann => h.curvature(
@@ -398,7 +432,7 @@ impl Controller {
         for (k, o) in out.iter_mut().enumerate() {
             if self.steerable[k] {
                 let (x, y) = self.rest_xy[k];
-                *o = ackermann_angle(kappa, x, y, self.centre_x);
+                *o += ackermann_angle(kappa, x, y, self.centre_x);
             }
         }
     }
@@ -490,6 +524,9 @@ impl Controller {
                 }
             }
             Steering::None => {}
+        }
+        if let Some(s) = &self.schedule {
+            b.extend(shift(s.breakpoints()));
         }
         b
     }

@@ -1,9 +1,11 @@
 //! Controllers (MODEL.md §8, paper §5): the speed loop and the torque
 //! distribution, kinematic (Ackermann) and slip steering, heading hold with
 //! line following (ours: slip steering closed on the heading), active
-//! suspension, and the time schedule of set-points that drives them.
+//! suspension, open-loop command schedules, and the time schedule of
+//! set-points that drives them.
 
 mod active_suspension;
+mod commands;
 mod controller;
 mod distribution;
 mod profile;
@@ -11,6 +13,7 @@ mod speed;
 mod steering;
 
 pub use active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
+pub use commands::{CommandSchedule, CommandsConfig};
 pub use controller::{
     ControlError, Controller, ControllerConfig, HEADING_INTEGRAL, LINE_INTEGRAL, SPEED_INTEGRAL,
 };
