@@ -56,6 +56,7 @@ pub struct QuasiStatic<'a, H> {
     search: MeridionalContact,
     neutral: Vec<f64>,
     loads: Vec<Load<f64>>,
+    points: Vec<[f64; 3]>,
     // Scratch of a residual evaluation: coordinates, zero rates, Q.
     x: Vec<f64>,
     zeros: Vec<f64>,
@@ -70,6 +71,9 @@ pub struct QuasiStatic<'a, H> {
 
 /// Largest Newton iterations per instant.
 const MAX_ITERATIONS: usize = 50;
+
+/// Largest change of any unknown in one Newton step [m or rad].
+const MAX_STEP: f64 = 0.1;
 
 impl<'a, H: HeightField> QuasiStatic<'a, H> {
     /// A solver starting from `q0` = [Z, φ, θ, y…].
@@ -94,6 +98,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             search,
             neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
             loads: vec![zero; model.wheels.len()],
+            points: vec![[0.0; 3]; model.wheels.len()],
             x: Vec::with_capacity(model.dof()),
             zeros: vec![0.0; model.dof()],
             gq: vec![0.0; model.dof()],
@@ -103,6 +108,80 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         }
     }
 
+    /// Start the next solve from the attitude of the plane fitted through
+    /// the terrain under the wheels at pose (X, Y, ψ), and the height at
+    /// which the wheels just touch it, lowered by the static tyre
+    /// deflection: on a slope a level start leaves the downhill wheels in
+    /// the air, a nearly singular Jacobian from which Newton wanders off.
+    /// The suspension coordinates stay. With fewer than three wheels, or
+    /// wheels in a line, nothing changes.
+    pub fn align(&mut self, pose: [f64; 3]) -> Result<(), QuasiStaticError> {
+        let model = self.model;
+        let y = self.q[3..].to_vec();
+        let (s, c) = pose[2].sin_cos();
+        // The wheels' positions in heading axes (level) and the ground there.
+        let mut points = Vec::with_capacity(model.wheels.len());
+        for (k, w) in model.wheels.iter().enumerate() {
+            let u = model.bodies[w.body].position.value(&y);
+            let (gx, gy) = (pose[0] + c * u[0] - s * u[1], pose[1] + s * u[0] + c * u[1]);
+            let h = self
+                .terrain
+                .height(gx, gy)
+                .map_err(|off| QuasiStaticError::OffMap { wheel: k, off })?;
+            points.push((u[0], u[1], h));
+        }
+        // Least squares h = a + b·x + c·y in heading axes: the normal
+        // equations, by Cramer's rule.
+        let n = points.len() as f64;
+        let sum = |f: &dyn Fn(&(f64, f64, f64)) -> f64| points.iter().map(f).sum::<f64>();
+        let (sx, sy, sh) = (sum(&|p| p.0), sum(&|p| p.1), sum(&|p| p.2));
+        let (sxx, syy, sxy) = (
+            sum(&|p| p.0 * p.0),
+            sum(&|p| p.1 * p.1),
+            sum(&|p| p.0 * p.1),
+        );
+        let (sxh, syh) = (sum(&|p| p.0 * p.2), sum(&|p| p.1 * p.2));
+        let det3 = |m: [[f64; 3]; 3]| {
+            m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+        };
+        let m = [[n, sx, sy], [sx, sxx, sxy], [sy, sxy, syy]];
+        let d = det3(m);
+        if points.len() < 3 || d.is_nan() || d.abs() <= 1e-12 * (1.0 + n * n) {
+            return Ok(());
+        }
+        let rhs = [sh, sxh, syh];
+        let with = |col: usize| {
+            let mut a = m;
+            for r in 0..3 {
+                a[r][col] = rhs[r];
+            }
+            det3(a)
+        };
+        let (forward, left) = (with(1) / d, with(2) / d);
+        // Nose up on a rise ahead is a negative pitch (θ turns x towards −z);
+        // left side up on a rise to the left is a positive roll.
+        let (theta, phi) = (-forward.atan(), left.atan());
+        let att = Attitude::new(phi, theta, pose[2]);
+        let r = att.rotation();
+        let mut z = f64::NEG_INFINITY;
+        for (k, w) in model.wheels.iter().enumerate() {
+            let u = model.bodies[w.body].position.value(&y);
+            let p = [0, 1, 2].map(|i| r[i][0] * u[0] + r[i][1] * u[1] + r[i][2] * u[2]);
+            let g = self
+                .terrain
+                .height(pose[0] + p[0], pose[1] + p[1])
+                .map_err(|off| QuasiStaticError::OffMap { wheel: k, off })?;
+            z = z.max(g + w.radius - p[2]);
+        }
+        let stiffness: f64 = model.wheels.iter().map(|w| w.stiffness).sum();
+        self.q[0] = z - model.total_mass() * model.gravity / stiffness;
+        self.q[1] = phi;
+        self.q[2] = theta;
+        Ok(())
+    }
+
     /// The full coordinates x for a pose (X, Y, ψ) and unknowns q.
     pub fn coordinates(&self, pose: [f64; 3], q: &[f64]) -> Vec<f64> {
         let mut x = vec![pose[0], pose[1], q[0], q[1], q[2], pose[2]];
@@ -110,7 +189,14 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         x
     }
 
-    /// Normal force on each wheel at the current solution, for a pose.
+    /// Each wheel's contact point H (of its most loaded patch; below the
+    /// centre by the radius when airborne) at the last evaluation
+    /// ([`QuasiStatic::normal_forces`] makes one at the solution).
+    pub fn contact_points(&self) -> &[[f64; 3]] {
+        &self.points
+    }
+
+    /// Vertical force on each wheel at the current solution, for a pose.
     pub fn normal_forces(
         &mut self,
         pose: [f64; 3],
@@ -147,12 +233,39 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                 .search
                 .find(self.terrain, wk.centre, wk.spin_axis, wheel.radius)
                 .map_err(|off| QuasiStaticError::OffMap { wheel: k, off })?;
-            let mut fz = 0.0;
+            // Each patch's vertical force acts at its contact point H, as
+            // the dynamic law's forces do (MODEL.md §7): reduced to the
+            // wheel centre it is the force and the moment (H − G_j) × F on
+            // the carrier, less its axial part, which the motor holds (the
+            // stator takes it). Applied at the centre instead, a slope would
+            // move the support polygon uphill by R·sin α and a cambered
+            // wheel its load sideways.
+            let (mut force, mut moment, mut stator) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+            let a = wk.spin_axis;
+            let (mut strongest, mut point) = (
+                0.0,
+                [wk.centre[0], wk.centre[1], wk.centre[2] - wheel.radius],
+            );
             for p in contact.patches() {
                 let fn_ = (wheel.stiffness * p.deflection).max(0.0);
-                fz += fn_ / p.normal[2].max(1e-6);
+                let fz = fn_ / p.normal[2].max(1e-6);
+                if fz > strongest {
+                    (strongest, point) = (fz, p.point);
+                }
+                let arm = [0, 1, 2].map(|i| p.point[i] - wk.centre[i]);
+                // (H − G_j) × (0, 0, F_z).
+                let m = [arm[1] * fz, -arm[0] * fz, 0.0];
+                let axial = m[0] * a[0] + m[1] * a[1] + m[2] * a[2];
+                force[2] += fz;
+                for i in 0..3 {
+                    moment[i] += m[i] - axial * a[i];
+                    stator[i] += axial * a[i];
+                }
             }
-            self.loads[k].force = [0.0, 0.0, fz];
+            self.points[k] = point;
+            self.loads[k].force = force;
+            self.loads[k].moment = moment;
+            self.loads[k].stator_torque = stator;
         }
         let gq = &mut self.gq;
         gq.iter_mut().for_each(|v| *v = 0.0);
@@ -208,6 +321,16 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                 q[0] -= 1e-3;
                 self.residual(pose, &q, &mut r)?;
                 continue;
+            }
+            // A step no larger than a trust radius: where a wheel is off the
+            // ground the Jacobian is nearly singular (a rover started level
+            // on a slope has its downhill wheels in the air) and the Newton
+            // step can be tens of radians; a bounded step lets the wheels
+            // touch first.
+            let longest = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if longest > MAX_STEP {
+                let shrink = MAX_STEP / longest;
+                step.iter_mut().for_each(|v| *v *= shrink);
             }
             // Backtracking (Armijo) on ½|r|².
             let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();

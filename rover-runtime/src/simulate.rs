@@ -405,6 +405,13 @@ fn quasi_static_run<W: Write>(
         crate::GenericPlant::new(model.clone()).map_err(|e| SetupError::Path(e.to_string()))?;
     let zeros = vec![0.0; n];
     let no_steer = vec![0.0; k];
+    // The first solve starts standing on the terrain's plane under the
+    // wheels; later ones from the previous solution.
+    if let Some(&first) = poses.first()
+        && let Err(e) = solver.align(first)
+    {
+        return Err(SetupError::Path(e.to_string()));
+    }
     for (&t, &pose) in times.iter().zip(&poses) {
         if interrupt.load(std::sync::atomic::Ordering::Relaxed) {
             stop = (
@@ -431,8 +438,8 @@ fn quasi_static_run<W: Write>(
         for w in &wheels {
             v.extend_from_slice(&w.centre);
         }
-        for (w, (fz, wheel)) in wheels.iter().zip(normals.iter().zip(&model.wheels)) {
-            v.extend_from_slice(&[w.centre[0], w.centre[1], w.centre[2] - wheel.radius]);
+        for (h, fz) in solver.contact_points().iter().zip(&normals) {
+            v.extend_from_slice(h);
             v.extend_from_slice(&[*fz, 0.0, 0.0]);
         }
         v.extend(std::iter::repeat_n(0.0, 2 * k));
