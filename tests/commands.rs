@@ -51,6 +51,13 @@ where
     }
 }
 
+/// Two states equal bit for bit.
+fn same_bits(a: &[f64], b: &[f64]) {
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert_eq!(x.to_bits(), y.to_bits(), "state {i}: {x} vs {y}");
+    }
+}
+
 /// Slip steering's torques, `∓Δτ` on the left and right wheels (here with a
 /// speed loop of zero gain, so they are the whole torque), given instead
 /// as open-loop torques: the same run, bit for bit, in x and w.
@@ -69,15 +76,7 @@ fn open_loop_torques_drive_as_the_built_in_slip_steering_does() {
     advance(&mut built_in, &mut y1, 3000);
     advance(&mut open, &mut y2, 3000);
     assert_eq!(built_in.torques(), open.torques());
-    for i in 0..2 * n {
-        assert_eq!(
-            y1[i].to_bits(),
-            y2[i].to_bits(),
-            "state {i}: {} vs {}",
-            y1[i],
-            y2[i]
-        );
-    }
+    same_bits(&y1[..2 * n], &y2[..2 * n]);
     assert!(y1[5] > 1e-3, "it turns left: ψ = {}", y1[5]);
 }
 
@@ -103,15 +102,7 @@ fn open_loop_steering_angles_steer_as_the_built_in_ackermann_does() {
     advance(&mut built_in, &mut y1, 3000);
     advance(&mut open, &mut y2, 3000);
     assert_eq!(built_in.steering(), open.steering());
-    for i in 0..2 * n + 1 {
-        assert_eq!(
-            y1[i].to_bits(),
-            y2[i].to_bits(),
-            "state {i}: {} vs {}",
-            y1[i],
-            y2[i]
-        );
-    }
+    same_bits(&y1[..2 * n + 1], &y2[..2 * n + 1]);
     assert!(y1[5] > 0.05, "it turns left: ψ = {}", y1[5]);
 }
 

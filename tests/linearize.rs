@@ -54,9 +54,16 @@ fn differences_in_free_flight_are_the_generated_exact_jacobian() {
     );
 }
 
-/// ż = A·z over the time steps of a nonlinear integration both run with the
-/// same RK4.
-struct Linear(DMatrix<f64>);
+/// ż = A·z + b (b = B·u for a constant input u, 0 without one) over the
+/// time steps of a nonlinear integration both run with the same RK4.
+struct Linear(DMatrix<f64>, DVector<f64>);
+
+impl Linear {
+    /// ż = A·z.
+    fn free(a: &DMatrix<f64>) -> Self {
+        Linear(a.clone(), DVector::zeros(a.nrows()))
+    }
+}
 
 impl OdeSystem for Linear {
     type Error = std::convert::Infallible;
@@ -64,7 +71,8 @@ impl OdeSystem for Linear {
         self.0.nrows()
     }
     fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Self::Error> {
-        dy.copy_from_slice((&self.0 * DVector::from_column_slice(y)).as_slice());
+        let f = &self.0 * DVector::from_column_slice(y) + &self.1;
+        dy.copy_from_slice(f.as_slice());
         Ok(())
     }
 }
@@ -84,32 +92,39 @@ fn linear_prediction_error<P: Plant>(m: &Model, plant: P, eps: f64) -> f64 {
     for (i, zi) in z[6..n].iter_mut().enumerate() {
         *zi = if i % 2 == 0 { eps } else { -0.6 * eps };
     }
-    deviation_from_linear(&mut sys, &y_e, &a, z, 1e-5, (0.01, 40), 0.0)
+    deviation_from_linear(
+        &mut sys,
+        &y_e,
+        Linear::free(&a),
+        z,
+        1e-5,
+        (0.01, 40),
+        (n, 0.0),
+    )
 }
 
 /// The largest deviation of a nonlinear run of `sys` from the linear model
-/// `ż = A·z`, both started `z` off `y_e` and integrated by RK4 at `step`,
-/// over `samples.1` instants `samples.0` apart, in the positions (X against
-/// its steady advance `drift·t`), relative to the largest predicted
-/// displacement.
+/// `lin`, both started `z` off `y_e` and integrated by RK4 at `step`, over
+/// `samples.1` instants `samples.0` apart, in the first `compared.0` states
+/// (X against its steady advance `compared.1·t`), relative to the largest
+/// predicted deviation from `y_e` there.
 fn deviation_from_linear<S: OdeSystem>(
     sys: &mut S,
     y_e: &[f64],
-    a: &DMatrix<f64>,
+    mut lin: Linear,
     mut z: Vec<f64>,
     step: f64,
     samples: (f64, usize),
-    drift: f64,
+    compared: (usize, f64),
 ) -> f64
 where
     S::Error: std::fmt::Debug,
 {
-    let n = z.len() / 2;
+    let (n, drift) = compared;
     let mut y = y_e.to_vec();
     for (yi, zi) in y.iter_mut().zip(&z) {
         *yi += zi;
     }
-    let mut lin = Linear(a.clone());
     let config = FixedStepConfig { step };
     let (mut rk_nl, mut rk_lin) = (
         Rk4::new(y.len(), &config).unwrap(),
@@ -433,7 +448,15 @@ fn closed_loop_at_speed_follows_its_linearization() {
         let mut z = vec![0.0; 2 * n];
         (z[1], z[2], z[3], z[4], z[5]) = (eps, 0.3 * eps, 0.5 * eps, -0.7 * eps, eps);
         // X moves on at the steady rate.
-        deviation_from_linear(&mut sys, &y_e, &a, z, 2.5e-5, (0.05, 20), rate[0])
+        deviation_from_linear(
+            &mut sys,
+            &y_e,
+            Linear::free(&a),
+            z,
+            2.5e-5,
+            (0.05, 20),
+            (n, rate[0]),
+        )
     };
     // Measured: 9.3e-4 and 9.3e-5, exactly in proportion: what is left is
     // the second-order term, not an error of A.
@@ -541,21 +564,6 @@ fn heading_hold_integrals_are_states_of_the_closed_loop() {
     }
 }
 
-/// ż = A·z + B·u for a constant input u.
-struct Forced(DMatrix<f64>, DVector<f64>);
-
-impl OdeSystem for Forced {
-    type Error = std::convert::Infallible;
-    fn dim(&self) -> usize {
-        self.0.nrows()
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Self::Error> {
-        let f = &self.0 * DVector::from_column_slice(y) + &self.1;
-        dy.copy_from_slice(f.as_slice());
-        Ok(())
-    }
-}
-
 /// The torque and steering columns of B are what the open-loop commands do
 /// to the nonlinear rover: held constant from the equilibrium, a small
 /// torque difference (left wheels back, right forward: a turn on the spot)
@@ -609,31 +617,18 @@ fn torque_and_steering_inputs_are_what_the_commands_do() {
             let (mut sys, _) = operating_system(&m, plant(), &point).unwrap();
             sys.set_torques(&torques).unwrap();
             sys.set_steering(&angles).unwrap();
-            let mut y = lin.state.clone();
-            let mut rate = vec![0.0; y.len()];
-            sys.rhs(0.0, &y, &mut rate).unwrap();
+            let mut rate = vec![0.0; lin.state.len()];
+            sys.rhs(0.0, &lin.state, &mut rate).unwrap();
             let drift = rate[0] - bu[0]; // X's steady advance, without the input's
-            let mut z = vec![0.0; dim];
-            let mut forced = Forced(a.clone(), bu);
-            let config = FixedStepConfig { step: 2.5e-5 };
-            let (mut rk_nl, mut rk_lin) = (
-                Rk4::new(y.len(), &config).unwrap(),
-                Rk4::new(dim, &config).unwrap(),
-            );
-            let (mut t_nl, mut t_lin) = (0.0, 0.0);
-            let (mut worst, mut scale) = (0.0f64, 0.0f64);
-            for k in 1..=20 {
-                let t = 0.05 * k as f64;
-                rk_nl.advance(&mut sys, &mut t_nl, &mut y, t).unwrap();
-                rk_lin.advance(&mut forced, &mut t_lin, &mut z, t).unwrap();
-                for i in 0..2 * n {
-                    let steady = lin.state[i] + if i == 0 { drift * t } else { 0.0 };
-                    worst = worst.max((y[i] - steady - z[i]).abs());
-                    scale = scale.max(z[i].abs());
-                }
-            }
-            assert!(scale > 0.0);
-            worst / scale
+            deviation_from_linear(
+                &mut sys,
+                &lin.state,
+                Linear(a.clone(), bu),
+                vec![0.0; dim],
+                2.5e-5,
+                (0.05, 20),
+                (2 * n, drift),
+            )
         };
         let (coarse, fine) = (deviation(2e-3), deviation(1e-3));
         // Measured: swing4 5.5e-4 → 2.8e-4, LRV 2.8e-3 → 1.4e-3.

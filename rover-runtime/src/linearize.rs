@@ -271,21 +271,20 @@ fn steady<P: Plant, H: HeightField>(
         .filter(|&c| !(parked && (n..2 * n).contains(&states[c])))
         .filter(|&c| !(held_speed && states[c] == n))
         .collect();
-    let mut f = vec![0.0; y.len()];
-    let mut residual = |sys: &mut RoverSystem<P, H>, y: &[f64]| -> Result<f64, LinearizeError> {
-        sys.rhs(0.0, y, &mut f)?;
-        Ok(rows.iter().fold(0.0, |m: f64, &i| m.max(f[i].abs())))
+    // f: the rates at the accepted y; trial: at a step being tried.
+    let (mut f, mut trial) = (vec![0.0; y.len()], vec![0.0; y.len()]);
+    let residual = |sys: &mut RoverSystem<P, H>, y: &[f64], f: &mut [f64]| {
+        sys.rhs(0.0, y, f)?;
+        Ok::<f64, LinearizeError>(rows.iter().fold(0.0, |m: f64, &i| m.max(f[i].abs())))
     };
-    let mut r = residual(sys, y)?;
+    let mut r = residual(sys, y, &mut f)?;
     for _ in 0..MAX_SETTLE {
         if r <= SETTLED {
             break;
         }
         let a = state_matrix(sys, y, names, states)?;
         let j = DMatrix::from_fn(rows.len(), moving.len(), |p, q| a[(fixed[p], moving[q])]);
-        let mut f0 = vec![0.0; y.len()];
-        sys.rhs(0.0, y, &mut f0)?;
-        let rhs = DVector::from_fn(rows.len(), |p, _| -f0[rows[p]]);
+        let rhs = DVector::from_fn(rows.len(), |p, _| -f[rows[p]]);
         let svd = j.svd(true, true);
         let cut = 1e-9 * svd.singular_values.max();
         let Ok(step) = svd.solve(&rhs, cut) else {
@@ -302,9 +301,10 @@ fn steady<P: Plant, H: HeightField>(
                 let i = states[c];
                 y[i] = start[i] + scale * step[q];
             }
-            match residual(sys, y) {
+            match residual(sys, y, &mut trial) {
                 Ok(next) if next < r => {
                     r = next;
+                    std::mem::swap(&mut f, &mut trial);
                     improved = true;
                     break;
                 }

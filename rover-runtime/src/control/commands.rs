@@ -26,6 +26,7 @@ use rover_dynamics::Model;
 use serde::{Deserialize, Serialize};
 
 use super::profile::Interpolation;
+use crate::terrain::{FileError, Place};
 
 /// The `[control.commands]` table of a scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -57,14 +58,20 @@ pub struct CommandSchedule {
     values: Vec<f64>,
 }
 
-/// A command file that cannot be used: `path:line: problem`, and the fix.
+/// A command file that cannot be used: `path:line: problem`, and the fix,
+/// in the terrain files' format (line 0: the file as a whole).
 fn located(path: &Path, line: usize, problem: impl std::fmt::Display, help: &str) -> String {
-    let place = if line > 0 {
-        format!("{}:{line}", path.display())
-    } else {
-        path.display().to_string()
-    };
-    format!("{place}: {problem}\n  = help: {help}")
+    FileError {
+        path: path.to_path_buf(),
+        place: if line > 0 {
+            Place::Line(line)
+        } else {
+            Place::Whole
+        },
+        problem: problem.to_string(),
+        help: help.to_string(),
+    }
+    .to_string()
 }
 
 impl CommandSchedule {

@@ -584,18 +584,12 @@ fn validate_heading(
     h.heading_deg
         .validate()
         .map_err(|m| err("steering.heading_deg", m))?;
-    if !(h.cross_track.is_finite() && h.cross_track >= 0.0) {
-        return Err(err(
-            "steering.cross_track",
-            format!("must be ≥ 0 rad/m, got {}", h.cross_track),
-        ));
-    }
-    if !(h.cross_track_integral.is_finite() && h.cross_track_integral >= 0.0) {
-        return Err(err(
-            "steering.cross_track_integral",
-            format!("must be ≥ 0 rad/(m·s), got {}", h.cross_track_integral),
-        ));
-    }
+    non_negative("steering.cross_track", h.cross_track, "rad/m")?;
+    non_negative(
+        "steering.cross_track_integral",
+        h.cross_track_integral,
+        "rad/(m·s)",
+    )?;
     if h.cross_track_integral > 0.0 && h.cross_track <= 0.0 {
         return Err(err(
             "steering.cross_track_integral",
@@ -646,20 +640,8 @@ fn validate_heading(
             if !(kp.is_finite() && kp > 0.0) {
                 return Err(err("steering.kp", format!("must be > 0 N·m/rad, got {kp}")));
             }
-            let kd = h.kd.unwrap_or(0.0);
-            if !(kd.is_finite() && kd >= 0.0) {
-                return Err(err(
-                    "steering.kd",
-                    format!("must be ≥ 0 N·m·s/rad, got {kd}"),
-                ));
-            }
-            let ki = h.ki.unwrap_or(0.0);
-            if !(ki.is_finite() && ki >= 0.0) {
-                return Err(err(
-                    "steering.ki",
-                    format!("must be ≥ 0 N·m/(rad·s), got {ki}"),
-                ));
-            }
+            non_negative("steering.kd", h.kd.unwrap_or(0.0), "N·m·s/rad")?;
+            non_negative("steering.ki", h.ki.unwrap_or(0.0), "N·m/(rad·s)")?;
             if h.lookahead.is_some() {
                 return Err(err(
                     "steering.lookahead",
@@ -698,6 +680,15 @@ fn validate_heading(
         }
     }
     Ok(())
+}
+
+/// A gain that must be finite and ≥ 0, with its field and unit.
+fn non_negative(field: &str, value: f64, unit: &str) -> Result<(), ControlError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        Err(err(field, format!("must be ≥ 0 {unit}, got {value}")))
+    }
 }
 
 /// x_c of a heading hold via Ackermann: the mean rest x of the

@@ -31,7 +31,6 @@ pub struct RoverSystem<P, H> {
     normals: Vec<f64>,
     torque_commands: Vec<f64>,
     steer_commands: Vec<f64>,
-    steerable: Vec<bool>,
     next_break: f64,
 }
 
@@ -52,7 +51,6 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             normals: vec![0.0; k],
             torque_commands: vec![0.0; k],
             steer_commands: vec![0.0; k],
-            steerable: control.steerable().to_vec(),
             control,
             next_break: f64::INFINITY,
         }
@@ -90,7 +88,9 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// [`RoverSystem::set_torques`].
     pub fn set_steering(&mut self, angles: &[f64]) -> Result<(), CommandError> {
         check_command("steering", angles, self.steer_commands.len())?;
-        if let Some(k) = (0..angles.len()).find(|&k| !self.steerable[k] && angles[k] != 0.0) {
+        if let Some(k) =
+            (0..angles.len()).find(|&k| !self.control.steerable()[k] && angles[k] != 0.0)
+        {
             return Err(CommandError::NotSteerable {
                 wheel: k + 1,
                 value: angles[k],
