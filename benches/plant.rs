@@ -7,6 +7,8 @@
 //! ground with RK4. Same seeded states for both back ends, setup outside
 //! the timing. `cargo bench --bench plant -- --warm-up-time 1 --measurement-time 3`.
 
+mod support;
+
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
@@ -14,13 +16,10 @@ use rover_dynamics::Model;
 use rover_dynamics::nalgebra::SVector;
 use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
 use rover_runtime::GenericPlant;
-use rover_runtime::contact::RimSampling;
-use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
-use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::ground::ContactMethod;
 use rover_runtime::integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
-use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
-use rover_runtime::wheel_law::WheelLawConfig;
+use support::{model, system, system_on};
 
 /// A small deterministic generator (xorshift64*), so the states are seeded.
 struct Rng(u64);
@@ -39,12 +38,6 @@ struct Sample {
     x: Vec<f64>,
     w: Vec<f64>,
     loads: Vec<WheelLoad>,
-}
-
-fn model(name: &str) -> Model {
-    rover_spec::load_str(rover_models::builtin(name).unwrap(), name)
-        .unwrap()
-        .model
 }
 
 fn samples(model: &Model, count: usize) -> Vec<Sample> {
@@ -75,15 +68,6 @@ fn samples(model: &Model, count: usize) -> Vec<Sample> {
         .collect()
 }
 
-/// The rover on flat ground, wheels just touching, driving at 0.1 m/s.
-fn system<P: Plant>(
-    model: &Model,
-    plant: P,
-    method: ContactMethod,
-) -> (RoverSystem<P, Terrain>, Vec<f64>) {
-    system_on(Terrain::default(), model, plant, method)
-}
-
 /// Flat ground at Z = 0 as a 4 m × 4 m bicubic grid (5 cm spacing): the
 /// geometry of [`system`], but the contact search samples the rim as on
 /// any rough map instead of cutting it with a plane in closed form.
@@ -92,38 +76,6 @@ fn flat_grid() -> Terrain {
         rover_runtime::terrain::Grid::from_fn([-2.0, -2.0], [0.05, 0.05], 81, 81, |_, _| 0.0)
             .unwrap(),
     )
-}
-
-/// [`system`] on `terrain`.
-fn system_on<P: Plant>(
-    terrain: Terrain,
-    model: &Model,
-    plant: P,
-    method: ContactMethod,
-) -> (RoverSystem<P, Terrain>, Vec<f64>) {
-    let n = model.dof();
-    let ground = Ground::new(
-        terrain,
-        model,
-        method,
-        RimSampling::default(),
-        WheelLawConfig::default(),
-    );
-    let config = ControllerConfig {
-        speed: Some(SpeedConfig {
-            speed: Profile::Constant(0.1),
-            ..Default::default()
-        }),
-        ..Default::default()
-    };
-    let control = Controller::new(config, model, 0.0).unwrap();
-    let sys = RoverSystem::new(plant, Some(ground), control);
-    let mut y = vec![0.0; 2 * n + 1];
-    let rest = model.rest();
-    y[6..n].copy_from_slice(&rest);
-    // 2 mm into the ground: every wheel in contact.
-    y[2] = model.touchdown_height() - 2e-3;
-    (sys, y)
 }
 
 fn bench_plant<P: Plant>(

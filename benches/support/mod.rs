@@ -1,0 +1,70 @@
+//! What the benches share: a built-in rover's model, and that rover on
+//! flat ground, wheels just touching, driving at 0.1 m/s under the paper's
+//! P speed loop (the default `kp`). Each bench uses part of it.
+#![allow(dead_code)]
+
+use rover_dynamics::Model;
+use rover_dynamics::plant::Plant;
+use rover_runtime::contact::RimSampling;
+use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
+use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::sim::RoverSystem;
+use rover_runtime::terrain::Terrain;
+use rover_runtime::wheel_law::WheelLawConfig;
+
+/// The speed every bench drives at [m/s].
+pub const SPEED: f64 = 0.1;
+
+/// The numeric model of a built-in rover.
+pub fn model(name: &str) -> Model {
+    rover_spec::load_str(rover_models::builtin(name).unwrap(), name)
+        .unwrap()
+        .model
+}
+
+/// The rover on flat ground, wheels just touching, driving at [`SPEED`].
+pub fn system<P: Plant>(
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+    system_on(Terrain::default(), model, plant, method)
+}
+
+/// [`system`] on `terrain`: the state starts at rest with the suspension
+/// at its rest angles and G at [`start_height`].
+pub fn system_on<P: Plant>(
+    terrain: Terrain,
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+    let n = model.dof();
+    let ground = Ground::new(
+        terrain,
+        model,
+        method,
+        RimSampling::default(),
+        WheelLawConfig::default(),
+    );
+    let config = ControllerConfig {
+        speed: Some(SpeedConfig {
+            speed: Profile::Constant(SPEED),
+            ..Default::default()
+        }),
+        ..Default::default()
+    };
+    let control = Controller::new(config, model, 0.0).unwrap();
+    let sys = RoverSystem::new(plant, Some(ground), control);
+    let mut y = vec![0.0; 2 * n + 1];
+    let rest = model.rest();
+    y[6..n].copy_from_slice(&rest);
+    y[2] = start_height(model);
+    (sys, y)
+}
+
+/// G's starting height: 2 mm into the ground, so that every wheel is in
+/// contact from the first step.
+pub fn start_height(model: &Model) -> f64 {
+    model.touchdown_height() - 2e-3
+}
