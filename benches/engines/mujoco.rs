@@ -10,6 +10,7 @@ use std::ffi::{CStr, CString, c_char, c_int, c_uint, c_void};
 use std::path::Path;
 
 use rover_dynamics::model::Spring;
+use rover_runtime::terrain::Grid;
 use rover_spec::Spec;
 use rover_spec::description::SuspensionDesc;
 
@@ -203,10 +204,13 @@ pub const WHEEL_HALF_WIDTH: f64 = 0.02;
 /// wheels' `mu_x`): the wheel–ground law is the one thing the two engines
 /// cannot share. Keyframe 0 is the start of [`crate::support::system`]:
 /// G at `start_height`, the arms at their rest angles, at rest, the servos
-/// at `speed`.
+/// at `speed`. The ground is the plane Z = 0, or `map`'s nodes as a
+/// height field (MuJoCo triangulates each cell where rover interpolates
+/// the same nodes bicubically).
 pub fn mjcf(
     spec: &Spec,
     setup: Setup,
+    map: Option<&Grid>,
     kp: f64,
     speed: f64,
     start_height: f64,
@@ -274,12 +278,20 @@ pub fn mjcf(
         qpos.push_str(&format!(" {} 0", coord.rest));
         ctrl.push_str(&format!(" {}", speed / r));
     }
+    let mu = model.wheels.first().map_or(1.0, |w| w.mu_x);
+    let (asset, ground) = match map {
+        None => (
+            String::new(),
+            format!(r#"<geom name="ground" type="plane" size="0 0 1" friction="{mu} 0.005 0.0001"/>"#),
+        ),
+        Some(grid) => height_field(grid, mu)?,
+    };
     Ok(format!(
         r#"<mujoco model="{name}">
   <compiler angle="radian" autolimits="true" boundmass="1e-6" boundinertia="1e-12"/>
   <option timestep="{dt}" integrator="{integrator}" gravity="0 0 {g}"/>
-  <worldbody>
-    <geom name="ground" type="plane" size="0 0 1" friction="{mu} 0.005 0.0001"/>
+{asset}  <worldbody>
+    {ground}
     <body name="body">
       <freejoint/>
       <inertial pos="0 0 0" mass="{mass}" fullinertia="{ixx} {iyy} {izz} {ixy} {ixz} {iyz}"/>
@@ -296,7 +308,6 @@ pub fn mjcf(
         dt = setup.timestep,
         integrator = setup.integrator,
         g = -model.gravity,
-        mu = model.wheels.first().map_or(1.0, |w| w.mu_x),
         mass = b.mass,
         ixx = i[0][0],
         iyy = i[1][1],
@@ -306,4 +317,36 @@ pub fn mjcf(
         iyz = i[1][2],
         ctrl = ctrl.trim_start(),
     ))
+}
+
+/// `grid` as an MJCF height-field asset and its geom. MuJoCo scales the
+/// elevations to [0, 1] of the field's height above its geom, and its
+/// first row is the map's largest Y (checked with `mj_ray` on a ramp).
+fn height_field(grid: &Grid, mu: f64) -> Result<(String, String), String> {
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let ([x0, y0], [hx, hy]) = (grid.origin(), grid.spacing());
+    let heights = grid.heights();
+    let lo = heights.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if !(hi > lo) {
+        return Err("a height field needs relief: write flat ground as the plane".into());
+    }
+    let mut elevation = String::with_capacity(12 * nx * ny);
+    for j in (0..ny).rev() {
+        for z in &heights[j * nx..(j + 1) * nx] {
+            elevation.push_str(&format!("{z} "));
+        }
+    }
+    let (rx, ry) = ((nx - 1) as f64 * hx / 2.0, (ny - 1) as f64 * hy / 2.0);
+    let asset = format!(
+        "  <asset>\n    <hfield name=\"map\" nrow=\"{ny}\" ncol=\"{nx}\" size=\"{rx} {ry} {top} 0.1\" elevation=\"{e}\"/>\n  </asset>\n",
+        top = hi - lo,
+        e = elevation.trim_end(),
+    );
+    let geom = format!(
+        r#"<geom name="ground" type="hfield" hfield="map" pos="{cx} {cy} {lo}" friction="{mu} 0.005 0.0001"/>"#,
+        cx = x0 + rx,
+        cy = y0 + ry,
+    );
+    Ok((asset, geom))
 }

@@ -118,12 +118,13 @@ fn default_rate() -> f64 {
 fn default_rollover() -> f64 {
     80.0
 }
-/// BDF/NDF of orders 1–2 with 1e-6 relative error, like the paper's ode15s:
+/// The integrator of a scenario without `[integrator]`: BDF/NDF of orders
+/// 1–2 with 1e-6 relative error, like the paper's ode15s:
 /// a rover standing on the ground is stiff (the regularized cornering law
 /// is a lateral damper of C/v_ε = 5·10⁴ N·s/m per wheel), which makes an
 /// explicit method crawl; orders above 2 are not A-stable and stalled on
 /// the active-suspension runs.
-fn default_integrator() -> IntegratorConfig {
+pub fn default_integrator() -> IntegratorConfig {
     IntegratorConfig::Bdf(BdfConfig {
         rtol: 1e-6,
         atol: 1e-8,
