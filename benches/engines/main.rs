@@ -8,8 +8,9 @@
 //!   scenarios' default BDF (generated plant), meridional contact;
 //! - MuJoCo: the rover written as MJCF from the same description
 //!   ([`mujoco::mjcf`]), 1 ms steps of its `Euler`, `implicitfast` and
-//!   `RK4` integrators with cylinder wheels, and of `Euler` with sphere
-//!   wheels (one contact each);
+//!   `RK4` integrators with cylinder wheels and of `Euler` with sphere
+//!   wheels (one contact each), its default 2 ms step, and `implicitfast`
+//!   at the longest steps whose runs still pass the check below (5–20 ms);
 //! - one evaluation of the dynamics with contact, driving at t = 10 s: our
 //!   right-hand side against `mj_forward`.
 //!
@@ -67,7 +68,8 @@ struct Ground {
     name: &'static str,
     terrain: Terrain,
     map: Option<Grid>,
-    setups: &'static [(&'static str, &'static str)],
+    /// MuJoCo's integrator, wheel shape and step [s].
+    setups: &'static [(&'static str, &'static str, f64)],
     tolerance: Tolerance,
 }
 
@@ -118,10 +120,13 @@ fn grounds() -> Vec<Ground> {
             terrain: Terrain::default(),
             map: None,
             setups: &[
-                ("Euler", "cylinder"),
-                ("implicitfast", "cylinder"),
-                ("RK4", "cylinder"),
-                ("Euler", "sphere"),
+                ("Euler", "cylinder", 1e-3),
+                ("implicitfast", "cylinder", 1e-3),
+                ("RK4", "cylinder", 1e-3),
+                ("Euler", "sphere", 1e-3),
+                ("Euler", "cylinder", 2e-3),
+                ("implicitfast", "cylinder", 10e-3),
+                ("implicitfast", "cylinder", 20e-3),
             ],
             tolerance: Tolerance {
                 arm_deg: 2.0,
@@ -136,7 +141,13 @@ fn grounds() -> Vec<Ground> {
             name: "rough",
             terrain: Terrain::Grid(rough.clone()),
             map: Some(rough),
-            setups: &[("Euler", "cylinder"), ("Euler", "sphere")],
+            setups: &[
+                ("Euler", "cylinder", 1e-3),
+                ("Euler", "sphere", 1e-3),
+                ("Euler", "cylinder", 2e-3),
+                ("implicitfast", "cylinder", 5e-3),
+                ("implicitfast", "cylinder", 10e-3),
+            ],
             tolerance: Tolerance {
                 arm_deg: 5.0,
                 z: 0.05,
@@ -163,7 +174,8 @@ fn end_of(model: &Model, y: &[f64]) -> End {
 }
 
 fn rover_rk4<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> End {
-    let (mut sys, mut y) = support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+    let (mut sys, mut y) =
+        support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
     let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: STEP }).unwrap();
     let mut t = 0.0;
     rk4.advance(&mut sys, &mut t, &mut y, DURATION).unwrap();
@@ -172,8 +184,11 @@ fn rover_rk4<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> End {
 
 /// The run with a scenario's default integrator; also its right-hand sides.
 fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> (End, u64) {
-    let (mut sys, mut y) = support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
-    let mut bdf = rover_runtime::scenario::default_integrator().build(y.len()).unwrap();
+    let (mut sys, mut y) =
+        support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+    let mut bdf = rover_runtime::scenario::default_integrator()
+        .build(y.len())
+        .unwrap();
     let mut t = 0.0;
     bdf.advance(&mut sys, &mut t, &mut y, DURATION).unwrap();
     (end_of(model, &y), bdf.stats().rhs_evals)
@@ -181,7 +196,7 @@ fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> (End, u64)
 
 fn mujoco_run(sim: &mut mujoco::Sim<'_>, wheels: usize) -> End {
     sim.reset();
-    for _ in 0..steps() {
+    for _ in 0..sim.steps(DURATION) {
         sim.step();
     }
     let (q, v) = (sim.qpos(), sim.qvel());
@@ -202,10 +217,6 @@ fn mujoco_run(sim: &mut mujoco::Sim<'_>, wheels: usize) -> End {
     }
 }
 
-fn steps() -> usize {
-    (DURATION / STEP).round() as usize
-}
-
 fn check_same_motion(reference: &End, other: &End, tol: &Tolerance, label: &str) {
     let deg = 180.0 / std::f64::consts::PI;
     let mut bad = Vec::new();
@@ -219,8 +230,18 @@ fn check_same_motion(reference: &End, other: &End, tol: &Tolerance, label: &str)
         ("Y [m]", reference.y, other.y, tol.y),
         ("v_x [m/s]", reference.vx, other.vx, tol.vx),
         ("X [m]", reference.x, other.x, tol.x_rel * reference.x.abs()),
-        ("roll [°]", reference.roll * deg, other.roll * deg, tol.attitude_deg),
-        ("pitch [°]", reference.pitch * deg, other.pitch * deg, tol.attitude_deg),
+        (
+            "roll [°]",
+            reference.roll * deg,
+            other.roll * deg,
+            tol.attitude_deg,
+        ),
+        (
+            "pitch [°]",
+            reference.pitch * deg,
+            other.pitch * deg,
+            tol.attitude_deg,
+        ),
     ] {
         if (a - b).abs() > limit {
             bad.push(format!("{what}: {a:.4} vs {b:.4}"));
@@ -260,18 +281,21 @@ fn mujoco_models<'a>(
     ground
         .setups
         .iter()
-        .map(|&(integrator, wheel)| {
+        .map(|&(integrator, wheel, timestep)| {
             let setup = Setup {
                 integrator,
-                timestep: STEP,
+                timestep,
                 wheel,
             };
             let xml = mujoco::mjcf(spec, setup, ground.map.as_ref(), kp, support::SPEED, start)
                 .unwrap_or_else(|e| panic!("{e}"));
-            let label = format!("{integrator}_{wheel}");
+            let label = format!("{integrator}_{wheel}_{}ms", timestep * 1e3);
             let file = dir.join(format!("swing4_{}_{label}.xml", ground.name));
             std::fs::write(&file, xml).unwrap();
-            (label, mj.model(&file).unwrap_or_else(|e| panic!("{e}")))
+            (
+                label,
+                mj.model(&file, timestep).unwrap_or_else(|e| panic!("{e}")),
+            )
         })
         .collect()
 }
@@ -286,7 +310,8 @@ fn main() {
     };
     let mj = Mujoco::load(&lib).unwrap_or_else(|e| panic!("{e}"));
     let source = rover_models::builtin_path("swing4").unwrap();
-    let spec: Spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), source).unwrap();
+    let spec: Spec =
+        rover_spec::load_str(rover_models::builtin("swing4").unwrap(), source).unwrap();
     let model = spec.model.clone();
     let wheels = model.wheels.len();
     let dir = std::env::temp_dir().join(format!("rover-engines-{}", std::process::id()));
@@ -309,7 +334,7 @@ fn main() {
         check_same_motion(&reference, &bdf, &ground.tolerance, "rover's BDF");
         for (setup, sim) in &mut sims {
             let end = mujoco_run(sim, wheels);
-            let label = format!("MuJoCo {setup} 1 ms");
+            let label = format!("MuJoCo {setup}");
             print_end(&label, &end);
             check_same_motion(&reference, &end, &ground.tolerance, &label);
         }
@@ -327,10 +352,10 @@ fn main() {
             b.iter(|| black_box(rover_bdf(&model, rover_models::Swing4::new(), terrain).0.x))
         });
         for (setup, sim) in &mut sims {
-            group.bench_function(BenchmarkId::new("mujoco_1ms", setup.as_str()), |b| {
+            group.bench_function(BenchmarkId::new("mujoco", setup.as_str()), |b| {
                 b.iter(|| {
                     sim.reset();
-                    for _ in 0..steps() {
+                    for _ in 0..sim.steps(DURATION) {
                         sim.step();
                     }
                 })
@@ -353,9 +378,12 @@ fn main() {
         group.bench_function(BenchmarkId::new("rover_rhs", "generated"), |b| {
             b.iter(|| sys.rhs(t, black_box(&y), &mut dy).unwrap())
         });
-        for (setup, sim) in sims.iter_mut().filter(|(s, _)| s.starts_with("Euler")) {
+        for (setup, sim) in sims
+            .iter_mut()
+            .filter(|(s, _)| s.starts_with("Euler") && s.ends_with("_1ms"))
+        {
             sim.reset();
-            for _ in 0..(SAMPLE_TIME / STEP).round() as usize {
+            for _ in 0..sim.steps(SAMPLE_TIME) {
                 sim.step();
             }
             group.bench_function(BenchmarkId::new("mujoco_forward", setup.as_str()), |b| {

@@ -83,7 +83,7 @@ impl Mujoco {
     }
 
     /// Compile the MJCF in `file`.
-    pub fn model(&self, file: &Path) -> Result<Sim<'_>, String> {
+    pub fn model(&self, file: &Path, timestep: f64) -> Result<Sim<'_>, String> {
         let name = CString::new(file.to_string_lossy().as_bytes()).map_err(|e| e.to_string())?;
         let mut error = vec![0 as c_char; 1000];
         // SAFETY: valid C strings and an error buffer of the size given.
@@ -105,6 +105,7 @@ impl Mujoco {
             mj: self,
             model,
             data,
+            timestep,
         })
     }
 }
@@ -114,9 +115,15 @@ pub struct Sim<'a> {
     mj: &'a Mujoco,
     model: *mut c_void,
     data: *mut c_void,
+    timestep: f64,
 }
 
 impl Sim<'_> {
+    /// Steps of the model's integrator in `duration` [s].
+    pub fn steps(&self, duration: f64) -> usize {
+        (duration / self.timestep).round() as usize
+    }
+
     /// Back to keyframe 0 (the start: positions, velocities, controls).
     pub fn reset(&mut self) {
         // SAFETY: model and data belong together; keyframe 0 exists (see [`mjcf`]).
@@ -282,7 +289,9 @@ pub fn mjcf(
     let (asset, ground) = match map {
         None => (
             String::new(),
-            format!(r#"<geom name="ground" type="plane" size="0 0 1" friction="{mu} 0.005 0.0001"/>"#),
+            format!(
+                r#"<geom name="ground" type="plane" size="0 0 1" friction="{mu} 0.005 0.0001"/>"#
+            ),
         ),
         Some(grid) => height_field(grid, mu)?,
     };
