@@ -35,7 +35,7 @@ use rover_dynamics::plant::Plant;
 use rover_runtime::GenericPlant;
 use rover_runtime::control::SpeedConfig;
 use rover_runtime::ground::ContactMethod;
-use rover_runtime::integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
+use rover_runtime::integrate::{FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4};
 use rover_runtime::terrain::{Bounds, Grid, RandomField, Terrain};
 use rover_spec::Spec;
 
@@ -45,6 +45,9 @@ use mujoco::{Mujoco, Setup};
 const DURATION: f64 = 40.0;
 /// Our RK4 step, and MuJoCo's [s].
 const STEP: f64 = 1e-3;
+/// Relative tolerances of our BDF runs: the scenarios' default, and one
+/// as loose as MuJoCo's longest steps are accurate (docs/ENGINES.md).
+const BDF_RTOL: [f64; 2] = [1e-6, 1e-4];
 /// When the single evaluations of the dynamics are timed: driving, past
 /// the settling [s].
 const SAMPLE_TIME: f64 = 10.0;
@@ -182,13 +185,18 @@ fn rover_rk4<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> End {
     end_of(model, &y)
 }
 
-/// The run with a scenario's default integrator; also its right-hand sides.
-fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> (End, u64) {
+/// The run with a scenario's default integrator at relative tolerance
+/// `rtol` (its default 1e-6; `atol` 100 times less); also its right-hand
+/// sides.
+fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain, rtol: f64) -> (End, u64) {
     let (mut sys, mut y) =
         support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
-    let mut bdf = rover_runtime::scenario::default_integrator()
-        .build(y.len())
-        .unwrap();
+    let mut config = rover_runtime::scenario::default_integrator();
+    if let IntegratorConfig::Bdf(bdf) = &mut config {
+        bdf.rtol = rtol;
+        bdf.atol = rtol / 100.0;
+    }
+    let mut bdf = config.build(y.len()).unwrap();
     let mut t = 0.0;
     bdf.advance(&mut sys, &mut t, &mut y, DURATION).unwrap();
     (end_of(model, &y), bdf.stats().rhs_evals)
@@ -329,9 +337,12 @@ fn main() {
         println!("{} ground, where each run ends:", ground.name);
         let reference = rover_rk4(&model, rover_models::Swing4::new(), terrain);
         print_end("rover RK4 1 ms", &reference);
-        let (bdf, rhs) = rover_bdf(&model, rover_models::Swing4::new(), terrain);
-        print_end(&format!("rover BDF ({rhs} RHS)"), &bdf);
-        check_same_motion(&reference, &bdf, &ground.tolerance, "rover's BDF");
+        for rtol in BDF_RTOL {
+            let (bdf, rhs) = rover_bdf(&model, rover_models::Swing4::new(), terrain, rtol);
+            let label = format!("rover BDF rtol {rtol:e} ({rhs} RHS)");
+            print_end(&label, &bdf);
+            check_same_motion(&reference, &bdf, &ground.tolerance, &label);
+        }
         for (setup, sim) in &mut sims {
             let end = mujoco_run(sim, wheels);
             let label = format!("MuJoCo {setup}");
@@ -348,9 +359,18 @@ fn main() {
         group.bench_function(BenchmarkId::new("rover_rk4_1ms", "generic"), |b| {
             b.iter(|| black_box(rover_rk4(&model, generic.clone(), terrain).x))
         });
-        group.bench_function(BenchmarkId::new("rover_bdf", "generated"), |b| {
-            b.iter(|| black_box(rover_bdf(&model, rover_models::Swing4::new(), terrain).0.x))
-        });
+        for rtol in BDF_RTOL {
+            let id = BenchmarkId::new("rover_bdf", format!("generated_rtol_{rtol:e}"));
+            group.bench_function(id, |b| {
+                b.iter(|| {
+                    black_box(
+                        rover_bdf(&model, rover_models::Swing4::new(), terrain, rtol)
+                            .0
+                            .x,
+                    )
+                })
+            });
+        }
         for (setup, sim) in &mut sims {
             group.bench_function(BenchmarkId::new("mujoco", setup.as_str()), |b| {
                 b.iter(|| {
