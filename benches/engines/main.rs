@@ -4,8 +4,10 @@
 //! given to both engines as the same grid of heights), in one criterion
 //! run:
 //!
-//! - rover: RK4 with a 1 ms step (generated and generic plant) and the
-//!   scenarios' default BDF (generated plant), meridional contact;
+//! - rover: RK4 with a 1 ms step (generated and generic plant), the
+//!   semi-implicit Euler at 1 ms (one evaluation a step, like MuJoCo's
+//!   Euler) and the scenarios' default BDF at its default tolerance and at
+//!   1e-4 (generated plant), meridional contact;
 //! - MuJoCo: the rover written as MJCF from the same description
 //!   ([`mujoco::mjcf`]), 1 ms steps of its `Euler`, `implicitfast` and
 //!   `RK4` integrators with cylinder wheels and of `Euler` with sphere
@@ -35,7 +37,9 @@ use rover_dynamics::plant::Plant;
 use rover_runtime::GenericPlant;
 use rover_runtime::control::SpeedConfig;
 use rover_runtime::ground::ContactMethod;
-use rover_runtime::integrate::{FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4};
+use rover_runtime::integrate::{
+    FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4, SemiImplicitEuler,
+};
 use rover_runtime::terrain::{Bounds, Grid, RandomField, Terrain};
 use rover_spec::Spec;
 
@@ -177,11 +181,24 @@ fn end_of(model: &Model, y: &[f64]) -> End {
 }
 
 fn rover_rk4<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> End {
+    rover_fixed(model, plant, terrain, Rk4::new)
+}
+
+/// Our fixed-step run with `method` (RK4, or the semi-implicit Euler that
+/// evaluates the dynamics once a step, as MuJoCo's Euler does).
+fn rover_fixed<P: Plant, I: Integrator, E: std::fmt::Debug>(
+    model: &Model,
+    plant: P,
+    terrain: &Terrain,
+    method: impl Fn(usize, &FixedStepConfig) -> Result<I, E>,
+) -> End {
     let (mut sys, mut y) =
         support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
-    let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: STEP }).unwrap();
+    let mut integrator = method(y.len(), &FixedStepConfig { step: STEP }).unwrap();
     let mut t = 0.0;
-    rk4.advance(&mut sys, &mut t, &mut y, DURATION).unwrap();
+    integrator
+        .advance(&mut sys, &mut t, &mut y, DURATION)
+        .unwrap();
     end_of(model, &y)
 }
 
@@ -337,6 +354,19 @@ fn main() {
         println!("{} ground, where each run ends:", ground.name);
         let reference = rover_rk4(&model, rover_models::Swing4::new(), terrain);
         print_end("rover RK4 1 ms", &reference);
+        let euler = rover_fixed(
+            &model,
+            rover_models::Swing4::new(),
+            terrain,
+            SemiImplicitEuler::new,
+        );
+        print_end("rover semi-implicit Euler 1 ms", &euler);
+        check_same_motion(
+            &reference,
+            &euler,
+            &ground.tolerance,
+            "rover's semi-implicit Euler",
+        );
         for rtol in BDF_RTOL {
             let (bdf, rhs) = rover_bdf(&model, rover_models::Swing4::new(), terrain, rtol);
             let label = format!("rover BDF rtol {rtol:e} ({rhs} RHS)");
@@ -359,6 +389,15 @@ fn main() {
         group.bench_function(BenchmarkId::new("rover_rk4_1ms", "generic"), |b| {
             b.iter(|| black_box(rover_rk4(&model, generic.clone(), terrain).x))
         });
+        group.bench_function(
+            BenchmarkId::new("rover_semi_implicit_euler_1ms", "generated"),
+            |b| {
+                b.iter(|| {
+                    let plant = rover_models::Swing4::new();
+                    black_box(rover_fixed(&model, plant, terrain, SemiImplicitEuler::new).x)
+                })
+            },
+        );
         for rtol in BDF_RTOL {
             let id = BenchmarkId::new("rover_bdf", format!("generated_rtol_{rtol:e}"));
             group.bench_function(id, |b| {
