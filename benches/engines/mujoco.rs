@@ -337,7 +337,7 @@ fn height_field(grid: &Grid, mu: f64) -> Result<(String, String), String> {
     let heights = grid.heights();
     let lo = heights.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if !(hi > lo) {
+    if hi.is_nan() || hi <= lo {
         return Err("a height field needs relief: write flat ground as the plane".into());
     }
     let mut elevation = String::with_capacity(12 * nx * ny);
