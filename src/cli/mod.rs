@@ -36,7 +36,7 @@ pub enum Command {
     Check(CheckArgs),
     /// Run a scenario: CSV time histories, plots and a summary.
     Simulate(SimulateArgs),
-    /// The parked rover's modes: frequencies, damping and shapes of its small motions on flat ground.
+    /// The rover's modes on flat ground, parked, driving straight or turning steadily: frequencies, damping and shapes of its small motions.
     Linearize(LinearizeArgs),
     /// Write a rover's generated, allocation-free plant as a standalone Rust module.
     #[cfg(feature = "codegen")]
