@@ -47,7 +47,7 @@ use mujoco::{Mujoco, Setup};
 
 /// Simulated time of every run [s].
 const DURATION: f64 = 40.0;
-/// Our RK4 step, and MuJoCo's [s].
+/// Our fixed step, and the step at which the single evaluations are sampled [s].
 const STEP: f64 = 1e-3;
 /// Relative tolerances of our BDF runs: the scenarios' default, and one
 /// as loose as MuJoCo's longest steps are accurate (docs/ENGINES.md).
