@@ -40,6 +40,7 @@ use rover_runtime::ground::ContactMethod;
 use rover_runtime::integrate::{
     FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4, SemiImplicitEuler,
 };
+use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::{Bounds, Grid, RandomField, Terrain};
 use rover_spec::Spec;
 
@@ -184,6 +185,24 @@ fn rover_rk4<P: Plant>(model: &Model, plant: P, terrain: &Terrain) -> End {
     rover_fixed(model, plant, terrain, Rk4::new)
 }
 
+/// The rover driving on `terrain` from the start to `until` with the
+/// integrator `make` builds for the state's dimension: the system, the
+/// state and the integrator there.
+fn drive<P: Plant, I: Integrator>(
+    model: &Model,
+    plant: P,
+    terrain: &Terrain,
+    make: impl FnOnce(usize) -> I,
+    until: f64,
+) -> (RoverSystem<P, Terrain>, Vec<f64>, I) {
+    let (mut sys, mut y) =
+        support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+    let mut integrator = make(y.len());
+    let mut t = 0.0;
+    integrator.advance(&mut sys, &mut t, &mut y, until).unwrap();
+    (sys, y, integrator)
+}
+
 /// Our fixed-step run with `method` (RK4, or the semi-implicit Euler that
 /// evaluates the dynamics once a step, as MuJoCo's Euler does).
 fn rover_fixed<P: Plant, I: Integrator, E: std::fmt::Debug>(
@@ -192,13 +211,8 @@ fn rover_fixed<P: Plant, I: Integrator, E: std::fmt::Debug>(
     terrain: &Terrain,
     method: impl Fn(usize, &FixedStepConfig) -> Result<I, E>,
 ) -> End {
-    let (mut sys, mut y) =
-        support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
-    let mut integrator = method(y.len(), &FixedStepConfig { step: STEP }).unwrap();
-    let mut t = 0.0;
-    integrator
-        .advance(&mut sys, &mut t, &mut y, DURATION)
-        .unwrap();
+    let make = |dim| method(dim, &FixedStepConfig { step: STEP }).unwrap();
+    let (_, y, _) = drive(model, plant, terrain, make, DURATION);
     end_of(model, &y)
 }
 
@@ -206,24 +220,18 @@ fn rover_fixed<P: Plant, I: Integrator, E: std::fmt::Debug>(
 /// `rtol` (its default 1e-6; `atol` 100 times less); also its right-hand
 /// sides.
 fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain, rtol: f64) -> (End, u64) {
-    let (mut sys, mut y) =
-        support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
     let mut config = rover_runtime::scenario::default_integrator();
     if let IntegratorConfig::Bdf(bdf) = &mut config {
         bdf.rtol = rtol;
         bdf.atol = rtol / 100.0;
     }
-    let mut bdf = config.build(y.len()).unwrap();
-    let mut t = 0.0;
-    bdf.advance(&mut sys, &mut t, &mut y, DURATION).unwrap();
+    let make = |dim| config.build(dim).unwrap();
+    let (_, y, bdf) = drive(model, plant, terrain, make, DURATION);
     (end_of(model, &y), bdf.stats().rhs_evals)
 }
 
 fn mujoco_run(sim: &mut mujoco::Sim<'_>, wheels: usize) -> End {
-    sim.reset();
-    for _ in 0..sim.steps(DURATION) {
-        sim.step();
-    }
+    sim.run(DURATION);
     let (q, v) = (sim.qpos(), sim.qvel());
     // Roll and pitch of R = Rz(ψ)·Rx(φ)·Ry(θ) (MODEL.md §1) from the
     // quaternion: R[2][1] = sin φ, R[2][0] = −cos φ·sin θ, R[2][2] = cos φ·cos θ.
@@ -412,39 +420,25 @@ fn main() {
         }
         for (setup, sim) in &mut sims {
             group.bench_function(BenchmarkId::new("mujoco", setup.as_str()), |b| {
-                b.iter(|| {
-                    sim.reset();
-                    for _ in 0..sim.steps(DURATION) {
-                        sim.step();
-                    }
-                })
+                b.iter(|| sim.run(DURATION))
             });
         }
         group.finish();
 
         // One evaluation of the dynamics with contact, driving, at t = 10 s.
         let mut group = c.benchmark_group(format!("swing4_{}_dynamics", ground.name));
-        let (mut sys, mut y) = support::system_on(
-            terrain.clone(),
-            &model,
-            rover_models::Swing4::new(),
-            ContactMethod::Meridional,
-        );
-        let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: STEP }).unwrap();
-        let mut t = 0.0;
-        rk4.advance(&mut sys, &mut t, &mut y, SAMPLE_TIME).unwrap();
+        let rk4 = |dim| Rk4::new(dim, &FixedStepConfig { step: STEP }).unwrap();
+        let plant = rover_models::Swing4::new();
+        let (mut sys, y, _) = drive(&model, plant, terrain, rk4, SAMPLE_TIME);
         let mut dy = vec![0.0; y.len()];
         group.bench_function(BenchmarkId::new("rover_rhs", "generated"), |b| {
-            b.iter(|| sys.rhs(t, black_box(&y), &mut dy).unwrap())
+            b.iter(|| sys.rhs(SAMPLE_TIME, black_box(&y), &mut dy).unwrap())
         });
         for (setup, sim) in sims
             .iter_mut()
             .filter(|(s, _)| s.starts_with("Euler") && s.ends_with("_1ms"))
         {
-            sim.reset();
-            for _ in 0..sim.steps(SAMPLE_TIME) {
-                sim.step();
-            }
+            sim.run(SAMPLE_TIME);
             group.bench_function(BenchmarkId::new("mujoco_forward", setup.as_str()), |b| {
                 b.iter(|| sim.forward())
             });

@@ -119,9 +119,12 @@ pub struct Sim<'a> {
 }
 
 impl Sim<'_> {
-    /// Steps of the model's integrator in `duration` [s].
-    pub fn steps(&self, duration: f64) -> usize {
-        (duration / self.timestep).round() as usize
+    /// From keyframe 0, `duration` [s] of the model's integrator.
+    pub fn run(&mut self, duration: f64) {
+        self.reset();
+        for _ in 0..(duration / self.timestep).round() as usize {
+            self.step();
+        }
     }
 
     /// Back to keyframe 0 (the start: positions, velocities, controls).
@@ -263,7 +266,7 @@ pub fn mjcf(
         <joint name="y{k}" type="hinge" axis="0 1 0" stiffness="{stiffness}" springref="{neutral}" damping="{damping}" range="{min} {max}"/>
         <body name="wheel{k}" pos="0 0 {z}">
           <joint name="spin{k}" type="hinge" axis="0 1 0"/>
-          <geom type="{shape}" size="{r} {hw}" zaxis="0 1 0" mass="{mass}" friction="{mu} 0.005 0.0001"/>
+          <geom type="{shape}" size="{r} {hw}" zaxis="0 1 0" mass="{mass}" friction="{friction}"/>
         </body>
       </body>
 "#,
@@ -274,7 +277,7 @@ pub fn mjcf(
             z = -l,
             hw = WHEEL_HALF_WIDTH,
             shape = setup.wheel,
-            mu = wheel.mu_x,
+            friction = friction(wheel.mu_x),
         ));
         actuators.push_str(&format!(
             "    <velocity joint=\"spin{k}\" kv=\"{kv}\" forcerange=\"{lo} {hi}\"/>\n",
@@ -290,7 +293,8 @@ pub fn mjcf(
         None => (
             String::new(),
             format!(
-                r#"<geom name="ground" type="plane" size="0 0 1" friction="{mu} 0.005 0.0001"/>"#
+                r#"<geom name="ground" type="plane" size="0 0 1" friction="{f}"/>"#,
+                f = friction(mu)
             ),
         ),
         Some(grid) => height_field(grid, mu)?,
@@ -328,6 +332,12 @@ pub fn mjcf(
     ))
 }
 
+/// MJCF's `friction` of a geom: sliding μ, MuJoCo's default torsional and
+/// rolling friction.
+fn friction(mu: f64) -> String {
+    format!("{mu} 0.005 0.0001")
+}
+
 /// `grid` as an MJCF height-field asset and its geom. MuJoCo scales the
 /// elevations to [0, 1] of the field's height above its geom, and its
 /// first row is the map's largest Y (checked with `mj_ray` on a ramp).
@@ -353,7 +363,8 @@ fn height_field(grid: &Grid, mu: f64) -> Result<(String, String), String> {
         e = elevation.trim_end(),
     );
     let geom = format!(
-        r#"<geom name="ground" type="hfield" hfield="map" pos="{cx} {cy} {lo}" friction="{mu} 0.005 0.0001"/>"#,
+        r#"<geom name="ground" type="hfield" hfield="map" pos="{cx} {cy} {lo}" friction="{f}"/>"#,
+        f = friction(mu),
         cx = x0 + rx,
         cy = y0 + ry,
     );
