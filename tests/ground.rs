@@ -272,10 +272,13 @@ fn contact_follows_a_bump_and_both_methods_agree() {
 
 /// A terrain seen through a probe that counts height queries and, unless
 /// `bounded`, hides the terrain's height bound: the contact search then
-/// samples the whole half rim, as it did before the bound existed.
+/// samples the whole half rim, as it did before the bound existed. Unless
+/// `sloped`, it also hides the terrain's slope bound, with which the
+/// search skips the samples that cannot change side from the last one.
 struct Probe<'a> {
     terrain: &'a Terrain,
     bounded: bool,
+    sloped: bool,
     queries: std::cell::Cell<usize>,
 }
 
@@ -284,7 +287,16 @@ impl<'a> Probe<'a> {
         Probe {
             terrain,
             bounded,
+            sloped: bounded,
             queries: std::cell::Cell::new(0),
+        }
+    }
+
+    /// With the height bound and without the slope bound.
+    fn height_bound_only(terrain: &'a Terrain) -> Self {
+        Probe {
+            sloped: false,
+            ..Probe::new(terrain, true)
         }
     }
 }
@@ -304,6 +316,9 @@ impl rover_runtime::terrain::HeightField for Probe<'_> {
     }
     fn max_height_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {
         self.terrain.max_height_in(area).filter(|_| self.bounded)
+    }
+    fn max_slope_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {
+        self.terrain.max_slope_in(area).filter(|_| self.sloped)
     }
 }
 
@@ -339,6 +354,17 @@ fn bounded_terrains() -> Vec<(&'static str, Terrain)> {
             config("kind = \"sinusoid\"\namplitude = 0.02\nwavelength = 0.7"),
         ),
         (
+            // Crests closer than a wheel is wide: patches split over them.
+            "corrugations",
+            config(
+                "kind = \"sinusoid\"\namplitude = 0.008\nwavelength = 0.09\ndirection_deg = 20.0",
+            ),
+        ),
+        (
+            "sharp step",
+            config("kind = \"step\"\nheight = 0.03\nposition = [-0.3, 0.1]\ndirection_deg = 100.0"),
+        ),
+        (
             "random",
             config("kind = \"random\"\nz_r = 0.3\nseed = 7\nextent = [-2.0, 2.0, -2.0, 2.0]"),
         ),
@@ -348,6 +374,16 @@ fn bounded_terrains() -> Vec<(&'static str, Terrain)> {
                 Grid::from_fn([-1.6, -1.6], [0.05, 0.04], 65, 81, bumpy)
                     .unwrap()
                     .with_interpolation(Interpolation::Bilinear)
+                    .with_edge_policy(EdgePolicy::Clamp),
+            ),
+        ),
+        (
+            // Bicubic up to a clamped edge at X = 1.2 m, inside the trials'
+            // area, so that wheels straddle the ghost nodes and the held edge.
+            "bicubic clamped grid",
+            Terrain::Grid(
+                Grid::from_fn([-1.7, -1.7], [0.04, 0.05], 73, 69, bumpy)
+                    .unwrap()
                     .with_edge_policy(EdgePolicy::Clamp),
             ),
         ),
@@ -361,11 +397,12 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
     let mut rng = crate::support::rng::Rng::new(2026);
     let search = MeridionalContact::default();
     for (name, terrain) in bounded_terrains() {
-        // Both through the probe, which hides a plane's closed form (held
-        // against the sampled search on its own below): sampling, bounded
-        // and not.
+        // All through the probe, which hides a plane's closed form (held
+        // against the sampled search on its own below): sampling with both
+        // bounds, with the height bound alone, and with none.
         let (culled, full) = (Probe::new(&terrain, true), Probe::new(&terrain, false));
-        let mut touching = 0;
+        let unskipped = Probe::height_bound_only(&terrain);
+        let (mut touching, mut split) = (0, 0);
         for trial in 0..400 {
             let (x, y) = (rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
             let radius = rng.uniform(0.08, 0.4);
@@ -377,13 +414,68 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
             let bounded = search.find(&culled, [x, y, z], axis, radius);
             let sampled = search.find(&full, [x, y, z], axis, radius);
             assert_eq!(bounded, sampled, "{name}, trial {trial}");
+            let height_only = search.find(&unskipped, [x, y, z], axis, radius);
+            assert_eq!(
+                height_only, sampled,
+                "{name}, trial {trial}: height bound only"
+            );
             touching += usize::from(matches!(bounded, Ok(c) if c.count > 0));
+            split += usize::from(matches!(bounded, Ok(c) if c.count > 1));
         }
         assert!(
             touching > 200,
             "{name}: only {touching} of 400 wheels touch"
         );
+        // The slope bound must save queries on every terrain.
+        let (skipping, not) = (culled.queries.get(), unskipped.queries.get());
+        println!("{name}: {skipping} queries with the slope bound, {not} without, {split} split");
+        assert!(
+            10 * skipping < 7 * not,
+            "{name}: the slope bound saved too little ({skipping} against {not} queries)"
+        );
     }
+}
+
+/// Where patches split, merge and are born beside each other (shallow
+/// wheels on crests closer than a wheel is wide), the search that skips
+/// samples by the slope bound still finds what sampling every one finds,
+/// bit for bit: runs, dips between samples, ridges and the blend of a
+/// split, whose scale depends on the depth of each run.
+#[test]
+fn skipping_samples_keeps_split_patches_bit_for_bit() {
+    use rover_runtime::contact::MeridionalContact;
+    use rover_runtime::terrain::HeightField;
+    let mut rng = crate::support::rng::Rng::new(2027);
+    let search = MeridionalContact::default();
+    let (_, terrain) = bounded_terrains()
+        .into_iter()
+        .find(|(name, _)| *name == "corrugations")
+        .unwrap();
+    let (culled, full) = (Probe::new(&terrain, true), Probe::new(&terrain, false));
+    let mut split = 0;
+    for trial in 0..2000 {
+        let (x, y) = (rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5));
+        let radius = rng.uniform(0.08, 0.4);
+        // From 2 mm clear to 1.2 cm deep: the crests' tops cross the rim.
+        let depth = rng.uniform(-0.002, 0.012);
+        let z = terrain.height(x, y).unwrap() + radius - depth;
+        let (roll, yaw) = (rng.uniform(-0.3, 0.3), rng.uniform(-3.1, 3.1));
+        let axis = [-yaw.sin() * roll.cos(), yaw.cos() * roll.cos(), roll.sin()];
+        let skipping = search.find(&culled, [x, y, z], axis, radius).unwrap();
+        let sampled = search.find(&full, [x, y, z], axis, radius).unwrap();
+        assert_eq!(skipping, sampled, "trial {trial}");
+        split += usize::from(sampled.count > 1);
+    }
+    assert!(
+        split > 200,
+        "only {split} of 2000 wheels have split patches"
+    );
+    assert!(
+        2 * culled.queries.get() < full.queries.get(),
+        "the slope bound saved too little ({} against {} queries)",
+        culled.queries.get(),
+        full.queries.get()
+    );
 }
 
 #[test]
@@ -431,6 +523,49 @@ fn a_wheel_on_flat_ground_samples_only_the_rim_near_the_ground() {
         used < 50,
         "the bounded search evaluated {used} heights (full: {all})"
     );
+}
+
+/// The slope bound of every terrain holds at random points of random
+/// rectangles (including rectangles across a grid's clamped edge and a
+/// step's ramp), and is `None` for a non-finite rectangle.
+#[test]
+fn terrain_slope_bounds_hold() {
+    use rover_runtime::terrain::{Bounds, HeightField};
+    let mut rng = crate::support::rng::Rng::new(78);
+    for (name, terrain) in bounded_terrains() {
+        let mut bounded = 0;
+        for _ in 0..300 {
+            let (x, y) = (rng.uniform(-1.8, 1.6), rng.uniform(-1.8, 1.6));
+            let (w, h) = (rng.uniform(0.0, 0.8), rng.uniform(0.0, 0.8));
+            let area = Bounds {
+                x_min: x,
+                x_max: x + w,
+                y_min: y,
+                y_max: y + h,
+            };
+            let Some(steepest) = terrain.max_slope_in(&area) else {
+                continue;
+            };
+            bounded += 1;
+            for _ in 0..50 {
+                let (px, py) = (rng.uniform(x, x + w), rng.uniform(y, y + h));
+                let (_, [gx, gy]) = terrain.height_gradient(px, py).unwrap();
+                assert!(
+                    gx.hypot(gy) <= steepest,
+                    "{name}: slope {} above its bound {steepest} in {area:?}",
+                    gx.hypot(gy)
+                );
+            }
+        }
+        assert!(bounded > 100, "{name}: only {bounded} areas bounded");
+        let nan = Bounds {
+            x_min: f64::NAN,
+            x_max: 0.0,
+            y_min: 0.0,
+            y_max: 0.0,
+        };
+        assert_eq!(terrain.max_slope_in(&nan), None, "{name}: NaN area");
+    }
 }
 
 #[test]

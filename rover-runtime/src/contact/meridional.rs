@@ -329,16 +329,21 @@ impl MeridionalContact {
         // step-size control). Smooth ground cannot hide more than the rim's
         // sagitta over one interval, R·Δβ²/2; four times that is searched.
         let hidden = 2.0 * radius * step * step;
-        let (first, last) = match reach(terrain, &frame, n, step, hidden) {
+        let area = frame.area();
+        let (first, last) = match reach(terrain, &frame, &area, n, step, hidden) {
             Reach::Samples(first, last) => (first, last),
             Reach::Nothing => return Ok(()),
         };
-        self.scan(terrain, &frame, [first, last], step, hidden, out)
+        let skip = terrain
+            .max_slope_in(&area)
+            .and_then(|slope| Skip::new(&frame, slope, step, hidden));
+        self.scan(terrain, &frame, [first, last], step, hidden, skip, out)
     }
 
     /// The sampled search over samples `range[0] ..= range[1]` only, into
     /// `contact` (empty); the caller guarantees that every sample outside
     /// has a clearance above `hidden`.
+    #[allow(clippy::too_many_arguments)]
     fn scan<H: HeightField + ?Sized>(
         &self,
         terrain: &H,
@@ -346,6 +351,7 @@ impl MeridionalContact {
         range: [usize; 2],
         step: f64,
         hidden: f64,
+        skip: Option<Skip>,
         contact: &mut Contact,
     ) -> Result<(), OffMap> {
         let frame = *frame;
@@ -370,7 +376,39 @@ impl MeridionalContact {
         // Deepest sampled penetration of the current run (see `Runs::emit`).
         let mut depth = (-prev).max(0.0);
         let mut prev2 = f64::NAN;
-        for i in range[0] + 1..=range[1] {
+        let mut i = range[0];
+        while i < range[1] {
+            i += 1;
+            // Samples that provably stay on the last one's side of the
+            // ground, clear of every threshold the checks below use, are
+            // skipped; the last of them is queried all the same, as the
+            // next crossing's bracket end (see `Skip`).
+            if let Some(skip) = skip
+                && let Some(side) = skip.side(prev)
+            {
+                let rim = |k: usize| {
+                    let a = angle(k);
+                    frame.point_sc(a.sin, a.cos)[2]
+                };
+                let ground = rim(i - 1) - prev;
+                let mut last = i;
+                while last < range[1] && skip.proves(side, rim(last) - ground, last + 1 - i) {
+                    last += 1;
+                }
+                // Samples i .. last − 1 are proven.
+                if last >= i + 2 {
+                    prev = sample(last - 1)?;
+                    prev2 = match side {
+                        Side::Above => f64::INFINITY,
+                        Side::Below => {
+                            depth = depth.max(skip.deep).max(-prev);
+                            f64::NEG_INFINITY
+                        }
+                    };
+                    i = last - 1;
+                    continue;
+                }
+            }
             let b = beta(i);
             let h = sample(i)?;
             if prev >= 0.0 && h >= 0.0 && prev < prev2 && prev < h && prev < hidden {
@@ -415,6 +453,78 @@ impl MeridionalContact {
             runs.push(a, angle(n - 1), depth);
         }
         runs.emit(terrain, &frame, contact)
+    }
+}
+
+/// Which rim samples provably stay on the same side of the ground as a
+/// queried one, from a bound `G` of the terrain's slope under the wheel.
+///
+/// Between rim samples k apart the rim point moves at most `k·R·Δβ`
+/// horizontally, so the ground under it is within `G·k·R·Δβ` of the
+/// height `z` queried under the first, while the rim's own height is
+/// known exactly. A later sample is skipped when that bounds its clearance
+/// - above `hidden` (the dip threshold), after a sample above `hidden`:
+///   it can then start no run, end none, and be no dip's bottom;
+/// - below `−deep` (`deep` = the dip threshold or [`SPLIT_BAND`], the
+///   larger), after a sample below `−deep`: it can then end no run and be
+///   no ridge's top, and the run's depth, which matters only up to
+///   [`SPLIT_BAND`] (in [`Runs::blend`]), is at least `deep`.
+///
+/// Every check of [`MeridionalContact::scan`] then sees what it would
+/// have seen with every sample queried, so the patches are the same bit
+/// for bit (a test holds the two against each other).
+#[derive(Clone, Copy, Debug)]
+struct Skip {
+    /// `G·R·Δβ`: how much the ground can rise or fall per sample \[m\].
+    rise: f64,
+    /// The dip threshold \[m\].
+    hidden: f64,
+    /// The depth below which a sample is deep \[m\].
+    deep: f64,
+    /// Rounding of the rim points and of the interpolant \[m\].
+    rounding: f64,
+}
+
+/// Which side of the ground a skip stays on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Side {
+    Above,
+    Below,
+}
+
+impl Skip {
+    fn new(frame: &RimFrame, slope: f64, step: f64, hidden: f64) -> Option<Skip> {
+        let rise = slope * frame.radius * step;
+        let rounding = 1e-9 * (1.0 + frame.centre[2].abs() + frame.radius);
+        (rise.is_finite() && rounding.is_finite() && hidden.is_finite()).then_some(Skip {
+            rise,
+            hidden,
+            deep: hidden.max(SPLIT_BAND),
+            rounding,
+        })
+    }
+
+    /// The side a skip after a sample of clearance `h` can stay on, if any.
+    #[inline]
+    fn side(&self, h: f64) -> Option<Side> {
+        if h >= self.hidden {
+            Some(Side::Above)
+        } else if h < -self.deep {
+            Some(Side::Below)
+        } else {
+            None
+        }
+    }
+
+    /// Whether a rim point whose height above the last queried ground is
+    /// `above`, `k` samples after it, provably stays on `side`.
+    #[inline]
+    fn proves(&self, side: Side, above: f64, k: usize) -> bool {
+        let reach = self.rise * k as f64 + self.rounding;
+        match side {
+            Side::Above => above - reach > self.hidden,
+            Side::Below => above + reach < -self.deep,
+        }
     }
 }
 
@@ -565,21 +675,15 @@ enum Reach {
 fn reach<H: HeightField + ?Sized>(
     terrain: &H,
     frame: &RimFrame,
+    area: &Bounds,
     n: usize,
     step: f64,
     hidden: f64,
 ) -> Reach {
     let all = Reach::Samples(0, n - 1);
-    let [cx, cy, cz] = frame.centre;
+    let cz = frame.centre[2];
     let r = frame.radius;
-    // The half rim lies within R of the centre.
-    let area = Bounds {
-        x_min: cx - r,
-        x_max: cx + r,
-        y_min: cy - r,
-        y_max: cy + r,
-    };
-    let Some(top) = terrain.max_height_in(&area) else {
+    let Some(top) = terrain.max_height_in(area) else {
         return all;
     };
     // Rounding of the rim points and of the interpolant: far below 1 nm.

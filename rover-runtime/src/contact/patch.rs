@@ -104,6 +104,17 @@ impl RimFrame {
         })
     }
 
+    /// The square of side 2R around the centre, which holds the whole rim.
+    pub fn area(&self) -> crate::terrain::Bounds {
+        let ([cx, cy, _], r) = (self.centre, self.radius);
+        crate::terrain::Bounds {
+            x_min: cx - r,
+            x_max: cx + r,
+            y_min: cy - r,
+            y_max: cy + r,
+        }
+    }
+
     /// Rim point P(β) = G + R·(cos β·d + sin β·f).
     pub fn point(&self, beta: f64) -> [f64; 3] {
         let (s, c) = beta.sin_cos();

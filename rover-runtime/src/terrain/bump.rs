@@ -61,4 +61,8 @@ impl HeightField for Bump {
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
         area.is_finite().then(|| self.profile.max_height())
     }
+
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then(|| self.profile.steepest())
+    }
 }

@@ -66,6 +66,9 @@ pub struct Grid {
     last: [f64; 2],
     heights: Arc<[f64]>,
     tiles: Arc<RangePyramid>,
+    /// Bounds of the interpolant's gradient magnitude, cell by cell (cell
+    /// (i, j) at node (i, j)), in a pyramid for [`HeightField::max_slope_in`].
+    slopes: Arc<RangePyramid>,
     interpolation: Interpolation,
     edge: EdgePolicy,
 }
@@ -139,6 +142,10 @@ impl Grid {
             ny,
             last: [(nx - 1) as f64, (ny - 1) as f64],
             tiles: Arc::new(RangePyramid::new(nx, &heights)),
+            slopes: Arc::new(RangePyramid::upper(
+                nx,
+                &cell_slopes(nx, ny, spacing, &heights),
+            )),
             heights: heights.into(),
             interpolation: Interpolation::default(),
             edge: EdgePolicy::default(),
@@ -442,11 +449,211 @@ impl HeightField for Grid {
             Interpolation::Bicubic => hi + BICUBIC_OVERSHOOT * (hi - lo),
         })
     }
+
+    /// The largest cell bound (see [`cell_slopes`]) over the cells that
+    /// `area` touches; `None` if part of it is off the map under the
+    /// `error` edge policy. Beyond a clamped edge the ground is the edge's
+    /// height held: its gradient is the edge cell's along the edge, zero
+    /// across it.
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        if !area.is_finite() {
+            return None;
+        }
+        let map = self.bounds();
+        if self.edge == EdgePolicy::Error
+            && !(map.contains(area.x_min, area.y_min) && map.contains(area.x_max, area.y_max))
+        {
+            return None;
+        }
+        let cells = |lo: f64, hi: f64, axis: usize| {
+            let (origin, spacing, last) = (self.origin[axis], self.spacing[axis], self.last[axis]);
+            let first = ((lo - origin) / spacing).floor();
+            let end = ((hi - origin) / spacing).floor();
+            // Clamped into [0, n − 2], the cells: the casts are exact.
+            [
+                first.clamp(0.0, last - 1.0) as usize,
+                end.clamp(0.0, last - 1.0) as usize,
+            ]
+        };
+        let (steepest, _) = self.slopes.span(
+            cells(area.x_min, area.x_max, 0),
+            cells(area.y_min, area.y_max, 1),
+        );
+        Some(steepest)
+    }
+}
+
+/// A bound of the interpolant's gradient magnitude on every cell, at the
+/// cell's south-west node (0 on the last row and column, which start no
+/// cell), for both interpolants.
+///
+/// On a cell, ∂Z/∂t = Σ_k w_k(s)·r_k'(t), where r_k is the Catmull–Rom
+/// cubic along X of stencil row k = −1 … 2. Each r_k' is a quadratic in t,
+/// whose largest magnitude b_k on [0, 1] is at an end or at its vertex
+/// ([`steepest`]). The inner weights w0, w1 are positive and sum to
+/// `1 + s(1 − s)/2 ≤ 9/8`, the outer ones negative and sum to
+/// `−s(1 − s)/2 ≥ −1/8`, so `|∂Z/∂t| ≤ 9/8·max(b0, b1) + 1/8·max(b−1, b2)`,
+/// and likewise along Y. A ghost row beyond the map's edge is a
+/// combination of real rows (`3r0 − 3r1 + r2`, or `2r0 − r1` on a grid of
+/// two rows), so its b is at most the same combination of their b with
+/// every sign made positive. The bilinear interpolant's derivative along
+/// X lies between the cell's two node differences p1 − p0, each of which
+/// is some r_k'(t) (mean value theorem): the same bound holds for it.
+fn cell_slopes(nx: usize, ny: usize, spacing: [f64; 2], heights: &[f64]) -> Vec<f64> {
+    let at = |i: usize, j: usize| heights.get(j * nx + i).copied().unwrap_or(0.0);
+    // b of every stencil row: along X for row r and cell i, at [r·nx + i];
+    // along Y for column c and cell j, at [j·nx + c]. Inside the map the
+    // stencils are windows of real nodes; the edge cells take the ghosts.
+    let mut along_x = vec![0.0; heights.len()];
+    for (b, row) in along_x.chunks_mut(nx).zip(heights.chunks(nx)) {
+        for (b, window) in b[1..].iter_mut().zip(row.windows(4)) {
+            *b = steepest([window[0], window[1], window[2], window[3]]);
+        }
+    }
+    let mut along_y = vec![0.0; heights.len()];
+    for j in 1..ny.saturating_sub(2) {
+        let rows = [j - 1, j, j + 1, j + 2].map(|r| &heights[r * nx..(r + 1) * nx]);
+        for (c, b) in along_y[j * nx..(j + 1) * nx].iter_mut().enumerate() {
+            *b = steepest(rows.map(|row| row[c]));
+        }
+    }
+    for r in 0..ny {
+        for i in [0, nx - 2] {
+            along_x[r * nx + i] = steepest(stencil(nx, i, |c| at(c, r)));
+        }
+    }
+    for j in [0, ny - 2] {
+        for c in 0..nx {
+            along_y[j * nx + c] = steepest(stencil(ny, j, |r| at(c, r)));
+        }
+    }
+    let combine = |b: [f64; 4]| 1.125 * b[1].max(b[2]) + 0.125 * b[0].max(b[3]);
+    // Rounded up past the interpolant's own rounding.
+    let magnitude = |bx: [f64; 4], by: [f64; 4]| {
+        let (gx, gy) = (combine(bx) / spacing[0], combine(by) / spacing[1]);
+        (gx * gx + gy * gy).sqrt() * (1.0 + 1e-9)
+    };
+    let mut slopes = vec![0.0; heights.len()];
+    for j in 1..ny.saturating_sub(2) {
+        let rows = [j - 1, j, j + 1, j + 2].map(|r| &along_x[r * nx..(r + 1) * nx]);
+        let cells = slopes[j * nx + 1..].iter_mut().zip(1..nx.saturating_sub(2));
+        for ((slope, i), by) in cells.zip(along_y[j * nx..(j + 1) * nx].windows(4)) {
+            *slope = magnitude(rows.map(|row| row[i]), [by[0], by[1], by[2], by[3]]);
+        }
+    }
+    let edge = |i: usize, j: usize| i == 0 || i + 2 >= nx || j == 0 || j + 2 >= ny;
+    for j in 0..ny - 1 {
+        for i in (0..nx - 1).filter(|&i| edge(i, j)) {
+            slopes[j * nx + i] = magnitude(
+                ghost_bounds(ny, j, |r| along_x[r * nx + i]),
+                ghost_bounds(nx, i, |c| along_y[j * nx + c]),
+            );
+        }
+    }
+    slopes
+}
+
+/// The largest magnitude over t ∈ [0, 1] of the derivative of the
+/// Catmull–Rom cubic through `p`: `r'(t) = c + b·t + a·t²` (the weights'
+/// derivatives of `kernel::catmull_rom` collected by power of t), largest
+/// at an end or at the vertex.
+fn steepest([pm, p0, p1, p2]: [f64; 4]) -> f64 {
+    let c = 0.5 * (p1 - pm);
+    let b = 2.0 * pm - 5.0 * p0 + 4.0 * p1 - p2;
+    let a = 1.5 * (3.0 * (p0 - p1) + p2 - pm);
+    let at_end = c.abs().max((c + b + a).abs());
+    let vertex = -b / (2.0 * a);
+    if vertex > 0.0 && vertex < 1.0 {
+        at_end.max((c + vertex * (b + vertex * a)).abs())
+    } else {
+        at_end
+    }
+}
+
+/// [`stencil`] for bounds `b ≥ 0` of lines that extrapolate linearly: a
+/// ghost's bound is the ghost's combination of the lines' bounds with
+/// every coefficient made positive.
+fn ghost_bounds(n: usize, k: usize, fetch: impl Fn(usize) -> f64) -> [f64; 4] {
+    let b0 = fetch(k);
+    let b1 = fetch(k + 1);
+    let before = if k >= 1 {
+        fetch(k - 1)
+    } else if n >= 3 {
+        3.0 * b0 + 3.0 * b1 + fetch(2)
+    } else {
+        2.0 * b0 + b1
+    };
+    let after = if k + 2 < n {
+        fetch(k + 2)
+    } else if n >= 3 {
+        3.0 * b1 + 3.0 * b0 + fetch(n - 3)
+    } else {
+        2.0 * b1 + b0
+    };
+    [before, b0, b1, after]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every cell's slope bound holds at points spread over the cell, on
+    /// grids of random nodes (steep, uncorrelated: the worst case for the
+    /// bound) of sizes down to 2 × 2 (linear ghosts), edge cells included,
+    /// for both interpolants; on a plane, interior cells are bounded by
+    /// 1.25 times its slope.
+    #[test]
+    fn cell_slopes_bound_the_gradient() {
+        let mut rng = crate::terrain::prng::SplitMix64::new(0x5eed_51a0_be5e_c0de);
+        for (nx, ny) in [(2, 2), (3, 2), (5, 4), (9, 7)] {
+            let heights: Vec<f64> = (0..nx * ny).map(|_| rng.next_f64() - 0.5).collect();
+            let spacing = [0.3, 0.2];
+            let slopes = cell_slopes(nx, ny, spacing, &heights);
+            for interpolation in [Interpolation::Bicubic, Interpolation::Bilinear] {
+                let grid = Grid::new([0.0, 0.0], spacing, nx, ny, heights.clone())
+                    .unwrap()
+                    .with_interpolation(interpolation);
+                for j in 0..ny - 1 {
+                    for i in 0..nx - 1 {
+                        let bound = slopes[j * nx + i];
+                        let mut steepest: f64 = 0.0;
+                        // Inside the cell: the bilinear gradient jumps at its edges.
+                        for a in 0..21 {
+                            for b in 0..21 {
+                                let (t, s) =
+                                    ((f64::from(a) + 0.5) / 21.0, (f64::from(b) + 0.5) / 21.0);
+                                let x = (i as f64 + t) * spacing[0];
+                                let y = (j as f64 + s) * spacing[1];
+                                let (_, [gx, gy]) = grid.height_gradient(x, y).unwrap();
+                                steepest = steepest.max(gx.hypot(gy));
+                            }
+                        }
+                        assert!(
+                            steepest <= bound,
+                            "{nx} × {ny} {interpolation:?}, cell ({i}, {j}): {steepest} > {bound}"
+                        );
+                        // Not vacuous: within a factor of 4 of the bicubic's
+                        // steepest slope away from the ghosts.
+                        let interior = i > 0 && j > 0 && i + 2 < nx && j + 2 < ny;
+                        assert!(
+                            interpolation == Interpolation::Bilinear
+                                || !interior
+                                || bound < 4.0 * steepest,
+                            "{nx} × {ny} {interpolation:?}, cell ({i}, {j}): {bound} for {steepest}"
+                        );
+                    }
+                }
+            }
+        }
+        let (a, b) = (0.3, -0.4);
+        let plane = Grid::from_fn([0.0, 0.0], [0.1, 0.1], 8, 8, |x, y| a * x + b * y).unwrap();
+        let slopes = cell_slopes(8, 8, [0.1, 0.1], plane.heights());
+        let bound = slopes[3 * 8 + 3];
+        assert!(
+            (bound - 1.25 * 0.5).abs() < 1e-9,
+            "an interior cell of a plane of slope 0.5: {bound}"
+        );
+    }
 
     /// The height-only query is the full query's height, bit for bit, inside
     /// the map, in its edge cells (ghost nodes) and beyond a clamped edge.

@@ -30,6 +30,17 @@ pub trait HeightField {
         None
     }
 
+    /// An upper bound of the gradient's magnitude `|∇Z_G|` [m/m] over the
+    /// rectangle `area`, given only when every point of it can be queried;
+    /// `None` when either is unknown (the default) or the surface has a
+    /// jump there. The contact search uses it to skip rim samples that
+    /// cannot reach the ground from the last height it queried; like
+    /// [`HeightField::max_height_in`], a loose bound costs only time.
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        let _ = area;
+        None
+    }
+
     /// The plane the whole terrain is, when it is one (flat ground, a
     /// slope): the contact search then cuts the rim with it in closed form
     /// instead of sampling it. `None` (the default) for any other surface;
@@ -72,6 +83,10 @@ impl<H: HeightField + ?Sized> HeightField for &H {
 
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
         (**self).max_height_in(area)
+    }
+
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        (**self).max_slope_in(area)
     }
 
     fn plane(&self) -> Option<Plane> {

@@ -87,17 +87,14 @@ impl Ghost for f64 {
     }
 }
 
-impl Ghost for [f64; 2] {
+impl<const N: usize> Ghost for [f64; N] {
     #[inline]
-    fn quadratic(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> [f64; 2] {
-        [
-            f64::quadratic(a[0], b[0], c[0]),
-            f64::quadratic(a[1], b[1], c[1]),
-        ]
+    fn quadratic(a: [f64; N], b: [f64; N], c: [f64; N]) -> [f64; N] {
+        core::array::from_fn(|k| f64::quadratic(a[k], b[k], c[k]))
     }
     #[inline]
-    fn linear(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-        [f64::linear(a[0], b[0]), f64::linear(a[1], b[1])]
+    fn linear(a: [f64; N], b: [f64; N]) -> [f64; N] {
+        core::array::from_fn(|k| f64::linear(a[k], b[k]))
     }
 }
 

@@ -81,6 +81,11 @@ impl Profile {
         self.amplitude.max(0.0)
     }
 
+    /// The steepest slope anywhere, at mid-flank: `|A|·π/(2r)`.
+    pub(crate) fn steepest(&self) -> f64 {
+        self.amplitude.abs() * core::f64::consts::FRAC_PI_2 / self.ramp
+    }
+
     #[inline]
     pub(crate) fn evaluate(&self, x: f64, y: f64) -> (f64, [f64; 2]) {
         let dx = x - self.centre[0];

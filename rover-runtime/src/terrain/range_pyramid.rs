@@ -39,14 +39,25 @@ pub(crate) struct RangePyramid {
 impl RangePyramid {
     /// The pyramid of `heights` (`nx` nodes per row, south row first).
     pub(crate) fn new(nx: usize, heights: &[f64]) -> RangePyramid {
+        Self::build(nx, heights, Some(heights))
+    }
+
+    /// The pyramid of the highest values only: [`RangePyramid::span`] then
+    /// bounds nothing from below (−∞), for a third less memory.
+    pub(crate) fn upper(nx: usize, values: &[f64]) -> RangePyramid {
+        Self::build(nx, values, None)
+    }
+
+    fn build(nx: usize, max: &[f64], min: Option<&[f64]>) -> RangePyramid {
         // The nodes are level "−1": tiles of one node, max = min = height.
-        let mut levels = vec![reduce(heights, heights, nx, 2)];
+        let mut levels = vec![reduce(max, min, nx, 2)];
         loop {
             let top = &levels[levels.len() - 1];
             if top.max.len() <= 1 {
                 return RangePyramid { levels };
             }
-            let up = reduce(&top.max, &top.min, top.columns, 2 * top.size);
+            let min = (!top.min.is_empty()).then_some(&top.min[..]);
+            let up = reduce(&top.max, min, top.columns, 2 * top.size);
             levels.push(up);
         }
     }
@@ -78,21 +89,31 @@ impl RangePyramid {
 }
 
 /// The ranges of every 2 × 2 block of a level of `columns` columns
-/// (`max`, `min` row by row, south row first), as the level of tiles of
-/// `size` nodes a side.
-fn reduce(max: &[f64], min: &[f64], columns: usize, size: usize) -> Level {
+/// (`max`, `min` row by row, south row first; no `min`, none kept), as the
+/// level of tiles of `size` nodes a side.
+fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, size: usize) -> Level {
     let rows = max.len() / columns;
     let (up_columns, up_rows) = (columns.div_ceil(2), rows.div_ceil(2));
     let mut up = Level {
         size,
         columns: up_columns,
         max: vec![f64::NEG_INFINITY; up_columns * up_rows],
-        min: vec![f64::INFINITY; up_columns * up_rows],
+        min: Vec::new(),
     };
-    for (t, (&hi, &lo)) in max.iter().zip(min).enumerate() {
-        let u = (t / columns / 2) * up_columns + (t % columns) / 2;
-        up.max[u] = up.max[u].max(hi);
-        up.min[u] = up.min[u].min(lo);
+    for (row, values) in max.chunks(columns).enumerate() {
+        let tiles = &mut up.max[(row / 2) * up_columns..][..up_columns];
+        for (tile, pair) in tiles.iter_mut().zip(values.chunks(2)) {
+            *tile = pair.iter().fold(*tile, |m, &v| m.max(v));
+        }
+    }
+    if let Some(min) = min {
+        up.min = vec![f64::INFINITY; up_columns * up_rows];
+        for (row, values) in min.chunks(columns).enumerate() {
+            let tiles = &mut up.min[(row / 2) * up_columns..][..up_columns];
+            for (tile, pair) in tiles.iter_mut().zip(values.chunks(2)) {
+                *tile = pair.iter().fold(*tile, |m, &v| m.min(v));
+            }
+        }
     }
     up
 }
@@ -113,6 +134,7 @@ mod tests {
                 .map(|k| ((k * 7919) % 1013) as f64 * 0.001 - 0.5)
                 .collect();
             let p = RangePyramid::new(nx, &heights);
+            let upper = RangePyramid::upper(nx, &heights);
             assert_eq!(
                 p.levels.last().map(|l| l.max.len()),
                 Some(1),
@@ -131,6 +153,11 @@ mod tests {
                 }
                 let (bh, bl) = p.span(i, j);
                 assert!(bh >= hi && bl <= lo, "{nx} × {ny}, {i:?} × {j:?}");
+                assert_eq!(
+                    upper.span(i, j),
+                    (bh, f64::NEG_INFINITY),
+                    "{nx} × {ny}, {i:?} × {j:?}: the upper pyramid"
+                );
                 if i[0] % 2 == 0
                     && j[0] % 2 == 0
                     && i[1] == (i[0] + 1).min(nx - 1)

@@ -64,4 +64,10 @@ impl HeightField for Sinusoid {
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
         area.is_finite().then(|| self.amplitude.abs())
     }
+
+    /// The steepest slope anywhere, `|A|·2π/λ`.
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite()
+            .then(|| self.amplitude.abs() * self.wavenumber)
+    }
 }

@@ -101,6 +101,11 @@ impl HeightField for Slope {
         self.height(x, y).ok()
     }
 
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite()
+            .then(|| self.gradient[0].hypot(self.gradient[1]))
+    }
+
     fn plane(&self) -> Option<Plane> {
         Some(self.as_plane())
     }

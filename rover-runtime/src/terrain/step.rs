@@ -80,4 +80,35 @@ impl HeightField for Step {
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
         area.is_finite().then(|| self.height.max(0.0))
     }
+
+    /// Zero where the area lies wholly on one side of the ramp, else its
+    /// steepest slope `|h|·π/(2w)`; `None` across a sharp step, which
+    /// jumps.
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        if !area.is_finite() {
+            return None;
+        }
+        // The area's extent along the step's direction, from its corners.
+        let s = |x: f64, y: f64| {
+            (x - self.position[0]) * self.along[0] + (y - self.position[1]) * self.along[1]
+        };
+        let corners = [
+            s(area.x_min, area.y_min),
+            s(area.x_max, area.y_min),
+            s(area.x_min, area.y_max),
+            s(area.x_max, area.y_max),
+        ];
+        let lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = corners.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let half = 0.5 * self.ramp;
+        // A margin for the rounding of s, far below any ramp.
+        let margin = 1e-9 * (1.0 + lo.abs().max(hi.abs()));
+        if lo - margin > half || hi + margin < -half {
+            Some(0.0)
+        } else if self.ramp > 0.0 {
+            Some(self.height.abs() * core::f64::consts::FRAC_PI_2 / self.ramp)
+        } else {
+            None
+        }
+    }
 }
