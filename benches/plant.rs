@@ -118,10 +118,21 @@ fn bench_contact<P: Plant>(
         ContactMethod::Meridional => "rhs_contact",
         ContactMethod::Tracked => "rhs_contact_tracked",
     };
-    bench_contact_on(group, what, id, Terrain::default(), model, plant, method);
+    bench_contact_on(
+        group,
+        what,
+        id,
+        Terrain::default(),
+        model,
+        plant,
+        method,
+        None,
+    );
 }
 
-/// The right-hand side with contact on `terrain`, as benchmark `what`/`id`.
+/// The right-hand side with contact on `terrain`, as benchmark `what`/`id`,
+/// at the state `at` (default: the start, wheels just touching).
+#[allow(clippy::too_many_arguments)]
 fn bench_contact_on<P: Plant>(
     group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     what: &str,
@@ -130,8 +141,12 @@ fn bench_contact_on<P: Plant>(
     model: &Model,
     plant: P,
     method: ContactMethod,
+    at: Option<&[f64]>,
 ) {
-    let (mut sys, y) = system_on(terrain, model, plant, method);
+    let (mut sys, mut y) = system_on(terrain, model, plant, method);
+    if let Some(at) = at {
+        y.copy_from_slice(at);
+    }
     let mut dy = vec![0.0; y.len()];
     sys.rhs(0.0, &y, &mut dy).unwrap();
     group.bench_function(BenchmarkId::new(what, id), |b| {
@@ -153,26 +168,59 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
         bench_contact(&mut group, "generated", &model, generated.clone(), method);
         bench_contact(&mut group, "generic", &model, generic.clone(), method);
     }
-    let (what, method) = ("rhs_contact_grid", ContactMethod::Meridional);
+    let method = ContactMethod::Meridional;
+    let what = "rhs_contact_grid";
+    let gen_copy = generated.clone();
     bench_contact_on(
         &mut group,
         what,
         "generated",
         flat_grid(),
         &model,
-        generated,
+        gen_copy,
         method,
+        None,
     );
+    let generic_copy = generic.clone();
     bench_contact_on(
         &mut group,
         what,
         "generic",
         flat_grid(),
         &model,
-        generic,
+        generic_copy,
         method,
+        None,
+    );
+    // The paper's rough terrain, at the state the rover reaches after
+    // driving 5 s on it (the same state for both back ends).
+    let rough = Terrain::Grid(support::rough_field());
+    let state = driven(&rough, &model, generic.clone(), 5.0);
+    let at = Some(&state[..]);
+    let what = "rhs_contact_rough";
+    bench_contact_on(
+        &mut group,
+        what,
+        "generated",
+        rough.clone(),
+        &model,
+        generated,
+        method,
+        at,
+    );
+    bench_contact_on(
+        &mut group, what, "generic", rough, &model, generic, method, at,
     );
     group.finish();
+}
+
+/// The state after driving `seconds` on `terrain` from the start (RK4, 1 ms).
+fn driven<P: Plant>(terrain: &Terrain, model: &Model, plant: P, seconds: f64) -> Vec<f64> {
+    let (mut sys, mut y) = system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+    let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
+    let mut t = 0.0;
+    rk4.advance(&mut sys, &mut t, &mut y, seconds).unwrap();
+    y
 }
 
 /// The generated plant through its typed API (`FixedPlant`, nalgebra

@@ -41,7 +41,7 @@ use rover_runtime::integrate::{
     FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4, SemiImplicitEuler,
 };
 use rover_runtime::sim::RoverSystem;
-use rover_runtime::terrain::{Bounds, Grid, RandomField, Terrain};
+use rover_runtime::terrain::{Grid, Terrain};
 use rover_spec::Spec;
 
 use mujoco::{Mujoco, Setup};
@@ -108,20 +108,7 @@ struct Tolerance {
 /// end on the same spot of the map (5 cm of height, 5° of attitude and of
 /// arm angle).
 fn grounds() -> Vec<Ground> {
-    let rough = RandomField {
-        z_r: 0.2,
-        node_amplitude: 0.25,
-        patch_radius: 0.6,
-        extent: Bounds {
-            x_min: -1.5,
-            x_max: 6.5,
-            y_min: -1.5,
-            y_max: 1.5,
-        },
-        ..RandomField::default()
-    }
-    .grid()
-    .unwrap();
+    let rough = support::rough_field();
     vec![
         Ground {
             name: "flat",

@@ -9,7 +9,7 @@ use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
 use rover_runtime::ground::{ContactMethod, Ground};
 use rover_runtime::sim::RoverSystem;
-use rover_runtime::terrain::Terrain;
+use rover_runtime::terrain::{Bounds, Grid, RandomField, Terrain};
 use rover_runtime::wheel_law::WheelLawConfig;
 
 /// The speed every bench drives at [m/s].
@@ -67,4 +67,25 @@ pub fn system_on<P: Plant>(
 /// contact from the first step.
 pub fn start_height(model: &Model) -> f64 {
     model.touchdown_height() - 2e-3
+}
+
+/// The paper's rough terrain as the reproduction of Figs. 13–16 builds it
+/// (Z_R = 0.2, seed 1, docs/REPRODUCTION.md), over the ground the benches
+/// drive on: from 1.5 m behind the start to 6.5 m ahead, 1.5 m to each
+/// side.
+pub fn rough_field() -> Grid {
+    RandomField {
+        z_r: 0.2,
+        node_amplitude: 0.25,
+        patch_radius: 0.6,
+        extent: Bounds {
+            x_min: -1.5,
+            x_max: 6.5,
+            y_min: -1.5,
+            y_max: 1.5,
+        },
+        ..RandomField::default()
+    }
+    .grid()
+    .unwrap()
 }
