@@ -71,18 +71,20 @@ pub fn start_height(model: &Model) -> f64 {
 
 /// The paper's rough terrain as the reproduction of Figs. 13–16 builds it
 /// (Z_R = 0.2, seed 1, docs/REPRODUCTION.md), over the ground the benches
-/// drive on: from 1.5 m behind the start to 6.5 m ahead, 1.5 m to each
-/// side.
+/// drive on: from 3 m behind the start (the LRV's rear wheels start 1.5 m
+/// behind it) to 6.5 m ahead, 2 m to each side. The grid's nodes keep
+/// their places, to rounding, whatever the extent (multiples of its 5 cm
+/// spacing), so the ground is the same where the maps overlap.
 pub fn rough_field() -> Grid {
     RandomField {
         z_r: 0.2,
         node_amplitude: 0.25,
         patch_radius: 0.6,
         extent: Bounds {
-            x_min: -1.5,
+            x_min: -3.0,
             x_max: 6.5,
-            y_min: -1.5,
-            y_max: 1.5,
+            y_min: -2.0,
+            y_max: 2.0,
         },
         ..RandomField::default()
     }

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap};
 use super::kernel::{catmull_rom, stencil};
-use super::range_pyramid::RangePyramid;
+use super::range_pyramid::{RangePyramid, UpperRows};
 
 /// Tolerance, in cells, for a query on the map's edge.
 const EDGE_SLACK: f64 = 1e-9;
@@ -142,10 +142,7 @@ impl Grid {
             ny,
             last: [(nx - 1) as f64, (ny - 1) as f64],
             tiles: Arc::new(RangePyramid::new(nx, &heights)),
-            slopes: Arc::new(RangePyramid::upper(
-                nx,
-                &cell_slopes(nx, ny, spacing, &heights),
-            )),
+            slopes: Arc::new(cell_slopes(nx, ny, spacing, &heights)),
             heights: heights.into(),
             interpolation: Interpolation::default(),
             edge: EdgePolicy::default(),
@@ -506,9 +503,9 @@ impl HeightField for Grid {
     }
 }
 
-/// A bound of the interpolant's gradient magnitude on every cell, at the
-/// cell's south-west node (0 on the last row and column, which start no
-/// cell), for both interpolants.
+/// The pyramid of bounds of the interpolant's gradient magnitude on every
+/// cell, at the cell's south-west node (0 on the last row and column,
+/// which start no cell), for both interpolants.
 ///
 /// On a cell, ∂Z/∂t = Σ_k w_k(s)·r_k'(t), where r_k is the Catmull–Rom
 /// cubic along X of stencil row k = −1 … 2. Each r_k' is a quadratic in t,
@@ -522,58 +519,85 @@ impl HeightField for Grid {
 /// every sign made positive. The bilinear interpolant's derivative along
 /// X lies between the cell's two node differences p1 − p0, each of which
 /// is some r_k'(t) (mean value theorem): the same bound holds for it.
-fn cell_slopes(nx: usize, ny: usize, spacing: [f64; 2], heights: &[f64]) -> Vec<f64> {
+fn cell_slopes(nx: usize, ny: usize, spacing: [f64; 2], heights: &[f64]) -> RangePyramid {
+    let mut pyramid = UpperRows::new(nx, ny);
+    cell_slope_rows(nx, ny, spacing, heights, |row| pyramid.push(row));
+    pyramid.finish()
+}
+
+/// The rows of [`cell_slopes`], south row first, each given to `emit`:
+/// one row at a time, with the b of the four stencil rows in a ring, so
+/// that a map's bounds never take more than a few rows of memory besides
+/// the pyramid (a third of a value per node).
+fn cell_slope_rows(
+    nx: usize,
+    ny: usize,
+    spacing: [f64; 2],
+    heights: &[f64],
+    mut emit: impl FnMut(&[f64]),
+) {
     let at = |i: usize, j: usize| heights.get(j * nx + i).copied().unwrap_or(0.0);
-    // b of every stencil row: along X for row r and cell i, at [r·nx + i];
-    // along Y for column c and cell j, at [j·nx + c]. Inside the map the
-    // stencils are windows of real nodes; the edge cells take the ghosts.
-    let mut along_x = vec![0.0; heights.len()];
-    for (b, row) in along_x.chunks_mut(nx).zip(heights.chunks(nx)) {
+    // b along X of node row r, cell by cell: inside the map the stencils
+    // are windows of real nodes; the edge cells take the ghosts.
+    let along_x_of = |r: usize, b: &mut [f64]| {
+        let row = &heights[r * nx..(r + 1) * nx];
         for (b, window) in b[1..].iter_mut().zip(row.windows(4)) {
             *b = steepest([window[0], window[1], window[2], window[3]]);
         }
-    }
-    let mut along_y = vec![0.0; heights.len()];
-    for j in 1..ny.saturating_sub(2) {
-        let rows = [j - 1, j, j + 1, j + 2].map(|r| &heights[r * nx..(r + 1) * nx]);
-        for (c, b) in along_y[j * nx..(j + 1) * nx].iter_mut().enumerate() {
-            *b = steepest(rows.map(|row| row[c]));
-        }
-    }
-    for r in 0..ny {
         for i in [0, nx - 2] {
-            along_x[r * nx + i] = steepest(stencil(nx, i, |c| at(c, r)));
+            b[i] = steepest(stencil(nx, i, |c| at(c, r)));
         }
-    }
-    for j in [0, ny - 2] {
-        for c in 0..nx {
-            along_y[j * nx + c] = steepest(stencil(ny, j, |r| at(c, r)));
-        }
-    }
-    let combine = |b: [f64; 4]| 1.125 * b[1].max(b[2]) + 0.125 * b[0].max(b[3]);
-    // Rounded up past the interpolant's own rounding.
-    let magnitude = |bx: [f64; 4], by: [f64; 4]| {
-        let (gx, gy) = (combine(bx) / spacing[0], combine(by) / spacing[1]);
-        (gx * gx + gy * gy).sqrt() * (1.0 + 1e-9)
     };
-    let mut slopes = vec![0.0; heights.len()];
-    for j in 1..ny.saturating_sub(2) {
-        let rows = [j - 1, j, j + 1, j + 2].map(|r| &along_x[r * nx..(r + 1) * nx]);
-        let cells = slopes[j * nx + 1..].iter_mut().zip(1..nx.saturating_sub(2));
-        for ((slope, i), by) in cells.zip(along_y[j * nx..(j + 1) * nx].windows(4)) {
-            *slope = magnitude(rows.map(|row| row[i]), [by[0], by[1], by[2], by[3]]);
-        }
-    }
-    let edge = |i: usize, j: usize| i == 0 || i + 2 >= nx || j == 0 || j + 2 >= ny;
+    // The rows j − 1 … j + 2 that cell row j reads, at [r % 4].
+    let mut ring = [(); 4].map(|_| vec![0.0; nx]);
+    let mut next = 0;
+    let mut along_y = vec![0.0; nx];
+    let mut slopes = vec![0.0; nx];
+    let combine = |b: [f64; 4]| 1.125 * b[1].max(b[2]) + 0.125 * b[0].max(b[3]);
+    let (per_dx, per_dy) = (1.0 / spacing[0], 1.0 / spacing[1]);
     for j in 0..ny - 1 {
-        for i in (0..nx - 1).filter(|&i| edge(i, j)) {
-            slopes[j * nx + i] = magnitude(
-                ghost_bounds(ny, j, |r| along_x[r * nx + i]),
-                ghost_bounds(nx, i, |c| along_y[j * nx + c]),
-            );
+        while next <= (j + 2).min(ny - 1) {
+            along_x_of(next, &mut ring[next % 4]);
+            next += 1;
         }
+        // b along Y of every node column c at cell row j.
+        if j >= 1 && j + 2 < ny {
+            let rows = [j - 1, j, j + 1, j + 2].map(|r| &heights[r * nx..(r + 1) * nx]);
+            for (c, b) in along_y.iter_mut().enumerate() {
+                *b = steepest(rows.map(|row| row[c]));
+            }
+        } else {
+            for (c, b) in along_y.iter_mut().enumerate() {
+                *b = steepest(stencil(ny, j, |r| at(c, r)));
+            }
+        }
+        // Rounded up past the interpolant's own rounding (and the
+        // reciprocals').
+        let magnitude = |bx: [f64; 4], by: [f64; 4]| {
+            let (gx, gy) = (combine(bx) * per_dx, combine(by) * per_dy);
+            (gx * gx + gy * gy).sqrt() * (1.0 + 1e-9)
+        };
+        let interior = j >= 1 && j + 2 < ny;
+        if interior {
+            let rows = [j - 1, j, j + 1, j + 2].map(|r| &ring[r % 4][..]);
+            let cells = slopes[1..nx.saturating_sub(2)].iter_mut().enumerate();
+            for ((k, slope), by) in cells.zip(along_y.windows(4)) {
+                let i = k + 1;
+                *slope = magnitude(rows.map(|row| row[i]), [by[0], by[1], by[2], by[3]]);
+            }
+        }
+        for i in 0..nx - 1 {
+            if !interior || i == 0 || i + 2 >= nx {
+                slopes[i] = magnitude(
+                    ghost_bounds(ny, j, |r| ring[r % 4][i]),
+                    ghost_bounds(nx, i, |c| along_y[c]),
+                );
+            }
+        }
+        emit(&slopes);
     }
-    slopes
+    // The last row starts no cell.
+    emit(&vec![0.0; nx]);
 }
 
 /// The largest magnitude over t ∈ [0, 1] of the derivative of the
@@ -658,7 +682,10 @@ mod tests {
         for (nx, ny) in [(2, 2), (3, 2), (5, 4), (9, 7)] {
             let heights: Vec<f64> = (0..nx * ny).map(|_| rng.next_f64() - 0.5).collect();
             let spacing = [0.3, 0.2];
-            let slopes = cell_slopes(nx, ny, spacing, &heights);
+            let mut slopes = Vec::new();
+            cell_slope_rows(nx, ny, spacing, &heights, |row| {
+                slopes.extend_from_slice(row)
+            });
             for interpolation in [Interpolation::Bicubic, Interpolation::Bilinear] {
                 let grid = Grid::new([0.0, 0.0], spacing, nx, ny, heights.clone())
                     .unwrap()
@@ -697,7 +724,10 @@ mod tests {
         }
         let (a, b) = (0.3, -0.4);
         let plane = Grid::from_fn([0.0, 0.0], [0.1, 0.1], 8, 8, |x, y| a * x + b * y).unwrap();
-        let slopes = cell_slopes(8, 8, [0.1, 0.1], plane.heights());
+        let mut slopes = Vec::new();
+        cell_slope_rows(8, 8, [0.1, 0.1], plane.heights(), |row| {
+            slopes.extend_from_slice(row)
+        });
         let bound = slopes[3 * 8 + 3];
         assert!(
             (bound - 1.25 * 0.5).abs() < 1e-9,

@@ -43,14 +43,22 @@ impl RangePyramid {
     }
 
     /// The pyramid of the highest values only: [`RangePyramid::span`] then
-    /// bounds nothing from below (−∞), for a third less memory.
+    /// bounds nothing from below (−∞), for half the memory.
+    #[cfg(test)]
     pub(crate) fn upper(nx: usize, values: &[f64]) -> RangePyramid {
-        Self::build(nx, values, None)
+        let mut rows = UpperRows::new(nx, values.len() / nx);
+        values.chunks(nx).for_each(|row| rows.push(row));
+        rows.finish()
     }
 
     fn build(nx: usize, max: &[f64], min: Option<&[f64]>) -> RangePyramid {
         // The nodes are level "−1": tiles of one node, max = min = height.
-        let mut levels = vec![reduce(max, min, nx, 2)];
+        Self::above(reduce(max, min, nx, 2))
+    }
+
+    /// The pyramid on its finest level.
+    fn above(first: Level) -> RangePyramid {
+        let mut levels = vec![first];
         loop {
             let top = &levels[levels.len() - 1];
             if top.max.len() <= 1 {
@@ -85,6 +93,48 @@ impl RangePyramid {
             }
         }
         (hi, lo)
+    }
+}
+
+/// An upper pyramid ([`RangePyramid::upper`]) built from its values one row
+/// at a time, south row first, so that they need never be held whole.
+pub(crate) struct UpperRows {
+    level: Level,
+    rows: usize,
+    pushed: usize,
+}
+
+impl UpperRows {
+    /// For `nx × ny` values.
+    pub(crate) fn new(nx: usize, ny: usize) -> UpperRows {
+        let columns = nx.div_ceil(2);
+        UpperRows {
+            level: Level {
+                size: 2,
+                columns,
+                max: vec![f64::NEG_INFINITY; columns * ny.div_ceil(2)],
+                min: Vec::new(),
+            },
+            rows: ny,
+            pushed: 0,
+        }
+    }
+
+    /// The next row's `nx` values (rows beyond the `ny`-th are ignored).
+    pub(crate) fn push(&mut self, row: &[f64]) {
+        if self.pushed < self.rows {
+            let columns = self.level.columns;
+            let tiles = &mut self.level.max[(self.pushed / 2) * columns..][..columns];
+            for (tile, pair) in tiles.iter_mut().zip(row.chunks(2)) {
+                *tile = pair.iter().fold(*tile, |m, &v| m.max(v));
+            }
+            self.pushed += 1;
+        }
+    }
+
+    /// The pyramid (rows never pushed count as −∞).
+    pub(crate) fn finish(self) -> RangePyramid {
+        RangePyramid::above(self.level)
     }
 }
 
