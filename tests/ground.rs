@@ -525,6 +525,18 @@ fn a_wheel_on_flat_ground_samples_only_the_rim_near_the_ground() {
     );
 }
 
+/// A rectangle of up to 0.8 m × 0.8 m around the trials' area.
+fn random_area(rng: &mut crate::support::rng::Rng) -> rover_runtime::terrain::Bounds {
+    let (x, y) = (rng.uniform(-1.8, 1.6), rng.uniform(-1.8, 1.6));
+    let (w, h) = (rng.uniform(0.0, 0.8), rng.uniform(0.0, 0.8));
+    rover_runtime::terrain::Bounds {
+        x_min: x,
+        x_max: x + w,
+        y_min: y,
+        y_max: y + h,
+    }
+}
+
 /// The slope bound of every terrain holds at random points of random
 /// rectangles (including rectangles across a grid's clamped edge and a
 /// step's ramp), and is `None` for a non-finite rectangle.
@@ -535,20 +547,16 @@ fn terrain_slope_bounds_hold() {
     for (name, terrain) in bounded_terrains() {
         let mut bounded = 0;
         for _ in 0..300 {
-            let (x, y) = (rng.uniform(-1.8, 1.6), rng.uniform(-1.8, 1.6));
-            let (w, h) = (rng.uniform(0.0, 0.8), rng.uniform(0.0, 0.8));
-            let area = Bounds {
-                x_min: x,
-                x_max: x + w,
-                y_min: y,
-                y_max: y + h,
-            };
+            let area = random_area(&mut rng);
             let Some(steepest) = terrain.max_slope_in(&area) else {
                 continue;
             };
             bounded += 1;
             for _ in 0..50 {
-                let (px, py) = (rng.uniform(x, x + w), rng.uniform(y, y + h));
+                let (px, py) = (
+                    rng.uniform(area.x_min, area.x_max),
+                    rng.uniform(area.y_min, area.y_max),
+                );
                 let (_, [gx, gy]) = terrain.height_gradient(px, py).unwrap();
                 assert!(
                     gx.hypot(gy) <= steepest,
@@ -560,9 +568,7 @@ fn terrain_slope_bounds_hold() {
         assert!(bounded > 100, "{name}: only {bounded} areas bounded");
         let nan = Bounds {
             x_min: f64::NAN,
-            x_max: 0.0,
-            y_min: 0.0,
-            y_max: 0.0,
+            ..random_area(&mut rng)
         };
         assert_eq!(terrain.max_slope_in(&nan), None, "{name}: NaN area");
     }
@@ -574,19 +580,15 @@ fn terrain_height_bounds_hold() {
     let mut rng = crate::support::rng::Rng::new(77);
     for (name, terrain) in bounded_terrains() {
         for _ in 0..300 {
-            let (x, y) = (rng.uniform(-1.8, 1.6), rng.uniform(-1.8, 1.6));
-            let (w, h) = (rng.uniform(0.0, 0.8), rng.uniform(0.0, 0.8));
-            let area = Bounds {
-                x_min: x,
-                x_max: x + w,
-                y_min: y,
-                y_max: y + h,
-            };
+            let area = random_area(&mut rng);
             let Some(top) = terrain.max_height_in(&area) else {
                 continue;
             };
             for _ in 0..50 {
-                let (px, py) = (rng.uniform(x, x + w), rng.uniform(y, y + h));
+                let (px, py) = (
+                    rng.uniform(area.x_min, area.x_max),
+                    rng.uniform(area.y_min, area.y_max),
+                );
                 let z = terrain.height(px, py).unwrap();
                 assert!(
                     z <= top + 1e-12,
@@ -596,9 +598,7 @@ fn terrain_height_bounds_hold() {
         }
         let nan = Bounds {
             x_min: f64::NAN,
-            x_max: 0.0,
-            y_min: 0.0,
-            y_max: 0.0,
+            ..random_area(&mut rng)
         };
         assert_eq!(terrain.max_height_in(&nan), None, "{name}: NaN area");
     }

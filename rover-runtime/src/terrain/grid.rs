@@ -242,6 +242,35 @@ impl Grid {
         }
     }
 
+    /// The index ranges `[[i0, i1], [j0, j1]]` of the nodes whose cells
+    /// `area` touches, widened by `widen[0]` indices before and `widen[1]`
+    /// after, clamped into `[0, n − 1 − shrink]` (`shrink` = 1 for cell
+    /// indices); `None` for a non-finite area or, under the `error` edge
+    /// policy, one that reaches off the map.
+    fn index_ranges(&self, area: &Bounds, widen: [f64; 2], shrink: f64) -> Option<[[usize; 2]; 2]> {
+        if !area.is_finite() {
+            return None;
+        }
+        let map = self.bounds();
+        if self.edge == EdgePolicy::Error
+            && !(map.contains(area.x_min, area.y_min) && map.contains(area.x_max, area.y_max))
+        {
+            return None;
+        }
+        let range = |lo: f64, hi: f64, axis: usize| {
+            let (origin, spacing) = (self.origin[axis], self.spacing[axis]);
+            let top = self.last[axis] - shrink;
+            let first = ((lo - origin) / spacing).floor() - widen[0];
+            let end = ((hi - origin) / spacing).floor() + widen[1];
+            // Clamped into [0, top]: the casts are exact.
+            [first.clamp(0.0, top) as usize, end.clamp(0.0, top) as usize]
+        };
+        Some([
+            range(area.x_min, area.x_max, 0),
+            range(area.y_min, area.y_max, 1),
+        ])
+    }
+
     #[inline]
     fn at(&self, i: usize, j: usize) -> f64 {
         // i < nx and j < ny by construction of every caller; `get` keeps this
@@ -440,29 +469,9 @@ impl HeightField for Grid {
     /// bicubic overshoot), read from the range pyramid; `None` if part of the area is
     /// off the map under the `error` edge policy.
     fn max_height_in(&self, area: &Bounds) -> Option<f64> {
-        if !area.is_finite() {
-            return None;
-        }
-        let map = self.bounds();
-        if self.edge == EdgePolicy::Error
-            && !(map.contains(area.x_min, area.y_min) && map.contains(area.x_max, area.y_max))
-        {
-            return None;
-        }
-        // Cells touched, widened by the stencil (one node before, two after);
-        // clamping also covers queries held at the edge.
-        let nodes = |lo: f64, hi: f64, axis: usize| {
-            let (origin, spacing, last) = (self.origin[axis], self.spacing[axis], self.last[axis]);
-            let first = ((lo - origin) / spacing).floor() - 1.0;
-            let end = ((hi - origin) / spacing).floor() + 2.0;
-            // Clamped into [0, n − 1]: the casts are exact.
-            [
-                first.clamp(0.0, last) as usize,
-                end.clamp(0.0, last) as usize,
-            ]
-        };
-        let i = nodes(area.x_min, area.x_max, 0);
-        let j = nodes(area.y_min, area.y_max, 1);
+        // Cells touched, widened by the stencil (one node before, two
+        // after); clamping also covers queries held at the edge.
+        let [i, j] = self.index_ranges(area, [1.0, 2.0], 0.0)?;
         let (hi, lo) = self.tiles.span(i, j);
         Some(match self.interpolation {
             Interpolation::Bilinear => hi,
@@ -476,29 +485,8 @@ impl HeightField for Grid {
     /// height held: its gradient is the edge cell's along the edge, zero
     /// across it.
     fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
-        if !area.is_finite() {
-            return None;
-        }
-        let map = self.bounds();
-        if self.edge == EdgePolicy::Error
-            && !(map.contains(area.x_min, area.y_min) && map.contains(area.x_max, area.y_max))
-        {
-            return None;
-        }
-        let cells = |lo: f64, hi: f64, axis: usize| {
-            let (origin, spacing, last) = (self.origin[axis], self.spacing[axis], self.last[axis]);
-            let first = ((lo - origin) / spacing).floor();
-            let end = ((hi - origin) / spacing).floor();
-            // Clamped into [0, n − 2], the cells: the casts are exact.
-            [
-                first.clamp(0.0, last - 1.0) as usize,
-                end.clamp(0.0, last - 1.0) as usize,
-            ]
-        };
-        let (steepest, _) = self.slopes.span(
-            cells(area.x_min, area.x_max, 0),
-            cells(area.y_min, area.y_max, 1),
-        );
+        let [i, j] = self.index_ranges(area, [0.0, 0.0], 1.0)?;
+        let (steepest, _) = self.slopes.span(i, j);
         Some(steepest)
     }
 }
