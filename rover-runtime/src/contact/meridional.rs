@@ -101,7 +101,9 @@ fn sample_angle(n: usize, step: f64, i: usize) -> RimAngle {
 /// [`sample_angle`] with the table looked up once by the caller.
 #[inline]
 fn tabulated_angle(table: Option<&[(f64, f64); DEFAULT_SAMPLES]>, step: f64, i: usize) -> RimAngle {
-    let beta = -core::f64::consts::FRAC_PI_2 + i as f64 * step;
+    // Through i64: the same value (i < 2⁵³), without the unsigned
+    // conversion's fix-ups at the baseline x86-64 target.
+    let beta = -core::f64::consts::FRAC_PI_2 + i as i64 as f64 * step;
     match table.and_then(|t| t.get(i)) {
         Some(&(sin, cos)) => RimAngle { beta, sin, cos },
         None => RimAngle::new(beta),
@@ -356,7 +358,7 @@ impl MeridionalContact {
     ) -> Result<(), OffMap> {
         let frame = *frame;
         let n = self.sampling.samples.max(3);
-        let beta = |i: usize| -core::f64::consts::FRAC_PI_2 + i as f64 * step;
+        let beta = |i: usize| -core::f64::consts::FRAC_PI_2 + i as i64 as f64 * step;
         let table = (n == DEFAULT_SAMPLES).then(default_table);
         let angle = |i: usize| tabulated_angle(table, step, i);
         let sample = |i: usize| -> Result<f64, OffMap> {
@@ -386,14 +388,24 @@ impl MeridionalContact {
             if let Some(skip) = skip
                 && let Some(side) = skip.side(prev)
             {
+                // The rim's height from the table alone (no angle): this
+                // loop runs over every sample of a skipped stretch.
                 let rim = |k: usize| {
-                    let a = angle(k);
-                    frame.point_sc(a.sin, a.cos)[2]
+                    let (sin, cos) = match table.and_then(|t| t.get(k)) {
+                        Some(&sc) => sc,
+                        None => beta(k).sin_cos(),
+                    };
+                    frame.point_sc(sin, cos)[2]
                 };
                 let ground = rim(i - 1) - prev;
                 let mut last = i;
-                while last < range[1] && skip.proves(side, rim(last) - ground, last + 1 - i) {
+                // The ground's reach `rise·k + rounding`, k = last + 1 − i,
+                // kept by additions: a `usize` to `f64` conversion a sample
+                // was a fifth of the scan's own work (callgrind).
+                let mut reach = skip.rise + skip.rounding;
+                while last < range[1] && skip.proves(side, rim(last) - ground, reach) {
                     last += 1;
+                    reach += skip.rise;
                 }
                 // Samples i .. last − 1 are proven.
                 if last >= i + 2 {
@@ -517,10 +529,10 @@ impl Skip {
     }
 
     /// Whether a rim point whose height above the last queried ground is
-    /// `above`, `k` samples after it, provably stays on `side`.
+    /// `above` provably stays on `side`, the ground under it being within
+    /// `reach` (`rise·k + rounding`, k samples on) of the last queried.
     #[inline]
-    fn proves(&self, side: Side, above: f64, k: usize) -> bool {
-        let reach = self.rise * k as f64 + self.rounding;
+    fn proves(&self, side: Side, above: f64, reach: f64) -> bool {
         match side {
             Side::Above => above - reach > self.hidden,
             Side::Below => above + reach < -self.deep,

@@ -257,11 +257,18 @@ impl Grid {
         {
             return None;
         }
+        // ⌊u⌋ through i64 (exact below 2⁶³, where it saturates, and the
+        // clamp below makes that the same): the baseline x86-64 target has
+        // no instruction for `floor`, which is a call there.
+        let floor = |u: f64| {
+            let t = u as i64 as f64;
+            if t > u { t - 1.0 } else { t }
+        };
         let range = |lo: f64, hi: f64, axis: usize| {
             let (origin, spacing) = (self.origin[axis], self.spacing[axis]);
             let top = self.last[axis] - shrink;
-            let first = ((lo - origin) / spacing).floor() - widen[0];
-            let end = ((hi - origin) / spacing).floor() + widen[1];
+            let first = floor((lo - origin) / spacing) - widen[0];
+            let end = floor((hi - origin) / spacing) + widen[1];
             // Clamped into [0, top]: the casts are exact.
             [first.clamp(0.0, top) as usize, end.clamp(0.0, top) as usize]
         };

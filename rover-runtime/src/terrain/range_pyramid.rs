@@ -21,10 +21,11 @@
 /// Most tiles one query reads.
 const MAX_TILES: usize = 36;
 
-/// One level: tiles of `size × size` nodes.
+/// One level: tiles of `2^shift × 2^shift` nodes (a shift, not a size: a
+/// query divides node indices by it, and integer division is slow).
 #[derive(Debug, Clone, PartialEq)]
 struct Level {
-    size: usize,
+    shift: u32,
     columns: usize,
     max: Vec<f64>,
     min: Vec<f64>,
@@ -53,7 +54,7 @@ impl RangePyramid {
 
     fn build(nx: usize, max: &[f64], min: Option<&[f64]>) -> RangePyramid {
         // The nodes are level "−1": tiles of one node, max = min = height.
-        Self::above(reduce(max, min, nx, 2))
+        Self::above(reduce(max, min, nx, 1))
     }
 
     /// The pyramid on its finest level.
@@ -65,7 +66,7 @@ impl RangePyramid {
                 return RangePyramid { levels };
             }
             let min = (!top.min.is_empty()).then_some(&top.min[..]);
-            let up = reduce(&top.max, min, top.columns, 2 * top.size);
+            let up = reduce(&top.max, min, top.columns, top.shift + 1);
             levels.push(up);
         }
     }
@@ -74,8 +75,10 @@ impl RangePyramid {
     /// superset: whole tiles of the finest level where they are at most
     /// [`MAX_TILES`]).
     pub(crate) fn span(&self, i: [usize; 2], j: [usize; 2]) -> (f64, f64) {
-        let tiles =
-            |l: &Level| (i[1] / l.size - i[0] / l.size + 1) * (j[1] / l.size - j[0] / l.size + 1);
+        let tiles = |l: &Level| {
+            ((i[1] >> l.shift) - (i[0] >> l.shift) + 1)
+                * ((j[1] >> l.shift) - (j[0] >> l.shift) + 1)
+        };
         let Some(level) = self
             .levels
             .iter()
@@ -85,8 +88,8 @@ impl RangePyramid {
             return (f64::INFINITY, f64::NEG_INFINITY);
         };
         let (mut hi, mut lo) = (f64::NEG_INFINITY, f64::INFINITY);
-        for row in j[0] / level.size..=j[1] / level.size {
-            for col in i[0] / level.size..=i[1] / level.size {
+        for row in j[0] >> level.shift..=j[1] >> level.shift {
+            for col in i[0] >> level.shift..=i[1] >> level.shift {
                 let t = row * level.columns + col;
                 hi = hi.max(level.max.get(t).copied().unwrap_or(f64::INFINITY));
                 lo = lo.min(level.min.get(t).copied().unwrap_or(f64::NEG_INFINITY));
@@ -110,7 +113,7 @@ impl UpperRows {
         let columns = nx.div_ceil(2);
         UpperRows {
             level: Level {
-                size: 2,
+                shift: 1,
                 columns,
                 max: vec![f64::NEG_INFINITY; columns * ny.div_ceil(2)],
                 min: Vec::new(),
@@ -140,12 +143,12 @@ impl UpperRows {
 
 /// The ranges of every 2 × 2 block of a level of `columns` columns
 /// (`max`, `min` row by row, south row first; no `min`, none kept), as the
-/// level of tiles of `size` nodes a side.
-fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, size: usize) -> Level {
+/// level of tiles of `2^shift` nodes a side.
+fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, shift: u32) -> Level {
     let rows = max.len() / columns;
     let (up_columns, up_rows) = (columns.div_ceil(2), rows.div_ceil(2));
     let mut up = Level {
-        size,
+        shift,
         columns: up_columns,
         max: vec![f64::NEG_INFINITY; up_columns * up_rows],
         min: Vec::new(),
