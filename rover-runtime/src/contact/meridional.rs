@@ -771,3 +771,56 @@ fn extremum<H: HeightField + ?Sized>(
         (d, sign * hd)
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The skip's thresholds are the ones its argument needs (see
+    /// [`Skip`]): it starts only from a sample above the dip threshold
+    /// (a sample between 0 and it may be a dip's bottom, which the next
+    /// sample must see) or deeper than the split band (a shallower run's
+    /// depth sets its blend), and it proves only what clears those by the
+    /// ground's reach. The whole-search tests cannot reach every one of
+    /// these cases (a run shallower than the band is too short to skip
+    /// into on any ground tried), so they are held here.
+    #[test]
+    fn the_skip_keeps_clear_of_every_threshold_the_scan_uses() {
+        let frame = RimFrame::new([0.0, 0.0, 0.1], [0.0, 1.0, 0.0], 0.1).unwrap();
+        let step = core::f64::consts::PI / 180.0;
+        let hidden = 2.0 * 0.1 * step * step;
+        let skip = Skip::new(&frame, 0.2, step, hidden).unwrap();
+        assert!(
+            hidden < SPLIT_BAND,
+            "a 10 cm wheel's dip threshold is below the band"
+        );
+        assert_eq!(skip.deep, SPLIT_BAND);
+        // Where a skip may start.
+        assert_eq!(skip.side(hidden), Some(Side::Above));
+        assert_eq!(skip.side(0.5 * hidden), None, "a possible dip bottom");
+        assert_eq!(skip.side(0.0), None);
+        assert_eq!(
+            skip.side(-0.5 * SPLIT_BAND),
+            None,
+            "a run shallower than the band"
+        );
+        assert_eq!(skip.side(-SPLIT_BAND), None);
+        assert_eq!(skip.side(-1.01 * SPLIT_BAND), Some(Side::Below));
+        // What it proves, k samples on: the reach is rise·k plus rounding.
+        let reach = |k: f64| skip.rise * k + skip.rounding;
+        for k in [1.0, 5.0, 40.0] {
+            let margin = 1e-12;
+            assert!(skip.proves(Side::Above, hidden + reach(k) + margin, reach(k)));
+            assert!(!skip.proves(Side::Above, hidden + reach(k) - margin, reach(k)));
+            assert!(skip.proves(Side::Below, -SPLIT_BAND - reach(k) - margin, reach(k)));
+            assert!(!skip.proves(Side::Below, -SPLIT_BAND - reach(k) + margin, reach(k)));
+        }
+        // A wheel whose dip threshold exceeds the band keeps the threshold.
+        let big = RimFrame::new([0.0, 0.0, 2.0], [0.0, 1.0, 0.0], 2.0).unwrap();
+        let big_hidden = 2.0 * 2.0 * step * step;
+        let skip = Skip::new(&big, 0.2, step, big_hidden).unwrap();
+        assert_eq!(skip.deep, big_hidden.max(SPLIT_BAND));
+        // No bound, no skip: a non-finite slope (a sharp step's) makes none.
+        assert!(Skip::new(&frame, f64::INFINITY, step, hidden).is_none());
+    }
+}
