@@ -16,7 +16,12 @@
 //! the rim arc above that bound is skipped. Every skipped sample would have
 //! had a clearance above the dip threshold, where it can start no patch, end
 //! none and hide no dip, so the result is the same, bit for bit, as sampling
-//! all of them (a test holds the two against each other).
+//! all of them (a test holds the two against each other). Within that arc,
+//! when the terrain bounds its slope under the wheel
+//! ([`HeightField::max_slope_in`]), the samples that provably stay on the
+//! last queried sample's side of the ground are skipped too ([`Skip`]),
+//! again without changing a bit: on rough ground a wheel's search queries
+//! about a quarter of the samples it did.
 //!
 //! On a terrain that is one plane ([`HeightField::plane`]: flat ground, a
 //! slope) nothing is sampled: the rim meets the plane where a sinusoid of β

@@ -486,7 +486,7 @@ impl HeightField for Grid {
         })
     }
 
-    /// The largest cell bound (see [`cell_slopes`]) over the cells that
+    /// The largest cell bound (`cell_slopes` in the source) over the cells that
     /// `area` touches; `None` if part of it is off the map under the
     /// `error` edge policy. Beyond a clamped edge the ground is the edge's
     /// height held: its gradient is the edge cell's along the edge, zero
