@@ -170,27 +170,20 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
     }
     let method = ContactMethod::Meridional;
     let what = "rhs_contact_grid";
-    let gen_copy = generated.clone();
+    let (plant, grid) = (generated.clone(), flat_grid());
     bench_contact_on(
         &mut group,
         what,
         "generated",
-        flat_grid(),
+        grid,
         &model,
-        gen_copy,
+        plant,
         method,
         None,
     );
-    let generic_copy = generic.clone();
+    let (plant, grid) = (generic.clone(), flat_grid());
     bench_contact_on(
-        &mut group,
-        what,
-        "generic",
-        flat_grid(),
-        &model,
-        generic_copy,
-        method,
-        None,
+        &mut group, what, "generic", grid, &model, plant, method, None,
     );
     // The paper's rough terrain, at the state the rover reaches after
     // driving 5 s on it (the same state for both back ends).

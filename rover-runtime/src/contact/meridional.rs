@@ -106,12 +106,30 @@ fn sample_angle(n: usize, step: f64, i: usize) -> RimAngle {
 /// [`sample_angle`] with the table looked up once by the caller.
 #[inline]
 fn tabulated_angle(table: Option<&[(f64, f64); DEFAULT_SAMPLES]>, step: f64, i: usize) -> RimAngle {
-    // Through i64: the same value (i < 2⁵³), without the unsigned
-    // conversion's fix-ups at the baseline x86-64 target.
-    let beta = -core::f64::consts::FRAC_PI_2 + i as i64 as f64 * step;
+    let beta = sample_beta(step, i);
+    let (sin, cos) = tabulated_sin_cos(table, step, i);
+    RimAngle { beta, sin, cos }
+}
+
+/// Sample i's angle, `step` apart from −90°. Through i64: the same value
+/// (i < 2⁵³), without the unsigned conversion's fix-ups at the baseline
+/// x86-64 target.
+#[inline]
+fn sample_beta(step: f64, i: usize) -> f64 {
+    -core::f64::consts::FRAC_PI_2 + i as i64 as f64 * step
+}
+
+/// Sample i's sine and cosine, from the table when there is one (the angle
+/// is computed only when there is not).
+#[inline]
+fn tabulated_sin_cos(
+    table: Option<&[(f64, f64); DEFAULT_SAMPLES]>,
+    step: f64,
+    i: usize,
+) -> (f64, f64) {
     match table.and_then(|t| t.get(i)) {
-        Some(&(sin, cos)) => RimAngle { beta, sin, cos },
-        None => RimAngle::new(beta),
+        Some(&sc) => sc,
+        None => sample_beta(step, i).sin_cos(),
     }
 }
 
@@ -363,7 +381,7 @@ impl MeridionalContact {
     ) -> Result<(), OffMap> {
         let frame = *frame;
         let n = self.sampling.samples.max(3);
-        let beta = |i: usize| -core::f64::consts::FRAC_PI_2 + i as i64 as f64 * step;
+        let beta = |i: usize| sample_beta(step, i);
         let table = (n == DEFAULT_SAMPLES).then(default_table);
         let angle = |i: usize| tabulated_angle(table, step, i);
         let sample = |i: usize| -> Result<f64, OffMap> {
@@ -396,10 +414,7 @@ impl MeridionalContact {
                 // The rim's height from the table alone (no angle): this
                 // loop runs over every sample of a skipped stretch.
                 let rim = |k: usize| {
-                    let (sin, cos) = match table.and_then(|t| t.get(k)) {
-                        Some(&sc) => sc,
-                        None => beta(k).sin_cos(),
-                    };
+                    let (sin, cos) = tabulated_sin_cos(table, step, k);
                     frame.point_sc(sin, cos)[2]
                 };
                 let ground = rim(i - 1) - prev;

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap};
-use super::kernel::{catmull_rom, stencil};
+use super::kernel::{Bound, catmull_rom, stencil};
 use super::range_pyramid::{RangePyramid, UpperRows};
 
 /// Tolerance, in cells, for a query on the map's edge.
@@ -550,13 +550,19 @@ fn cell_slope_rows(
     let mut slopes = vec![0.0; nx];
     let combine = |b: [f64; 4]| 1.125 * b[1].max(b[2]) + 0.125 * b[0].max(b[3]);
     let (per_dx, per_dy) = (1.0 / spacing[0], 1.0 / spacing[1]);
+    // Rounded up past the interpolant's own rounding (and the reciprocals').
+    let magnitude = |bx: [f64; 4], by: [f64; 4]| {
+        let (gx, gy) = (combine(bx) * per_dx, combine(by) * per_dy);
+        (gx * gx + gy * gy).sqrt() * (1.0 + 1e-9)
+    };
     for j in 0..ny - 1 {
         while next <= (j + 2).min(ny - 1) {
             along_x_of(next, &mut ring[next % 4]);
             next += 1;
         }
+        let interior = j >= 1 && j + 2 < ny;
         // b along Y of every node column c at cell row j.
-        if j >= 1 && j + 2 < ny {
+        if interior {
             let rows = [j - 1, j, j + 1, j + 2].map(|r| &heights[r * nx..(r + 1) * nx]);
             for (c, b) in along_y.iter_mut().enumerate() {
                 *b = steepest(rows.map(|row| row[c]));
@@ -566,13 +572,6 @@ fn cell_slope_rows(
                 *b = steepest(stencil(ny, j, |r| at(c, r)));
             }
         }
-        // Rounded up past the interpolant's own rounding (and the
-        // reciprocals').
-        let magnitude = |bx: [f64; 4], by: [f64; 4]| {
-            let (gx, gy) = (combine(bx) * per_dx, combine(by) * per_dy);
-            (gx * gx + gy * gy).sqrt() * (1.0 + 1e-9)
-        };
-        let interior = j >= 1 && j + 2 < ny;
         if interior {
             let rows = [j - 1, j, j + 1, j + 2].map(|r| &ring[r % 4][..]);
             let cells = slopes[1..nx.saturating_sub(2)].iter_mut().enumerate();
@@ -592,7 +591,8 @@ fn cell_slope_rows(
         emit(&slopes);
     }
     // The last row starts no cell.
-    emit(&vec![0.0; nx]);
+    slopes.fill(0.0);
+    emit(&slopes);
 }
 
 /// The largest magnitude over t ∈ [0, 1] of the derivative of the
@@ -612,27 +612,10 @@ fn steepest([pm, p0, p1, p2]: [f64; 4]) -> f64 {
     }
 }
 
-/// [`stencil`] for bounds `b ≥ 0` of lines that extrapolate linearly: a
-/// ghost's bound is the ghost's combination of the lines' bounds with
-/// every coefficient made positive.
+/// The stencil of bounds `b ≥ 0` around cell `k` of a line of `n` nodes
+/// ([`stencil`] over [`Bound`]: ghosts bounded by the triangle inequality).
 fn ghost_bounds(n: usize, k: usize, fetch: impl Fn(usize) -> f64) -> [f64; 4] {
-    let b0 = fetch(k);
-    let b1 = fetch(k + 1);
-    let before = if k >= 1 {
-        fetch(k - 1)
-    } else if n >= 3 {
-        3.0 * b0 + 3.0 * b1 + fetch(2)
-    } else {
-        2.0 * b0 + b1
-    };
-    let after = if k + 2 < n {
-        fetch(k + 2)
-    } else if n >= 3 {
-        3.0 * b1 + 3.0 * b0 + fetch(n - 3)
-    } else {
-        2.0 * b1 + b0
-    };
-    [before, b0, b1, after]
+    stencil(n, k, |i| Bound(fetch(i))).map(|b| b.0)
 }
 
 #[cfg(test)]

@@ -87,6 +87,24 @@ impl Ghost for f64 {
     }
 }
 
+/// A bound `b ≥ 0` of a line that extrapolates like its nodes (the largest
+/// slope of a stencil row, say): a ghost's bound is the ghost's combination
+/// of the lines' bounds with every coefficient made positive (the triangle
+/// inequality).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bound(pub f64);
+
+impl Ghost for Bound {
+    #[inline]
+    fn quadratic(a: Bound, b: Bound, c: Bound) -> Bound {
+        Bound(3.0 * a.0 + 3.0 * b.0 + c.0)
+    }
+    #[inline]
+    fn linear(a: Bound, b: Bound) -> Bound {
+        Bound(2.0 * a.0 + b.0)
+    }
+}
+
 impl<const N: usize> Ghost for [f64; N] {
     #[inline]
     fn quadratic(a: [f64; N], b: [f64; N], c: [f64; N]) -> [f64; N] {

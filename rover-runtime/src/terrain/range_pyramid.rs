@@ -128,9 +128,7 @@ impl UpperRows {
         if self.pushed < self.rows {
             let columns = self.level.columns;
             let tiles = &mut self.level.max[(self.pushed / 2) * columns..][..columns];
-            for (tile, pair) in tiles.iter_mut().zip(row.chunks(2)) {
-                *tile = pair.iter().fold(*tile, |m, &v| m.max(v));
-            }
+            fold_pairs(tiles, row, f64::max);
             self.pushed += 1;
         }
     }
@@ -153,22 +151,29 @@ fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, shift: u32) -> Level
         max: vec![f64::NEG_INFINITY; up_columns * up_rows],
         min: Vec::new(),
     };
-    for (row, values) in max.chunks(columns).enumerate() {
-        let tiles = &mut up.max[(row / 2) * up_columns..][..up_columns];
-        for (tile, pair) in tiles.iter_mut().zip(values.chunks(2)) {
-            *tile = pair.iter().fold(*tile, |m, &v| m.max(v));
+    let fold = |up: &mut [f64], values: &[f64], pick: fn(f64, f64) -> f64| {
+        for (row, values) in values.chunks(columns).enumerate() {
+            fold_pairs(
+                &mut up[(row / 2) * up_columns..][..up_columns],
+                values,
+                pick,
+            );
         }
-    }
+    };
+    fold(&mut up.max, max, f64::max);
     if let Some(min) = min {
         up.min = vec![f64::INFINITY; up_columns * up_rows];
-        for (row, values) in min.chunks(columns).enumerate() {
-            let tiles = &mut up.min[(row / 2) * up_columns..][..up_columns];
-            for (tile, pair) in tiles.iter_mut().zip(values.chunks(2)) {
-                *tile = pair.iter().fold(*tile, |m, &v| m.min(v));
-            }
-        }
+        fold(&mut up.min, min, f64::min);
     }
     up
+}
+
+/// Folds one row of `values` into the row of `tiles` above it, each pair of
+/// neighbours into one tile by `pick` (the larger or the smaller).
+fn fold_pairs(tiles: &mut [f64], values: &[f64], pick: fn(f64, f64) -> f64) {
+    for (tile, pair) in tiles.iter_mut().zip(values.chunks(2)) {
+        *tile = pair.iter().fold(*tile, |m, &v| pick(m, v));
+    }
 }
 
 #[cfg(test)]
