@@ -74,6 +74,24 @@ fn simulate_writes_every_output_for_both_paper_rovers() {
             summary["plant"].as_str().unwrap().starts_with("generated"),
             "built-in rovers run their generated plant"
         );
+        // The integrator's work adds up: BDF differentiates by differences,
+        // one right-hand side per state component for each Jacobian, and
+        // every step attempt evaluates at least once more; a Jacobian is
+        // always followed by a factorization.
+        let count = |k: &str| {
+            summary[k]
+                .as_u64()
+                .unwrap_or_else(|| panic!("{k}: {summary}"))
+        };
+        let (evals, jacs, lus) = (
+            count("rhs_evals"),
+            count("jacobian_evals"),
+            count("lu_decompositions"),
+        );
+        let attempts = count("steps") + count("rejected_steps");
+        let dim = report.summary.final_state.len() as u64 - 1; // less `t`
+        assert!(jacs >= 1 && lus >= jacs, "{summary}");
+        assert!(evals >= attempts + jacs * dim, "{summary}");
         let csv = std::fs::read_to_string(out.join("run.csv")).unwrap();
         assert_eq!(
             csv.lines().count(),

@@ -228,6 +228,8 @@ pub fn simulate<P: Plant, W: Write>(
             rhs_evals: stats.rhs_evals,
             steps: stats.steps,
             rejected_steps: stats.rejected_steps,
+            jacobian_evals: stats.jacobian_evals,
+            lu_decompositions: stats.lu_decompositions,
         },
     );
     summary.path_deviation = path_deviation;
@@ -466,6 +468,10 @@ fn quasi_static_run<W: Write>(
             rhs_evals: solver.residual_evals,
             steps: solver.iterations,
             rejected_steps: 0,
+            // Each Newton iteration differentiates the residual and solves
+            // with it once.
+            jacobian_evals: solver.iterations,
+            lu_decompositions: solver.iterations,
         },
     ))
 }

@@ -75,6 +75,13 @@ pub struct Summary {
     pub steps: u64,
     /// Rejected steps.
     pub rejected_steps: u64,
+    /// Jacobian evaluations (implicit integrators; each by finite
+    /// differences costs one right-hand side per state component, counted
+    /// in `rhs_evals` too).
+    pub jacobian_evals: u64,
+    /// LU factorizations of the Newton iteration matrix (implicit
+    /// integrators).
+    pub lu_decompositions: u64,
 }
 
 /// G's distance from a heading hold's path at output instants after
@@ -207,6 +214,10 @@ pub struct RunEnd {
     pub steps: u64,
     /// Rejected steps.
     pub rejected_steps: u64,
+    /// Jacobian evaluations.
+    pub jacobian_evals: u64,
+    /// LU factorizations.
+    pub lu_decompositions: u64,
 }
 
 impl RunLog {
@@ -317,6 +328,8 @@ impl RunLog {
             rhs_evals: end.rhs_evals,
             steps: end.steps,
             rejected_steps: end.rejected_steps,
+            jacobian_evals: end.jacobian_evals,
+            lu_decompositions: end.lu_decompositions,
         }
     }
 }
