@@ -548,6 +548,69 @@ fn random_terrain_has_a_flat_start_patch_and_scales_with_z_r() {
     }
 }
 
+/// The grid is built row by row (each column's and row's kernel weights
+/// found once, the start patch's distance skipped far from it); every node
+/// is still, bit for bit, the field's definition at that point:
+/// `Z_R·w(x, y)·Z_ran(x, y)`, inside the patch, across the blend ring and
+/// beyond, and with a blend of zero width.
+#[test]
+fn random_terrain_nodes_are_the_field_at_their_points_bit_for_bit() {
+    for field in [
+        small_field(3),
+        RandomField {
+            patch_center: [0.4, -0.25],
+            patch_blend: 0.0,
+            ..small_field(4)
+        },
+    ] {
+        let g = field.grid().unwrap();
+        let [x0, y0] = g.origin();
+        let mut ring = 0;
+        for j in 0..g.ny() {
+            for i in 0..g.nx() {
+                let (x, y) = (x0 + i as f64 * 0.05, y0 + j as f64 * 0.05);
+                let w = field.patch_weight(x, y);
+                let want = if w == 0.0 {
+                    0.0
+                } else {
+                    field.z_r * w * field.z_ran(x, y).unwrap()
+                };
+                let got = g.node(i, j).unwrap();
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "node ({i}, {j}) at ({x}, {y})"
+                );
+                let (dx, dy) = (x - field.patch_center[0], y - field.patch_center[1]);
+                let r = dx.hypot(dy) - field.patch_radius;
+                // Reference weight from the distance itself.
+                let w_ref = if r <= 0.0 {
+                    0.0
+                } else if r >= field.patch_blend {
+                    1.0
+                } else {
+                    let s = r / field.patch_blend;
+                    s * s * (3.0 - 2.0 * s)
+                };
+                assert_eq!(w.to_bits(), w_ref.to_bits(), "weight at ({x}, {y})");
+                ring += usize::from(w > 0.0 && w < 1.0);
+            }
+        }
+        assert!(
+            field.patch_blend == 0.0 || ring > 100,
+            "{ring} nodes in the ring"
+        );
+    }
+    // With no blend, a point exactly on the patch's rim is still flat.
+    let sharp = RandomField {
+        patch_blend: 0.0,
+        ..small_field(4)
+    };
+    assert_eq!(sharp.patch_weight(0.3, 0.0), 0.0);
+    assert_eq!(sharp.patch_weight(0.0, -0.3), 0.0);
+    assert_eq!(sharp.patch_weight(0.3000000000000001, 0.0), 1.0);
+}
+
 #[test]
 fn random_terrain_does_not_depend_on_its_extent() {
     let small = small_field(9);
