@@ -87,12 +87,20 @@ impl RangePyramid {
         else {
             return (f64::INFINITY, f64::NEG_INFINITY);
         };
+        // Row by row over slices, without a bounds check for every tile (a
+        // tile off the level, which no caller asks for, bounds nothing).
+        let (first, last) = (i[0] >> level.shift, i[1] >> level.shift);
         let (mut hi, mut lo) = (f64::NEG_INFINITY, f64::INFINITY);
         for row in j[0] >> level.shift..=j[1] >> level.shift {
-            for col in i[0] >> level.shift..=i[1] >> level.shift {
-                let t = row * level.columns + col;
-                hi = hi.max(level.max.get(t).copied().unwrap_or(f64::INFINITY));
-                lo = lo.min(level.min.get(t).copied().unwrap_or(f64::NEG_INFINITY));
+            let start = row * level.columns + first;
+            let end = row * level.columns + last;
+            match level.max.get(start..=end) {
+                Some(tiles) => hi = tiles.iter().fold(hi, |m, &v| larger(m, v)),
+                None => hi = f64::INFINITY,
+            }
+            match level.min.get(start..=end) {
+                Some(tiles) => lo = tiles.iter().fold(lo, |m, &v| smaller(m, v)),
+                None => lo = f64::NEG_INFINITY,
             }
         }
         (hi, lo)
@@ -128,7 +136,7 @@ impl UpperRows {
         if self.pushed < self.rows {
             let columns = self.level.columns;
             let tiles = &mut self.level.max[(self.pushed / 2) * columns..][..columns];
-            fold_pairs(tiles, row, f64::max);
+            fold_pairs(tiles, row, larger);
             self.pushed += 1;
         }
     }
@@ -160,12 +168,28 @@ fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, shift: u32) -> Level
             );
         }
     };
-    fold(&mut up.max, max, f64::max);
+    fold(&mut up.max, max, larger);
     if let Some(min) = min {
         up.min = vec![f64::INFINITY; up_columns * up_rows];
-        fold(&mut up.min, min, f64::min);
+        fold(&mut up.min, min, smaller);
     }
     up
+}
+
+/// The larger of `m` and `v`, and [`smaller`]: one comparison each (a
+/// `maxsd`), where `f64::max` and `min` spend several instructions on NaN
+/// (a third of a bound query, callgrind). They agree with `f64::max` and
+/// `min` whenever `m` is not NaN, which a fold from ±∞ never makes it: a
+/// NaN `v` is passed over by both.
+#[inline(always)]
+fn larger(m: f64, v: f64) -> f64 {
+    if v > m { v } else { m }
+}
+
+/// The smaller of `m` and `v` (see [`larger`]).
+#[inline(always)]
+fn smaller(m: f64, v: f64) -> f64 {
+    if v < m { v } else { m }
 }
 
 /// Folds one row of `values` into the row of `tiles` above it, each pair of
