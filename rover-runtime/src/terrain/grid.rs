@@ -391,14 +391,20 @@ impl Grid {
             y,
             bounds: self.bounds(),
         };
+        // The other coordinate of a point off the map, for the error.
+        let (x0, y0) = (xs.first().copied(), ys.first().copied());
         let bicubic = self.interpolation == Interpolation::Bicubic;
         let mut columns = Vec::with_capacity(xs.len());
         for &x in xs {
-            let (i, t, _) = self.locate(x, 0).ok_or_else(|| off(x, ys[0]))?;
+            let (i, t, _) = self
+                .locate(x, 0)
+                .ok_or_else(|| off(x, y0.unwrap_or(f64::NAN)))?;
             columns.push((i, catmull_rom(t).0));
         }
         for (j_out, &y) in ys.iter().enumerate() {
-            let (j, s, _) = self.locate(y, 1).ok_or_else(|| off(xs[0], y))?;
+            let (j, s, _) = self
+                .locate(y, 1)
+                .ok_or_else(|| off(x0.unwrap_or(f64::NAN), y))?;
             let (wy, _) = catmull_rom(s);
             for (i_out, (&x, &(i, wx))) in xs.iter().zip(&columns).enumerate() {
                 let z = match self.interior_block(i, j).filter(|_| bicubic) {

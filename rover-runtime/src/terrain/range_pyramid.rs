@@ -179,8 +179,9 @@ fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, shift: u32) -> Level
 /// The larger of `m` and `v`, and [`smaller`]: one comparison each (a
 /// `maxsd`), where `f64::max` and `min` spend several instructions on NaN
 /// (a third of a bound query, callgrind). They agree with `f64::max` and
-/// `min` whenever `m` is not NaN, which a fold from ±∞ never makes it: a
-/// NaN `v` is passed over by both.
+/// `min` whenever `m` is not NaN, which a fold from ±∞ never makes it (a
+/// NaN `v` is passed over by both), up to the sign of a zero, which no
+/// bound's use can tell.
 #[inline(always)]
 fn larger(m: f64, v: f64) -> f64 {
     if v > m { v } else { m }
