@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap};
 use super::kernel::{Bound, catmull_rom, stencil};
-use super::range_pyramid::{RangePyramid, UpperRows};
+use super::range_pyramid::{RangePyramid, UpperRows, larger};
 
 /// Tolerance, in cells, for a query on the map's edge.
 const EDGE_SLACK: f64 = 1e-9;
@@ -596,7 +596,7 @@ fn cell_slope_rows(
     let mut next = 0;
     let mut along_y = vec![0.0; nx];
     let mut slopes = vec![0.0; nx];
-    let combine = |b: [f64; 4]| 1.125 * b[1].max(b[2]) + 0.125 * b[0].max(b[3]);
+    let combine = |b: [f64; 4]| 1.125 * larger(b[1], b[2]) + 0.125 * larger(b[0], b[3]);
     let (per_dx, per_dy) = (1.0 / spacing[0], 1.0 / spacing[1]);
     // Rounded up past the interpolant's own rounding (and the reciprocals').
     let magnitude = |bx: [f64; 4], by: [f64; 4]| {
@@ -651,10 +651,10 @@ fn steepest([pm, p0, p1, p2]: [f64; 4]) -> f64 {
     let c = 0.5 * (p1 - pm);
     let b = 2.0 * pm - 5.0 * p0 + 4.0 * p1 - p2;
     let a = 1.5 * (3.0 * (p0 - p1) + p2 - pm);
-    let at_end = c.abs().max((c + b + a).abs());
+    let at_end = larger(c.abs(), (c + b + a).abs());
     let vertex = -b / (2.0 * a);
     if vertex > 0.0 && vertex < 1.0 {
-        at_end.max((c + vertex * (b + vertex * a)).abs())
+        larger(at_end, (c + vertex * (b + vertex * a)).abs())
     } else {
         at_end
     }

@@ -183,7 +183,7 @@ fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, shift: u32) -> Level
 /// NaN `v` is passed over by both), up to the sign of a zero, which no
 /// bound's use can tell.
 #[inline(always)]
-fn larger(m: f64, v: f64) -> f64 {
+pub(crate) fn larger(m: f64, v: f64) -> f64 {
     if v > m { v } else { m }
 }
 
