@@ -178,10 +178,10 @@ fn reduce(max: &[f64], min: Option<&[f64]>, columns: usize, shift: u32) -> Level
 
 /// The larger of `m` and `v`, and [`smaller`]: one comparison each (a
 /// `maxsd`), where `f64::max` and `min` spend several instructions on NaN
-/// (a third of a bound query, callgrind). They agree with `f64::max` and
-/// `min` whenever `m` is not NaN, which a fold from ±∞ never makes it (a
-/// NaN `v` is passed over by both), up to the sign of a zero, which no
-/// bound's use can tell.
+/// (a third of a bound query, callgrind; the slope bounds' maxima of
+/// magnitudes use it too). They agree with `f64::max` and `min` whenever
+/// `m` is not NaN, which a fold from ±∞ never makes it (a NaN `v` is passed
+/// over by both), up to the sign of a zero, which no bound's use can tell.
 #[inline(always)]
 pub(crate) fn larger(m: f64, v: f64) -> f64 {
     if v > m { v } else { m }
