@@ -249,10 +249,42 @@ fn fixed_api<P: FixedPlant<N, W>, const N: usize, const W: usize>(
         });
 }
 
+/// swing4's generated right-hand side compiled for the build's target
+/// only (`derivatives_portable`), next to `generated`, which picks the
+/// x86-64-v4 copy when the processor has it (`rover_dynamics::cpu`).
+fn portable_swing4(c: &mut Criterion) {
+    let plant = rover_models::Swing4::new();
+    let samples: Vec<_> = samples(&model("swing4"), 64)
+        .into_iter()
+        .map(|s| {
+            let x: [f64; 10] = core::array::from_fn(|i| s.x[i]);
+            let w: [f64; 10] = core::array::from_fn(|i| s.w[i]);
+            let loads: [WheelLoad; 4] = core::array::from_fn(|j| s.loads[j]);
+            (x, w, loads)
+        })
+        .collect();
+    let (mut xd, mut wd) = ([0.0; 10], [0.0; 10]);
+    let mut k = 0;
+    c.benchmark_group("swing4").bench_function(
+        BenchmarkId::new("rhs_plant", "generated_portable"),
+        |b| {
+            b.iter(|| {
+                let (x, w, loads) = &samples[k % samples.len()];
+                k += 1;
+                let r =
+                    plant.derivatives_portable(black_box(x), black_box(w), loads, &mut xd, &mut wd);
+                black_box(&r);
+                black_box(&wd);
+            })
+        },
+    );
+}
+
 fn per_model(c: &mut Criterion) {
     one_model(c, "exomars", rover_models::Exomars::new());
     one_model(c, "swing4", rover_models::Swing4::new());
     fixed_api(c, "swing4", rover_models::Swing4::new());
+    portable_swing4(c);
     one_model(c, "mer", rover_models::Mer::new());
     one_model(c, "lrv", rover_models::Lrv::new());
 }

@@ -353,6 +353,72 @@ fn the_nalgebra_interface_is_the_slice_interface() {
     check_fixed("lrv", Lrv::new(), jacobian_entry!(Lrv));
 }
 
+/// A generated right-hand side on plain arrays: `derivatives_array` or
+/// `derivatives_portable` of one plant.
+type ArrayRhs<'a, const N: usize, const K: usize> =
+    &'a dyn Fn(
+        &[f64; N],
+        &[f64; N],
+        &[WheelLoad; K],
+        &mut [f64; N],
+        &mut [f64; N],
+    ) -> Result<(), rover_dynamics::plant::PlantError>;
+
+/// The two compilations of a generated right-hand side, the crate's
+/// target and x86-64-v4 (`rover_dynamics::cpu`), give the same bits: the
+/// dispatched call against the portable one on 1000 random states.
+fn same_bits_at_every_level<const N: usize, const K: usize>(
+    name: &str,
+    dispatched: ArrayRhs<N, K>,
+    portable: ArrayRhs<N, K>,
+) {
+    let model = spec(name).model;
+    let mut rng = Rng::new(4242 + N as u64);
+    let bits = |v: [f64; N]| v.map(f64::to_bits);
+    for _ in 0..1000 {
+        let s = random_state(&model, &mut rng);
+        let x: [f64; N] = s.x.clone().try_into().unwrap();
+        let w: [f64; N] = s.w.clone().try_into().unwrap();
+        let loads: [WheelLoad; K] = s.loads.clone().try_into().unwrap();
+        let (mut xa, mut wa, mut xb, mut wb) = ([0.0; N], [0.0; N], [0.0; N], [0.0; N]);
+        let a = dispatched(&x, &w, &loads, &mut xa, &mut wa);
+        let b = portable(&x, &w, &loads, &mut xb, &mut wb);
+        assert_eq!(a, b, "{name}: outcome at x = {x:?}");
+        assert_eq!(bits(xa), bits(xb), "{name}: ẋ at x = {x:?}");
+        assert_eq!(bits(wa), bits(wb), "{name}: ẇ at x = {x:?}");
+    }
+}
+
+#[test]
+fn both_compilations_of_the_generated_rhs_give_the_same_bits() {
+    use rover_models::{Exomars, Lrv, Mer, Swing4, Swing4Linearized, Swing4Simplified};
+    #[cfg(target_arch = "x86_64")]
+    assert_eq!(
+        rover_dynamics::cpu::x86_64_v4(),
+        is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl"),
+        "the dispatch asks the processor"
+    );
+    if !rover_dynamics::cpu::x86_64_v4() {
+        eprintln!("this processor has no x86-64-v4: both calls run the portable copy");
+    }
+    macro_rules! check {
+        ($name:literal, $plant:expr) => {{
+            let p = $plant;
+            same_bits_at_every_level(
+                $name,
+                &|x, w, l, xd, wd| p.derivatives_array(x, w, l, xd, wd),
+                &|x, w, l, xd, wd| p.derivatives_portable(x, w, l, xd, wd),
+            );
+        }};
+    }
+    check!("exomars", Exomars::new());
+    check!("swing4", Swing4::new());
+    check!("mer", Mer::new());
+    check!("lrv", Lrv::new());
+    check!("swing4", Swing4Simplified::new());
+    check!("swing4", Swing4Linearized::new());
+}
+
 fn dual_column(model: &Model, s: &State, col: usize) -> Vec<f64> {
     let n = model.dof();
     let d = |v: f64, k: usize| {

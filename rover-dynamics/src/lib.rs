@@ -22,6 +22,7 @@ extern crate alloc;
 extern crate std;
 
 pub mod attitude;
+pub mod cpu;
 pub mod dual;
 pub mod linalg;
 pub mod plant;

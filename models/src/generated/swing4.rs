@@ -63,8 +63,60 @@ impl Swing4 {
     /// definite (an LDLᵀ pivot not > 0), as the generic plant does; the
     /// suspension rows are eliminated first, so a failing pivot is checked
     /// in that order and reported with its row of M.
+    ///
+    /// On x86-64 the body is compiled twice, for the crate's target and for
+    /// x86-64-v4, and each call takes the second when the processor has it
+    /// ([`::rover_dynamics::cpu`]): the same operations, the same bits.
     #[inline]
     pub fn derivatives_array(
+        &self,
+        x: &[f64; 10],
+        w: &[f64; 10],
+        loads: &[::rover_dynamics::plant::WheelLoad; 4],
+        xdot: &mut [f64; 10],
+        wdot: &mut [f64; 10],
+    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+        #[cfg(target_arch = "x86_64")]
+        if ::rover_dynamics::cpu::x86_64_v4() {
+            return unsafe { self.derivatives_v4(x, w, loads, xdot, wdot) };
+        }
+        self.derivatives_portable(x, w, loads, xdot, wdot)
+    }
+    /// [`Self::derivatives_array`] compiled for x86-64-v4 (AVX-512: 32
+    /// vector registers, so the straight-line body spills less); called
+    /// only when [`::rover_dynamics::cpu::x86_64_v4`] finds those features.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq,avx512bw,avx512cd")]
+    fn derivatives_v4(
+        &self,
+        x: &[f64; 10],
+        w: &[f64; 10],
+        loads: &[::rover_dynamics::plant::WheelLoad; 4],
+        xdot: &mut [f64; 10],
+        wdot: &mut [f64; 10],
+    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+        self.derivatives_body(x, w, loads, xdot, wdot)
+    }
+    /// [`Self::derivatives_array`] for the crate's own target only,
+    /// whatever the processor offers (the reference of the tests that hold
+    /// the two copies to the same bits). Out of line, as the one function
+    /// its callers share: inlined, the body would be copied into each.
+    #[doc(hidden)]
+    #[inline(never)]
+    pub fn derivatives_portable(
+        &self,
+        x: &[f64; 10],
+        w: &[f64; 10],
+        loads: &[::rover_dynamics::plant::WheelLoad; 4],
+        xdot: &mut [f64; 10],
+        wdot: &mut [f64; 10],
+    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+        self.derivatives_body(x, w, loads, xdot, wdot)
+    }
+    /// The body of both copies, inlined into each so that each is compiled
+    /// for its own instruction set.
+    #[inline(always)]
+    fn derivatives_body(
         &self,
         x: &[f64; 10],
         w: &[f64; 10],
