@@ -87,6 +87,12 @@ pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
     let vis = &options.visibility;
     let c = options.comments;
     let (deriv, deriv_ops) = emit_fn(&traced.derivatives, c);
+    // The parameters of `derivatives_array` and of the copies behind it.
+    let rhs_sig = format!(
+        "(&self, x: &[f64; {n}], w: &[f64; {n}], loads: &[{PLANT}::WheelLoad; {k}], \
+         xdot: &mut [f64; {n}], wdot: &mut [f64; {n}]) \
+         -> ::core::result::Result<(), {PLANT}::PlantError> {{"
+    );
     let (mass, mass_ops) = emit_fn(&traced.mass_matrix, c);
     let (wheels, wheel_ops) = emit_fn(&traced.wheels, c);
     let mut ops = vec![
@@ -171,14 +177,7 @@ impl {name} {{
     /// x86-64-v4, and each call takes the second when the processor has it
     /// ([`::rover_dynamics::cpu`]): the same operations, the same bits.
     #[inline]
-    pub fn derivatives_array(
-        &self,
-        x: &[f64; {n}],
-        w: &[f64; {n}],
-        loads: &[{PLANT}::WheelLoad; {k}],
-        xdot: &mut [f64; {n}],
-        wdot: &mut [f64; {n}],
-    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
+    pub fn derivatives_array{rhs_sig}
         #[cfg(target_arch = "x86_64")]
         if ::rover_dynamics::cpu::x86_64_v4() {{
             // SAFETY: the processor has the features `derivatives_v4` is
@@ -193,14 +192,7 @@ impl {name} {{
     /// only when [`::rover_dynamics::cpu::x86_64_v4`] finds those features.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq,avx512bw,avx512cd")]
-    fn derivatives_v4(
-        &self,
-        x: &[f64; {n}],
-        w: &[f64; {n}],
-        loads: &[{PLANT}::WheelLoad; {k}],
-        xdot: &mut [f64; {n}],
-        wdot: &mut [f64; {n}],
-    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
+    fn derivatives_v4{rhs_sig}
         self.derivatives_body(x, w, loads, xdot, wdot)
     }}
 
@@ -210,28 +202,14 @@ impl {name} {{
     /// its callers share: inlined, the body would be copied into each.
     #[doc(hidden)]
     #[inline(never)]
-    pub fn derivatives_portable(
-        &self,
-        x: &[f64; {n}],
-        w: &[f64; {n}],
-        loads: &[{PLANT}::WheelLoad; {k}],
-        xdot: &mut [f64; {n}],
-        wdot: &mut [f64; {n}],
-    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
+    pub fn derivatives_portable{rhs_sig}
         self.derivatives_body(x, w, loads, xdot, wdot)
     }}
 
     /// The body of both copies, inlined into each so that each is compiled
     /// for its own instruction set.
     #[inline(always)]
-    fn derivatives_body(
-        &self,
-        x: &[f64; {n}],
-        w: &[f64; {n}],
-        loads: &[{PLANT}::WheelLoad; {k}],
-        xdot: &mut [f64; {n}],
-        wdot: &mut [f64; {n}],
-    ) -> ::core::result::Result<(), {PLANT}::PlantError> {{
+    fn derivatives_body{rhs_sig}
         {deriv}
         if f64::abs(cos_roll) < Self::MIN_COS_ROLL {{
             return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
