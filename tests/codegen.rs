@@ -395,7 +395,10 @@ fn both_compilations_of_the_generated_rhs_give_the_same_bits() {
     #[cfg(target_arch = "x86_64")]
     assert_eq!(
         rover_dynamics::cpu::x86_64_v4(),
-        is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl"),
+        is_x86_feature_detected!("avx2")
+            && is_x86_feature_detected!("fma")
+            && is_x86_feature_detected!("avx512f")
+            && is_x86_feature_detected!("avx512vl"),
         "the dispatch asks the processor"
     );
     if !rover_dynamics::cpu::x86_64_v4() {

@@ -13,17 +13,26 @@
 //! (`is_x86_feature_detected!`, cached by std after the first call); in a
 //! `no_std` build, from the target features the crate is compiled with.
 
-/// Whether the processor running this code has the x86-64-v4 features the
-/// generated plants' second copy uses (AVX-512 F and VL, with the operating
-/// system saving their registers).
+/// Whether the processor running this code has every feature the
+/// generated plants' second copy is compiled with: AVX2, FMA, AVX-512 F
+/// and VL (the x86-64-v4 subset that straight-line floating-point code
+/// uses), with the operating system saving their registers.
 #[inline]
 pub fn x86_64_v4() -> bool {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     {
-        std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512vl")
+        std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
+            && std::is_x86_feature_detected!("avx512f")
+            && std::is_x86_feature_detected!("avx512vl")
     }
     #[cfg(not(all(feature = "std", target_arch = "x86_64")))]
     {
-        cfg!(all(target_feature = "avx512f", target_feature = "avx512vl"))
+        cfg!(all(
+            target_feature = "avx2",
+            target_feature = "fma",
+            target_feature = "avx512f",
+            target_feature = "avx512vl"
+        ))
     }
 }

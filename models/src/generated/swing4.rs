@@ -86,7 +86,7 @@ impl Swing4 {
     /// vector registers, so the straight-line body spills less); called
     /// only when [`::rover_dynamics::cpu::x86_64_v4`] finds those features.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512dq,avx512bw,avx512cd")]
+    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
     fn derivatives_v4(
         &self,
         x: &[f64; 10],
