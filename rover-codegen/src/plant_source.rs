@@ -18,6 +18,8 @@ use crate::trace::{Function, Traced, trace_spec_at};
 const PLANT: &str = "::rover_dynamics::plant";
 /// nalgebra as rover-dynamics re-exports it (one version for every user).
 const NA: &str = "::rover_dynamics::nalgebra";
+/// The features of the right-hand side's second copy, as the dispatch checks them.
+const V4_FEATURES: &str = rover_dynamics::cpu::X86_64_V4_FEATURES;
 /// The path of libm in generated code.
 const LIBM: &str = "::libm";
 
@@ -191,7 +193,7 @@ impl {name} {{
     /// vector registers, so the straight-line body spills less); called
     /// only when [`::rover_dynamics::cpu::x86_64_v4`] finds those features.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+    #[target_feature(enable = "{V4_FEATURES}")]
     fn derivatives_v4{rhs_sig}
         self.derivatives_body(x, w, loads, xdot, wdot)
     }}

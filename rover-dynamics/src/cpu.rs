@@ -13,6 +13,11 @@
 //! (`is_x86_feature_detected!`, cached by std after the first call); in a
 //! `no_std` build, from the target features the crate is compiled with.
 
+/// The target features the generated plants' second copy is compiled with
+/// (`#[target_feature(enable = …)]`, written by rover-codegen from this
+/// constant): exactly the ones [`x86_64_v4`] checks.
+pub const X86_64_V4_FEATURES: &str = "avx2,fma,avx512f,avx512vl";
+
 /// Whether the processor running this code has every feature the
 /// generated plants' second copy is compiled with: AVX2, FMA, AVX-512 F
 /// and VL (the x86-64-v4 subset that straight-line floating-point code
