@@ -551,3 +551,56 @@ fn every_shipped_scenario_runs() {
         );
     }
 }
+
+#[test]
+fn a_reader_that_goes_away_ends_the_output_without_a_panic() {
+    // `rover codegen swing4 | head -1`: the module (hundreds of kB) is far
+    // larger than a pipe's buffer, so writing it meets the closed pipe.
+    for args in [&["codegen", "swing4"][..], &["check", "exomars"][..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_rover"))
+            .args(args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn codegen_into_a_missing_folder_names_the_file_and_leaves_nothing() {
+    let dir = scratch("codegen_missing");
+    let out = dir.join("no_such_folder").join("plant.rs");
+    let err = rover::cli::codegen(&rover::cli::CodegenArgs {
+        rover: "swing4".into(),
+        out: Some(out.clone()),
+        fidelity: rover::cli::CodegenLevel::Full,
+        type_name: None,
+        no_jacobian: false,
+    })
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("no_such_folder/plant.rs"), "{err}");
+    assert!(!out.exists());
+    // Over an existing file the module arrives whole, with no leftovers.
+    let out = dir.join("plant.rs");
+    std::fs::write(&out, "stale").unwrap();
+    let text = rover::cli::codegen(&rover::cli::CodegenArgs {
+        rover: "swing4".into(),
+        out: Some(out.clone()),
+        fidelity: rover::cli::CodegenLevel::Full,
+        type_name: None,
+        no_jacobian: false,
+    })
+    .unwrap();
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), text);
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, [std::ffi::OsString::from("plant.rs")]);
+}

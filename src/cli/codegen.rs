@@ -75,9 +75,8 @@ pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
     let text = rover_codegen::generate_module_with(&spec, source, &options)
         .map_err(|e| CliError::Other(e.to_string()))?;
     match &args.out {
-        Some(p) => std::fs::write(p, &text)
-            .map_err(|e| CliError::Other(format!("{}: {e}", p.display())))?,
-        None => print!("{text}"),
+        Some(p) => super::write_whole(p, &text)?,
+        None => super::print_stdout(&text)?,
     }
     Ok(text)
 }

@@ -76,12 +76,42 @@ impl CliError {
     }
 }
 
+/// Print a command's text on standard output. A reader that has gone
+/// away (`rover codegen swing4 | head`) ends the output quietly, as for
+/// any Unix filter; any other failure is an error, never a panic.
+pub(crate) fn print_stdout(text: &str) -> Result<(), CliError> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+            Err(CliError::Other(format!("writing to standard output: {e}")))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Write `text` to `path` whole or not at all: into a sibling temporary
+/// file first, renamed over `path` only once complete, so that a full disk
+/// or an interrupted run never leaves a truncated file that looks finished.
+pub(crate) fn write_whole(path: &std::path::Path, text: &str) -> Result<(), CliError> {
+    let fail = |e: std::io::Error| CliError::Other(format!("{}: {e}", path.display()));
+    let mut partial = path.as_os_str().to_owned();
+    partial.push(format!(".partial-{}", std::process::id()));
+    let partial = std::path::PathBuf::from(partial);
+    let written = std::fs::write(&partial, text).and_then(|()| std::fs::rename(&partial, path));
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&partial);
+        return Err(fail(e));
+    }
+    Ok(())
+}
+
 /// Run a parsed command line; the exit code says how it went (0 success,
 /// 1 a run that stopped early, 2 bad input).
 pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
     match cli.command {
         Command::Check(a) => {
-            print!("{}", check(&a)?);
+            print_stdout(&check(&a)?)?;
             Ok(ExitCode::SUCCESS)
         }
         #[cfg(feature = "codegen")]
@@ -96,7 +126,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Linearize(a) => {
-            print!("{}", linearize_cmd(&a)?);
+            print_stdout(&linearize_cmd(&a)?)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate(a) => {
