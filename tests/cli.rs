@@ -282,18 +282,22 @@ fn check_prints_the_rover_and_bad_files_exit_with_status_2() {
     assert_eq!(ok.status.code(), Some(0));
 }
 
-#[test]
-fn codegen_writes_a_module_that_names_its_source() {
-    let dir = scratch("codegen");
-    let out = dir.join("swing4_plant.rs");
-    let text = rover::cli::codegen(&rover::cli::CodegenArgs {
+/// `rover codegen swing4 --out <out>`: the full model with its Jacobian.
+fn codegen_swing4(out: &Path) -> Result<String, rover::cli::CliError> {
+    rover::cli::codegen(&rover::cli::CodegenArgs {
         rover: "swing4".into(),
-        out: Some(out.clone()),
+        out: Some(out.to_path_buf()),
         fidelity: rover::cli::CodegenLevel::Full,
         type_name: None,
         no_jacobian: false,
     })
-    .unwrap();
+}
+
+#[test]
+fn codegen_writes_a_module_that_names_its_source() {
+    let dir = scratch("codegen");
+    let out = dir.join("swing4_plant.rs");
+    let text = codegen_swing4(&out).unwrap();
     assert_eq!(std::fs::read_to_string(&out).unwrap(), text);
     assert!(
         text.contains("models/swing4.toml"),
@@ -575,28 +579,13 @@ fn a_reader_that_goes_away_ends_the_output_without_a_panic() {
 fn codegen_into_a_missing_folder_names_the_file_and_leaves_nothing() {
     let dir = scratch("codegen_missing");
     let out = dir.join("no_such_folder").join("plant.rs");
-    let err = rover::cli::codegen(&rover::cli::CodegenArgs {
-        rover: "swing4".into(),
-        out: Some(out.clone()),
-        fidelity: rover::cli::CodegenLevel::Full,
-        type_name: None,
-        no_jacobian: false,
-    })
-    .unwrap_err()
-    .to_string();
+    let err = codegen_swing4(&out).unwrap_err().to_string();
     assert!(err.contains("no_such_folder/plant.rs"), "{err}");
     assert!(!out.exists());
     // Over an existing file the module arrives whole, with no leftovers.
     let out = dir.join("plant.rs");
     std::fs::write(&out, "stale").unwrap();
-    let text = rover::cli::codegen(&rover::cli::CodegenArgs {
-        rover: "swing4".into(),
-        out: Some(out.clone()),
-        fidelity: rover::cli::CodegenLevel::Full,
-        type_name: None,
-        no_jacobian: false,
-    })
-    .unwrap();
+    let text = codegen_swing4(&out).unwrap();
     assert_eq!(std::fs::read_to_string(&out).unwrap(), text);
     let names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
