@@ -93,8 +93,7 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
             linearization: &lin,
         })
         .map_err(|e| CliError::Other(e.to_string()))?;
-        std::fs::write(path, json + "\n")
-            .map_err(|e| CliError::Other(format!("{}: cannot write: {e}", path.display())))?;
+        super::write_whole(path, &(json + "\n"))?;
     }
     Ok(report(&spec.name, &backend, &lin, &point))
 }

@@ -94,7 +94,8 @@ pub(crate) fn print_stdout(text: &str) -> Result<(), CliError> {
 /// file first, renamed over `path` only once complete, so that a full disk
 /// or an interrupted run never leaves a truncated file that looks finished.
 pub(crate) fn write_whole(path: &std::path::Path, text: &str) -> Result<(), CliError> {
-    let fail = |e: std::io::Error| CliError::Other(format!("{}: {e}", path.display()));
+    let fail =
+        |e: std::io::Error| CliError::Other(format!("{}: cannot write: {e}", path.display()));
     let mut partial = path.as_os_str().to_owned();
     partial.push(format!(".partial-{}", std::process::id()));
     let partial = std::path::PathBuf::from(partial);

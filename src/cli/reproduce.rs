@@ -622,6 +622,6 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
         started.elapsed().as_secs_f64()
     );
     let out = args.docs.join("REPRODUCTION.md");
-    std::fs::write(&out, md).map_err(other)?;
+    super::write_whole(&out, &md)?;
     Ok(out)
 }
