@@ -36,6 +36,7 @@ pub mod diff;
 pub mod emit;
 pub mod error;
 pub mod graph;
+pub mod lanes;
 pub mod module;
 pub mod ordered_solve;
 pub mod plant_source;

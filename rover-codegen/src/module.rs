@@ -112,6 +112,9 @@ pub fn generate_module_with(
     for (f, ops) in &source.ops {
         let _ = writeln!(out, "// ops {f}: {ops}");
     }
+    if let Some(lanes) = &source.lanes {
+        let _ = writeln!(out, "// lanes derivatives: {lanes}");
+    }
     let _ = writeln!(
         out,
         "// Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap."

@@ -11,6 +11,7 @@ use std::fmt::Write;
 use rover_spec::Spec;
 
 use crate::emit::{Block, OpCount, emit};
+use crate::lanes::{self, LANES};
 use crate::simplify::simplify;
 use crate::trace::{Function, Traced, trace_spec_at};
 
@@ -45,6 +46,8 @@ pub struct PlantSource {
     pub code: String,
     /// Counts per function: derivatives, mass matrix, wheels, Jacobian.
     pub ops: Vec<(&'static str, OpCount)>,
+    /// How much of the right-hand side runs in four lanes, if any.
+    pub lanes: Option<String>,
 }
 
 /// Text from the description made safe for a one-line comment.
@@ -80,6 +83,42 @@ fn str_list(items: &[String]) -> String {
     quoted.join(", ")
 }
 
+/// The simplified right-hand side and its four-lane plan ([`crate::lanes`])
+/// when the rover has four wheels or four suspension coordinates, the
+/// lanes: a coordinate, its rate and neutral, and a wheel's loads are read
+/// into one lane each.
+fn lane_plan(traced: &Traced, wheels: usize, m: usize) -> Option<(Function, lanes::Plan)> {
+    if wheels != LANES && m != LANES {
+        return None;
+    }
+    let f = simplify(&traced.derivatives);
+    let seeds = lanes::seeds(&f, |k| {
+        let name = &f.inputs[k].name;
+        if m == LANES {
+            for (i, c) in traced.coordinate_idents.iter().enumerate() {
+                for (prefix, key) in [("", "y"), ("yd_", "yd"), ("y0_", "y0")] {
+                    if *name == format!("{prefix}{c}") {
+                        return Some((key.to_string(), i));
+                    }
+                }
+            }
+        }
+        if wheels == LANES {
+            for (j, w) in traced.wheel_idents.iter().enumerate() {
+                for short in ["f", "mu", "tau"] {
+                    for axis in crate::trace::AXES {
+                        if *name == format!("{short}_{w}_{axis}") {
+                            return Some((format!("{short}_{axis}"), j));
+                        }
+                    }
+                }
+            }
+        }
+        None
+    });
+    lanes::plan(&f, &seeds).map(|p| (f, p))
+}
+
 /// The plant type for `spec`.
 pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
     let traced: Traced = trace_spec_at(spec, options.jacobian, options.level.as_ref());
@@ -95,6 +134,66 @@ pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
          xdot: &mut [f64; {n}], wdot: &mut [f64; {n}]) \
          -> ::core::result::Result<(), {PLANT}::PlantError> {{"
     );
+    let all_positive = traced
+        .pivot_rows
+        .iter()
+        .map(|r| format!("(pivot_{r} > 0.0)"))
+        .collect::<Vec<_>>()
+        .join(" & ");
+    let pivots = traced
+        .pivot_rows
+        .iter()
+        .map(|r| format!("({r}, pivot_{r}, pivot_den_{r})"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    // After the outputs: the checks the generic plant makes too.
+    let tail = format!(
+        r#"
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {{
+            return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
+        }}
+        // Each pivot is a ratio whose denominator the earlier checks made
+        // positive: its numerator's sign decides. One test for all of them
+        // (`&`, not `&&`: one branch; false for NaN), and the error, which
+        // divides the failing value out to report it, built out of line.
+        if {all_positive} {{
+            return Ok(());
+        }}
+        Self::singular_mass([{pivots}])"#
+    );
+    // A four-wheeled rover's per-wheel work in four-lane operations, one
+    // statement list printed for each copy; otherwise one scalar body
+    // that both copies inline.
+    let lanes = lane_plan(&traced, k, m);
+    let (v4_body, portable_body, body_fn, lane_note) = match &lanes {
+        Some((f, plan)) => (
+            format!("{}{tail}", lanes::emit(f, plan, true, LIBM)),
+            format!("{}{tail}", lanes::emit(f, plan, false, LIBM)),
+            String::new(),
+            Some(format!(
+                "{} four-lane operations ({} of {} scalar ones), {} sums over the lanes",
+                plan.vector_ops(),
+                plan.packed_ops,
+                plan.total_ops,
+                plan.lane_sums()
+            )),
+        ),
+        None => (
+            "self.derivatives_body(x, w, loads, xdot, wdot)".to_string(),
+            "self.derivatives_body(x, w, loads, xdot, wdot)".to_string(),
+            format!(
+                r#"
+    /// The body of both copies, inlined into each so that each is compiled
+    /// for its own instruction set.
+    #[inline(always)]
+    fn derivatives_body{rhs_sig}
+        {deriv}{tail}
+    }}
+"#
+            ),
+            None,
+        ),
+    };
     let (mass, mass_ops) = emit_fn(&traced.mass_matrix, c);
     let (wheels, wheel_ops) = emit_fn(&traced.wheels, c);
     let mut ops = vec![
@@ -106,11 +205,6 @@ pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
         .coordinates
         .iter()
         .map(|c| crate::emit::literal(c.neutral))
-        .collect();
-    let pivot_list: Vec<String> = traced
-        .pivot_rows
-        .iter()
-        .map(|r| format!("({r}, pivot_{r}, pivot_den_{r})"))
         .collect();
     let steer_used = model.wheels.iter().any(|w| w.steerable);
     let steer_param = if steer_used { "steer" } else { "_steer" };
@@ -195,7 +289,7 @@ impl {name} {{
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "{V4_FEATURES}")]
     fn derivatives_v4{rhs_sig}
-        self.derivatives_body(x, w, loads, xdot, wdot)
+        {v4_body}
     }}
 
     /// [`Self::derivatives_array`] for the crate's own target only,
@@ -205,27 +299,9 @@ impl {name} {{
     #[doc(hidden)]
     #[inline(never)]
     pub fn derivatives_portable{rhs_sig}
-        self.derivatives_body(x, w, loads, xdot, wdot)
+        {portable_body}
     }}
-
-    /// The body of both copies, inlined into each so that each is compiled
-    /// for its own instruction set.
-    #[inline(always)]
-    fn derivatives_body{rhs_sig}
-        {deriv}
-        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {{
-            return Err({PLANT}::PlantError::AttitudeSingular {{ roll: x[3] }});
-        }}
-        // Each pivot is a ratio whose denominator the earlier checks made
-        // positive: its numerator's sign decides. One test for all of them
-        // (`&`, not `&&`: one branch; false for NaN), and the error, which
-        // divides the failing value out to report it, built out of line.
-        if {all_positive} {{
-            return Ok(());
-        }}
-        Self::singular_mass([{pivots}])
-    }}
-
+{body_fn}
     /// The first pivot (row, numerator, denominator) whose numerator is not
     /// > 0, as the error; out of line, so that the pivots are not stored
     /// on the way to `Ok` (M is positive definite on every sane state).
@@ -271,13 +347,6 @@ impl {name} {{
         coords_list = str_list(&spec.coordinate_names),
         wheel_list_q = str_list(&spec.wheel_names),
         neutrals = neutrals.join(", "),
-        pivots = pivot_list.join(", "),
-        all_positive = traced
-            .pivot_rows
-            .iter()
-            .map(|r| format!("(pivot_{r} > 0.0)"))
-            .collect::<Vec<_>>()
-            .join(" & "),
     );
     if let Some(jac) = &traced.jacobian {
         let (code, jac_ops) = emit_fn(jac, c);
@@ -445,5 +514,9 @@ impl {PLANT}::FixedPlant<{n}, {k}> for {name} {{
 }}
 "#
     );
-    PlantSource { code: s, ops }
+    PlantSource {
+        code: s,
+        ops,
+        lanes: lane_note,
+    }
 }

@@ -145,7 +145,7 @@ fn unique(names: Vec<String>, taken: &mut Vec<String>) -> Vec<String> {
 
 const POSE: [&str; 6] = ["pos_x", "pos_y", "pos_z", "phi", "theta", "psi"];
 const TWIST: [&str; 6] = ["vx", "vy", "vz", "omega_x", "omega_y", "omega_z"];
-const AXES: [&str; 3] = ["x", "y", "z"];
+pub(crate) const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Inputs x and w, in order, with their names.
 fn state_inputs(coords: &[String], inputs: &mut Vec<InputVar>) {

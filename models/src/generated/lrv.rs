@@ -4,6 +4,7 @@
 // ops mass_matrix: 114 mul, 95 add, 0 div, 15 neg, 0 sin/cos, 0 sqrt, 0 other, depth 18
 // ops wheels: 211 mul, 178 add, 0 div, 39 neg, 22 sin/cos, 0 sqrt, 0 other, depth 14
 // ops jacobian: 3404 mul, 2684 add, 23 div, 1129 neg, 6 sin/cos, 0 sqrt, 48 other, depth 62
+// lanes derivatives: 136 four-lane operations (544 of 1210 scalar ones), 29 sums over the lanes
 // Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `lrv` rover as a generated plant: 10 degrees of freedom
@@ -100,7 +101,1107 @@ impl Lrv {
         xdot: &mut [f64; 10],
         wdot: &mut [f64; 10],
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
+        use ::core::arch::x86_64::*;
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                _mm256_setr_pd($a, $b, $c, $d)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                _mm256_set1_pd($a)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                _mm256_add_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                _mm256_mul_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                _mm256_div_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                { let mut r = [0.0f64; 4]; unsafe { _mm256_storeu_pd(r.as_mut_ptr(), $a)
+                }; r }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r4 = $a; let r2 = _mm_add_pd(_mm256_castpd256_pd128(r4),
+                _mm256_extractf128_pd::< 1 > (r4)); _mm_cvtsd_f64(r2) +
+                _mm_cvtsd_f64(_mm_unpackhi_pd(r2, r2)) }
+            };
+        }
+        let phi = x[3];
+        let (t397, t398) = ::libm::sincos(phi);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v27 = lanes_mul!(
+            v9, lanes!(0.010497107891091926, 0.010497107891095859, 0.010497107891091926,
+            0.010497107891095859)
+        );
+        let l27 = lanes_array!(v27);
+        let t138 = -l27[1];
+        let t258 = -l27[3];
+        let v37 = lanes_add!(
+            lanes_mul!(v27, lanes!(1.0, - 1.0, 1.0, - 1.0)), lanes!(-
+            0.002420073522975009, - 0.0024200735229748405, - 0.002420073522975009, -
+            0.0024200735229748405)
+        );
+        let v51 = lanes_mul!(v9, v37);
+        let v55 = lanes_add!(
+            v51, lanes!(- 0.1889588601394729, 0.18895886013947344, - 0.1889588601394729,
+            0.18895886013947344)
+        );
+        let v68 = lanes_mul!(v9, v55);
+        let v71 = lanes_add!(
+            v68, lanes!(- 0.008046798224083086, - 0.008046798224083114, -
+            0.008046798224083086, - 0.008046798224083114)
+        );
+        let v47 = lanes_add!(lanes_mul!(v27, lanes!(1.0, - 1.0, 1.0, - 1.0)), v37);
+        let v58 = lanes_mul!(v9, v47);
+        let v65 = lanes_add!(v55, v58);
+        let v75 = lanes_mul!(v9, v65);
+        let v79 = lanes_add!(v71, v75);
+        let l79 = lanes_array!(v79);
+        let v93 = lanes_mul!(v79, v79);
+        let v29 = lanes_mul!(
+            v9, lanes!(0.003569364721085567, 0.003569364721073275, 0.003569364721085567,
+            0.003569364721073275)
+        );
+        let v38 = lanes_add!(
+            v29, lanes!(- 0.05863585356694276, 0.05863585356694256, -
+            0.05863585356694276, 0.05863585356694256)
+        );
+        let v52 = lanes_mul!(v9, v38);
+        let v56 = lanes_add!(
+            v52, lanes!(0.009084672645052382, 0.009084672645053608, 0.009084672645052382,
+            0.009084672645053608)
+        );
+        let v69 = lanes_mul!(v9, v56);
+        let v72 = lanes_add!(
+            v69, lanes!(0.36881035216564817, - 0.36881035216564806, 0.36881035216564817,
+            - 0.36881035216564806)
+        );
+        let v48 = lanes_add!(v29, v38);
+        let v59 = lanes_mul!(v9, v48);
+        let v66 = lanes_add!(v56, v59);
+        let v76 = lanes_mul!(v9, v66);
+        let v80 = lanes_add!(v72, v76);
+        let l80 = lanes_array!(v80);
+        let v96 = lanes_mul!(v80, v80);
+        let v99 = lanes_add!(v93, v96);
+        let v116 = lanes_mul!(v99, lanes!(10.0, 10.0, 10.0, 10.0));
+        let l116 = lanes_array!(v116);
+        let v94 = lanes_mul!(v79, lanes!(10.0, 10.0, 10.0, 10.0));
+        let v119 = lanes_div!(lanes!(1.0, 1.0, 1.0, 1.0), v116);
+        let l119 = lanes_array!(v119);
+        let v120 = lanes_mul!(v94, v119);
+        let l120 = lanes_array!(v120);
+        let v128 = lanes_mul!(v94, v120);
+        let t1093 = lanes_sum!(lanes_mul!(v128, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 700.0;
+        let t1197 = 700.0 * t1093;
+        let v97 = lanes_mul!(v80, lanes!(10.0, 10.0, 10.0, 10.0));
+        let v122 = lanes_mul!(v97, v119);
+        let l122 = lanes_array!(v122);
+        let v135 = lanes_mul!(v97, v122);
+        let t1110 = lanes_sum!(lanes_mul!(v135, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 700.0;
+        let t1190 = t1093 * t1110;
+        let v134 = lanes_mul!(v97, v120);
+        let t1100 = lanes_sum!(v134);
+        let t1191 = t1100 * t1100;
+        let t1192 = -t1191;
+        let t1193 = t1190 - t1191;
+        let t1198 = 700.0 * t1193;
+        let v84 = lanes_mul!(v9, v71);
+        let v87 = lanes_add!(
+            v84, lanes!(0.9151637274786046, - 0.9151637274786046, 0.9151637274786046, -
+            0.9151637274786046)
+        );
+        let l87 = lanes_array!(v87);
+        let v103 = lanes_mul!(v87, v87);
+        let v85 = lanes_mul!(v9, v72);
+        let v88 = lanes_add!(
+            v85, lanes!(- 0.1540490207303449, - 0.1540490207303449, - 0.1540490207303449,
+            - 0.1540490207303449)
+        );
+        let l88 = lanes_array!(v88);
+        let v108 = lanes_mul!(v88, v88);
+        let t1246 = lanes_sum!(lanes_add!(v103, v108));
+        let t1247 = 10.0 * t1246;
+        let v107 = lanes_mul!(v87, lanes!(10.0, 10.0, 10.0, 10.0));
+        let t379 = lanes_sum!(v107);
+        let v102 = lanes_mul!(v80, v87);
+        let v101 = lanes_mul!(v79, v88);
+        let l101 = lanes_array!(v101);
+        let t323 = -l101[0];
+        let t343 = -l101[1];
+        let t361 = -l101[2];
+        let t387 = -l101[3];
+        let v114 = lanes_add!(
+            lanes_mul!(v101, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v102
+        );
+        let v118 = lanes_mul!(v114, lanes!(10.0, 10.0, 10.0, 10.0));
+        let v141 = lanes_mul!(v118, v122);
+        let t1148 = lanes_sum!(lanes_mul!(v141, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + t379;
+        let t1199 = 1.0 / t1198;
+        let t1223 = t1148 * t1197;
+        let v140 = lanes_mul!(v118, v120);
+        let v111 = lanes_mul!(v88, lanes!(10.0, 10.0, 10.0, 10.0));
+        let t375 = lanes_sum!(v111);
+        let t1118 = lanes_sum!(v140) + t375;
+        let t1195 = 700.0 * t1100;
+        let t1222 = t1118 * t1195;
+        let t1224 = -t1222;
+        let t1225 = t1223 - t1222;
+        let t1226 = t1199 * t1225;
+        let t1239 = t1148 * t1226;
+        let t1194 = 700.0 * t1110;
+        let t1206 = t1118 * t1194;
+        let t1207 = -t1206;
+        let t1208 = t1148 * t1195;
+        let t1210 = t1207 + t1208;
+        let t1211 = t1199 * t1210;
+        let t1237 = t1118 * t1211;
+        let v126 = lanes_mul!(v118, v119);
+        let l126 = lanes_array!(v126);
+        let v142 = lanes_mul!(v118, v126);
+        let t1255 = lanes_sum!(lanes_mul!(v142, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 86.4 + t1247 - t1239 + t1237;
+        let t1294 = lanes_sum!(v108);
+        let t1295 = 10.0 * t1294;
+        let v98 = lanes_mul!(v80, lanes!(11.43, 11.43, 11.43, 11.43));
+        let v137 = lanes_mul!(v98, v122);
+        let t1157 = lanes_sum!(lanes_mul!(v137, lanes!(1.0, 1.0, - 1.0, - 1.0)));
+        let v136 = lanes_mul!(v98, v120);
+        let t1128 = lanes_sum!(lanes_mul!(v136, lanes!(1.0, 1.0, - 1.0, - 1.0)));
+        let t1227 = t1128 * t1195;
+        let t1229 = t1157 * t1197;
+        let t1230 = t1227 + t1229;
+        let t1231 = t1199 * t1230;
+        let t1291 = t1157 * t1231;
+        let t1212 = t1128 * t1194;
+        let t1213 = t1157 * t1195;
+        let t1215 = t1212 + t1213;
+        let t1216 = t1199 * t1215;
+        let t1290 = t1128 * t1216;
+        let t1200 = t375 * t1193;
+        let t1201 = t1199 * t1200;
+        let t1289 = t375 * t1201;
+        let v123 = lanes_mul!(v98, v119);
+        let l123 = lanes_array!(v123);
+        let v138 = lanes_mul!(v98, v123);
+        let t1305 = lanes_sum!(lanes_mul!(v138, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 567.0579599999999 + t1295 - t1291 - t1290 - t1289;
+        let t1361 = t1255 * t1305;
+        let t1259 = l87[0] + l87[1];
+        let t1260 = -t1259;
+        let t1261 = l87[2] - t1259;
+        let t1262 = l87[3] + t1261;
+        let t1263 = 11.43 * t1262;
+        let t1256 = t1118 * t1216;
+        let v139 = lanes_mul!(v98, v126);
+        let t1258 = t1148 * t1231;
+        let t1272 = lanes_sum!(lanes_mul!(v139, lanes!(1.0, 1.0, - 1.0, - 1.0))) + t1263
+            + t1256 - t1258;
+        let t1362 = t1272 * t1272;
+        let t1363 = -t1362;
+        let t1364 = t1361 - t1362;
+        let t1276 = l88[0] + l88[1];
+        let t1277 = -t1276;
+        let t1278 = l88[2] - t1276;
+        let t1279 = l88[3] + t1278;
+        let t1280 = 11.43 * t1279;
+        let v95 = lanes_mul!(v79, lanes!(11.43, 11.43, 11.43, 11.43));
+        let v129 = lanes_mul!(v95, v120);
+        let t1136 = lanes_sum!(lanes_mul!(v129, lanes!(- 1.0, - 1.0, 1.0, 1.0)));
+        let t1217 = t1136 * t1194;
+        let v131 = lanes_mul!(v95, v122);
+        let t1165 = lanes_sum!(lanes_mul!(v131, lanes!(- 1.0, - 1.0, 1.0, 1.0)));
+        let t1218 = t1165 * t1195;
+        let t1220 = t1217 + t1218;
+        let t1221 = t1199 * t1220;
+        let t1273 = t1118 * t1221;
+        let v133 = lanes_mul!(v95, v126);
+        let t1232 = t1136 * t1195;
+        let t1234 = t1165 * t1197;
+        let t1235 = t1232 + t1234;
+        let t1236 = t1199 * t1235;
+        let t1275 = t1148 * t1236;
+        let t1288 = lanes_sum!(lanes_mul!(v133, lanes!(- 1.0, - 1.0, 1.0, 1.0))) + t1280
+            + t1273 - t1275;
+        let t1202 = t379 * t1193;
+        let t1204 = t1199 * t1202;
+        let t1306 = t375 * t1204;
+        let v132 = lanes_mul!(v95, v123);
+        let t1308 = t1128 * t1221;
+        let t1309 = t1157 * t1236;
+        let v104 = lanes_mul!(v87, v88);
+        let t1312 = lanes_sum!(v104);
+        let t1313 = 10.0 * t1312;
+        let t1323 = lanes_sum!(v132) + t1306 - t1308 - t1309 - t1313;
+        let t1349 = t1272 * t1323;
+        let t1350 = t1288 * t1305;
+        let t1351 = -t1350;
+        let t1352 = t1349 - t1350;
+        let t1367 = t1288 * t1352;
+        let t1329 = lanes_sum!(v103);
+        let t1330 = 10.0 * t1329;
+        let t1326 = t1165 * t1236;
+        let t1325 = t1136 * t1221;
+        let t1324 = t379 * t1204;
+        let v121 = lanes_mul!(v95, v119);
+        let l121 = lanes_array!(v121);
+        let v130 = lanes_mul!(v95, v121);
+        let t1340 = lanes_sum!(lanes_mul!(v130, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 613.8579599999999 + t1330 - t1326 - t1325 - t1324;
+        let t1341 = t1305 * t1340;
+        let t1342 = t1323 * t1323;
+        let t1343 = -t1342;
+        let t1344 = t1341 - t1342;
+        let t1365 = t1255 * t1344;
+        let t1345 = t1288 * t1323;
+        let t1346 = t1272 * t1340;
+        let t1347 = -t1346;
+        let t1348 = t1345 - t1346;
+        let t1366 = t1272 * t1348;
+        let t1368 = t1365 + t1366;
+        let t1369 = t1367 + t1368;
+        let vz = w[2];
+        let theta = x[4];
+        let (t399, t400) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t401, t402) = ::libm::sincos(psi);
+        let t729 = t399 * t402;
+        let t723 = t397 * t400;
+        let t730 = t401 * t723;
+        let t731 = t729 + t730;
+        let t1651 = vz * t731;
+        let vx = w[0];
+        let t724 = t400 * t402;
+        let t722 = t397 * t399;
+        let t725 = t401 * t722;
+        let t726 = -t725;
+        let t727 = t724 - t725;
+        let t1649 = vx * t727;
+        let vy = w[1];
+        let t728 = t398 * t401;
+        let t1650 = vy * t728;
+        let t1652 = -t1650;
+        let t1653 = t1649 - t1650;
+        let t1654 = t1651 + t1653;
+        let t736 = t399 * t401;
+        let t737 = t402 * t723;
+        let t738 = -t737;
+        let t739 = t736 - t737;
+        let t1657 = vz * t739;
+        let t732 = t400 * t401;
+        let t733 = t402 * t722;
+        let t734 = t732 + t733;
+        let t1655 = vx * t734;
+        let t735 = t398 * t402;
+        let t1656 = vy * t735;
+        let t1658 = t1655 + t1656;
+        let t1659 = t1657 + t1658;
+        let t595 = t398 * t400;
+        let t1662 = vz * t595;
+        let t1661 = vy * t397;
+        let t594 = t398 * t399;
+        let t1660 = vx * t594;
+        let t1663 = -t1660;
+        let t1664 = t1661 - t1660;
+        let t1665 = t1662 + t1664;
+        let omega_x = w[3];
+        let t1666 = omega_x * t400;
+        let omega_z = w[5];
+        let t1667 = omega_z * t399;
+        let t1668 = t1666 + t1667;
+        let omega_y = w[4];
+        let t1669 = omega_z * t400;
+        let t1670 = omega_x * t399;
+        let t1671 = -t1670;
+        let t1672 = t1669 - t1670;
+        let t1673 = t1672 / t398;
+        let t1674 = t397 * t1673;
+        let t1675 = -t1674;
+        let t1676 = omega_y - t1674;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let t1370 = 1.0 / t1369;
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
+        );
+        let v24 = lanes_mul!(v2, lanes_splat!(t397));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
+        );
+        let v22 = lanes_mul!(v1, lanes_splat!(t735));
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
+        );
+        let v19 = lanes_mul!(v0, lanes_splat!(t728));
+        let l19 = lanes_array!(v19);
+        let t749 = -l19[0];
+        let t807 = -l19[1];
+        let t865 = -l19[2];
+        let t923 = -l19[3];
+        let v35 = lanes_add!(lanes_mul!(v19, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v22);
+        let v44 = lanes_add!(v24, v35);
+        let l44 = lanes_array!(v44);
+        let t1400 = -l44[3];
+        let t1394 = -l44[2];
+        let v28 = lanes_mul!(
+            v9, lanes!(0.020994215782183853, 0.020994215782191718, 0.020994215782183853,
+            0.020994215782191718)
+        );
+        let l28 = lanes_array!(v28);
+        let v61 = lanes_mul!(v47, lanes!(2.0, 2.0, 2.0, 2.0));
+        let t149 = -l28[1];
+        let t265 = -l28[3];
+        let v63 = lanes_add!(lanes_mul!(v28, lanes!(1.0, - 1.0, 1.0, - 1.0)), v61);
+        let v73 = lanes_mul!(v9, v63);
+        let v77 = lanes_mul!(v65, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v81 = lanes_add!(v73, v77);
+        let v32 = lanes_mul!(v11, v11);
+        let v91 = lanes_mul!(v32, v81);
+        let v110 = lanes_mul!(v88, lanes_splat!(omega_y));
+        let v115 = lanes_add!(v110, lanes_splat!(vx));
+        let v106 = lanes_mul!(v87, lanes_splat!(omega_z));
+        let l106 = lanes_array!(v106);
+        let t426 = -l106[0];
+        let t473 = -l106[1];
+        let t515 = -l106[2];
+        let t558 = -l106[3];
+        let v117 = lanes_add!(
+            lanes_mul!(v106, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v115
+        );
+        let v125 = lanes_mul!(v117, lanes_splat!(omega_z));
+        let v127 = lanes_add!(v91, v125);
+        let l127 = lanes_array!(v127);
+        let v90 = lanes_mul!(v11, v80);
+        let v113 = lanes_mul!(v90, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l113 = lanes_array!(v113);
+        let t423 = omega_y * 1.143;
+        let t527 = vz + t423;
+        let v105 = lanes_mul!(v87, lanes_splat!(omega_x));
+        let l105 = lanes_array!(v105);
+        let t569 = t527 + l105[3];
+        let t570 = l113[3] + t569;
+        let t574 = omega_x * t570;
+        let t581 = -t574;
+        let t582 = l127[3] - t574;
+        let t583 = 10.0 * t582;
+        let t528 = l105[2] + t527;
+        let t529 = l113[2] + t528;
+        let t533 = omega_x * t529;
+        let t540 = -t533;
+        let t541 = l127[2] - t533;
+        let t542 = 10.0 * t541;
+        let t424 = -t423;
+        let t442 = vz - t423;
+        let t443 = l105[0] + t442;
+        let t444 = l113[0] + t443;
+        let t448 = omega_x * t444;
+        let t455 = -t448;
+        let t456 = l127[0] - t448;
+        let t457 = 10.0 * t456;
+        let t484 = t442 + l105[1];
+        let t485 = l113[1] + t484;
+        let t489 = omega_x * t485;
+        let t496 = -t489;
+        let t497 = l127[1] - t489;
+        let t498 = 10.0 * t497;
+        let t1019 = t457 + t498;
+        let t1504 = -t1019;
+        let t1505 = t542 - t1019;
+        let t1506 = t583 + t1505;
+        let t1507 = l44[0] + t1506;
+        let t1508 = l44[1] + t1507;
+        let t1509 = t1394 + t1508;
+        let t1510 = t1400 + t1509;
+        let t1511 = 1.143 * t1510;
+        let t571 = omega_y * t570;
+        let v89 = lanes_mul!(v11, v79);
+        let v112 = lanes_mul!(v89, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l112 = lanes_array!(v112);
+        let t420 = omega_z * 1.143;
+        let t511 = -t420;
+        let t522 = vy - t420;
+        let v109 = lanes_mul!(v88, lanes_splat!(omega_x));
+        let l109 = lanes_array!(v109);
+        let t565 = -l109[3];
+        let t566 = t522 - l109[3];
+        let t567 = l112[3] + t566;
+        let t572 = omega_z * t567;
+        let t577 = -t572;
+        let t578 = t571 - t572;
+        let t579 = 10.0 * t578;
+        let v18 = lanes_mul!(v0, lanes_splat!(t727));
+        let v21 = lanes_mul!(v1, lanes_splat!(t734));
+        let v34 = lanes_add!(v18, v21);
+        let v25 = lanes_mul!(v2, lanes_splat!(t594));
+        let l25 = lanes_array!(v25);
+        let t744 = -l25[0];
+        let t802 = -l25[1];
+        let t860 = -l25[2];
+        let t918 = -l25[3];
+        let v45 = lanes_add!(lanes_mul!(v25, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v34);
+        let l45 = lanes_array!(v45);
+        let t1501 = -l45[3];
+        let t1502 = t579 - l45[3];
+        let t1503 = l87[3] * t1502;
+        let t530 = omega_y * t529;
+        let t523 = -l109[2];
+        let t524 = t522 - l109[2];
+        let t525 = l112[2] + t524;
+        let t531 = omega_z * t525;
+        let t536 = -t531;
+        let t537 = t530 - t531;
+        let t538 = 10.0 * t537;
+        let t1498 = -l45[2];
+        let t1499 = t538 - l45[2];
+        let t1500 = l87[2] * t1499;
+        let t486 = omega_y * t485;
+        let t437 = vy + t420;
+        let t480 = -l109[1];
+        let t481 = t437 - l109[1];
+        let t482 = l112[1] + t481;
+        let t487 = omega_z * t482;
+        let t492 = -t487;
+        let t493 = t486 - t487;
+        let t494 = 10.0 * t493;
+        let t1495 = -l45[1];
+        let t1496 = t494 - l45[1];
+        let t1497 = l87[1] * t1496;
+        let t445 = omega_y * t444;
+        let t438 = -l109[0];
+        let t439 = t437 - l109[0];
+        let t440 = l112[0] + t439;
+        let t446 = omega_z * t440;
+        let t451 = -t446;
+        let t452 = t445 - t446;
+        let t453 = 10.0 * t452;
+        let t1492 = -l45[0];
+        let t1493 = t453 - l45[0];
+        let t1494 = l87[0] * t1493;
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
+        );
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
+        );
+        let v14 = lanes_add!(v5, v8);
+        let t1441 = lanes_sum!(v14);
+        let t1491 = t595 * t1441;
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
+        );
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let v13 = lanes_add!(v4, v7);
+        let t1437 = lanes_sum!(v13);
+        let t1490 = t739 * t1437;
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let v12 = lanes_add!(v3, v6);
+        let t1433 = lanes_sum!(v12);
+        let t1489 = t731 * t1433;
+        let t598 = t594 * 16.200000000000003;
+        let t1373 = l87[2] + t1259;
+        let t1374 = l87[3] + t1373;
+        let t1488 = t598 * t1374;
+        let t1512 = -t1488;
+        let t1513 = t1489 - t1488;
+        let t1514 = t1490 + t1513;
+        let t1515 = t1491 + t1514;
+        let t1516 = t1494 + t1515;
+        let t1517 = t1497 + t1516;
+        let t1518 = t1500 + t1517;
+        let t1519 = t1503 + t1518;
+        let t409 = omega_x * 86.4;
+        let t417 = omega_y * t409;
+        let t410 = omega_y * 514.8;
+        let t416 = omega_x * t410;
+        let t1520 = -t416;
+        let t1521 = t417 - t416;
+        let v31 = lanes_mul!(
+            v9, lanes!(0.03982443626987119, 0.039824436269830565, 0.03982443626987119,
+            0.039824436269830565)
+        );
+        let l31 = lanes_array!(v31);
+        let t191 = -l31[1];
+        let t298 = -l31[3];
+        let v39 = lanes_add!(
+            lanes_mul!(v31, lanes!(1.0, - 1.0, 1.0, - 1.0)), lanes!(0.016338965034322857,
+            0.016338965034324415, 0.016338965034322857, 0.016338965034324415)
+        );
+        let v53 = lanes_mul!(v9, v39);
+        let v57 = lanes_add!(
+            v53, lanes!(0.08957090383991165, - 0.08957090383991675, 0.08957090383991165,
+            - 0.08957090383991675)
+        );
+        let v49 = lanes_add!(lanes_mul!(v31, lanes!(1.0, - 1.0, 1.0, - 1.0)), v39);
+        let v60 = lanes_mul!(v9, v49);
+        let v67 = lanes_add!(v57, v60);
+        let v70 = lanes_add!(v57, v67);
+        let v83 = lanes_mul!(v9, v70);
+        let v86 = lanes_add!(
+            v83, lanes!(0.08388641649735075, 0.08388641649735058, 0.08388641649735075,
+            0.08388641649735058)
+        );
+        let v40 = lanes_mul!(v12, lanes_splat!(t727));
+        let v41 = lanes_mul!(v13, lanes_splat!(t734));
+        let v50 = lanes_add!(v40, v41);
+        let v42 = lanes_mul!(v14, lanes_splat!(t594));
+        let l42 = lanes_array!(v42);
+        let t770 = -l42[0];
+        let t828 = -l42[1];
+        let t886 = -l42[2];
+        let t961 = -l42[3];
+        let v54 = lanes_add!(lanes_mul!(v42, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v50);
+        let v100 = lanes_mul!(v54, v86);
+        let l100 = lanes_array!(v100);
+        let v26 = lanes_mul!(v2, lanes_splat!(t595));
+        let v20 = lanes_mul!(v0, lanes_splat!(t731));
+        let v23 = lanes_mul!(v1, lanes_splat!(t739));
+        let v36 = lanes_add!(v20, v23);
+        let v46 = lanes_add!(v26, v36);
+        let l46 = lanes_array!(v46);
+        let v30 = lanes_mul!(
+            v9, lanes!(0.007138729442171134, 0.00713872944214655, 0.007138729442171134,
+            0.00713872944214655)
+        );
+        let v62 = lanes_mul!(v48, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v64 = lanes_add!(v30, v62);
+        let v74 = lanes_mul!(v9, v64);
+        let v78 = lanes_mul!(v66, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v82 = lanes_add!(v74, v78);
+        let v92 = lanes_mul!(v32, v82);
+        let l92 = lanes_array!(v92);
+        let t449 = omega_x * t440;
+        let t458 = l92[0] + t449;
+        let v124 = lanes_mul!(v117, lanes_splat!(omega_y));
+        let l124 = lanes_array!(v124);
+        let t459 = -l124[0];
+        let t460 = t458 - l124[0];
+        let t461 = 10.0 * t460;
+        let t601 = t595 * 16.200000000000003;
+        let t783 = t461 + t601;
+        let t784 = -t783;
+        let t785 = l46[0] - t783;
+        let t786 = l80[0] * t785;
+        let t599 = t397 * 16.200000000000003;
+        let t779 = t457 + t599;
+        let t780 = -t779;
+        let t781 = l44[0] - t779;
+        let t782 = l79[0] * t781;
+        let v16 = lanes_add!(
+            v9, lanes!(- 0.3490658503988659, - 0.3490658503988659, - 0.3490658503988659,
+            - 0.3490658503988659)
+        );
+        let l16 = lanes_array!(v16);
+        let t637 = f64::max(l16[0], 0.0);
+        let t641 = 10000.0 * t637;
+        let t642 = f64::min(t641, 1.0);
+        let t643 = 617.2846305501084 * t642;
+        let t644 = l11[0] * t643;
+        let t645 = 70000.0 * t637;
+        let t646 = t644 + t645;
+        let t647 = -t646;
+        let t648 = f64::min(t647, 0.0);
+        let v17 = lanes_add!(
+            v9, lanes!(0.3490658503988659, 0.3490658503988659, 0.3490658503988659,
+            0.3490658503988659)
+        );
+        let l17 = lanes_array!(v17);
+        let t639 = -l17[0];
+        let t640 = f64::max(t639, 0.0);
+        let t653 = 70000.0 * t640;
+        let t649 = 10000.0 * t640;
+        let t650 = f64::min(t649, 1.0);
+        let t651 = 617.2846305501084 * t650;
+        let t652 = l11[0] * t651;
+        let t654 = -t652;
+        let t655 = t653 - t652;
+        let t656 = f64::max(t655, 0.0);
+        let t787 = t648 + t656;
+        let t788 = t782 + t787;
+        let t789 = t786 + t788;
+        let t790 = l100[0] + t789;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t791 = -l9[0];
+        let t849 = -l9[1];
+        let t907 = -l9[2];
+        let t982 = -l9[3];
+        let v15 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v43 = lanes_mul!(v15, lanes!(700.0, 700.0, 700.0, 700.0));
+        let l43 = lanes_array!(v43);
+        let t795 = t790 + l43[0];
+        let v33 = lanes_mul!(v11, lanes!(100.0, 100.0, 100.0, 100.0));
+        let l33 = lanes_array!(v33);
+        let t796 = -l33[0];
+        let t797 = t795 - l33[0];
+        let t1081 = t797 * l121[0];
+        let t1522 = -t1081;
+        let t1523 = t1521 - t1081;
+        let t490 = omega_x * t482;
+        let t499 = l92[1] + t490;
+        let t500 = -l124[1];
+        let t501 = t499 - l124[1];
+        let t502 = 10.0 * t501;
+        let t841 = t502 + t601;
+        let t842 = -t841;
+        let t843 = l46[1] - t841;
+        let t844 = l80[1] * t843;
+        let t837 = t498 + t599;
+        let t838 = -t837;
+        let t839 = l44[1] - t837;
+        let t840 = l79[1] * t839;
+        let t660 = f64::max(l16[1], 0.0);
+        let t664 = 10000.0 * t660;
+        let t665 = f64::min(t664, 1.0);
+        let t666 = 617.2846305501082 * t665;
+        let t667 = l11[1] * t666;
+        let t668 = 70000.0 * t660;
+        let t669 = t667 + t668;
+        let t670 = -t669;
+        let t671 = f64::min(t670, 0.0);
+        let t662 = -l17[1];
+        let t663 = f64::max(t662, 0.0);
+        let t676 = 70000.0 * t663;
+        let t672 = 10000.0 * t663;
+        let t673 = f64::min(t672, 1.0);
+        let t674 = 617.2846305501082 * t673;
+        let t675 = l11[1] * t674;
+        let t677 = -t675;
+        let t678 = t676 - t675;
+        let t679 = f64::max(t678, 0.0);
+        let t845 = t671 + t679;
+        let t846 = t840 + t845;
+        let t847 = t844 + t846;
+        let t848 = l100[1] + t847;
+        let t853 = t848 + l43[1];
+        let t854 = -l33[1];
+        let t855 = t853 - l33[1];
+        let t1082 = t855 * l121[1];
+        let t1524 = -t1082;
+        let t1525 = t1523 - t1082;
+        let t404 = vy * omega_z;
+        let t403 = vz * omega_y;
+        let t946 = -t403;
+        let t947 = t404 - t403;
+        let t948 = 660.0 * t947;
+        let t945 = t594 * 1069.2;
+        let t936 = t598 * 4.0;
+        let t951 = lanes_sum!(v45) + t948 + t945 + t936 - t579 - t538 - t453 - t494;
+        let t1484 = t951 * t1204;
+        let t534 = omega_x * t525;
+        let t543 = l92[2] + t534;
+        let t544 = -l124[2];
+        let t545 = t543 - l124[2];
+        let t546 = 10.0 * t545;
+        let t899 = t546 + t601;
+        let t900 = -t899;
+        let t901 = l46[2] - t899;
+        let t902 = l80[2] * t901;
+        let t895 = t542 + t599;
+        let t896 = -t895;
+        let t897 = l44[2] - t895;
+        let t898 = l79[2] * t897;
+        let t681 = f64::max(l16[2], 0.0);
+        let t685 = 10000.0 * t681;
+        let t686 = f64::min(t685, 1.0);
+        let t687 = 617.2846305501084 * t686;
+        let t688 = l11[2] * t687;
+        let t689 = 70000.0 * t681;
+        let t690 = t688 + t689;
+        let t691 = -t690;
+        let t692 = f64::min(t691, 0.0);
+        let t683 = -l17[2];
+        let t684 = f64::max(t683, 0.0);
+        let t697 = 70000.0 * t684;
+        let t693 = 10000.0 * t684;
+        let t694 = f64::min(t693, 1.0);
+        let t695 = 617.2846305501084 * t694;
+        let t696 = l11[2] * t695;
+        let t698 = -t696;
+        let t699 = t697 - t696;
+        let t700 = f64::max(t699, 0.0);
+        let t903 = t692 + t700;
+        let t904 = t898 + t903;
+        let t905 = t902 + t904;
+        let t906 = l100[2] + t905;
+        let t911 = t906 + l43[2];
+        let t912 = -l33[2];
+        let t913 = t911 - l33[2];
+        let t1083 = t913 * l121[2];
+        let t575 = omega_x * t567;
+        let t584 = l92[3] + t575;
+        let t585 = -l124[3];
+        let t586 = t584 - l124[3];
+        let t587 = 10.0 * t586;
+        let t974 = t587 + t601;
+        let t975 = -t974;
+        let t976 = l46[3] - t974;
+        let t977 = l80[3] * t976;
+        let t970 = t583 + t599;
+        let t971 = -t970;
+        let t972 = l44[3] - t970;
+        let t973 = l79[3] * t972;
+        let t702 = f64::max(l16[3], 0.0);
+        let t706 = 10000.0 * t702;
+        let t707 = f64::min(t706, 1.0);
+        let t708 = 617.2846305501082 * t707;
+        let t709 = l11[3] * t708;
+        let t710 = 70000.0 * t702;
+        let t711 = t709 + t710;
+        let t712 = -t711;
+        let t713 = f64::min(t712, 0.0);
+        let t704 = -l17[3];
+        let t705 = f64::max(t704, 0.0);
+        let t718 = 70000.0 * t705;
+        let t714 = 10000.0 * t705;
+        let t715 = f64::min(t714, 1.0);
+        let t716 = 617.2846305501082 * t715;
+        let t717 = l11[3] * t716;
+        let t719 = -t717;
+        let t720 = t718 - t717;
+        let t721 = f64::max(t720, 0.0);
+        let t978 = t713 + t721;
+        let t979 = t973 + t978;
+        let t980 = t977 + t979;
+        let t981 = l100[3] + t980;
+        let t986 = t981 + l43[3];
+        let t987 = -l33[3];
+        let t988 = t986 - l33[3];
+        let t1084 = t988 * l121[3];
+        let t1526 = t1083 + t1084;
+        let t1527 = t1484 + t1526;
+        let t406 = vz * omega_x;
+        let t405 = vx * omega_z;
+        let t1036 = -t405;
+        let t1037 = t406 - t405;
+        let t1038 = 660.0 * t1037;
+        let t1017 = t599 * 4.0;
+        let t1013 = t797 * l120[0];
+        let t1014 = t855 * l120[1];
+        let t1015 = t913 * l120[2];
+        let t1016 = t988 * l120[3];
+        let t1035 = t397 * 1069.2;
+        let t1042 = lanes_sum!(v44) + t1038 - t1017 - t583 - t542 - t1019 - t1013 - t1014
+            - t1015 - t1016 - t1035;
+        let t1486 = t1042 * t1221;
+        let t1528 = -t1486;
+        let t1529 = t1527 - t1486;
+        let t408 = vx * omega_y;
+        let t407 = vy * omega_x;
+        let t1066 = -t407;
+        let t1067 = t408 - t407;
+        let t1068 = 660.0 * t1067;
+        let t1047 = t601 * 4.0;
+        let t1049 = t461 + t502;
+        let t1043 = t797 * l122[0];
+        let t1044 = t855 * l122[1];
+        let t1045 = t913 * l122[2];
+        let t1046 = t988 * l122[3];
+        let t1065 = t595 * 1069.2;
+        let t1072 = lanes_sum!(v46) + t1068 - t1047 - t587 - t546 - t1049 - t1043 - t1044
+            - t1045 - t1046 - t1065;
+        let t1487 = t1072 * t1236;
+        let t1530 = -t1487;
+        let t1531 = t1529 - t1487;
+        let t1532 = t1525 + t1531;
+        let t1533 = t1519 + t1532;
+        let t1534 = t1511 + t1533;
+        let t1549 = t1364 * t1534;
+        let t1375 = t601 * t1374;
+        let t1391 = -t546;
+        let t1392 = l46[2] - t546;
+        let t1393 = l87[2] * t1392;
+        let t1388 = -l44[1];
+        let t1389 = t498 - l44[1];
+        let t1390 = l88[1] * t1389;
+        let t1385 = -t502;
+        let t1386 = l46[1] - t502;
+        let t1387 = l87[1] * t1386;
+        let t1382 = -l44[0];
+        let t1383 = t457 - l44[0];
+        let t1384 = l88[0] * t1383;
+        let t1376 = l88[2] + t1276;
+        let t1377 = l88[3] + t1376;
+        let t1378 = t599 * t1377;
+        let t1379 = -t461;
+        let t1380 = l46[0] - t461;
+        let t1381 = l87[0] * t1380;
+        let t413 = omega_z * t410;
+        let t1401 = t583 - l44[3];
+        let t1402 = l88[3] * t1401;
+        let t1395 = t542 - l44[2];
+        let t1396 = l88[2] * t1395;
+        let t1397 = -t587;
+        let t1398 = l46[3] - t587;
+        let t1399 = l87[3] * t1398;
+        let t411 = omega_z * 561.6;
+        let t412 = omega_y * t411;
+        let t1372 = t1072 * t1226;
+        let t1371 = t1042 * t1211;
+        let t1076 = t988 * l126[3];
+        let t1075 = t913 * l126[2];
+        let t1073 = t797 * l126[0];
+        let t1074 = t855 * l126[1];
+        let t1426 = lanes_sum!(v54) - t1375 + t1393 + t1390 + t1387 + t1384 + t1378
+            + t1381 + t413 + t1402 + t1396 + t1399 - t412 - t1372 - t1371 - t1076 - t1075
+            - t1073 - t1074;
+        let t1547 = t1352 * t1426;
+        let t1357 = t1272 * t1288;
+        let t1358 = t1255 * t1323;
+        let t1359 = -t1358;
+        let t1360 = t1357 - t1358;
+        let t1462 = lanes_sum!(lanes_mul!(v46, lanes!(- 1.0, - 1.0, 1.0, 1.0))) + t1397
+            + t1049 + t1391;
+        let t1463 = 1.143 * t1462;
+        let t1452 = -t579;
+        let t1453 = l45[3] - t579;
+        let t1454 = l88[3] * t1453;
+        let t1449 = -t538;
+        let t1450 = l45[2] - t538;
+        let t1451 = l88[2] * t1450;
+        let t1446 = -t494;
+        let t1447 = l45[1] - t494;
+        let t1448 = l88[1] * t1447;
+        let t1443 = -t453;
+        let t1444 = l45[0] - t453;
+        let t1445 = l88[0] * t1444;
+        let t1442 = t397 * t1441;
+        let t1438 = t735 * t1437;
+        let t1430 = t598 * t1377;
+        let t1434 = t728 * t1433;
+        let t1464 = -t1434;
+        let t1465 = t1430 - t1434;
+        let t1466 = t1438 + t1465;
+        let t1467 = t1442 + t1466;
+        let t1468 = t1445 + t1467;
+        let t1469 = t1448 + t1468;
+        let t1470 = t1451 + t1469;
+        let t1471 = t1454 + t1470;
+        let t1078 = t855 * l123[1];
+        let t1077 = t797 * l123[0];
+        let t415 = omega_x * t411;
+        let t414 = omega_z * t409;
+        let t1472 = -t414;
+        let t1473 = t415 - t414;
+        let t1474 = t1077 + t1473;
+        let t1475 = t1078 + t1474;
+        let t1429 = t1072 * t1231;
+        let t1428 = t1042 * t1216;
+        let t1427 = t951 * t1201;
+        let t1079 = t913 * l123[2];
+        let t1080 = t988 * l123[3];
+        let t1476 = t1079 + t1080;
+        let t1477 = t1427 + t1476;
+        let t1478 = t1428 + t1477;
+        let t1479 = t1429 + t1478;
+        let t1480 = -t1479;
+        let t1481 = t1475 - t1479;
+        let t1482 = t1471 + t1481;
+        let t1483 = t1463 + t1482;
+        let t1548 = t1360 * t1483;
+        let t1550 = t1547 + t1548;
+        let t1551 = t1549 + t1550;
+        let t1552 = t1370 * t1551;
+        let t1554 = t379 * t1552;
+        let t1543 = t1360 * t1534;
+        let t1541 = t1348 * t1426;
+        let t1353 = t1255 * t1340;
+        let t1354 = t1288 * t1288;
+        let t1355 = -t1354;
+        let t1356 = t1353 - t1354;
+        let t1542 = t1356 * t1483;
+        let t1544 = t1541 + t1542;
+        let t1545 = t1543 + t1544;
+        let t1546 = t1370 * t1545;
+        let t1553 = t375 * t1546;
+        let t1556 = -t1553;
+        let t1557 = t951 - t1553;
+        let t1558 = t1554 + t1557;
+        let t1577 = t1193 * t1558;
+        let t1578 = t1199 * t1577;
+        let t1537 = t1352 * t1534;
+        let t1535 = t1344 * t1426;
+        let t1536 = t1348 * t1483;
+        let t1538 = t1535 + t1536;
+        let t1539 = t1537 + t1538;
+        let t1540 = t1370 * t1539;
+        let t1559 = t1118 * t1540;
+        let t1563 = t1042 + t1559;
+        let t1561 = t1128 * t1546;
+        let t1564 = -t1561;
+        let t1565 = t1563 - t1561;
+        let t1562 = t1136 * t1552;
+        let t1566 = -t1562;
+        let t1567 = t1565 - t1562;
+        let t1579 = t1194 * t1567;
+        let t1568 = t1148 * t1540;
+        let t1571 = -t1568;
+        let t1572 = t1072 - t1568;
+        let t1569 = t1157 * t1546;
+        let t1573 = -t1569;
+        let t1574 = t1572 - t1569;
+        let t1570 = t1165 * t1552;
+        let t1575 = -t1570;
+        let t1576 = t1574 - t1570;
+        let t1580 = t1195 * t1576;
+        let t1582 = t1579 + t1580;
+        let t1583 = t1199 * t1582;
+        let t1584 = t1195 * t1567;
+        let t1586 = t1197 * t1576;
+        let t1587 = t1584 + t1586;
+        let t1588 = t1199 * t1587;
+        let v146 = lanes_mul!(v123, lanes_splat!(t1546));
+        let l146 = lanes_array!(v146);
+        let t1589 = t797 * l119[0];
+        let v143 = lanes_mul!(v120, lanes_splat!(t1583));
+        let l143 = lanes_array!(v143);
+        let t1640 = -l143[0];
+        let t1641 = t1589 - l143[0];
+        let v145 = lanes_mul!(v122, lanes_splat!(t1588));
+        let l145 = lanes_array!(v145);
+        let t1642 = -l145[0];
+        let t1643 = t1641 - l145[0];
+        let v147 = lanes_mul!(v126, lanes_splat!(t1540));
+        let l147 = lanes_array!(v147);
+        let t1644 = -l147[0];
+        let t1645 = t1643 - l147[0];
+        let t1646 = l146[0] + t1645;
+        let v144 = lanes_mul!(v121, lanes_splat!(t1552));
+        let l144 = lanes_array!(v144);
+        let t1647 = -l144[0];
+        let t1648 = t1646 - l144[0];
+        let t1590 = t855 * l119[1];
+        let t1626 = -l143[1];
+        let t1627 = t1590 - l143[1];
+        let t1628 = -l145[1];
+        let t1629 = t1627 - l145[1];
+        let t1630 = -l147[1];
+        let t1631 = t1629 - l147[1];
+        let t1632 = l146[1] + t1631;
+        let t1633 = -l144[1];
+        let t1634 = t1632 - l144[1];
+        let t1591 = t913 * l119[2];
+        let t1612 = -l143[2];
+        let t1613 = t1591 - l143[2];
+        let t1614 = -l145[2];
+        let t1615 = t1613 - l145[2];
+        let t1616 = -l147[2];
+        let t1617 = t1615 - l147[2];
+        let t1618 = -l146[2];
+        let t1619 = t1617 - l146[2];
+        let t1620 = l144[2] + t1619;
+        let t1592 = t988 * l119[3];
+        let t1598 = -l143[3];
+        let t1599 = t1592 - l143[3];
+        let t1600 = -l145[3];
+        let t1601 = t1599 - l145[3];
+        let t1602 = -l147[3];
+        let t1603 = t1601 - l147[3];
+        let t1604 = -l146[3];
+        let t1605 = t1603 - l146[3];
+        let t1606 = l144[3] + t1605;
+        let cos_roll = t398;
+        let pivot_6 = l116[0];
+        let pivot_den_6 = 1.0;
+        let pivot_7 = l116[1];
+        let pivot_den_7 = 1.0;
+        let pivot_8 = l116[2];
+        let pivot_den_8 = 1.0;
+        let pivot_9 = l116[3];
+        let pivot_den_9 = 1.0;
+        let pivot_0 = 700.0;
+        let pivot_den_0 = 1.0;
+        let pivot_1 = t1197;
+        let pivot_den_1 = 700.0;
+        let pivot_2 = t1198;
+        let pivot_den_2 = t1197;
+        let pivot_3 = t1255;
+        let pivot_den_3 = 1.0;
+        let pivot_4 = t1364;
+        let pivot_den_4 = t1255;
+        let pivot_5 = t1369;
+        let pivot_den_5 = t1364;
+        xdot[0] = t1654;
+        xdot[1] = t1659;
+        xdot[2] = t1665;
+        xdot[3] = t1668;
+        xdot[4] = t1676;
+        xdot[5] = t1673;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t1578;
+        wdot[1] = t1583;
+        wdot[2] = t1588;
+        wdot[3] = t1540;
+        wdot[4] = t1546;
+        wdot[5] = t1552;
+        wdot[6] = t1648;
+        wdot[7] = t1634;
+        wdot[8] = t1620;
+        wdot[9] = t1606;
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
+            return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
+                roll: x[3],
+            });
+        }
+        if (pivot_6 > 0.0) & (pivot_7 > 0.0) & (pivot_8 > 0.0) & (pivot_9 > 0.0)
+            & (pivot_0 > 0.0) & (pivot_1 > 0.0) & (pivot_2 > 0.0) & (pivot_3 > 0.0)
+            & (pivot_4 > 0.0) & (pivot_5 > 0.0)
+        {
+            return Ok(());
+        }
+        Self::singular_mass([
+            (6, pivot_6, pivot_den_6),
+            (7, pivot_7, pivot_den_7),
+            (8, pivot_8, pivot_den_8),
+            (9, pivot_9, pivot_den_9),
+            (0, pivot_0, pivot_den_0),
+            (1, pivot_1, pivot_den_1),
+            (2, pivot_2, pivot_den_2),
+            (3, pivot_3, pivot_den_3),
+            (4, pivot_4, pivot_den_4),
+            (5, pivot_5, pivot_den_5),
+        ])
     }
     /// [`Self::derivatives_array`] for the crate's own target only,
     /// whatever the processor offers (the reference of the tests that hold
@@ -116,553 +1217,1083 @@ impl Lrv {
         xdot: &mut [f64; 10],
         wdot: &mut [f64; 10],
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
-    }
-    /// The body of both copies, inlined into each so that each is compiled
-    /// for its own instruction set.
-    #[inline(always)]
-    fn derivatives_body(
-        &self,
-        x: &[f64; 10],
-        w: &[f64; 10],
-        loads: &[::rover_dynamics::plant::WheelLoad; 4],
-        xdot: &mut [f64; 10],
-        wdot: &mut [f64; 10],
-    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                [$a, $b, $c, $d]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                [$a; 4]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] + q[0], p[1] +
+                q[1], p[2] + q[2], p[3] + q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] * q[0], p[1] *
+                q[1], p[2] * q[2], p[3] * q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] / q[0], p[1] /
+                q[1], p[2] / q[2], p[3] / q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                $a
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r : [f64; 4] = $a; (r[0] + r[2]) + (r[1] + r[3]) }
+            };
+        }
         let phi = x[3];
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let front_left = x[6];
-        let t1 = front_left * 0.010497107891091926;
-        let t2 = t1 - 0.002420073522975009;
-        let t3 = t1 + t2;
-        let t4 = front_left * t2 - 0.1889588601394729;
-        let t5 = t4 + front_left * t3;
-        let t6 = front_left * t4 - 0.008046798224083086;
-        let t7 = t6 + front_left * t5;
-        let t9 = front_left * 0.003569364721085567;
-        let t10 = t9 - 0.05863585356694276;
-        let t11 = t9 + t10;
-        let t12 = front_left * t10 + 0.009084672645052382;
-        let t13 = t12 + front_left * t11;
-        let t14 = front_left * t12 + 0.36881035216564817;
-        let t15 = t14 + front_left * t13;
-        let t84 = 10.0 * (t7 * t7 + t15 * t15);
-        let front_right = x[7];
-        let t20 = front_right * 0.010497107891095859;
-        let t21 = -0.0024200735229748405 - t20;
-        let t22 = t21 - t20;
-        let t23 = front_right * t21 + 0.18895886013947344;
-        let t24 = t23 + front_right * t22;
-        let t25 = front_right * t23 - 0.008046798224083114;
-        let t26 = t25 + front_right * t24;
-        let t28 = front_right * 0.003569364721073275;
-        let t29 = t28 + 0.05863585356694256;
-        let t30 = t28 + t29;
-        let t31 = front_right * t29 + 0.009084672645053608;
-        let t32 = t31 + front_right * t30;
-        let t33 = front_right * t31 - 0.36881035216564806;
-        let t34 = t33 + front_right * t32;
-        let t92 = 10.0 * (t26 * t26 + t34 * t34);
-        let rear_left = x[8];
-        let t39 = rear_left * 0.010497107891091926;
-        let t40 = t39 - 0.002420073522975009;
-        let t41 = t39 + t40;
-        let t42 = rear_left * t40 - 0.1889588601394729;
-        let t43 = t42 + rear_left * t41;
-        let t44 = rear_left * t42 - 0.008046798224083086;
-        let t45 = t44 + rear_left * t43;
-        let t47 = rear_left * 0.003569364721085567;
-        let t48 = t47 - 0.05863585356694276;
-        let t49 = t47 + t48;
-        let t50 = 0.009084672645052382 + rear_left * t48;
-        let t51 = t50 + rear_left * t49;
-        let t52 = 0.36881035216564817 + rear_left * t50;
-        let t53 = t52 + rear_left * t51;
-        let t100 = 10.0 * (t45 * t45 + t53 * t53);
-        let rear_right = x[9];
-        let t58 = rear_right * 0.010497107891095859;
-        let t59 = -0.0024200735229748405 - t58;
-        let t60 = t59 - t58;
-        let t61 = 0.18895886013947344 + rear_right * t59;
-        let t62 = t61 + rear_right * t60;
-        let t63 = rear_right * t61 - 0.008046798224083114;
-        let t64 = t63 + rear_right * t62;
-        let t66 = rear_right * 0.003569364721073275;
-        let t67 = 0.05863585356694256 + t66;
-        let t68 = t66 + t67;
-        let t69 = 0.009084672645053608 + rear_right * t67;
-        let t70 = t69 + rear_right * t68;
-        let t71 = rear_right * t69 - 0.36881035216564806;
-        let t72 = t71 + rear_right * t70;
-        let t110 = 10.0 * (t64 * t64 + t72 * t72);
-        let t218 = 1.0 / t84;
-        let t77 = t7 * 10.0;
-        let t219 = t77 * t218;
-        let t224 = 1.0 / t92;
-        let t85 = t26 * 10.0;
-        let t225 = t85 * t224;
-        let t230 = 1.0 / t100;
-        let t93 = t45 * 10.0;
-        let t231 = t93 * t230;
-        let t236 = 1.0 / t110;
-        let t103 = t64 * 10.0;
-        let t237 = t103 * t236;
-        let t246 = 700.0 - (t103 * t237 + (t93 * t231 + (t77 * t219 + t85 * t225)));
-        let t258 = 700.0 * t246;
-        let t78 = t15 * 10.0;
-        let t220 = t78 * t218;
-        let t86 = t34 * 10.0;
-        let t226 = t86 * t224;
-        let t94 = t53 * 10.0;
-        let t232 = t94 * t230;
-        let t104 = t72 * 10.0;
-        let t238 = t104 * t236;
-        let t248 = 700.0 - (t104 * t238 + (t94 * t232 + (t78 * t220 + t86 * t226)));
-        let t247 = t104 * t237 + (t94 * t231 + (t78 * t219 + t86 * t225));
-        let t255 = t246 * t248 - t247 * t247;
-        let t259 = 700.0 * t255;
-        let t260 = 1.0 / t259;
-        let t8 = 0.9151637274786046 + front_left * t6;
-        let t16 = front_left * t14 - 0.1540490207303449;
-        let t81 = 10.0 * (t8 * t15 - t7 * t16);
-        let t27 = front_right * t25 - 0.9151637274786046;
-        let t46 = 0.9151637274786046 + rear_left * t44;
-        let t65 = rear_right * t63 - 0.9151637274786046;
-        let t102 = t65 * 10.0 + (t46 * 10.0 + (t8 * 10.0 + t27 * 10.0));
-        let t35 = front_right * t33 - 0.1540490207303449;
-        let t89 = 10.0 * (t27 * t34 - t26 * t35);
-        let t54 = rear_left * t52 - 0.1540490207303449;
-        let t97 = 10.0 * (t46 * t53 - t45 * t54);
-        let t73 = rear_right * t71 - 0.1540490207303449;
-        let t107 = 10.0 * (t65 * t72 - t64 * t73);
-        let t252 = t102 - t81 * t220 - t89 * t226 - t97 * t232 - t107 * t238;
-        let t101 = t73 * 10.0 + (t54 * 10.0 + (t16 * 10.0 + t35 * 10.0));
-        let t249 = t107 * t237 + (t97 * t231 + (t89 * t225 + (t101 + t81 * t219)));
-        let t257 = 700.0 * t247;
-        let t266 = t260 * (t252 * t258 - t249 * t257);
-        let t256 = 700.0 * t248;
-        let t263 = t260 * (t252 * t257 - t249 * t256);
-        let t221 = t81 * t218;
-        let t227 = t89 * t224;
-        let t233 = t97 * t230;
-        let t239 = t107 * t236;
-        let t79 = t16 * t16;
-        let t80 = t8 * t8;
-        let t87 = t35 * t35;
-        let t88 = t27 * t27;
-        let t95 = t54 * t54;
-        let t96 = t46 * t46;
-        let t105 = t73 * t73;
-        let t106 = t65 * t65;
-        let t269 = 86.4
-            + (10.0 * (t106 + (t105 + (t96 + (t95 + (t88 + (t87 + (t79 + t80)))))))
-                - (t252 * t266
-                    + (t107 * t239 + (t97 * t233 + (t81 * t221 + t89 * t227))
-                        - t249 * t263)));
-        let t82 = t15 * 11.43;
-        let t90 = t34 * 11.43;
-        let t98 = t53 * 11.43;
-        let t108 = t72 * 11.43;
-        let t250 = t82 * t219 + t90 * t225 - t98 * t231 - t108 * t237;
-        let t253 = t82 * t220 + t90 * t226 - t98 * t232 - t108 * t238;
-        let t264 = t260 * (t250 * t256 + t253 * t257);
-        let t261 = t260 * (t101 * t255);
-        let t222 = t82 * t218;
-        let t228 = t90 * t224;
-        let t234 = t98 * t230;
-        let t240 = t108 * t236;
-        let t267 = t260 * (t250 * t257 + t253 * t258);
-        let t274 = 567.0579599999999
-            + (10.0 * (t105 + (t95 + (t79 + t87)))
-                - (t253 * t267
-                    + (t250 * t264
-                        + (t101 * t261
-                            + (t108 * t240
-                                + (t98 * t234 + (t82 * t222 + t90 * t228)))))));
-        let t270 = t8 + t27;
-        let t271 = 11.43 * (t65 + (t46 - t270))
-            + (t249 * t264 + (t82 * t221 + t90 * t227 - t98 * t233 - t108 * t239)
-                - t252 * t267);
-        let t281 = t269 * t274 - t271 * t271;
-        let t83 = t7 * 11.43;
-        let t91 = t26 * 11.43;
-        let t99 = t45 * 11.43;
-        let t109 = t64 * 11.43;
-        let t251 = t109 * t237 + (t99 * t231 - (t83 * t219 + t91 * t225));
-        let t254 = t109 * t238 + (t99 * t232 - (t83 * t220 + t91 * t226));
-        let t265 = t260 * (t251 * t256 + t254 * t257);
-        let t262 = t260 * (t102 * t255);
-        let t223 = t83 * t218;
-        let t229 = t91 * t224;
-        let t235 = t99 * t230;
-        let t241 = t109 * t236;
-        let t268 = t260 * (t251 * t257 + t254 * t258);
-        let t276 = 613.8579599999999
-            + (10.0 * (t106 + (t96 + (t80 + t88)))
-                - (t254 * t268
-                    + (t251 * t265
-                        + (t102 * t262
-                            + (t109 * t241
-                                + (t99 * t235 + (t83 * t223 + t91 * t229)))))));
-        let t275 = t101 * t262 + (t109 * t240 + (t99 * t234 + (t83 * t222 + t91 * t228)))
-            - t250 * t265 - t253 * t268
-            - 10.0 * (t65 * t73 + (t46 * t54 + (t8 * t16 + t27 * t35)));
-        let t277 = t274 * t276 - t275 * t275;
-        let t272 = t16 + t35;
-        let t273 = 11.43 * (t73 + (t54 - t272))
-            + (t249 * t265 + (t109 * t239 + (t99 * t233 - (t83 * t221 + t91 * t227)))
-                - t252 * t268);
-        let t278 = t273 * t275 - t271 * t276;
-        let t279 = t271 * t275 - t273 * t274;
-        let t282 = t273 * t279 + (t269 * t277 + t271 * t278);
-        let theta = x[4];
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let psi = x[5];
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t178 = s_phi * c_theta;
-        let t181 = s_theta * c_psi + s_psi * t178;
+        let (t397, t398) = ::libm::sincos(phi);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v27 = lanes_mul!(
+            v9, lanes!(0.010497107891091926, 0.010497107891095859, 0.010497107891091926,
+            0.010497107891095859)
+        );
+        let l27 = lanes_array!(v27);
+        let t138 = -l27[1];
+        let t258 = -l27[3];
+        let v37 = lanes_add!(
+            lanes_mul!(v27, lanes!(1.0, - 1.0, 1.0, - 1.0)), lanes!(-
+            0.002420073522975009, - 0.0024200735229748405, - 0.002420073522975009, -
+            0.0024200735229748405)
+        );
+        let v51 = lanes_mul!(v9, v37);
+        let v55 = lanes_add!(
+            v51, lanes!(- 0.1889588601394729, 0.18895886013947344, - 0.1889588601394729,
+            0.18895886013947344)
+        );
+        let v68 = lanes_mul!(v9, v55);
+        let v71 = lanes_add!(
+            v68, lanes!(- 0.008046798224083086, - 0.008046798224083114, -
+            0.008046798224083086, - 0.008046798224083114)
+        );
+        let v47 = lanes_add!(lanes_mul!(v27, lanes!(1.0, - 1.0, 1.0, - 1.0)), v37);
+        let v58 = lanes_mul!(v9, v47);
+        let v65 = lanes_add!(v55, v58);
+        let v75 = lanes_mul!(v9, v65);
+        let v79 = lanes_add!(v71, v75);
+        let l79 = lanes_array!(v79);
+        let v93 = lanes_mul!(v79, v79);
+        let v29 = lanes_mul!(
+            v9, lanes!(0.003569364721085567, 0.003569364721073275, 0.003569364721085567,
+            0.003569364721073275)
+        );
+        let v38 = lanes_add!(
+            v29, lanes!(- 0.05863585356694276, 0.05863585356694256, -
+            0.05863585356694276, 0.05863585356694256)
+        );
+        let v52 = lanes_mul!(v9, v38);
+        let v56 = lanes_add!(
+            v52, lanes!(0.009084672645052382, 0.009084672645053608, 0.009084672645052382,
+            0.009084672645053608)
+        );
+        let v69 = lanes_mul!(v9, v56);
+        let v72 = lanes_add!(
+            v69, lanes!(0.36881035216564817, - 0.36881035216564806, 0.36881035216564817,
+            - 0.36881035216564806)
+        );
+        let v48 = lanes_add!(v29, v38);
+        let v59 = lanes_mul!(v9, v48);
+        let v66 = lanes_add!(v56, v59);
+        let v76 = lanes_mul!(v9, v66);
+        let v80 = lanes_add!(v72, v76);
+        let l80 = lanes_array!(v80);
+        let v96 = lanes_mul!(v80, v80);
+        let v99 = lanes_add!(v93, v96);
+        let v116 = lanes_mul!(v99, lanes!(10.0, 10.0, 10.0, 10.0));
+        let l116 = lanes_array!(v116);
+        let v94 = lanes_mul!(v79, lanes!(10.0, 10.0, 10.0, 10.0));
+        let v119 = lanes_div!(lanes!(1.0, 1.0, 1.0, 1.0), v116);
+        let l119 = lanes_array!(v119);
+        let v120 = lanes_mul!(v94, v119);
+        let l120 = lanes_array!(v120);
+        let v128 = lanes_mul!(v94, v120);
+        let t1093 = lanes_sum!(lanes_mul!(v128, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 700.0;
+        let t1197 = 700.0 * t1093;
+        let v97 = lanes_mul!(v80, lanes!(10.0, 10.0, 10.0, 10.0));
+        let v122 = lanes_mul!(v97, v119);
+        let l122 = lanes_array!(v122);
+        let v135 = lanes_mul!(v97, v122);
+        let t1110 = lanes_sum!(lanes_mul!(v135, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 700.0;
+        let t1190 = t1093 * t1110;
+        let v134 = lanes_mul!(v97, v120);
+        let t1100 = lanes_sum!(v134);
+        let t1191 = t1100 * t1100;
+        let t1192 = -t1191;
+        let t1193 = t1190 - t1191;
+        let t1198 = 700.0 * t1193;
+        let v84 = lanes_mul!(v9, v71);
+        let v87 = lanes_add!(
+            v84, lanes!(0.9151637274786046, - 0.9151637274786046, 0.9151637274786046, -
+            0.9151637274786046)
+        );
+        let l87 = lanes_array!(v87);
+        let v103 = lanes_mul!(v87, v87);
+        let v85 = lanes_mul!(v9, v72);
+        let v88 = lanes_add!(
+            v85, lanes!(- 0.1540490207303449, - 0.1540490207303449, - 0.1540490207303449,
+            - 0.1540490207303449)
+        );
+        let l88 = lanes_array!(v88);
+        let v108 = lanes_mul!(v88, v88);
+        let t1246 = lanes_sum!(lanes_add!(v103, v108));
+        let t1247 = 10.0 * t1246;
+        let v107 = lanes_mul!(v87, lanes!(10.0, 10.0, 10.0, 10.0));
+        let t379 = lanes_sum!(v107);
+        let v102 = lanes_mul!(v80, v87);
+        let v101 = lanes_mul!(v79, v88);
+        let l101 = lanes_array!(v101);
+        let t323 = -l101[0];
+        let t343 = -l101[1];
+        let t361 = -l101[2];
+        let t387 = -l101[3];
+        let v114 = lanes_add!(
+            lanes_mul!(v101, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v102
+        );
+        let v118 = lanes_mul!(v114, lanes!(10.0, 10.0, 10.0, 10.0));
+        let v141 = lanes_mul!(v118, v122);
+        let t1148 = lanes_sum!(lanes_mul!(v141, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + t379;
+        let t1199 = 1.0 / t1198;
+        let t1223 = t1148 * t1197;
+        let v140 = lanes_mul!(v118, v120);
+        let v111 = lanes_mul!(v88, lanes!(10.0, 10.0, 10.0, 10.0));
+        let t375 = lanes_sum!(v111);
+        let t1118 = lanes_sum!(v140) + t375;
+        let t1195 = 700.0 * t1100;
+        let t1222 = t1118 * t1195;
+        let t1224 = -t1222;
+        let t1225 = t1223 - t1222;
+        let t1226 = t1199 * t1225;
+        let t1239 = t1148 * t1226;
+        let t1194 = 700.0 * t1110;
+        let t1206 = t1118 * t1194;
+        let t1207 = -t1206;
+        let t1208 = t1148 * t1195;
+        let t1210 = t1207 + t1208;
+        let t1211 = t1199 * t1210;
+        let t1237 = t1118 * t1211;
+        let v126 = lanes_mul!(v118, v119);
+        let l126 = lanes_array!(v126);
+        let v142 = lanes_mul!(v118, v126);
+        let t1255 = lanes_sum!(lanes_mul!(v142, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 86.4 + t1247 - t1239 + t1237;
+        let t1294 = lanes_sum!(v108);
+        let t1295 = 10.0 * t1294;
+        let v98 = lanes_mul!(v80, lanes!(11.43, 11.43, 11.43, 11.43));
+        let v137 = lanes_mul!(v98, v122);
+        let t1157 = lanes_sum!(lanes_mul!(v137, lanes!(1.0, 1.0, - 1.0, - 1.0)));
+        let v136 = lanes_mul!(v98, v120);
+        let t1128 = lanes_sum!(lanes_mul!(v136, lanes!(1.0, 1.0, - 1.0, - 1.0)));
+        let t1227 = t1128 * t1195;
+        let t1229 = t1157 * t1197;
+        let t1230 = t1227 + t1229;
+        let t1231 = t1199 * t1230;
+        let t1291 = t1157 * t1231;
+        let t1212 = t1128 * t1194;
+        let t1213 = t1157 * t1195;
+        let t1215 = t1212 + t1213;
+        let t1216 = t1199 * t1215;
+        let t1290 = t1128 * t1216;
+        let t1200 = t375 * t1193;
+        let t1201 = t1199 * t1200;
+        let t1289 = t375 * t1201;
+        let v123 = lanes_mul!(v98, v119);
+        let l123 = lanes_array!(v123);
+        let v138 = lanes_mul!(v98, v123);
+        let t1305 = lanes_sum!(lanes_mul!(v138, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 567.0579599999999 + t1295 - t1291 - t1290 - t1289;
+        let t1361 = t1255 * t1305;
+        let t1259 = l87[0] + l87[1];
+        let t1260 = -t1259;
+        let t1261 = l87[2] - t1259;
+        let t1262 = l87[3] + t1261;
+        let t1263 = 11.43 * t1262;
+        let t1256 = t1118 * t1216;
+        let v139 = lanes_mul!(v98, v126);
+        let t1258 = t1148 * t1231;
+        let t1272 = lanes_sum!(lanes_mul!(v139, lanes!(1.0, 1.0, - 1.0, - 1.0))) + t1263
+            + t1256 - t1258;
+        let t1362 = t1272 * t1272;
+        let t1363 = -t1362;
+        let t1364 = t1361 - t1362;
+        let t1276 = l88[0] + l88[1];
+        let t1277 = -t1276;
+        let t1278 = l88[2] - t1276;
+        let t1279 = l88[3] + t1278;
+        let t1280 = 11.43 * t1279;
+        let v95 = lanes_mul!(v79, lanes!(11.43, 11.43, 11.43, 11.43));
+        let v129 = lanes_mul!(v95, v120);
+        let t1136 = lanes_sum!(lanes_mul!(v129, lanes!(- 1.0, - 1.0, 1.0, 1.0)));
+        let t1217 = t1136 * t1194;
+        let v131 = lanes_mul!(v95, v122);
+        let t1165 = lanes_sum!(lanes_mul!(v131, lanes!(- 1.0, - 1.0, 1.0, 1.0)));
+        let t1218 = t1165 * t1195;
+        let t1220 = t1217 + t1218;
+        let t1221 = t1199 * t1220;
+        let t1273 = t1118 * t1221;
+        let v133 = lanes_mul!(v95, v126);
+        let t1232 = t1136 * t1195;
+        let t1234 = t1165 * t1197;
+        let t1235 = t1232 + t1234;
+        let t1236 = t1199 * t1235;
+        let t1275 = t1148 * t1236;
+        let t1288 = lanes_sum!(lanes_mul!(v133, lanes!(- 1.0, - 1.0, 1.0, 1.0))) + t1280
+            + t1273 - t1275;
+        let t1202 = t379 * t1193;
+        let t1204 = t1199 * t1202;
+        let t1306 = t375 * t1204;
+        let v132 = lanes_mul!(v95, v123);
+        let t1308 = t1128 * t1221;
+        let t1309 = t1157 * t1236;
+        let v104 = lanes_mul!(v87, v88);
+        let t1312 = lanes_sum!(v104);
+        let t1313 = 10.0 * t1312;
+        let t1323 = lanes_sum!(v132) + t1306 - t1308 - t1309 - t1313;
+        let t1349 = t1272 * t1323;
+        let t1350 = t1288 * t1305;
+        let t1351 = -t1350;
+        let t1352 = t1349 - t1350;
+        let t1367 = t1288 * t1352;
+        let t1329 = lanes_sum!(v103);
+        let t1330 = 10.0 * t1329;
+        let t1326 = t1165 * t1236;
+        let t1325 = t1136 * t1221;
+        let t1324 = t379 * t1204;
+        let v121 = lanes_mul!(v95, v119);
+        let l121 = lanes_array!(v121);
+        let v130 = lanes_mul!(v95, v121);
+        let t1340 = lanes_sum!(lanes_mul!(v130, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 613.8579599999999 + t1330 - t1326 - t1325 - t1324;
+        let t1341 = t1305 * t1340;
+        let t1342 = t1323 * t1323;
+        let t1343 = -t1342;
+        let t1344 = t1341 - t1342;
+        let t1365 = t1255 * t1344;
+        let t1345 = t1288 * t1323;
+        let t1346 = t1272 * t1340;
+        let t1347 = -t1346;
+        let t1348 = t1345 - t1346;
+        let t1366 = t1272 * t1348;
+        let t1368 = t1365 + t1366;
+        let t1369 = t1367 + t1368;
         let vz = w[2];
-        let t177 = s_phi * s_theta;
-        let t179 = c_theta * c_psi - s_psi * t177;
+        let theta = x[4];
+        let (t399, t400) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t401, t402) = ::libm::sincos(psi);
+        let t729 = t399 * t402;
+        let t723 = t397 * t400;
+        let t730 = t401 * t723;
+        let t731 = t729 + t730;
+        let t1651 = vz * t731;
         let vx = w[0];
-        let t180 = c_phi * s_psi;
+        let t724 = t400 * t402;
+        let t722 = t397 * t399;
+        let t725 = t401 * t722;
+        let t726 = -t725;
+        let t727 = t724 - t725;
+        let t1649 = vx * t727;
         let vy = w[1];
-        let t184 = s_theta * s_psi - c_psi * t178;
-        let t182 = c_theta * s_psi + c_psi * t177;
-        let t183 = c_phi * c_psi;
-        let t148 = c_phi * s_theta;
-        let t149 = c_phi * c_theta;
+        let t728 = t398 * t401;
+        let t1650 = vy * t728;
+        let t1652 = -t1650;
+        let t1653 = t1649 - t1650;
+        let t1654 = t1651 + t1653;
+        let t736 = t399 * t401;
+        let t737 = t402 * t723;
+        let t738 = -t737;
+        let t739 = t736 - t737;
+        let t1657 = vz * t739;
+        let t732 = t400 * t401;
+        let t733 = t402 * t722;
+        let t734 = t732 + t733;
+        let t1655 = vx * t734;
+        let t735 = t398 * t402;
+        let t1656 = vy * t735;
+        let t1658 = t1655 + t1656;
+        let t1659 = t1657 + t1658;
+        let t595 = t398 * t400;
+        let t1662 = vz * t595;
+        let t1661 = vy * t397;
+        let t594 = t398 * t399;
+        let t1660 = vx * t594;
+        let t1663 = -t1660;
+        let t1664 = t1661 - t1660;
+        let t1665 = t1662 + t1664;
         let omega_x = w[3];
+        let t1666 = omega_x * t400;
         let omega_z = w[5];
-        let t299 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let t1667 = omega_z * t399;
+        let t1668 = t1666 + t1667;
         let omega_y = w[4];
-        let yd_front_left = w[6];
-        let yd_front_right = w[7];
-        let yd_rear_left = w[8];
-        let yd_rear_right = w[9];
-        let t283 = 1.0 / t282;
-        let t117 = yd_front_left * yd_front_left;
-        let t114 = omega_z * 1.143;
-        let t121 = vy + t114;
-        let t122 = 2.0 * (yd_front_left * t7) + (t121 - omega_x * t16);
-        let t116 = vx + omega_y * t16 - omega_z * t8;
-        let t127 = 10.0
-            * ((front_left * (front_left * 0.007138729442171134 + 2.0 * t11) + 2.0 * t13)
-                * t117 + omega_x * t122 - omega_y * t116);
-        let t152 = t149 * 16.200000000000003;
-        let f_front_left_2_x = loads[0].force[0];
-        let f_front_left_2_y = loads[0].force[1];
-        let f_front_left_2_z = loads[0].force[2];
-        let t187 = f_front_left_2_z * t149
-            + (f_front_left_2_x * t181 + f_front_left_2_y * t184);
-        let t115 = omega_y * 1.143;
-        let t123 = vz - t115;
-        let t124 = 2.0 * (yd_front_left * t15) + (omega_x * t8 + t123);
-        let t126 = 10.0
-            * ((front_left * (front_left * 0.020994215782183853 + 2.0 * t3) + 2.0 * t5)
-                * t117 + omega_z * t116 - omega_x * t124);
-        let t151 = s_phi * 16.200000000000003;
-        let t186 = f_front_left_2_z * s_phi
-            + (f_front_left_2_y * t183 - f_front_left_2_x * t180);
-        let t153 = f64::max(front_left - 0.3490658503988659, 0.0);
-        let t155 = f64::min(10000.0 * t153, 1.0);
-        let t156 = f64::min(
-            -(yd_front_left * (617.2846305501084 * t155) + 70000.0 * t153),
-            0.0,
+        let t1669 = omega_z * t400;
+        let t1670 = omega_x * t399;
+        let t1671 = -t1670;
+        let t1672 = t1669 - t1670;
+        let t1673 = t1672 / t398;
+        let t1674 = t397 * t1673;
+        let t1675 = -t1674;
+        let t1676 = omega_y - t1674;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let t1370 = 1.0 / t1369;
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
         );
-        let t154 = f64::max(-(front_left + 0.3490658503988659), 0.0);
-        let t157 = f64::min(10000.0 * t154, 1.0);
-        let t158 = f64::max(
-            70000.0 * t154 - yd_front_left * (617.2846305501084 * t157),
-            0.0,
+        let v24 = lanes_mul!(v2, lanes_splat!(t397));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
         );
-        let mu_front_left_2_x = loads[0].moment[0];
-        let tau_front_left_2_x = loads[0].stator_torque[0];
-        let t188 = mu_front_left_2_x + tau_front_left_2_x;
-        let mu_front_left_2_y = loads[0].moment[1];
-        let tau_front_left_2_y = loads[0].stator_torque[1];
-        let t189 = mu_front_left_2_y + tau_front_left_2_y;
-        let mu_front_left_2_z = loads[0].moment[2];
-        let tau_front_left_2_z = loads[0].stator_torque[2];
-        let t190 = mu_front_left_2_z + tau_front_left_2_z;
-        let t191 = t179 * t188 + t182 * t189 - t148 * t190;
-        let t17 = front_left * 0.03982443626987119;
-        let t18 = t17 + 0.016338965034322857;
-        let t19 = front_left * t18 + 0.08957090383991165;
-        let y0_front_left = self.neutral[0];
-        let t192 = (0.08388641649735075
-            + front_left * (t19 + (t19 + front_left * (t17 + t18)))) * t191
-            + (t15 * (t187 - (t127 + t152))
-                + (t7 * (t186 - (t126 + t151)) + (t156 + t158)))
-            + 700.0 * (y0_front_left - front_left) - yd_front_left * 100.0;
-        let f_rear_left_2_x = loads[2].force[0];
-        let f_rear_left_2_y = loads[2].force[1];
-        let f_rear_left_2_z = loads[2].force[2];
-        let t203 = f_rear_left_2_z * t149
-            + (f_rear_left_2_x * t181 + f_rear_left_2_y * t184);
-        let f_rear_right_2_x = loads[3].force[0];
-        let f_rear_right_2_y = loads[3].force[1];
-        let f_rear_right_2_z = loads[3].force[2];
-        let t211 = f_rear_right_2_z * t149
-            + (f_rear_right_2_x * t181 + f_rear_right_2_y * t184);
-        let t118 = yd_front_right * yd_front_right;
-        let t129 = 2.0 * (yd_front_right * t26) + (t121 - omega_x * t35);
-        let t128 = vx + omega_y * t35 - omega_z * t27;
-        let t133 = 10.0
-            * ((front_right * (front_right * 0.00713872944214655 + 2.0 * t30)
-                + 2.0 * t32) * t118 + omega_x * t129 - omega_y * t128);
-        let f_front_right_2_x = loads[1].force[0];
-        let f_front_right_2_y = loads[1].force[1];
-        let f_front_right_2_z = loads[1].force[2];
-        let t195 = f_front_right_2_z * t149
-            + (f_front_right_2_x * t181 + f_front_right_2_y * t184);
-        let t130 = 2.0 * (yd_front_right * t34) + (t123 + omega_x * t27);
-        let t132 = 10.0
-            * ((front_right * (2.0 * t22 - front_right * 0.020994215782191718)
-                + 2.0 * t24) * t118 + omega_z * t128 - omega_x * t130);
-        let t194 = f_front_right_2_z * s_phi
-            + (f_front_right_2_y * t183 - f_front_right_2_x * t180);
-        let t159 = f64::max(front_right - 0.3490658503988659, 0.0);
-        let t161 = f64::min(10000.0 * t159, 1.0);
-        let t162 = f64::min(
-            -(yd_front_right * (617.2846305501082 * t161) + 70000.0 * t159),
-            0.0,
+        let v22 = lanes_mul!(v1, lanes_splat!(t735));
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
         );
-        let t160 = f64::max(-(front_right + 0.3490658503988659), 0.0);
-        let t163 = f64::min(10000.0 * t160, 1.0);
-        let t164 = f64::max(
-            70000.0 * t160 - yd_front_right * (617.2846305501082 * t163),
-            0.0,
+        let v19 = lanes_mul!(v0, lanes_splat!(t728));
+        let l19 = lanes_array!(v19);
+        let t749 = -l19[0];
+        let t807 = -l19[1];
+        let t865 = -l19[2];
+        let t923 = -l19[3];
+        let v35 = lanes_add!(lanes_mul!(v19, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v22);
+        let v44 = lanes_add!(v24, v35);
+        let l44 = lanes_array!(v44);
+        let t1400 = -l44[3];
+        let t1394 = -l44[2];
+        let v28 = lanes_mul!(
+            v9, lanes!(0.020994215782183853, 0.020994215782191718, 0.020994215782183853,
+            0.020994215782191718)
         );
-        let mu_front_right_2_x = loads[1].moment[0];
-        let tau_front_right_2_x = loads[1].stator_torque[0];
-        let t196 = mu_front_right_2_x + tau_front_right_2_x;
-        let mu_front_right_2_y = loads[1].moment[1];
-        let tau_front_right_2_y = loads[1].stator_torque[1];
-        let t197 = mu_front_right_2_y + tau_front_right_2_y;
-        let mu_front_right_2_z = loads[1].moment[2];
-        let tau_front_right_2_z = loads[1].stator_torque[2];
-        let t198 = mu_front_right_2_z + tau_front_right_2_z;
-        let t199 = t179 * t196 + t182 * t197 - t148 * t198;
-        let t36 = front_right * 0.039824436269830565;
-        let t37 = 0.016338965034324415 - t36;
-        let t38 = front_right * t37 - 0.08957090383991675;
-        let y0_front_right = self.neutral[1];
-        let t200 = (0.08388641649735058
-            + front_right * (t38 + (t38 + front_right * (t37 - t36)))) * t199
-            + (t34 * (t195 - (t133 + t152))
-                + (t26 * (t194 - (t132 + t151)) + (t162 + t164)))
-            + 700.0 * (y0_front_right - front_right) - yd_front_right * 100.0;
-        let t119 = yd_rear_left * yd_rear_left;
-        let t135 = vy - t114;
-        let t136 = 2.0 * (yd_rear_left * t45) + (t135 - omega_x * t54);
-        let t134 = vx + omega_y * t54 - omega_z * t46;
-        let t141 = 10.0
-            * ((rear_left * (rear_left * 0.007138729442171134 + 2.0 * t49) + 2.0 * t51)
-                * t119 + omega_x * t136 - omega_y * t134);
-        let t137 = vz + t115;
-        let t138 = 2.0 * (yd_rear_left * t53) + (omega_x * t46 + t137);
-        let t140 = 10.0
-            * ((rear_left * (rear_left * 0.020994215782183853 + 2.0 * t41) + 2.0 * t43)
-                * t119 + omega_z * t134 - omega_x * t138);
-        let t202 = f_rear_left_2_z * s_phi
-            + (f_rear_left_2_y * t183 - f_rear_left_2_x * t180);
-        let t165 = f64::max(rear_left - 0.3490658503988659, 0.0);
-        let t167 = f64::min(10000.0 * t165, 1.0);
-        let t168 = f64::min(
-            -(yd_rear_left * (617.2846305501084 * t167) + 70000.0 * t165),
-            0.0,
+        let l28 = lanes_array!(v28);
+        let v61 = lanes_mul!(v47, lanes!(2.0, 2.0, 2.0, 2.0));
+        let t149 = -l28[1];
+        let t265 = -l28[3];
+        let v63 = lanes_add!(lanes_mul!(v28, lanes!(1.0, - 1.0, 1.0, - 1.0)), v61);
+        let v73 = lanes_mul!(v9, v63);
+        let v77 = lanes_mul!(v65, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v81 = lanes_add!(v73, v77);
+        let v32 = lanes_mul!(v11, v11);
+        let v91 = lanes_mul!(v32, v81);
+        let v110 = lanes_mul!(v88, lanes_splat!(omega_y));
+        let v115 = lanes_add!(v110, lanes_splat!(vx));
+        let v106 = lanes_mul!(v87, lanes_splat!(omega_z));
+        let l106 = lanes_array!(v106);
+        let t426 = -l106[0];
+        let t473 = -l106[1];
+        let t515 = -l106[2];
+        let t558 = -l106[3];
+        let v117 = lanes_add!(
+            lanes_mul!(v106, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v115
         );
-        let t166 = f64::max(-(rear_left + 0.3490658503988659), 0.0);
-        let t169 = f64::min(10000.0 * t166, 1.0);
-        let t170 = f64::max(
-            70000.0 * t166 - yd_rear_left * (617.2846305501084 * t169),
-            0.0,
+        let v125 = lanes_mul!(v117, lanes_splat!(omega_z));
+        let v127 = lanes_add!(v91, v125);
+        let l127 = lanes_array!(v127);
+        let v90 = lanes_mul!(v11, v80);
+        let v113 = lanes_mul!(v90, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l113 = lanes_array!(v113);
+        let t423 = omega_y * 1.143;
+        let t527 = vz + t423;
+        let v105 = lanes_mul!(v87, lanes_splat!(omega_x));
+        let l105 = lanes_array!(v105);
+        let t569 = t527 + l105[3];
+        let t570 = l113[3] + t569;
+        let t574 = omega_x * t570;
+        let t581 = -t574;
+        let t582 = l127[3] - t574;
+        let t583 = 10.0 * t582;
+        let t528 = l105[2] + t527;
+        let t529 = l113[2] + t528;
+        let t533 = omega_x * t529;
+        let t540 = -t533;
+        let t541 = l127[2] - t533;
+        let t542 = 10.0 * t541;
+        let t424 = -t423;
+        let t442 = vz - t423;
+        let t443 = l105[0] + t442;
+        let t444 = l113[0] + t443;
+        let t448 = omega_x * t444;
+        let t455 = -t448;
+        let t456 = l127[0] - t448;
+        let t457 = 10.0 * t456;
+        let t484 = t442 + l105[1];
+        let t485 = l113[1] + t484;
+        let t489 = omega_x * t485;
+        let t496 = -t489;
+        let t497 = l127[1] - t489;
+        let t498 = 10.0 * t497;
+        let t1019 = t457 + t498;
+        let t1504 = -t1019;
+        let t1505 = t542 - t1019;
+        let t1506 = t583 + t1505;
+        let t1507 = l44[0] + t1506;
+        let t1508 = l44[1] + t1507;
+        let t1509 = t1394 + t1508;
+        let t1510 = t1400 + t1509;
+        let t1511 = 1.143 * t1510;
+        let t571 = omega_y * t570;
+        let v89 = lanes_mul!(v11, v79);
+        let v112 = lanes_mul!(v89, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l112 = lanes_array!(v112);
+        let t420 = omega_z * 1.143;
+        let t511 = -t420;
+        let t522 = vy - t420;
+        let v109 = lanes_mul!(v88, lanes_splat!(omega_x));
+        let l109 = lanes_array!(v109);
+        let t565 = -l109[3];
+        let t566 = t522 - l109[3];
+        let t567 = l112[3] + t566;
+        let t572 = omega_z * t567;
+        let t577 = -t572;
+        let t578 = t571 - t572;
+        let t579 = 10.0 * t578;
+        let v18 = lanes_mul!(v0, lanes_splat!(t727));
+        let v21 = lanes_mul!(v1, lanes_splat!(t734));
+        let v34 = lanes_add!(v18, v21);
+        let v25 = lanes_mul!(v2, lanes_splat!(t594));
+        let l25 = lanes_array!(v25);
+        let t744 = -l25[0];
+        let t802 = -l25[1];
+        let t860 = -l25[2];
+        let t918 = -l25[3];
+        let v45 = lanes_add!(lanes_mul!(v25, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v34);
+        let l45 = lanes_array!(v45);
+        let t1501 = -l45[3];
+        let t1502 = t579 - l45[3];
+        let t1503 = l87[3] * t1502;
+        let t530 = omega_y * t529;
+        let t523 = -l109[2];
+        let t524 = t522 - l109[2];
+        let t525 = l112[2] + t524;
+        let t531 = omega_z * t525;
+        let t536 = -t531;
+        let t537 = t530 - t531;
+        let t538 = 10.0 * t537;
+        let t1498 = -l45[2];
+        let t1499 = t538 - l45[2];
+        let t1500 = l87[2] * t1499;
+        let t486 = omega_y * t485;
+        let t437 = vy + t420;
+        let t480 = -l109[1];
+        let t481 = t437 - l109[1];
+        let t482 = l112[1] + t481;
+        let t487 = omega_z * t482;
+        let t492 = -t487;
+        let t493 = t486 - t487;
+        let t494 = 10.0 * t493;
+        let t1495 = -l45[1];
+        let t1496 = t494 - l45[1];
+        let t1497 = l87[1] * t1496;
+        let t445 = omega_y * t444;
+        let t438 = -l109[0];
+        let t439 = t437 - l109[0];
+        let t440 = l112[0] + t439;
+        let t446 = omega_z * t440;
+        let t451 = -t446;
+        let t452 = t445 - t446;
+        let t453 = 10.0 * t452;
+        let t1492 = -l45[0];
+        let t1493 = t453 - l45[0];
+        let t1494 = l87[0] * t1493;
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
         );
-        let mu_rear_left_2_x = loads[2].moment[0];
-        let tau_rear_left_2_x = loads[2].stator_torque[0];
-        let t204 = mu_rear_left_2_x + tau_rear_left_2_x;
-        let mu_rear_left_2_y = loads[2].moment[1];
-        let tau_rear_left_2_y = loads[2].stator_torque[1];
-        let t205 = mu_rear_left_2_y + tau_rear_left_2_y;
-        let mu_rear_left_2_z = loads[2].moment[2];
-        let tau_rear_left_2_z = loads[2].stator_torque[2];
-        let t206 = mu_rear_left_2_z + tau_rear_left_2_z;
-        let t207 = t179 * t204 + t182 * t205 - t148 * t206;
-        let t55 = rear_left * 0.03982443626987119;
-        let t56 = 0.016338965034322857 + t55;
-        let t57 = 0.08957090383991165 + rear_left * t56;
-        let y0_rear_left = self.neutral[2];
-        let t208 = (0.08388641649735075
-            + rear_left * (t57 + (t57 + rear_left * (t55 + t56)))) * t207
-            + (t53 * (t203 - (t141 + t152))
-                + (t45 * (t202 - (t140 + t151)) + (t168 + t170)))
-            + 700.0 * (y0_rear_left - rear_left) - yd_rear_left * 100.0;
-        let t120 = yd_rear_right * yd_rear_right;
-        let t143 = 2.0 * (yd_rear_right * t64) + (t135 - omega_x * t73);
-        let t142 = vx + omega_y * t73 - omega_z * t65;
-        let t147 = 10.0
-            * ((rear_right * (rear_right * 0.00713872944214655 + 2.0 * t68) + 2.0 * t70)
-                * t120 + omega_x * t143 - omega_y * t142);
-        let t144 = 2.0 * (yd_rear_right * t72) + (t137 + omega_x * t65);
-        let t146 = 10.0
-            * ((rear_right * (2.0 * t60 - rear_right * 0.020994215782191718) + 2.0 * t62)
-                * t120 + omega_z * t142 - omega_x * t144);
-        let t210 = f_rear_right_2_z * s_phi
-            + (f_rear_right_2_y * t183 - f_rear_right_2_x * t180);
-        let t171 = f64::max(rear_right - 0.3490658503988659, 0.0);
-        let t173 = f64::min(10000.0 * t171, 1.0);
-        let t174 = f64::min(
-            -(yd_rear_right * (617.2846305501082 * t173) + 70000.0 * t171),
-            0.0,
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
         );
-        let t172 = f64::max(-(rear_right + 0.3490658503988659), 0.0);
-        let t175 = f64::min(10000.0 * t172, 1.0);
-        let t176 = f64::max(
-            70000.0 * t172 - yd_rear_right * (617.2846305501082 * t175),
-            0.0,
+        let v14 = lanes_add!(v5, v8);
+        let t1441 = lanes_sum!(v14);
+        let t1491 = t595 * t1441;
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
         );
-        let mu_rear_right_2_x = loads[3].moment[0];
-        let tau_rear_right_2_x = loads[3].stator_torque[0];
-        let t213 = mu_rear_right_2_x + tau_rear_right_2_x;
-        let mu_rear_right_2_y = loads[3].moment[1];
-        let tau_rear_right_2_y = loads[3].stator_torque[1];
-        let t214 = mu_rear_right_2_y + tau_rear_right_2_y;
-        let mu_rear_right_2_z = loads[3].moment[2];
-        let tau_rear_right_2_z = loads[3].stator_torque[2];
-        let t215 = mu_rear_right_2_z + tau_rear_right_2_z;
-        let t216 = t179 * t213 + t182 * t214 - t148 * t215;
-        let t74 = rear_right * 0.039824436269830565;
-        let t75 = 0.016338965034324415 - t74;
-        let t76 = rear_right * t75 - 0.08957090383991675;
-        let y0_rear_right = self.neutral[3];
-        let t217 = (0.08388641649735058
-            + rear_right * (t76 + (t76 + rear_right * (t75 - t74)))) * t216
-            + (t72 * (t211 - (t147 + t152))
-                + (t64 * (t210 - (t146 + t151)) + (t174 + t176)))
-            + 700.0 * (y0_rear_right - rear_right) - yd_rear_right * 100.0;
-        let t244 = t127 + t133;
-        let t245 = 660.0 * (vx * omega_y - vy * omega_x)
-            + (t195 + (t187 - (t147 + (t141 + t244)))
-                + (t203 + t211 - t192 * t220 - t200 * t226 - t208 * t232 - t217 * t238)
-                - t152 * 4.0 - t149 * 1069.2);
-        let t242 = t126 + t132;
-        let t243 = 660.0 * (vz * omega_x - vx * omega_z)
-            + (t194 + (t186 - (t146 + (t140 + t242)))
-                + (t202 + t210 - t192 * t219 - t200 * t225 - t208 * t231 - t217 * t237)
-                - t151 * 4.0 - s_phi * 1069.2);
-        let t113 = omega_z * 561.6;
-        let t112 = omega_y * 514.8;
-        let t285 = t73 + (t54 + t272);
-        let t284 = t65 + (t46 + t270);
-        let t286 = t216 + (t207 + (t191 + t199)) - t152 * t284
-            + (t46 * (t203 - t141)
-                + (t35 * (t132 - t194)
-                    + (t27 * (t195 - t133)
-                        + (t16 * (t126 - t186) + (t151 * t285 + t8 * (t187 - t127))))))
-            + (omega_z * t112
-                + (t73 * (t146 - t210) + (t54 * (t140 - t202) + t65 * (t211 - t147))
-                    - omega_y * t113)
-                - (t245 * t266
-                    + (t243 * t263
-                        + (t217 * t239 + (t208 * t233 + (t192 * t221 + t200 * t227))))));
-        let t280 = t271 * t273 - t269 * t275;
-        let t125 = 10.0 * (omega_y * t124 - omega_z * t122);
-        let t131 = 10.0 * (omega_y * t130 - omega_z * t129);
-        let t139 = 10.0 * (omega_y * t138 - omega_z * t136);
-        let t145 = 10.0 * (omega_y * t144 - omega_z * t143);
-        let t185 = f_front_left_2_x * t179 + f_front_left_2_y * t182
-            - f_front_left_2_z * t148;
-        let t193 = f_front_right_2_x * t179 + f_front_right_2_y * t182
-            - f_front_right_2_z * t148;
-        let t201 = f_rear_left_2_x * t179 + f_rear_left_2_y * t182
-            - f_rear_left_2_z * t148;
-        let t209 = f_rear_right_2_x * t179 + f_rear_right_2_y * t182
-            - f_rear_right_2_z * t148;
-        let t150 = t148 * 16.200000000000003;
-        let t212 = 660.0 * (vy * omega_z - vz * omega_y)
-            + (t148 * 1069.2
-                + (t150 * 4.0
-                    + (t209
-                        + (t201 + (t193 + (t185 - (t145 + (t139 + (t125 + t131)))))))));
-        let t111 = omega_x * 86.4;
-        let t287 = t213 + (t204 + (t188 + t196));
-        let t288 = t214 + (t205 + (t189 + t197));
-        let t289 = t215 + (t206 + (t190 + t198));
-        let t290 = 1.143 * (t211 + (t203 + (t244 - t141 - t147 - t187 - t195)))
-            + (t73 * (t209 - t145)
-                + (t54 * (t201 - t139)
-                    + (t35 * (t193 - t131)
-                        + (t16 * (t185 - t125)
-                            + (s_phi * t289
-                                + (t183 * t288 + (t150 * t285 - t180 * t287))))))
-                + (t200 * t228 + (t192 * t222 + (omega_x * t113 - omega_z * t111))
-                    - (t245 * t267
-                        + (t243 * t264 + (t212 * t261 + (t208 * t234 + t217 * t240))))));
-        let t291 = 1.143 * (t194 + (t186 + (t146 + (t140 - t242))) - t202 - t210)
-            + (t65 * (t145 - t209)
-                + (t46 * (t139 - t201)
-                    + (t27 * (t131 - t193)
-                        + (t8 * (t125 - t185)
-                            + (t149 * t289
-                                + (t184 * t288 + (t181 * t287 - t150 * t284))))))
-                + (omega_y * t111 - omega_x * t112 - t192 * t223 - t200 * t229
-                    + (t212 * t262 + (t208 * t235 + t217 * t241) - t243 * t265
-                        - t245 * t268)));
-        let t294 = t283 * (t281 * t291 + (t279 * t286 + t280 * t290));
-        let t293 = t283
-            * (t280 * t291 + (t278 * t286 + (t269 * t276 - t273 * t273) * t290));
-        let t292 = t283 * (t279 * t291 + (t277 * t286 + t278 * t290));
-        let t295 = t243 + t249 * t292 - t250 * t293 - t251 * t294;
-        let t296 = t245 - t252 * t292 - t253 * t293 - t254 * t294;
-        let t297 = t260 * (t256 * t295 + t257 * t296);
-        let t298 = t260 * (t257 * t295 + t258 * t296);
-        let cos_roll = c_phi;
-        let pivot_6 = t84;
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let v13 = lanes_add!(v4, v7);
+        let t1437 = lanes_sum!(v13);
+        let t1490 = t739 * t1437;
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let v12 = lanes_add!(v3, v6);
+        let t1433 = lanes_sum!(v12);
+        let t1489 = t731 * t1433;
+        let t598 = t594 * 16.200000000000003;
+        let t1373 = l87[2] + t1259;
+        let t1374 = l87[3] + t1373;
+        let t1488 = t598 * t1374;
+        let t1512 = -t1488;
+        let t1513 = t1489 - t1488;
+        let t1514 = t1490 + t1513;
+        let t1515 = t1491 + t1514;
+        let t1516 = t1494 + t1515;
+        let t1517 = t1497 + t1516;
+        let t1518 = t1500 + t1517;
+        let t1519 = t1503 + t1518;
+        let t409 = omega_x * 86.4;
+        let t417 = omega_y * t409;
+        let t410 = omega_y * 514.8;
+        let t416 = omega_x * t410;
+        let t1520 = -t416;
+        let t1521 = t417 - t416;
+        let v31 = lanes_mul!(
+            v9, lanes!(0.03982443626987119, 0.039824436269830565, 0.03982443626987119,
+            0.039824436269830565)
+        );
+        let l31 = lanes_array!(v31);
+        let t191 = -l31[1];
+        let t298 = -l31[3];
+        let v39 = lanes_add!(
+            lanes_mul!(v31, lanes!(1.0, - 1.0, 1.0, - 1.0)), lanes!(0.016338965034322857,
+            0.016338965034324415, 0.016338965034322857, 0.016338965034324415)
+        );
+        let v53 = lanes_mul!(v9, v39);
+        let v57 = lanes_add!(
+            v53, lanes!(0.08957090383991165, - 0.08957090383991675, 0.08957090383991165,
+            - 0.08957090383991675)
+        );
+        let v49 = lanes_add!(lanes_mul!(v31, lanes!(1.0, - 1.0, 1.0, - 1.0)), v39);
+        let v60 = lanes_mul!(v9, v49);
+        let v67 = lanes_add!(v57, v60);
+        let v70 = lanes_add!(v57, v67);
+        let v83 = lanes_mul!(v9, v70);
+        let v86 = lanes_add!(
+            v83, lanes!(0.08388641649735075, 0.08388641649735058, 0.08388641649735075,
+            0.08388641649735058)
+        );
+        let v40 = lanes_mul!(v12, lanes_splat!(t727));
+        let v41 = lanes_mul!(v13, lanes_splat!(t734));
+        let v50 = lanes_add!(v40, v41);
+        let v42 = lanes_mul!(v14, lanes_splat!(t594));
+        let l42 = lanes_array!(v42);
+        let t770 = -l42[0];
+        let t828 = -l42[1];
+        let t886 = -l42[2];
+        let t961 = -l42[3];
+        let v54 = lanes_add!(lanes_mul!(v42, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v50);
+        let v100 = lanes_mul!(v54, v86);
+        let l100 = lanes_array!(v100);
+        let v26 = lanes_mul!(v2, lanes_splat!(t595));
+        let v20 = lanes_mul!(v0, lanes_splat!(t731));
+        let v23 = lanes_mul!(v1, lanes_splat!(t739));
+        let v36 = lanes_add!(v20, v23);
+        let v46 = lanes_add!(v26, v36);
+        let l46 = lanes_array!(v46);
+        let v30 = lanes_mul!(
+            v9, lanes!(0.007138729442171134, 0.00713872944214655, 0.007138729442171134,
+            0.00713872944214655)
+        );
+        let v62 = lanes_mul!(v48, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v64 = lanes_add!(v30, v62);
+        let v74 = lanes_mul!(v9, v64);
+        let v78 = lanes_mul!(v66, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v82 = lanes_add!(v74, v78);
+        let v92 = lanes_mul!(v32, v82);
+        let l92 = lanes_array!(v92);
+        let t449 = omega_x * t440;
+        let t458 = l92[0] + t449;
+        let v124 = lanes_mul!(v117, lanes_splat!(omega_y));
+        let l124 = lanes_array!(v124);
+        let t459 = -l124[0];
+        let t460 = t458 - l124[0];
+        let t461 = 10.0 * t460;
+        let t601 = t595 * 16.200000000000003;
+        let t783 = t461 + t601;
+        let t784 = -t783;
+        let t785 = l46[0] - t783;
+        let t786 = l80[0] * t785;
+        let t599 = t397 * 16.200000000000003;
+        let t779 = t457 + t599;
+        let t780 = -t779;
+        let t781 = l44[0] - t779;
+        let t782 = l79[0] * t781;
+        let v16 = lanes_add!(
+            v9, lanes!(- 0.3490658503988659, - 0.3490658503988659, - 0.3490658503988659,
+            - 0.3490658503988659)
+        );
+        let l16 = lanes_array!(v16);
+        let t637 = f64::max(l16[0], 0.0);
+        let t641 = 10000.0 * t637;
+        let t642 = f64::min(t641, 1.0);
+        let t643 = 617.2846305501084 * t642;
+        let t644 = l11[0] * t643;
+        let t645 = 70000.0 * t637;
+        let t646 = t644 + t645;
+        let t647 = -t646;
+        let t648 = f64::min(t647, 0.0);
+        let v17 = lanes_add!(
+            v9, lanes!(0.3490658503988659, 0.3490658503988659, 0.3490658503988659,
+            0.3490658503988659)
+        );
+        let l17 = lanes_array!(v17);
+        let t639 = -l17[0];
+        let t640 = f64::max(t639, 0.0);
+        let t653 = 70000.0 * t640;
+        let t649 = 10000.0 * t640;
+        let t650 = f64::min(t649, 1.0);
+        let t651 = 617.2846305501084 * t650;
+        let t652 = l11[0] * t651;
+        let t654 = -t652;
+        let t655 = t653 - t652;
+        let t656 = f64::max(t655, 0.0);
+        let t787 = t648 + t656;
+        let t788 = t782 + t787;
+        let t789 = t786 + t788;
+        let t790 = l100[0] + t789;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t791 = -l9[0];
+        let t849 = -l9[1];
+        let t907 = -l9[2];
+        let t982 = -l9[3];
+        let v15 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v43 = lanes_mul!(v15, lanes!(700.0, 700.0, 700.0, 700.0));
+        let l43 = lanes_array!(v43);
+        let t795 = t790 + l43[0];
+        let v33 = lanes_mul!(v11, lanes!(100.0, 100.0, 100.0, 100.0));
+        let l33 = lanes_array!(v33);
+        let t796 = -l33[0];
+        let t797 = t795 - l33[0];
+        let t1081 = t797 * l121[0];
+        let t1522 = -t1081;
+        let t1523 = t1521 - t1081;
+        let t490 = omega_x * t482;
+        let t499 = l92[1] + t490;
+        let t500 = -l124[1];
+        let t501 = t499 - l124[1];
+        let t502 = 10.0 * t501;
+        let t841 = t502 + t601;
+        let t842 = -t841;
+        let t843 = l46[1] - t841;
+        let t844 = l80[1] * t843;
+        let t837 = t498 + t599;
+        let t838 = -t837;
+        let t839 = l44[1] - t837;
+        let t840 = l79[1] * t839;
+        let t660 = f64::max(l16[1], 0.0);
+        let t664 = 10000.0 * t660;
+        let t665 = f64::min(t664, 1.0);
+        let t666 = 617.2846305501082 * t665;
+        let t667 = l11[1] * t666;
+        let t668 = 70000.0 * t660;
+        let t669 = t667 + t668;
+        let t670 = -t669;
+        let t671 = f64::min(t670, 0.0);
+        let t662 = -l17[1];
+        let t663 = f64::max(t662, 0.0);
+        let t676 = 70000.0 * t663;
+        let t672 = 10000.0 * t663;
+        let t673 = f64::min(t672, 1.0);
+        let t674 = 617.2846305501082 * t673;
+        let t675 = l11[1] * t674;
+        let t677 = -t675;
+        let t678 = t676 - t675;
+        let t679 = f64::max(t678, 0.0);
+        let t845 = t671 + t679;
+        let t846 = t840 + t845;
+        let t847 = t844 + t846;
+        let t848 = l100[1] + t847;
+        let t853 = t848 + l43[1];
+        let t854 = -l33[1];
+        let t855 = t853 - l33[1];
+        let t1082 = t855 * l121[1];
+        let t1524 = -t1082;
+        let t1525 = t1523 - t1082;
+        let t404 = vy * omega_z;
+        let t403 = vz * omega_y;
+        let t946 = -t403;
+        let t947 = t404 - t403;
+        let t948 = 660.0 * t947;
+        let t945 = t594 * 1069.2;
+        let t936 = t598 * 4.0;
+        let t951 = lanes_sum!(v45) + t948 + t945 + t936 - t579 - t538 - t453 - t494;
+        let t1484 = t951 * t1204;
+        let t534 = omega_x * t525;
+        let t543 = l92[2] + t534;
+        let t544 = -l124[2];
+        let t545 = t543 - l124[2];
+        let t546 = 10.0 * t545;
+        let t899 = t546 + t601;
+        let t900 = -t899;
+        let t901 = l46[2] - t899;
+        let t902 = l80[2] * t901;
+        let t895 = t542 + t599;
+        let t896 = -t895;
+        let t897 = l44[2] - t895;
+        let t898 = l79[2] * t897;
+        let t681 = f64::max(l16[2], 0.0);
+        let t685 = 10000.0 * t681;
+        let t686 = f64::min(t685, 1.0);
+        let t687 = 617.2846305501084 * t686;
+        let t688 = l11[2] * t687;
+        let t689 = 70000.0 * t681;
+        let t690 = t688 + t689;
+        let t691 = -t690;
+        let t692 = f64::min(t691, 0.0);
+        let t683 = -l17[2];
+        let t684 = f64::max(t683, 0.0);
+        let t697 = 70000.0 * t684;
+        let t693 = 10000.0 * t684;
+        let t694 = f64::min(t693, 1.0);
+        let t695 = 617.2846305501084 * t694;
+        let t696 = l11[2] * t695;
+        let t698 = -t696;
+        let t699 = t697 - t696;
+        let t700 = f64::max(t699, 0.0);
+        let t903 = t692 + t700;
+        let t904 = t898 + t903;
+        let t905 = t902 + t904;
+        let t906 = l100[2] + t905;
+        let t911 = t906 + l43[2];
+        let t912 = -l33[2];
+        let t913 = t911 - l33[2];
+        let t1083 = t913 * l121[2];
+        let t575 = omega_x * t567;
+        let t584 = l92[3] + t575;
+        let t585 = -l124[3];
+        let t586 = t584 - l124[3];
+        let t587 = 10.0 * t586;
+        let t974 = t587 + t601;
+        let t975 = -t974;
+        let t976 = l46[3] - t974;
+        let t977 = l80[3] * t976;
+        let t970 = t583 + t599;
+        let t971 = -t970;
+        let t972 = l44[3] - t970;
+        let t973 = l79[3] * t972;
+        let t702 = f64::max(l16[3], 0.0);
+        let t706 = 10000.0 * t702;
+        let t707 = f64::min(t706, 1.0);
+        let t708 = 617.2846305501082 * t707;
+        let t709 = l11[3] * t708;
+        let t710 = 70000.0 * t702;
+        let t711 = t709 + t710;
+        let t712 = -t711;
+        let t713 = f64::min(t712, 0.0);
+        let t704 = -l17[3];
+        let t705 = f64::max(t704, 0.0);
+        let t718 = 70000.0 * t705;
+        let t714 = 10000.0 * t705;
+        let t715 = f64::min(t714, 1.0);
+        let t716 = 617.2846305501082 * t715;
+        let t717 = l11[3] * t716;
+        let t719 = -t717;
+        let t720 = t718 - t717;
+        let t721 = f64::max(t720, 0.0);
+        let t978 = t713 + t721;
+        let t979 = t973 + t978;
+        let t980 = t977 + t979;
+        let t981 = l100[3] + t980;
+        let t986 = t981 + l43[3];
+        let t987 = -l33[3];
+        let t988 = t986 - l33[3];
+        let t1084 = t988 * l121[3];
+        let t1526 = t1083 + t1084;
+        let t1527 = t1484 + t1526;
+        let t406 = vz * omega_x;
+        let t405 = vx * omega_z;
+        let t1036 = -t405;
+        let t1037 = t406 - t405;
+        let t1038 = 660.0 * t1037;
+        let t1017 = t599 * 4.0;
+        let t1013 = t797 * l120[0];
+        let t1014 = t855 * l120[1];
+        let t1015 = t913 * l120[2];
+        let t1016 = t988 * l120[3];
+        let t1035 = t397 * 1069.2;
+        let t1042 = lanes_sum!(v44) + t1038 - t1017 - t583 - t542 - t1019 - t1013 - t1014
+            - t1015 - t1016 - t1035;
+        let t1486 = t1042 * t1221;
+        let t1528 = -t1486;
+        let t1529 = t1527 - t1486;
+        let t408 = vx * omega_y;
+        let t407 = vy * omega_x;
+        let t1066 = -t407;
+        let t1067 = t408 - t407;
+        let t1068 = 660.0 * t1067;
+        let t1047 = t601 * 4.0;
+        let t1049 = t461 + t502;
+        let t1043 = t797 * l122[0];
+        let t1044 = t855 * l122[1];
+        let t1045 = t913 * l122[2];
+        let t1046 = t988 * l122[3];
+        let t1065 = t595 * 1069.2;
+        let t1072 = lanes_sum!(v46) + t1068 - t1047 - t587 - t546 - t1049 - t1043 - t1044
+            - t1045 - t1046 - t1065;
+        let t1487 = t1072 * t1236;
+        let t1530 = -t1487;
+        let t1531 = t1529 - t1487;
+        let t1532 = t1525 + t1531;
+        let t1533 = t1519 + t1532;
+        let t1534 = t1511 + t1533;
+        let t1549 = t1364 * t1534;
+        let t1375 = t601 * t1374;
+        let t1391 = -t546;
+        let t1392 = l46[2] - t546;
+        let t1393 = l87[2] * t1392;
+        let t1388 = -l44[1];
+        let t1389 = t498 - l44[1];
+        let t1390 = l88[1] * t1389;
+        let t1385 = -t502;
+        let t1386 = l46[1] - t502;
+        let t1387 = l87[1] * t1386;
+        let t1382 = -l44[0];
+        let t1383 = t457 - l44[0];
+        let t1384 = l88[0] * t1383;
+        let t1376 = l88[2] + t1276;
+        let t1377 = l88[3] + t1376;
+        let t1378 = t599 * t1377;
+        let t1379 = -t461;
+        let t1380 = l46[0] - t461;
+        let t1381 = l87[0] * t1380;
+        let t413 = omega_z * t410;
+        let t1401 = t583 - l44[3];
+        let t1402 = l88[3] * t1401;
+        let t1395 = t542 - l44[2];
+        let t1396 = l88[2] * t1395;
+        let t1397 = -t587;
+        let t1398 = l46[3] - t587;
+        let t1399 = l87[3] * t1398;
+        let t411 = omega_z * 561.6;
+        let t412 = omega_y * t411;
+        let t1372 = t1072 * t1226;
+        let t1371 = t1042 * t1211;
+        let t1076 = t988 * l126[3];
+        let t1075 = t913 * l126[2];
+        let t1073 = t797 * l126[0];
+        let t1074 = t855 * l126[1];
+        let t1426 = lanes_sum!(v54) - t1375 + t1393 + t1390 + t1387 + t1384 + t1378
+            + t1381 + t413 + t1402 + t1396 + t1399 - t412 - t1372 - t1371 - t1076 - t1075
+            - t1073 - t1074;
+        let t1547 = t1352 * t1426;
+        let t1357 = t1272 * t1288;
+        let t1358 = t1255 * t1323;
+        let t1359 = -t1358;
+        let t1360 = t1357 - t1358;
+        let t1462 = lanes_sum!(lanes_mul!(v46, lanes!(- 1.0, - 1.0, 1.0, 1.0))) + t1397
+            + t1049 + t1391;
+        let t1463 = 1.143 * t1462;
+        let t1452 = -t579;
+        let t1453 = l45[3] - t579;
+        let t1454 = l88[3] * t1453;
+        let t1449 = -t538;
+        let t1450 = l45[2] - t538;
+        let t1451 = l88[2] * t1450;
+        let t1446 = -t494;
+        let t1447 = l45[1] - t494;
+        let t1448 = l88[1] * t1447;
+        let t1443 = -t453;
+        let t1444 = l45[0] - t453;
+        let t1445 = l88[0] * t1444;
+        let t1442 = t397 * t1441;
+        let t1438 = t735 * t1437;
+        let t1430 = t598 * t1377;
+        let t1434 = t728 * t1433;
+        let t1464 = -t1434;
+        let t1465 = t1430 - t1434;
+        let t1466 = t1438 + t1465;
+        let t1467 = t1442 + t1466;
+        let t1468 = t1445 + t1467;
+        let t1469 = t1448 + t1468;
+        let t1470 = t1451 + t1469;
+        let t1471 = t1454 + t1470;
+        let t1078 = t855 * l123[1];
+        let t1077 = t797 * l123[0];
+        let t415 = omega_x * t411;
+        let t414 = omega_z * t409;
+        let t1472 = -t414;
+        let t1473 = t415 - t414;
+        let t1474 = t1077 + t1473;
+        let t1475 = t1078 + t1474;
+        let t1429 = t1072 * t1231;
+        let t1428 = t1042 * t1216;
+        let t1427 = t951 * t1201;
+        let t1079 = t913 * l123[2];
+        let t1080 = t988 * l123[3];
+        let t1476 = t1079 + t1080;
+        let t1477 = t1427 + t1476;
+        let t1478 = t1428 + t1477;
+        let t1479 = t1429 + t1478;
+        let t1480 = -t1479;
+        let t1481 = t1475 - t1479;
+        let t1482 = t1471 + t1481;
+        let t1483 = t1463 + t1482;
+        let t1548 = t1360 * t1483;
+        let t1550 = t1547 + t1548;
+        let t1551 = t1549 + t1550;
+        let t1552 = t1370 * t1551;
+        let t1554 = t379 * t1552;
+        let t1543 = t1360 * t1534;
+        let t1541 = t1348 * t1426;
+        let t1353 = t1255 * t1340;
+        let t1354 = t1288 * t1288;
+        let t1355 = -t1354;
+        let t1356 = t1353 - t1354;
+        let t1542 = t1356 * t1483;
+        let t1544 = t1541 + t1542;
+        let t1545 = t1543 + t1544;
+        let t1546 = t1370 * t1545;
+        let t1553 = t375 * t1546;
+        let t1556 = -t1553;
+        let t1557 = t951 - t1553;
+        let t1558 = t1554 + t1557;
+        let t1577 = t1193 * t1558;
+        let t1578 = t1199 * t1577;
+        let t1537 = t1352 * t1534;
+        let t1535 = t1344 * t1426;
+        let t1536 = t1348 * t1483;
+        let t1538 = t1535 + t1536;
+        let t1539 = t1537 + t1538;
+        let t1540 = t1370 * t1539;
+        let t1559 = t1118 * t1540;
+        let t1563 = t1042 + t1559;
+        let t1561 = t1128 * t1546;
+        let t1564 = -t1561;
+        let t1565 = t1563 - t1561;
+        let t1562 = t1136 * t1552;
+        let t1566 = -t1562;
+        let t1567 = t1565 - t1562;
+        let t1579 = t1194 * t1567;
+        let t1568 = t1148 * t1540;
+        let t1571 = -t1568;
+        let t1572 = t1072 - t1568;
+        let t1569 = t1157 * t1546;
+        let t1573 = -t1569;
+        let t1574 = t1572 - t1569;
+        let t1570 = t1165 * t1552;
+        let t1575 = -t1570;
+        let t1576 = t1574 - t1570;
+        let t1580 = t1195 * t1576;
+        let t1582 = t1579 + t1580;
+        let t1583 = t1199 * t1582;
+        let t1584 = t1195 * t1567;
+        let t1586 = t1197 * t1576;
+        let t1587 = t1584 + t1586;
+        let t1588 = t1199 * t1587;
+        let v146 = lanes_mul!(v123, lanes_splat!(t1546));
+        let l146 = lanes_array!(v146);
+        let t1589 = t797 * l119[0];
+        let v143 = lanes_mul!(v120, lanes_splat!(t1583));
+        let l143 = lanes_array!(v143);
+        let t1640 = -l143[0];
+        let t1641 = t1589 - l143[0];
+        let v145 = lanes_mul!(v122, lanes_splat!(t1588));
+        let l145 = lanes_array!(v145);
+        let t1642 = -l145[0];
+        let t1643 = t1641 - l145[0];
+        let v147 = lanes_mul!(v126, lanes_splat!(t1540));
+        let l147 = lanes_array!(v147);
+        let t1644 = -l147[0];
+        let t1645 = t1643 - l147[0];
+        let t1646 = l146[0] + t1645;
+        let v144 = lanes_mul!(v121, lanes_splat!(t1552));
+        let l144 = lanes_array!(v144);
+        let t1647 = -l144[0];
+        let t1648 = t1646 - l144[0];
+        let t1590 = t855 * l119[1];
+        let t1626 = -l143[1];
+        let t1627 = t1590 - l143[1];
+        let t1628 = -l145[1];
+        let t1629 = t1627 - l145[1];
+        let t1630 = -l147[1];
+        let t1631 = t1629 - l147[1];
+        let t1632 = l146[1] + t1631;
+        let t1633 = -l144[1];
+        let t1634 = t1632 - l144[1];
+        let t1591 = t913 * l119[2];
+        let t1612 = -l143[2];
+        let t1613 = t1591 - l143[2];
+        let t1614 = -l145[2];
+        let t1615 = t1613 - l145[2];
+        let t1616 = -l147[2];
+        let t1617 = t1615 - l147[2];
+        let t1618 = -l146[2];
+        let t1619 = t1617 - l146[2];
+        let t1620 = l144[2] + t1619;
+        let t1592 = t988 * l119[3];
+        let t1598 = -l143[3];
+        let t1599 = t1592 - l143[3];
+        let t1600 = -l145[3];
+        let t1601 = t1599 - l145[3];
+        let t1602 = -l147[3];
+        let t1603 = t1601 - l147[3];
+        let t1604 = -l146[3];
+        let t1605 = t1603 - l146[3];
+        let t1606 = l144[3] + t1605;
+        let cos_roll = t398;
+        let pivot_6 = l116[0];
         let pivot_den_6 = 1.0;
-        let pivot_7 = t92;
+        let pivot_7 = l116[1];
         let pivot_den_7 = 1.0;
-        let pivot_8 = t100;
+        let pivot_8 = l116[2];
         let pivot_den_8 = 1.0;
-        let pivot_9 = t110;
+        let pivot_9 = l116[3];
         let pivot_den_9 = 1.0;
         let pivot_0 = 700.0;
         let pivot_den_0 = 1.0;
-        let pivot_1 = t258;
+        let pivot_1 = t1197;
         let pivot_den_1 = 700.0;
-        let pivot_2 = t259;
-        let pivot_den_2 = t258;
-        let pivot_3 = t269;
+        let pivot_2 = t1198;
+        let pivot_den_2 = t1197;
+        let pivot_3 = t1255;
         let pivot_den_3 = 1.0;
-        let pivot_4 = t281;
-        let pivot_den_4 = t269;
-        let pivot_5 = t282;
-        let pivot_den_5 = t281;
-        xdot[0] = vz * t181 + (vx * t179 - vy * t180);
-        xdot[1] = vz * t184 + (vx * t182 + vy * t183);
-        xdot[2] = vz * t149 + (vy * s_phi - vx * t148);
-        xdot[3] = omega_x * c_theta + omega_z * s_theta;
-        xdot[4] = omega_y - s_phi * t299;
-        xdot[5] = t299;
-        xdot[6] = yd_front_left;
-        xdot[7] = yd_front_right;
-        xdot[8] = yd_rear_left;
-        xdot[9] = yd_rear_right;
-        wdot[0] = t260 * (t255 * (t102 * t294 + (t212 - t101 * t293)));
-        wdot[1] = t297;
-        wdot[2] = t298;
-        wdot[3] = t292;
-        wdot[4] = t293;
-        wdot[5] = t294;
-        wdot[6] = t222 * t293 + (t192 * t218 - t219 * t297 - t220 * t298 - t221 * t292)
-            - t223 * t294;
-        wdot[7] = t228 * t293 + (t200 * t224 - t225 * t297 - t226 * t298 - t227 * t292)
-            - t229 * t294;
-        wdot[8] = t235 * t294
-            + (t208 * t230 - t231 * t297 - t232 * t298 - t233 * t292 - t234 * t293);
-        wdot[9] = t241 * t294
-            + (t217 * t236 - t237 * t297 - t238 * t298 - t239 * t292 - t240 * t293);
+        let pivot_4 = t1364;
+        let pivot_den_4 = t1255;
+        let pivot_5 = t1369;
+        let pivot_den_5 = t1364;
+        xdot[0] = t1654;
+        xdot[1] = t1659;
+        xdot[2] = t1665;
+        xdot[3] = t1668;
+        xdot[4] = t1676;
+        xdot[5] = t1673;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t1578;
+        wdot[1] = t1583;
+        wdot[2] = t1588;
+        wdot[3] = t1540;
+        wdot[4] = t1546;
+        wdot[5] = t1552;
+        wdot[6] = t1648;
+        wdot[7] = t1634;
+        wdot[8] = t1620;
+        wdot[9] = t1606;
         if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
             return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
                 roll: x[3],

@@ -4,6 +4,7 @@
 // ops mass_matrix: 114 mul, 99 add, 0 div, 21 neg, 0 sin/cos, 0 sqrt, 0 other, depth 19
 // ops wheels: 151 mul, 146 add, 0 div, 34 neg, 6 sin/cos, 0 sqrt, 0 other, depth 15
 // ops jacobian: 3380 mul, 2682 add, 23 div, 1249 neg, 6 sin/cos, 0 sqrt, 48 other, depth 64
+// lanes derivatives: 123 four-lane operations (492 of 1182 scalar ones), 36 sums over the lanes
 // Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `swing4` rover as a generated plant: 10 degrees of freedom
@@ -95,7 +96,1087 @@ impl Swing4 {
         xdot: &mut [f64; 10],
         wdot: &mut [f64; 10],
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
+        use ::core::arch::x86_64::*;
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                _mm256_setr_pd($a, $b, $c, $d)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                _mm256_set1_pd($a)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                _mm256_add_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                _mm256_mul_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                _mm256_div_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                { let mut r = [0.0f64; 4]; unsafe { _mm256_storeu_pd(r.as_mut_ptr(), $a)
+                }; r }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r4 = $a; let r2 = _mm_add_pd(_mm256_castpd256_pd128(r4),
+                _mm256_extractf128_pd::< 1 > (r4)); _mm_cvtsd_f64(r2) +
+                _mm_cvtsd_f64(_mm_unpackhi_pd(r2, r2)) }
+            };
+        }
+        let phi = x[3];
+        let (t340, t341) = ::libm::sincos(phi);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v13 = lanes_add!(
+            v9, lanes!(0.30019663134302466, 0.30019663134302466, - 0.30019663134302466, -
+            0.30019663134302466)
+        );
+        let v35 = lanes_mul!(
+            v13, lanes!(0.002464233750367055, 0.002464233750367055, 0.002464233750367055,
+            0.002464233750367055)
+        );
+        let l35 = lanes_array!(v35);
+        let t167 = -l35[2];
+        let t212 = -l35[3];
+        let v43 = lanes_add!(
+            lanes_mul!(v35, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(0.03184261207074479,
+            0.03184261207074479, 0.03184261207074479, 0.03184261207074479)
+        );
+        let v47 = lanes_mul!(v13, v43);
+        let v49 = lanes_add!(
+            v47, lanes!(- 0.029570805004404663, - 0.029570805004404663,
+            0.029570805004404663, 0.029570805004404663)
+        );
+        let v59 = lanes_mul!(v13, v49);
+        let v61 = lanes_add!(
+            v59, lanes!(- 0.19105567242446875, - 0.19105567242446875, -
+            0.19105567242446875, - 0.19105567242446875)
+        );
+        let v45 = lanes_add!(lanes_mul!(v35, lanes!(1.0, 1.0, - 1.0, - 1.0)), v43);
+        let v51 = lanes_mul!(v13, v45);
+        let v57 = lanes_add!(v49, v51);
+        let v65 = lanes_mul!(v13, v57);
+        let v69 = lanes_add!(v61, v65);
+        let l69 = lanes_array!(v69);
+        let v81 = lanes_mul!(v69, v69);
+        let v37 = lanes_mul!(
+            v13, lanes!(0.007960653017686198, 0.007960653017686198, 0.007960653017686198,
+            0.007960653017686198)
+        );
+        let l37 = lanes_array!(v37);
+        let t96 = -l37[0];
+        let t144 = -l37[1];
+        let t189 = -l37[2];
+        let t233 = -l37[3];
+        let v44 = lanes_add!(
+            lanes_mul!(v37, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)),
+            lanes!(0.00985693500146822, 0.00985693500146822, - 0.00985693500146822, -
+            0.00985693500146822)
+        );
+        let v48 = lanes_mul!(v13, v44);
+        let v50 = lanes_add!(
+            v48, lanes!(0.09552783621223437, 0.09552783621223437, 0.09552783621223437,
+            0.09552783621223437)
+        );
+        let v60 = lanes_mul!(v13, v50);
+        let v62 = lanes_add!(
+            v60, lanes!(- 0.059141610008809326, - 0.059141610008809326,
+            0.059141610008809326, 0.059141610008809326)
+        );
+        let v46 = lanes_add!(lanes_mul!(v37, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v44);
+        let v52 = lanes_mul!(v13, v46);
+        let v58 = lanes_add!(v50, v52);
+        let v66 = lanes_mul!(v13, v58);
+        let v70 = lanes_add!(v62, v66);
+        let l70 = lanes_array!(v70);
+        let v84 = lanes_mul!(v70, v70);
+        let v87 = lanes_add!(v81, v84);
+        let v103 = lanes_mul!(v87, lanes!(0.6, 0.6, 0.6, 0.6));
+        let l103 = lanes_array!(v103);
+        let v82 = lanes_mul!(v69, lanes!(0.6, 0.6, 0.6, 0.6));
+        let v106 = lanes_div!(lanes!(1.0, 1.0, 1.0, 1.0), v103);
+        let l106 = lanes_array!(v106);
+        let v107 = lanes_mul!(v82, v106);
+        let l107 = lanes_array!(v107);
+        let v115 = lanes_mul!(v82, v107);
+        let t1037 = lanes_sum!(lanes_mul!(v115, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 32.400000000000006;
+        let t1143 = 32.400000000000006 * t1037;
+        let v85 = lanes_mul!(v70, lanes!(0.6, 0.6, 0.6, 0.6));
+        let v109 = lanes_mul!(v85, v106);
+        let l109 = lanes_array!(v109);
+        let v122 = lanes_mul!(v85, v109);
+        let t1054 = lanes_sum!(lanes_mul!(v122, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 32.400000000000006;
+        let t1136 = 32.400000000000006 * t1054;
+        let t1144 = t1037 * t1136;
+        let v121 = lanes_mul!(v85, v107);
+        let t1044 = lanes_sum!(v121);
+        let t1137 = 32.400000000000006 * t1044;
+        let t1145 = t1044 * t1137;
+        let t1146 = -t1145;
+        let t1147 = t1144 - t1145;
+        let v74 = lanes_mul!(v13, v62);
+        let v76 = lanes_add!(
+            v74, lanes!(- 0.20105567242446876, - 0.20105567242446876, -
+            0.20105567242446876, - 0.20105567242446876)
+        );
+        let l76 = lanes_array!(v76);
+        let v95 = lanes_mul!(v76, v76);
+        let t1191 = lanes_sum!(v95);
+        let t1192 = 0.6 * t1191;
+        let v86 = lanes_mul!(v70, lanes!(0.12, 0.12, 0.12, 0.12));
+        let v124 = lanes_mul!(v86, v109);
+        let t1093 = lanes_sum!(lanes_mul!(v124, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1148 = 1.0 / t1147;
+        let v123 = lanes_mul!(v86, v107);
+        let t1063 = lanes_sum!(lanes_mul!(v123, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1170 = t1063 * t1137;
+        let t1172 = t1093 * t1143;
+        let t1173 = t1170 + t1172;
+        let t1174 = t1148 * t1173;
+        let t1188 = t1093 * t1174;
+        let v98 = lanes_mul!(v76, lanes!(0.6, 0.6, 0.6, 0.6));
+        let t319 = lanes_sum!(v98);
+        let t1139 = t1037 * t1054;
+        let t1140 = t1044 * t1044;
+        let t1141 = -t1140;
+        let t1142 = t1139 - t1140;
+        let t1164 = t319 * t1142;
+        let t1166 = t1148 * t1164;
+        let t1187 = t319 * t1166;
+        let t1149 = t1063 * t1136;
+        let t1150 = t1093 * t1137;
+        let t1152 = t1149 + t1150;
+        let t1153 = t1148 * t1152;
+        let t1186 = t1063 * t1153;
+        let v110 = lanes_mul!(v86, v106);
+        let l110 = lanes_array!(v110);
+        let v125 = lanes_mul!(v86, v110);
+        let t1202 = lanes_sum!(lanes_mul!(v125, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 0.796 + t1192 - t1188 - t1187 - t1186;
+        let v73 = lanes_mul!(v13, v61);
+        let v75 = lanes_add!(
+            v73, lanes!(0.23914161000880932, 0.23914161000880932, - 0.2791416100088093, -
+            0.2791416100088093)
+        );
+        let l75 = lanes_array!(v75);
+        let v90 = lanes_mul!(v75, v75);
+        let t1248 = lanes_sum!(lanes_add!(v90, v95));
+        let t1249 = 0.6 * t1248;
+        let v88 = lanes_mul!(v69, v76);
+        let v89 = lanes_mul!(v70, v75);
+        let l89 = lanes_array!(v89);
+        let t270 = -l89[0];
+        let t288 = -l89[1];
+        let t306 = -l89[2];
+        let t332 = -l89[3];
+        let v101 = lanes_add!(v88, lanes_mul!(v89, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)));
+        let v105 = lanes_mul!(v101, lanes!(0.6, 0.6, 0.6, 0.6));
+        let v127 = lanes_mul!(v105, v109);
+        let v94 = lanes_mul!(v75, lanes!(0.6, 0.6, 0.6, 0.6));
+        let t324 = lanes_sum!(v94);
+        let t1101 = lanes_sum!(v127) + t324;
+        let v126 = lanes_mul!(v105, v107);
+        let t1075 = lanes_sum!(lanes_mul!(v126, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + t319;
+        let t1175 = t1075 * t1137;
+        let t1177 = t1101 * t1143;
+        let t1178 = -t1177;
+        let t1179 = t1175 - t1177;
+        let t1180 = t1148 * t1179;
+        let t1240 = t1101 * t1180;
+        let t1154 = t1075 * t1136;
+        let t1155 = t1101 * t1137;
+        let t1156 = -t1155;
+        let t1157 = t1154 - t1155;
+        let t1158 = t1148 * t1157;
+        let t1239 = t1075 * t1158;
+        let v113 = lanes_mul!(v105, v106);
+        let l113 = lanes_array!(v113);
+        let v129 = lanes_mul!(v105, v113);
+        let t1257 = lanes_sum!(lanes_mul!(v129, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 0.9 + t1249 + t1240 - t1239;
+        let t1313 = t1202 * t1257;
+        let t1209 = lanes_sum!(lanes_mul!(v75, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1210 = 0.12 * t1209;
+        let v128 = lanes_mul!(v105, v110);
+        let t1203 = t1063 * t1158;
+        let t1204 = t1093 * t1180;
+        let t1220 = lanes_sum!(lanes_mul!(v128, lanes!(- 1.0, 1.0, - 1.0, 1.0))) + t1210
+            - t1203 - t1204;
+        let t1314 = t1220 * t1220;
+        let t1315 = -t1314;
+        let t1316 = t1313 - t1314;
+        let t1168 = t324 * t1142;
+        let t1169 = t1148 * t1168;
+        let t1222 = t319 * t1169;
+        let v83 = lanes_mul!(v69, lanes!(0.12, 0.12, 0.12, 0.12));
+        let v119 = lanes_mul!(v83, v110);
+        let v116 = lanes_mul!(v83, v107);
+        let t1084 = lanes_sum!(lanes_mul!(v116, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t1159 = t1084 * t1136;
+        let v118 = lanes_mul!(v83, v109);
+        let t1111 = lanes_sum!(lanes_mul!(v118, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t1160 = t1111 * t1137;
+        let t1162 = t1159 + t1160;
+        let t1163 = t1148 * t1162;
+        let t1221 = t1063 * t1163;
+        let t1181 = t1084 * t1137;
+        let t1183 = t1111 * t1143;
+        let t1184 = t1181 + t1183;
+        let t1185 = t1148 * t1184;
+        let t1224 = t1093 * t1185;
+        let v91 = lanes_mul!(v75, v76);
+        let t1227 = lanes_sum!(v91);
+        let t1228 = 0.6 * t1227;
+        let t1238 = lanes_sum!(v119) + t1222 - t1221 - t1224 - t1228;
+        let t1265 = lanes_sum!(lanes_mul!(v76, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1266 = 0.12 * t1265;
+        let t1259 = t1101 * t1185;
+        let v120 = lanes_mul!(v83, v113);
+        let t1258 = t1075 * t1163;
+        let t1275 = lanes_sum!(lanes_mul!(v120, lanes!(1.0, - 1.0, 1.0, - 1.0))) + t1266
+            + t1259 - t1258;
+        let t1301 = t1220 * t1275;
+        let t1302 = t1238 * t1257;
+        let t1303 = -t1302;
+        let t1304 = t1301 - t1302;
+        let t1319 = t1238 * t1304;
+        let t1281 = lanes_sum!(v90);
+        let t1282 = 0.6 * t1281;
+        let t1278 = t1111 * t1185;
+        let t1277 = t324 * t1169;
+        let t1276 = t1084 * t1163;
+        let v108 = lanes_mul!(v83, v106);
+        let l108 = lanes_array!(v108);
+        let v117 = lanes_mul!(v83, v108);
+        let t1292 = lanes_sum!(lanes_mul!(v117, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 1.596 + t1282 - t1278 - t1277 - t1276;
+        let t1293 = t1257 * t1292;
+        let t1294 = t1275 * t1275;
+        let t1295 = -t1294;
+        let t1296 = t1293 - t1294;
+        let t1317 = t1202 * t1296;
+        let t1297 = t1238 * t1275;
+        let t1298 = t1220 * t1292;
+        let t1299 = -t1298;
+        let t1300 = t1297 - t1298;
+        let t1318 = t1220 * t1300;
+        let t1320 = t1317 + t1318;
+        let t1321 = t1319 + t1320;
+        let vz = w[2];
+        let theta = x[4];
+        let (t342, t343) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t344, t345) = ::libm::sincos(psi);
+        let t673 = t342 * t345;
+        let t667 = t340 * t343;
+        let t674 = t344 * t667;
+        let t675 = t673 + t674;
+        let t1619 = vz * t675;
+        let vx = w[0];
+        let t668 = t343 * t345;
+        let t666 = t340 * t342;
+        let t669 = t344 * t666;
+        let t670 = -t669;
+        let t671 = t668 - t669;
+        let t1617 = vx * t671;
+        let vy = w[1];
+        let t672 = t341 * t344;
+        let t1618 = vy * t672;
+        let t1620 = -t1618;
+        let t1621 = t1617 - t1618;
+        let t1622 = t1619 + t1621;
+        let t680 = t342 * t344;
+        let t681 = t345 * t667;
+        let t682 = -t681;
+        let t683 = t680 - t681;
+        let t1625 = vz * t683;
+        let t676 = t343 * t344;
+        let t677 = t345 * t666;
+        let t678 = t676 + t677;
+        let t1623 = vx * t678;
+        let t679 = t341 * t345;
+        let t1624 = vy * t679;
+        let t1626 = t1623 + t1624;
+        let t1627 = t1625 + t1626;
+        let t538 = t341 * t343;
+        let t1630 = vz * t538;
+        let t1629 = vy * t340;
+        let t537 = t341 * t342;
+        let t1628 = vx * t537;
+        let t1631 = -t1628;
+        let t1632 = t1629 - t1628;
+        let t1633 = t1630 + t1632;
+        let omega_x = w[3];
+        let t1634 = omega_x * t343;
+        let omega_z = w[5];
+        let t1635 = omega_z * t342;
+        let t1636 = t1634 + t1635;
+        let omega_y = w[4];
+        let t1637 = omega_z * t343;
+        let t1638 = omega_x * t342;
+        let t1639 = -t1638;
+        let t1640 = t1637 - t1638;
+        let t1641 = t1640 / t341;
+        let t1642 = t340 * t1641;
+        let t1643 = -t1642;
+        let t1644 = omega_y - t1642;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let t347 = vy * omega_z;
+        let t346 = vz * omega_y;
+        let t981 = -t346;
+        let t982 = t347 - t346;
+        let t983 = 30.0 * t982;
+        let t980 = t537 * 48.6;
+        let t541 = t537 * 0.972;
+        let t963 = t541 * 4.0;
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
+        );
+        let v16 = lanes_mul!(v0, lanes_splat!(t671));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
+        );
+        let v19 = lanes_mul!(v1, lanes_splat!(t678));
+        let v30 = lanes_add!(v16, v19);
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
+        );
+        let v23 = lanes_mul!(v2, lanes_splat!(t537));
+        let l23 = lanes_array!(v23);
+        let t688 = -l23[0];
+        let t742 = -l23[1];
+        let t796 = -l23[2];
+        let t849 = -l23[3];
+        let v40 = lanes_add!(lanes_mul!(v23, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v30);
+        let l40 = lanes_array!(v40);
+        let v36 = lanes_mul!(
+            v13, lanes!(0.00492846750073411, 0.00492846750073411, 0.00492846750073411,
+            0.00492846750073411)
+        );
+        let l36 = lanes_array!(v36);
+        let v53 = lanes_mul!(v45, lanes!(2.0, 2.0, 2.0, 2.0));
+        let t174 = -l36[2];
+        let t219 = -l36[3];
+        let v55 = lanes_add!(lanes_mul!(v36, lanes!(1.0, 1.0, - 1.0, - 1.0)), v53);
+        let v63 = lanes_mul!(v13, v55);
+        let v67 = lanes_mul!(v57, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v71 = lanes_add!(v63, v67);
+        let v28 = lanes_mul!(v11, v11);
+        let v79 = lanes_mul!(v28, v71);
+        let l79 = lanes_array!(v79);
+        let v78 = lanes_mul!(v11, v70);
+        let v100 = lanes_mul!(v78, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l100 = lanes_array!(v100);
+        let t366 = omega_x * 0.2;
+        let t414 = -t366;
+        let t428 = vz - t366;
+        let v92 = lanes_mul!(v75, lanes_splat!(omega_y));
+        let l92 = lanes_array!(v92);
+        let t511 = -l92[3];
+        let t512 = t428 - l92[3];
+        let t513 = l100[3] + t512;
+        let t514 = omega_y * t513;
+        let t520 = l79[3] + t514;
+        let v93 = lanes_mul!(v75, lanes_splat!(omega_z));
+        let v102 = lanes_add!(v93, lanes_splat!(vy));
+        let v96 = lanes_mul!(v76, lanes_splat!(omega_x));
+        let l96 = lanes_array!(v96);
+        let t369 = -l96[0];
+        let t417 = -l96[1];
+        let t460 = -l96[2];
+        let t501 = -l96[3];
+        let v104 = lanes_add!(lanes_mul!(v96, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v102);
+        let v112 = lanes_mul!(v104, lanes_splat!(omega_z));
+        let l112 = lanes_array!(v112);
+        let t521 = -l112[3];
+        let t522 = t520 - l112[3];
+        let t523 = 0.6 * t522;
+        let t384 = vz + t366;
+        let t470 = -l92[2];
+        let t471 = t384 - l92[2];
+        let t472 = l100[2] + t471;
+        let t473 = omega_y * t472;
+        let t479 = l79[2] + t473;
+        let t480 = -l112[2];
+        let t481 = t479 - l112[2];
+        let t482 = 0.6 * t481;
+        let t385 = -l92[0];
+        let t386 = t384 - l92[0];
+        let t387 = l100[0] + t386;
+        let t388 = omega_y * t387;
+        let t394 = l79[0] + t388;
+        let t395 = -l112[0];
+        let t396 = t394 - l112[0];
+        let t397 = 0.6 * t396;
+        let t429 = -l92[1];
+        let t430 = t428 - l92[1];
+        let t431 = l100[1] + t430;
+        let t432 = omega_y * t431;
+        let t438 = l79[1] + t432;
+        let t439 = -l112[1];
+        let t440 = t438 - l112[1];
+        let t441 = 0.6 * t440;
+        let v24 = lanes_mul!(v2, lanes_splat!(t538));
+        let v18 = lanes_mul!(v0, lanes_splat!(t675));
+        let v21 = lanes_mul!(v1, lanes_splat!(t683));
+        let v32 = lanes_add!(v18, v21);
+        let v41 = lanes_add!(v24, v32);
+        let l41 = lanes_array!(v41);
+        let v54 = lanes_mul!(v46, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v38 = lanes_mul!(
+            v13, lanes!(0.015921306035372396, 0.015921306035372396, 0.015921306035372396,
+            0.015921306035372396)
+        );
+        let l38 = lanes_array!(v38);
+        let t106 = -l38[0];
+        let t151 = -l38[1];
+        let t197 = -l38[2];
+        let t240 = -l38[3];
+        let v56 = lanes_add!(lanes_mul!(v38, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v54);
+        let v64 = lanes_mul!(v13, v56);
+        let v68 = lanes_mul!(v58, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v72 = lanes_add!(v64, v68);
+        let v80 = lanes_mul!(v28, v72);
+        let v111 = lanes_mul!(v104, lanes_splat!(omega_x));
+        let v114 = lanes_add!(v80, v111);
+        let l114 = lanes_array!(v114);
+        let v77 = lanes_mul!(v11, v69);
+        let v99 = lanes_mul!(v77, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l99 = lanes_array!(v99);
+        let v97 = lanes_mul!(v76, lanes_splat!(omega_y));
+        let l97 = lanes_array!(v97);
+        let t362 = omega_z * 0.2;
+        let t363 = -t362;
+        let t380 = vx - t362;
+        let t381 = l97[0] + t380;
+        let t382 = l99[0] + t381;
+        let t393 = omega_y * t382;
+        let t402 = -t393;
+        let t403 = l114[0] - t393;
+        let t404 = 0.6 * t403;
+        let t544 = t538 * 0.972;
+        let t723 = t404 + t544;
+        let t724 = -t723;
+        let t725 = l41[0] - t723;
+        let t726 = l70[0] * t725;
+        let t719 = -t397;
+        let t720 = t541 - t397;
+        let t721 = l40[0] + t720;
+        let t722 = l69[0] * t721;
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
+        );
+        let v27 = lanes_mul!(v5, lanes_splat!(t340));
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
+        );
+        let v26 = lanes_mul!(v4, lanes_splat!(t679));
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v25 = lanes_mul!(v3, lanes_splat!(t672));
+        let l25 = lanes_array!(v25);
+        let t713 = -l25[0];
+        let t767 = -l25[1];
+        let t821 = -l25[2];
+        let t893 = -l25[3];
+        let v33 = lanes_add!(lanes_mul!(v25, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v26);
+        let v42 = lanes_add!(v27, v33);
+        let l42 = lanes_array!(v42);
+        let v14 = lanes_add!(
+            v9, lanes!(0.03490658503988659, 0.03490658503988659, - 1.0471975511965976, -
+            1.0471975511965976)
+        );
+        let l14 = lanes_array!(v14);
+        let t580 = f64::max(l14[0], 0.0);
+        let t586 = 10000.0 * t580;
+        let t587 = f64::min(t586, 1.0);
+        let t588 = 6.92820323027551 * t587;
+        let t589 = l11[0] * t588;
+        let t590 = 500.0 * t580;
+        let t591 = t589 + t590;
+        let t592 = -t591;
+        let t593 = f64::min(t592, 0.0);
+        let t626 = -l9[2];
+        let t647 = -l9[3];
+        let v15 = lanes_add!(
+            lanes_mul!(v9, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(1.0471975511965976,
+            1.0471975511965976, 0.03490658503988659, 0.03490658503988659)
+        );
+        let l15 = lanes_array!(v15);
+        let t584 = -l15[0];
+        let t585 = f64::max(t584, 0.0);
+        let t598 = 500.0 * t585;
+        let t594 = 10000.0 * t585;
+        let t595 = f64::min(t594, 1.0);
+        let t596 = 6.92820323027551 * t595;
+        let t597 = l11[0] * t596;
+        let t599 = -t597;
+        let t600 = t598 - t597;
+        let t601 = f64::max(t600, 0.0);
+        let t727 = t593 + t601;
+        let t728 = l42[0] + t727;
+        let t729 = t722 + t728;
+        let t730 = t726 + t729;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t731 = -l9[0];
+        let t785 = -l9[1];
+        let v12 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v34 = lanes_mul!(v12, lanes!(5.0, 5.0, 5.0, 5.0));
+        let l34 = lanes_array!(v34);
+        let t735 = t730 + l34[0];
+        let v29 = lanes_mul!(v11, lanes!(3.5, 3.5, 3.5, 3.5));
+        let l29 = lanes_array!(v29);
+        let t736 = -l29[0];
+        let t737 = t735 - l29[0];
+        let t959 = t737 * l107[0];
+        let t424 = vx + t362;
+        let t425 = l97[1] + t424;
+        let t426 = l99[1] + t425;
+        let t437 = omega_y * t426;
+        let t446 = -t437;
+        let t447 = l114[1] - t437;
+        let t448 = 0.6 * t447;
+        let t777 = t448 + t544;
+        let t778 = -t777;
+        let t779 = l41[1] - t777;
+        let t780 = l70[1] * t779;
+        let t773 = -t441;
+        let t774 = t541 - t441;
+        let t775 = l40[1] + t774;
+        let t776 = l69[1] * t775;
+        let t604 = f64::max(l14[1], 0.0);
+        let t608 = 10000.0 * t604;
+        let t609 = f64::min(t608, 1.0);
+        let t610 = 6.92820323027551 * t609;
+        let t611 = l11[1] * t610;
+        let t612 = 500.0 * t604;
+        let t613 = t611 + t612;
+        let t614 = -t613;
+        let t615 = f64::min(t614, 0.0);
+        let t606 = -l15[1];
+        let t607 = f64::max(t606, 0.0);
+        let t620 = 500.0 * t607;
+        let t616 = 10000.0 * t607;
+        let t617 = f64::min(t616, 1.0);
+        let t618 = 6.92820323027551 * t617;
+        let t619 = l11[1] * t618;
+        let t621 = -t619;
+        let t622 = t620 - t619;
+        let t623 = f64::max(t622, 0.0);
+        let t781 = t615 + t623;
+        let t782 = l42[1] + t781;
+        let t783 = t776 + t782;
+        let t784 = t780 + t783;
+        let t789 = t784 + l34[1];
+        let t790 = -l29[1];
+        let t791 = t789 - l29[1];
+        let t960 = t791 * l107[1];
+        let t467 = t380 + l97[2];
+        let t468 = l99[2] + t467;
+        let t478 = omega_y * t468;
+        let t487 = -t478;
+        let t488 = l114[2] - t478;
+        let t489 = 0.6 * t488;
+        let t831 = t489 + t544;
+        let t832 = -t831;
+        let t833 = l41[2] - t831;
+        let t834 = l70[2] * t833;
+        let t827 = -t482;
+        let t828 = t541 - t482;
+        let t829 = l40[2] + t828;
+        let t830 = l69[2] * t829;
+        let t625 = f64::max(l14[2], 0.0);
+        let t629 = 10000.0 * t625;
+        let t630 = f64::min(t629, 1.0);
+        let t631 = 6.92820323027551 * t630;
+        let t632 = l11[2] * t631;
+        let t633 = 500.0 * t625;
+        let t634 = t632 + t633;
+        let t635 = -t634;
+        let t636 = f64::min(t635, 0.0);
+        let t628 = f64::max(l15[2], 0.0);
+        let t641 = 500.0 * t628;
+        let t637 = 10000.0 * t628;
+        let t638 = f64::min(t637, 1.0);
+        let t639 = 6.92820323027551 * t638;
+        let t640 = l11[2] * t639;
+        let t642 = -t640;
+        let t643 = t641 - t640;
+        let t644 = f64::max(t643, 0.0);
+        let t835 = t636 + t644;
+        let t836 = l42[2] + t835;
+        let t837 = t830 + t836;
+        let t838 = t834 + t837;
+        let t842 = t838 + l34[2];
+        let t843 = -l29[2];
+        let t844 = t842 - l29[2];
+        let t961 = t844 * l107[2];
+        let t508 = t424 + l97[3];
+        let t509 = l99[3] + t508;
+        let t519 = omega_y * t509;
+        let t528 = -t519;
+        let t529 = l114[3] - t519;
+        let t530 = 0.6 * t529;
+        let t903 = t530 + t544;
+        let t904 = -t903;
+        let t905 = l41[3] - t903;
+        let t906 = l70[3] * t905;
+        let t899 = -t523;
+        let t900 = t541 - t523;
+        let t901 = l40[3] + t900;
+        let t902 = l69[3] * t901;
+        let t646 = f64::max(l14[3], 0.0);
+        let t650 = 10000.0 * t646;
+        let t651 = f64::min(t650, 1.0);
+        let t652 = 6.92820323027551 * t651;
+        let t653 = l11[3] * t652;
+        let t654 = 500.0 * t646;
+        let t655 = t653 + t654;
+        let t656 = -t655;
+        let t657 = f64::min(t656, 0.0);
+        let t649 = f64::max(l15[3], 0.0);
+        let t662 = 500.0 * t649;
+        let t658 = 10000.0 * t649;
+        let t659 = f64::min(t658, 1.0);
+        let t660 = 6.92820323027551 * t659;
+        let t661 = l11[3] * t660;
+        let t663 = -t661;
+        let t664 = t662 - t661;
+        let t665 = f64::max(t664, 0.0);
+        let t907 = t657 + t665;
+        let t908 = l42[3] + t907;
+        let t909 = t902 + t908;
+        let t910 = t906 + t909;
+        let t914 = t910 + l34[3];
+        let t915 = -l29[3];
+        let t916 = t914 - l29[3];
+        let t962 = t916 * l107[3];
+        let t986 = lanes_sum!(v40) + t983 + t980 + t963 - t523 - t482 - t397 - t441
+            - t959 - t960 - t961 - t962;
+        let t1322 = 1.0 / t1321;
+        let t1477 = lanes_sum!(lanes_mul!(v40, lanes!(- 1.0, 1.0, - 1.0, 1.0))) + t899
+            + t482 + t397 + t773;
+        let t1478 = 0.2 * t1477;
+        let v22 = lanes_mul!(v2, lanes_splat!(t340));
+        let v20 = lanes_mul!(v1, lanes_splat!(t679));
+        let v17 = lanes_mul!(v0, lanes_splat!(t672));
+        let l17 = lanes_array!(v17);
+        let t693 = -l17[0];
+        let t747 = -l17[1];
+        let t801 = -l17[2];
+        let t854 = -l17[3];
+        let v31 = lanes_add!(lanes_mul!(v17, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v20);
+        let v39 = lanes_add!(v22, v31);
+        let l39 = lanes_array!(v39);
+        let t516 = omega_z * t509;
+        let t517 = omega_x * t513;
+        let t524 = -t517;
+        let t525 = t516 - t517;
+        let t526 = 0.6 * t525;
+        let t1466 = -t526;
+        let t1467 = l39[3] - t526;
+        let t1468 = l75[3] * t1467;
+        let t475 = omega_z * t468;
+        let t476 = omega_x * t472;
+        let t483 = -t476;
+        let t484 = t475 - t476;
+        let t485 = 0.6 * t484;
+        let t1463 = -t485;
+        let t1464 = l39[2] - t485;
+        let t1465 = l75[2] * t1464;
+        let t434 = omega_z * t426;
+        let t435 = omega_x * t431;
+        let t442 = -t435;
+        let t443 = t434 - t435;
+        let t444 = 0.6 * t443;
+        let t1460 = -t444;
+        let t1461 = l39[1] - t444;
+        let t1462 = l75[1] * t1461;
+        let t390 = omega_z * t382;
+        let t391 = omega_x * t387;
+        let t398 = -t391;
+        let t399 = t390 - t391;
+        let t400 = 0.6 * t399;
+        let t1457 = -t400;
+        let t1458 = l39[0] - t400;
+        let t1459 = l75[0] * t1458;
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
+        );
+        let t925 = lanes_sum!(v8);
+        let t1340 = lanes_sum!(v5) + t925;
+        let t1455 = t538 * t1340;
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let t919 = lanes_sum!(v6);
+        let t1330 = lanes_sum!(v3) + t919;
+        let t1453 = t675 * t1330;
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let t922 = lanes_sum!(v7);
+        let t1335 = lanes_sum!(v4) + t922;
+        let t1454 = t683 * t1335;
+        let t1479 = t1453 + t1454;
+        let t1480 = t1455 + t1479;
+        let t542 = t340 * 0.972;
+        let t1398 = lanes_sum!(v75);
+        let t1456 = t542 * t1398;
+        let t1481 = -t1456;
+        let t1482 = t1480 - t1456;
+        let t1483 = t1459 + t1482;
+        let t1484 = t1462 + t1483;
+        let t1485 = t1465 + t1484;
+        let t1486 = t1468 + t1485;
+        let t1025 = t737 * l108[0];
+        let t352 = omega_x * 0.7;
+        let t360 = omega_y * t352;
+        let t353 = omega_y * 0.9;
+        let t359 = omega_x * t353;
+        let t1487 = -t359;
+        let t1488 = t360 - t359;
+        let t1489 = t1025 + t1488;
+        let t1026 = t791 * l108[1];
+        let t1490 = -t1026;
+        let t1491 = t1489 - t1026;
+        let t1027 = t844 * l108[2];
+        let t1028 = t916 * l108[3];
+        let t1492 = -t1028;
+        let t1493 = t1027 - t1028;
+        let t1450 = t986 * t1163;
+        let t1494 = -t1450;
+        let t1495 = t1493 - t1450;
+        let t349 = vz * omega_x;
+        let t348 = vx * omega_z;
+        let t878 = -t348;
+        let t879 = t349 - t348;
+        let t880 = 30.0 * t879;
+        let t867 = t542 * 4.0;
+        let t877 = t340 * 48.6;
+        let t884 = lanes_sum!(v39) + t880 - t867 - t526 - t485 - t400 - t444 - t877;
+        let t1451 = t884 * t1169;
+        let t1496 = -t1451;
+        let t1497 = t1495 - t1451;
+        let t351 = vx * omega_y;
+        let t350 = vy * omega_x;
+        let t1010 = -t350;
+        let t1011 = t351 - t350;
+        let t1012 = 30.0 * t1011;
+        let t991 = t544 * 4.0;
+        let t987 = t737 * l109[0];
+        let t988 = t791 * l109[1];
+        let t989 = t844 * l109[2];
+        let t990 = t916 * l109[3];
+        let t1009 = t538 * 48.6;
+        let t1016 = lanes_sum!(v41) + t1012 - t991 - t530 - t489 - t404 - t448 - t987
+            - t988 - t989 - t990 - t1009;
+        let t1452 = t1016 * t1185;
+        let t1498 = -t1452;
+        let t1499 = t1497 - t1452;
+        let t1500 = t1491 + t1499;
+        let t1501 = t1486 + t1500;
+        let t1502 = t1478 + t1501;
+        let t1505 = t1304 * t1502;
+        let t1358 = -t404;
+        let t1359 = t448 - t404;
+        let t1360 = -t489;
+        let t1361 = t1359 - t489;
+        let t1362 = t530 + t1361;
+        let t1363 = l41[0] + t1362;
+        let t1364 = -l41[1];
+        let t1365 = t1363 - l41[1];
+        let t1366 = l41[2] + t1365;
+        let t1367 = -l41[3];
+        let t1368 = t1366 - l41[3];
+        let t1369 = 0.2 * t1368;
+        let t1355 = -l39[3];
+        let t1356 = t526 - l39[3];
+        let t1357 = l76[3] * t1356;
+        let t1352 = -l39[2];
+        let t1353 = t485 - l39[2];
+        let t1354 = l76[2] * t1353;
+        let t1349 = -l39[1];
+        let t1350 = t444 - l39[1];
+        let t1351 = l76[1] * t1350;
+        let t1346 = -l39[0];
+        let t1347 = t400 - l39[0];
+        let t1348 = l76[0] * t1347;
+        let t1344 = lanes_sum!(v76);
+        let t1345 = t542 * t1344;
+        let t1331 = t671 * t1330;
+        let t1336 = t678 * t1335;
+        let t1370 = t1331 + t1336;
+        let t1341 = t537 * t1340;
+        let t1371 = -t1341;
+        let t1372 = t1370 - t1341;
+        let t1373 = t1345 + t1372;
+        let t1374 = t1348 + t1373;
+        let t1375 = t1351 + t1374;
+        let t1376 = t1354 + t1375;
+        let t1377 = t1357 + t1376;
+        let t1018 = t791 * l110[1];
+        let t356 = omega_z * t353;
+        let t354 = omega_z * 1.5;
+        let t355 = omega_y * t354;
+        let t1378 = -t355;
+        let t1379 = t356 - t355;
+        let t1017 = t737 * l110[0];
+        let t1380 = -t1017;
+        let t1381 = t1379 - t1017;
+        let t1382 = t1018 + t1381;
+        let t1324 = t884 * t1166;
+        let t1020 = t916 * l110[3];
+        let t1019 = t844 * l110[2];
+        let t1383 = -t1019;
+        let t1384 = t1020 - t1019;
+        let t1323 = t986 * t1153;
+        let t1385 = -t1323;
+        let t1386 = t1384 - t1323;
+        let t1387 = t1324 + t1386;
+        let t1326 = t1016 * t1174;
+        let t1388 = -t1326;
+        let t1389 = t1387 - t1326;
+        let t1390 = t1382 + t1389;
+        let t1391 = t1377 + t1390;
+        let t1392 = t1369 + t1391;
+        let t1503 = t1296 * t1392;
+        let t1399 = t544 * t1398;
+        let t1395 = t541 * t1344;
+        let t1411 = -l41[2];
+        let t1412 = t489 - l41[2];
+        let t1413 = l75[2] * t1412;
+        let t1409 = l40[2] - t482;
+        let t1410 = l76[2] * t1409;
+        let t1407 = t448 - l41[1];
+        let t1408 = l75[1] * t1407;
+        let t1405 = l40[1] - t441;
+        let t1406 = l76[1] * t1405;
+        let t1400 = l40[0] - t397;
+        let t1401 = l76[0] * t1400;
+        let t1402 = -l41[0];
+        let t1403 = t404 - l41[0];
+        let t1404 = l75[0] * t1403;
+        let t930 = t679 * t922;
+        let t358 = omega_x * t354;
+        let t1414 = l40[3] - t523;
+        let t1415 = l76[3] * t1414;
+        let t1416 = t530 - l41[3];
+        let t1417 = l75[3] * t1416;
+        let t357 = omega_z * t352;
+        let t929 = t672 * t919;
+        let t931 = t340 * t925;
+        let t1021 = t737 * l113[0];
+        let t1022 = t791 * l113[1];
+        let t1023 = t844 * l113[2];
+        let t1024 = t916 * l113[3];
+        let t1393 = t986 * t1158;
+        let t1394 = t1016 * t1180;
+        let t1449 = lanes_sum!(v42) + t1399 + t1395 + t1413 + t1410 + t1408 + t1406
+            + t1401 + t1404 + t930 + t358 + t1415 + t1417 - t357 - t929 + t931 - t1021
+            - t1022 - t1023 - t1024 - t1393 - t1394;
+        let t1504 = t1300 * t1449;
+        let t1506 = t1503 + t1504;
+        let t1507 = t1505 + t1506;
+        let t1508 = t1322 * t1507;
+        let t1521 = t1063 * t1508;
+        let t1524 = -t1521;
+        let t1525 = t986 - t1521;
+        let t1309 = t1220 * t1238;
+        let t1310 = t1202 * t1275;
+        let t1311 = -t1310;
+        let t1312 = t1309 - t1310;
+        let t1511 = t1312 * t1502;
+        let t1509 = t1300 * t1392;
+        let t1305 = t1202 * t1292;
+        let t1306 = t1238 * t1238;
+        let t1307 = -t1306;
+        let t1308 = t1305 - t1306;
+        let t1510 = t1308 * t1449;
+        let t1512 = t1509 + t1510;
+        let t1513 = t1511 + t1512;
+        let t1514 = t1322 * t1513;
+        let t1522 = t1075 * t1514;
+        let t1526 = -t1522;
+        let t1527 = t1525 - t1522;
+        let t1517 = t1316 * t1502;
+        let t1515 = t1304 * t1392;
+        let t1516 = t1312 * t1449;
+        let t1518 = t1515 + t1516;
+        let t1519 = t1517 + t1518;
+        let t1520 = t1322 * t1519;
+        let t1523 = t1084 * t1520;
+        let t1528 = -t1523;
+        let t1529 = t1527 - t1523;
+        let t1545 = t1136 * t1529;
+        let t1537 = t1101 * t1514;
+        let t1536 = t1093 * t1508;
+        let t1540 = -t1536;
+        let t1541 = t1016 - t1536;
+        let t1542 = t1537 + t1541;
+        let t1539 = t1111 * t1520;
+        let t1543 = -t1539;
+        let t1544 = t1542 - t1539;
+        let t1546 = t1137 * t1544;
+        let t1548 = t1545 + t1546;
+        let t1549 = t1148 * t1548;
+        let t1530 = t319 * t1508;
+        let t1533 = t884 + t1530;
+        let t1532 = t324 * t1520;
+        let t1534 = -t1532;
+        let t1535 = t1533 - t1532;
+        let t1550 = t1142 * t1535;
+        let t1551 = t1148 * t1550;
+        let t1552 = t1137 * t1529;
+        let t1554 = t1143 * t1544;
+        let t1555 = t1552 + t1554;
+        let t1556 = t1148 * t1555;
+        let v131 = lanes_mul!(v108, lanes_splat!(t1520));
+        let l131 = lanes_array!(v131);
+        let t1557 = t737 * l106[0];
+        let v130 = lanes_mul!(v107, lanes_splat!(t1549));
+        let l130 = lanes_array!(v130);
+        let t1608 = -l130[0];
+        let t1609 = t1557 - l130[0];
+        let v132 = lanes_mul!(v109, lanes_splat!(t1556));
+        let l132 = lanes_array!(v132);
+        let t1610 = -l132[0];
+        let t1611 = t1609 - l132[0];
+        let v133 = lanes_mul!(v110, lanes_splat!(t1508));
+        let l133 = lanes_array!(v133);
+        let t1612 = -l133[0];
+        let t1613 = t1611 - l133[0];
+        let v134 = lanes_mul!(v113, lanes_splat!(t1514));
+        let l134 = lanes_array!(v134);
+        let t1614 = -l134[0];
+        let t1615 = t1613 - l134[0];
+        let t1616 = l131[0] + t1615;
+        let t1558 = t791 * l106[1];
+        let t1594 = -l130[1];
+        let t1595 = t1558 - l130[1];
+        let t1596 = -l132[1];
+        let t1597 = t1595 - l132[1];
+        let t1598 = l133[1] + t1597;
+        let t1599 = -l134[1];
+        let t1600 = t1598 - l134[1];
+        let t1601 = -l131[1];
+        let t1602 = t1600 - l131[1];
+        let t1559 = t844 * l106[2];
+        let t1580 = -l130[2];
+        let t1581 = t1559 - l130[2];
+        let t1582 = -l132[2];
+        let t1583 = t1581 - l132[2];
+        let t1584 = -l133[2];
+        let t1585 = t1583 - l133[2];
+        let t1586 = -l134[2];
+        let t1587 = t1585 - l134[2];
+        let t1588 = l131[2] + t1587;
+        let t1560 = t916 * l106[3];
+        let t1566 = -l130[3];
+        let t1567 = t1560 - l130[3];
+        let t1568 = -l132[3];
+        let t1569 = t1567 - l132[3];
+        let t1570 = l133[3] + t1569;
+        let t1571 = -l134[3];
+        let t1572 = t1570 - l134[3];
+        let t1573 = -l131[3];
+        let t1574 = t1572 - l131[3];
+        let cos_roll = t341;
+        let pivot_6 = l103[0];
+        let pivot_den_6 = 1.0;
+        let pivot_7 = l103[1];
+        let pivot_den_7 = 1.0;
+        let pivot_8 = l103[2];
+        let pivot_den_8 = 1.0;
+        let pivot_9 = l103[3];
+        let pivot_den_9 = 1.0;
+        let pivot_0 = t1037;
+        let pivot_den_0 = 1.0;
+        let pivot_1 = t1143;
+        let pivot_den_1 = t1037;
+        let pivot_2 = t1147;
+        let pivot_den_2 = t1143;
+        let pivot_3 = t1202;
+        let pivot_den_3 = 1.0;
+        let pivot_4 = t1316;
+        let pivot_den_4 = t1202;
+        let pivot_5 = t1321;
+        let pivot_den_5 = t1316;
+        xdot[0] = t1622;
+        xdot[1] = t1627;
+        xdot[2] = t1633;
+        xdot[3] = t1636;
+        xdot[4] = t1644;
+        xdot[5] = t1641;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t1549;
+        wdot[1] = t1551;
+        wdot[2] = t1556;
+        wdot[3] = t1508;
+        wdot[4] = t1514;
+        wdot[5] = t1520;
+        wdot[6] = t1616;
+        wdot[7] = t1602;
+        wdot[8] = t1588;
+        wdot[9] = t1574;
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
+            return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
+                roll: x[3],
+            });
+        }
+        if (pivot_6 > 0.0) & (pivot_7 > 0.0) & (pivot_8 > 0.0) & (pivot_9 > 0.0)
+            & (pivot_0 > 0.0) & (pivot_1 > 0.0) & (pivot_2 > 0.0) & (pivot_3 > 0.0)
+            & (pivot_4 > 0.0) & (pivot_5 > 0.0)
+        {
+            return Ok(());
+        }
+        Self::singular_mass([
+            (6, pivot_6, pivot_den_6),
+            (7, pivot_7, pivot_den_7),
+            (8, pivot_8, pivot_den_8),
+            (9, pivot_9, pivot_den_9),
+            (0, pivot_0, pivot_den_0),
+            (1, pivot_1, pivot_den_1),
+            (2, pivot_2, pivot_den_2),
+            (3, pivot_3, pivot_den_3),
+            (4, pivot_4, pivot_den_4),
+            (5, pivot_5, pivot_den_5),
+        ])
     }
     /// [`Self::derivatives_array`] for the crate's own target only,
     /// whatever the processor offers (the reference of the tests that hold
@@ -111,510 +1192,1063 @@ impl Swing4 {
         xdot: &mut [f64; 10],
         wdot: &mut [f64; 10],
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
-    }
-    /// The body of both copies, inlined into each so that each is compiled
-    /// for its own instruction set.
-    #[inline(always)]
-    fn derivatives_body(
-        &self,
-        x: &[f64; 10],
-        w: &[f64; 10],
-        loads: &[::rover_dynamics::plant::WheelLoad; 4],
-        xdot: &mut [f64; 10],
-        wdot: &mut [f64; 10],
-    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                [$a, $b, $c, $d]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                [$a; 4]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] + q[0], p[1] +
+                q[1], p[2] + q[2], p[3] + q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] * q[0], p[1] *
+                q[1], p[2] * q[2], p[3] * q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] / q[0], p[1] /
+                q[1], p[2] / q[2], p[3] / q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                $a
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r : [f64; 4] = $a; (r[0] + r[2]) + (r[1] + r[3]) }
+            };
+        }
         let phi = x[3];
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let y1 = x[6];
-        let t1 = y1 + 0.30019663134302466;
-        let t2 = t1 * 0.002464233750367055;
-        let t3 = t2 + 0.03184261207074479;
-        let t5 = t1 * t3 - 0.029570805004404663;
-        let t4 = t2 + t3;
-        let t6 = t5 + t1 * t4;
-        let t7 = t1 * t5 - 0.19105567242446875;
-        let t8 = t7 + t1 * t6;
-        let t10 = t1 * 0.007960653017686198;
-        let t11 = 0.00985693500146822 - t10;
-        let t13 = t1 * t11 + 0.09552783621223437;
-        let t12 = t11 - t10;
-        let t14 = t13 + t1 * t12;
-        let t15 = t1 * t13 - 0.059141610008809326;
-        let t16 = t15 + t1 * t14;
-        let t76 = 0.6 * (t8 * t8 + t16 * t16);
-        let y2 = x[7];
-        let t18 = y2 + 0.30019663134302466;
-        let t19 = 0.002464233750367055 * t18;
-        let t20 = 0.03184261207074479 + t19;
-        let t22 = t18 * t20 - 0.029570805004404663;
-        let t21 = t19 + t20;
-        let t23 = t22 + t18 * t21;
-        let t24 = t18 * t22 - 0.19105567242446875;
-        let t25 = t24 + t18 * t23;
-        let t27 = 0.007960653017686198 * t18;
-        let t28 = 0.00985693500146822 - t27;
-        let t30 = 0.09552783621223437 + t18 * t28;
-        let t29 = t28 - t27;
-        let t31 = t30 + t18 * t29;
-        let t32 = t18 * t30 - 0.059141610008809326;
-        let t33 = t32 + t18 * t31;
-        let t84 = 0.6 * (t25 * t25 + t33 * t33);
-        let y3 = x[8];
-        let t35 = y3 - 0.30019663134302466;
-        let t36 = 0.002464233750367055 * t35;
-        let t37 = 0.03184261207074479 - t36;
-        let t39 = 0.029570805004404663 + t35 * t37;
-        let t38 = t37 - t36;
-        let t40 = t39 + t35 * t38;
-        let t41 = t35 * t39 - 0.19105567242446875;
-        let t42 = t41 + t35 * t40;
-        let t44 = 0.007960653017686198 * t35;
-        let t45 = -0.00985693500146822 - t44;
-        let t47 = 0.09552783621223437 + t35 * t45;
-        let t46 = t45 - t44;
-        let t48 = t47 + t35 * t46;
-        let t49 = 0.059141610008809326 + t35 * t47;
-        let t50 = t49 + t35 * t48;
-        let t92 = 0.6 * (t42 * t42 + t50 * t50);
-        let y4 = x[9];
-        let t52 = y4 - 0.30019663134302466;
-        let t53 = 0.002464233750367055 * t52;
-        let t54 = 0.03184261207074479 - t53;
-        let t56 = 0.029570805004404663 + t52 * t54;
-        let t55 = t54 - t53;
-        let t57 = t56 + t52 * t55;
-        let t58 = t52 * t56 - 0.19105567242446875;
-        let t59 = t58 + t52 * t57;
-        let t61 = 0.007960653017686198 * t52;
-        let t62 = -0.00985693500146822 - t61;
-        let t64 = 0.09552783621223437 + t52 * t62;
-        let t63 = t62 - t61;
-        let t65 = t64 + t52 * t63;
-        let t66 = 0.059141610008809326 + t52 * t64;
-        let t67 = t66 + t52 * t65;
-        let t102 = 0.6 * (t59 * t59 + t67 * t67);
-        let t201 = 1.0 / t76;
-        let t69 = t8 * 0.6;
-        let t202 = t69 * t201;
-        let t207 = 1.0 / t84;
-        let t77 = t25 * 0.6;
-        let t208 = t77 * t207;
-        let t213 = 1.0 / t92;
-        let t85 = t42 * 0.6;
-        let t214 = t85 * t213;
-        let t219 = 1.0 / t102;
-        let t93 = t59 * 0.6;
-        let t220 = t93 * t219;
-        let t227 = 32.400000000000006
-            - (t93 * t220 + (t85 * t214 + (t69 * t202 + t77 * t208)));
-        let t239 = 32.400000000000006 * t227;
-        let t70 = t16 * 0.6;
-        let t203 = t70 * t201;
-        let t78 = t33 * 0.6;
-        let t209 = t78 * t207;
-        let t86 = t50 * 0.6;
-        let t215 = t86 * t213;
-        let t96 = t67 * 0.6;
-        let t221 = t96 * t219;
-        let t229 = 32.400000000000006
-            - (t96 * t221 + (t86 * t215 + (t70 * t203 + t78 * t209)));
-        let t236 = 32.400000000000006 * t229;
-        let t228 = t96 * t220 + (t86 * t214 + (t70 * t202 + t78 * t208));
-        let t237 = 32.400000000000006 * t228;
-        let t240 = t227 * t236 - t228 * t237;
-        let t241 = 1.0 / t240;
-        let t238 = t227 * t229 - t228 * t228;
-        let t17 = t1 * t15 - 0.20105567242446876;
-        let t34 = t18 * t32 - 0.20105567242446876;
-        let t51 = t35 * t49 - 0.20105567242446876;
-        let t68 = t52 * t66 - 0.20105567242446876;
-        let t94 = t68 * 0.6 + (t51 * 0.6 + (t17 * 0.6 + t34 * 0.6));
-        let t245 = t241 * (t94 * t238);
-        let t80 = t33 * 0.12;
-        let t72 = t16 * 0.12;
-        let t88 = t50 * 0.12;
-        let t98 = t67 * 0.12;
-        let t230 = t98 * t220 + (t80 * t208 - t72 * t202 - t88 * t214);
-        let t233 = t98 * t221 + (t80 * t209 - t72 * t203 - t88 * t215);
-        let t242 = t241 * (t230 * t236 + t233 * t237);
-        let t204 = t72 * t201;
-        let t210 = t80 * t207;
-        let t216 = t88 * t213;
-        let t222 = t98 * t219;
-        let t247 = t241 * (t230 * t237 + t233 * t239);
-        let t71 = t17 * t17;
-        let t79 = t34 * t34;
-        let t87 = t51 * t51;
-        let t97 = t68 * t68;
-        let t250 = 0.796
-            + (0.6 * (t97 + (t87 + (t71 + t79)))
-                - (t233 * t247
-                    + (t94 * t245
-                        + (t230 * t242
-                            + (t98 * t222
-                                + (t88 * t216 + (t72 * t204 + t80 * t210)))))));
-        let t9 = 0.23914161000880932 + t1 * t7;
-        let t74 = 0.6 * (t8 * t17 - t9 * t16);
-        let t26 = 0.23914161000880932 + t18 * t24;
-        let t82 = 0.6 * (t25 * t34 - t26 * t33);
-        let t43 = t35 * t41 - 0.2791416100088093;
-        let t90 = 0.6 * (t42 * t51 - t43 * t50);
-        let t60 = t52 * t58 - 0.2791416100088093;
-        let t100 = 0.6 * (t59 * t68 - t60 * t67);
-        let t231 = t94 - t74 * t202 - t82 * t208 - t90 * t214 - t100 * t220;
-        let t95 = t60 * 0.6 + (t43 * 0.6 + (t9 * 0.6 + t26 * 0.6));
-        let t234 = t100 * t221 + (t90 * t215 + (t82 * t209 + (t95 + t74 * t203)));
-        let t248 = t241 * (t231 * t237 - t234 * t239);
-        let t243 = t241 * (t231 * t236 - t234 * t237);
-        let t205 = t74 * t201;
-        let t211 = t82 * t207;
-        let t217 = t90 * t213;
-        let t223 = t100 * t219;
-        let t73 = t9 * t9;
-        let t81 = t26 * t26;
-        let t89 = t43 * t43;
-        let t99 = t60 * t60;
-        let t253 = 0.9
-            + (0.6 * (t99 + (t97 + (t89 + (t87 + (t81 + (t79 + (t71 + t73)))))))
-                - (t231 * t243 + (t100 * t223 + (t90 * t217 + (t74 * t205 + t82 * t211)))
-                    - t234 * t248));
-        let t251 = 0.12 * (t60 + (t26 - t9 - t43))
-            + (t100 * t222 + (t82 * t210 - t74 * t204 - t90 * t216) - t230 * t243
-                - t233 * t248);
-        let t260 = t250 * t253 - t251 * t251;
-        let t246 = t241 * (t95 * t238);
-        let t75 = t8 * 0.12;
-        let t83 = t25 * 0.12;
-        let t91 = t42 * 0.12;
-        let t101 = t59 * 0.12;
-        let t232 = t91 * t214 + (t75 * t202 - t83 * t208) - t101 * t220;
-        let t235 = t91 * t215 + (t75 * t203 - t83 * t209) - t101 * t221;
-        let t244 = t241 * (t232 * t236 + t235 * t237);
-        let t206 = t75 * t201;
-        let t212 = t83 * t207;
-        let t218 = t91 * t213;
-        let t224 = t101 * t219;
-        let t249 = t241 * (t232 * t237 + t235 * t239);
-        let t255 = 1.596
-            + (0.6 * (t99 + (t89 + (t73 + t81)))
-                - (t235 * t249
-                    + (t95 * t246
-                        + (t232 * t244
-                            + (t101 * t224
-                                + (t91 * t218 + (t75 * t206 + t83 * t212)))))));
-        let t254 = 0.12 * (t68 + (t34 - t17 - t51))
-            + (t234 * t249
-                + (t91 * t217 + (t75 * t205 - t83 * t211) - t101 * t223 - t231 * t244));
-        let t256 = t253 * t255 - t254 * t254;
-        let t252 = t94 * t246
-            + (t101 * t222 + (t91 * t216 + (t75 * t204 + t83 * t210)) - t230 * t244)
-            - t233 * t249 - 0.6 * (t60 * t68 + (t43 * t51 + (t9 * t17 + t26 * t34)));
-        let t257 = t252 * t254 - t251 * t255;
-        let t258 = t251 * t254 - t252 * t253;
-        let t261 = t252 * t258 + (t250 * t256 + t251 * t257);
-        let theta = x[4];
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let psi = x[5];
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t170 = s_phi * c_theta;
-        let t173 = s_theta * c_psi + s_psi * t170;
+        let (t340, t341) = ::libm::sincos(phi);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v13 = lanes_add!(
+            v9, lanes!(0.30019663134302466, 0.30019663134302466, - 0.30019663134302466, -
+            0.30019663134302466)
+        );
+        let v35 = lanes_mul!(
+            v13, lanes!(0.002464233750367055, 0.002464233750367055, 0.002464233750367055,
+            0.002464233750367055)
+        );
+        let l35 = lanes_array!(v35);
+        let t167 = -l35[2];
+        let t212 = -l35[3];
+        let v43 = lanes_add!(
+            lanes_mul!(v35, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(0.03184261207074479,
+            0.03184261207074479, 0.03184261207074479, 0.03184261207074479)
+        );
+        let v47 = lanes_mul!(v13, v43);
+        let v49 = lanes_add!(
+            v47, lanes!(- 0.029570805004404663, - 0.029570805004404663,
+            0.029570805004404663, 0.029570805004404663)
+        );
+        let v59 = lanes_mul!(v13, v49);
+        let v61 = lanes_add!(
+            v59, lanes!(- 0.19105567242446875, - 0.19105567242446875, -
+            0.19105567242446875, - 0.19105567242446875)
+        );
+        let v45 = lanes_add!(lanes_mul!(v35, lanes!(1.0, 1.0, - 1.0, - 1.0)), v43);
+        let v51 = lanes_mul!(v13, v45);
+        let v57 = lanes_add!(v49, v51);
+        let v65 = lanes_mul!(v13, v57);
+        let v69 = lanes_add!(v61, v65);
+        let l69 = lanes_array!(v69);
+        let v81 = lanes_mul!(v69, v69);
+        let v37 = lanes_mul!(
+            v13, lanes!(0.007960653017686198, 0.007960653017686198, 0.007960653017686198,
+            0.007960653017686198)
+        );
+        let l37 = lanes_array!(v37);
+        let t96 = -l37[0];
+        let t144 = -l37[1];
+        let t189 = -l37[2];
+        let t233 = -l37[3];
+        let v44 = lanes_add!(
+            lanes_mul!(v37, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)),
+            lanes!(0.00985693500146822, 0.00985693500146822, - 0.00985693500146822, -
+            0.00985693500146822)
+        );
+        let v48 = lanes_mul!(v13, v44);
+        let v50 = lanes_add!(
+            v48, lanes!(0.09552783621223437, 0.09552783621223437, 0.09552783621223437,
+            0.09552783621223437)
+        );
+        let v60 = lanes_mul!(v13, v50);
+        let v62 = lanes_add!(
+            v60, lanes!(- 0.059141610008809326, - 0.059141610008809326,
+            0.059141610008809326, 0.059141610008809326)
+        );
+        let v46 = lanes_add!(lanes_mul!(v37, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v44);
+        let v52 = lanes_mul!(v13, v46);
+        let v58 = lanes_add!(v50, v52);
+        let v66 = lanes_mul!(v13, v58);
+        let v70 = lanes_add!(v62, v66);
+        let l70 = lanes_array!(v70);
+        let v84 = lanes_mul!(v70, v70);
+        let v87 = lanes_add!(v81, v84);
+        let v103 = lanes_mul!(v87, lanes!(0.6, 0.6, 0.6, 0.6));
+        let l103 = lanes_array!(v103);
+        let v82 = lanes_mul!(v69, lanes!(0.6, 0.6, 0.6, 0.6));
+        let v106 = lanes_div!(lanes!(1.0, 1.0, 1.0, 1.0), v103);
+        let l106 = lanes_array!(v106);
+        let v107 = lanes_mul!(v82, v106);
+        let l107 = lanes_array!(v107);
+        let v115 = lanes_mul!(v82, v107);
+        let t1037 = lanes_sum!(lanes_mul!(v115, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 32.400000000000006;
+        let t1143 = 32.400000000000006 * t1037;
+        let v85 = lanes_mul!(v70, lanes!(0.6, 0.6, 0.6, 0.6));
+        let v109 = lanes_mul!(v85, v106);
+        let l109 = lanes_array!(v109);
+        let v122 = lanes_mul!(v85, v109);
+        let t1054 = lanes_sum!(lanes_mul!(v122, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 32.400000000000006;
+        let t1136 = 32.400000000000006 * t1054;
+        let t1144 = t1037 * t1136;
+        let v121 = lanes_mul!(v85, v107);
+        let t1044 = lanes_sum!(v121);
+        let t1137 = 32.400000000000006 * t1044;
+        let t1145 = t1044 * t1137;
+        let t1146 = -t1145;
+        let t1147 = t1144 - t1145;
+        let v74 = lanes_mul!(v13, v62);
+        let v76 = lanes_add!(
+            v74, lanes!(- 0.20105567242446876, - 0.20105567242446876, -
+            0.20105567242446876, - 0.20105567242446876)
+        );
+        let l76 = lanes_array!(v76);
+        let v95 = lanes_mul!(v76, v76);
+        let t1191 = lanes_sum!(v95);
+        let t1192 = 0.6 * t1191;
+        let v86 = lanes_mul!(v70, lanes!(0.12, 0.12, 0.12, 0.12));
+        let v124 = lanes_mul!(v86, v109);
+        let t1093 = lanes_sum!(lanes_mul!(v124, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1148 = 1.0 / t1147;
+        let v123 = lanes_mul!(v86, v107);
+        let t1063 = lanes_sum!(lanes_mul!(v123, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1170 = t1063 * t1137;
+        let t1172 = t1093 * t1143;
+        let t1173 = t1170 + t1172;
+        let t1174 = t1148 * t1173;
+        let t1188 = t1093 * t1174;
+        let v98 = lanes_mul!(v76, lanes!(0.6, 0.6, 0.6, 0.6));
+        let t319 = lanes_sum!(v98);
+        let t1139 = t1037 * t1054;
+        let t1140 = t1044 * t1044;
+        let t1141 = -t1140;
+        let t1142 = t1139 - t1140;
+        let t1164 = t319 * t1142;
+        let t1166 = t1148 * t1164;
+        let t1187 = t319 * t1166;
+        let t1149 = t1063 * t1136;
+        let t1150 = t1093 * t1137;
+        let t1152 = t1149 + t1150;
+        let t1153 = t1148 * t1152;
+        let t1186 = t1063 * t1153;
+        let v110 = lanes_mul!(v86, v106);
+        let l110 = lanes_array!(v110);
+        let v125 = lanes_mul!(v86, v110);
+        let t1202 = lanes_sum!(lanes_mul!(v125, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 0.796 + t1192 - t1188 - t1187 - t1186;
+        let v73 = lanes_mul!(v13, v61);
+        let v75 = lanes_add!(
+            v73, lanes!(0.23914161000880932, 0.23914161000880932, - 0.2791416100088093, -
+            0.2791416100088093)
+        );
+        let l75 = lanes_array!(v75);
+        let v90 = lanes_mul!(v75, v75);
+        let t1248 = lanes_sum!(lanes_add!(v90, v95));
+        let t1249 = 0.6 * t1248;
+        let v88 = lanes_mul!(v69, v76);
+        let v89 = lanes_mul!(v70, v75);
+        let l89 = lanes_array!(v89);
+        let t270 = -l89[0];
+        let t288 = -l89[1];
+        let t306 = -l89[2];
+        let t332 = -l89[3];
+        let v101 = lanes_add!(v88, lanes_mul!(v89, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)));
+        let v105 = lanes_mul!(v101, lanes!(0.6, 0.6, 0.6, 0.6));
+        let v127 = lanes_mul!(v105, v109);
+        let v94 = lanes_mul!(v75, lanes!(0.6, 0.6, 0.6, 0.6));
+        let t324 = lanes_sum!(v94);
+        let t1101 = lanes_sum!(v127) + t324;
+        let v126 = lanes_mul!(v105, v107);
+        let t1075 = lanes_sum!(lanes_mul!(v126, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + t319;
+        let t1175 = t1075 * t1137;
+        let t1177 = t1101 * t1143;
+        let t1178 = -t1177;
+        let t1179 = t1175 - t1177;
+        let t1180 = t1148 * t1179;
+        let t1240 = t1101 * t1180;
+        let t1154 = t1075 * t1136;
+        let t1155 = t1101 * t1137;
+        let t1156 = -t1155;
+        let t1157 = t1154 - t1155;
+        let t1158 = t1148 * t1157;
+        let t1239 = t1075 * t1158;
+        let v113 = lanes_mul!(v105, v106);
+        let l113 = lanes_array!(v113);
+        let v129 = lanes_mul!(v105, v113);
+        let t1257 = lanes_sum!(lanes_mul!(v129, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 0.9 + t1249 + t1240 - t1239;
+        let t1313 = t1202 * t1257;
+        let t1209 = lanes_sum!(lanes_mul!(v75, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1210 = 0.12 * t1209;
+        let v128 = lanes_mul!(v105, v110);
+        let t1203 = t1063 * t1158;
+        let t1204 = t1093 * t1180;
+        let t1220 = lanes_sum!(lanes_mul!(v128, lanes!(- 1.0, 1.0, - 1.0, 1.0))) + t1210
+            - t1203 - t1204;
+        let t1314 = t1220 * t1220;
+        let t1315 = -t1314;
+        let t1316 = t1313 - t1314;
+        let t1168 = t324 * t1142;
+        let t1169 = t1148 * t1168;
+        let t1222 = t319 * t1169;
+        let v83 = lanes_mul!(v69, lanes!(0.12, 0.12, 0.12, 0.12));
+        let v119 = lanes_mul!(v83, v110);
+        let v116 = lanes_mul!(v83, v107);
+        let t1084 = lanes_sum!(lanes_mul!(v116, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t1159 = t1084 * t1136;
+        let v118 = lanes_mul!(v83, v109);
+        let t1111 = lanes_sum!(lanes_mul!(v118, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t1160 = t1111 * t1137;
+        let t1162 = t1159 + t1160;
+        let t1163 = t1148 * t1162;
+        let t1221 = t1063 * t1163;
+        let t1181 = t1084 * t1137;
+        let t1183 = t1111 * t1143;
+        let t1184 = t1181 + t1183;
+        let t1185 = t1148 * t1184;
+        let t1224 = t1093 * t1185;
+        let v91 = lanes_mul!(v75, v76);
+        let t1227 = lanes_sum!(v91);
+        let t1228 = 0.6 * t1227;
+        let t1238 = lanes_sum!(v119) + t1222 - t1221 - t1224 - t1228;
+        let t1265 = lanes_sum!(lanes_mul!(v76, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t1266 = 0.12 * t1265;
+        let t1259 = t1101 * t1185;
+        let v120 = lanes_mul!(v83, v113);
+        let t1258 = t1075 * t1163;
+        let t1275 = lanes_sum!(lanes_mul!(v120, lanes!(1.0, - 1.0, 1.0, - 1.0))) + t1266
+            + t1259 - t1258;
+        let t1301 = t1220 * t1275;
+        let t1302 = t1238 * t1257;
+        let t1303 = -t1302;
+        let t1304 = t1301 - t1302;
+        let t1319 = t1238 * t1304;
+        let t1281 = lanes_sum!(v90);
+        let t1282 = 0.6 * t1281;
+        let t1278 = t1111 * t1185;
+        let t1277 = t324 * t1169;
+        let t1276 = t1084 * t1163;
+        let v108 = lanes_mul!(v83, v106);
+        let l108 = lanes_array!(v108);
+        let v117 = lanes_mul!(v83, v108);
+        let t1292 = lanes_sum!(lanes_mul!(v117, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
+            + 1.596 + t1282 - t1278 - t1277 - t1276;
+        let t1293 = t1257 * t1292;
+        let t1294 = t1275 * t1275;
+        let t1295 = -t1294;
+        let t1296 = t1293 - t1294;
+        let t1317 = t1202 * t1296;
+        let t1297 = t1238 * t1275;
+        let t1298 = t1220 * t1292;
+        let t1299 = -t1298;
+        let t1300 = t1297 - t1298;
+        let t1318 = t1220 * t1300;
+        let t1320 = t1317 + t1318;
+        let t1321 = t1319 + t1320;
         let vz = w[2];
-        let t169 = s_phi * s_theta;
-        let t171 = c_theta * c_psi - s_psi * t169;
+        let theta = x[4];
+        let (t342, t343) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t344, t345) = ::libm::sincos(psi);
+        let t673 = t342 * t345;
+        let t667 = t340 * t343;
+        let t674 = t344 * t667;
+        let t675 = t673 + t674;
+        let t1619 = vz * t675;
         let vx = w[0];
-        let t172 = c_phi * s_psi;
+        let t668 = t343 * t345;
+        let t666 = t340 * t342;
+        let t669 = t344 * t666;
+        let t670 = -t669;
+        let t671 = t668 - t669;
+        let t1617 = vx * t671;
         let vy = w[1];
-        let t176 = s_theta * s_psi - c_psi * t170;
-        let t174 = c_theta * s_psi + c_psi * t169;
-        let t175 = c_phi * c_psi;
-        let t140 = c_phi * s_theta;
-        let t141 = c_phi * c_theta;
+        let t672 = t341 * t344;
+        let t1618 = vy * t672;
+        let t1620 = -t1618;
+        let t1621 = t1617 - t1618;
+        let t1622 = t1619 + t1621;
+        let t680 = t342 * t344;
+        let t681 = t345 * t667;
+        let t682 = -t681;
+        let t683 = t680 - t681;
+        let t1625 = vz * t683;
+        let t676 = t343 * t344;
+        let t677 = t345 * t666;
+        let t678 = t676 + t677;
+        let t1623 = vx * t678;
+        let t679 = t341 * t345;
+        let t1624 = vy * t679;
+        let t1626 = t1623 + t1624;
+        let t1627 = t1625 + t1626;
+        let t538 = t341 * t343;
+        let t1630 = vz * t538;
+        let t1629 = vy * t340;
+        let t537 = t341 * t342;
+        let t1628 = vx * t537;
+        let t1631 = -t1628;
+        let t1632 = t1629 - t1628;
+        let t1633 = t1630 + t1632;
         let omega_x = w[3];
+        let t1634 = omega_x * t343;
         let omega_z = w[5];
-        let t278 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let t1635 = omega_z * t342;
+        let t1636 = t1634 + t1635;
         let omega_y = w[4];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let t262 = 1.0 / t261;
-        let t106 = omega_z * 0.2;
-        let t113 = vx - t106;
-        let t114 = 2.0 * (yd_y1 * t8) + (omega_y * t17 + t113);
-        let t107 = omega_x * 0.2;
-        let t115 = vz + t107;
-        let t116 = 2.0 * (yd_y1 * t16) + (t115 - omega_y * t9);
-        let t118 = 0.6 * (omega_z * t114 - omega_x * t116);
-        let t121 = vx + t106;
-        let t122 = 2.0 * (yd_y2 * t25) + (omega_y * t34 + t121);
-        let t123 = vz - t107;
-        let t124 = 2.0 * (yd_y2 * t33) + (t123 - omega_y * t26);
-        let t126 = 0.6 * (omega_z * t122 - omega_x * t124);
-        let t129 = 2.0 * (yd_y3 * t42) + (t113 + omega_y * t51);
-        let t130 = 2.0 * (yd_y3 * t50) + (t115 - omega_y * t43);
-        let t132 = 0.6 * (omega_z * t129 - omega_x * t130);
-        let t135 = 2.0 * (yd_y4 * t59) + (t121 + omega_y * t68);
-        let t136 = 2.0 * (yd_y4 * t67) + (t123 - omega_y * t60);
-        let t138 = 0.6 * (omega_z * t135 - omega_x * t136);
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_z = loads[0].force[2];
-        let t178 = f_front_left_z * s_phi
-            + (f_front_left_y * t175 - f_front_left_x * t172);
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_z = loads[1].force[2];
-        let t183 = f_front_right_z * s_phi
-            + (f_front_right_y * t175 - f_front_right_x * t172);
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_z = loads[2].force[2];
-        let t188 = f_rear_left_z * s_phi + (f_rear_left_y * t175 - f_rear_left_x * t172);
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_z = loads[3].force[2];
-        let t193 = f_rear_right_z * s_phi
-            + (f_rear_right_y * t175 - f_rear_right_x * t172);
-        let t143 = s_phi * 0.972;
-        let t195 = 30.0 * (vz * omega_x - vx * omega_z)
-            + (t193 + (t188 + (t183 + (t178 - (t138 + (t132 + (t118 + t126))))))
-                - t143 * 4.0 - s_phi * 48.6);
-        let t109 = yd_y1 * yd_y1;
-        let t108 = vy + omega_z * t9 - omega_x * t17;
-        let t119 = 0.6
-            * ((t1 * (2.0 * t12 - t1 * 0.015921306035372396) + 2.0 * t14) * t109
-                + omega_x * t108 - omega_y * t114);
-        let t144 = t141 * 0.972;
-        let t179 = f_front_left_z * t141
-            + (f_front_left_x * t173 + f_front_left_y * t176);
-        let t117 = 0.6
-            * ((t1 * (t1 * 0.00492846750073411 + 2.0 * t4) + 2.0 * t6) * t109
-                + omega_y * t116 - omega_z * t108);
-        let t142 = t140 * 0.972;
-        let t177 = f_front_left_x * t171 + f_front_left_y * t174 - f_front_left_z * t140;
-        let t145 = f64::max(y1 + 0.03490658503988659, 0.0);
-        let t147 = f64::min(10000.0 * t145, 1.0);
-        let t148 = f64::min(-(yd_y1 * (6.92820323027551 * t147) + 500.0 * t145), 0.0);
-        let t146 = f64::max(-(y1 + 1.0471975511965976), 0.0);
-        let t149 = f64::min(10000.0 * t146, 1.0);
-        let t150 = f64::max(500.0 * t146 - yd_y1 * (6.92820323027551 * t149), 0.0);
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_left_z = loads[0].moment[2];
-        let t180 = mu_front_left_z * s_phi
-            + (mu_front_left_y * t175 - mu_front_left_x * t172);
-        let y0_y1 = self.neutral[0];
-        let t181 = t16 * (t179 - (t119 + t144))
-            + (t8 * (t177 + (t142 - t117)) + (t180 + (t148 + t150))) + 5.0 * (y0_y1 - y1)
-            - yd_y1 * 3.5;
-        let t187 = f_rear_left_x * t171 + f_rear_left_y * t174 - f_rear_left_z * t140;
-        let t192 = f_rear_right_x * t171 + f_rear_right_y * t174 - f_rear_right_z * t140;
-        let t110 = yd_y2 * yd_y2;
-        let t120 = vy + omega_z * t26 - omega_x * t34;
-        let t127 = 0.6
-            * ((t18 * (2.0 * t29 - 0.015921306035372396 * t18) + 2.0 * t31) * t110
-                + omega_x * t120 - omega_y * t122);
-        let t184 = f_front_right_z * t141
-            + (f_front_right_x * t173 + f_front_right_y * t176);
-        let t125 = 0.6
-            * ((t18 * (0.00492846750073411 * t18 + 2.0 * t21) + 2.0 * t23) * t110
-                + omega_y * t124 - omega_z * t120);
-        let t182 = f_front_right_x * t171 + f_front_right_y * t174
-            - f_front_right_z * t140;
-        let t151 = f64::max(y2 + 0.03490658503988659, 0.0);
-        let t153 = f64::min(10000.0 * t151, 1.0);
-        let t154 = f64::min(-(yd_y2 * (6.92820323027551 * t153) + 500.0 * t151), 0.0);
-        let t152 = f64::max(-(y2 + 1.0471975511965976), 0.0);
-        let t155 = f64::min(10000.0 * t152, 1.0);
-        let t156 = f64::max(500.0 * t152 - yd_y2 * (6.92820323027551 * t155), 0.0);
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_front_right_z = loads[1].moment[2];
-        let t185 = mu_front_right_z * s_phi
-            + (mu_front_right_y * t175 - mu_front_right_x * t172);
-        let y0_y2 = self.neutral[1];
-        let t186 = t33 * (t184 - (t127 + t144))
-            + (t25 * (t182 + (t142 - t125)) + (t185 + (t154 + t156)))
-            + 5.0 * (y0_y2 - y2) - yd_y2 * 3.5;
-        let t111 = yd_y3 * yd_y3;
-        let t128 = vy + omega_z * t43 - omega_x * t51;
-        let t133 = 0.6
-            * ((t35 * (2.0 * t46 - 0.015921306035372396 * t35) + 2.0 * t48) * t111
-                + omega_x * t128 - omega_y * t129);
-        let t189 = f_rear_left_z * t141 + (f_rear_left_x * t173 + f_rear_left_y * t176);
-        let t131 = 0.6
-            * ((t35 * (2.0 * t38 - 0.00492846750073411 * t35) + 2.0 * t40) * t111
-                + omega_y * t130 - omega_z * t128);
-        let t157 = f64::max(y3 - 1.0471975511965976, 0.0);
-        let t159 = f64::min(10000.0 * t157, 1.0);
-        let t160 = f64::min(-(yd_y3 * (6.92820323027551 * t159) + 500.0 * t157), 0.0);
-        let t158 = f64::max(0.03490658503988659 - y3, 0.0);
-        let t161 = f64::min(10000.0 * t158, 1.0);
-        let t162 = f64::max(500.0 * t158 - yd_y3 * (6.92820323027551 * t161), 0.0);
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_left_z = loads[2].moment[2];
-        let t190 = mu_rear_left_z * s_phi
-            + (mu_rear_left_y * t175 - mu_rear_left_x * t172);
-        let y0_y3 = self.neutral[2];
-        let t191 = t50 * (t189 - (t133 + t144))
-            + (t42 * (t187 + (t142 - t131)) + (t190 + (t160 + t162)))
-            + 5.0 * (y0_y3 - y3) - yd_y3 * 3.5;
-        let t112 = yd_y4 * yd_y4;
-        let t134 = vy + omega_z * t60 - omega_x * t68;
-        let t139 = 0.6
-            * ((t52 * (2.0 * t63 - 0.015921306035372396 * t52) + 2.0 * t65) * t112
-                + omega_x * t134 - omega_y * t135);
-        let t194 = f_rear_right_z * t141
-            + (f_rear_right_x * t173 + f_rear_right_y * t176);
-        let t137 = 0.6
-            * ((t52 * (2.0 * t55 - 0.00492846750073411 * t52) + 2.0 * t57) * t112
-                + omega_y * t136 - omega_z * t134);
-        let t163 = f64::max(y4 - 1.0471975511965976, 0.0);
-        let t165 = f64::min(10000.0 * t163, 1.0);
-        let t166 = f64::min(-(yd_y4 * (6.92820323027551 * t165) + 500.0 * t163), 0.0);
-        let t164 = f64::max(0.03490658503988659 - y4, 0.0);
-        let t167 = f64::min(10000.0 * t164, 1.0);
-        let t168 = f64::max(500.0 * t164 - yd_y4 * (6.92820323027551 * t167), 0.0);
-        let mu_rear_right_y = loads[3].moment[1];
-        let mu_rear_right_x = loads[3].moment[0];
-        let mu_rear_right_z = loads[3].moment[2];
-        let t196 = mu_rear_right_z * s_phi
-            + (mu_rear_right_y * t175 - mu_rear_right_x * t172);
-        let y0_y4 = self.neutral[3];
-        let t197 = t67 * (t194 - (t139 + t144))
-            + (t59 * (t192 + (t142 - t137)) + (t196 + (t166 + t168)))
-            + 5.0 * (y0_y4 - y4) - yd_y4 * 3.5;
-        let t225 = 30.0 * (vy * omega_z - vz * omega_y)
-            + (t140 * 48.6
-                + (t142 * 4.0
-                    + (t182 + (t177 - (t137 + (t131 + (t117 + t125))))
-                        + (t187 + t192 - t181 * t202 - t186 * t208 - t191 * t214
-                            - t197 * t220))));
-        let t226 = 30.0 * (vx * omega_y - vy * omega_x)
-            + (t184 + (t179 - (t139 + (t133 + (t119 + t127))))
-                + (t189 + t194 - t181 * t203 - t186 * t209 - t191 * t215 - t197 * t221)
-                - t144 * 4.0 - t141 * 48.6);
-        let t104 = omega_y * 0.9;
-        let t105 = omega_z * 1.5;
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let t198 = tau_front_right_x
-            + (tau_front_left_x + (tau_rear_left_x + tau_rear_right_x));
-        let t263 = t198
-            + (mu_rear_right_x
-                + (mu_rear_left_x + (mu_front_left_x + mu_front_right_x)));
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let t199 = tau_front_right_y
-            + (tau_front_left_y + (tau_rear_left_y + tau_rear_right_y));
-        let t264 = t199
-            + (mu_rear_right_y
-                + (mu_rear_left_y + (mu_front_left_y + mu_front_right_y)));
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let t200 = tau_front_right_z
-            + (tau_front_left_z + (tau_rear_left_z + tau_rear_right_z));
-        let t265 = t200
-            + (mu_rear_right_z
-                + (mu_rear_left_z + (mu_front_left_z + mu_front_right_z)));
-        let t266 = t68 + (t51 + (t17 + t34));
-        let t267 = 0.2 * (t189 + (t179 + (t139 + (t127 - t119 - t133)) - t184) - t194)
-            + (t68 * (t138 - t193)
-                + (t51 * (t132 - t188)
-                    + (t34 * (t126 - t183)
-                        + (t17 * (t118 - t178)
-                            + (t143 * t266
-                                + (t171 * t263 + t174 * t264 - t140 * t265)))))
-                + (t186 * t210 + (omega_z * t104 - omega_y * t105 - t181 * t204)
-                    + (t195 * t245 + (t197 * t222 - t191 * t216 - t225 * t242)
-                        - t226 * t247)));
-        let t103 = omega_x * 0.7;
-        let t268 = t60 + (t43 + (t9 + t26));
-        let t269 = t144 * t268 + (t142 * t266 + (t196 + (t190 + (t180 + t185))))
-            + (t43 * (t133 - t189)
-                + (t51 * (t187 - t131)
-                    + (t26 * (t127 - t184)
-                        + (t34 * (t182 - t125)
-                            + (t17 * (t177 - t117) + t9 * (t119 - t179))))))
-            + (t175 * t199
-                + (omega_x * t105
-                    + (t68 * (t192 - t137) + t60 * (t139 - t194) - omega_z * t103)
-                    - t172 * t198)
-                + (s_phi * t200 - t181 * t205 - t186 * t211 - t191 * t217 - t197 * t223
-                    - t225 * t243 - t226 * t248));
-        let t270 = 0.2 * (t192 + (t182 + (t131 + (t117 - t125) - t137 - t177) - t187))
-            + (t60 * (t193 - t138)
-                + (t43 * (t188 - t132)
-                    + (t26 * (t183 - t126)
-                        + (t9 * (t178 - t118)
-                            + (t141 * t265 + (t173 * t263 + t176 * t264)
-                                - t143 * t268))))
-                + (t181 * t206 + (omega_y * t103 - omega_x * t104) - t186 * t212
-                    + (t191 * t218 - t197 * t224 - t225 * t244 - t195 * t246
-                        - t226 * t249)));
-        let t271 = t262 * (t258 * t270 + (t256 * t267 + t257 * t269));
-        let t259 = t251 * t252 - t250 * t254;
-        let t272 = t262
-            * (t259 * t270 + (t257 * t267 + (t250 * t255 - t252 * t252) * t269));
-        let t273 = t262 * (t260 * t270 + (t258 * t267 + t259 * t269));
-        let t274 = t225 - t230 * t271 - t231 * t272 - t232 * t273;
-        let t275 = t234 * t272 + (t226 - t233 * t271) - t235 * t273;
-        let t276 = t241 * (t236 * t274 + t237 * t275);
-        let t277 = t241 * (t237 * t274 + t239 * t275);
-        let cos_roll = c_phi;
-        let pivot_6 = t76;
+        let t1637 = omega_z * t343;
+        let t1638 = omega_x * t342;
+        let t1639 = -t1638;
+        let t1640 = t1637 - t1638;
+        let t1641 = t1640 / t341;
+        let t1642 = t340 * t1641;
+        let t1643 = -t1642;
+        let t1644 = omega_y - t1642;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let t347 = vy * omega_z;
+        let t346 = vz * omega_y;
+        let t981 = -t346;
+        let t982 = t347 - t346;
+        let t983 = 30.0 * t982;
+        let t980 = t537 * 48.6;
+        let t541 = t537 * 0.972;
+        let t963 = t541 * 4.0;
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
+        );
+        let v16 = lanes_mul!(v0, lanes_splat!(t671));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
+        );
+        let v19 = lanes_mul!(v1, lanes_splat!(t678));
+        let v30 = lanes_add!(v16, v19);
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
+        );
+        let v23 = lanes_mul!(v2, lanes_splat!(t537));
+        let l23 = lanes_array!(v23);
+        let t688 = -l23[0];
+        let t742 = -l23[1];
+        let t796 = -l23[2];
+        let t849 = -l23[3];
+        let v40 = lanes_add!(lanes_mul!(v23, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v30);
+        let l40 = lanes_array!(v40);
+        let v36 = lanes_mul!(
+            v13, lanes!(0.00492846750073411, 0.00492846750073411, 0.00492846750073411,
+            0.00492846750073411)
+        );
+        let l36 = lanes_array!(v36);
+        let v53 = lanes_mul!(v45, lanes!(2.0, 2.0, 2.0, 2.0));
+        let t174 = -l36[2];
+        let t219 = -l36[3];
+        let v55 = lanes_add!(lanes_mul!(v36, lanes!(1.0, 1.0, - 1.0, - 1.0)), v53);
+        let v63 = lanes_mul!(v13, v55);
+        let v67 = lanes_mul!(v57, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v71 = lanes_add!(v63, v67);
+        let v28 = lanes_mul!(v11, v11);
+        let v79 = lanes_mul!(v28, v71);
+        let l79 = lanes_array!(v79);
+        let v78 = lanes_mul!(v11, v70);
+        let v100 = lanes_mul!(v78, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l100 = lanes_array!(v100);
+        let t366 = omega_x * 0.2;
+        let t414 = -t366;
+        let t428 = vz - t366;
+        let v92 = lanes_mul!(v75, lanes_splat!(omega_y));
+        let l92 = lanes_array!(v92);
+        let t511 = -l92[3];
+        let t512 = t428 - l92[3];
+        let t513 = l100[3] + t512;
+        let t514 = omega_y * t513;
+        let t520 = l79[3] + t514;
+        let v93 = lanes_mul!(v75, lanes_splat!(omega_z));
+        let v102 = lanes_add!(v93, lanes_splat!(vy));
+        let v96 = lanes_mul!(v76, lanes_splat!(omega_x));
+        let l96 = lanes_array!(v96);
+        let t369 = -l96[0];
+        let t417 = -l96[1];
+        let t460 = -l96[2];
+        let t501 = -l96[3];
+        let v104 = lanes_add!(lanes_mul!(v96, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v102);
+        let v112 = lanes_mul!(v104, lanes_splat!(omega_z));
+        let l112 = lanes_array!(v112);
+        let t521 = -l112[3];
+        let t522 = t520 - l112[3];
+        let t523 = 0.6 * t522;
+        let t384 = vz + t366;
+        let t470 = -l92[2];
+        let t471 = t384 - l92[2];
+        let t472 = l100[2] + t471;
+        let t473 = omega_y * t472;
+        let t479 = l79[2] + t473;
+        let t480 = -l112[2];
+        let t481 = t479 - l112[2];
+        let t482 = 0.6 * t481;
+        let t385 = -l92[0];
+        let t386 = t384 - l92[0];
+        let t387 = l100[0] + t386;
+        let t388 = omega_y * t387;
+        let t394 = l79[0] + t388;
+        let t395 = -l112[0];
+        let t396 = t394 - l112[0];
+        let t397 = 0.6 * t396;
+        let t429 = -l92[1];
+        let t430 = t428 - l92[1];
+        let t431 = l100[1] + t430;
+        let t432 = omega_y * t431;
+        let t438 = l79[1] + t432;
+        let t439 = -l112[1];
+        let t440 = t438 - l112[1];
+        let t441 = 0.6 * t440;
+        let v24 = lanes_mul!(v2, lanes_splat!(t538));
+        let v18 = lanes_mul!(v0, lanes_splat!(t675));
+        let v21 = lanes_mul!(v1, lanes_splat!(t683));
+        let v32 = lanes_add!(v18, v21);
+        let v41 = lanes_add!(v24, v32);
+        let l41 = lanes_array!(v41);
+        let v54 = lanes_mul!(v46, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v38 = lanes_mul!(
+            v13, lanes!(0.015921306035372396, 0.015921306035372396, 0.015921306035372396,
+            0.015921306035372396)
+        );
+        let l38 = lanes_array!(v38);
+        let t106 = -l38[0];
+        let t151 = -l38[1];
+        let t197 = -l38[2];
+        let t240 = -l38[3];
+        let v56 = lanes_add!(lanes_mul!(v38, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v54);
+        let v64 = lanes_mul!(v13, v56);
+        let v68 = lanes_mul!(v58, lanes!(2.0, 2.0, 2.0, 2.0));
+        let v72 = lanes_add!(v64, v68);
+        let v80 = lanes_mul!(v28, v72);
+        let v111 = lanes_mul!(v104, lanes_splat!(omega_x));
+        let v114 = lanes_add!(v80, v111);
+        let l114 = lanes_array!(v114);
+        let v77 = lanes_mul!(v11, v69);
+        let v99 = lanes_mul!(v77, lanes!(2.0, 2.0, 2.0, 2.0));
+        let l99 = lanes_array!(v99);
+        let v97 = lanes_mul!(v76, lanes_splat!(omega_y));
+        let l97 = lanes_array!(v97);
+        let t362 = omega_z * 0.2;
+        let t363 = -t362;
+        let t380 = vx - t362;
+        let t381 = l97[0] + t380;
+        let t382 = l99[0] + t381;
+        let t393 = omega_y * t382;
+        let t402 = -t393;
+        let t403 = l114[0] - t393;
+        let t404 = 0.6 * t403;
+        let t544 = t538 * 0.972;
+        let t723 = t404 + t544;
+        let t724 = -t723;
+        let t725 = l41[0] - t723;
+        let t726 = l70[0] * t725;
+        let t719 = -t397;
+        let t720 = t541 - t397;
+        let t721 = l40[0] + t720;
+        let t722 = l69[0] * t721;
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
+        );
+        let v27 = lanes_mul!(v5, lanes_splat!(t340));
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
+        );
+        let v26 = lanes_mul!(v4, lanes_splat!(t679));
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v25 = lanes_mul!(v3, lanes_splat!(t672));
+        let l25 = lanes_array!(v25);
+        let t713 = -l25[0];
+        let t767 = -l25[1];
+        let t821 = -l25[2];
+        let t893 = -l25[3];
+        let v33 = lanes_add!(lanes_mul!(v25, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v26);
+        let v42 = lanes_add!(v27, v33);
+        let l42 = lanes_array!(v42);
+        let v14 = lanes_add!(
+            v9, lanes!(0.03490658503988659, 0.03490658503988659, - 1.0471975511965976, -
+            1.0471975511965976)
+        );
+        let l14 = lanes_array!(v14);
+        let t580 = f64::max(l14[0], 0.0);
+        let t586 = 10000.0 * t580;
+        let t587 = f64::min(t586, 1.0);
+        let t588 = 6.92820323027551 * t587;
+        let t589 = l11[0] * t588;
+        let t590 = 500.0 * t580;
+        let t591 = t589 + t590;
+        let t592 = -t591;
+        let t593 = f64::min(t592, 0.0);
+        let t626 = -l9[2];
+        let t647 = -l9[3];
+        let v15 = lanes_add!(
+            lanes_mul!(v9, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(1.0471975511965976,
+            1.0471975511965976, 0.03490658503988659, 0.03490658503988659)
+        );
+        let l15 = lanes_array!(v15);
+        let t584 = -l15[0];
+        let t585 = f64::max(t584, 0.0);
+        let t598 = 500.0 * t585;
+        let t594 = 10000.0 * t585;
+        let t595 = f64::min(t594, 1.0);
+        let t596 = 6.92820323027551 * t595;
+        let t597 = l11[0] * t596;
+        let t599 = -t597;
+        let t600 = t598 - t597;
+        let t601 = f64::max(t600, 0.0);
+        let t727 = t593 + t601;
+        let t728 = l42[0] + t727;
+        let t729 = t722 + t728;
+        let t730 = t726 + t729;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t731 = -l9[0];
+        let t785 = -l9[1];
+        let v12 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v34 = lanes_mul!(v12, lanes!(5.0, 5.0, 5.0, 5.0));
+        let l34 = lanes_array!(v34);
+        let t735 = t730 + l34[0];
+        let v29 = lanes_mul!(v11, lanes!(3.5, 3.5, 3.5, 3.5));
+        let l29 = lanes_array!(v29);
+        let t736 = -l29[0];
+        let t737 = t735 - l29[0];
+        let t959 = t737 * l107[0];
+        let t424 = vx + t362;
+        let t425 = l97[1] + t424;
+        let t426 = l99[1] + t425;
+        let t437 = omega_y * t426;
+        let t446 = -t437;
+        let t447 = l114[1] - t437;
+        let t448 = 0.6 * t447;
+        let t777 = t448 + t544;
+        let t778 = -t777;
+        let t779 = l41[1] - t777;
+        let t780 = l70[1] * t779;
+        let t773 = -t441;
+        let t774 = t541 - t441;
+        let t775 = l40[1] + t774;
+        let t776 = l69[1] * t775;
+        let t604 = f64::max(l14[1], 0.0);
+        let t608 = 10000.0 * t604;
+        let t609 = f64::min(t608, 1.0);
+        let t610 = 6.92820323027551 * t609;
+        let t611 = l11[1] * t610;
+        let t612 = 500.0 * t604;
+        let t613 = t611 + t612;
+        let t614 = -t613;
+        let t615 = f64::min(t614, 0.0);
+        let t606 = -l15[1];
+        let t607 = f64::max(t606, 0.0);
+        let t620 = 500.0 * t607;
+        let t616 = 10000.0 * t607;
+        let t617 = f64::min(t616, 1.0);
+        let t618 = 6.92820323027551 * t617;
+        let t619 = l11[1] * t618;
+        let t621 = -t619;
+        let t622 = t620 - t619;
+        let t623 = f64::max(t622, 0.0);
+        let t781 = t615 + t623;
+        let t782 = l42[1] + t781;
+        let t783 = t776 + t782;
+        let t784 = t780 + t783;
+        let t789 = t784 + l34[1];
+        let t790 = -l29[1];
+        let t791 = t789 - l29[1];
+        let t960 = t791 * l107[1];
+        let t467 = t380 + l97[2];
+        let t468 = l99[2] + t467;
+        let t478 = omega_y * t468;
+        let t487 = -t478;
+        let t488 = l114[2] - t478;
+        let t489 = 0.6 * t488;
+        let t831 = t489 + t544;
+        let t832 = -t831;
+        let t833 = l41[2] - t831;
+        let t834 = l70[2] * t833;
+        let t827 = -t482;
+        let t828 = t541 - t482;
+        let t829 = l40[2] + t828;
+        let t830 = l69[2] * t829;
+        let t625 = f64::max(l14[2], 0.0);
+        let t629 = 10000.0 * t625;
+        let t630 = f64::min(t629, 1.0);
+        let t631 = 6.92820323027551 * t630;
+        let t632 = l11[2] * t631;
+        let t633 = 500.0 * t625;
+        let t634 = t632 + t633;
+        let t635 = -t634;
+        let t636 = f64::min(t635, 0.0);
+        let t628 = f64::max(l15[2], 0.0);
+        let t641 = 500.0 * t628;
+        let t637 = 10000.0 * t628;
+        let t638 = f64::min(t637, 1.0);
+        let t639 = 6.92820323027551 * t638;
+        let t640 = l11[2] * t639;
+        let t642 = -t640;
+        let t643 = t641 - t640;
+        let t644 = f64::max(t643, 0.0);
+        let t835 = t636 + t644;
+        let t836 = l42[2] + t835;
+        let t837 = t830 + t836;
+        let t838 = t834 + t837;
+        let t842 = t838 + l34[2];
+        let t843 = -l29[2];
+        let t844 = t842 - l29[2];
+        let t961 = t844 * l107[2];
+        let t508 = t424 + l97[3];
+        let t509 = l99[3] + t508;
+        let t519 = omega_y * t509;
+        let t528 = -t519;
+        let t529 = l114[3] - t519;
+        let t530 = 0.6 * t529;
+        let t903 = t530 + t544;
+        let t904 = -t903;
+        let t905 = l41[3] - t903;
+        let t906 = l70[3] * t905;
+        let t899 = -t523;
+        let t900 = t541 - t523;
+        let t901 = l40[3] + t900;
+        let t902 = l69[3] * t901;
+        let t646 = f64::max(l14[3], 0.0);
+        let t650 = 10000.0 * t646;
+        let t651 = f64::min(t650, 1.0);
+        let t652 = 6.92820323027551 * t651;
+        let t653 = l11[3] * t652;
+        let t654 = 500.0 * t646;
+        let t655 = t653 + t654;
+        let t656 = -t655;
+        let t657 = f64::min(t656, 0.0);
+        let t649 = f64::max(l15[3], 0.0);
+        let t662 = 500.0 * t649;
+        let t658 = 10000.0 * t649;
+        let t659 = f64::min(t658, 1.0);
+        let t660 = 6.92820323027551 * t659;
+        let t661 = l11[3] * t660;
+        let t663 = -t661;
+        let t664 = t662 - t661;
+        let t665 = f64::max(t664, 0.0);
+        let t907 = t657 + t665;
+        let t908 = l42[3] + t907;
+        let t909 = t902 + t908;
+        let t910 = t906 + t909;
+        let t914 = t910 + l34[3];
+        let t915 = -l29[3];
+        let t916 = t914 - l29[3];
+        let t962 = t916 * l107[3];
+        let t986 = lanes_sum!(v40) + t983 + t980 + t963 - t523 - t482 - t397 - t441
+            - t959 - t960 - t961 - t962;
+        let t1322 = 1.0 / t1321;
+        let t1477 = lanes_sum!(lanes_mul!(v40, lanes!(- 1.0, 1.0, - 1.0, 1.0))) + t899
+            + t482 + t397 + t773;
+        let t1478 = 0.2 * t1477;
+        let v22 = lanes_mul!(v2, lanes_splat!(t340));
+        let v20 = lanes_mul!(v1, lanes_splat!(t679));
+        let v17 = lanes_mul!(v0, lanes_splat!(t672));
+        let l17 = lanes_array!(v17);
+        let t693 = -l17[0];
+        let t747 = -l17[1];
+        let t801 = -l17[2];
+        let t854 = -l17[3];
+        let v31 = lanes_add!(lanes_mul!(v17, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v20);
+        let v39 = lanes_add!(v22, v31);
+        let l39 = lanes_array!(v39);
+        let t516 = omega_z * t509;
+        let t517 = omega_x * t513;
+        let t524 = -t517;
+        let t525 = t516 - t517;
+        let t526 = 0.6 * t525;
+        let t1466 = -t526;
+        let t1467 = l39[3] - t526;
+        let t1468 = l75[3] * t1467;
+        let t475 = omega_z * t468;
+        let t476 = omega_x * t472;
+        let t483 = -t476;
+        let t484 = t475 - t476;
+        let t485 = 0.6 * t484;
+        let t1463 = -t485;
+        let t1464 = l39[2] - t485;
+        let t1465 = l75[2] * t1464;
+        let t434 = omega_z * t426;
+        let t435 = omega_x * t431;
+        let t442 = -t435;
+        let t443 = t434 - t435;
+        let t444 = 0.6 * t443;
+        let t1460 = -t444;
+        let t1461 = l39[1] - t444;
+        let t1462 = l75[1] * t1461;
+        let t390 = omega_z * t382;
+        let t391 = omega_x * t387;
+        let t398 = -t391;
+        let t399 = t390 - t391;
+        let t400 = 0.6 * t399;
+        let t1457 = -t400;
+        let t1458 = l39[0] - t400;
+        let t1459 = l75[0] * t1458;
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
+        );
+        let t925 = lanes_sum!(v8);
+        let t1340 = lanes_sum!(v5) + t925;
+        let t1455 = t538 * t1340;
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let t919 = lanes_sum!(v6);
+        let t1330 = lanes_sum!(v3) + t919;
+        let t1453 = t675 * t1330;
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let t922 = lanes_sum!(v7);
+        let t1335 = lanes_sum!(v4) + t922;
+        let t1454 = t683 * t1335;
+        let t1479 = t1453 + t1454;
+        let t1480 = t1455 + t1479;
+        let t542 = t340 * 0.972;
+        let t1398 = lanes_sum!(v75);
+        let t1456 = t542 * t1398;
+        let t1481 = -t1456;
+        let t1482 = t1480 - t1456;
+        let t1483 = t1459 + t1482;
+        let t1484 = t1462 + t1483;
+        let t1485 = t1465 + t1484;
+        let t1486 = t1468 + t1485;
+        let t1025 = t737 * l108[0];
+        let t352 = omega_x * 0.7;
+        let t360 = omega_y * t352;
+        let t353 = omega_y * 0.9;
+        let t359 = omega_x * t353;
+        let t1487 = -t359;
+        let t1488 = t360 - t359;
+        let t1489 = t1025 + t1488;
+        let t1026 = t791 * l108[1];
+        let t1490 = -t1026;
+        let t1491 = t1489 - t1026;
+        let t1027 = t844 * l108[2];
+        let t1028 = t916 * l108[3];
+        let t1492 = -t1028;
+        let t1493 = t1027 - t1028;
+        let t1450 = t986 * t1163;
+        let t1494 = -t1450;
+        let t1495 = t1493 - t1450;
+        let t349 = vz * omega_x;
+        let t348 = vx * omega_z;
+        let t878 = -t348;
+        let t879 = t349 - t348;
+        let t880 = 30.0 * t879;
+        let t867 = t542 * 4.0;
+        let t877 = t340 * 48.6;
+        let t884 = lanes_sum!(v39) + t880 - t867 - t526 - t485 - t400 - t444 - t877;
+        let t1451 = t884 * t1169;
+        let t1496 = -t1451;
+        let t1497 = t1495 - t1451;
+        let t351 = vx * omega_y;
+        let t350 = vy * omega_x;
+        let t1010 = -t350;
+        let t1011 = t351 - t350;
+        let t1012 = 30.0 * t1011;
+        let t991 = t544 * 4.0;
+        let t987 = t737 * l109[0];
+        let t988 = t791 * l109[1];
+        let t989 = t844 * l109[2];
+        let t990 = t916 * l109[3];
+        let t1009 = t538 * 48.6;
+        let t1016 = lanes_sum!(v41) + t1012 - t991 - t530 - t489 - t404 - t448 - t987
+            - t988 - t989 - t990 - t1009;
+        let t1452 = t1016 * t1185;
+        let t1498 = -t1452;
+        let t1499 = t1497 - t1452;
+        let t1500 = t1491 + t1499;
+        let t1501 = t1486 + t1500;
+        let t1502 = t1478 + t1501;
+        let t1505 = t1304 * t1502;
+        let t1358 = -t404;
+        let t1359 = t448 - t404;
+        let t1360 = -t489;
+        let t1361 = t1359 - t489;
+        let t1362 = t530 + t1361;
+        let t1363 = l41[0] + t1362;
+        let t1364 = -l41[1];
+        let t1365 = t1363 - l41[1];
+        let t1366 = l41[2] + t1365;
+        let t1367 = -l41[3];
+        let t1368 = t1366 - l41[3];
+        let t1369 = 0.2 * t1368;
+        let t1355 = -l39[3];
+        let t1356 = t526 - l39[3];
+        let t1357 = l76[3] * t1356;
+        let t1352 = -l39[2];
+        let t1353 = t485 - l39[2];
+        let t1354 = l76[2] * t1353;
+        let t1349 = -l39[1];
+        let t1350 = t444 - l39[1];
+        let t1351 = l76[1] * t1350;
+        let t1346 = -l39[0];
+        let t1347 = t400 - l39[0];
+        let t1348 = l76[0] * t1347;
+        let t1344 = lanes_sum!(v76);
+        let t1345 = t542 * t1344;
+        let t1331 = t671 * t1330;
+        let t1336 = t678 * t1335;
+        let t1370 = t1331 + t1336;
+        let t1341 = t537 * t1340;
+        let t1371 = -t1341;
+        let t1372 = t1370 - t1341;
+        let t1373 = t1345 + t1372;
+        let t1374 = t1348 + t1373;
+        let t1375 = t1351 + t1374;
+        let t1376 = t1354 + t1375;
+        let t1377 = t1357 + t1376;
+        let t1018 = t791 * l110[1];
+        let t356 = omega_z * t353;
+        let t354 = omega_z * 1.5;
+        let t355 = omega_y * t354;
+        let t1378 = -t355;
+        let t1379 = t356 - t355;
+        let t1017 = t737 * l110[0];
+        let t1380 = -t1017;
+        let t1381 = t1379 - t1017;
+        let t1382 = t1018 + t1381;
+        let t1324 = t884 * t1166;
+        let t1020 = t916 * l110[3];
+        let t1019 = t844 * l110[2];
+        let t1383 = -t1019;
+        let t1384 = t1020 - t1019;
+        let t1323 = t986 * t1153;
+        let t1385 = -t1323;
+        let t1386 = t1384 - t1323;
+        let t1387 = t1324 + t1386;
+        let t1326 = t1016 * t1174;
+        let t1388 = -t1326;
+        let t1389 = t1387 - t1326;
+        let t1390 = t1382 + t1389;
+        let t1391 = t1377 + t1390;
+        let t1392 = t1369 + t1391;
+        let t1503 = t1296 * t1392;
+        let t1399 = t544 * t1398;
+        let t1395 = t541 * t1344;
+        let t1411 = -l41[2];
+        let t1412 = t489 - l41[2];
+        let t1413 = l75[2] * t1412;
+        let t1409 = l40[2] - t482;
+        let t1410 = l76[2] * t1409;
+        let t1407 = t448 - l41[1];
+        let t1408 = l75[1] * t1407;
+        let t1405 = l40[1] - t441;
+        let t1406 = l76[1] * t1405;
+        let t1400 = l40[0] - t397;
+        let t1401 = l76[0] * t1400;
+        let t1402 = -l41[0];
+        let t1403 = t404 - l41[0];
+        let t1404 = l75[0] * t1403;
+        let t930 = t679 * t922;
+        let t358 = omega_x * t354;
+        let t1414 = l40[3] - t523;
+        let t1415 = l76[3] * t1414;
+        let t1416 = t530 - l41[3];
+        let t1417 = l75[3] * t1416;
+        let t357 = omega_z * t352;
+        let t929 = t672 * t919;
+        let t931 = t340 * t925;
+        let t1021 = t737 * l113[0];
+        let t1022 = t791 * l113[1];
+        let t1023 = t844 * l113[2];
+        let t1024 = t916 * l113[3];
+        let t1393 = t986 * t1158;
+        let t1394 = t1016 * t1180;
+        let t1449 = lanes_sum!(v42) + t1399 + t1395 + t1413 + t1410 + t1408 + t1406
+            + t1401 + t1404 + t930 + t358 + t1415 + t1417 - t357 - t929 + t931 - t1021
+            - t1022 - t1023 - t1024 - t1393 - t1394;
+        let t1504 = t1300 * t1449;
+        let t1506 = t1503 + t1504;
+        let t1507 = t1505 + t1506;
+        let t1508 = t1322 * t1507;
+        let t1521 = t1063 * t1508;
+        let t1524 = -t1521;
+        let t1525 = t986 - t1521;
+        let t1309 = t1220 * t1238;
+        let t1310 = t1202 * t1275;
+        let t1311 = -t1310;
+        let t1312 = t1309 - t1310;
+        let t1511 = t1312 * t1502;
+        let t1509 = t1300 * t1392;
+        let t1305 = t1202 * t1292;
+        let t1306 = t1238 * t1238;
+        let t1307 = -t1306;
+        let t1308 = t1305 - t1306;
+        let t1510 = t1308 * t1449;
+        let t1512 = t1509 + t1510;
+        let t1513 = t1511 + t1512;
+        let t1514 = t1322 * t1513;
+        let t1522 = t1075 * t1514;
+        let t1526 = -t1522;
+        let t1527 = t1525 - t1522;
+        let t1517 = t1316 * t1502;
+        let t1515 = t1304 * t1392;
+        let t1516 = t1312 * t1449;
+        let t1518 = t1515 + t1516;
+        let t1519 = t1517 + t1518;
+        let t1520 = t1322 * t1519;
+        let t1523 = t1084 * t1520;
+        let t1528 = -t1523;
+        let t1529 = t1527 - t1523;
+        let t1545 = t1136 * t1529;
+        let t1537 = t1101 * t1514;
+        let t1536 = t1093 * t1508;
+        let t1540 = -t1536;
+        let t1541 = t1016 - t1536;
+        let t1542 = t1537 + t1541;
+        let t1539 = t1111 * t1520;
+        let t1543 = -t1539;
+        let t1544 = t1542 - t1539;
+        let t1546 = t1137 * t1544;
+        let t1548 = t1545 + t1546;
+        let t1549 = t1148 * t1548;
+        let t1530 = t319 * t1508;
+        let t1533 = t884 + t1530;
+        let t1532 = t324 * t1520;
+        let t1534 = -t1532;
+        let t1535 = t1533 - t1532;
+        let t1550 = t1142 * t1535;
+        let t1551 = t1148 * t1550;
+        let t1552 = t1137 * t1529;
+        let t1554 = t1143 * t1544;
+        let t1555 = t1552 + t1554;
+        let t1556 = t1148 * t1555;
+        let v131 = lanes_mul!(v108, lanes_splat!(t1520));
+        let l131 = lanes_array!(v131);
+        let t1557 = t737 * l106[0];
+        let v130 = lanes_mul!(v107, lanes_splat!(t1549));
+        let l130 = lanes_array!(v130);
+        let t1608 = -l130[0];
+        let t1609 = t1557 - l130[0];
+        let v132 = lanes_mul!(v109, lanes_splat!(t1556));
+        let l132 = lanes_array!(v132);
+        let t1610 = -l132[0];
+        let t1611 = t1609 - l132[0];
+        let v133 = lanes_mul!(v110, lanes_splat!(t1508));
+        let l133 = lanes_array!(v133);
+        let t1612 = -l133[0];
+        let t1613 = t1611 - l133[0];
+        let v134 = lanes_mul!(v113, lanes_splat!(t1514));
+        let l134 = lanes_array!(v134);
+        let t1614 = -l134[0];
+        let t1615 = t1613 - l134[0];
+        let t1616 = l131[0] + t1615;
+        let t1558 = t791 * l106[1];
+        let t1594 = -l130[1];
+        let t1595 = t1558 - l130[1];
+        let t1596 = -l132[1];
+        let t1597 = t1595 - l132[1];
+        let t1598 = l133[1] + t1597;
+        let t1599 = -l134[1];
+        let t1600 = t1598 - l134[1];
+        let t1601 = -l131[1];
+        let t1602 = t1600 - l131[1];
+        let t1559 = t844 * l106[2];
+        let t1580 = -l130[2];
+        let t1581 = t1559 - l130[2];
+        let t1582 = -l132[2];
+        let t1583 = t1581 - l132[2];
+        let t1584 = -l133[2];
+        let t1585 = t1583 - l133[2];
+        let t1586 = -l134[2];
+        let t1587 = t1585 - l134[2];
+        let t1588 = l131[2] + t1587;
+        let t1560 = t916 * l106[3];
+        let t1566 = -l130[3];
+        let t1567 = t1560 - l130[3];
+        let t1568 = -l132[3];
+        let t1569 = t1567 - l132[3];
+        let t1570 = l133[3] + t1569;
+        let t1571 = -l134[3];
+        let t1572 = t1570 - l134[3];
+        let t1573 = -l131[3];
+        let t1574 = t1572 - l131[3];
+        let cos_roll = t341;
+        let pivot_6 = l103[0];
         let pivot_den_6 = 1.0;
-        let pivot_7 = t84;
+        let pivot_7 = l103[1];
         let pivot_den_7 = 1.0;
-        let pivot_8 = t92;
+        let pivot_8 = l103[2];
         let pivot_den_8 = 1.0;
-        let pivot_9 = t102;
+        let pivot_9 = l103[3];
         let pivot_den_9 = 1.0;
-        let pivot_0 = t227;
+        let pivot_0 = t1037;
         let pivot_den_0 = 1.0;
-        let pivot_1 = t239;
-        let pivot_den_1 = t227;
-        let pivot_2 = t240;
-        let pivot_den_2 = t239;
-        let pivot_3 = t250;
+        let pivot_1 = t1143;
+        let pivot_den_1 = t1037;
+        let pivot_2 = t1147;
+        let pivot_den_2 = t1143;
+        let pivot_3 = t1202;
         let pivot_den_3 = 1.0;
-        let pivot_4 = t260;
-        let pivot_den_4 = t250;
-        let pivot_5 = t261;
-        let pivot_den_5 = t260;
-        xdot[0] = vz * t173 + (vx * t171 - vy * t172);
-        xdot[1] = vz * t176 + (vx * t174 + vy * t175);
-        xdot[2] = vz * t141 + (vy * s_phi - vx * t140);
-        xdot[3] = omega_x * c_theta + omega_z * s_theta;
-        xdot[4] = omega_y - s_phi * t278;
-        xdot[5] = t278;
-        xdot[6] = yd_y1;
-        xdot[7] = yd_y2;
-        xdot[8] = yd_y3;
-        xdot[9] = yd_y4;
-        wdot[0] = t276;
-        wdot[1] = t241 * (t238 * (t195 + t94 * t271 - t95 * t273));
-        wdot[2] = t277;
-        wdot[3] = t271;
-        wdot[4] = t272;
-        wdot[5] = t273;
-        wdot[6] = t206 * t273
-            + (t181 * t201 - t202 * t276 - t203 * t277 - t204 * t271 - t205 * t272);
-        wdot[7] = t210 * t271 + (t186 * t207 - t208 * t276 - t209 * t277) - t211 * t272
-            - t212 * t273;
-        wdot[8] = t218 * t273
-            + (t191 * t213 - t214 * t276 - t215 * t277 - t216 * t271 - t217 * t272);
-        wdot[9] = t222 * t271 + (t197 * t219 - t220 * t276 - t221 * t277) - t223 * t272
-            - t224 * t273;
+        let pivot_4 = t1316;
+        let pivot_den_4 = t1202;
+        let pivot_5 = t1321;
+        let pivot_den_5 = t1316;
+        xdot[0] = t1622;
+        xdot[1] = t1627;
+        xdot[2] = t1633;
+        xdot[3] = t1636;
+        xdot[4] = t1644;
+        xdot[5] = t1641;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t1549;
+        wdot[1] = t1551;
+        wdot[2] = t1556;
+        wdot[3] = t1508;
+        wdot[4] = t1514;
+        wdot[5] = t1520;
+        wdot[6] = t1616;
+        wdot[7] = t1602;
+        wdot[8] = t1588;
+        wdot[9] = t1574;
         if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
             return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
                 roll: x[3],

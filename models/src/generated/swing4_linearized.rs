@@ -5,6 +5,7 @@
 // ops mass_matrix: 0 mul, 0 add, 0 div, 0 neg, 0 sin/cos, 0 sqrt, 0 other, depth 0
 // ops wheels: 111 mul, 98 add, 0 div, 44 neg, 6 sin/cos, 0 sqrt, 0 other, depth 9
 // ops jacobian: 616 mul, 604 add, 49 div, 252 neg, 6 sin/cos, 0 sqrt, 40 other, depth 53
+// lanes derivatives: 27 four-lane operations (108 of 437 scalar ones), 9 sums over the lanes
 // Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `swing4` rover as a generated plant: 10 degrees of freedom
@@ -96,245 +97,549 @@ impl Swing4Linearized {
         xdot: &mut [f64; 10],
         wdot: &mut [f64; 10],
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
-    }
-    /// [`Self::derivatives_array`] for the crate's own target only,
-    /// whatever the processor offers (the reference of the tests that hold
-    /// the two copies to the same bits). Out of line, as the one function
-    /// its callers share: inlined, the body would be copied into each.
-    #[doc(hidden)]
-    #[inline(never)]
-    pub fn derivatives_portable(
-        &self,
-        x: &[f64; 10],
-        w: &[f64; 10],
-        loads: &[::rover_dynamics::plant::WheelLoad; 4],
-        xdot: &mut [f64; 10],
-        wdot: &mut [f64; 10],
-    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
-    }
-    /// The body of both copies, inlined into each so that each is compiled
-    /// for its own instruction set.
-    #[inline(always)]
-    fn derivatives_body(
-        &self,
-        x: &[f64; 10],
-        w: &[f64; 10],
-        loads: &[::rover_dynamics::plant::WheelLoad; 4],
-        xdot: &mut [f64; 10],
-        wdot: &mut [f64; 10],
-    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
-        let theta = x[4];
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let psi = x[5];
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let phi = x[3];
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let t31 = s_phi * c_theta;
-        let t36 = s_theta * c_psi + s_psi * t31;
+        use ::core::arch::x86_64::*;
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                _mm256_setr_pd($a, $b, $c, $d)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                _mm256_set1_pd($a)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                _mm256_add_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                _mm256_mul_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                _mm256_div_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                { let mut r = [0.0f64; 4]; unsafe { _mm256_storeu_pd(r.as_mut_ptr(), $a)
+                }; r }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r4 = $a; let r2 = _mm_add_pd(_mm256_castpd256_pd128(r4),
+                _mm256_extractf128_pd::< 1 > (r4)); _mm_cvtsd_f64(r2) +
+                _mm_cvtsd_f64(_mm_unpackhi_pd(r2, r2)) }
+            };
+        }
         let vz = w[2];
-        let t30 = s_phi * s_theta;
-        let t34 = c_theta * c_psi - s_psi * t30;
+        let theta = x[4];
+        let (t87, t88) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t89, t90) = ::libm::sincos(psi);
+        let t229 = t87 * t90;
+        let phi = x[3];
+        let (t85, t86) = ::libm::sincos(phi);
+        let t221 = t85 * t88;
+        let t230 = t89 * t221;
+        let t231 = t229 + t230;
+        let t674 = vz * t231;
         let vx = w[0];
-        let t35 = c_phi * s_psi;
+        let t224 = t88 * t90;
+        let t220 = t85 * t87;
+        let t225 = t89 * t220;
+        let t226 = -t225;
+        let t227 = t224 - t225;
+        let t672 = vx * t227;
         let vy = w[1];
-        let t39 = s_theta * s_psi - c_psi * t31;
-        let t37 = c_theta * s_psi + c_psi * t30;
-        let t38 = c_phi * c_psi;
-        let t32 = c_phi * s_theta;
-        let t33 = c_phi * c_theta;
-        let omega_z = w[5];
+        let t228 = t86 * t89;
+        let t673 = vy * t228;
+        let t675 = -t673;
+        let t676 = t672 - t673;
+        let t677 = t674 + t676;
+        let t236 = t87 * t89;
+        let t237 = t90 * t221;
+        let t238 = -t237;
+        let t239 = t236 - t237;
+        let t680 = vz * t239;
+        let t232 = t88 * t89;
+        let t233 = t90 * t220;
+        let t234 = t232 + t233;
+        let t678 = vx * t234;
+        let t235 = t86 * t90;
+        let t679 = vy * t235;
+        let t681 = t678 + t679;
+        let t682 = t680 + t681;
+        let t223 = t86 * t88;
+        let t685 = vz * t223;
+        let t684 = vy * t85;
+        let t222 = t86 * t87;
+        let t683 = vx * t222;
+        let t686 = -t683;
+        let t687 = t684 - t683;
+        let t688 = t685 + t687;
         let omega_x = w[3];
+        let omega_z = w[5];
+        let t689 = theta * omega_z;
+        let t690 = omega_x + t689;
         let omega_y = w[4];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let t60 = tau_front_right_x
-            + (tau_front_left_x + (tau_rear_left_x + tau_rear_right_x));
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_right_x = loads[3].moment[0];
-        let t63 = t60
-            + (mu_rear_right_x
-                + (mu_rear_left_x + (mu_front_left_x + mu_front_right_x)));
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let t61 = tau_front_right_y
-            + (tau_front_left_y + (tau_rear_left_y + tau_rear_right_y));
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_right_y = loads[3].moment[1];
-        let t64 = t61
-            + (mu_rear_right_y
-                + (mu_rear_left_y + (mu_front_left_y + mu_front_right_y)));
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let t62 = tau_front_right_z
-            + (tau_front_left_z + (tau_rear_left_z + tau_rear_right_z));
-        let mu_front_left_z = loads[0].moment[2];
-        let mu_front_right_z = loads[1].moment[2];
-        let mu_rear_left_z = loads[2].moment[2];
-        let mu_rear_right_z = loads[3].moment[2];
-        let t65 = t62
-            + (mu_rear_right_z
-                + (mu_rear_left_z + (mu_front_left_z + mu_front_right_z)));
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let t41 = f_front_left_z * t33 + (f_front_left_x * t36 + f_front_left_y * t39);
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let t44 = f_front_right_z * t33
-            + (f_front_right_x * t36 + f_front_right_y * t39);
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let t48 = f_rear_left_z * t33 + (f_rear_left_x * t36 + f_rear_left_y * t39);
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let t52 = f_rear_right_z * t33 + (f_rear_right_x * t36 + f_rear_right_y * t39);
-        let t2 = phi * 0.972;
-        let t55 = f_front_left_z * s_phi + (f_front_left_y * t38 - f_front_left_x * t35)
-            + (f_front_right_z * s_phi
-                + (f_front_right_y * t38 - f_front_right_x * t35));
-        let t47 = f_rear_left_z * s_phi + (f_rear_left_y * t38 - f_rear_left_x * t35);
-        let t51 = f_rear_right_z * s_phi + (f_rear_right_y * t38 - f_rear_right_x * t35);
-        let t66 = t47 + t51;
-        let t56 = t51 + (t47 + t55) + (-(t2 * 4.0) - phi * 48.6);
-        let t67 = t34 * t63 + t37 * t64 - t32 * t65
-            + (0.18181525936802018 * t66
-                + (0.17752077756484444 * t55
-                    + ((-(0.17752077756484444 * t2) - 0.18181525936802018 * t2) * 2.0
-                        + 0.2 * (t48 + (t41 - t44) - t52)))
-                - 0.013308742108624613 * t56);
-        let t72 = 0.015106701567564954 * t67;
-        let t40 = f_front_left_x * t34 + f_front_left_y * t37 - f_front_left_z * t32;
-        let t43 = f_front_right_x * t34 + f_front_right_y * t37 - f_front_right_z * t32;
-        let t53 = t40 + t43;
-        let t46 = f_rear_left_x * t34 + f_rear_left_y * t37 - f_rear_left_z * t32;
-        let t50 = f_rear_right_x * t34 + f_rear_right_y * t37 - f_rear_right_z * t32;
-        let t1 = theta * 0.972;
-        let t54 = t50 + (t46 + t53) + (t1 * 4.0 + theta * 48.6);
-        let t70 = t54 * 0.003101359576393124;
-        let t57 = t41 + t44;
-        let t58 = t52 + (t48 + t57) - 52.48800000000001;
-        let t71 = t58 * 0.0020229592141385064;
-        let t42 = mu_front_left_z * s_phi
-            + (mu_front_left_y * t38 - mu_front_left_x * t35);
-        let t45 = mu_front_right_z * s_phi
-            + (mu_front_right_y * t38 - mu_front_right_x * t35);
-        let t49 = mu_rear_left_z * s_phi + (mu_rear_left_y * t38 - mu_rear_left_x * t35);
-        let t59 = mu_rear_right_z * s_phi
-            + (mu_rear_right_y * t38 - mu_rear_right_x * t35);
-        let t68 = 0.013308742108624613 * t54
-            + (0.3223690311533514 * (t48 + t52)
-                + (s_phi * t62 + (t38 * t61 + (t59 + (t49 + (t42 + t45)) - t35 * t60))
-                    + (2.0
-                        * (0.2811553332426064 - 0.17752077756484444 * t1
-                            - (0.18181525936802018 * t1 + 0.31334269828105754))
-                        - 0.17752077756484444 * t53 - 0.2892544580685251 * t57)
-                    - 0.18181525936802018 * (t46 + t50))) - 0.001226465669808382 * t58;
-        let t73 = 0.029695681008734886 * t68;
-        let t3 = 0.2 * t1;
-        let t69 = t33 * t65 + (t36 * t63 + t39 * t64)
-            + (t67 * 0.009434403451620336
-                + (0.001226465669808382 * t56
-                    + (0.2 * (t50 + (t43 - t40 - t46))
-                        + (2.0
-                            * (0.3223690311533514 * t2
-                                + (t3 + (-(0.2892544580685251 * t2) - t3)))
-                            + 0.2892544580685251 * t55) - 0.3223690311533514 * t66)));
-        let t74 = 0.010968333103455796 * t69;
-        let y1 = x[6];
-        let t6 = f64::max(y1 + 0.03490658503988659, 0.0);
-        let t8 = f64::min(10000.0 * t6, 1.0);
-        let t9 = f64::min(-(yd_y1 * (6.92820323027551 * t8) + 500.0 * t6), 0.0);
-        let t7 = f64::max(-(y1 + 1.0471975511965976), 0.0);
-        let t10 = f64::min(10000.0 * t7, 1.0);
-        let t11 = f64::max(500.0 * t7 - yd_y1 * (6.92820323027551 * t10), 0.0);
-        let t4 = 0.10618108323170193 - t1 * 0.16747341712522873;
-        let y0_y1 = self.neutral[0];
-        let t75 = t42 + (t9 + (t4 + t11)) + (t72 + (t70 + t71) - t73 - t74)
-            + 5.0 * (y0_y1 - y1) - yd_y1 * 3.5 - 0.16747341712522873 * t40
-            - t41 * 0.10923979756347936;
-        let y2 = x[7];
-        let t12 = f64::max(y2 + 0.03490658503988659, 0.0);
-        let t14 = f64::min(10000.0 * t12, 1.0);
-        let t15 = f64::min(-(yd_y2 * (6.92820323027551 * t14) + 500.0 * t12), 0.0);
-        let t13 = f64::max(-(y2 + 1.0471975511965976), 0.0);
-        let t16 = f64::min(10000.0 * t13, 1.0);
-        let t17 = f64::max(500.0 * t13 - yd_y2 * (6.92820323027551 * t16), 0.0);
-        let y0_y2 = self.neutral[1];
-        let t76 = t75 * 0.0490451746084416
-            + (t71 + (t74 - t73 - t72) + (t70 + (t45 + (t15 + (t4 + t17))))
-                + 5.0 * (y0_y2 - y2) - yd_y2 * 3.5 - 0.16747341712522873 * t43
-                - 0.10923979756347936 * t44);
-        let t77 = t54 * 0.003181297848689172;
-        let t78 = 0.0018955784818940136 * t58;
-        let t79 = 0.01415546997869927 * t67;
-        let t80 = 0.030992669987227498 * t68;
-        let t81 = 0.011384350159721534 * t69;
-        let y3 = x[8];
-        let t18 = f64::max(y3 - 1.0471975511965976, 0.0);
-        let t20 = f64::min(10000.0 * t18, 1.0);
-        let t21 = f64::min(-(yd_y3 * (6.92820323027551 * t20) + 500.0 * t18), 0.0);
-        let t19 = f64::max(0.03490658503988659 - y3, 0.0);
-        let t22 = f64::min(10000.0 * t19, 1.0);
-        let t23 = f64::max(500.0 * t19 - yd_y3 * (6.92820323027551 * t22), 0.0);
-        let t5 = t1 * 0.17179008382921532 + 0.09949512335765301;
-        let y0_y3 = self.neutral[2];
-        let t82 = t76 * 0.05998298135290267
-            + (t75 * 0.060653434640334784
-                + (0.10236123802227676 * t48
-                    + (t49 + (t21 + (t23 - t5)) + (t77 - t78 - t79 - t80 - t81)
-                        + 5.0 * (y0_y3 - y3) - yd_y3 * 3.5
-                        - 0.17179008382921532 * t46)));
-        let y4 = x[9];
-        let t24 = f64::max(y4 - 1.0471975511965976, 0.0);
-        let t26 = f64::min(10000.0 * t24, 1.0);
-        let t27 = f64::min(-(yd_y4 * (6.92820323027551 * t26) + 500.0 * t24), 0.0);
-        let t25 = f64::max(0.03490658503988659 - y4, 0.0);
-        let t28 = f64::min(10000.0 * t25, 1.0);
-        let t29 = f64::max(500.0 * t25 - yd_y4 * (6.92820323027551 * t28), 0.0);
-        let y0_y4 = self.neutral[3];
-        let t83 = (t82 * 0.061574772700712266
-            + (t76 * 0.06359531043432279
-                + (t75 * 0.05686393824837326
-                    + (0.10236123802227676 * t52
-                        + (t79 + (t81 - t80) - t78 + (t77 + (t59 + (t27 + (t29 - t5))))
-                            + 5.0 * (y0_y4 - y4) - yd_y4 * 3.5
-                            - 0.17179008382921532 * t50))))) / 0.021746810292359767;
-        let t84 = t82 / 0.021829576096129864 + 0.061574772700712266 * t83;
-        let t85 = 0.06359531043432279 * t83
-            + (t76 / 0.02201860062774949 + 0.05998298135290267 * t84);
-        let t86 = 0.05686393824837326 * t83
-            + (0.060653434640334784 * t84
-                + (t75 / 0.022071692520380215 + 0.0490451746084416 * t85));
-        let t89 = t85 + t86;
-        let t90 = t83 + t84;
-        let t91 = t68 / 1.1968049090791444 - 0.029695681008734886 * t89
-            - 0.030992669987227498 * t90;
-        let t87 = t83 - t84;
-        let t88 = 0.011384350159721534 * t87
-            + (t69 / 1.8209819475624827 + 0.010968333103455796 * (t85 - t86));
-        let t92 = 0.01415546997869927 * t87
-            + (0.015106701567564954 * (t86 - t85)
-                + (t67 / 0.8677457252324953 + 0.009434403451620336 * t88));
+        let t691 = phi * omega_z;
+        let t692 = -t691;
+        let t693 = omega_y - t691;
+        let t694 = theta * omega_x;
+        let t695 = -t694;
+        let t696 = omega_z - t694;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
+        );
+        let v26 = lanes_mul!(v5, lanes_splat!(t85));
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
+        );
+        let v25 = lanes_mul!(v4, lanes_splat!(t235));
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v24 = lanes_mul!(v3, lanes_splat!(t228));
+        let l24 = lanes_array!(v24);
+        let t264 = -l24[0];
+        let t293 = -l24[1];
+        let t322 = -l24[2];
+        let t373 = -l24[3];
+        let v31 = lanes_add!(lanes_mul!(v24, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v25);
+        let v36 = lanes_add!(v26, v31);
+        let l36 = lanes_array!(v36);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v13 = lanes_add!(
+            v9, lanes!(0.03490658503988659, 0.03490658503988659, - 1.0471975511965976, -
+            1.0471975511965976)
+        );
+        let l13 = lanes_array!(v13);
+        let t134 = f64::max(l13[0], 0.0);
+        let t140 = 10000.0 * t134;
+        let t141 = f64::min(t140, 1.0);
+        let t142 = 6.92820323027551 * t141;
+        let t143 = l11[0] * t142;
+        let t144 = 500.0 * t134;
+        let t145 = t143 + t144;
+        let t146 = -t145;
+        let t147 = f64::min(t146, 0.0);
+        let t93 = theta * 0.972;
+        let t109 = t93 * 0.16747341712522873;
+        let t110 = -t109;
+        let t111 = 0.10618108323170193 - t109;
+        let t180 = -l9[2];
+        let t201 = -l9[3];
+        let v14 = lanes_add!(
+            lanes_mul!(v9, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(1.0471975511965976,
+            1.0471975511965976, 0.03490658503988659, 0.03490658503988659)
+        );
+        let l14 = lanes_array!(v14);
+        let t138 = -l14[0];
+        let t139 = f64::max(t138, 0.0);
+        let t152 = 500.0 * t139;
+        let t148 = 10000.0 * t139;
+        let t149 = f64::min(t148, 1.0);
+        let t150 = 6.92820323027551 * t149;
+        let t151 = l11[0] * t150;
+        let t153 = -t151;
+        let t154 = t152 - t151;
+        let t155 = f64::max(t154, 0.0);
+        let t497 = t111 + t155;
+        let t498 = t147 + t497;
+        let t499 = l36[0] + t498;
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
+        );
+        let v15 = lanes_mul!(v0, lanes_splat!(t227));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
+        );
+        let v18 = lanes_mul!(v1, lanes_splat!(t234));
+        let v28 = lanes_add!(v15, v18);
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
+        );
+        let v22 = lanes_mul!(v2, lanes_splat!(t222));
+        let l22 = lanes_array!(v22);
+        let t244 = -l22[0];
+        let t274 = -l22[1];
+        let t303 = -l22[2];
+        let t332 = -l22[3];
+        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l34 = lanes_array!(v34);
+        let t348 = l34[0] + l34[1];
+        let t349 = l34[2] + t348;
+        let t350 = l34[3] + t349;
+        let t346 = t93 * 4.0;
+        let t347 = theta * 48.6;
+        let t351 = t346 + t347;
+        let t352 = t350 + t351;
+        let t449 = 0.013308742108624613 * t352;
+        let v23 = lanes_mul!(v2, lanes_splat!(t223));
+        let v17 = lanes_mul!(v0, lanes_splat!(t231));
+        let v20 = lanes_mul!(v1, lanes_splat!(t239));
+        let v30 = lanes_add!(v17, v20);
+        let v35 = lanes_add!(v23, v30);
+        let l35 = lanes_array!(v35);
+        let t447 = l35[2] + l35[3];
+        let t448 = 0.3223690311533514 * t447;
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
+        );
+        let t387 = lanes_sum!(v8);
+        let t393 = t85 * t387;
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let t384 = lanes_sum!(v7);
+        let t392 = t235 * t384;
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let t381 = lanes_sum!(v6);
+        let t391 = t228 * t381;
+        let t100 = 0.17752077756484444 * t93;
+        let t101 = -t100;
+        let t102 = 0.2811553332426064 - t100;
+        let t116 = 0.18181525936802018 * t93;
+        let t118 = t116 + 0.31334269828105754;
+        let t119 = -t118;
+        let t434 = t102 - t118;
+        let t435 = 2.0 * t434;
+        let t436 = 0.17752077756484444 * t348;
+        let t362 = l35[0] + l35[1];
+        let t437 = 0.2892544580685251 * t362;
+        let t445 = l34[2] + l34[3];
+        let t446 = 0.18181525936802018 * t445;
+        let t363 = l35[2] + t362;
+        let t364 = l35[3] + t363;
+        let t366 = -52.48800000000001 + t364;
+        let t450 = 0.001226465669808382 * t366;
+        let t461 = lanes_sum!(v36) + t449 + t448 + t393 + t392 - t391 + t435 - t436
+            - t437 - t446 - t450;
+        let t494 = 0.029695681008734886 * t461;
+        let t495 = -t494;
+        let t400 = lanes_sum!(v3) + t381;
+        let t401 = t227 * t400;
+        let t405 = lanes_sum!(v4) + t384;
+        let t406 = t234 * t405;
+        let t425 = t401 + t406;
+        let t410 = lanes_sum!(v5) + t387;
+        let t411 = t222 * t410;
+        let t426 = -t411;
+        let t427 = t425 - t411;
+        let v21 = lanes_mul!(v2, lanes_splat!(t85));
+        let v19 = lanes_mul!(v1, lanes_splat!(t235));
+        let v16 = lanes_mul!(v0, lanes_splat!(t228));
+        let l16 = lanes_array!(v16);
+        let t249 = -l16[0];
+        let t279 = -l16[1];
+        let t308 = -l16[2];
+        let t337 = -l16[3];
+        let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
+        let v33 = lanes_add!(v21, v29);
+        let l33 = lanes_array!(v33);
+        let t422 = l33[2] + l33[3];
+        let t423 = 0.18181525936802018 * t422;
+        let t356 = l33[0] + l33[1];
+        let t421 = 0.17752077756484444 * t356;
+        let t94 = phi * 0.972;
+        let t97 = 0.17752077756484444 * t94;
+        let t98 = -t97;
+        let t113 = 0.18181525936802018 * t94;
+        let t114 = -t113;
+        let t412 = t98 - t113;
+        let t414 = t412 * 2.0;
+        let t419 = lanes_sum!(lanes_mul!(v35, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t420 = 0.2 * t419;
+        let t428 = t414 + t420;
+        let t429 = t421 + t428;
+        let t430 = t423 + t429;
+        let t357 = l33[2] + t356;
+        let t358 = l33[3] + t357;
+        let t353 = t94 * 4.0;
+        let t354 = -t353;
+        let t355 = phi * 48.6;
+        let t359 = -t355;
+        let t360 = t354 - t355;
+        let t361 = t358 + t360;
+        let t424 = 0.013308742108624613 * t361;
+        let t431 = -t424;
+        let t432 = t430 - t424;
+        let t433 = t427 + t432;
+        let t493 = 0.015106701567564954 * t433;
+        let t490 = t352 * 0.003101359576393124;
+        let t492 = t366 * 0.0020229592141385064;
+        let t500 = t490 + t492;
+        let t501 = t493 + t500;
+        let t502 = t495 + t501;
+        let t465 = t223 * t410;
+        let t463 = t231 * t400;
+        let t464 = t239 * t405;
+        let t480 = t463 + t464;
+        let t481 = t465 + t480;
+        let t479 = t433 * 0.009434403451620336;
+        let t478 = 0.001226465669808382 * t361;
+        let t475 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t476 = 0.2 * t475;
+        let t120 = 0.3223690311533514 * t94;
+        let t105 = 0.2 * t93;
+        let t103 = 0.2892544580685251 * t94;
+        let t104 = -t103;
+        let t106 = -t105;
+        let t466 = t104 - t105;
+        let t467 = t105 + t466;
+        let t468 = t120 + t467;
+        let t469 = 2.0 * t468;
+        let t470 = 0.2892544580685251 * t356;
+        let t482 = t469 + t470;
+        let t483 = t476 + t482;
+        let t477 = 0.3223690311533514 * t422;
+        let t484 = -t477;
+        let t485 = t483 - t477;
+        let t486 = t478 + t485;
+        let t487 = t479 + t486;
+        let t488 = t481 + t487;
+        let t496 = 0.010968333103455796 * t488;
+        let t503 = -t496;
+        let t504 = t502 - t496;
+        let t505 = t499 + t504;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t506 = -l9[0];
+        let t529 = -l9[1];
+        let v12 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v32 = lanes_mul!(v12, lanes!(5.0, 5.0, 5.0, 5.0));
+        let l32 = lanes_array!(v32);
+        let t512 = t505 + l32[0];
+        let v27 = lanes_mul!(v11, lanes!(3.5, 3.5, 3.5, 3.5));
+        let l27 = lanes_array!(v27);
+        let t513 = -l27[0];
+        let t514 = t512 - l27[0];
+        let v37 = lanes_mul!(
+            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            0.17179008382921532)
+        );
+        let l37 = lanes_array!(v37);
+        let t515 = -l37[0];
+        let t516 = t514 - l37[0];
+        let v38 = lanes_mul!(
+            v35, lanes!(0.10923979756347936, 0.10923979756347936, 0.10236123802227676,
+            0.10236123802227676)
+        );
+        let l38 = lanes_array!(v38);
+        let t517 = -l38[0];
+        let t518 = t516 - l38[0];
+        let t535 = t518 * 0.0490451746084416;
+        let t520 = t495 + t496;
+        let t521 = -t493;
+        let t522 = t520 - t493;
+        let t523 = t492 + t522;
+        let t158 = f64::max(l13[1], 0.0);
+        let t162 = 10000.0 * t158;
+        let t163 = f64::min(t162, 1.0);
+        let t164 = 6.92820323027551 * t163;
+        let t165 = l11[1] * t164;
+        let t166 = 500.0 * t158;
+        let t167 = t165 + t166;
+        let t168 = -t167;
+        let t169 = f64::min(t168, 0.0);
+        let t160 = -l14[1];
+        let t161 = f64::max(t160, 0.0);
+        let t174 = 500.0 * t161;
+        let t170 = 10000.0 * t161;
+        let t171 = f64::min(t170, 1.0);
+        let t172 = 6.92820323027551 * t171;
+        let t173 = l11[1] * t172;
+        let t175 = -t173;
+        let t176 = t174 - t173;
+        let t177 = f64::max(t176, 0.0);
+        let t524 = t111 + t177;
+        let t525 = t169 + t524;
+        let t526 = l36[1] + t525;
+        let t527 = t490 + t526;
+        let t528 = t523 + t527;
+        let t536 = t528 + l32[1];
+        let t537 = -l27[1];
+        let t538 = t536 - l27[1];
+        let t539 = -l37[1];
+        let t540 = t538 - l37[1];
+        let t541 = -l38[1];
+        let t542 = t540 - l38[1];
+        let t543 = t535 + t542;
+        let t570 = t543 * 0.05998298135290267;
+        let t569 = t518 * 0.060653434640334784;
+        let t179 = f64::max(l13[2], 0.0);
+        let t183 = 10000.0 * t179;
+        let t184 = f64::min(t183, 1.0);
+        let t185 = 6.92820323027551 * t184;
+        let t186 = l11[2] * t185;
+        let t187 = 500.0 * t179;
+        let t188 = t186 + t187;
+        let t189 = -t188;
+        let t190 = f64::min(t189, 0.0);
+        let t123 = t93 * 0.17179008382921532;
+        let t125 = t123 + 0.09949512335765301;
+        let t126 = -t125;
+        let t182 = f64::max(l14[2], 0.0);
+        let t195 = 500.0 * t182;
+        let t191 = 10000.0 * t182;
+        let t192 = f64::min(t191, 1.0);
+        let t193 = 6.92820323027551 * t192;
+        let t194 = l11[2] * t193;
+        let t196 = -t194;
+        let t197 = t195 - t194;
+        let t198 = f64::max(t197, 0.0);
+        let t554 = t126 + t198;
+        let t555 = t190 + t554;
+        let t556 = l36[2] + t555;
+        let t549 = 0.030992669987227498 * t461;
+        let t550 = -t549;
+        let t545 = t352 * 0.003181297848689172;
+        let t546 = 0.0018955784818940136 * t366;
+        let t547 = -t546;
+        let t557 = t545 - t546;
+        let t548 = 0.01415546997869927 * t433;
+        let t558 = -t548;
+        let t559 = t557 - t548;
+        let t560 = t550 + t559;
+        let t551 = 0.011384350159721534 * t488;
+        let t561 = -t551;
+        let t562 = t560 - t551;
+        let t563 = t556 + t562;
+        let t571 = t563 + l32[2];
+        let t572 = -l27[2];
+        let t573 = t571 - l27[2];
+        let t574 = -l37[2];
+        let t575 = t573 - l37[2];
+        let t576 = l38[2] + t575;
+        let t577 = t569 + t576;
+        let t578 = t570 + t577;
+        let t597 = t578 * 0.061574772700712266;
+        let t596 = t543 * 0.06359531043432279;
+        let t595 = t518 * 0.05686393824837326;
+        let t582 = t550 + t551;
+        let t583 = t548 + t582;
+        let t584 = t547 + t583;
+        let t200 = f64::max(l13[3], 0.0);
+        let t204 = 10000.0 * t200;
+        let t205 = f64::min(t204, 1.0);
+        let t206 = 6.92820323027551 * t205;
+        let t207 = l11[3] * t206;
+        let t208 = 500.0 * t200;
+        let t209 = t207 + t208;
+        let t210 = -t209;
+        let t211 = f64::min(t210, 0.0);
+        let t203 = f64::max(l14[3], 0.0);
+        let t216 = 500.0 * t203;
+        let t212 = 10000.0 * t203;
+        let t213 = f64::min(t212, 1.0);
+        let t214 = 6.92820323027551 * t213;
+        let t215 = l11[3] * t214;
+        let t217 = -t215;
+        let t218 = t216 - t215;
+        let t219 = f64::max(t218, 0.0);
+        let t585 = t126 + t219;
+        let t586 = t211 + t585;
+        let t587 = l36[3] + t586;
+        let t588 = t545 + t587;
+        let t589 = t584 + t588;
+        let t598 = t589 + l32[3];
+        let t599 = -l27[3];
+        let t600 = t598 - l27[3];
+        let t601 = -l37[3];
+        let t602 = t600 - l37[3];
+        let t603 = l38[3] + t602;
+        let t604 = t595 + t603;
+        let t605 = t596 + t604;
+        let t606 = t597 + t605;
+        let t616 = t606 / 0.021746810292359767;
+        let t615 = t578 / 0.021829576096129864;
+        let t617 = 0.061574772700712266 * t616;
+        let t618 = t615 + t617;
+        let t639 = t616 + t618;
+        let t668 = 0.003181297848689172 * t639;
+        let t620 = 0.06359531043432279 * t616;
+        let t614 = t543 / 0.02201860062774949;
+        let t619 = 0.05998298135290267 * t618;
+        let t621 = t614 + t619;
+        let t622 = t620 + t621;
+        let t625 = 0.05686393824837326 * t616;
+        let t624 = 0.060653434640334784 * t618;
+        let t613 = t518 / 0.022071692520380215;
+        let t623 = 0.0490451746084416 * t622;
+        let t626 = t613 + t623;
+        let t627 = t624 + t626;
+        let t628 = t625 + t627;
+        let t637 = t622 + t628;
+        let t667 = 0.003101359576393124 * t637;
+        let t607 = t352 / 32.400000000000006;
+        let t611 = t461 / 1.1968049090791444;
+        let t638 = 0.029695681008734886 * t637;
+        let t641 = -t638;
+        let t642 = t611 - t638;
+        let t640 = 0.030992669987227498 * t639;
+        let t643 = -t640;
+        let t644 = t642 - t640;
+        let t666 = 0.013308742108624613 * t644;
+        let t669 = t607 + t666;
+        let t670 = t667 + t669;
+        let t671 = t668 + t670;
+        let t632 = -t618;
+        let t633 = t616 - t618;
+        let t634 = 0.011384350159721534 * t633;
+        let t612 = t488 / 1.8209819475624827;
+        let t629 = -t628;
+        let t630 = t622 - t628;
+        let t631 = 0.010968333103455796 * t630;
+        let t635 = t612 + t631;
+        let t636 = t634 + t635;
+        let t662 = 0.001226465669808382 * t636;
+        let t608 = t361 / 32.400000000000006;
+        let t649 = 0.01415546997869927 * t633;
+        let t646 = -t622;
+        let t647 = t628 - t622;
+        let t648 = 0.015106701567564954 * t647;
+        let t610 = t433 / 0.8677457252324953;
+        let t645 = 0.009434403451620336 * t636;
+        let t650 = t610 + t645;
+        let t651 = t648 + t650;
+        let t652 = t649 + t651;
+        let t661 = 0.013308742108624613 * t652;
+        let t663 = -t661;
+        let t664 = t608 - t661;
+        let t665 = t662 + t664;
+        let t654 = 0.0020229592141385064 * t637;
+        let t609 = t366 / 32.400000000000006;
+        let t653 = 0.001226465669808382 * t644;
+        let t656 = -t653;
+        let t657 = t609 - t653;
+        let t658 = t654 + t657;
+        let t655 = 0.0018955784818940136 * t639;
+        let t659 = -t655;
+        let t660 = t658 - t655;
         let cos_roll = 1.0;
         let pivot_6 = 0.022071692520380215;
         let pivot_den_6 = 1.0;
@@ -356,31 +661,647 @@ impl Swing4Linearized {
         let pivot_den_4 = 1.0;
         let pivot_5 = 1.8209819475624827;
         let pivot_den_5 = 1.0;
-        xdot[0] = vz * t36 + (vx * t34 - vy * t35);
-        xdot[1] = vz * t39 + (vx * t37 + vy * t38);
-        xdot[2] = vz * t33 + (vy * s_phi - vx * t32);
-        xdot[3] = omega_x + theta * omega_z;
-        xdot[4] = omega_y - phi * omega_z;
-        xdot[5] = omega_z - theta * omega_x;
-        xdot[6] = yd_y1;
-        xdot[7] = yd_y2;
-        xdot[8] = yd_y3;
-        xdot[9] = yd_y4;
-        wdot[0] = 0.003181297848689172 * t90
-            + (0.003101359576393124 * t89
-                + (t54 / 32.400000000000006 + 0.013308742108624613 * t91));
-        wdot[1] = 0.001226465669808382 * t88
-            + (t56 / 32.400000000000006 - 0.013308742108624613 * t92);
-        wdot[2] = 0.0020229592141385064 * t89
-            + (t58 / 32.400000000000006 - 0.001226465669808382 * t91)
-            - 0.0018955784818940136 * t90;
-        wdot[3] = t92;
-        wdot[4] = t91;
-        wdot[5] = t88;
-        wdot[6] = t86;
-        wdot[7] = t85;
-        wdot[8] = t84;
-        wdot[9] = t83;
+        xdot[0] = t677;
+        xdot[1] = t682;
+        xdot[2] = t688;
+        xdot[3] = t690;
+        xdot[4] = t693;
+        xdot[5] = t696;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t671;
+        wdot[1] = t665;
+        wdot[2] = t660;
+        wdot[3] = t652;
+        wdot[4] = t644;
+        wdot[5] = t636;
+        wdot[6] = t628;
+        wdot[7] = t622;
+        wdot[8] = t618;
+        wdot[9] = t616;
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
+            return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
+                roll: x[3],
+            });
+        }
+        if (pivot_6 > 0.0) & (pivot_7 > 0.0) & (pivot_8 > 0.0) & (pivot_9 > 0.0)
+            & (pivot_0 > 0.0) & (pivot_1 > 0.0) & (pivot_2 > 0.0) & (pivot_3 > 0.0)
+            & (pivot_4 > 0.0) & (pivot_5 > 0.0)
+        {
+            return Ok(());
+        }
+        Self::singular_mass([
+            (6, pivot_6, pivot_den_6),
+            (7, pivot_7, pivot_den_7),
+            (8, pivot_8, pivot_den_8),
+            (9, pivot_9, pivot_den_9),
+            (0, pivot_0, pivot_den_0),
+            (1, pivot_1, pivot_den_1),
+            (2, pivot_2, pivot_den_2),
+            (3, pivot_3, pivot_den_3),
+            (4, pivot_4, pivot_den_4),
+            (5, pivot_5, pivot_den_5),
+        ])
+    }
+    /// [`Self::derivatives_array`] for the crate's own target only,
+    /// whatever the processor offers (the reference of the tests that hold
+    /// the two copies to the same bits). Out of line, as the one function
+    /// its callers share: inlined, the body would be copied into each.
+    #[doc(hidden)]
+    #[inline(never)]
+    pub fn derivatives_portable(
+        &self,
+        x: &[f64; 10],
+        w: &[f64; 10],
+        loads: &[::rover_dynamics::plant::WheelLoad; 4],
+        xdot: &mut [f64; 10],
+        wdot: &mut [f64; 10],
+    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                [$a, $b, $c, $d]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                [$a; 4]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] + q[0], p[1] +
+                q[1], p[2] + q[2], p[3] + q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] * q[0], p[1] *
+                q[1], p[2] * q[2], p[3] * q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] / q[0], p[1] /
+                q[1], p[2] / q[2], p[3] / q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                $a
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r : [f64; 4] = $a; (r[0] + r[2]) + (r[1] + r[3]) }
+            };
+        }
+        let vz = w[2];
+        let theta = x[4];
+        let (t87, t88) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t89, t90) = ::libm::sincos(psi);
+        let t229 = t87 * t90;
+        let phi = x[3];
+        let (t85, t86) = ::libm::sincos(phi);
+        let t221 = t85 * t88;
+        let t230 = t89 * t221;
+        let t231 = t229 + t230;
+        let t674 = vz * t231;
+        let vx = w[0];
+        let t224 = t88 * t90;
+        let t220 = t85 * t87;
+        let t225 = t89 * t220;
+        let t226 = -t225;
+        let t227 = t224 - t225;
+        let t672 = vx * t227;
+        let vy = w[1];
+        let t228 = t86 * t89;
+        let t673 = vy * t228;
+        let t675 = -t673;
+        let t676 = t672 - t673;
+        let t677 = t674 + t676;
+        let t236 = t87 * t89;
+        let t237 = t90 * t221;
+        let t238 = -t237;
+        let t239 = t236 - t237;
+        let t680 = vz * t239;
+        let t232 = t88 * t89;
+        let t233 = t90 * t220;
+        let t234 = t232 + t233;
+        let t678 = vx * t234;
+        let t235 = t86 * t90;
+        let t679 = vy * t235;
+        let t681 = t678 + t679;
+        let t682 = t680 + t681;
+        let t223 = t86 * t88;
+        let t685 = vz * t223;
+        let t684 = vy * t85;
+        let t222 = t86 * t87;
+        let t683 = vx * t222;
+        let t686 = -t683;
+        let t687 = t684 - t683;
+        let t688 = t685 + t687;
+        let omega_x = w[3];
+        let omega_z = w[5];
+        let t689 = theta * omega_z;
+        let t690 = omega_x + t689;
+        let omega_y = w[4];
+        let t691 = phi * omega_z;
+        let t692 = -t691;
+        let t693 = omega_y - t691;
+        let t694 = theta * omega_x;
+        let t695 = -t694;
+        let t696 = omega_z - t694;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
+        );
+        let v26 = lanes_mul!(v5, lanes_splat!(t85));
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
+        );
+        let v25 = lanes_mul!(v4, lanes_splat!(t235));
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v24 = lanes_mul!(v3, lanes_splat!(t228));
+        let l24 = lanes_array!(v24);
+        let t264 = -l24[0];
+        let t293 = -l24[1];
+        let t322 = -l24[2];
+        let t373 = -l24[3];
+        let v31 = lanes_add!(lanes_mul!(v24, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v25);
+        let v36 = lanes_add!(v26, v31);
+        let l36 = lanes_array!(v36);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v13 = lanes_add!(
+            v9, lanes!(0.03490658503988659, 0.03490658503988659, - 1.0471975511965976, -
+            1.0471975511965976)
+        );
+        let l13 = lanes_array!(v13);
+        let t134 = f64::max(l13[0], 0.0);
+        let t140 = 10000.0 * t134;
+        let t141 = f64::min(t140, 1.0);
+        let t142 = 6.92820323027551 * t141;
+        let t143 = l11[0] * t142;
+        let t144 = 500.0 * t134;
+        let t145 = t143 + t144;
+        let t146 = -t145;
+        let t147 = f64::min(t146, 0.0);
+        let t93 = theta * 0.972;
+        let t109 = t93 * 0.16747341712522873;
+        let t110 = -t109;
+        let t111 = 0.10618108323170193 - t109;
+        let t180 = -l9[2];
+        let t201 = -l9[3];
+        let v14 = lanes_add!(
+            lanes_mul!(v9, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(1.0471975511965976,
+            1.0471975511965976, 0.03490658503988659, 0.03490658503988659)
+        );
+        let l14 = lanes_array!(v14);
+        let t138 = -l14[0];
+        let t139 = f64::max(t138, 0.0);
+        let t152 = 500.0 * t139;
+        let t148 = 10000.0 * t139;
+        let t149 = f64::min(t148, 1.0);
+        let t150 = 6.92820323027551 * t149;
+        let t151 = l11[0] * t150;
+        let t153 = -t151;
+        let t154 = t152 - t151;
+        let t155 = f64::max(t154, 0.0);
+        let t497 = t111 + t155;
+        let t498 = t147 + t497;
+        let t499 = l36[0] + t498;
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
+        );
+        let v15 = lanes_mul!(v0, lanes_splat!(t227));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
+        );
+        let v18 = lanes_mul!(v1, lanes_splat!(t234));
+        let v28 = lanes_add!(v15, v18);
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
+        );
+        let v22 = lanes_mul!(v2, lanes_splat!(t222));
+        let l22 = lanes_array!(v22);
+        let t244 = -l22[0];
+        let t274 = -l22[1];
+        let t303 = -l22[2];
+        let t332 = -l22[3];
+        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l34 = lanes_array!(v34);
+        let t348 = l34[0] + l34[1];
+        let t349 = l34[2] + t348;
+        let t350 = l34[3] + t349;
+        let t346 = t93 * 4.0;
+        let t347 = theta * 48.6;
+        let t351 = t346 + t347;
+        let t352 = t350 + t351;
+        let t449 = 0.013308742108624613 * t352;
+        let v23 = lanes_mul!(v2, lanes_splat!(t223));
+        let v17 = lanes_mul!(v0, lanes_splat!(t231));
+        let v20 = lanes_mul!(v1, lanes_splat!(t239));
+        let v30 = lanes_add!(v17, v20);
+        let v35 = lanes_add!(v23, v30);
+        let l35 = lanes_array!(v35);
+        let t447 = l35[2] + l35[3];
+        let t448 = 0.3223690311533514 * t447;
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
+        );
+        let t387 = lanes_sum!(v8);
+        let t393 = t85 * t387;
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let t384 = lanes_sum!(v7);
+        let t392 = t235 * t384;
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let t381 = lanes_sum!(v6);
+        let t391 = t228 * t381;
+        let t100 = 0.17752077756484444 * t93;
+        let t101 = -t100;
+        let t102 = 0.2811553332426064 - t100;
+        let t116 = 0.18181525936802018 * t93;
+        let t118 = t116 + 0.31334269828105754;
+        let t119 = -t118;
+        let t434 = t102 - t118;
+        let t435 = 2.0 * t434;
+        let t436 = 0.17752077756484444 * t348;
+        let t362 = l35[0] + l35[1];
+        let t437 = 0.2892544580685251 * t362;
+        let t445 = l34[2] + l34[3];
+        let t446 = 0.18181525936802018 * t445;
+        let t363 = l35[2] + t362;
+        let t364 = l35[3] + t363;
+        let t366 = -52.48800000000001 + t364;
+        let t450 = 0.001226465669808382 * t366;
+        let t461 = lanes_sum!(v36) + t449 + t448 + t393 + t392 - t391 + t435 - t436
+            - t437 - t446 - t450;
+        let t494 = 0.029695681008734886 * t461;
+        let t495 = -t494;
+        let t400 = lanes_sum!(v3) + t381;
+        let t401 = t227 * t400;
+        let t405 = lanes_sum!(v4) + t384;
+        let t406 = t234 * t405;
+        let t425 = t401 + t406;
+        let t410 = lanes_sum!(v5) + t387;
+        let t411 = t222 * t410;
+        let t426 = -t411;
+        let t427 = t425 - t411;
+        let v21 = lanes_mul!(v2, lanes_splat!(t85));
+        let v19 = lanes_mul!(v1, lanes_splat!(t235));
+        let v16 = lanes_mul!(v0, lanes_splat!(t228));
+        let l16 = lanes_array!(v16);
+        let t249 = -l16[0];
+        let t279 = -l16[1];
+        let t308 = -l16[2];
+        let t337 = -l16[3];
+        let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
+        let v33 = lanes_add!(v21, v29);
+        let l33 = lanes_array!(v33);
+        let t422 = l33[2] + l33[3];
+        let t423 = 0.18181525936802018 * t422;
+        let t356 = l33[0] + l33[1];
+        let t421 = 0.17752077756484444 * t356;
+        let t94 = phi * 0.972;
+        let t97 = 0.17752077756484444 * t94;
+        let t98 = -t97;
+        let t113 = 0.18181525936802018 * t94;
+        let t114 = -t113;
+        let t412 = t98 - t113;
+        let t414 = t412 * 2.0;
+        let t419 = lanes_sum!(lanes_mul!(v35, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t420 = 0.2 * t419;
+        let t428 = t414 + t420;
+        let t429 = t421 + t428;
+        let t430 = t423 + t429;
+        let t357 = l33[2] + t356;
+        let t358 = l33[3] + t357;
+        let t353 = t94 * 4.0;
+        let t354 = -t353;
+        let t355 = phi * 48.6;
+        let t359 = -t355;
+        let t360 = t354 - t355;
+        let t361 = t358 + t360;
+        let t424 = 0.013308742108624613 * t361;
+        let t431 = -t424;
+        let t432 = t430 - t424;
+        let t433 = t427 + t432;
+        let t493 = 0.015106701567564954 * t433;
+        let t490 = t352 * 0.003101359576393124;
+        let t492 = t366 * 0.0020229592141385064;
+        let t500 = t490 + t492;
+        let t501 = t493 + t500;
+        let t502 = t495 + t501;
+        let t465 = t223 * t410;
+        let t463 = t231 * t400;
+        let t464 = t239 * t405;
+        let t480 = t463 + t464;
+        let t481 = t465 + t480;
+        let t479 = t433 * 0.009434403451620336;
+        let t478 = 0.001226465669808382 * t361;
+        let t475 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t476 = 0.2 * t475;
+        let t120 = 0.3223690311533514 * t94;
+        let t105 = 0.2 * t93;
+        let t103 = 0.2892544580685251 * t94;
+        let t104 = -t103;
+        let t106 = -t105;
+        let t466 = t104 - t105;
+        let t467 = t105 + t466;
+        let t468 = t120 + t467;
+        let t469 = 2.0 * t468;
+        let t470 = 0.2892544580685251 * t356;
+        let t482 = t469 + t470;
+        let t483 = t476 + t482;
+        let t477 = 0.3223690311533514 * t422;
+        let t484 = -t477;
+        let t485 = t483 - t477;
+        let t486 = t478 + t485;
+        let t487 = t479 + t486;
+        let t488 = t481 + t487;
+        let t496 = 0.010968333103455796 * t488;
+        let t503 = -t496;
+        let t504 = t502 - t496;
+        let t505 = t499 + t504;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t506 = -l9[0];
+        let t529 = -l9[1];
+        let v12 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v32 = lanes_mul!(v12, lanes!(5.0, 5.0, 5.0, 5.0));
+        let l32 = lanes_array!(v32);
+        let t512 = t505 + l32[0];
+        let v27 = lanes_mul!(v11, lanes!(3.5, 3.5, 3.5, 3.5));
+        let l27 = lanes_array!(v27);
+        let t513 = -l27[0];
+        let t514 = t512 - l27[0];
+        let v37 = lanes_mul!(
+            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            0.17179008382921532)
+        );
+        let l37 = lanes_array!(v37);
+        let t515 = -l37[0];
+        let t516 = t514 - l37[0];
+        let v38 = lanes_mul!(
+            v35, lanes!(0.10923979756347936, 0.10923979756347936, 0.10236123802227676,
+            0.10236123802227676)
+        );
+        let l38 = lanes_array!(v38);
+        let t517 = -l38[0];
+        let t518 = t516 - l38[0];
+        let t535 = t518 * 0.0490451746084416;
+        let t520 = t495 + t496;
+        let t521 = -t493;
+        let t522 = t520 - t493;
+        let t523 = t492 + t522;
+        let t158 = f64::max(l13[1], 0.0);
+        let t162 = 10000.0 * t158;
+        let t163 = f64::min(t162, 1.0);
+        let t164 = 6.92820323027551 * t163;
+        let t165 = l11[1] * t164;
+        let t166 = 500.0 * t158;
+        let t167 = t165 + t166;
+        let t168 = -t167;
+        let t169 = f64::min(t168, 0.0);
+        let t160 = -l14[1];
+        let t161 = f64::max(t160, 0.0);
+        let t174 = 500.0 * t161;
+        let t170 = 10000.0 * t161;
+        let t171 = f64::min(t170, 1.0);
+        let t172 = 6.92820323027551 * t171;
+        let t173 = l11[1] * t172;
+        let t175 = -t173;
+        let t176 = t174 - t173;
+        let t177 = f64::max(t176, 0.0);
+        let t524 = t111 + t177;
+        let t525 = t169 + t524;
+        let t526 = l36[1] + t525;
+        let t527 = t490 + t526;
+        let t528 = t523 + t527;
+        let t536 = t528 + l32[1];
+        let t537 = -l27[1];
+        let t538 = t536 - l27[1];
+        let t539 = -l37[1];
+        let t540 = t538 - l37[1];
+        let t541 = -l38[1];
+        let t542 = t540 - l38[1];
+        let t543 = t535 + t542;
+        let t570 = t543 * 0.05998298135290267;
+        let t569 = t518 * 0.060653434640334784;
+        let t179 = f64::max(l13[2], 0.0);
+        let t183 = 10000.0 * t179;
+        let t184 = f64::min(t183, 1.0);
+        let t185 = 6.92820323027551 * t184;
+        let t186 = l11[2] * t185;
+        let t187 = 500.0 * t179;
+        let t188 = t186 + t187;
+        let t189 = -t188;
+        let t190 = f64::min(t189, 0.0);
+        let t123 = t93 * 0.17179008382921532;
+        let t125 = t123 + 0.09949512335765301;
+        let t126 = -t125;
+        let t182 = f64::max(l14[2], 0.0);
+        let t195 = 500.0 * t182;
+        let t191 = 10000.0 * t182;
+        let t192 = f64::min(t191, 1.0);
+        let t193 = 6.92820323027551 * t192;
+        let t194 = l11[2] * t193;
+        let t196 = -t194;
+        let t197 = t195 - t194;
+        let t198 = f64::max(t197, 0.0);
+        let t554 = t126 + t198;
+        let t555 = t190 + t554;
+        let t556 = l36[2] + t555;
+        let t549 = 0.030992669987227498 * t461;
+        let t550 = -t549;
+        let t545 = t352 * 0.003181297848689172;
+        let t546 = 0.0018955784818940136 * t366;
+        let t547 = -t546;
+        let t557 = t545 - t546;
+        let t548 = 0.01415546997869927 * t433;
+        let t558 = -t548;
+        let t559 = t557 - t548;
+        let t560 = t550 + t559;
+        let t551 = 0.011384350159721534 * t488;
+        let t561 = -t551;
+        let t562 = t560 - t551;
+        let t563 = t556 + t562;
+        let t571 = t563 + l32[2];
+        let t572 = -l27[2];
+        let t573 = t571 - l27[2];
+        let t574 = -l37[2];
+        let t575 = t573 - l37[2];
+        let t576 = l38[2] + t575;
+        let t577 = t569 + t576;
+        let t578 = t570 + t577;
+        let t597 = t578 * 0.061574772700712266;
+        let t596 = t543 * 0.06359531043432279;
+        let t595 = t518 * 0.05686393824837326;
+        let t582 = t550 + t551;
+        let t583 = t548 + t582;
+        let t584 = t547 + t583;
+        let t200 = f64::max(l13[3], 0.0);
+        let t204 = 10000.0 * t200;
+        let t205 = f64::min(t204, 1.0);
+        let t206 = 6.92820323027551 * t205;
+        let t207 = l11[3] * t206;
+        let t208 = 500.0 * t200;
+        let t209 = t207 + t208;
+        let t210 = -t209;
+        let t211 = f64::min(t210, 0.0);
+        let t203 = f64::max(l14[3], 0.0);
+        let t216 = 500.0 * t203;
+        let t212 = 10000.0 * t203;
+        let t213 = f64::min(t212, 1.0);
+        let t214 = 6.92820323027551 * t213;
+        let t215 = l11[3] * t214;
+        let t217 = -t215;
+        let t218 = t216 - t215;
+        let t219 = f64::max(t218, 0.0);
+        let t585 = t126 + t219;
+        let t586 = t211 + t585;
+        let t587 = l36[3] + t586;
+        let t588 = t545 + t587;
+        let t589 = t584 + t588;
+        let t598 = t589 + l32[3];
+        let t599 = -l27[3];
+        let t600 = t598 - l27[3];
+        let t601 = -l37[3];
+        let t602 = t600 - l37[3];
+        let t603 = l38[3] + t602;
+        let t604 = t595 + t603;
+        let t605 = t596 + t604;
+        let t606 = t597 + t605;
+        let t616 = t606 / 0.021746810292359767;
+        let t615 = t578 / 0.021829576096129864;
+        let t617 = 0.061574772700712266 * t616;
+        let t618 = t615 + t617;
+        let t639 = t616 + t618;
+        let t668 = 0.003181297848689172 * t639;
+        let t620 = 0.06359531043432279 * t616;
+        let t614 = t543 / 0.02201860062774949;
+        let t619 = 0.05998298135290267 * t618;
+        let t621 = t614 + t619;
+        let t622 = t620 + t621;
+        let t625 = 0.05686393824837326 * t616;
+        let t624 = 0.060653434640334784 * t618;
+        let t613 = t518 / 0.022071692520380215;
+        let t623 = 0.0490451746084416 * t622;
+        let t626 = t613 + t623;
+        let t627 = t624 + t626;
+        let t628 = t625 + t627;
+        let t637 = t622 + t628;
+        let t667 = 0.003101359576393124 * t637;
+        let t607 = t352 / 32.400000000000006;
+        let t611 = t461 / 1.1968049090791444;
+        let t638 = 0.029695681008734886 * t637;
+        let t641 = -t638;
+        let t642 = t611 - t638;
+        let t640 = 0.030992669987227498 * t639;
+        let t643 = -t640;
+        let t644 = t642 - t640;
+        let t666 = 0.013308742108624613 * t644;
+        let t669 = t607 + t666;
+        let t670 = t667 + t669;
+        let t671 = t668 + t670;
+        let t632 = -t618;
+        let t633 = t616 - t618;
+        let t634 = 0.011384350159721534 * t633;
+        let t612 = t488 / 1.8209819475624827;
+        let t629 = -t628;
+        let t630 = t622 - t628;
+        let t631 = 0.010968333103455796 * t630;
+        let t635 = t612 + t631;
+        let t636 = t634 + t635;
+        let t662 = 0.001226465669808382 * t636;
+        let t608 = t361 / 32.400000000000006;
+        let t649 = 0.01415546997869927 * t633;
+        let t646 = -t622;
+        let t647 = t628 - t622;
+        let t648 = 0.015106701567564954 * t647;
+        let t610 = t433 / 0.8677457252324953;
+        let t645 = 0.009434403451620336 * t636;
+        let t650 = t610 + t645;
+        let t651 = t648 + t650;
+        let t652 = t649 + t651;
+        let t661 = 0.013308742108624613 * t652;
+        let t663 = -t661;
+        let t664 = t608 - t661;
+        let t665 = t662 + t664;
+        let t654 = 0.0020229592141385064 * t637;
+        let t609 = t366 / 32.400000000000006;
+        let t653 = 0.001226465669808382 * t644;
+        let t656 = -t653;
+        let t657 = t609 - t653;
+        let t658 = t654 + t657;
+        let t655 = 0.0018955784818940136 * t639;
+        let t659 = -t655;
+        let t660 = t658 - t655;
+        let cos_roll = 1.0;
+        let pivot_6 = 0.022071692520380215;
+        let pivot_den_6 = 1.0;
+        let pivot_7 = 0.02201860062774949;
+        let pivot_den_7 = 1.0;
+        let pivot_8 = 0.021829576096129864;
+        let pivot_den_8 = 1.0;
+        let pivot_9 = 0.021746810292359767;
+        let pivot_den_9 = 1.0;
+        let pivot_0 = 32.400000000000006;
+        let pivot_den_0 = 1.0;
+        let pivot_1 = 32.400000000000006;
+        let pivot_den_1 = 1.0;
+        let pivot_2 = 32.400000000000006;
+        let pivot_den_2 = 1.0;
+        let pivot_3 = 0.8677457252324953;
+        let pivot_den_3 = 1.0;
+        let pivot_4 = 1.1968049090791444;
+        let pivot_den_4 = 1.0;
+        let pivot_5 = 1.8209819475624827;
+        let pivot_den_5 = 1.0;
+        xdot[0] = t677;
+        xdot[1] = t682;
+        xdot[2] = t688;
+        xdot[3] = t690;
+        xdot[4] = t693;
+        xdot[5] = t696;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t671;
+        wdot[1] = t665;
+        wdot[2] = t660;
+        wdot[3] = t652;
+        wdot[4] = t644;
+        wdot[5] = t636;
+        wdot[6] = t628;
+        wdot[7] = t622;
+        wdot[8] = t618;
+        wdot[9] = t616;
         if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
             return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
                 roll: x[3],

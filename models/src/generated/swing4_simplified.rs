@@ -5,6 +5,7 @@
 // ops mass_matrix: 0 mul, 0 add, 0 div, 0 neg, 0 sin/cos, 0 sqrt, 0 other, depth 0
 // ops wheels: 151 mul, 146 add, 0 div, 34 neg, 6 sin/cos, 0 sqrt, 0 other, depth 15
 // ops jacobian: 1035 mul, 1140 add, 132 div, 453 neg, 6 sin/cos, 0 sqrt, 40 other, depth 53
+// lanes derivatives: 27 four-lane operations (108 of 538 scalar ones), 9 sums over the lanes
 // Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `swing4` rover as a generated plant: 10 degrees of freedom
@@ -96,280 +97,668 @@ impl Swing4Simplified {
         xdot: &mut [f64; 10],
         wdot: &mut [f64; 10],
     ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
-    }
-    /// [`Self::derivatives_array`] for the crate's own target only,
-    /// whatever the processor offers (the reference of the tests that hold
-    /// the two copies to the same bits). Out of line, as the one function
-    /// its callers share: inlined, the body would be copied into each.
-    #[doc(hidden)]
-    #[inline(never)]
-    pub fn derivatives_portable(
-        &self,
-        x: &[f64; 10],
-        w: &[f64; 10],
-        loads: &[::rover_dynamics::plant::WheelLoad; 4],
-        xdot: &mut [f64; 10],
-        wdot: &mut [f64; 10],
-    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        self.derivatives_body(x, w, loads, xdot, wdot)
-    }
-    /// The body of both copies, inlined into each so that each is compiled
-    /// for its own instruction set.
-    #[inline(always)]
-    fn derivatives_body(
-        &self,
-        x: &[f64; 10],
-        w: &[f64; 10],
-        loads: &[::rover_dynamics::plant::WheelLoad; 4],
-        xdot: &mut [f64; 10],
-        wdot: &mut [f64; 10],
-    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
-        // ẋ = B·w, M·ẇ = −Ṁ·w − f1 + f2 + Q (MODEL.md §5, eq. 24–25)
+        use ::core::arch::x86_64::*;
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                _mm256_setr_pd($a, $b, $c, $d)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                _mm256_set1_pd($a)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                _mm256_add_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                _mm256_mul_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                _mm256_div_pd($a, $b)
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                { let mut r = [0.0f64; 4]; unsafe { _mm256_storeu_pd(r.as_mut_ptr(), $a)
+                }; r }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r4 = $a; let r2 = _mm_add_pd(_mm256_castpd256_pd128(r4),
+                _mm256_extractf128_pd::< 1 > (r4)); _mm_cvtsd_f64(r2) +
+                _mm_cvtsd_f64(_mm_unpackhi_pd(r2, r2)) }
+            };
+        }
         let phi = x[3];
-        let (s_phi, c_phi) = ::libm::sincos(phi);
-        let theta = x[4];
-        let (s_theta, c_theta) = ::libm::sincos(theta);
-        let psi = x[5];
-        let (s_psi, c_psi) = ::libm::sincos(psi);
-        let t44 = s_phi * c_theta;
-        let t47 = s_theta * c_psi + s_psi * t44;
+        let (t97, t98) = ::libm::sincos(phi);
         let vz = w[2];
-        let t43 = s_phi * s_theta;
-        let t45 = c_theta * c_psi - s_psi * t43;
+        let theta = x[4];
+        let (t99, t100) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t101, t102) = ::libm::sincos(psi);
+        let t325 = t99 * t102;
+        let t319 = t97 * t100;
+        let t326 = t101 * t319;
+        let t327 = t325 + t326;
+        let t802 = vz * t327;
         let vx = w[0];
-        let t46 = c_phi * s_psi;
+        let t320 = t100 * t102;
+        let t318 = t97 * t99;
+        let t321 = t101 * t318;
+        let t322 = -t321;
+        let t323 = t320 - t321;
+        let t800 = vx * t323;
         let vy = w[1];
-        let t50 = s_theta * s_psi - c_psi * t44;
-        let t48 = c_theta * s_psi + c_psi * t43;
-        let t49 = c_phi * c_psi;
-        let t10 = c_phi * s_theta;
-        let t11 = c_phi * c_theta;
+        let t324 = t98 * t101;
+        let t801 = vy * t324;
+        let t803 = -t801;
+        let t804 = t800 - t801;
+        let t805 = t802 + t804;
+        let t332 = t99 * t101;
+        let t333 = t102 * t319;
+        let t334 = -t333;
+        let t335 = t332 - t333;
+        let t808 = vz * t335;
+        let t328 = t100 * t101;
+        let t329 = t102 * t318;
+        let t330 = t328 + t329;
+        let t806 = vx * t330;
+        let t331 = t98 * t102;
+        let t807 = vy * t331;
+        let t809 = t806 + t807;
+        let t810 = t808 + t809;
+        let t188 = t98 * t100;
+        let t813 = vz * t188;
+        let t812 = vy * t97;
+        let t187 = t98 * t99;
+        let t811 = vx * t187;
+        let t814 = -t811;
+        let t815 = t812 - t811;
+        let t816 = t813 + t815;
         let omega_x = w[3];
+        let t817 = omega_x * t100;
         let omega_z = w[5];
-        let t104 = (omega_z * c_theta - omega_x * s_theta) / c_phi;
+        let t818 = omega_z * t99;
+        let t819 = t817 + t818;
         let omega_y = w[4];
-        let yd_y1 = w[6];
-        let yd_y2 = w[7];
-        let yd_y3 = w[8];
-        let yd_y4 = w[9];
-        let tau_rear_left_x = loads[2].stator_torque[0];
-        let tau_rear_right_x = loads[3].stator_torque[0];
-        let tau_front_left_x = loads[0].stator_torque[0];
-        let tau_front_right_x = loads[1].stator_torque[0];
-        let t71 = tau_front_right_x
-            + (tau_front_left_x + (tau_rear_left_x + tau_rear_right_x));
-        let mu_front_left_x = loads[0].moment[0];
-        let mu_front_right_x = loads[1].moment[0];
-        let mu_rear_left_x = loads[2].moment[0];
-        let mu_rear_right_x = loads[3].moment[0];
-        let t74 = t71
-            + (mu_rear_right_x
-                + (mu_rear_left_x + (mu_front_left_x + mu_front_right_x)));
-        let tau_rear_left_y = loads[2].stator_torque[1];
-        let tau_rear_right_y = loads[3].stator_torque[1];
-        let tau_front_left_y = loads[0].stator_torque[1];
-        let tau_front_right_y = loads[1].stator_torque[1];
-        let t72 = tau_front_right_y
-            + (tau_front_left_y + (tau_rear_left_y + tau_rear_right_y));
-        let mu_front_left_y = loads[0].moment[1];
-        let mu_front_right_y = loads[1].moment[1];
-        let mu_rear_left_y = loads[2].moment[1];
-        let mu_rear_right_y = loads[3].moment[1];
-        let t75 = t72
-            + (mu_rear_right_y
-                + (mu_rear_left_y + (mu_front_left_y + mu_front_right_y)));
-        let tau_rear_left_z = loads[2].stator_torque[2];
-        let tau_rear_right_z = loads[3].stator_torque[2];
-        let tau_front_left_z = loads[0].stator_torque[2];
-        let tau_front_right_z = loads[1].stator_torque[2];
-        let t73 = tau_front_right_z
-            + (tau_front_left_z + (tau_rear_left_z + tau_rear_right_z));
-        let mu_front_left_z = loads[0].moment[2];
-        let mu_front_right_z = loads[1].moment[2];
-        let mu_rear_left_z = loads[2].moment[2];
-        let mu_rear_right_z = loads[3].moment[2];
-        let t76 = t73
-            + (mu_rear_right_z
-                + (mu_rear_left_z + (mu_front_left_z + mu_front_right_z)));
-        let t1 = yd_y1 + yd_y2;
-        let t2 = yd_y3 + yd_y4;
-        let t5 = 0.06141674281336605 * t2
-            + (vz * 32.400000000000006 + omega_y * 0.039737487701791585
-                - t1 * 0.06554387853808762);
-        let t4 = vy * 32.400000000000006 + omega_x * 0.4312032443194375
-            - omega_z * 0.039737487701791585;
-        let t6 = yd_y3 - yd_y4;
-        let t9 = 0.02061481005950584 * t6
-            + (0.020096810055027448 * (yd_y1 - yd_y2)
-                + (omega_z * 1.8211079205111202
-                    - (vy * 0.039737487701791585 + omega_x * 0.00871551924113003)));
-        let t8 = 0.038539291066297 * t2
-            + (0.03679686580395105 * t1
-                + (omega_y * 1.2025924185186647
-                    + (vz * 0.039737487701791585 - vx * 0.4312032443194375)));
-        let f_front_left_x = loads[0].force[0];
-        let f_front_left_y = loads[0].force[1];
-        let f_front_left_z = loads[0].force[2];
-        let t52 = f_front_left_z * t11 + (f_front_left_x * t47 + f_front_left_y * t50);
-        let f_front_right_x = loads[1].force[0];
-        let f_front_right_y = loads[1].force[1];
-        let f_front_right_z = loads[1].force[2];
-        let t55 = f_front_right_z * t11
-            + (f_front_right_x * t47 + f_front_right_y * t50);
-        let f_rear_left_x = loads[2].force[0];
-        let f_rear_left_y = loads[2].force[1];
-        let f_rear_left_z = loads[2].force[2];
-        let t59 = f_rear_left_z * t11 + (f_rear_left_x * t47 + f_rear_left_y * t50);
-        let f_rear_right_x = loads[3].force[0];
-        let f_rear_right_y = loads[3].force[1];
-        let f_rear_right_z = loads[3].force[2];
-        let t63 = f_rear_right_z * t11 + (f_rear_right_x * t47 + f_rear_right_y * t50);
-        let t14 = t11 * 0.972;
-        let t15 = 0.2 * t14;
-        let t13 = s_phi * 0.972;
-        let t66 = f_front_left_z * s_phi + (f_front_left_y * t49 - f_front_left_x * t46)
-            + (f_front_right_z * s_phi
-                + (f_front_right_y * t49 - f_front_right_x * t46));
-        let t58 = f_rear_left_z * s_phi + (f_rear_left_y * t49 - f_rear_left_x * t46);
-        let t62 = f_rear_right_z * s_phi + (f_rear_right_y * t49 - f_rear_right_x * t46);
-        let t77 = t58 + t62;
-        let t3 = vx * 32.400000000000006 - omega_y * 0.4312032443194375
-            - 0.10048405027513724 * t1 - 0.10307405029752918 * t2;
-        let t67 = omega_x * t5 + (t62 + (t58 + t66) - omega_z * t3)
-            + (-(t13 * 4.0) - s_phi * 48.6);
-        let t78 = omega_z * t8
-            + (vz * t4 + (t45 * t74 + t48 * t75 - t10 * t76 - vy * t5) - omega_y * t9)
-            + (0.18181525936802018 * t77
-                + (0.17752077756484444 * t66
-                    + ((t15 + (-t15 - 0.17752077756484444 * t13)
-                        - 0.18181525936802018 * t13) * 2.0
-                        + 0.2 * (t59 + (t52 - t55) - t63)))
-                - 0.013308742108624613 * t67);
-        let t83 = 0.015106701567564954 * t78;
-        let t51 = f_front_left_x * t45 + f_front_left_y * t48 - f_front_left_z * t10;
-        let t54 = f_front_right_x * t45 + f_front_right_y * t48 - f_front_right_z * t10;
-        let t64 = t51 + t54;
-        let t57 = f_rear_left_x * t45 + f_rear_left_y * t48 - f_rear_left_z * t10;
-        let t61 = f_rear_right_x * t45 + f_rear_right_y * t48 - f_rear_right_z * t10;
-        let t12 = t10 * 0.972;
-        let t65 = omega_z * t4 + (t61 + (t57 + t64) - omega_y * t5)
-            + (t12 * 4.0 + t10 * 48.6);
-        let t81 = t65 * 0.003101359576393124;
-        let t68 = t52 + t55;
-        let t69 = omega_y * t3 + (t63 + (t59 + t68) - omega_x * t4)
-            + (-(t14 * 4.0) - t11 * 48.6);
-        let t82 = t69 * 0.0020229592141385064;
-        let t53 = mu_front_left_z * s_phi
-            + (mu_front_left_y * t49 - mu_front_left_x * t46);
-        let t56 = mu_front_right_z * s_phi
-            + (mu_front_right_y * t49 - mu_front_right_x * t46);
-        let t60 = mu_rear_left_z * s_phi + (mu_rear_left_y * t49 - mu_rear_left_x * t46);
-        let t70 = mu_rear_right_z * s_phi
-            + (mu_rear_right_y * t49 - mu_rear_right_x * t46);
-        let t7 = 0.012283348562673211 * t6
-            + (0.013108775707617523 * (yd_y2 - yd_y1)
-                + (vy * 0.4312032443194375 + omega_x * 0.8734844980075449
-                    - omega_z * 0.00871551924113003));
-        let t79 = 0.013308742108624613 * t65
-            + (0.3223690311533514 * (t59 + t63)
-                + (t70 + (t60 + (t53 + t56)) - vz * t3
-                    + (s_phi * t73
-                        + (t49 * t72
-                            + (omega_x * t9 + (vx * t5 - omega_z * t7) - t46 * t71)))
-                    + (2.0
-                        * (0.2892544580685251 * t14 - 0.17752077756484444 * t12
-                            - (0.18181525936802018 * t12 + 0.3223690311533514 * t14))
-                        - 0.17752077756484444 * t64 - 0.2892544580685251 * t68)
-                    - 0.18181525936802018 * (t57 + t61))) - 0.001226465669808382 * t69;
-        let t84 = 0.029695681008734886 * t79;
-        let t16 = 0.2 * t12;
-        let t80 = omega_y * t7
-            + (vy * t3 + (t11 * t76 + (t47 * t74 + t50 * t75) - vx * t4) - omega_x * t8)
-            + (t78 * 0.009434403451620336
-                + (0.001226465669808382 * t67
-                    + (0.2 * (t61 + (t54 - t51 - t57))
-                        + (2.0
-                            * (0.3223690311533514 * t13
-                                + (t16 + (-(0.2892544580685251 * t13) - t16)))
-                            + 0.2892544580685251 * t66) - 0.3223690311533514 * t77)));
-        let t85 = 0.010968333103455796 * t80;
-        let t17 = t14 * 0.10923979756347936 - t12 * 0.16747341712522873;
-        let y1 = x[6];
-        let t20 = f64::max(-(y1 + 1.0471975511965976), 0.0);
-        let t23 = f64::min(10000.0 * t20, 1.0);
-        let t24 = f64::max(500.0 * t20 - yd_y1 * (6.92820323027551 * t23), 0.0);
-        let t19 = f64::max(y1 + 0.03490658503988659, 0.0);
-        let t21 = f64::min(10000.0 * t19, 1.0);
-        let t22 = f64::min(-(yd_y1 * (6.92820323027551 * t21) + 500.0 * t19), 0.0);
-        let y0_y1 = self.neutral[0];
-        let t86 = t53 + (t22 + (t17 + t24)) + (t83 + (t81 + t82) - t84 - t85)
-            + 5.0 * (y0_y1 - y1) - yd_y1 * 3.5 - 0.16747341712522873 * t51
-            - 0.10923979756347936 * t52;
-        let y2 = x[7];
-        let t26 = f64::max(-(y2 + 1.0471975511965976), 0.0);
-        let t29 = f64::min(10000.0 * t26, 1.0);
-        let t30 = f64::max(500.0 * t26 - yd_y2 * (6.92820323027551 * t29), 0.0);
-        let t25 = f64::max(y2 + 0.03490658503988659, 0.0);
-        let t27 = f64::min(10000.0 * t25, 1.0);
-        let t28 = f64::min(-(yd_y2 * (6.92820323027551 * t27) + 500.0 * t25), 0.0);
-        let y0_y2 = self.neutral[1];
-        let t87 = t86 * 0.0490451746084416
-            + (t82 + (t85 - t84 - t83) + (t81 + (t56 + (t28 + (t17 + t30))))
-                + 5.0 * (y0_y2 - y2) - yd_y2 * 3.5 - 0.16747341712522873 * t54
-                - 0.10923979756347936 * t55);
-        let t88 = t65 * 0.003181297848689172;
-        let t89 = 0.0018955784818940136 * t69;
-        let t90 = 0.01415546997869927 * t78;
-        let t91 = 0.030992669987227498 * t79;
-        let t92 = 0.011384350159721534 * t80;
-        let t18 = t12 * 0.17179008382921532 + 0.10236123802227676 * t14;
-        let y3 = x[8];
-        let t32 = f64::max(0.03490658503988659 - y3, 0.0);
-        let t35 = f64::min(10000.0 * t32, 1.0);
-        let t36 = f64::max(500.0 * t32 - yd_y3 * (6.92820323027551 * t35), 0.0);
-        let t31 = f64::max(y3 - 1.0471975511965976, 0.0);
-        let t33 = f64::min(10000.0 * t31, 1.0);
-        let t34 = f64::min(-(yd_y3 * (6.92820323027551 * t33) + 500.0 * t31), 0.0);
-        let y0_y3 = self.neutral[2];
-        let t93 = t87 * 0.05998298135290267
-            + (t86 * 0.060653434640334784
-                + (0.10236123802227676 * t59
-                    + (t60 + (t34 + (t36 - t18)) + (t88 - t89 - t90 - t91 - t92)
-                        + 5.0 * (y0_y3 - y3) - yd_y3 * 3.5
-                        - 0.17179008382921532 * t57)));
-        let y4 = x[9];
-        let t38 = f64::max(0.03490658503988659 - y4, 0.0);
-        let t41 = f64::min(10000.0 * t38, 1.0);
-        let t42 = f64::max(500.0 * t38 - yd_y4 * (6.92820323027551 * t41), 0.0);
-        let t37 = f64::max(y4 - 1.0471975511965976, 0.0);
-        let t39 = f64::min(10000.0 * t37, 1.0);
-        let t40 = f64::min(-(yd_y4 * (6.92820323027551 * t39) + 500.0 * t37), 0.0);
-        let y0_y4 = self.neutral[3];
-        let t94 = (t93 * 0.061574772700712266
-            + (t87 * 0.06359531043432279
-                + (t86 * 0.05686393824837326
-                    + (0.10236123802227676 * t63
-                        + (t90 + (t92 - t91) - t89 + (t88 + (t70 + (t40 + (t42 - t18))))
-                            + 5.0 * (y0_y4 - y4) - yd_y4 * 3.5
-                            - 0.17179008382921532 * t61))))) / 0.021746810292359767;
-        let t95 = t93 / 0.021829576096129864 + 0.061574772700712266 * t94;
-        let t96 = 0.06359531043432279 * t94
-            + (t87 / 0.02201860062774949 + 0.05998298135290267 * t95);
-        let t97 = 0.05686393824837326 * t94
-            + (0.060653434640334784 * t95
-                + (t86 / 0.022071692520380215 + 0.0490451746084416 * t96));
-        let t100 = t96 + t97;
-        let t101 = t94 + t95;
-        let t102 = t79 / 1.1968049090791444 - 0.029695681008734886 * t100
-            - 0.030992669987227498 * t101;
-        let t98 = t94 - t95;
-        let t99 = 0.011384350159721534 * t98
-            + (t80 / 1.8209819475624827 + 0.010968333103455796 * (t96 - t97));
-        let t103 = 0.01415546997869927 * t98
-            + (0.015106701567564954 * (t97 - t96)
-                + (t78 / 0.8677457252324953 + 0.009434403451620336 * t99));
-        let cos_roll = c_phi;
+        let t820 = omega_z * t100;
+        let t821 = omega_x * t99;
+        let t822 = -t821;
+        let t823 = t820 - t821;
+        let t824 = t823 / t98;
+        let t825 = t97 * t824;
+        let t826 = -t825;
+        let t827 = omega_y - t825;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
+        );
+        let v26 = lanes_mul!(v5, lanes_splat!(t97));
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
+        );
+        let v25 = lanes_mul!(v4, lanes_splat!(t331));
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v24 = lanes_mul!(v3, lanes_splat!(t324));
+        let l24 = lanes_array!(v24);
+        let t359 = -l24[0];
+        let t388 = -l24[1];
+        let t417 = -l24[2];
+        let t481 = -l24[3];
+        let v31 = lanes_add!(lanes_mul!(v24, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v25);
+        let v36 = lanes_add!(v26, v31);
+        let l36 = lanes_array!(v36);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v13 = lanes_add!(
+            v9, lanes!(0.03490658503988659, 0.03490658503988659, - 1.0471975511965976, -
+            1.0471975511965976)
+        );
+        let l13 = lanes_array!(v13);
+        let t232 = f64::max(l13[0], 0.0);
+        let t238 = 10000.0 * t232;
+        let t239 = f64::min(t238, 1.0);
+        let t240 = 6.92820323027551 * t239;
+        let t241 = l11[0] * t240;
+        let t242 = 500.0 * t232;
+        let t243 = t241 + t242;
+        let t244 = -t243;
+        let t245 = f64::min(t244, 0.0);
+        let t194 = t188 * 0.972;
+        let t211 = t194 * 0.10923979756347936;
+        let t191 = t187 * 0.972;
+        let t210 = t191 * 0.16747341712522873;
+        let t212 = -t210;
+        let t213 = t211 - t210;
+        let t278 = -l9[2];
+        let t299 = -l9[3];
+        let v14 = lanes_add!(
+            lanes_mul!(v9, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(1.0471975511965976,
+            1.0471975511965976, 0.03490658503988659, 0.03490658503988659)
+        );
+        let l14 = lanes_array!(v14);
+        let t236 = -l14[0];
+        let t237 = f64::max(t236, 0.0);
+        let t250 = 500.0 * t237;
+        let t246 = 10000.0 * t237;
+        let t247 = f64::min(t246, 1.0);
+        let t248 = 6.92820323027551 * t247;
+        let t249 = l11[0] * t248;
+        let t251 = -t249;
+        let t252 = t250 - t249;
+        let t253 = f64::max(t252, 0.0);
+        let t625 = t213 + t253;
+        let t626 = t245 + t625;
+        let t627 = l36[0] + t626;
+        let t117 = vy * 32.400000000000006;
+        let t118 = omega_x * 0.4312032443194375;
+        let t120 = t117 + t118;
+        let t119 = omega_z * 0.039737487701791585;
+        let t121 = -t119;
+        let t122 = t120 - t119;
+        let t170 = omega_z * t122;
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
+        );
+        let v15 = lanes_mul!(v0, lanes_splat!(t323));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
+        );
+        let v18 = lanes_mul!(v1, lanes_splat!(t330));
+        let v28 = lanes_add!(v15, v18);
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
+        );
+        let v22 = lanes_mul!(v2, lanes_splat!(t187));
+        let l22 = lanes_array!(v22);
+        let t340 = -l22[0];
+        let t369 = -l22[1];
+        let t398 = -l22[2];
+        let t427 = -l22[3];
+        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l34 = lanes_array!(v34);
+        let t443 = l34[0] + l34[1];
+        let t444 = l34[2] + t443;
+        let t445 = l34[3] + t444;
+        let t109 = l11[2] + l11[3];
+        let t127 = 0.06141674281336605 * t109;
+        let t124 = vz * 32.400000000000006;
+        let t125 = omega_y * 0.039737487701791585;
+        let t128 = t124 + t125;
+        let t107 = l11[0] + l11[1];
+        let t126 = t107 * 0.06554387853808762;
+        let t129 = -t126;
+        let t130 = t128 - t126;
+        let t131 = t127 + t130;
+        let t169 = omega_y * t131;
+        let t446 = -t169;
+        let t447 = t445 - t169;
+        let t448 = t170 + t447;
+        let t441 = t191 * 4.0;
+        let t442 = t187 * 48.6;
+        let t449 = t441 + t442;
+        let t450 = t448 + t449;
+        let t571 = 0.013308742108624613 * t450;
+        let v23 = lanes_mul!(v2, lanes_splat!(t188));
+        let v17 = lanes_mul!(v0, lanes_splat!(t327));
+        let v20 = lanes_mul!(v1, lanes_splat!(t335));
+        let v30 = lanes_add!(v17, v20);
+        let v35 = lanes_add!(v23, v30);
+        let l35 = lanes_array!(v35);
+        let t569 = l35[2] + l35[3];
+        let t570 = 0.3223690311533514 * t569;
+        let t105 = vx * 32.400000000000006;
+        let t106 = omega_y * 0.4312032443194375;
+        let t111 = -t106;
+        let t112 = t105 - t106;
+        let t108 = 0.10048405027513724 * t107;
+        let t113 = -t108;
+        let t114 = t112 - t108;
+        let t110 = 0.10307405029752918 * t109;
+        let t115 = -t110;
+        let t116 = t114 - t110;
+        let t177 = vz * t116;
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
+        );
+        let t495 = lanes_sum!(v8);
+        let t501 = t97 * t495;
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let t492 = lanes_sum!(v7);
+        let t500 = t331 * t492;
+        let t139 = -l11[3];
+        let t140 = l11[2] - l11[3];
+        let t163 = 0.02061481005950584 * t140;
+        let t160 = -l11[1];
+        let t161 = l11[0] - l11[1];
+        let t162 = 0.020096810055027448 * t161;
+        let t159 = omega_z * 1.8211079205111202;
+        let t157 = vy * 0.039737487701791585;
+        let t158 = omega_x * 0.00871551924113003;
+        let t164 = t157 + t158;
+        let t165 = -t164;
+        let t166 = t159 - t164;
+        let t167 = t162 + t166;
+        let t168 = t163 + t167;
+        let t184 = omega_x * t168;
+        let t178 = vx * t131;
+        let t141 = 0.012283348562673211 * t140;
+        let t136 = -l11[0];
+        let t137 = l11[1] - l11[0];
+        let t138 = 0.013108775707617523 * t137;
+        let t133 = vy * 0.4312032443194375;
+        let t134 = omega_x * 0.8734844980075449;
+        let t142 = t133 + t134;
+        let t135 = omega_z * 0.00871551924113003;
+        let t143 = -t135;
+        let t144 = t142 - t135;
+        let t145 = t138 + t144;
+        let t146 = t141 + t145;
+        let t183 = omega_z * t146;
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let t489 = lanes_sum!(v6);
+        let t499 = t324 * t489;
+        let t201 = 0.2892544580685251 * t194;
+        let t200 = 0.17752077756484444 * t191;
+        let t202 = -t200;
+        let t203 = t201 - t200;
+        let t216 = 0.18181525936802018 * t191;
+        let t217 = 0.3223690311533514 * t194;
+        let t218 = t216 + t217;
+        let t219 = -t218;
+        let t550 = t203 - t218;
+        let t551 = 2.0 * t550;
+        let t552 = 0.17752077756484444 * t443;
+        let t466 = l35[0] + l35[1];
+        let t553 = 0.2892544580685251 * t466;
+        let t567 = l34[2] + l34[3];
+        let t568 = 0.18181525936802018 * t567;
+        let t174 = omega_y * t116;
+        let t467 = l35[2] + t466;
+        let t468 = l35[3] + t467;
+        let t173 = omega_x * t122;
+        let t469 = -t173;
+        let t470 = t468 - t173;
+        let t471 = t174 + t470;
+        let t463 = t194 * 4.0;
+        let t464 = -t463;
+        let t465 = t188 * 48.6;
+        let t472 = -t465;
+        let t473 = t464 - t465;
+        let t474 = t471 + t473;
+        let t572 = 0.001226465669808382 * t474;
+        let t583 = lanes_sum!(v36) + t571 + t570 - t177 + t501 + t500 + t184 + t178
+            - t183 - t499 + t551 - t552 - t553 - t568 - t572;
+        let t622 = 0.029695681008734886 * t583;
+        let t623 = -t622;
+        let t151 = 0.038539291066297 * t109;
+        let t150 = 0.03679686580395105 * t107;
+        let t149 = omega_y * 1.2025924185186647;
+        let t148 = vz * 0.039737487701791585;
+        let t147 = vx * 0.4312032443194375;
+        let t152 = -t147;
+        let t153 = t148 - t147;
+        let t154 = t149 + t153;
+        let t155 = t150 + t154;
+        let t156 = t151 + t155;
+        let t182 = omega_z * t156;
+        let t176 = vz * t122;
+        let t508 = lanes_sum!(v3) + t489;
+        let t509 = t323 * t508;
+        let t513 = lanes_sum!(v4) + t492;
+        let t514 = t330 * t513;
+        let t535 = t509 + t514;
+        let t518 = lanes_sum!(v5) + t495;
+        let t519 = t187 * t518;
+        let t536 = -t519;
+        let t537 = t535 - t519;
+        let t175 = vy * t131;
+        let t538 = -t175;
+        let t539 = t537 - t175;
+        let t540 = t176 + t539;
+        let t181 = omega_y * t168;
+        let t541 = -t181;
+        let t542 = t540 - t181;
+        let t543 = t182 + t542;
+        let v21 = lanes_mul!(v2, lanes_splat!(t97));
+        let v19 = lanes_mul!(v1, lanes_splat!(t331));
+        let v16 = lanes_mul!(v0, lanes_splat!(t324));
+        let l16 = lanes_array!(v16);
+        let t345 = -l16[0];
+        let t374 = -l16[1];
+        let t403 = -l16[2];
+        let t432 = -l16[3];
+        let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
+        let v33 = lanes_add!(v21, v29);
+        let l33 = lanes_array!(v33);
+        let t532 = l33[2] + l33[3];
+        let t533 = 0.18181525936802018 * t532;
+        let t454 = l33[0] + l33[1];
+        let t531 = 0.17752077756484444 * t454;
+        let t192 = t97 * 0.972;
+        let t214 = 0.18181525936802018 * t192;
+        let t215 = -t214;
+        let t196 = 0.2 * t194;
+        let t197 = -t196;
+        let t198 = 0.17752077756484444 * t192;
+        let t199 = -t198;
+        let t520 = t197 - t198;
+        let t521 = t196 + t520;
+        let t522 = t215 + t521;
+        let t524 = t522 * 2.0;
+        let t529 = lanes_sum!(lanes_mul!(v35, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t530 = 0.2 * t529;
+        let t544 = t524 + t530;
+        let t545 = t531 + t544;
+        let t546 = t533 + t545;
+        let t172 = omega_x * t131;
+        let t455 = l33[2] + t454;
+        let t456 = l33[3] + t455;
+        let t171 = omega_z * t116;
+        let t457 = -t171;
+        let t458 = t456 - t171;
+        let t459 = t172 + t458;
+        let t451 = t192 * 4.0;
+        let t452 = -t451;
+        let t453 = t97 * 48.6;
+        let t460 = -t453;
+        let t461 = t452 - t453;
+        let t462 = t459 + t461;
+        let t534 = 0.013308742108624613 * t462;
+        let t547 = -t534;
+        let t548 = t546 - t534;
+        let t549 = t543 + t548;
+        let t621 = 0.015106701567564954 * t549;
+        let t618 = t450 * 0.003101359576393124;
+        let t620 = t474 * 0.0020229592141385064;
+        let t628 = t618 + t620;
+        let t629 = t621 + t628;
+        let t630 = t623 + t629;
+        let t186 = omega_y * t146;
+        let t180 = vy * t116;
+        let t587 = t188 * t518;
+        let t585 = t327 * t508;
+        let t586 = t335 * t513;
+        let t602 = t585 + t586;
+        let t603 = t587 + t602;
+        let t179 = vx * t122;
+        let t604 = -t179;
+        let t605 = t603 - t179;
+        let t606 = t180 + t605;
+        let t185 = omega_x * t156;
+        let t607 = -t185;
+        let t608 = t606 - t185;
+        let t609 = t186 + t608;
+        let t601 = t549 * 0.009434403451620336;
+        let t600 = 0.001226465669808382 * t462;
+        let t597 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t598 = 0.2 * t597;
+        let t220 = 0.3223690311533514 * t192;
+        let t206 = 0.2 * t191;
+        let t204 = 0.2892544580685251 * t192;
+        let t205 = -t204;
+        let t207 = -t206;
+        let t588 = t205 - t206;
+        let t589 = t206 + t588;
+        let t590 = t220 + t589;
+        let t591 = 2.0 * t590;
+        let t592 = 0.2892544580685251 * t454;
+        let t610 = t591 + t592;
+        let t611 = t598 + t610;
+        let t599 = 0.3223690311533514 * t532;
+        let t612 = -t599;
+        let t613 = t611 - t599;
+        let t614 = t600 + t613;
+        let t615 = t601 + t614;
+        let t616 = t609 + t615;
+        let t624 = 0.010968333103455796 * t616;
+        let t631 = -t624;
+        let t632 = t630 - t624;
+        let t633 = t627 + t632;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t634 = -l9[0];
+        let t657 = -l9[1];
+        let v12 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v32 = lanes_mul!(v12, lanes!(5.0, 5.0, 5.0, 5.0));
+        let l32 = lanes_array!(v32);
+        let t640 = t633 + l32[0];
+        let v27 = lanes_mul!(v11, lanes!(3.5, 3.5, 3.5, 3.5));
+        let l27 = lanes_array!(v27);
+        let t641 = -l27[0];
+        let t642 = t640 - l27[0];
+        let v37 = lanes_mul!(
+            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            0.17179008382921532)
+        );
+        let l37 = lanes_array!(v37);
+        let t643 = -l37[0];
+        let t644 = t642 - l37[0];
+        let v38 = lanes_mul!(
+            v35, lanes!(0.10923979756347936, 0.10923979756347936, 0.10236123802227676,
+            0.10236123802227676)
+        );
+        let l38 = lanes_array!(v38);
+        let t645 = -l38[0];
+        let t646 = t644 - l38[0];
+        let t663 = t646 * 0.0490451746084416;
+        let t648 = t623 + t624;
+        let t649 = -t621;
+        let t650 = t648 - t621;
+        let t651 = t620 + t650;
+        let t256 = f64::max(l13[1], 0.0);
+        let t260 = 10000.0 * t256;
+        let t261 = f64::min(t260, 1.0);
+        let t262 = 6.92820323027551 * t261;
+        let t263 = l11[1] * t262;
+        let t264 = 500.0 * t256;
+        let t265 = t263 + t264;
+        let t266 = -t265;
+        let t267 = f64::min(t266, 0.0);
+        let t258 = -l14[1];
+        let t259 = f64::max(t258, 0.0);
+        let t272 = 500.0 * t259;
+        let t268 = 10000.0 * t259;
+        let t269 = f64::min(t268, 1.0);
+        let t270 = 6.92820323027551 * t269;
+        let t271 = l11[1] * t270;
+        let t273 = -t271;
+        let t274 = t272 - t271;
+        let t275 = f64::max(t274, 0.0);
+        let t652 = t213 + t275;
+        let t653 = t267 + t652;
+        let t654 = l36[1] + t653;
+        let t655 = t618 + t654;
+        let t656 = t651 + t655;
+        let t664 = t656 + l32[1];
+        let t665 = -l27[1];
+        let t666 = t664 - l27[1];
+        let t667 = -l37[1];
+        let t668 = t666 - l37[1];
+        let t669 = -l38[1];
+        let t670 = t668 - l38[1];
+        let t671 = t663 + t670;
+        let t698 = t671 * 0.05998298135290267;
+        let t697 = t646 * 0.060653434640334784;
+        let t277 = f64::max(l13[2], 0.0);
+        let t281 = 10000.0 * t277;
+        let t282 = f64::min(t281, 1.0);
+        let t283 = 6.92820323027551 * t282;
+        let t284 = l11[2] * t283;
+        let t285 = 500.0 * t277;
+        let t286 = t284 + t285;
+        let t287 = -t286;
+        let t288 = f64::min(t287, 0.0);
+        let t222 = t191 * 0.17179008382921532;
+        let t223 = 0.10236123802227676 * t194;
+        let t224 = t222 + t223;
+        let t225 = -t224;
+        let t280 = f64::max(l14[2], 0.0);
+        let t293 = 500.0 * t280;
+        let t289 = 10000.0 * t280;
+        let t290 = f64::min(t289, 1.0);
+        let t291 = 6.92820323027551 * t290;
+        let t292 = l11[2] * t291;
+        let t294 = -t292;
+        let t295 = t293 - t292;
+        let t296 = f64::max(t295, 0.0);
+        let t682 = t225 + t296;
+        let t683 = t288 + t682;
+        let t684 = l36[2] + t683;
+        let t677 = 0.030992669987227498 * t583;
+        let t678 = -t677;
+        let t673 = t450 * 0.003181297848689172;
+        let t674 = 0.0018955784818940136 * t474;
+        let t675 = -t674;
+        let t685 = t673 - t674;
+        let t676 = 0.01415546997869927 * t549;
+        let t686 = -t676;
+        let t687 = t685 - t676;
+        let t688 = t678 + t687;
+        let t679 = 0.011384350159721534 * t616;
+        let t689 = -t679;
+        let t690 = t688 - t679;
+        let t691 = t684 + t690;
+        let t699 = t691 + l32[2];
+        let t700 = -l27[2];
+        let t701 = t699 - l27[2];
+        let t702 = -l37[2];
+        let t703 = t701 - l37[2];
+        let t704 = l38[2] + t703;
+        let t705 = t697 + t704;
+        let t706 = t698 + t705;
+        let t725 = t706 * 0.061574772700712266;
+        let t724 = t671 * 0.06359531043432279;
+        let t723 = t646 * 0.05686393824837326;
+        let t710 = t678 + t679;
+        let t711 = t676 + t710;
+        let t712 = t675 + t711;
+        let t298 = f64::max(l13[3], 0.0);
+        let t302 = 10000.0 * t298;
+        let t303 = f64::min(t302, 1.0);
+        let t304 = 6.92820323027551 * t303;
+        let t305 = l11[3] * t304;
+        let t306 = 500.0 * t298;
+        let t307 = t305 + t306;
+        let t308 = -t307;
+        let t309 = f64::min(t308, 0.0);
+        let t301 = f64::max(l14[3], 0.0);
+        let t314 = 500.0 * t301;
+        let t310 = 10000.0 * t301;
+        let t311 = f64::min(t310, 1.0);
+        let t312 = 6.92820323027551 * t311;
+        let t313 = l11[3] * t312;
+        let t315 = -t313;
+        let t316 = t314 - t313;
+        let t317 = f64::max(t316, 0.0);
+        let t713 = t225 + t317;
+        let t714 = t309 + t713;
+        let t715 = l36[3] + t714;
+        let t716 = t673 + t715;
+        let t717 = t712 + t716;
+        let t726 = t717 + l32[3];
+        let t727 = -l27[3];
+        let t728 = t726 - l27[3];
+        let t729 = -l37[3];
+        let t730 = t728 - l37[3];
+        let t731 = l38[3] + t730;
+        let t732 = t723 + t731;
+        let t733 = t724 + t732;
+        let t734 = t725 + t733;
+        let t744 = t734 / 0.021746810292359767;
+        let t743 = t706 / 0.021829576096129864;
+        let t745 = 0.061574772700712266 * t744;
+        let t746 = t743 + t745;
+        let t767 = t744 + t746;
+        let t796 = 0.003181297848689172 * t767;
+        let t748 = 0.06359531043432279 * t744;
+        let t742 = t671 / 0.02201860062774949;
+        let t747 = 0.05998298135290267 * t746;
+        let t749 = t742 + t747;
+        let t750 = t748 + t749;
+        let t753 = 0.05686393824837326 * t744;
+        let t752 = 0.060653434640334784 * t746;
+        let t741 = t646 / 0.022071692520380215;
+        let t751 = 0.0490451746084416 * t750;
+        let t754 = t741 + t751;
+        let t755 = t752 + t754;
+        let t756 = t753 + t755;
+        let t765 = t750 + t756;
+        let t795 = 0.003101359576393124 * t765;
+        let t735 = t450 / 32.400000000000006;
+        let t739 = t583 / 1.1968049090791444;
+        let t766 = 0.029695681008734886 * t765;
+        let t769 = -t766;
+        let t770 = t739 - t766;
+        let t768 = 0.030992669987227498 * t767;
+        let t771 = -t768;
+        let t772 = t770 - t768;
+        let t794 = 0.013308742108624613 * t772;
+        let t797 = t735 + t794;
+        let t798 = t795 + t797;
+        let t799 = t796 + t798;
+        let t760 = -t746;
+        let t761 = t744 - t746;
+        let t762 = 0.011384350159721534 * t761;
+        let t740 = t616 / 1.8209819475624827;
+        let t757 = -t756;
+        let t758 = t750 - t756;
+        let t759 = 0.010968333103455796 * t758;
+        let t763 = t740 + t759;
+        let t764 = t762 + t763;
+        let t790 = 0.001226465669808382 * t764;
+        let t736 = t462 / 32.400000000000006;
+        let t777 = 0.01415546997869927 * t761;
+        let t774 = -t750;
+        let t775 = t756 - t750;
+        let t776 = 0.015106701567564954 * t775;
+        let t738 = t549 / 0.8677457252324953;
+        let t773 = 0.009434403451620336 * t764;
+        let t778 = t738 + t773;
+        let t779 = t776 + t778;
+        let t780 = t777 + t779;
+        let t789 = 0.013308742108624613 * t780;
+        let t791 = -t789;
+        let t792 = t736 - t789;
+        let t793 = t790 + t792;
+        let t782 = 0.0020229592141385064 * t765;
+        let t737 = t474 / 32.400000000000006;
+        let t781 = 0.001226465669808382 * t772;
+        let t784 = -t781;
+        let t785 = t737 - t781;
+        let t786 = t782 + t785;
+        let t783 = 0.0018955784818940136 * t767;
+        let t787 = -t783;
+        let t788 = t786 - t783;
+        let cos_roll = t98;
         let pivot_6 = 0.022071692520380215;
         let pivot_den_6 = 1.0;
         let pivot_7 = 0.02201860062774949;
@@ -390,31 +779,765 @@ impl Swing4Simplified {
         let pivot_den_4 = 1.0;
         let pivot_5 = 1.8209819475624827;
         let pivot_den_5 = 1.0;
-        xdot[0] = vz * t47 + (vx * t45 - vy * t46);
-        xdot[1] = vz * t50 + (vx * t48 + vy * t49);
-        xdot[2] = vz * t11 + (vy * s_phi - vx * t10);
-        xdot[3] = omega_x * c_theta + omega_z * s_theta;
-        xdot[4] = omega_y - s_phi * t104;
-        xdot[5] = t104;
-        xdot[6] = yd_y1;
-        xdot[7] = yd_y2;
-        xdot[8] = yd_y3;
-        xdot[9] = yd_y4;
-        wdot[0] = 0.003181297848689172 * t101
-            + (0.003101359576393124 * t100
-                + (t65 / 32.400000000000006 + 0.013308742108624613 * t102));
-        wdot[1] = 0.001226465669808382 * t99
-            + (t67 / 32.400000000000006 - 0.013308742108624613 * t103);
-        wdot[2] = 0.0020229592141385064 * t100
-            + (t69 / 32.400000000000006 - 0.001226465669808382 * t102)
-            - 0.0018955784818940136 * t101;
-        wdot[3] = t103;
-        wdot[4] = t102;
-        wdot[5] = t99;
-        wdot[6] = t97;
-        wdot[7] = t96;
-        wdot[8] = t95;
-        wdot[9] = t94;
+        xdot[0] = t805;
+        xdot[1] = t810;
+        xdot[2] = t816;
+        xdot[3] = t819;
+        xdot[4] = t827;
+        xdot[5] = t824;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t799;
+        wdot[1] = t793;
+        wdot[2] = t788;
+        wdot[3] = t780;
+        wdot[4] = t772;
+        wdot[5] = t764;
+        wdot[6] = t756;
+        wdot[7] = t750;
+        wdot[8] = t746;
+        wdot[9] = t744;
+        if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
+            return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
+                roll: x[3],
+            });
+        }
+        if (pivot_6 > 0.0) & (pivot_7 > 0.0) & (pivot_8 > 0.0) & (pivot_9 > 0.0)
+            & (pivot_0 > 0.0) & (pivot_1 > 0.0) & (pivot_2 > 0.0) & (pivot_3 > 0.0)
+            & (pivot_4 > 0.0) & (pivot_5 > 0.0)
+        {
+            return Ok(());
+        }
+        Self::singular_mass([
+            (6, pivot_6, pivot_den_6),
+            (7, pivot_7, pivot_den_7),
+            (8, pivot_8, pivot_den_8),
+            (9, pivot_9, pivot_den_9),
+            (0, pivot_0, pivot_den_0),
+            (1, pivot_1, pivot_den_1),
+            (2, pivot_2, pivot_den_2),
+            (3, pivot_3, pivot_den_3),
+            (4, pivot_4, pivot_den_4),
+            (5, pivot_5, pivot_den_5),
+        ])
+    }
+    /// [`Self::derivatives_array`] for the crate's own target only,
+    /// whatever the processor offers (the reference of the tests that hold
+    /// the two copies to the same bits). Out of line, as the one function
+    /// its callers share: inlined, the body would be copied into each.
+    #[doc(hidden)]
+    #[inline(never)]
+    pub fn derivatives_portable(
+        &self,
+        x: &[f64; 10],
+        w: &[f64; 10],
+        loads: &[::rover_dynamics::plant::WheelLoad; 4],
+        xdot: &mut [f64; 10],
+        wdot: &mut [f64; 10],
+    ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+        #[allow(unused_macros)]
+        macro_rules! lanes {
+            ($a:expr, $b:expr, $c:expr, $d:expr) => {
+                [$a, $b, $c, $d]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_splat {
+            ($a:expr) => {
+                [$a; 4]
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_add {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] + q[0], p[1] +
+                q[1], p[2] + q[2], p[3] + q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_mul {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] * q[0], p[1] *
+                q[1], p[2] * q[2], p[3] * q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_div {
+            ($a:expr, $b:expr) => {
+                { let (p, q) : ([f64; 4], [f64; 4]) = ($a, $b); [p[0] / q[0], p[1] /
+                q[1], p[2] / q[2], p[3] / q[3]] }
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_array {
+            ($a:expr) => {
+                $a
+            };
+        }
+        #[allow(unused_macros)]
+        macro_rules! lanes_sum {
+            ($a:expr) => {
+                { let r : [f64; 4] = $a; (r[0] + r[2]) + (r[1] + r[3]) }
+            };
+        }
+        let phi = x[3];
+        let (t97, t98) = ::libm::sincos(phi);
+        let vz = w[2];
+        let theta = x[4];
+        let (t99, t100) = ::libm::sincos(theta);
+        let psi = x[5];
+        let (t101, t102) = ::libm::sincos(psi);
+        let t325 = t99 * t102;
+        let t319 = t97 * t100;
+        let t326 = t101 * t319;
+        let t327 = t325 + t326;
+        let t802 = vz * t327;
+        let vx = w[0];
+        let t320 = t100 * t102;
+        let t318 = t97 * t99;
+        let t321 = t101 * t318;
+        let t322 = -t321;
+        let t323 = t320 - t321;
+        let t800 = vx * t323;
+        let vy = w[1];
+        let t324 = t98 * t101;
+        let t801 = vy * t324;
+        let t803 = -t801;
+        let t804 = t800 - t801;
+        let t805 = t802 + t804;
+        let t332 = t99 * t101;
+        let t333 = t102 * t319;
+        let t334 = -t333;
+        let t335 = t332 - t333;
+        let t808 = vz * t335;
+        let t328 = t100 * t101;
+        let t329 = t102 * t318;
+        let t330 = t328 + t329;
+        let t806 = vx * t330;
+        let t331 = t98 * t102;
+        let t807 = vy * t331;
+        let t809 = t806 + t807;
+        let t810 = t808 + t809;
+        let t188 = t98 * t100;
+        let t813 = vz * t188;
+        let t812 = vy * t97;
+        let t187 = t98 * t99;
+        let t811 = vx * t187;
+        let t814 = -t811;
+        let t815 = t812 - t811;
+        let t816 = t813 + t815;
+        let omega_x = w[3];
+        let t817 = omega_x * t100;
+        let omega_z = w[5];
+        let t818 = omega_z * t99;
+        let t819 = t817 + t818;
+        let omega_y = w[4];
+        let t820 = omega_z * t100;
+        let t821 = omega_x * t99;
+        let t822 = -t821;
+        let t823 = t820 - t821;
+        let t824 = t823 / t98;
+        let t825 = t97 * t824;
+        let t826 = -t825;
+        let t827 = omega_y - t825;
+        let v11 = lanes!(w[6], w[7], w[8], w[9]);
+        let l11 = lanes_array!(v11);
+        let v5 = lanes!(
+            loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
+            .moment[2]
+        );
+        let v26 = lanes_mul!(v5, lanes_splat!(t97));
+        let v4 = lanes!(
+            loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
+            .moment[1]
+        );
+        let v25 = lanes_mul!(v4, lanes_splat!(t331));
+        let v3 = lanes!(
+            loads[0].moment[0], loads[1].moment[0], loads[2].moment[0], loads[3]
+            .moment[0]
+        );
+        let v24 = lanes_mul!(v3, lanes_splat!(t324));
+        let l24 = lanes_array!(v24);
+        let t359 = -l24[0];
+        let t388 = -l24[1];
+        let t417 = -l24[2];
+        let t481 = -l24[3];
+        let v31 = lanes_add!(lanes_mul!(v24, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v25);
+        let v36 = lanes_add!(v26, v31);
+        let l36 = lanes_array!(v36);
+        let v9 = lanes!(x[6], x[7], x[8], x[9]);
+        let l9 = lanes_array!(v9);
+        let v13 = lanes_add!(
+            v9, lanes!(0.03490658503988659, 0.03490658503988659, - 1.0471975511965976, -
+            1.0471975511965976)
+        );
+        let l13 = lanes_array!(v13);
+        let t232 = f64::max(l13[0], 0.0);
+        let t238 = 10000.0 * t232;
+        let t239 = f64::min(t238, 1.0);
+        let t240 = 6.92820323027551 * t239;
+        let t241 = l11[0] * t240;
+        let t242 = 500.0 * t232;
+        let t243 = t241 + t242;
+        let t244 = -t243;
+        let t245 = f64::min(t244, 0.0);
+        let t194 = t188 * 0.972;
+        let t211 = t194 * 0.10923979756347936;
+        let t191 = t187 * 0.972;
+        let t210 = t191 * 0.16747341712522873;
+        let t212 = -t210;
+        let t213 = t211 - t210;
+        let t278 = -l9[2];
+        let t299 = -l9[3];
+        let v14 = lanes_add!(
+            lanes_mul!(v9, lanes!(1.0, 1.0, - 1.0, - 1.0)), lanes!(1.0471975511965976,
+            1.0471975511965976, 0.03490658503988659, 0.03490658503988659)
+        );
+        let l14 = lanes_array!(v14);
+        let t236 = -l14[0];
+        let t237 = f64::max(t236, 0.0);
+        let t250 = 500.0 * t237;
+        let t246 = 10000.0 * t237;
+        let t247 = f64::min(t246, 1.0);
+        let t248 = 6.92820323027551 * t247;
+        let t249 = l11[0] * t248;
+        let t251 = -t249;
+        let t252 = t250 - t249;
+        let t253 = f64::max(t252, 0.0);
+        let t625 = t213 + t253;
+        let t626 = t245 + t625;
+        let t627 = l36[0] + t626;
+        let t117 = vy * 32.400000000000006;
+        let t118 = omega_x * 0.4312032443194375;
+        let t120 = t117 + t118;
+        let t119 = omega_z * 0.039737487701791585;
+        let t121 = -t119;
+        let t122 = t120 - t119;
+        let t170 = omega_z * t122;
+        let v0 = lanes!(
+            loads[0].force[0], loads[1].force[0], loads[2].force[0], loads[3].force[0]
+        );
+        let v15 = lanes_mul!(v0, lanes_splat!(t323));
+        let v1 = lanes!(
+            loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
+        );
+        let v18 = lanes_mul!(v1, lanes_splat!(t330));
+        let v28 = lanes_add!(v15, v18);
+        let v2 = lanes!(
+            loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
+        );
+        let v22 = lanes_mul!(v2, lanes_splat!(t187));
+        let l22 = lanes_array!(v22);
+        let t340 = -l22[0];
+        let t369 = -l22[1];
+        let t398 = -l22[2];
+        let t427 = -l22[3];
+        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l34 = lanes_array!(v34);
+        let t443 = l34[0] + l34[1];
+        let t444 = l34[2] + t443;
+        let t445 = l34[3] + t444;
+        let t109 = l11[2] + l11[3];
+        let t127 = 0.06141674281336605 * t109;
+        let t124 = vz * 32.400000000000006;
+        let t125 = omega_y * 0.039737487701791585;
+        let t128 = t124 + t125;
+        let t107 = l11[0] + l11[1];
+        let t126 = t107 * 0.06554387853808762;
+        let t129 = -t126;
+        let t130 = t128 - t126;
+        let t131 = t127 + t130;
+        let t169 = omega_y * t131;
+        let t446 = -t169;
+        let t447 = t445 - t169;
+        let t448 = t170 + t447;
+        let t441 = t191 * 4.0;
+        let t442 = t187 * 48.6;
+        let t449 = t441 + t442;
+        let t450 = t448 + t449;
+        let t571 = 0.013308742108624613 * t450;
+        let v23 = lanes_mul!(v2, lanes_splat!(t188));
+        let v17 = lanes_mul!(v0, lanes_splat!(t327));
+        let v20 = lanes_mul!(v1, lanes_splat!(t335));
+        let v30 = lanes_add!(v17, v20);
+        let v35 = lanes_add!(v23, v30);
+        let l35 = lanes_array!(v35);
+        let t569 = l35[2] + l35[3];
+        let t570 = 0.3223690311533514 * t569;
+        let t105 = vx * 32.400000000000006;
+        let t106 = omega_y * 0.4312032443194375;
+        let t111 = -t106;
+        let t112 = t105 - t106;
+        let t108 = 0.10048405027513724 * t107;
+        let t113 = -t108;
+        let t114 = t112 - t108;
+        let t110 = 0.10307405029752918 * t109;
+        let t115 = -t110;
+        let t116 = t114 - t110;
+        let t177 = vz * t116;
+        let v8 = lanes!(
+            loads[0].stator_torque[2], loads[1].stator_torque[2], loads[2]
+            .stator_torque[2], loads[3].stator_torque[2]
+        );
+        let t495 = lanes_sum!(v8);
+        let t501 = t97 * t495;
+        let v7 = lanes!(
+            loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
+            .stator_torque[1], loads[3].stator_torque[1]
+        );
+        let t492 = lanes_sum!(v7);
+        let t500 = t331 * t492;
+        let t139 = -l11[3];
+        let t140 = l11[2] - l11[3];
+        let t163 = 0.02061481005950584 * t140;
+        let t160 = -l11[1];
+        let t161 = l11[0] - l11[1];
+        let t162 = 0.020096810055027448 * t161;
+        let t159 = omega_z * 1.8211079205111202;
+        let t157 = vy * 0.039737487701791585;
+        let t158 = omega_x * 0.00871551924113003;
+        let t164 = t157 + t158;
+        let t165 = -t164;
+        let t166 = t159 - t164;
+        let t167 = t162 + t166;
+        let t168 = t163 + t167;
+        let t184 = omega_x * t168;
+        let t178 = vx * t131;
+        let t141 = 0.012283348562673211 * t140;
+        let t136 = -l11[0];
+        let t137 = l11[1] - l11[0];
+        let t138 = 0.013108775707617523 * t137;
+        let t133 = vy * 0.4312032443194375;
+        let t134 = omega_x * 0.8734844980075449;
+        let t142 = t133 + t134;
+        let t135 = omega_z * 0.00871551924113003;
+        let t143 = -t135;
+        let t144 = t142 - t135;
+        let t145 = t138 + t144;
+        let t146 = t141 + t145;
+        let t183 = omega_z * t146;
+        let v6 = lanes!(
+            loads[0].stator_torque[0], loads[1].stator_torque[0], loads[2]
+            .stator_torque[0], loads[3].stator_torque[0]
+        );
+        let t489 = lanes_sum!(v6);
+        let t499 = t324 * t489;
+        let t201 = 0.2892544580685251 * t194;
+        let t200 = 0.17752077756484444 * t191;
+        let t202 = -t200;
+        let t203 = t201 - t200;
+        let t216 = 0.18181525936802018 * t191;
+        let t217 = 0.3223690311533514 * t194;
+        let t218 = t216 + t217;
+        let t219 = -t218;
+        let t550 = t203 - t218;
+        let t551 = 2.0 * t550;
+        let t552 = 0.17752077756484444 * t443;
+        let t466 = l35[0] + l35[1];
+        let t553 = 0.2892544580685251 * t466;
+        let t567 = l34[2] + l34[3];
+        let t568 = 0.18181525936802018 * t567;
+        let t174 = omega_y * t116;
+        let t467 = l35[2] + t466;
+        let t468 = l35[3] + t467;
+        let t173 = omega_x * t122;
+        let t469 = -t173;
+        let t470 = t468 - t173;
+        let t471 = t174 + t470;
+        let t463 = t194 * 4.0;
+        let t464 = -t463;
+        let t465 = t188 * 48.6;
+        let t472 = -t465;
+        let t473 = t464 - t465;
+        let t474 = t471 + t473;
+        let t572 = 0.001226465669808382 * t474;
+        let t583 = lanes_sum!(v36) + t571 + t570 - t177 + t501 + t500 + t184 + t178
+            - t183 - t499 + t551 - t552 - t553 - t568 - t572;
+        let t622 = 0.029695681008734886 * t583;
+        let t623 = -t622;
+        let t151 = 0.038539291066297 * t109;
+        let t150 = 0.03679686580395105 * t107;
+        let t149 = omega_y * 1.2025924185186647;
+        let t148 = vz * 0.039737487701791585;
+        let t147 = vx * 0.4312032443194375;
+        let t152 = -t147;
+        let t153 = t148 - t147;
+        let t154 = t149 + t153;
+        let t155 = t150 + t154;
+        let t156 = t151 + t155;
+        let t182 = omega_z * t156;
+        let t176 = vz * t122;
+        let t508 = lanes_sum!(v3) + t489;
+        let t509 = t323 * t508;
+        let t513 = lanes_sum!(v4) + t492;
+        let t514 = t330 * t513;
+        let t535 = t509 + t514;
+        let t518 = lanes_sum!(v5) + t495;
+        let t519 = t187 * t518;
+        let t536 = -t519;
+        let t537 = t535 - t519;
+        let t175 = vy * t131;
+        let t538 = -t175;
+        let t539 = t537 - t175;
+        let t540 = t176 + t539;
+        let t181 = omega_y * t168;
+        let t541 = -t181;
+        let t542 = t540 - t181;
+        let t543 = t182 + t542;
+        let v21 = lanes_mul!(v2, lanes_splat!(t97));
+        let v19 = lanes_mul!(v1, lanes_splat!(t331));
+        let v16 = lanes_mul!(v0, lanes_splat!(t324));
+        let l16 = lanes_array!(v16);
+        let t345 = -l16[0];
+        let t374 = -l16[1];
+        let t403 = -l16[2];
+        let t432 = -l16[3];
+        let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
+        let v33 = lanes_add!(v21, v29);
+        let l33 = lanes_array!(v33);
+        let t532 = l33[2] + l33[3];
+        let t533 = 0.18181525936802018 * t532;
+        let t454 = l33[0] + l33[1];
+        let t531 = 0.17752077756484444 * t454;
+        let t192 = t97 * 0.972;
+        let t214 = 0.18181525936802018 * t192;
+        let t215 = -t214;
+        let t196 = 0.2 * t194;
+        let t197 = -t196;
+        let t198 = 0.17752077756484444 * t192;
+        let t199 = -t198;
+        let t520 = t197 - t198;
+        let t521 = t196 + t520;
+        let t522 = t215 + t521;
+        let t524 = t522 * 2.0;
+        let t529 = lanes_sum!(lanes_mul!(v35, lanes!(1.0, - 1.0, 1.0, - 1.0)));
+        let t530 = 0.2 * t529;
+        let t544 = t524 + t530;
+        let t545 = t531 + t544;
+        let t546 = t533 + t545;
+        let t172 = omega_x * t131;
+        let t455 = l33[2] + t454;
+        let t456 = l33[3] + t455;
+        let t171 = omega_z * t116;
+        let t457 = -t171;
+        let t458 = t456 - t171;
+        let t459 = t172 + t458;
+        let t451 = t192 * 4.0;
+        let t452 = -t451;
+        let t453 = t97 * 48.6;
+        let t460 = -t453;
+        let t461 = t452 - t453;
+        let t462 = t459 + t461;
+        let t534 = 0.013308742108624613 * t462;
+        let t547 = -t534;
+        let t548 = t546 - t534;
+        let t549 = t543 + t548;
+        let t621 = 0.015106701567564954 * t549;
+        let t618 = t450 * 0.003101359576393124;
+        let t620 = t474 * 0.0020229592141385064;
+        let t628 = t618 + t620;
+        let t629 = t621 + t628;
+        let t630 = t623 + t629;
+        let t186 = omega_y * t146;
+        let t180 = vy * t116;
+        let t587 = t188 * t518;
+        let t585 = t327 * t508;
+        let t586 = t335 * t513;
+        let t602 = t585 + t586;
+        let t603 = t587 + t602;
+        let t179 = vx * t122;
+        let t604 = -t179;
+        let t605 = t603 - t179;
+        let t606 = t180 + t605;
+        let t185 = omega_x * t156;
+        let t607 = -t185;
+        let t608 = t606 - t185;
+        let t609 = t186 + t608;
+        let t601 = t549 * 0.009434403451620336;
+        let t600 = 0.001226465669808382 * t462;
+        let t597 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t598 = 0.2 * t597;
+        let t220 = 0.3223690311533514 * t192;
+        let t206 = 0.2 * t191;
+        let t204 = 0.2892544580685251 * t192;
+        let t205 = -t204;
+        let t207 = -t206;
+        let t588 = t205 - t206;
+        let t589 = t206 + t588;
+        let t590 = t220 + t589;
+        let t591 = 2.0 * t590;
+        let t592 = 0.2892544580685251 * t454;
+        let t610 = t591 + t592;
+        let t611 = t598 + t610;
+        let t599 = 0.3223690311533514 * t532;
+        let t612 = -t599;
+        let t613 = t611 - t599;
+        let t614 = t600 + t613;
+        let t615 = t601 + t614;
+        let t616 = t609 + t615;
+        let t624 = 0.010968333103455796 * t616;
+        let t631 = -t624;
+        let t632 = t630 - t624;
+        let t633 = t627 + t632;
+        let v10 = lanes!(
+            self.neutral[0], self.neutral[1], self.neutral[2], self.neutral[3]
+        );
+        let t634 = -l9[0];
+        let t657 = -l9[1];
+        let v12 = lanes_add!(lanes_mul!(v9, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v10);
+        let v32 = lanes_mul!(v12, lanes!(5.0, 5.0, 5.0, 5.0));
+        let l32 = lanes_array!(v32);
+        let t640 = t633 + l32[0];
+        let v27 = lanes_mul!(v11, lanes!(3.5, 3.5, 3.5, 3.5));
+        let l27 = lanes_array!(v27);
+        let t641 = -l27[0];
+        let t642 = t640 - l27[0];
+        let v37 = lanes_mul!(
+            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            0.17179008382921532)
+        );
+        let l37 = lanes_array!(v37);
+        let t643 = -l37[0];
+        let t644 = t642 - l37[0];
+        let v38 = lanes_mul!(
+            v35, lanes!(0.10923979756347936, 0.10923979756347936, 0.10236123802227676,
+            0.10236123802227676)
+        );
+        let l38 = lanes_array!(v38);
+        let t645 = -l38[0];
+        let t646 = t644 - l38[0];
+        let t663 = t646 * 0.0490451746084416;
+        let t648 = t623 + t624;
+        let t649 = -t621;
+        let t650 = t648 - t621;
+        let t651 = t620 + t650;
+        let t256 = f64::max(l13[1], 0.0);
+        let t260 = 10000.0 * t256;
+        let t261 = f64::min(t260, 1.0);
+        let t262 = 6.92820323027551 * t261;
+        let t263 = l11[1] * t262;
+        let t264 = 500.0 * t256;
+        let t265 = t263 + t264;
+        let t266 = -t265;
+        let t267 = f64::min(t266, 0.0);
+        let t258 = -l14[1];
+        let t259 = f64::max(t258, 0.0);
+        let t272 = 500.0 * t259;
+        let t268 = 10000.0 * t259;
+        let t269 = f64::min(t268, 1.0);
+        let t270 = 6.92820323027551 * t269;
+        let t271 = l11[1] * t270;
+        let t273 = -t271;
+        let t274 = t272 - t271;
+        let t275 = f64::max(t274, 0.0);
+        let t652 = t213 + t275;
+        let t653 = t267 + t652;
+        let t654 = l36[1] + t653;
+        let t655 = t618 + t654;
+        let t656 = t651 + t655;
+        let t664 = t656 + l32[1];
+        let t665 = -l27[1];
+        let t666 = t664 - l27[1];
+        let t667 = -l37[1];
+        let t668 = t666 - l37[1];
+        let t669 = -l38[1];
+        let t670 = t668 - l38[1];
+        let t671 = t663 + t670;
+        let t698 = t671 * 0.05998298135290267;
+        let t697 = t646 * 0.060653434640334784;
+        let t277 = f64::max(l13[2], 0.0);
+        let t281 = 10000.0 * t277;
+        let t282 = f64::min(t281, 1.0);
+        let t283 = 6.92820323027551 * t282;
+        let t284 = l11[2] * t283;
+        let t285 = 500.0 * t277;
+        let t286 = t284 + t285;
+        let t287 = -t286;
+        let t288 = f64::min(t287, 0.0);
+        let t222 = t191 * 0.17179008382921532;
+        let t223 = 0.10236123802227676 * t194;
+        let t224 = t222 + t223;
+        let t225 = -t224;
+        let t280 = f64::max(l14[2], 0.0);
+        let t293 = 500.0 * t280;
+        let t289 = 10000.0 * t280;
+        let t290 = f64::min(t289, 1.0);
+        let t291 = 6.92820323027551 * t290;
+        let t292 = l11[2] * t291;
+        let t294 = -t292;
+        let t295 = t293 - t292;
+        let t296 = f64::max(t295, 0.0);
+        let t682 = t225 + t296;
+        let t683 = t288 + t682;
+        let t684 = l36[2] + t683;
+        let t677 = 0.030992669987227498 * t583;
+        let t678 = -t677;
+        let t673 = t450 * 0.003181297848689172;
+        let t674 = 0.0018955784818940136 * t474;
+        let t675 = -t674;
+        let t685 = t673 - t674;
+        let t676 = 0.01415546997869927 * t549;
+        let t686 = -t676;
+        let t687 = t685 - t676;
+        let t688 = t678 + t687;
+        let t679 = 0.011384350159721534 * t616;
+        let t689 = -t679;
+        let t690 = t688 - t679;
+        let t691 = t684 + t690;
+        let t699 = t691 + l32[2];
+        let t700 = -l27[2];
+        let t701 = t699 - l27[2];
+        let t702 = -l37[2];
+        let t703 = t701 - l37[2];
+        let t704 = l38[2] + t703;
+        let t705 = t697 + t704;
+        let t706 = t698 + t705;
+        let t725 = t706 * 0.061574772700712266;
+        let t724 = t671 * 0.06359531043432279;
+        let t723 = t646 * 0.05686393824837326;
+        let t710 = t678 + t679;
+        let t711 = t676 + t710;
+        let t712 = t675 + t711;
+        let t298 = f64::max(l13[3], 0.0);
+        let t302 = 10000.0 * t298;
+        let t303 = f64::min(t302, 1.0);
+        let t304 = 6.92820323027551 * t303;
+        let t305 = l11[3] * t304;
+        let t306 = 500.0 * t298;
+        let t307 = t305 + t306;
+        let t308 = -t307;
+        let t309 = f64::min(t308, 0.0);
+        let t301 = f64::max(l14[3], 0.0);
+        let t314 = 500.0 * t301;
+        let t310 = 10000.0 * t301;
+        let t311 = f64::min(t310, 1.0);
+        let t312 = 6.92820323027551 * t311;
+        let t313 = l11[3] * t312;
+        let t315 = -t313;
+        let t316 = t314 - t313;
+        let t317 = f64::max(t316, 0.0);
+        let t713 = t225 + t317;
+        let t714 = t309 + t713;
+        let t715 = l36[3] + t714;
+        let t716 = t673 + t715;
+        let t717 = t712 + t716;
+        let t726 = t717 + l32[3];
+        let t727 = -l27[3];
+        let t728 = t726 - l27[3];
+        let t729 = -l37[3];
+        let t730 = t728 - l37[3];
+        let t731 = l38[3] + t730;
+        let t732 = t723 + t731;
+        let t733 = t724 + t732;
+        let t734 = t725 + t733;
+        let t744 = t734 / 0.021746810292359767;
+        let t743 = t706 / 0.021829576096129864;
+        let t745 = 0.061574772700712266 * t744;
+        let t746 = t743 + t745;
+        let t767 = t744 + t746;
+        let t796 = 0.003181297848689172 * t767;
+        let t748 = 0.06359531043432279 * t744;
+        let t742 = t671 / 0.02201860062774949;
+        let t747 = 0.05998298135290267 * t746;
+        let t749 = t742 + t747;
+        let t750 = t748 + t749;
+        let t753 = 0.05686393824837326 * t744;
+        let t752 = 0.060653434640334784 * t746;
+        let t741 = t646 / 0.022071692520380215;
+        let t751 = 0.0490451746084416 * t750;
+        let t754 = t741 + t751;
+        let t755 = t752 + t754;
+        let t756 = t753 + t755;
+        let t765 = t750 + t756;
+        let t795 = 0.003101359576393124 * t765;
+        let t735 = t450 / 32.400000000000006;
+        let t739 = t583 / 1.1968049090791444;
+        let t766 = 0.029695681008734886 * t765;
+        let t769 = -t766;
+        let t770 = t739 - t766;
+        let t768 = 0.030992669987227498 * t767;
+        let t771 = -t768;
+        let t772 = t770 - t768;
+        let t794 = 0.013308742108624613 * t772;
+        let t797 = t735 + t794;
+        let t798 = t795 + t797;
+        let t799 = t796 + t798;
+        let t760 = -t746;
+        let t761 = t744 - t746;
+        let t762 = 0.011384350159721534 * t761;
+        let t740 = t616 / 1.8209819475624827;
+        let t757 = -t756;
+        let t758 = t750 - t756;
+        let t759 = 0.010968333103455796 * t758;
+        let t763 = t740 + t759;
+        let t764 = t762 + t763;
+        let t790 = 0.001226465669808382 * t764;
+        let t736 = t462 / 32.400000000000006;
+        let t777 = 0.01415546997869927 * t761;
+        let t774 = -t750;
+        let t775 = t756 - t750;
+        let t776 = 0.015106701567564954 * t775;
+        let t738 = t549 / 0.8677457252324953;
+        let t773 = 0.009434403451620336 * t764;
+        let t778 = t738 + t773;
+        let t779 = t776 + t778;
+        let t780 = t777 + t779;
+        let t789 = 0.013308742108624613 * t780;
+        let t791 = -t789;
+        let t792 = t736 - t789;
+        let t793 = t790 + t792;
+        let t782 = 0.0020229592141385064 * t765;
+        let t737 = t474 / 32.400000000000006;
+        let t781 = 0.001226465669808382 * t772;
+        let t784 = -t781;
+        let t785 = t737 - t781;
+        let t786 = t782 + t785;
+        let t783 = 0.0018955784818940136 * t767;
+        let t787 = -t783;
+        let t788 = t786 - t783;
+        let cos_roll = t98;
+        let pivot_6 = 0.022071692520380215;
+        let pivot_den_6 = 1.0;
+        let pivot_7 = 0.02201860062774949;
+        let pivot_den_7 = 1.0;
+        let pivot_8 = 0.021829576096129864;
+        let pivot_den_8 = 1.0;
+        let pivot_9 = 0.021746810292359767;
+        let pivot_den_9 = 1.0;
+        let pivot_0 = 32.400000000000006;
+        let pivot_den_0 = 1.0;
+        let pivot_1 = 32.400000000000006;
+        let pivot_den_1 = 1.0;
+        let pivot_2 = 32.400000000000006;
+        let pivot_den_2 = 1.0;
+        let pivot_3 = 0.8677457252324953;
+        let pivot_den_3 = 1.0;
+        let pivot_4 = 1.1968049090791444;
+        let pivot_den_4 = 1.0;
+        let pivot_5 = 1.8209819475624827;
+        let pivot_den_5 = 1.0;
+        xdot[0] = t805;
+        xdot[1] = t810;
+        xdot[2] = t816;
+        xdot[3] = t819;
+        xdot[4] = t827;
+        xdot[5] = t824;
+        xdot[6] = l11[0];
+        xdot[7] = l11[1];
+        xdot[8] = l11[2];
+        xdot[9] = l11[3];
+        wdot[0] = t799;
+        wdot[1] = t793;
+        wdot[2] = t788;
+        wdot[3] = t780;
+        wdot[4] = t772;
+        wdot[5] = t764;
+        wdot[6] = t756;
+        wdot[7] = t750;
+        wdot[8] = t746;
+        wdot[9] = t744;
         if f64::abs(cos_roll) < Self::MIN_COS_ROLL {
             return Err(::rover_dynamics::plant::PlantError::AttitudeSingular {
                 roll: x[3],
