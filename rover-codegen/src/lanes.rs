@@ -37,6 +37,8 @@ pub struct Plan {
     inputs: usize,
     /// Pack and lane of every node, if packed.
     pack_of: Vec<Option<(usize, usize)>>,
+    /// Nodes that no input of a lane reaches.
+    shared: Vec<bool>,
     /// Statements in an order that respects every dependency.
     order: Vec<Item>,
     /// Sums regrouped lane-wise: root node → (packs with their lane
@@ -82,6 +84,65 @@ enum Kind {
     Pack(usize),
     Scalar(Id),
     Const,
+}
+
+/// How a pack's operand is formed from its four lanes' operands.
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Form {
+    /// Four constants.
+    Consts,
+    /// One shared value in every lane.
+    Splat(Id),
+    /// A pack, negated in the lanes marked.
+    Pack(usize, [bool; LANES]),
+    /// Anything else, gathered lane by lane.
+    Gather,
+}
+
+/// The form of operand `c` (one node per lane) of a pack.
+fn form(g: &Graph, pack_of: &[Option<(usize, usize)>], c: [Id; LANES]) -> Form {
+    if c.iter().all(|x| g.value(*x).is_some()) {
+        return Form::Consts;
+    }
+    if c.iter().all(|x| *x == c[0]) && pack_of[c[0].0 as usize].is_none() {
+        return Form::Splat(c[0]);
+    }
+    let lane = |x: Id| match pack_of[x.0 as usize] {
+        Some((q, l)) => Some((q, l, false)),
+        None => match g.node(x) {
+            Node::Neg(y) => pack_of[y.0 as usize].map(|(q, l)| (q, l, true)),
+            _ => None,
+        },
+    };
+    let Some((q, _, _)) = lane(c[0]) else {
+        return Form::Gather;
+    };
+    let mut signs = [false; LANES];
+    for (l, x) in c.iter().enumerate() {
+        match lane(*x) {
+            Some((qq, ll, neg)) if qq == q && ll == l => signs[l] = neg,
+            _ => return Form::Gather,
+        }
+    }
+    Form::Pack(q, signs)
+}
+
+/// Operand `i` of pack `members`, lane by lane, in the order the matching
+/// compared them (commutative operands sorted by kind).
+fn operand_lanes(
+    g: &Graph,
+    pack_of: &[Option<(usize, usize)>],
+    shared: &[bool],
+    members: [Id; LANES],
+    i: usize,
+) -> [Id; LANES] {
+    members.map(|x| {
+        let mut c: Vec<Id> = g.node(x).children().collect();
+        if !matches!(g.node(x), Node::Div(..)) {
+            c.sort_by_key(|y| kind_of(g, pack_of, shared, *y).0);
+        }
+        c[i]
+    })
 }
 
 /// Input lane groups of a function: `lane_of(k)` gives input k's group
@@ -147,6 +208,13 @@ pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
         packs.push([ids[0], ids[1], ids[2], ids[3]]);
     }
     let inputs = packs.len();
+    let mut shared = vec![true; top];
+    for k in 0..top {
+        shared[k] = match g.node(Id(k as u32)) {
+            Node::Input(_) => pack_of[k].is_none(),
+            node => node.children().all(|c| shared[c.0 as usize]),
+        };
+    }
     // Bottom-up to a fixed point: a node joins a pack when the nodes of the
     // other lanes with the same shape exist; the k-th candidate of each
     // lane are matched (the trace runs the same code for every wheel, so
@@ -168,7 +236,7 @@ pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
             let mut lane = None;
             let mut agree = true;
             for c in node.children() {
-                let (kind, l) = kind_of(g, &pack_of, c);
+                let (kind, l) = kind_of(g, &pack_of, &shared, c);
                 if let Some(l) = l {
                     agree &= lane.is_none_or(|x| x == l);
                     lane = Some(l);
@@ -359,10 +427,23 @@ pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
             extracted[p] = true;
         }
     }
+    for members in &packs[inputs..] {
+        for i in 0..2 {
+            let c = operand_lanes(g, &pack_of, &shared, *members, i);
+            if form(g, &pack_of, c) == Form::Gather {
+                for x in c {
+                    if let Some((q, _)) = pack_of[x.0 as usize] {
+                        extracted[q] = true;
+                    }
+                }
+            }
+        }
+    }
     Some(Plan {
         packs,
         inputs,
         pack_of,
+        shared,
         order,
         sums,
         absorbed,
@@ -374,7 +455,12 @@ pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
 
 /// The operand kind of child `c` and its lane, if packed (a negation of a
 /// packed node is that pack, negated in its lane).
-fn kind_of(g: &Graph, pack_of: &[Option<(usize, usize)>], c: Id) -> (Kind, Option<usize>) {
+fn kind_of(
+    g: &Graph,
+    pack_of: &[Option<(usize, usize)>],
+    shared: &[bool],
+    c: Id,
+) -> (Kind, Option<usize>) {
     if g.value(c).is_some() {
         return (Kind::Const, None);
     }
@@ -385,6 +471,11 @@ fn kind_of(g: &Graph, pack_of: &[Option<(usize, usize)>], c: Id) -> (Kind, Optio
         && let Some((p, l)) = pack_of[x.0 as usize]
     {
         return (Kind::Pack(p), Some(l));
+    }
+    // A value that no lane's input reaches may differ from lane to lane
+    // (gathered like constants: it cannot depend on its own pack).
+    if shared[c.0 as usize] {
+        return (Kind::Const, None);
     }
     (Kind::Scalar(c), None)
 }
@@ -449,32 +540,14 @@ pub fn emit(f: &Function, plan: &Plan, avx: bool, libm: &str) -> String {
         format!("lanes_mul!(v{q}, lanes!({}))", s.join(", "))
     };
     let operand = |c: [Id; LANES]| -> String {
-        if c.iter().all(|x| g.value(*x).is_some()) {
-            let v: Vec<String> = c.iter().map(|x| scalar(*x)).collect();
-            return format!("lanes!({})", v.join(", "));
-        }
-        if c.iter().all(|x| *x == c[0]) && p.pack_of[c[0].0 as usize].is_none() {
-            return format!("lanes_splat!({})", scalar(c[0]));
-        }
-        let lane = |x: Id| match p.pack_of[x.0 as usize] {
-            Some((q, l)) => Some((q, l, false)),
-            None => match g.node(x) {
-                Node::Neg(y) => p.pack_of[y.0 as usize].map(|(q, l)| (q, l, true)),
-                _ => None,
-            },
-        };
-        let (q, _, _) = lane(c[0]).unwrap_or((usize::MAX, 0, false));
-        let mut signs = [false; LANES];
-        for (l, x) in c.iter().enumerate() {
-            // Packs are formed only from operands of one pack in lane order.
-            if let Some((qq, ll, s)) = lane(*x)
-                && qq == q
-                && ll == l
-            {
-                signs[l] = s;
+        match form(g, &p.pack_of, c) {
+            Form::Splat(x) => format!("lanes_splat!({})", scalar(x)),
+            Form::Pack(q, signs) => signed(q, &signs),
+            Form::Consts | Form::Gather => {
+                let v: Vec<String> = c.iter().map(|x| scalar(*x)).collect();
+                format!("lanes!({})", v.join(", "))
             }
         }
-        signed(q, &signs)
     };
     let mut paired = vec![false; g.len()];
     for it in &p.order {
@@ -564,18 +637,8 @@ pub fn emit(f: &Function, plan: &Plan, avx: bool, libm: &str) -> String {
                         .collect();
                     let _ = writeln!(out, "let v{q} = lanes!({});", v.join(", "));
                 } else {
-                    let kids: Vec<Vec<Id>> = m
-                        .iter()
-                        .map(|x| {
-                            let mut c: Vec<Id> = g.node(*x).children().collect();
-                            if !matches!(g.node(*x), Node::Div(..)) {
-                                c.sort_by_key(|y| kind_of(g, &p.pack_of, *y).0);
-                            }
-                            c
-                        })
-                        .collect();
-                    let a = operand([kids[0][0], kids[1][0], kids[2][0], kids[3][0]]);
-                    let b = operand([kids[0][1], kids[1][1], kids[2][1], kids[3][1]]);
+                    let a = operand(operand_lanes(g, &p.pack_of, &p.shared, m, 0));
+                    let b = operand(operand_lanes(g, &p.pack_of, &p.shared, m, 1));
                     let op = match g.node(m[0]) {
                         Node::Add(..) => "lanes_add",
                         Node::Mul(..) => "lanes_mul",
@@ -656,6 +719,29 @@ mod tests {
             );
         }
         assert!(avx.contains("_mm256_add_pd") && !arrays.contains("_mm256"));
+    }
+
+    #[test]
+    fn shared_values_that_differ_from_lane_to_lane_are_gathered() {
+        // Left lanes scale by s, right lanes by r (a body point's velocity
+        // on each side): one pack, its factor gathered lane by lane.
+        let f = Function::for_test(&["a0", "a1", "a2", "a3", "s", "r"], |g| {
+            let (s, r) = (g.input(4), g.input(5));
+            (0..4u32)
+                .map(|l| {
+                    let a = g.input(l);
+                    g.mul(a, if l % 2 == 0 { s } else { r })
+                })
+                .collect()
+        });
+        let seeds = lanes_of(&f);
+        let plan = plan(&f, &seeds).expect("packs");
+        assert_eq!(plan.vector_ops(), 1);
+        let text = emit(&f, &plan, false, "::libm");
+        assert!(
+            text.contains("lanes_mul!(v0, lanes!(s, r, s, r))"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -277,17 +277,17 @@ impl Swing4Linearized {
         let v2 = lanes!(
             loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
         );
-        let v22 = lanes_mul!(v2, lanes_splat!(t222));
-        let l22 = lanes_array!(v22);
-        let t244 = -l22[0];
-        let t274 = -l22[1];
-        let t303 = -l22[2];
-        let t332 = -l22[3];
-        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
-        let l34 = lanes_array!(v34);
-        let t348 = l34[0] + l34[1];
-        let t349 = l34[2] + t348;
-        let t350 = l34[3] + t349;
+        let v21 = lanes_mul!(v2, lanes_splat!(t222));
+        let l21 = lanes_array!(v21);
+        let t244 = -l21[0];
+        let t274 = -l21[1];
+        let t303 = -l21[2];
+        let t332 = -l21[3];
+        let v33 = lanes_add!(lanes_mul!(v21, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l33 = lanes_array!(v33);
+        let t348 = l33[0] + l33[1];
+        let t349 = l33[2] + t348;
+        let t350 = l33[3] + t349;
         let t346 = t93 * 4.0;
         let t347 = theta * 48.6;
         let t351 = t346 + t347;
@@ -330,7 +330,7 @@ impl Swing4Linearized {
         let t436 = 0.17752077756484444 * t348;
         let t362 = l35[0] + l35[1];
         let t437 = 0.2892544580685251 * t362;
-        let t445 = l34[2] + l34[3];
+        let t445 = l33[2] + l33[3];
         let t446 = 0.18181525936802018 * t445;
         let t363 = l35[2] + t362;
         let t364 = l35[3] + t363;
@@ -349,7 +349,7 @@ impl Swing4Linearized {
         let t411 = t222 * t410;
         let t426 = -t411;
         let t427 = t425 - t411;
-        let v21 = lanes_mul!(v2, lanes_splat!(t85));
+        let v22 = lanes_mul!(v2, lanes_splat!(t85));
         let v19 = lanes_mul!(v1, lanes_splat!(t235));
         let v16 = lanes_mul!(v0, lanes_splat!(t228));
         let l16 = lanes_array!(v16);
@@ -358,11 +358,11 @@ impl Swing4Linearized {
         let t308 = -l16[2];
         let t337 = -l16[3];
         let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
-        let v33 = lanes_add!(v21, v29);
-        let l33 = lanes_array!(v33);
-        let t422 = l33[2] + l33[3];
+        let v34 = lanes_add!(v22, v29);
+        let l34 = lanes_array!(v34);
+        let t422 = l34[2] + l34[3];
         let t423 = 0.18181525936802018 * t422;
-        let t356 = l33[0] + l33[1];
+        let t356 = l34[0] + l34[1];
         let t421 = 0.17752077756484444 * t356;
         let t94 = phi * 0.972;
         let t97 = 0.17752077756484444 * t94;
@@ -376,8 +376,8 @@ impl Swing4Linearized {
         let t428 = t414 + t420;
         let t429 = t421 + t428;
         let t430 = t423 + t429;
-        let t357 = l33[2] + t356;
-        let t358 = l33[3] + t357;
+        let t357 = l34[2] + t356;
+        let t358 = l34[3] + t357;
         let t353 = t94 * 4.0;
         let t354 = -t353;
         let t355 = phi * 48.6;
@@ -401,7 +401,7 @@ impl Swing4Linearized {
         let t481 = t465 + t480;
         let t479 = t433 * 0.009434403451620336;
         let t478 = 0.001226465669808382 * t361;
-        let t475 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t475 = lanes_sum!(lanes_mul!(v33, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
         let t476 = 0.2 * t475;
         let t120 = 0.3223690311533514 * t94;
         let t105 = 0.2 * t93;
@@ -439,7 +439,7 @@ impl Swing4Linearized {
         let t513 = -l27[0];
         let t514 = t512 - l27[0];
         let v37 = lanes_mul!(
-            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            v33, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
             0.17179008382921532)
         );
         let l37 = lanes_array!(v37);
@@ -898,17 +898,17 @@ impl Swing4Linearized {
         let v2 = lanes!(
             loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
         );
-        let v22 = lanes_mul!(v2, lanes_splat!(t222));
-        let l22 = lanes_array!(v22);
-        let t244 = -l22[0];
-        let t274 = -l22[1];
-        let t303 = -l22[2];
-        let t332 = -l22[3];
-        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
-        let l34 = lanes_array!(v34);
-        let t348 = l34[0] + l34[1];
-        let t349 = l34[2] + t348;
-        let t350 = l34[3] + t349;
+        let v21 = lanes_mul!(v2, lanes_splat!(t222));
+        let l21 = lanes_array!(v21);
+        let t244 = -l21[0];
+        let t274 = -l21[1];
+        let t303 = -l21[2];
+        let t332 = -l21[3];
+        let v33 = lanes_add!(lanes_mul!(v21, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l33 = lanes_array!(v33);
+        let t348 = l33[0] + l33[1];
+        let t349 = l33[2] + t348;
+        let t350 = l33[3] + t349;
         let t346 = t93 * 4.0;
         let t347 = theta * 48.6;
         let t351 = t346 + t347;
@@ -951,7 +951,7 @@ impl Swing4Linearized {
         let t436 = 0.17752077756484444 * t348;
         let t362 = l35[0] + l35[1];
         let t437 = 0.2892544580685251 * t362;
-        let t445 = l34[2] + l34[3];
+        let t445 = l33[2] + l33[3];
         let t446 = 0.18181525936802018 * t445;
         let t363 = l35[2] + t362;
         let t364 = l35[3] + t363;
@@ -970,7 +970,7 @@ impl Swing4Linearized {
         let t411 = t222 * t410;
         let t426 = -t411;
         let t427 = t425 - t411;
-        let v21 = lanes_mul!(v2, lanes_splat!(t85));
+        let v22 = lanes_mul!(v2, lanes_splat!(t85));
         let v19 = lanes_mul!(v1, lanes_splat!(t235));
         let v16 = lanes_mul!(v0, lanes_splat!(t228));
         let l16 = lanes_array!(v16);
@@ -979,11 +979,11 @@ impl Swing4Linearized {
         let t308 = -l16[2];
         let t337 = -l16[3];
         let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
-        let v33 = lanes_add!(v21, v29);
-        let l33 = lanes_array!(v33);
-        let t422 = l33[2] + l33[3];
+        let v34 = lanes_add!(v22, v29);
+        let l34 = lanes_array!(v34);
+        let t422 = l34[2] + l34[3];
         let t423 = 0.18181525936802018 * t422;
-        let t356 = l33[0] + l33[1];
+        let t356 = l34[0] + l34[1];
         let t421 = 0.17752077756484444 * t356;
         let t94 = phi * 0.972;
         let t97 = 0.17752077756484444 * t94;
@@ -997,8 +997,8 @@ impl Swing4Linearized {
         let t428 = t414 + t420;
         let t429 = t421 + t428;
         let t430 = t423 + t429;
-        let t357 = l33[2] + t356;
-        let t358 = l33[3] + t357;
+        let t357 = l34[2] + t356;
+        let t358 = l34[3] + t357;
         let t353 = t94 * 4.0;
         let t354 = -t353;
         let t355 = phi * 48.6;
@@ -1022,7 +1022,7 @@ impl Swing4Linearized {
         let t481 = t465 + t480;
         let t479 = t433 * 0.009434403451620336;
         let t478 = 0.001226465669808382 * t361;
-        let t475 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t475 = lanes_sum!(lanes_mul!(v33, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
         let t476 = 0.2 * t475;
         let t120 = 0.3223690311533514 * t94;
         let t105 = 0.2 * t93;
@@ -1060,7 +1060,7 @@ impl Swing4Linearized {
         let t513 = -l27[0];
         let t514 = t512 - l27[0];
         let v37 = lanes_mul!(
-            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            v33, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
             0.17179008382921532)
         );
         let l37 = lanes_array!(v37);

@@ -289,17 +289,17 @@ impl Swing4Simplified {
         let v2 = lanes!(
             loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
         );
-        let v22 = lanes_mul!(v2, lanes_splat!(t187));
-        let l22 = lanes_array!(v22);
-        let t340 = -l22[0];
-        let t369 = -l22[1];
-        let t398 = -l22[2];
-        let t427 = -l22[3];
-        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
-        let l34 = lanes_array!(v34);
-        let t443 = l34[0] + l34[1];
-        let t444 = l34[2] + t443;
-        let t445 = l34[3] + t444;
+        let v21 = lanes_mul!(v2, lanes_splat!(t187));
+        let l21 = lanes_array!(v21);
+        let t340 = -l21[0];
+        let t369 = -l21[1];
+        let t398 = -l21[2];
+        let t427 = -l21[3];
+        let v33 = lanes_add!(lanes_mul!(v21, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l33 = lanes_array!(v33);
+        let t443 = l33[0] + l33[1];
+        let t444 = l33[2] + t443;
+        let t445 = l33[3] + t444;
         let t109 = l11[2] + l11[3];
         let t127 = 0.06141674281336605 * t109;
         let t124 = vz * 32.400000000000006;
@@ -398,7 +398,7 @@ impl Swing4Simplified {
         let t552 = 0.17752077756484444 * t443;
         let t466 = l35[0] + l35[1];
         let t553 = 0.2892544580685251 * t466;
-        let t567 = l34[2] + l34[3];
+        let t567 = l33[2] + l33[3];
         let t568 = 0.18181525936802018 * t567;
         let t174 = omega_y * t116;
         let t467 = l35[2] + t466;
@@ -447,7 +447,7 @@ impl Swing4Simplified {
         let t541 = -t181;
         let t542 = t540 - t181;
         let t543 = t182 + t542;
-        let v21 = lanes_mul!(v2, lanes_splat!(t97));
+        let v22 = lanes_mul!(v2, lanes_splat!(t97));
         let v19 = lanes_mul!(v1, lanes_splat!(t331));
         let v16 = lanes_mul!(v0, lanes_splat!(t324));
         let l16 = lanes_array!(v16);
@@ -456,11 +456,11 @@ impl Swing4Simplified {
         let t403 = -l16[2];
         let t432 = -l16[3];
         let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
-        let v33 = lanes_add!(v21, v29);
-        let l33 = lanes_array!(v33);
-        let t532 = l33[2] + l33[3];
+        let v34 = lanes_add!(v22, v29);
+        let l34 = lanes_array!(v34);
+        let t532 = l34[2] + l34[3];
         let t533 = 0.18181525936802018 * t532;
-        let t454 = l33[0] + l33[1];
+        let t454 = l34[0] + l34[1];
         let t531 = 0.17752077756484444 * t454;
         let t192 = t97 * 0.972;
         let t214 = 0.18181525936802018 * t192;
@@ -479,8 +479,8 @@ impl Swing4Simplified {
         let t545 = t531 + t544;
         let t546 = t533 + t545;
         let t172 = omega_x * t131;
-        let t455 = l33[2] + t454;
-        let t456 = l33[3] + t455;
+        let t455 = l34[2] + t454;
+        let t456 = l34[3] + t455;
         let t171 = omega_z * t116;
         let t457 = -t171;
         let t458 = t456 - t171;
@@ -518,7 +518,7 @@ impl Swing4Simplified {
         let t609 = t186 + t608;
         let t601 = t549 * 0.009434403451620336;
         let t600 = 0.001226465669808382 * t462;
-        let t597 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t597 = lanes_sum!(lanes_mul!(v33, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
         let t598 = 0.2 * t597;
         let t220 = 0.3223690311533514 * t192;
         let t206 = 0.2 * t191;
@@ -556,7 +556,7 @@ impl Swing4Simplified {
         let t641 = -l27[0];
         let t642 = t640 - l27[0];
         let v37 = lanes_mul!(
-            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            v33, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
             0.17179008382921532)
         );
         let l37 = lanes_array!(v37);
@@ -1028,17 +1028,17 @@ impl Swing4Simplified {
         let v2 = lanes!(
             loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
         );
-        let v22 = lanes_mul!(v2, lanes_splat!(t187));
-        let l22 = lanes_array!(v22);
-        let t340 = -l22[0];
-        let t369 = -l22[1];
-        let t398 = -l22[2];
-        let t427 = -l22[3];
-        let v34 = lanes_add!(lanes_mul!(v22, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
-        let l34 = lanes_array!(v34);
-        let t443 = l34[0] + l34[1];
-        let t444 = l34[2] + t443;
-        let t445 = l34[3] + t444;
+        let v21 = lanes_mul!(v2, lanes_splat!(t187));
+        let l21 = lanes_array!(v21);
+        let t340 = -l21[0];
+        let t369 = -l21[1];
+        let t398 = -l21[2];
+        let t427 = -l21[3];
+        let v33 = lanes_add!(lanes_mul!(v21, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v28);
+        let l33 = lanes_array!(v33);
+        let t443 = l33[0] + l33[1];
+        let t444 = l33[2] + t443;
+        let t445 = l33[3] + t444;
         let t109 = l11[2] + l11[3];
         let t127 = 0.06141674281336605 * t109;
         let t124 = vz * 32.400000000000006;
@@ -1137,7 +1137,7 @@ impl Swing4Simplified {
         let t552 = 0.17752077756484444 * t443;
         let t466 = l35[0] + l35[1];
         let t553 = 0.2892544580685251 * t466;
-        let t567 = l34[2] + l34[3];
+        let t567 = l33[2] + l33[3];
         let t568 = 0.18181525936802018 * t567;
         let t174 = omega_y * t116;
         let t467 = l35[2] + t466;
@@ -1186,7 +1186,7 @@ impl Swing4Simplified {
         let t541 = -t181;
         let t542 = t540 - t181;
         let t543 = t182 + t542;
-        let v21 = lanes_mul!(v2, lanes_splat!(t97));
+        let v22 = lanes_mul!(v2, lanes_splat!(t97));
         let v19 = lanes_mul!(v1, lanes_splat!(t331));
         let v16 = lanes_mul!(v0, lanes_splat!(t324));
         let l16 = lanes_array!(v16);
@@ -1195,11 +1195,11 @@ impl Swing4Simplified {
         let t403 = -l16[2];
         let t432 = -l16[3];
         let v29 = lanes_add!(lanes_mul!(v16, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)), v19);
-        let v33 = lanes_add!(v21, v29);
-        let l33 = lanes_array!(v33);
-        let t532 = l33[2] + l33[3];
+        let v34 = lanes_add!(v22, v29);
+        let l34 = lanes_array!(v34);
+        let t532 = l34[2] + l34[3];
         let t533 = 0.18181525936802018 * t532;
-        let t454 = l33[0] + l33[1];
+        let t454 = l34[0] + l34[1];
         let t531 = 0.17752077756484444 * t454;
         let t192 = t97 * 0.972;
         let t214 = 0.18181525936802018 * t192;
@@ -1218,8 +1218,8 @@ impl Swing4Simplified {
         let t545 = t531 + t544;
         let t546 = t533 + t545;
         let t172 = omega_x * t131;
-        let t455 = l33[2] + t454;
-        let t456 = l33[3] + t455;
+        let t455 = l34[2] + t454;
+        let t456 = l34[3] + t455;
         let t171 = omega_z * t116;
         let t457 = -t171;
         let t458 = t456 - t171;
@@ -1257,7 +1257,7 @@ impl Swing4Simplified {
         let t609 = t186 + t608;
         let t601 = t549 * 0.009434403451620336;
         let t600 = 0.001226465669808382 * t462;
-        let t597 = lanes_sum!(lanes_mul!(v34, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
+        let t597 = lanes_sum!(lanes_mul!(v33, lanes!(- 1.0, 1.0, - 1.0, 1.0)));
         let t598 = 0.2 * t597;
         let t220 = 0.3223690311533514 * t192;
         let t206 = 0.2 * t191;
@@ -1295,7 +1295,7 @@ impl Swing4Simplified {
         let t641 = -l27[0];
         let t642 = t640 - l27[0];
         let v37 = lanes_mul!(
-            v34, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
+            v33, lanes!(0.16747341712522873, 0.16747341712522873, 0.17179008382921532,
             0.17179008382921532)
         );
         let l37 = lanes_array!(v37);
