@@ -7,7 +7,8 @@
 //! graph, bottom-up from the per-wheel inputs (a coordinate, its rate and
 //! neutral, a wheel's loads): four nodes, one per lane, make a pack when
 //! they are the same operation on operands that are themselves one pack
-//! (possibly negated in some lanes), one shared value, or constants. A sum
+//! (possibly negated in some lanes), constants, or values that no lane's
+//! input reaches (broadcast when equal, gathered when they differ). A sum
 //! that adds all four lanes of packs is regrouped lane-wise: the packs are
 //! added as vectors and the four lanes summed once, `(l0 + l2) + (l1 + l3)`,
 //! before the sum's other terms. That regrouping is the only change of
@@ -78,11 +79,16 @@ enum Item {
     Pack(usize),
 }
 
-/// How a pack's operand looks in one lane, without the lane's own data.
+/// How a pack's operand looks in one lane, without the lane's own data:
+/// lanes match when their operands' kinds do.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Debug)]
 enum Kind {
+    /// A lane of this pack (or its negation).
     Pack(usize),
+    /// A value some lane's input reaches but no pack holds: the same node
+    /// in every lane, or no match.
     Scalar(Id),
+    /// A constant or a value no lane's input reaches: may differ per lane.
     Const,
 }
 
