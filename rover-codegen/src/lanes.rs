@@ -533,7 +533,14 @@ pub fn emit(f: &Function, plan: &Plan, avx: bool, libm: &str) -> String {
         if let Some((q, l)) = p.pack_of[id.0 as usize] {
             return format!("l{q}[{l}]");
         }
-        input_name(id.0 as usize).unwrap_or_else(|| format!("t{}", id.0))
+        // sin and cos of an input are named after it, as in `emit`.
+        let trig = match g.node(id) {
+            Node::Sin(a) => input_name(a.0 as usize).map(|n| format!("s_{n}")),
+            Node::Cos(a) => input_name(a.0 as usize).map(|n| format!("c_{n}")),
+            _ => None,
+        };
+        trig.or_else(|| input_name(id.0 as usize))
+            .unwrap_or_else(|| format!("t{}", id.0))
     };
     let signed = |q: usize, signs: &[bool; LANES]| -> String {
         if signs.iter().all(|s| !s) {

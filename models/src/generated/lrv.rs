@@ -148,7 +148,7 @@ impl Lrv {
             };
         }
         let phi = x[3];
-        let (t397, t398) = ::libm::sincos(phi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let v9 = lanes!(x[6], x[7], x[8], x[9]);
         let l9 = lanes_array!(v9);
         let v27 = lanes_mul!(
@@ -385,60 +385,60 @@ impl Lrv {
         let t1369 = t1367 + t1368;
         let vz = w[2];
         let theta = x[4];
-        let (t399, t400) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t401, t402) = ::libm::sincos(psi);
-        let t729 = t399 * t402;
-        let t723 = t397 * t400;
-        let t730 = t401 * t723;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t729 = s_theta * c_psi;
+        let t723 = s_phi * c_theta;
+        let t730 = s_psi * t723;
         let t731 = t729 + t730;
         let t1651 = vz * t731;
         let vx = w[0];
-        let t724 = t400 * t402;
-        let t722 = t397 * t399;
-        let t725 = t401 * t722;
+        let t724 = c_theta * c_psi;
+        let t722 = s_phi * s_theta;
+        let t725 = s_psi * t722;
         let t726 = -t725;
         let t727 = t724 - t725;
         let t1649 = vx * t727;
         let vy = w[1];
-        let t728 = t398 * t401;
+        let t728 = c_phi * s_psi;
         let t1650 = vy * t728;
         let t1652 = -t1650;
         let t1653 = t1649 - t1650;
         let t1654 = t1651 + t1653;
-        let t736 = t399 * t401;
-        let t737 = t402 * t723;
+        let t736 = s_theta * s_psi;
+        let t737 = c_psi * t723;
         let t738 = -t737;
         let t739 = t736 - t737;
         let t1657 = vz * t739;
-        let t732 = t400 * t401;
-        let t733 = t402 * t722;
+        let t732 = c_theta * s_psi;
+        let t733 = c_psi * t722;
         let t734 = t732 + t733;
         let t1655 = vx * t734;
-        let t735 = t398 * t402;
+        let t735 = c_phi * c_psi;
         let t1656 = vy * t735;
         let t1658 = t1655 + t1656;
         let t1659 = t1657 + t1658;
-        let t595 = t398 * t400;
+        let t595 = c_phi * c_theta;
         let t1662 = vz * t595;
-        let t1661 = vy * t397;
-        let t594 = t398 * t399;
+        let t1661 = vy * s_phi;
+        let t594 = c_phi * s_theta;
         let t1660 = vx * t594;
         let t1663 = -t1660;
         let t1664 = t1661 - t1660;
         let t1665 = t1662 + t1664;
         let omega_x = w[3];
-        let t1666 = omega_x * t400;
+        let t1666 = omega_x * c_theta;
         let omega_z = w[5];
-        let t1667 = omega_z * t399;
+        let t1667 = omega_z * s_theta;
         let t1668 = t1666 + t1667;
         let omega_y = w[4];
-        let t1669 = omega_z * t400;
-        let t1670 = omega_x * t399;
+        let t1669 = omega_z * c_theta;
+        let t1670 = omega_x * s_theta;
         let t1671 = -t1670;
         let t1672 = t1669 - t1670;
-        let t1673 = t1672 / t398;
-        let t1674 = t397 * t1673;
+        let t1673 = t1672 / c_phi;
+        let t1674 = s_phi * t1673;
         let t1675 = -t1674;
         let t1676 = omega_y - t1674;
         let v11 = lanes!(w[6], w[7], w[8], w[9]);
@@ -447,7 +447,7 @@ impl Lrv {
         let v2 = lanes!(
             loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
         );
-        let v25 = lanes_mul!(v2, lanes_splat!(t397));
+        let v25 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v1 = lanes!(
             loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
         );
@@ -684,7 +684,7 @@ impl Lrv {
         let v172 = lanes_add!(v46, lanes_mul!(v167, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)));
         let v176 = lanes_mul!(v80, v172);
         let l176 = lanes_array!(v176);
-        let t599 = t397 * 16.200000000000003;
+        let t599 = s_phi * 16.200000000000003;
         let v168 = lanes_add!(v164, lanes_splat!(t599));
         let l168 = lanes_array!(v168);
         let t780 = -l168[0];
@@ -845,7 +845,7 @@ impl Lrv {
         let t1014 = t855 * l124[1];
         let t1015 = t913 * l124[2];
         let t1016 = t988 * l124[3];
-        let t1035 = t397 * 1069.2;
+        let t1035 = s_phi * 1069.2;
         let t1042 = lanes_sum!(v45) + t1038 - t1017 - l164[3] - l164[2] - t1019 - t1013
             - t1014 - t1015 - t1016 - t1035;
         let t1486 = t1042 * t1221;
@@ -906,7 +906,7 @@ impl Lrv {
         let t1452 = -l160[3];
         let v161 = lanes_add!(v44, lanes_mul!(v160, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)));
         let v170 = lanes_mul!(v88, v161);
-        let t1442 = t397 * t1441;
+        let t1442 = s_phi * t1441;
         let t1438 = t735 * t1437;
         let t1430 = t598 * t1377;
         let t1434 = t728 * t1433;
@@ -1023,7 +1023,7 @@ impl Lrv {
         let t1604 = -l156[3];
         let t1605 = t1603 - l156[3];
         let t1606 = l154[3] + t1605;
-        let cos_roll = t398;
+        let cos_roll = c_phi;
         let pivot_6 = l118[0];
         let pivot_den_6 = 1.0;
         let pivot_7 = l118[1];
@@ -1148,7 +1148,7 @@ impl Lrv {
             };
         }
         let phi = x[3];
-        let (t397, t398) = ::libm::sincos(phi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let v9 = lanes!(x[6], x[7], x[8], x[9]);
         let l9 = lanes_array!(v9);
         let v27 = lanes_mul!(
@@ -1385,60 +1385,60 @@ impl Lrv {
         let t1369 = t1367 + t1368;
         let vz = w[2];
         let theta = x[4];
-        let (t399, t400) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t401, t402) = ::libm::sincos(psi);
-        let t729 = t399 * t402;
-        let t723 = t397 * t400;
-        let t730 = t401 * t723;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t729 = s_theta * c_psi;
+        let t723 = s_phi * c_theta;
+        let t730 = s_psi * t723;
         let t731 = t729 + t730;
         let t1651 = vz * t731;
         let vx = w[0];
-        let t724 = t400 * t402;
-        let t722 = t397 * t399;
-        let t725 = t401 * t722;
+        let t724 = c_theta * c_psi;
+        let t722 = s_phi * s_theta;
+        let t725 = s_psi * t722;
         let t726 = -t725;
         let t727 = t724 - t725;
         let t1649 = vx * t727;
         let vy = w[1];
-        let t728 = t398 * t401;
+        let t728 = c_phi * s_psi;
         let t1650 = vy * t728;
         let t1652 = -t1650;
         let t1653 = t1649 - t1650;
         let t1654 = t1651 + t1653;
-        let t736 = t399 * t401;
-        let t737 = t402 * t723;
+        let t736 = s_theta * s_psi;
+        let t737 = c_psi * t723;
         let t738 = -t737;
         let t739 = t736 - t737;
         let t1657 = vz * t739;
-        let t732 = t400 * t401;
-        let t733 = t402 * t722;
+        let t732 = c_theta * s_psi;
+        let t733 = c_psi * t722;
         let t734 = t732 + t733;
         let t1655 = vx * t734;
-        let t735 = t398 * t402;
+        let t735 = c_phi * c_psi;
         let t1656 = vy * t735;
         let t1658 = t1655 + t1656;
         let t1659 = t1657 + t1658;
-        let t595 = t398 * t400;
+        let t595 = c_phi * c_theta;
         let t1662 = vz * t595;
-        let t1661 = vy * t397;
-        let t594 = t398 * t399;
+        let t1661 = vy * s_phi;
+        let t594 = c_phi * s_theta;
         let t1660 = vx * t594;
         let t1663 = -t1660;
         let t1664 = t1661 - t1660;
         let t1665 = t1662 + t1664;
         let omega_x = w[3];
-        let t1666 = omega_x * t400;
+        let t1666 = omega_x * c_theta;
         let omega_z = w[5];
-        let t1667 = omega_z * t399;
+        let t1667 = omega_z * s_theta;
         let t1668 = t1666 + t1667;
         let omega_y = w[4];
-        let t1669 = omega_z * t400;
-        let t1670 = omega_x * t399;
+        let t1669 = omega_z * c_theta;
+        let t1670 = omega_x * s_theta;
         let t1671 = -t1670;
         let t1672 = t1669 - t1670;
-        let t1673 = t1672 / t398;
-        let t1674 = t397 * t1673;
+        let t1673 = t1672 / c_phi;
+        let t1674 = s_phi * t1673;
         let t1675 = -t1674;
         let t1676 = omega_y - t1674;
         let v11 = lanes!(w[6], w[7], w[8], w[9]);
@@ -1447,7 +1447,7 @@ impl Lrv {
         let v2 = lanes!(
             loads[0].force[2], loads[1].force[2], loads[2].force[2], loads[3].force[2]
         );
-        let v25 = lanes_mul!(v2, lanes_splat!(t397));
+        let v25 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v1 = lanes!(
             loads[0].force[1], loads[1].force[1], loads[2].force[1], loads[3].force[1]
         );
@@ -1684,7 +1684,7 @@ impl Lrv {
         let v172 = lanes_add!(v46, lanes_mul!(v167, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)));
         let v176 = lanes_mul!(v80, v172);
         let l176 = lanes_array!(v176);
-        let t599 = t397 * 16.200000000000003;
+        let t599 = s_phi * 16.200000000000003;
         let v168 = lanes_add!(v164, lanes_splat!(t599));
         let l168 = lanes_array!(v168);
         let t780 = -l168[0];
@@ -1845,7 +1845,7 @@ impl Lrv {
         let t1014 = t855 * l124[1];
         let t1015 = t913 * l124[2];
         let t1016 = t988 * l124[3];
-        let t1035 = t397 * 1069.2;
+        let t1035 = s_phi * 1069.2;
         let t1042 = lanes_sum!(v45) + t1038 - t1017 - l164[3] - l164[2] - t1019 - t1013
             - t1014 - t1015 - t1016 - t1035;
         let t1486 = t1042 * t1221;
@@ -1906,7 +1906,7 @@ impl Lrv {
         let t1452 = -l160[3];
         let v161 = lanes_add!(v44, lanes_mul!(v160, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)));
         let v170 = lanes_mul!(v88, v161);
-        let t1442 = t397 * t1441;
+        let t1442 = s_phi * t1441;
         let t1438 = t735 * t1437;
         let t1430 = t598 * t1377;
         let t1434 = t728 * t1433;
@@ -2023,7 +2023,7 @@ impl Lrv {
         let t1604 = -l156[3];
         let t1605 = t1603 - l156[3];
         let t1606 = l154[3] + t1605;
-        let cos_roll = t398;
+        let cos_roll = c_phi;
         let pivot_6 = l118[0];
         let pivot_den_6 = 1.0;
         let pivot_7 = l118[1];

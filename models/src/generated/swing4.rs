@@ -143,7 +143,7 @@ impl Swing4 {
             };
         }
         let phi = x[3];
-        let (t340, t341) = ::libm::sincos(phi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let v9 = lanes!(x[6], x[7], x[8], x[9]);
         let l9 = lanes_array!(v9);
         let v13 = lanes_add!(
@@ -382,60 +382,60 @@ impl Swing4 {
         let t1321 = t1319 + t1320;
         let vz = w[2];
         let theta = x[4];
-        let (t342, t343) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t344, t345) = ::libm::sincos(psi);
-        let t673 = t342 * t345;
-        let t667 = t340 * t343;
-        let t674 = t344 * t667;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t673 = s_theta * c_psi;
+        let t667 = s_phi * c_theta;
+        let t674 = s_psi * t667;
         let t675 = t673 + t674;
         let t1619 = vz * t675;
         let vx = w[0];
-        let t668 = t343 * t345;
-        let t666 = t340 * t342;
-        let t669 = t344 * t666;
+        let t668 = c_theta * c_psi;
+        let t666 = s_phi * s_theta;
+        let t669 = s_psi * t666;
         let t670 = -t669;
         let t671 = t668 - t669;
         let t1617 = vx * t671;
         let vy = w[1];
-        let t672 = t341 * t344;
+        let t672 = c_phi * s_psi;
         let t1618 = vy * t672;
         let t1620 = -t1618;
         let t1621 = t1617 - t1618;
         let t1622 = t1619 + t1621;
-        let t680 = t342 * t344;
-        let t681 = t345 * t667;
+        let t680 = s_theta * s_psi;
+        let t681 = c_psi * t667;
         let t682 = -t681;
         let t683 = t680 - t681;
         let t1625 = vz * t683;
-        let t676 = t343 * t344;
-        let t677 = t345 * t666;
+        let t676 = c_theta * s_psi;
+        let t677 = c_psi * t666;
         let t678 = t676 + t677;
         let t1623 = vx * t678;
-        let t679 = t341 * t345;
+        let t679 = c_phi * c_psi;
         let t1624 = vy * t679;
         let t1626 = t1623 + t1624;
         let t1627 = t1625 + t1626;
-        let t538 = t341 * t343;
+        let t538 = c_phi * c_theta;
         let t1630 = vz * t538;
-        let t1629 = vy * t340;
-        let t537 = t341 * t342;
+        let t1629 = vy * s_phi;
+        let t537 = c_phi * s_theta;
         let t1628 = vx * t537;
         let t1631 = -t1628;
         let t1632 = t1629 - t1628;
         let t1633 = t1630 + t1632;
         let omega_x = w[3];
-        let t1634 = omega_x * t343;
+        let t1634 = omega_x * c_theta;
         let omega_z = w[5];
-        let t1635 = omega_z * t342;
+        let t1635 = omega_z * s_theta;
         let t1636 = t1634 + t1635;
         let omega_y = w[4];
-        let t1637 = omega_z * t343;
-        let t1638 = omega_x * t342;
+        let t1637 = omega_z * c_theta;
+        let t1638 = omega_x * s_theta;
         let t1639 = -t1638;
         let t1640 = t1637 - t1638;
-        let t1641 = t1640 / t341;
-        let t1642 = t340 * t1641;
+        let t1641 = t1640 / c_phi;
+        let t1642 = s_phi * t1641;
         let t1643 = -t1642;
         let t1644 = omega_y - t1642;
         let v11 = lanes!(w[6], w[7], w[8], w[9]);
@@ -586,7 +586,7 @@ impl Swing4 {
             loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
             .moment[2]
         );
-        let v27 = lanes_mul!(v5, lanes_splat!(t340));
+        let v27 = lanes_mul!(v5, lanes_splat!(s_phi));
         let v4 = lanes!(
             loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
             .moment[1]
@@ -740,7 +740,7 @@ impl Swing4 {
         let t1477 = lanes_sum!(lanes_mul!(v39, lanes!(- 1.0, 1.0, - 1.0, 1.0))) + t899
             + l150[2] + l150[0] + t773;
         let t1478 = 0.2 * t1477;
-        let v23 = lanes_mul!(v2, lanes_splat!(t340));
+        let v23 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v20 = lanes_mul!(v1, lanes_splat!(t679));
         let v17 = lanes_mul!(v0, lanes_splat!(t672));
         let l17 = lanes_array!(v17);
@@ -790,7 +790,7 @@ impl Swing4 {
         let t922 = lanes_sum!(v7);
         let t1335 = lanes_sum!(v4) + t922;
         let t1454 = t683 * t1335;
-        let t542 = t340 * 0.972;
+        let t542 = s_phi * 0.972;
         let t1398 = lanes_sum!(v75);
         let t1456 = t542 * t1398;
         let t1025 = t737 * l112[0];
@@ -808,7 +808,7 @@ impl Swing4 {
         let t879 = t349 - t348;
         let t880 = 30.0 * t879;
         let t867 = t542 * 4.0;
-        let t877 = t340 * 48.6;
+        let t877 = s_phi * 48.6;
         let t884 = lanes_sum!(
             lanes_add!(v40, lanes_mul!(v147, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
         ) + t880 - t867 - t877;
@@ -872,7 +872,7 @@ impl Swing4 {
         let t358 = omega_x * t354;
         let t357 = omega_z * t352;
         let t929 = t672 * t919;
-        let t931 = t340 * t925;
+        let t931 = s_phi * t925;
         let t1021 = t737 * l121[0];
         let t1022 = t791 * l121[1];
         let t1023 = t844 * l121[2];
@@ -988,7 +988,7 @@ impl Swing4 {
         let t1572 = t1570 - l144[3];
         let t1573 = -l141[3];
         let t1574 = t1572 - l141[3];
-        let cos_roll = t341;
+        let cos_roll = c_phi;
         let pivot_6 = l105[0];
         let pivot_den_6 = 1.0;
         let pivot_7 = l105[1];
@@ -1113,7 +1113,7 @@ impl Swing4 {
             };
         }
         let phi = x[3];
-        let (t340, t341) = ::libm::sincos(phi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let v9 = lanes!(x[6], x[7], x[8], x[9]);
         let l9 = lanes_array!(v9);
         let v13 = lanes_add!(
@@ -1352,60 +1352,60 @@ impl Swing4 {
         let t1321 = t1319 + t1320;
         let vz = w[2];
         let theta = x[4];
-        let (t342, t343) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t344, t345) = ::libm::sincos(psi);
-        let t673 = t342 * t345;
-        let t667 = t340 * t343;
-        let t674 = t344 * t667;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t673 = s_theta * c_psi;
+        let t667 = s_phi * c_theta;
+        let t674 = s_psi * t667;
         let t675 = t673 + t674;
         let t1619 = vz * t675;
         let vx = w[0];
-        let t668 = t343 * t345;
-        let t666 = t340 * t342;
-        let t669 = t344 * t666;
+        let t668 = c_theta * c_psi;
+        let t666 = s_phi * s_theta;
+        let t669 = s_psi * t666;
         let t670 = -t669;
         let t671 = t668 - t669;
         let t1617 = vx * t671;
         let vy = w[1];
-        let t672 = t341 * t344;
+        let t672 = c_phi * s_psi;
         let t1618 = vy * t672;
         let t1620 = -t1618;
         let t1621 = t1617 - t1618;
         let t1622 = t1619 + t1621;
-        let t680 = t342 * t344;
-        let t681 = t345 * t667;
+        let t680 = s_theta * s_psi;
+        let t681 = c_psi * t667;
         let t682 = -t681;
         let t683 = t680 - t681;
         let t1625 = vz * t683;
-        let t676 = t343 * t344;
-        let t677 = t345 * t666;
+        let t676 = c_theta * s_psi;
+        let t677 = c_psi * t666;
         let t678 = t676 + t677;
         let t1623 = vx * t678;
-        let t679 = t341 * t345;
+        let t679 = c_phi * c_psi;
         let t1624 = vy * t679;
         let t1626 = t1623 + t1624;
         let t1627 = t1625 + t1626;
-        let t538 = t341 * t343;
+        let t538 = c_phi * c_theta;
         let t1630 = vz * t538;
-        let t1629 = vy * t340;
-        let t537 = t341 * t342;
+        let t1629 = vy * s_phi;
+        let t537 = c_phi * s_theta;
         let t1628 = vx * t537;
         let t1631 = -t1628;
         let t1632 = t1629 - t1628;
         let t1633 = t1630 + t1632;
         let omega_x = w[3];
-        let t1634 = omega_x * t343;
+        let t1634 = omega_x * c_theta;
         let omega_z = w[5];
-        let t1635 = omega_z * t342;
+        let t1635 = omega_z * s_theta;
         let t1636 = t1634 + t1635;
         let omega_y = w[4];
-        let t1637 = omega_z * t343;
-        let t1638 = omega_x * t342;
+        let t1637 = omega_z * c_theta;
+        let t1638 = omega_x * s_theta;
         let t1639 = -t1638;
         let t1640 = t1637 - t1638;
-        let t1641 = t1640 / t341;
-        let t1642 = t340 * t1641;
+        let t1641 = t1640 / c_phi;
+        let t1642 = s_phi * t1641;
         let t1643 = -t1642;
         let t1644 = omega_y - t1642;
         let v11 = lanes!(w[6], w[7], w[8], w[9]);
@@ -1556,7 +1556,7 @@ impl Swing4 {
             loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
             .moment[2]
         );
-        let v27 = lanes_mul!(v5, lanes_splat!(t340));
+        let v27 = lanes_mul!(v5, lanes_splat!(s_phi));
         let v4 = lanes!(
             loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
             .moment[1]
@@ -1710,7 +1710,7 @@ impl Swing4 {
         let t1477 = lanes_sum!(lanes_mul!(v39, lanes!(- 1.0, 1.0, - 1.0, 1.0))) + t899
             + l150[2] + l150[0] + t773;
         let t1478 = 0.2 * t1477;
-        let v23 = lanes_mul!(v2, lanes_splat!(t340));
+        let v23 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v20 = lanes_mul!(v1, lanes_splat!(t679));
         let v17 = lanes_mul!(v0, lanes_splat!(t672));
         let l17 = lanes_array!(v17);
@@ -1760,7 +1760,7 @@ impl Swing4 {
         let t922 = lanes_sum!(v7);
         let t1335 = lanes_sum!(v4) + t922;
         let t1454 = t683 * t1335;
-        let t542 = t340 * 0.972;
+        let t542 = s_phi * 0.972;
         let t1398 = lanes_sum!(v75);
         let t1456 = t542 * t1398;
         let t1025 = t737 * l112[0];
@@ -1778,7 +1778,7 @@ impl Swing4 {
         let t879 = t349 - t348;
         let t880 = 30.0 * t879;
         let t867 = t542 * 4.0;
-        let t877 = t340 * 48.6;
+        let t877 = s_phi * 48.6;
         let t884 = lanes_sum!(
             lanes_add!(v40, lanes_mul!(v147, lanes!(- 1.0, - 1.0, - 1.0, - 1.0)))
         ) + t880 - t867 - t877;
@@ -1842,7 +1842,7 @@ impl Swing4 {
         let t358 = omega_x * t354;
         let t357 = omega_z * t352;
         let t929 = t672 * t919;
-        let t931 = t340 * t925;
+        let t931 = s_phi * t925;
         let t1021 = t737 * l121[0];
         let t1022 = t791 * l121[1];
         let t1023 = t844 * l121[2];
@@ -1958,7 +1958,7 @@ impl Swing4 {
         let t1572 = t1570 - l144[3];
         let t1573 = -l141[3];
         let t1574 = t1572 - l141[3];
-        let cos_roll = t341;
+        let cos_roll = c_phi;
         let pivot_6 = l105[0];
         let pivot_den_6 = 1.0;
         let pivot_7 = l105[1];

@@ -145,46 +145,46 @@ impl Swing4Linearized {
         }
         let vz = w[2];
         let theta = x[4];
-        let (t87, t88) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t89, t90) = ::libm::sincos(psi);
-        let t229 = t87 * t90;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t229 = s_theta * c_psi;
         let phi = x[3];
-        let (t85, t86) = ::libm::sincos(phi);
-        let t221 = t85 * t88;
-        let t230 = t89 * t221;
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let t221 = s_phi * c_theta;
+        let t230 = s_psi * t221;
         let t231 = t229 + t230;
         let t674 = vz * t231;
         let vx = w[0];
-        let t224 = t88 * t90;
-        let t220 = t85 * t87;
-        let t225 = t89 * t220;
+        let t224 = c_theta * c_psi;
+        let t220 = s_phi * s_theta;
+        let t225 = s_psi * t220;
         let t226 = -t225;
         let t227 = t224 - t225;
         let t672 = vx * t227;
         let vy = w[1];
-        let t228 = t86 * t89;
+        let t228 = c_phi * s_psi;
         let t673 = vy * t228;
         let t675 = -t673;
         let t676 = t672 - t673;
         let t677 = t674 + t676;
-        let t236 = t87 * t89;
-        let t237 = t90 * t221;
+        let t236 = s_theta * s_psi;
+        let t237 = c_psi * t221;
         let t238 = -t237;
         let t239 = t236 - t237;
         let t680 = vz * t239;
-        let t232 = t88 * t89;
-        let t233 = t90 * t220;
+        let t232 = c_theta * s_psi;
+        let t233 = c_psi * t220;
         let t234 = t232 + t233;
         let t678 = vx * t234;
-        let t235 = t86 * t90;
+        let t235 = c_phi * c_psi;
         let t679 = vy * t235;
         let t681 = t678 + t679;
         let t682 = t680 + t681;
-        let t223 = t86 * t88;
+        let t223 = c_phi * c_theta;
         let t685 = vz * t223;
-        let t684 = vy * t85;
-        let t222 = t86 * t87;
+        let t684 = vy * s_phi;
+        let t222 = c_phi * s_theta;
         let t683 = vx * t222;
         let t686 = -t683;
         let t687 = t684 - t683;
@@ -206,7 +206,7 @@ impl Swing4Linearized {
             loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
             .moment[2]
         );
-        let v26 = lanes_mul!(v5, lanes_splat!(t85));
+        let v26 = lanes_mul!(v5, lanes_splat!(s_phi));
         let v4 = lanes!(
             loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
             .moment[1]
@@ -306,7 +306,7 @@ impl Swing4Linearized {
             .stator_torque[2], loads[3].stator_torque[2]
         );
         let t387 = lanes_sum!(v8);
-        let t393 = t85 * t387;
+        let t393 = s_phi * t387;
         let v7 = lanes!(
             loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
             .stator_torque[1], loads[3].stator_torque[1]
@@ -349,7 +349,7 @@ impl Swing4Linearized {
         let t411 = t222 * t410;
         let t426 = -t411;
         let t427 = t425 - t411;
-        let v22 = lanes_mul!(v2, lanes_splat!(t85));
+        let v22 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v19 = lanes_mul!(v1, lanes_splat!(t235));
         let v16 = lanes_mul!(v0, lanes_splat!(t228));
         let l16 = lanes_array!(v16);
@@ -766,46 +766,46 @@ impl Swing4Linearized {
         }
         let vz = w[2];
         let theta = x[4];
-        let (t87, t88) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t89, t90) = ::libm::sincos(psi);
-        let t229 = t87 * t90;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t229 = s_theta * c_psi;
         let phi = x[3];
-        let (t85, t86) = ::libm::sincos(phi);
-        let t221 = t85 * t88;
-        let t230 = t89 * t221;
+        let (s_phi, c_phi) = ::libm::sincos(phi);
+        let t221 = s_phi * c_theta;
+        let t230 = s_psi * t221;
         let t231 = t229 + t230;
         let t674 = vz * t231;
         let vx = w[0];
-        let t224 = t88 * t90;
-        let t220 = t85 * t87;
-        let t225 = t89 * t220;
+        let t224 = c_theta * c_psi;
+        let t220 = s_phi * s_theta;
+        let t225 = s_psi * t220;
         let t226 = -t225;
         let t227 = t224 - t225;
         let t672 = vx * t227;
         let vy = w[1];
-        let t228 = t86 * t89;
+        let t228 = c_phi * s_psi;
         let t673 = vy * t228;
         let t675 = -t673;
         let t676 = t672 - t673;
         let t677 = t674 + t676;
-        let t236 = t87 * t89;
-        let t237 = t90 * t221;
+        let t236 = s_theta * s_psi;
+        let t237 = c_psi * t221;
         let t238 = -t237;
         let t239 = t236 - t237;
         let t680 = vz * t239;
-        let t232 = t88 * t89;
-        let t233 = t90 * t220;
+        let t232 = c_theta * s_psi;
+        let t233 = c_psi * t220;
         let t234 = t232 + t233;
         let t678 = vx * t234;
-        let t235 = t86 * t90;
+        let t235 = c_phi * c_psi;
         let t679 = vy * t235;
         let t681 = t678 + t679;
         let t682 = t680 + t681;
-        let t223 = t86 * t88;
+        let t223 = c_phi * c_theta;
         let t685 = vz * t223;
-        let t684 = vy * t85;
-        let t222 = t86 * t87;
+        let t684 = vy * s_phi;
+        let t222 = c_phi * s_theta;
         let t683 = vx * t222;
         let t686 = -t683;
         let t687 = t684 - t683;
@@ -827,7 +827,7 @@ impl Swing4Linearized {
             loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
             .moment[2]
         );
-        let v26 = lanes_mul!(v5, lanes_splat!(t85));
+        let v26 = lanes_mul!(v5, lanes_splat!(s_phi));
         let v4 = lanes!(
             loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
             .moment[1]
@@ -927,7 +927,7 @@ impl Swing4Linearized {
             .stator_torque[2], loads[3].stator_torque[2]
         );
         let t387 = lanes_sum!(v8);
-        let t393 = t85 * t387;
+        let t393 = s_phi * t387;
         let v7 = lanes!(
             loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
             .stator_torque[1], loads[3].stator_torque[1]
@@ -970,7 +970,7 @@ impl Swing4Linearized {
         let t411 = t222 * t410;
         let t426 = -t411;
         let t427 = t425 - t411;
-        let v22 = lanes_mul!(v2, lanes_splat!(t85));
+        let v22 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v19 = lanes_mul!(v1, lanes_splat!(t235));
         let v16 = lanes_mul!(v0, lanes_splat!(t228));
         let l16 = lanes_array!(v16);

@@ -144,63 +144,63 @@ impl Swing4Simplified {
             };
         }
         let phi = x[3];
-        let (t97, t98) = ::libm::sincos(phi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let vz = w[2];
         let theta = x[4];
-        let (t99, t100) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t101, t102) = ::libm::sincos(psi);
-        let t325 = t99 * t102;
-        let t319 = t97 * t100;
-        let t326 = t101 * t319;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t325 = s_theta * c_psi;
+        let t319 = s_phi * c_theta;
+        let t326 = s_psi * t319;
         let t327 = t325 + t326;
         let t802 = vz * t327;
         let vx = w[0];
-        let t320 = t100 * t102;
-        let t318 = t97 * t99;
-        let t321 = t101 * t318;
+        let t320 = c_theta * c_psi;
+        let t318 = s_phi * s_theta;
+        let t321 = s_psi * t318;
         let t322 = -t321;
         let t323 = t320 - t321;
         let t800 = vx * t323;
         let vy = w[1];
-        let t324 = t98 * t101;
+        let t324 = c_phi * s_psi;
         let t801 = vy * t324;
         let t803 = -t801;
         let t804 = t800 - t801;
         let t805 = t802 + t804;
-        let t332 = t99 * t101;
-        let t333 = t102 * t319;
+        let t332 = s_theta * s_psi;
+        let t333 = c_psi * t319;
         let t334 = -t333;
         let t335 = t332 - t333;
         let t808 = vz * t335;
-        let t328 = t100 * t101;
-        let t329 = t102 * t318;
+        let t328 = c_theta * s_psi;
+        let t329 = c_psi * t318;
         let t330 = t328 + t329;
         let t806 = vx * t330;
-        let t331 = t98 * t102;
+        let t331 = c_phi * c_psi;
         let t807 = vy * t331;
         let t809 = t806 + t807;
         let t810 = t808 + t809;
-        let t188 = t98 * t100;
+        let t188 = c_phi * c_theta;
         let t813 = vz * t188;
-        let t812 = vy * t97;
-        let t187 = t98 * t99;
+        let t812 = vy * s_phi;
+        let t187 = c_phi * s_theta;
         let t811 = vx * t187;
         let t814 = -t811;
         let t815 = t812 - t811;
         let t816 = t813 + t815;
         let omega_x = w[3];
-        let t817 = omega_x * t100;
+        let t817 = omega_x * c_theta;
         let omega_z = w[5];
-        let t818 = omega_z * t99;
+        let t818 = omega_z * s_theta;
         let t819 = t817 + t818;
         let omega_y = w[4];
-        let t820 = omega_z * t100;
-        let t821 = omega_x * t99;
+        let t820 = omega_z * c_theta;
+        let t821 = omega_x * s_theta;
         let t822 = -t821;
         let t823 = t820 - t821;
-        let t824 = t823 / t98;
-        let t825 = t97 * t824;
+        let t824 = t823 / c_phi;
+        let t825 = s_phi * t824;
         let t826 = -t825;
         let t827 = omega_y - t825;
         let v11 = lanes!(w[6], w[7], w[8], w[9]);
@@ -209,7 +209,7 @@ impl Swing4Simplified {
             loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
             .moment[2]
         );
-        let v26 = lanes_mul!(v5, lanes_splat!(t97));
+        let v26 = lanes_mul!(v5, lanes_splat!(s_phi));
         let v4 = lanes!(
             loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
             .moment[1]
@@ -343,7 +343,7 @@ impl Swing4Simplified {
             .stator_torque[2], loads[3].stator_torque[2]
         );
         let t495 = lanes_sum!(v8);
-        let t501 = t97 * t495;
+        let t501 = s_phi * t495;
         let v7 = lanes!(
             loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
             .stator_torque[1], loads[3].stator_torque[1]
@@ -447,7 +447,7 @@ impl Swing4Simplified {
         let t541 = -t181;
         let t542 = t540 - t181;
         let t543 = t182 + t542;
-        let v22 = lanes_mul!(v2, lanes_splat!(t97));
+        let v22 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v19 = lanes_mul!(v1, lanes_splat!(t331));
         let v16 = lanes_mul!(v0, lanes_splat!(t324));
         let l16 = lanes_array!(v16);
@@ -462,7 +462,7 @@ impl Swing4Simplified {
         let t533 = 0.18181525936802018 * t532;
         let t454 = l34[0] + l34[1];
         let t531 = 0.17752077756484444 * t454;
-        let t192 = t97 * 0.972;
+        let t192 = s_phi * 0.972;
         let t214 = 0.18181525936802018 * t192;
         let t215 = -t214;
         let t196 = 0.2 * t194;
@@ -487,7 +487,7 @@ impl Swing4Simplified {
         let t459 = t172 + t458;
         let t451 = t192 * 4.0;
         let t452 = -t451;
-        let t453 = t97 * 48.6;
+        let t453 = s_phi * 48.6;
         let t460 = -t453;
         let t461 = t452 - t453;
         let t462 = t459 + t461;
@@ -758,7 +758,7 @@ impl Swing4Simplified {
         let t783 = 0.0018955784818940136 * t767;
         let t787 = -t783;
         let t788 = t786 - t783;
-        let cos_roll = t98;
+        let cos_roll = c_phi;
         let pivot_6 = 0.022071692520380215;
         let pivot_den_6 = 1.0;
         let pivot_7 = 0.02201860062774949;
@@ -883,63 +883,63 @@ impl Swing4Simplified {
             };
         }
         let phi = x[3];
-        let (t97, t98) = ::libm::sincos(phi);
+        let (s_phi, c_phi) = ::libm::sincos(phi);
         let vz = w[2];
         let theta = x[4];
-        let (t99, t100) = ::libm::sincos(theta);
+        let (s_theta, c_theta) = ::libm::sincos(theta);
         let psi = x[5];
-        let (t101, t102) = ::libm::sincos(psi);
-        let t325 = t99 * t102;
-        let t319 = t97 * t100;
-        let t326 = t101 * t319;
+        let (s_psi, c_psi) = ::libm::sincos(psi);
+        let t325 = s_theta * c_psi;
+        let t319 = s_phi * c_theta;
+        let t326 = s_psi * t319;
         let t327 = t325 + t326;
         let t802 = vz * t327;
         let vx = w[0];
-        let t320 = t100 * t102;
-        let t318 = t97 * t99;
-        let t321 = t101 * t318;
+        let t320 = c_theta * c_psi;
+        let t318 = s_phi * s_theta;
+        let t321 = s_psi * t318;
         let t322 = -t321;
         let t323 = t320 - t321;
         let t800 = vx * t323;
         let vy = w[1];
-        let t324 = t98 * t101;
+        let t324 = c_phi * s_psi;
         let t801 = vy * t324;
         let t803 = -t801;
         let t804 = t800 - t801;
         let t805 = t802 + t804;
-        let t332 = t99 * t101;
-        let t333 = t102 * t319;
+        let t332 = s_theta * s_psi;
+        let t333 = c_psi * t319;
         let t334 = -t333;
         let t335 = t332 - t333;
         let t808 = vz * t335;
-        let t328 = t100 * t101;
-        let t329 = t102 * t318;
+        let t328 = c_theta * s_psi;
+        let t329 = c_psi * t318;
         let t330 = t328 + t329;
         let t806 = vx * t330;
-        let t331 = t98 * t102;
+        let t331 = c_phi * c_psi;
         let t807 = vy * t331;
         let t809 = t806 + t807;
         let t810 = t808 + t809;
-        let t188 = t98 * t100;
+        let t188 = c_phi * c_theta;
         let t813 = vz * t188;
-        let t812 = vy * t97;
-        let t187 = t98 * t99;
+        let t812 = vy * s_phi;
+        let t187 = c_phi * s_theta;
         let t811 = vx * t187;
         let t814 = -t811;
         let t815 = t812 - t811;
         let t816 = t813 + t815;
         let omega_x = w[3];
-        let t817 = omega_x * t100;
+        let t817 = omega_x * c_theta;
         let omega_z = w[5];
-        let t818 = omega_z * t99;
+        let t818 = omega_z * s_theta;
         let t819 = t817 + t818;
         let omega_y = w[4];
-        let t820 = omega_z * t100;
-        let t821 = omega_x * t99;
+        let t820 = omega_z * c_theta;
+        let t821 = omega_x * s_theta;
         let t822 = -t821;
         let t823 = t820 - t821;
-        let t824 = t823 / t98;
-        let t825 = t97 * t824;
+        let t824 = t823 / c_phi;
+        let t825 = s_phi * t824;
         let t826 = -t825;
         let t827 = omega_y - t825;
         let v11 = lanes!(w[6], w[7], w[8], w[9]);
@@ -948,7 +948,7 @@ impl Swing4Simplified {
             loads[0].moment[2], loads[1].moment[2], loads[2].moment[2], loads[3]
             .moment[2]
         );
-        let v26 = lanes_mul!(v5, lanes_splat!(t97));
+        let v26 = lanes_mul!(v5, lanes_splat!(s_phi));
         let v4 = lanes!(
             loads[0].moment[1], loads[1].moment[1], loads[2].moment[1], loads[3]
             .moment[1]
@@ -1082,7 +1082,7 @@ impl Swing4Simplified {
             .stator_torque[2], loads[3].stator_torque[2]
         );
         let t495 = lanes_sum!(v8);
-        let t501 = t97 * t495;
+        let t501 = s_phi * t495;
         let v7 = lanes!(
             loads[0].stator_torque[1], loads[1].stator_torque[1], loads[2]
             .stator_torque[1], loads[3].stator_torque[1]
@@ -1186,7 +1186,7 @@ impl Swing4Simplified {
         let t541 = -t181;
         let t542 = t540 - t181;
         let t543 = t182 + t542;
-        let v22 = lanes_mul!(v2, lanes_splat!(t97));
+        let v22 = lanes_mul!(v2, lanes_splat!(s_phi));
         let v19 = lanes_mul!(v1, lanes_splat!(t331));
         let v16 = lanes_mul!(v0, lanes_splat!(t324));
         let l16 = lanes_array!(v16);
@@ -1201,7 +1201,7 @@ impl Swing4Simplified {
         let t533 = 0.18181525936802018 * t532;
         let t454 = l34[0] + l34[1];
         let t531 = 0.17752077756484444 * t454;
-        let t192 = t97 * 0.972;
+        let t192 = s_phi * 0.972;
         let t214 = 0.18181525936802018 * t192;
         let t215 = -t214;
         let t196 = 0.2 * t194;
@@ -1226,7 +1226,7 @@ impl Swing4Simplified {
         let t459 = t172 + t458;
         let t451 = t192 * 4.0;
         let t452 = -t451;
-        let t453 = t97 * 48.6;
+        let t453 = s_phi * 48.6;
         let t460 = -t453;
         let t461 = t452 - t453;
         let t462 = t459 + t461;
@@ -1497,7 +1497,7 @@ impl Swing4Simplified {
         let t783 = 0.0018955784818940136 * t767;
         let t787 = -t783;
         let t788 = t786 - t783;
-        let cos_roll = t98;
+        let cos_roll = c_phi;
         let pivot_6 = 0.022071692520380215;
         let pivot_den_6 = 1.0;
         let pivot_7 = 0.02201860062774949;
