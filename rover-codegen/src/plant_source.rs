@@ -11,7 +11,7 @@ use std::fmt::Write;
 use rover_spec::Spec;
 
 use crate::emit::{Block, OpCount, emit};
-use crate::lanes::{self, LANES};
+use crate::lanes;
 use crate::simplify::simplify;
 use crate::trace::{Function, Traced, trace_spec_at};
 
@@ -83,42 +83,6 @@ fn str_list(items: &[String]) -> String {
     quoted.join(", ")
 }
 
-/// The simplified right-hand side and its four-lane plan ([`crate::lanes`])
-/// when the rover has four wheels or four suspension coordinates, the
-/// lanes: a coordinate, its rate and neutral, and a wheel's loads are read
-/// into one lane each.
-fn lane_plan(traced: &Traced, wheels: usize, m: usize) -> Option<(Function, lanes::Plan)> {
-    if wheels != LANES && m != LANES {
-        return None;
-    }
-    let f = simplify(&traced.derivatives);
-    let seeds = lanes::seeds(&f, |k| {
-        let name = &f.inputs[k].name;
-        if m == LANES {
-            for (i, c) in traced.coordinate_idents.iter().enumerate() {
-                for (prefix, key) in [("", "y"), ("yd_", "yd"), ("y0_", "y0")] {
-                    if *name == format!("{prefix}{c}") {
-                        return Some((key.to_string(), i));
-                    }
-                }
-            }
-        }
-        if wheels == LANES {
-            for (j, w) in traced.wheel_idents.iter().enumerate() {
-                for short in ["f", "mu", "tau"] {
-                    for axis in crate::trace::AXES {
-                        if *name == format!("{short}_{w}_{axis}") {
-                            return Some((format!("{short}_{axis}"), j));
-                        }
-                    }
-                }
-            }
-        }
-        None
-    });
-    lanes::plan(&f, &seeds).map(|p| (f, p))
-}
-
 /// The plant type for `spec`.
 pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
     let traced: Traced = trace_spec_at(spec, options.jacobian, options.level.as_ref());
@@ -127,7 +91,10 @@ pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
     let name = &options.type_name;
     let vis = &options.visibility;
     let c = options.comments;
-    let (deriv, deriv_ops) = emit_fn(&traced.derivatives, c);
+    // Simplified once: emitted as scalar code, or planned in four lanes.
+    let derivatives = simplify(&traced.derivatives);
+    let (deriv_blocks, deriv_ops) = emit(&derivatives, LIBM);
+    let deriv = body(&deriv_blocks, c);
     // The parameters of `derivatives_array` and of the copies behind it.
     let rhs_sig = format!(
         "(&self, x: &[f64; {n}], w: &[f64; {n}], loads: &[{PLANT}::WheelLoad; {k}], \
@@ -163,12 +130,12 @@ pub fn plant_source(spec: &Spec, options: &Options) -> PlantSource {
     );
     // A four-wheeled rover's per-wheel work in four-lane operations, one
     // statement list printed for each copy; otherwise one scalar body
-    // that both copies inline.
-    let lanes = lane_plan(&traced, k, m);
-    let (v4_body, portable_body, body_fn, lane_note) = match &lanes {
-        Some((f, plan)) => (
-            format!("{}{tail}", lanes::emit(f, plan, true, LIBM)),
-            format!("{}{tail}", lanes::emit(f, plan, false, LIBM)),
+    // that both copies inline. Each input's lane is recorded by the trace.
+    let seeds = lanes::seeds(&derivatives, |k| derivatives.inputs[k].lane.clone());
+    let (v4_body, portable_body, body_fn, lane_note) = match lanes::plan(&derivatives, &seeds) {
+        Some(plan) => (
+            format!("{}{tail}", lanes::emit(&derivatives, &plan, true, LIBM)),
+            format!("{}{tail}", lanes::emit(&derivatives, &plan, false, LIBM)),
             String::new(),
             Some(format!(
                 "{} four-lane operations ({} of {} scalar ones), {} sums over the lanes",

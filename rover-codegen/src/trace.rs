@@ -31,6 +31,11 @@ pub struct InputVar {
     pub name: String,
     /// Where it is read (`x[3]`, `loads[0].force[2]`, `self.neutral[1]`).
     pub access: String,
+    /// The per-wheel or per-coordinate quantity it is one of, and whose:
+    /// (`"yd"`, 2) for `yd_y3`, (`"f_z"`, 0) for the first wheel's vertical
+    /// force. Inputs of one quantity, one per wheel, can share a vector
+    /// ([`crate::lanes`]).
+    pub lane: Option<(String, usize)>,
 }
 
 /// An output of a traced function.
@@ -72,6 +77,7 @@ impl Function {
                 .map(|(k, n)| InputVar {
                     name: n.to_string(),
                     access: format!("x[{k}]"),
+                    lane: None,
                 })
                 .collect(),
             outputs: outs
@@ -145,7 +151,7 @@ fn unique(names: Vec<String>, taken: &mut Vec<String>) -> Vec<String> {
 
 const POSE: [&str; 6] = ["pos_x", "pos_y", "pos_z", "phi", "theta", "psi"];
 const TWIST: [&str; 6] = ["vx", "vy", "vz", "omega_x", "omega_y", "omega_z"];
-pub(crate) const AXES: [&str; 3] = ["x", "y", "z"];
+const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Inputs x and w, in order, with their names.
 fn state_inputs(coords: &[String], inputs: &mut Vec<InputVar>) {
@@ -153,24 +159,28 @@ fn state_inputs(coords: &[String], inputs: &mut Vec<InputVar>) {
         inputs.push(InputVar {
             name: n.to_string(),
             access: format!("x[{k}]"),
+            lane: None,
         });
     }
     for (i, c) in coords.iter().enumerate() {
         inputs.push(InputVar {
             name: c.clone(),
             access: format!("x[{}]", 6 + i),
+            lane: Some(("y".into(), i)),
         });
     }
     for (k, n) in TWIST.iter().enumerate() {
         inputs.push(InputVar {
             name: n.to_string(),
             access: format!("w[{k}]"),
+            lane: None,
         });
     }
     for (i, c) in coords.iter().enumerate() {
         inputs.push(InputVar {
             name: format!("yd_{c}"),
             access: format!("w[{}]", 6 + i),
+            lane: Some(("yd".into(), i)),
         });
     }
 }
@@ -232,6 +242,7 @@ fn trace_derivatives(
                 inputs.push(InputVar {
                     name: format!("{short}_{wname}_{axis}"),
                     access: format!("loads[{j}].{field}[{c}]"),
+                    lane: Some((format!("{short}_{axis}"), j)),
                 });
             }
         }
@@ -241,6 +252,7 @@ fn trace_derivatives(
         inputs.push(InputVar {
             name: format!("y0_{c}"),
             access: format!("self.neutral[{i}]"),
+            lane: Some(("y0".into(), i)),
         });
     }
     let k = model.wheels.len();
@@ -364,6 +376,7 @@ fn trace_mass(model: &Model, coords: &[String], level: Option<&Level>) -> Functi
             .map(|(i, c)| InputVar {
                 name: c.clone(),
                 access: format!("x[{}]", 6 + i),
+                lane: Some(("y".into(), i)),
             })
             .collect()
     };
@@ -420,6 +433,7 @@ fn trace_wheels(
         inputs.push(InputVar {
             name: format!("delta_{w}"),
             access: format!("steer[{j}]"),
+            lane: Some(("delta".into(), j)),
         });
     }
     let (states, graph) = trace(|| {
