@@ -111,18 +111,6 @@ impl Printer<'_> {
         if p < min { format!("({s})") } else { s }
     }
 
-    fn call(&self, f: &str, args: &[Id]) -> (String, u8) {
-        let a: Vec<String> = args.iter().map(|&i| self.expr(i).0).collect();
-        (format!("{}::{f}({})", self.path, a.join(", ")), ATOM)
-    }
-
-    /// A method of `f64` in `core` (inlined, unlike a libm call): same
-    /// IEEE semantics as libm's `fmax`, `fmin`, `fabs`, `copysign`.
-    fn core(&self, f: &str, args: &[Id]) -> (String, u8) {
-        let a: Vec<String> = args.iter().map(|&i| self.expr(i).0).collect();
-        (format!("f64::{f}({})", a.join(", ")), ATOM)
-    }
-
     /// The defining expression of `id`, ignoring its own name.
     fn body(&self, id: Id) -> (String, u8) {
         let g = self.graph;
@@ -162,25 +150,50 @@ impl Printer<'_> {
                 MUL,
             ),
             Node::Neg(a) => (format!("-{}", self.wrap(a, ATOM)), UNARY),
-            Node::Sin(a) => self.call("sin", &[a]),
-            Node::Cos(a) => self.call("cos", &[a]),
-            Node::Sqrt(a) => self.call("sqrt", &[a]),
-            Node::Exp(a) => self.call("exp", &[a]),
-            Node::Abs(a) => self.core("abs", &[a]),
-            Node::Atan2(a, b) => self.call("atan2", &[a, b]),
-            Node::Max(a, b) => self.core("max", &[a, b]),
-            Node::Min(a, b) => self.core("min", &[a, b]),
-            Node::Copysign(a, b) => self.core("copysign", &[a, b]),
-            Node::Ge(a, b) => (
-                format!(
-                    "if {} >= {} {{ 1.0 }} else {{ 0.0 }}",
-                    self.wrap(a, ADD),
-                    self.wrap(b, ADD)
-                ),
+            // Every other node prints as a call; its operands need no
+            // parentheses (`wrap` at the lowest precedence adds none).
+            node => (
+                function(node, |i| self.wrap(i, ADD), self.path).unwrap_or_default(),
                 ATOM,
             ),
         }
     }
+}
+
+/// A node that is a function of its operands (not `+ · / −`) as Rust:
+/// libm's function at `libm` for the transcendental ones, a method of
+/// `f64` in `core` for `abs`, `max`, `min`, `copysign` (inlined, unlike a
+/// libm call, with libm's IEEE semantics), a comparison for `Ge`.
+/// `arg` prints an operand; `None` for arithmetic, constants and inputs.
+pub fn function(node: Node, arg: impl Fn(Id) -> String, libm: &str) -> Option<String> {
+    let libm_call = |f: &str, args: &[Id]| {
+        let a: Vec<String> = args.iter().map(|&i| arg(i)).collect();
+        format!("{libm}::{f}({})", a.join(", "))
+    };
+    let core_call = |f: &str, args: &[Id]| {
+        let a: Vec<String> = args.iter().map(|&i| arg(i)).collect();
+        format!("f64::{f}({})", a.join(", "))
+    };
+    Some(match node {
+        Node::Sin(a) => libm_call("sin", &[a]),
+        Node::Cos(a) => libm_call("cos", &[a]),
+        Node::Sqrt(a) => libm_call("sqrt", &[a]),
+        Node::Exp(a) => libm_call("exp", &[a]),
+        Node::Atan2(a, b) => libm_call("atan2", &[a, b]),
+        Node::Abs(a) => core_call("abs", &[a]),
+        Node::Max(a, b) => core_call("max", &[a, b]),
+        Node::Min(a, b) => core_call("min", &[a, b]),
+        Node::Copysign(a, b) => core_call("copysign", &[a, b]),
+        Node::Ge(a, b) => format!("if {} >= {} {{ 1.0 }} else {{ 0.0 }}", arg(a), arg(b)),
+        Node::Const(_)
+        | Node::Input(_)
+        | Node::Add(..)
+        | Node::Mul(..)
+        | Node::Div(..)
+        | Node::Neg(_) => {
+            return None;
+        }
+    })
 }
 
 /// A float literal that reads back to the same bits.

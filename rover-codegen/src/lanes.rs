@@ -22,7 +22,7 @@
 use std::collections::HashMap;
 use std::fmt::Write;
 
-use crate::emit::literal;
+use crate::emit::{function, literal};
 use crate::graph::{Graph, Id, Node};
 use crate::trace::Function;
 
@@ -618,23 +618,9 @@ pub fn emit(f: &Function, plan: &Plan, avx: bool, libm: &str) -> String {
                             );
                             continue;
                         }
-                        let fun = if matches!(g.node(id), Node::Sin(_)) {
-                            "sin"
-                        } else {
-                            "cos"
-                        };
-                        format!("{libm}::{fun}({})", scalar(a))
+                        function(g.node(id), scalar, libm).unwrap_or_default()
                     }
-                    Node::Sqrt(a) => format!("{libm}::sqrt({})", scalar(a)),
-                    Node::Exp(a) => format!("{libm}::exp({})", scalar(a)),
-                    Node::Atan2(a, b) => format!("{libm}::atan2({}, {})", scalar(a), scalar(b)),
-                    Node::Abs(a) => format!("f64::abs({})", scalar(a)),
-                    Node::Max(a, b) => format!("f64::max({}, {})", scalar(a), scalar(b)),
-                    Node::Min(a, b) => format!("f64::min({}, {})", scalar(a), scalar(b)),
-                    Node::Copysign(a, b) => format!("f64::copysign({}, {})", scalar(a), scalar(b)),
-                    Node::Ge(a, b) => {
-                        format!("if {} >= {} {{ 1.0 }} else {{ 0.0 }}", scalar(a), scalar(b))
-                    }
+                    node => function(node, scalar, libm).unwrap_or_default(),
                 };
                 let _ = writeln!(out, "let {name} = {rhs};");
             }
