@@ -94,17 +94,14 @@ pub(crate) fn print_stdout(text: &str) -> Result<(), CliError> {
 /// file first, renamed over `path` only once complete, so that a full disk
 /// or an interrupted run never leaves a truncated file that looks finished.
 pub(crate) fn write_whole(path: &std::path::Path, text: &str) -> Result<(), CliError> {
-    let fail =
-        |e: std::io::Error| CliError::Other(format!("{}: cannot write: {e}", path.display()));
     let mut partial = path.as_os_str().to_owned();
     partial.push(format!(".partial-{}", std::process::id()));
     let partial = std::path::PathBuf::from(partial);
     let written = std::fs::write(&partial, text).and_then(|()| std::fs::rename(&partial, path));
-    if let Err(e) = written {
+    written.map_err(|e| {
         let _ = std::fs::remove_file(&partial);
-        return Err(fail(e));
-    }
-    Ok(())
+        CliError::Other(format!("{}: cannot write: {e}", path.display()))
+    })
 }
 
 /// Run a parsed command line; the exit code says how it went (0 success,
