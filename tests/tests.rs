@@ -2,6 +2,7 @@
 
 mod support;
 
+mod breakpoints;
 mod cli;
 mod codegen;
 mod commands;

@@ -195,13 +195,22 @@ impl Bdf {
         Ok(())
     }
 
-    /// Re-evaluates the Jacobian at the predicted point `(t_new, y^(0))`.
+    /// Re-evaluates the Jacobian at the predictor `(t_new, y^(0))` of the attempt that just
+    /// failed, which `y_pred` still holds, with `f_pred = f(t_new, y^(0))` from that attempt's
+    /// first Newton iteration when it got that far.
+    ///
+    /// The predictor is not recomputed from the history: after a side landing the history has
+    /// been swapped back to the regular grid, whose predictor lies at another time and state.
+    /// A forward difference `(f(y + δ·e_j) − f_pred)/δ` taken about a point that is not the one
+    /// `f_pred` belongs to divides an `O(h·f)` mismatch by `δ ≈ 1e-8`: a Jacobian of garbage
+    /// whose `(I − cJ)⁻¹` shrinks every Newton correction, so that unconverged iterates pass the
+    /// convergence test and the error estimate (a torque step on an output instant once sent
+    /// swing4 off to a 28° pitch that way).
     fn update_jacobian<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
         t_new: f64,
     ) -> Result<(), IntegrateError<S::Error>> {
-        self.hist.predict(&mut self.y_pred);
         if !self.f_pred_valid {
             self.stats.rhs_evals += 1;
             sys.rhs(t_new, &self.y_pred, &mut self.f_pred)
@@ -263,12 +272,16 @@ impl Bdf {
             self.stats.rhs_evals += 1;
             sys.rhs(t_new, &self.y_new, &mut self.f)
                 .map_err(|source| IntegrateError::Rhs { t: t_new, source })?;
+            if let Some(component) = first_non_finite(&self.f) {
+                // Too far for the right-hand side: a shorter step, not a Jacobian from it.
+                return Ok(Attempt::NonFinite {
+                    component,
+                    value: self.f[component],
+                });
+            }
             if iter == 0 {
                 self.f_pred.copy_from_slice(&self.f);
                 self.f_pred_valid = true;
-            }
-            if first_non_finite(&self.f).is_some() {
-                break;
             }
             for i in 0..self.dim {
                 self.delta[i] = c * self.f[i] - self.psi[i] - self.d[i];
