@@ -72,4 +72,8 @@ impl HeightField for Ditch {
     fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
         area.is_finite().then(|| self.profile.steepest())
     }
+
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then(|| self.profile.curvature())
+    }
 }

@@ -53,6 +53,10 @@ impl HeightField for Flat {
         area.is_finite().then_some(0.0)
     }
 
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then_some(0.0)
+    }
+
     fn plane(&self) -> Option<Plane> {
         Some(Plane {
             origin: [0.0, 0.0],

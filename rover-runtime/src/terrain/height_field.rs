@@ -41,6 +41,20 @@ pub trait HeightField {
         None
     }
 
+    /// An upper bound of the curvature: of the Hessian's spectral norm
+    /// `‖∇²Z_G‖₂` [1/m] over the rectangle `area`, given only when every
+    /// point of it can be queried and the gradient is Lipschitz there with
+    /// that constant (a C1 surface whose second derivatives are bounded,
+    /// jumps of them between cells allowed); `None` when either is unknown
+    /// (the default) or the surface has a crease or a jump there. The
+    /// bounded contact search uses it to prove which stretches of the rim
+    /// cannot meet the ground without sampling them; a loose bound costs
+    /// only time, a missing one sends it back to the sampled search.
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        let _ = area;
+        None
+    }
+
     /// The plane the whole terrain is, when it is one (flat ground, a
     /// slope): the contact search then cuts the rim with it in closed form
     /// instead of sampling it. `None` (the default) for any other surface;
@@ -87,6 +101,10 @@ impl<H: HeightField + ?Sized> HeightField for &H {
 
     fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
         (**self).max_slope_in(area)
+    }
+
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        (**self).max_curvature_in(area)
     }
 
     fn plane(&self) -> Option<Plane> {

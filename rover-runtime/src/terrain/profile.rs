@@ -81,6 +81,15 @@ impl Profile {
         self.amplitude.max(0.0)
     }
 
+    /// The largest curvature anywhere, at the flanks' ends: `|A|·π²/(2r²)`,
+    /// the profile's `|p''|`. On a round footprint the Hessian's other
+    /// eigenvalue is `p'(s)/s`, no larger: `p'` is zero on the top (or at
+    /// its centre) and grows from there at most as fast as `|p''|` allows.
+    pub(crate) fn curvature(&self) -> f64 {
+        let k = core::f64::consts::PI / self.ramp;
+        0.5 * self.amplitude.abs() * k * k * (1.0 + 1e-12)
+    }
+
     /// The steepest slope anywhere, at mid-flank: `|A|·π/(2r)`.
     pub(crate) fn steepest(&self) -> f64 {
         self.amplitude.abs() * core::f64::consts::FRAC_PI_2 / self.ramp

@@ -70,4 +70,10 @@ impl HeightField for Sinusoid {
         area.is_finite()
             .then(|| self.amplitude.abs() * self.wavenumber)
     }
+
+    /// The largest curvature anywhere, `|A|·(2π/λ)²`.
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite()
+            .then(|| self.amplitude.abs() * self.wavenumber * self.wavenumber * (1.0 + 1e-12))
+    }
 }

@@ -106,6 +106,10 @@ impl HeightField for Slope {
             .then(|| self.gradient[0].hypot(self.gradient[1]))
     }
 
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        area.is_finite().then_some(0.0)
+    }
+
     fn plane(&self) -> Option<Plane> {
         Some(self.as_plane())
     }

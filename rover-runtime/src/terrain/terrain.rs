@@ -106,6 +106,19 @@ impl HeightField for Terrain {
     }
 
     #[inline]
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        match self {
+            Terrain::Flat(t) => t.max_curvature_in(area),
+            Terrain::Slope(t) => t.max_curvature_in(area),
+            Terrain::Bump(t) => t.max_curvature_in(area),
+            Terrain::Ditch(t) => t.max_curvature_in(area),
+            Terrain::Step(t) => t.max_curvature_in(area),
+            Terrain::Sinusoid(t) => t.max_curvature_in(area),
+            Terrain::Grid(t) => t.max_curvature_in(area),
+        }
+    }
+
+    #[inline]
     fn plane(&self) -> Option<Plane> {
         match self {
             Terrain::Flat(t) => t.plane(),
