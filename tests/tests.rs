@@ -6,6 +6,7 @@ mod breakpoints;
 mod cli;
 mod codegen;
 mod commands;
+mod contact_accuracy;
 mod control;
 mod dynamics;
 mod failures;

@@ -579,13 +579,13 @@ struct Run {
 
 /// The runs below ground found by the scan, in rim order.
 #[derive(Clone, Copy, Default)]
-struct Runs {
+pub(crate) struct Runs {
     runs: [Run; MAX_RUNS],
     count: usize,
 }
 
 impl Runs {
-    fn push(&mut self, a: RimAngle, b: RimAngle, depth: f64) {
+    pub(crate) fn push(&mut self, a: RimAngle, b: RimAngle, depth: f64) {
         if self.count < MAX_RUNS {
             self.runs[self.count] = Run {
                 a,
@@ -610,7 +610,7 @@ impl Runs {
     /// (depth 0) is then a separate patch of zero length, so its birth
     /// stays continuous too. Gaps whose ridge clears the rim by a band or
     /// more, and single patches, are exactly the paper's.
-    fn emit<H: HeightField + ?Sized>(
+    pub(crate) fn emit<H: HeightField + ?Sized>(
         self,
         terrain: &H,
         frame: &RimFrame,
@@ -625,6 +625,27 @@ impl Runs {
             return Ok(());
         }
         self.blend(terrain, frame, contact)
+    }
+
+    /// Where a blend needs it (two runs or more), each run shallower than
+    /// [`SPLIT_BAND`] gets its true depth, the clearance's minimum between
+    /// its crossings, instead of the deepest point a search happened to
+    /// evaluate (for a search that evaluates few points).
+    pub(crate) fn measure_shallow<H: HeightField + ?Sized>(
+        &mut self,
+        terrain: &H,
+        frame: &RimFrame,
+    ) -> Result<(), OffMap> {
+        if self.count < 2 {
+            return Ok(());
+        }
+        for run in &mut self.runs[..self.count] {
+            if run.depth < SPLIT_BAND {
+                let (_, lowest) = extremum(terrain, frame, run.a.beta, run.b.beta, Extremum::Lowest)?;
+                run.depth = run.depth.max(-lowest);
+            }
+        }
+        Ok(())
     }
 
     /// [`Runs::emit`] for two runs or more.

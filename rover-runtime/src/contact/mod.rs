@@ -1,9 +1,11 @@
 //! Contact geometry between a wheel and the terrain (MODEL.md §6, paper §4.1).
 
+mod bounded;
 mod meridional;
 mod patch;
 mod tracked;
 
+pub use bounded::{BoundedContact, NEGLIGIBLE};
 pub use meridional::{MeridionalContact, RimSampling};
 pub use patch::{Contact, MAX_PATCHES, Patch};
 pub(crate) use patch::{cross, dot};
