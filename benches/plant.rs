@@ -117,6 +117,7 @@ fn bench_contact<P: Plant>(
     let what = match method {
         ContactMethod::Meridional => "rhs_contact",
         ContactMethod::Tracked => "rhs_contact_tracked",
+        ContactMethod::Bounded => "rhs_contact_bounded",
     };
     bench_contact_on(
         group,
@@ -190,20 +191,26 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
     let rough = Terrain::Grid(support::rough_field());
     let state = driven(&rough, &model, generic.clone(), 5.0);
     let at = Some(&state[..]);
-    let what = "rhs_contact_rough";
-    bench_contact_on(
-        &mut group,
-        what,
-        "generated",
-        rough.clone(),
-        &model,
-        generated,
-        method,
-        at,
-    );
-    bench_contact_on(
-        &mut group, what, "generic", rough, &model, generic, method, at,
-    );
+    for (what, method) in [
+        ("rhs_contact_rough", ContactMethod::Meridional),
+        ("rhs_contact_rough_bounded", ContactMethod::Bounded),
+    ] {
+        let (plant, ground) = (generated.clone(), rough.clone());
+        bench_contact_on(
+            &mut group,
+            what,
+            "generated",
+            ground,
+            &model,
+            plant,
+            method,
+            at,
+        );
+        let (plant, ground) = (generic.clone(), rough.clone());
+        bench_contact_on(
+            &mut group, what, "generic", ground, &model, plant, method, at,
+        );
+    }
     group.finish();
 }
 

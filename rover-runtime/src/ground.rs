@@ -5,7 +5,7 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::{WheelLoad, WheelState};
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{Contact, MeridionalContact, RimSampling, TrackedContact};
+use crate::contact::{BoundedContact, Contact, MeridionalContact, RimSampling, TrackedContact};
 use crate::contact::{cross, dot};
 use crate::terrain::{HeightField, OffMap};
 use crate::wheel_law::{PatchMotion, Tyre, WheelLaw, WheelLawConfig};
@@ -19,6 +19,11 @@ pub enum ContactMethod {
     Meridional,
     /// Track the contact centre from the previous evaluation (eq. 35).
     Tracked,
+    /// The rim's crossings with the ground proved and found from the
+    /// terrain's bounds of height, slope and curvature, without sampling
+    /// ([`BoundedContact`]); the meridional search where the terrain gives no
+    /// curvature bound.
+    Bounded,
 }
 
 /// What the contact did on one wheel, for the CSV and the summary.
@@ -127,6 +132,10 @@ impl<H: HeightField> Ground<H> {
             ContactMethod::Tracked => {
                 self.trackers[k].find_into(terrain, s.centre, s.spin_axis, radius, out)
             }
+            ContactMethod::Bounded => BoundedContact {
+                fallback: self.meridional,
+            }
+            .find_into(terrain, s.centre, s.spin_axis, radius, out),
         }
     }
 

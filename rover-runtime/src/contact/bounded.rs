@@ -34,9 +34,9 @@
 //! point off a clamped map) and a plane (cut in closed form) take the
 //! meridional search.
 
-use crate::terrain::{HeightField, OffMap};
+use crate::terrain::{HeightField, OffMap, Plane};
 
-use super::meridional::{MeridionalContact, Runs, clearance_slope, crossing};
+use super::meridional::{MeridionalContact, Runs, clearance_slope, crossing_from, cut_by_plane};
 use super::patch::{Contact, RimAngle, RimFrame};
 
 /// Height \[m\] below which a feature's excursion through the rim is not
@@ -121,14 +121,17 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
         self.settle(mid, b, level + 1, scan)
     }
 
+    /// The crossing between `a` and `b` (on opposite sides), starting with a
+    /// Newton step from the end nearer the ground.
     fn crossing(&self, a: &Node, b: &Node) -> Result<RimAngle, OffMap> {
-        crossing(
+        let near = if a.h.abs() <= b.h.abs() { a } else { b };
+        let guess = (near.slope != 0.0).then(|| near.at.beta - near.h / near.slope);
+        crossing_from(
             self.terrain,
             &self.frame,
-            a.at.beta,
-            a.h,
-            b.at.beta,
-            b.h,
+            [a.at.beta, a.h],
+            [b.at.beta, b.h],
+            guess,
             self.tolerance,
         )
     }
@@ -306,6 +309,21 @@ impl BoundedContact {
         let Reach::Arc(lo, hi) = reach(&frame, top) else {
             return Ok(());
         };
+        // A terrain without curvature under the wheel is a plane there: one
+        // query gives it, and the rim is cut in closed form.
+        if curvature == 0.0 {
+            let (height, gradient) = terrain.height_gradient(centre[0], centre[1])?;
+            let plane = Plane {
+                origin: [centre[0], centre[1]],
+                height,
+                gradient,
+            };
+            let n = self.fallback.sampling.samples.max(3);
+            let step = core::f64::consts::PI / (n - 1) as f64;
+            if cut_by_plane(&plane, &frame, n, step, out) {
+                return Ok(());
+            }
+        }
         let search = Bounds {
             terrain,
             frame,

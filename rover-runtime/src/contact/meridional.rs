@@ -230,6 +230,31 @@ fn plane_cut(plane: &crate::terrain::Plane, frame: &RimFrame, n: usize, step: f6
     PlaneCut::Run(start, end, lo <= -half || hi >= half)
 }
 
+/// The patch of the rim cut by `plane` into `out` (empty), true when the
+/// cut settles the contact; false for the cases [`plane_cut`] leaves to a
+/// search.
+pub(crate) fn cut_by_plane(
+    plane: &crate::terrain::Plane,
+    frame: &RimFrame,
+    n: usize,
+    step: f64,
+    out: &mut Contact,
+) -> bool {
+    match plane_cut(plane, frame, n, step) {
+        PlaneCut::Inside(patch) => {
+            out.push(patch);
+            true
+        }
+        PlaneCut::Run(a, b, deep) => {
+            out.deep = deep;
+            out.push(frame.patch(a, b));
+            true
+        }
+        PlaneCut::Clear => true,
+        PlaneCut::Sample => false,
+    }
+}
+
 /// Height of rim point β above the ground and its slope,
 /// `dh/dβ = dZ_P/dβ − ∇Z_G·(dX_P/dβ, dY_P/dβ)`: one query of the height
 /// with its gradient.
@@ -253,14 +278,28 @@ pub(crate) fn clearance_slope<H: HeightField + ?Sized>(
 pub(crate) fn crossing<H: HeightField + ?Sized>(
     terrain: &H,
     frame: &RimFrame,
-    mut lo: f64,
-    mut h_lo: f64,
-    mut hi: f64,
-    mut h_hi: f64,
+    lo: f64,
+    h_lo: f64,
+    hi: f64,
+    h_hi: f64,
+    tolerance: f64,
+) -> Result<RimAngle, OffMap> {
+    crossing_from(terrain, frame, [lo, h_lo], [hi, h_hi], None, tolerance)
+}
+
+/// [`crossing`] between `[β, h]` ends `lo` and `hi`, trying `guess` first
+/// (a Newton step from a bracket end whose slope the caller knows) instead
+/// of a secant step.
+pub(crate) fn crossing_from<H: HeightField + ?Sized>(
+    terrain: &H,
+    frame: &RimFrame,
+    [mut lo, mut h_lo]: [f64; 2],
+    [mut hi, mut h_hi]: [f64; 2],
+    guess: Option<f64>,
     tolerance: f64,
 ) -> Result<RimAngle, OffMap> {
     let mut side = 0i8;
-    let mut newton = None;
+    let mut newton = guess;
     for _ in 0..60 {
         let inside = |b: f64| b > lo.min(hi) && b < lo.max(hi);
         let b = match newton.filter(|&b| inside(b)) {
@@ -332,20 +371,10 @@ impl MeridionalContact {
         };
         let n = self.sampling.samples.max(3);
         let step = core::f64::consts::PI / (n - 1) as f64;
-        if let Some(plane) = terrain.plane() {
-            match plane_cut(&plane, &frame, n, step) {
-                PlaneCut::Inside(patch) => {
-                    out.push(patch);
-                    return Ok(());
-                }
-                PlaneCut::Run(a, b, deep) => {
-                    out.deep = deep;
-                    out.push(frame.patch(a, b));
-                    return Ok(());
-                }
-                PlaneCut::Clear => return Ok(()),
-                PlaneCut::Sample => {}
-            }
+        if let Some(plane) = terrain.plane()
+            && cut_by_plane(&plane, &frame, n, step, out)
+        {
+            return Ok(());
         }
         // A dip between samples: a local minimum of the sampled clearance
         // that is shallow enough to hide a crossing is refined, so a patch
