@@ -70,12 +70,16 @@ fn terrains() -> Vec<(&'static str, Terrain, [f64; 4])> {
         ("random Z_R = 1.0", random(1.0), [-2.5, 2.5, -2.5, 2.5]),
         (
             "bump",
-            terrain("kind = \"bump\"\nheight = 0.08\nwidth = 0.5\ntop_width = 0.1\ncenter = [0.0, 0.0]"),
+            terrain(
+                "kind = \"bump\"\nheight = 0.08\nwidth = 0.5\ntop_width = 0.1\ncenter = [0.0, 0.0]",
+            ),
             [-0.45, 0.45, -0.45, 0.45],
         ),
         (
             "ditch",
-            terrain("kind = \"ditch\"\ndepth = 0.1\nwidth = 0.5\nbottom_width = 0.1\ncenter = [0.0, 0.0]"),
+            terrain(
+                "kind = \"ditch\"\ndepth = 0.1\nwidth = 0.5\nbottom_width = 0.1\ncenter = [0.0, 0.0]",
+            ),
             [-0.45, 0.45, -0.45, 0.45],
         ),
         (
@@ -108,7 +112,9 @@ const K_W: f64 = 3e4;
 fn differences(c: &Contact, reference: &Contact) -> (f64, f64, f64) {
     let (mut point, mut deflection) = (0.0f64, 0.0f64);
     for (p, q) in c.patches().iter().zip(reference.patches()) {
-        let d = (0..3).map(|k| (p.point[k] - q.point[k]).abs()).fold(0.0, f64::max);
+        let d = (0..3)
+            .map(|k| (p.point[k] - q.point[k]).abs())
+            .fold(0.0, f64::max);
         point = point.max(d);
         deflection = deflection.max((p.deflection - q.deflection).abs());
     }
@@ -155,7 +161,11 @@ fn the_bounded_search_finds_the_dense_reference_patches() {
             let before = sampled.find(&old, centre, axis, radius).unwrap();
             if before.count == reference.count {
                 let d = differences(&before, &reference);
-                worst_old = (worst_old.0.max(d.0), worst_old.1.max(d.1), worst_old.2.max(d.2));
+                worst_old = (
+                    worst_old.0.max(d.0),
+                    worst_old.1.max(d.1),
+                    worst_old.2.max(d.2),
+                );
             } else {
                 old_miscounts += 1;
             }
@@ -177,7 +187,69 @@ fn the_bounded_search_finds_the_dense_reference_patches() {
             worst_old.2,
             old.queries.get() as f64 / 2000.0,
         );
-        assert!(touching > 1000, "{name}: only {touching} of 2000 wheels touch");
+        assert!(
+            touching > 1000,
+            "{name}: only {touching} of 2000 wheels touch"
+        );
     }
     assert_eq!(total, 10_000);
+}
+
+/// A wheel moving in small steps, as an integrator's evaluations move it:
+/// the search that keeps its memory between calls (bounds of its lattice
+/// square, the last full search's certificate) finds the patches a fresh
+/// search finds, to the crossings' rounding, with fewer terrain queries.
+#[test]
+fn a_search_that_remembers_finds_what_a_fresh_search_finds() {
+    use rover_runtime::contact::SearchMemory;
+    let search = BoundedContact::default();
+    let mut rng = Rng::new(0x0de7_0c47);
+    for (name, t, area) in terrains() {
+        let (remembering, fresh) = (Probe::new(&t, true), Probe::new(&t, true));
+        let mut compared = 0;
+        for walk in 0..40 {
+            let (mut centre, mut axis, radius) = pose(&mut rng, &t, area);
+            let mut memory = SearchMemory::default();
+            for step in 0..50 {
+                // As an implicit integrator moves it: evaluations within a
+                // step (Newton iterations, a Jacobian's differences) up to
+                // 10 µm apart, steps of up to 0.5 mm every fifth, and now
+                // and then 5 mm.
+                let scale = match step % 25 {
+                    24 => 5e-3,
+                    s if s % 5 == 4 => 5e-4,
+                    _ => 1e-5,
+                };
+                for c in &mut centre {
+                    *c += rng.uniform(-scale, scale);
+                }
+                let tilt = rng.uniform(-scale, scale);
+                axis = [axis[0] - tilt * axis[2], axis[1], axis[2] + tilt * axis[0]];
+                let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+                axis = axis.map(|a| a / n);
+                let mut kept = Contact::default();
+                search
+                    .find_with(&remembering, centre, axis, radius, &mut memory, &mut kept)
+                    .unwrap();
+                let new = search.find(&fresh, centre, axis, radius).unwrap();
+                assert_eq!(kept.count, new.count, "{name}, walk {walk}, step {step}");
+                assert_eq!(kept.deep, new.deep, "{name}, walk {walk}, step {step}");
+                let d = differences(&kept, &new);
+                assert!(
+                    d.0 < 1e-9 && d.1 < 1e-10,
+                    "{name}, walk {walk}, step {step}: point {:.1e} m, deflection {:.1e} m",
+                    d.0,
+                    d.1
+                );
+                compared += usize::from(new.count > 0);
+            }
+        }
+        let (kept, new) = (remembering.queries.get(), fresh.queries.get());
+        println!("{name}: {compared} contacts, {kept} queries remembering, {new} fresh");
+        assert!(compared > 500, "{name}: only {compared} contacts");
+        assert!(
+            name.starts_with("slope") || 2 * kept < new,
+            "{name}: the memory saved too little ({kept} against {new} queries)"
+        );
+    }
 }

@@ -5,7 +5,9 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::{WheelLoad, WheelState};
 use serde::{Deserialize, Serialize};
 
-use crate::contact::{BoundedContact, Contact, MeridionalContact, RimSampling, TrackedContact};
+use crate::contact::{
+    BoundedContact, Contact, MeridionalContact, RimSampling, SearchMemory, TrackedContact,
+};
 use crate::contact::{cross, dot};
 use crate::terrain::{HeightField, OffMap};
 use crate::wheel_law::{PatchMotion, Tyre, WheelLaw, WheelLawConfig};
@@ -65,6 +67,8 @@ pub struct Ground<H> {
     method: ContactMethod,
     meridional: MeridionalContact,
     trackers: Vec<TrackedContact>,
+    /// The terrain's bounds under each wheel, for the bounded search.
+    bounds: Vec<SearchMemory>,
     contacts: Vec<Contact>,
     tyres: Vec<Tyre>,
     radii: Vec<f64>,
@@ -98,6 +102,7 @@ impl<H: HeightField> Ground<H> {
             method,
             meridional,
             trackers: vec![TrackedContact::new(meridional); model.wheels.len()],
+            bounds: vec![SearchMemory::default(); model.wheels.len()],
             contacts: vec![Contact::default(); model.wheels.len()],
             tyres,
             radii: model.wheels.iter().map(|w| w.radius).collect(),
@@ -135,7 +140,14 @@ impl<H: HeightField> Ground<H> {
             ContactMethod::Bounded => BoundedContact {
                 fallback: self.meridional,
             }
-            .find_into(terrain, s.centre, s.spin_axis, radius, out),
+            .find_with(
+                terrain,
+                s.centre,
+                s.spin_axis,
+                radius,
+                &mut self.bounds[k],
+                out,
+            ),
         }
     }
 

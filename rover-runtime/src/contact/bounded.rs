@@ -44,16 +44,139 @@ use super::patch::{Contact, RimAngle, RimFrame};
 /// enclosure reaches less than this across it is taken as on that side.
 pub const NEGLIGIBLE: f64 = 1e-10;
 
+/// Height above the terrain's highest point, as a fraction of the wheel
+/// radius, up to which a full search covers the rim (see `find_with`).
+const PAD: f64 = 1.0 / 16.0;
+
 /// Most halvings of the half rim (2⁻⁴⁰ of π: far below what [`NEGLIGIBLE`]
 /// needs; a guard against a non-finite bound).
 const MAX_LEVEL: u32 = 40;
+
+/// Crossings are refined to this clearance \[m\], far below the sampled
+/// search's 1e-9 m: Newton's last step then lands within rounding of the
+/// root wherever it started, so the patches do not depend on which arcs the
+/// search happened to halve (which depends on the terrain's bounds, and so
+/// on the lattice square the bounds were taken over, see [`SearchMemory`]).
+/// A finite-difference Jacobian of the right-hand side, which perturbs a
+/// wheel by nanometres, sees the patches move with the wheel, not jump.
+pub const CROSSING_TOLERANCE: f64 = 1e-12;
+
+/// What the bounded search keeps about one wheel between calls (one per
+/// wheel, kept by the caller), to spare work whose outcome it can prove
+/// unchanged. The patches do not depend on it (up to the rounding of the
+/// crossings' last Newton step): a fresh memory gives the same contact.
+///
+/// - The terrain's bounds under the wheel (highest point, steepest slope,
+///   largest curvature), taken over the wheel's square snapped outwards to
+///   a lattice of side R/2, so that a wheel that moves a little keeps the
+///   same square: the pyramid queries behind them cost more than the
+///   search's own terrain queries.
+/// - The last full search's certificate: the smallest margin by which its
+///   settled arcs cleared the ground or stayed below it, and for each
+///   crossing its arc, root and the margins by which the arc's ends kept
+///   their sides and its slope its sign. A wheel that has moved by δ since
+///   (every rim point within δ of where it was, clearances within
+///   `δ·sqrt(1 + G²)`, their slopes within `δ·(sqrt(1 + G²) + C·R)`) inside
+///   those margins has the same arcs settled the same way: only its
+///   crossings are refined again, by Newton's method from their last roots.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SearchMemory {
+    /// The lattice square `[x_min, x_max, y_min, y_max]` in units of the
+    /// quantum, and the quantum \[m\]; `None` before the first query.
+    key: Option<([i64; 4], f64)>,
+    /// Highest point \[m\], steepest slope, largest curvature \[1/m\];
+    /// `None` where the terrain gives no bound.
+    bounds: Option<[f64; 3]>,
+    /// The last full search's certificate, if it can be reused.
+    certificate: Option<Certificate>,
+}
+
+impl SearchMemory {
+    /// The bounds over the lattice square holding `area`, from the memory
+    /// when it holds that square (a new square forgets the certificate).
+    fn over<H: HeightField + ?Sized>(
+        &mut self,
+        terrain: &H,
+        area: &crate::terrain::Bounds,
+        quantum: f64,
+    ) -> Option<[f64; 3]> {
+        // Beyond ±2⁵² quanta (or for a non-finite area) nothing is kept.
+        let limit = 4.5e15;
+        let snap = |v: f64, up: bool| {
+            let u = v / quantum;
+            let k = if up { u.ceil() } else { u.floor() };
+            (k.abs() < limit).then_some(k as i64)
+        };
+        let (Some(x0), Some(x1), Some(y0), Some(y1)) = (
+            snap(area.x_min, false),
+            snap(area.x_max, true),
+            snap(area.y_min, false),
+            snap(area.y_max, true),
+        ) else {
+            *self = SearchMemory::default();
+            return None;
+        };
+        let key = [x0, x1, y0, y1];
+        if self.key == Some((key, quantum)) {
+            return self.bounds;
+        }
+        let at = |k: i64| k as f64 * quantum;
+        let square = crate::terrain::Bounds {
+            x_min: at(key[0]),
+            x_max: at(key[1]),
+            y_min: at(key[2]),
+            y_max: at(key[3]),
+        };
+        self.key = Some((key, quantum));
+        self.certificate = None;
+        self.bounds = match (
+            terrain.max_height_in(&square),
+            terrain.max_slope_in(&square),
+            terrain.max_curvature_in(&square),
+        ) {
+            (Some(top), Some(slope), Some(curvature)) => Some([top, slope, curvature]),
+            _ => None,
+        };
+        self.bounds
+    }
+}
+
+/// Most crossings a certificate keeps: two per run.
+const MAX_CROSSINGS: usize = 2 * super::MAX_PATCHES;
+
+/// What a full search proved (see [`SearchMemory`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Certificate {
+    /// The rim the search was made for.
+    centre: [f64; 3],
+    down: [f64; 3],
+    forward: [f64; 3],
+    radius: f64,
+    /// Smallest margin of the settled arcs and of the searched arc's ends \[m\].
+    margin: f64,
+    crossings: [Crossing; MAX_CROSSINGS],
+    count: usize,
+    /// Deepest penetration seen in each run (pairs of crossings) \[m\].
+    depths: [f64; super::MAX_PATCHES],
+}
+
+/// One crossing's arc, root and margins.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Crossing {
+    lo: f64,
+    hi: f64,
+    root: f64,
+    /// Smallest |h| at the arc's ends \[m\].
+    sides: f64,
+    /// Smallest |h'| the arc provably keeps \[m/rad\].
+    slope: f64,
+}
 
 /// The bounded search, with the meridional search for the terrains it cannot
 /// bound. Stateless.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BoundedContact {
-    /// The search for planes and for terrains without bounds; its crossing
-    /// tolerance is this search's too.
+    /// The search for planes and for terrains without bounds.
     pub fallback: MeridionalContact,
 }
 
@@ -93,17 +216,35 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
             let (low, high) = enclosure(&a, &b, length, self.k);
             let (low, high) = (low - self.rounding, high + self.rounding);
             if low > 0.0 || high < 0.0 {
+                scan.settled(low.max(-high));
                 true
-            } else if monotone(&a, &b, length, self.k) {
+            } else if let Some(slope) = monotone(&a, &b, length, self.k) {
+                let sides = a.h.abs().min(b.h.abs());
                 if below_a != below_b {
-                    scan.cross(self.crossing(&a, &b)?);
+                    let root = self.crossing(&a, &b)?;
+                    scan.cross(root);
+                    scan.certify_crossing(Crossing {
+                        lo: a.at.beta,
+                        hi: b.at.beta,
+                        root: root.beta,
+                        sides,
+                        slope,
+                    });
+                } else {
+                    scan.settled(sides);
                 }
                 true
             } else if below_a == below_b
-                && (if below_a { high < NEGLIGIBLE } else { low > -NEGLIGIBLE })
+                && (if below_a {
+                    high < NEGLIGIBLE
+                } else {
+                    low > -NEGLIGIBLE
+                })
             {
+                scan.unproven();
                 true
             } else if level >= MAX_LEVEL {
+                scan.unproven();
                 if below_a != below_b {
                     scan.cross(self.crossing(&a, &b)?);
                 }
@@ -121,11 +262,93 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
         self.settle(mid, b, level + 1, scan)
     }
 
-    /// The crossing between `a` and `b` (on opposite sides), starting with a
-    /// Newton step from the end nearer the ground.
+    /// The runs of a wheel that has moved since `certificate` was made, if the
+    /// certificate still holds (see [`SearchMemory`]): each crossing refined
+    /// by Newton's method from its last root inside its arc. `slopes` are
+    /// `sqrt(1 + G²)` and `sqrt(1 + G²) + C·R`, the factors from the rim's
+    /// displacement to the clearances' and to their slopes'.
+    fn reuse(&self, c: &Certificate, slopes: [f64; 2]) -> Result<Option<Runs>, OffMap> {
+        let f = &self.frame;
+        if f.radius != c.radius {
+            return Ok(None);
+        }
+        let norm = |a: [f64; 3], b: [f64; 3]| {
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+        };
+        // Every rim point P = G + R·(cos β·d + sin β·f) moved by at most δ.
+        let moved = norm(f.centre, c.centre)
+            + f.radius * (norm(f.down, c.down) + norm(f.forward, c.forward));
+        let (dh, ds) = (
+            moved * slopes[0] + self.rounding,
+            moved * slopes[1] + self.rounding,
+        );
+        // (NaN never holds.)
+        let holds = |change: f64, margin: f64| change < margin;
+        if !holds(dh, c.margin) {
+            return Ok(None);
+        }
+        let mut roots = [RimAngle::default(); MAX_CROSSINGS];
+        for (root, x) in roots.iter_mut().zip(&c.crossings[..c.count]) {
+            if !(holds(dh, x.sides) && holds(ds, x.slope)) {
+                return Ok(None);
+            }
+            match self.newton(x)? {
+                Some(r) => *root = r,
+                None => return Ok(None),
+            }
+        }
+        let mut runs = Runs::default();
+        for (pair, depth) in roots[..c.count].chunks(2).zip(c.depths) {
+            if let [a, b] = pair {
+                runs.push(*a, *b, depth - dh);
+            }
+        }
+        Ok(Some(runs))
+    }
+
+    /// The root of `h` in the crossing's arc by Newton's method from its last
+    /// root (h is monotone there, so it has one); `None` if a step leaves the
+    /// arc or the iteration does not settle.
+    fn newton(&self, x: &Crossing) -> Result<Option<RimAngle>, OffMap> {
+        self.newton_in(x.lo, x.hi, x.root)
+    }
+
+    /// Newton's method for the root of `h` on `(lo, hi)` from `beta`. A step
+    /// `Δ = −h/h'` lands where `|h| ≤ K·Δ²/2` (Taylor, `|h''| ≤ K`): once that
+    /// is below the tolerance, the landing point is the root without another
+    /// query. `None` if a step leaves the interval or eight do not settle.
+    fn newton_in(&self, lo: f64, hi: f64, mut beta: f64) -> Result<Option<RimAngle>, OffMap> {
+        for _ in 0..8 {
+            let at = RimAngle::new(beta);
+            let (h, slope) = clearance_slope(self.terrain, &self.frame, at)?;
+            if h.abs() <= self.tolerance {
+                return Ok(Some(at));
+            }
+            let step = -h / slope;
+            beta += step;
+            if !(beta > lo && beta < hi) {
+                return Ok(None);
+            }
+            if 0.5 * self.k * step * step <= self.tolerance {
+                return Ok(Some(RimAngle::new(beta)));
+            }
+        }
+        Ok(None)
+    }
+
+    /// The crossing between `a` and `b` (on opposite sides, `h` monotone
+    /// between them): Newton's method from the end nearer the ground, or the
+    /// meridional search's safeguarded iteration if it leaves the arc.
     fn crossing(&self, a: &Node, b: &Node) -> Result<RimAngle, OffMap> {
         let near = if a.h.abs() <= b.h.abs() { a } else { b };
         let guess = (near.slope != 0.0).then(|| near.at.beta - near.h / near.slope);
+        if let Some(start) = guess
+            && start > a.at.beta
+            && start < b.at.beta
+            && let Some(root) = self.newton_in(a.at.beta, b.at.beta, start)?
+        {
+            return Ok(root);
+        }
         crossing_from(
             self.terrain,
             &self.frame,
@@ -172,10 +395,11 @@ fn enclosure(a: &Node, b: &Node, length: f64, k: f64) -> (f64, f64) {
     (bound(-1.0), bound(1.0))
 }
 
-/// Whether `h'` provably keeps one sign over the arc (so `h` crosses zero at
-/// most once there, and has no dip or ridge): `h'` lies above
-/// `max(h'_a − k·u, h'_b − k·(l − u))` and below `min(h'_a + k·u, h'_b + k·(l − u))`.
-fn monotone(a: &Node, b: &Node, l: f64, k: f64) -> bool {
+/// The smallest |h'| over the arc when `h'` provably keeps one sign there
+/// (so `h` crosses zero at most once, and has no dip or ridge), else `None`:
+/// `h'` lies above `max(h'_a − k·u, h'_b − k·(l − u))` and below
+/// `min(h'_a + k·u, h'_b + k·(l − u))`.
+fn monotone(a: &Node, b: &Node, l: f64, k: f64) -> Option<f64> {
     let lowest = {
         let u = ((a.slope - b.slope + k * l) / (2.0 * k)).clamp(0.0, l);
         (a.slope - k * u).max(b.slope - k * (l - u))
@@ -184,12 +408,17 @@ fn monotone(a: &Node, b: &Node, l: f64, k: f64) -> bool {
         let u = ((b.slope - a.slope + k * l) / (2.0 * k)).clamp(0.0, l);
         (a.slope + k * u).min(b.slope + k * (l - u))
     };
-    lowest > 0.0 || highest < 0.0
+    if lowest > 0.0 {
+        Some(lowest)
+    } else if highest < 0.0 {
+        Some(-highest)
+    } else {
+        None
+    }
 }
 
 /// The runs below ground as the search reports nodes and crossings in rim
 /// order.
-#[derive(Default)]
 struct Scan {
     runs: Runs,
     /// Start of the run the rim is in, if below ground.
@@ -198,15 +427,61 @@ struct Scan {
     depth: f64,
     /// A run touches an end of the half rim.
     deep: bool,
+    /// What the search proved, while it can be reused.
+    certificate: Option<Certificate>,
 }
 
 impl Scan {
+    fn new(frame: &RimFrame, margin: f64) -> Scan {
+        Scan {
+            runs: Runs::default(),
+            start: None,
+            depth: 0.0,
+            deep: false,
+            certificate: Some(Certificate {
+                centre: frame.centre,
+                down: frame.down,
+                forward: frame.forward,
+                radius: frame.radius,
+                margin,
+                ..Certificate::default()
+            }),
+        }
+    }
+
+    /// An arc settled clear of the ground or below it by `margin`.
+    fn settled(&mut self, margin: f64) {
+        if let Some(c) = &mut self.certificate {
+            c.margin = c.margin.min(margin);
+        }
+    }
+
+    /// A crossing found on a monotone arc.
+    fn certify_crossing(&mut self, crossing: Crossing) {
+        if let Some(c) = &mut self.certificate {
+            if c.count < MAX_CROSSINGS {
+                c.crossings[c.count] = crossing;
+                c.count += 1;
+            } else {
+                self.certificate = None;
+            }
+        }
+    }
+
+    /// An arc settled without proof (a feature below [`NEGLIGIBLE`], or the
+    /// deepest halving): the next call searches again.
+    fn unproven(&mut self) {
+        self.certificate = None;
+    }
+
     /// The first node: an end of the half rim when it is below ground.
     fn begin(&mut self, n: &Node) {
         if n.h < 0.0 {
             self.start = Some(n.at);
             self.depth = -n.h;
             self.deep = true;
+            // Runs would not pair the crossings: not reused.
+            self.certificate = None;
         }
     }
 
@@ -222,7 +497,15 @@ impl Scan {
                 self.start = Some(at);
                 self.depth = 0.0;
             }
-            Some(a) => self.runs.push(a, at, self.depth),
+            Some(a) => {
+                if let Some(c) = &mut self.certificate {
+                    let run = c.count / 2;
+                    if run < c.depths.len() {
+                        c.depths[run] = self.depth;
+                    }
+                }
+                self.runs.push(a, at, self.depth)
+            }
         }
     }
 
@@ -230,6 +513,7 @@ impl Scan {
     fn end(&mut self, n: &Node) {
         if let Some(a) = self.start.take() {
             self.deep = true;
+            self.certificate = None;
             self.runs.push(a, n.at, self.depth);
         }
     }
@@ -282,33 +566,40 @@ impl BoundedContact {
         radius: f64,
         out: &mut Contact,
     ) -> Result<(), OffMap> {
+        let mut memory = SearchMemory::default();
+        self.find_with(terrain, centre, axis, radius, &mut memory, out)
+    }
+
+    /// [`BoundedContact::find_into`] with the terrain's bounds under the
+    /// wheel kept in `bounds` between calls (one per wheel): the same
+    /// patches, without the bound queries while the wheel stays on the same
+    /// lattice square.
+    pub fn find_with<H: HeightField + ?Sized>(
+        &self,
+        terrain: &H,
+        centre: [f64; 3],
+        axis: [f64; 3],
+        radius: f64,
+        memory: &mut SearchMemory,
+        out: &mut Contact,
+    ) -> Result<(), OffMap> {
         *out = Contact::default();
         let Some(frame) = RimFrame::new(centre, axis, radius) else {
             return Ok(());
         };
-        let area = frame.area();
-        let bounds = (
-            terrain.plane(),
-            terrain.max_height_in(&area),
-            terrain.max_slope_in(&area),
-            terrain.max_curvature_in(&area),
-        );
-        let (None, Some(top), Some(slope), Some(curvature)) = bounds else {
-            return self
-                .fallback
-                .find_into(terrain, centre, axis, radius, out);
+        let known = match terrain.plane() {
+            None => memory.over(terrain, &frame.area(), 0.5 * radius),
+            Some(_) => None,
+        };
+        let Some([top, slope, curvature]) = known else {
+            return self.fallback.find_into(terrain, centre, axis, radius, out);
         };
         let k = (radius * slope.hypot(1.0) + curvature * radius * radius) * (1.0 + 1e-9);
         // Rounding of a clearance: of the rim point and of the interpolant.
         let rounding = 1e-12 * (1.0 + centre[2].abs() + radius + top.abs());
         if !(k.is_finite() && rounding.is_finite()) {
-            return self
-                .fallback
-                .find_into(terrain, centre, axis, radius, out);
+            return self.fallback.find_into(terrain, centre, axis, radius, out);
         }
-        let Reach::Arc(lo, hi) = reach(&frame, top) else {
-            return Ok(());
-        };
         // A terrain without curvature under the wheel is a plane there: one
         // query gives it, and the rim is cut in closed form.
         if curvature == 0.0 {
@@ -329,13 +620,29 @@ impl BoundedContact {
             frame,
             k,
             rounding,
-            tolerance: self.fallback.sampling.tolerance,
+            tolerance: CROSSING_TOLERANCE,
+        };
+        let slopes = [slope.hypot(1.0), slope.hypot(1.0) + curvature * radius];
+        if let Some(certificate) = &memory.certificate
+            && let Some(mut runs) = search.reuse(certificate, slopes)?
+        {
+            runs.measure_shallow(terrain, &frame)?;
+            return runs.emit(terrain, &frame, out);
+        }
+        // The arc searched reaches `PAD` above the terrain's highest point,
+        // so that a certificate still covers every rim point that can reach
+        // the ground after the wheel moves by less than that.
+        let pad = PAD * radius;
+        let Reach::Arc(lo, hi) = reach(&frame, top + pad) else {
+            memory.certificate = None;
+            return Ok(());
         };
         let (first, last) = (search.node(lo)?, search.node(hi)?);
-        let mut scan = Scan::default();
+        let mut scan = Scan::new(&frame, pad);
         scan.begin(&first);
         search.settle(first, last, 0, &mut scan)?;
         scan.end(&last);
+        memory.certificate = scan.certificate;
         out.deep = scan.deep;
         let mut runs = scan.runs;
         runs.measure_shallow(terrain, &frame)?;

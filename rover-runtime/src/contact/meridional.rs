@@ -670,7 +670,8 @@ impl Runs {
         }
         for run in &mut self.runs[..self.count] {
             if run.depth < SPLIT_BAND {
-                let (_, lowest) = extremum(terrain, frame, run.a.beta, run.b.beta, Extremum::Lowest)?;
+                let (_, lowest) =
+                    extremum(terrain, frame, run.a.beta, run.b.beta, Extremum::Lowest)?;
                 run.depth = run.depth.max(-lowest);
             }
         }

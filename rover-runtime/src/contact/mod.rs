@@ -5,7 +5,7 @@ mod meridional;
 mod patch;
 mod tracked;
 
-pub use bounded::{BoundedContact, NEGLIGIBLE};
+pub use bounded::{BoundedContact, CROSSING_TOLERANCE, NEGLIGIBLE, SearchMemory};
 pub use meridional::{MeridionalContact, RimSampling};
 pub use patch::{Contact, MAX_PATCHES, Patch};
 pub(crate) use patch::{cross, dot};
