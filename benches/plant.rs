@@ -191,6 +191,36 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
     let rough = Terrain::Grid(support::rough_field());
     let state = driven(&rough, &model, generic.clone(), 5.0);
     let at = Some(&state[..]);
+    // The states 1 ms apart over the next 0.2 s, evaluated in turn: a
+    // search that remembers a wheel between calls (the bounded one) meets
+    // the small moves an integrator makes, not one state over and over.
+    let path = path_from(&rough, &model, generic.clone(), &state, 200);
+    for method in [ContactMethod::Meridional, ContactMethod::Bounded] {
+        let what = match method {
+            ContactMethod::Bounded => "rhs_contact_rough_path_bounded",
+            _ => "rhs_contact_rough_path",
+        };
+        bench_path(
+            &mut group,
+            what,
+            "generated",
+            rough.clone(),
+            &model,
+            generated.clone(),
+            method,
+            &path,
+        );
+        bench_path(
+            &mut group,
+            what,
+            "generic",
+            rough.clone(),
+            &model,
+            generic.clone(),
+            method,
+            &path,
+        );
+    }
     for (what, method) in [
         ("rhs_contact_rough", ContactMethod::Meridional),
         ("rhs_contact_rough_bounded", ContactMethod::Bounded),
@@ -212,6 +242,53 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
         );
     }
     group.finish();
+}
+
+/// `count` states 1 ms apart from `start` on (RK4, 1 ms).
+fn path_from<P: Plant>(
+    terrain: &Terrain,
+    model: &Model,
+    plant: P,
+    start: &[f64],
+    count: usize,
+) -> Vec<Vec<f64>> {
+    let (mut sys, mut y) = system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+    y.copy_from_slice(start);
+    let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
+    let mut t = 0.0;
+    (0..count)
+        .map(|k| {
+            rk4.advance(&mut sys, &mut t, &mut y, (k + 1) as f64 * 1e-3)
+                .unwrap();
+            y.clone()
+        })
+        .collect()
+}
+
+/// The right-hand side with contact on `terrain` at the states of `path`
+/// in turn, as benchmark `what`/`id` (the time of one evaluation).
+#[allow(clippy::too_many_arguments)]
+fn bench_path<P: Plant>(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    what: &str,
+    id: &str,
+    terrain: Terrain,
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+    path: &[Vec<f64>],
+) {
+    let (mut sys, _) = system_on(terrain, model, plant, method);
+    let mut dy = vec![0.0; path[0].len()];
+    let mut k = 0;
+    group.bench_function(BenchmarkId::new(what, id), |b| {
+        b.iter(|| {
+            sys.rhs(0.0, black_box(&path[k % path.len()]), &mut dy)
+                .unwrap();
+            k += 1;
+            black_box(&dy);
+        })
+    });
 }
 
 /// The state after driving `seconds` on `terrain` from the start (RK4, 1 ms).
