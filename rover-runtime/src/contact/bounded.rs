@@ -87,6 +87,9 @@ pub struct SearchMemory {
     /// Highest point \[m\], steepest slope, largest curvature \[1/m\];
     /// `None` where the terrain gives no bound.
     bounds: Option<[f64; 3]>,
+    /// The ground over the square where the terrain has no curvature there
+    /// (a plane), once asked for.
+    plane: Option<Plane>,
     /// The last full search's certificate, if it can be reused.
     certificate: Option<Certificate>,
 }
@@ -129,6 +132,7 @@ impl SearchMemory {
         };
         self.key = Some((key, quantum));
         self.certificate = None;
+        self.plane = None;
         self.bounds = match (
             terrain.max_height_in(&square),
             terrain.max_slope_in(&square),
@@ -138,6 +142,25 @@ impl SearchMemory {
             _ => None,
         };
         self.bounds
+    }
+
+    /// The plane the ground is over the current square, where its
+    /// curvature bound is 0 there: one query at the square's centre, the
+    /// first time.
+    fn plane<H: HeightField + ?Sized>(&mut self, terrain: &H) -> Result<Option<Plane>, OffMap> {
+        if self.plane.is_none()
+            && let (Some((key, quantum)), Some([_, _, 0.0])) = (self.key, self.bounds)
+        {
+            let x = 0.5 * (key[0] + key[1]) as f64 * quantum;
+            let y = 0.5 * (key[2] + key[3]) as f64 * quantum;
+            let (height, gradient) = terrain.height_gradient(x, y)?;
+            self.plane = Some(Plane {
+                origin: [x, y],
+                height,
+                gradient,
+            });
+        }
+        Ok(self.plane)
     }
 }
 
@@ -601,14 +624,11 @@ impl BoundedContact {
             return self.fallback.find_into(terrain, centre, axis, radius, out);
         }
         // A terrain without curvature under the wheel is a plane there: one
-        // query gives it, and the rim is cut in closed form.
-        if curvature == 0.0 {
-            let (height, gradient) = terrain.height_gradient(centre[0], centre[1])?;
-            let plane = Plane {
-                origin: [centre[0], centre[1]],
-                height,
-                gradient,
-            };
+        // query gives it (kept with the bounds), and the rim is cut in
+        // closed form.
+        if curvature == 0.0
+            && let Some(plane) = memory.plane(terrain)?
+        {
             let n = self.fallback.sampling.samples.max(3);
             let step = core::f64::consts::PI / (n - 1) as f64;
             if cut_by_plane(&plane, &frame, n, step, out) {
