@@ -429,5 +429,68 @@ fn fidelity_levels(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, per_model, whole_runs, fidelity_levels);
+/// Where swing4's right-hand side on rough ground spends its time (generated
+/// plant, the states 1 ms apart of `rhs_contact_rough_path` in turn), as
+/// cumulative stages, so that each part is the difference of two medians:
+/// the wheels' kinematics; and the contact search (bounded, and the
+/// sampled one for comparison); and the wheel law reduced to loads; and
+/// the rest of the right-hand side (controller, plant).
+fn rhs_parts(c: &mut Criterion) {
+    use rover_dynamics::plant::WheelState;
+    let model = model("swing4");
+    let rough = Terrain::Grid(support::rough_field());
+    let generic = GenericPlant::new(model.clone()).unwrap();
+    let state = driven(&rough, &model, generic.clone(), 5.0);
+    let path = path_from(&rough, &model, generic, &state, 200);
+    let n = model.dof();
+    let k = model.wheels.len();
+    let mut group = c.benchmark_group("swing4_rhs_parts");
+    for method in [ContactMethod::Bounded, ContactMethod::Meridional] {
+        let label = format!("{method:?}").to_lowercase();
+        let (mut sys, _) = system_on(rough.clone(), &model, rover_models::Swing4::new(), method);
+        let (steer, torques) = (vec![0.0; k], vec![0.1; k]);
+        let mut wheels = vec![WheelState::default(); k];
+        let (mut normals, mut loads) = (vec![0.0; k], vec![WheelLoad::default(); k]);
+        let mut reports = vec![Default::default(); k];
+        let mut at = 0;
+        let mut next = || {
+            at += 1;
+            &path[at % path.len()]
+        };
+        if method == ContactMethod::Bounded {
+            group.bench_function(BenchmarkId::new("wheels", "generated"), |b| {
+                b.iter(|| {
+                    let y = next();
+                    sys.plant
+                        .wheels(black_box(&y[..n]), &y[n..2 * n], &steer, &mut wheels);
+                    black_box(&wheels);
+                })
+            });
+        }
+        group.bench_function(BenchmarkId::new("wheels_contact", &label), |b| {
+            b.iter(|| {
+                let y = next();
+                sys.plant
+                    .wheels(black_box(&y[..n]), &y[n..2 * n], &steer, &mut wheels);
+                let ground = sys.ground.as_mut().unwrap();
+                ground.find_contacts(&wheels, &mut normals).unwrap();
+                black_box(&normals);
+            })
+        });
+        group.bench_function(BenchmarkId::new("wheels_contact_law", &label), |b| {
+            b.iter(|| {
+                let y = next();
+                sys.plant
+                    .wheels(black_box(&y[..n]), &y[n..2 * n], &steer, &mut wheels);
+                let ground = sys.ground.as_mut().unwrap();
+                ground.find_contacts(&wheels, &mut normals).unwrap();
+                ground.loads(&wheels, &torques, &mut loads, &mut reports);
+                black_box(&loads);
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, per_model, whole_runs, fidelity_levels, rhs_parts);
 criterion_main!(benches);

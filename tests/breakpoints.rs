@@ -17,11 +17,7 @@ const ANGLE_TOL: f64 = 1e-5;
 
 /// A command file in the test's scratch folder; its absolute path.
 fn command_file(name: &str, text: &str) -> String {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("breakpoints");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
+    crate::support::scratch_file("breakpoints", name, text)
 }
 
 /// swing4 on flat ground, dropped from 2 cm (its lowest rim point) at rest,

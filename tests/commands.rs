@@ -161,11 +161,7 @@ fn bad_commands_are_refused() {
 
 /// A command file in the test's scratch folder; its absolute path.
 fn command_file(name: &str, text: &str) -> String {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("commands");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.display().to_string()
+    crate::support::scratch_file("commands", name, text)
 }
 
 const SWING4_RUN: &str = "duration = 8.0\nsettle = 1.0\noutput_rate = 10.0\n";

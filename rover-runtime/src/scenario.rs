@@ -165,7 +165,8 @@ pub struct InitialState {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactConfig {
-    /// `"meridional"` (default) or `"tracked"`.
+    /// `"bounded"` (default), `"meridional"` (the rim sampled 1° apart) or
+    /// `"tracked"` (docs/TERRAIN.md).
     #[serde(default)]
     pub method: ContactMethod,
     /// Rim samples over the lower half (default 181: 1° apart).

@@ -16,3 +16,13 @@ pub fn rel(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
     if scale == 0.0 { diff } else { diff / scale }
 }
+
+/// A file of `text` named `name` in the scratch folder `folder` of the
+/// tests; its absolute path.
+pub fn scratch_file(folder: &str, name: &str, text: &str) -> String {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(folder);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}

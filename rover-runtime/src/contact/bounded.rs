@@ -71,14 +71,15 @@ pub const CROSSING_TOLERANCE: f64 = 1e-12;
 ///   a lattice of side R/2, so that a wheel that moves a little keeps the
 ///   same square: the pyramid queries behind them cost more than the
 ///   search's own terrain queries.
-/// - The last full search's certificate: the smallest margin by which its
-///   settled arcs cleared the ground or stayed below it, and for each
-///   crossing its arc, root and the margins by which the arc's ends kept
+/// - The last search's certificate, arc by arc: the margin by which each
+///   settled arc cleared the ground or stayed below it, and for each
+///   crossing its arc, root, and the margins by which the arc's ends kept
 ///   their sides and its slope its sign. A wheel that has moved by δ since
 ///   (every rim point within δ of where it was, clearances within
-///   `δ·sqrt(1 + G²)`, their slopes within `δ·(sqrt(1 + G²) + C·R)`) inside
-///   those margins has the same arcs settled the same way: only its
-///   crossings are refined again, by Newton's method from their last roots.
+///   `δ·sqrt(1 + G²)`, their slopes within `δ·(sqrt(1 + G²) + C·R)`) keeps
+///   the outcome of every arc whose margins hold: a crossing is refined by
+///   Newton's method from its last root, and only the arcs whose margins
+///   no longer hold are searched again.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SearchMemory {
     /// The lattice square `[x_min, x_max, y_min, y_max]` in units of the
@@ -90,8 +91,12 @@ pub struct SearchMemory {
     /// The ground over the square where the terrain has no curvature there
     /// (a plane), once asked for.
     plane: Option<Plane>,
-    /// The last full search's certificate, if it can be reused.
-    certificate: Option<Certificate>,
+    /// The last search's certificate in `certificates[current]`, valid when
+    /// `proven`; the other slot is where the next search writes its own (two
+    /// slots: a certificate is a kilobyte, not worth copying per call).
+    certificates: [Certificate; 2],
+    current: usize,
+    proven: bool,
 }
 
 impl SearchMemory {
@@ -131,7 +136,7 @@ impl SearchMemory {
             y_max: at(key[3]),
         };
         self.key = Some((key, quantum));
-        self.certificate = None;
+        self.proven = false;
         self.plane = None;
         self.bounds = match (
             terrain.max_height_in(&square),
@@ -164,35 +169,54 @@ impl SearchMemory {
     }
 }
 
-/// Most crossings a certificate keeps: two per run.
-const MAX_CROSSINGS: usize = 2 * super::MAX_PATCHES;
+/// Most arcs a certificate keeps.
+const MAX_LEAVES: usize = 32;
 
-/// What a full search proved (see [`SearchMemory`]).
+/// What the last search proved, arc by arc, for the rim it was made for
+/// (see [`SearchMemory`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Certificate {
-    /// The rim the search was made for.
     centre: [f64; 3],
     down: [f64; 3],
     forward: [f64; 3],
     radius: f64,
-    /// Smallest margin of the settled arcs and of the searched arc's ends \[m\].
-    margin: f64,
-    crossings: [Crossing; MAX_CROSSINGS],
+    /// How far the rim can come down before it can reach the ground beyond
+    /// the searched arc \[m\].
+    cover: f64,
+    leaves: [Leaf; MAX_LEAVES],
     count: usize,
-    /// Deepest penetration seen in each run (pairs of crossings) \[m\].
-    depths: [f64; super::MAX_PATCHES],
 }
 
-/// One crossing's arc, root and margins.
+/// One settled arc of a certificate, in rim order.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Crossing {
+struct Leaf {
     lo: f64,
     hi: f64,
+    /// Below ground at `lo`.
+    below: bool,
+    /// Smallest |h| the arc provably keeps (settled on one side), or that
+    /// its ends have (a crossing's arc) \[m\].
+    margin: f64,
+    /// Deepest penetration at its ends, 0 above ground \[m\].
+    depth: f64,
+    /// A crossing's root \[rad\]; NaN for an arc on one side.
     root: f64,
-    /// Smallest |h| at the arc's ends \[m\].
-    sides: f64,
-    /// Smallest |h'| the arc provably keeps \[m/rad\].
+    /// Smallest |h'| a crossing's arc provably keeps \[m/rad\].
     slope: f64,
+}
+
+impl Leaf {
+    fn settled(a: &Node, b: &Node, margin: f64) -> Leaf {
+        Leaf {
+            lo: a.at.beta,
+            hi: b.at.beta,
+            below: a.h < 0.0,
+            margin,
+            depth: (-a.h).max(-b.h).max(0.0),
+            root: f64::NAN,
+            slope: 0.0,
+        }
+    }
 }
 
 /// The bounded search, with the meridional search for the terrains it cannot
@@ -239,23 +263,18 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
             let (low, high) = enclosure(&a, &b, length, self.k);
             let (low, high) = (low - self.rounding, high + self.rounding);
             if low > 0.0 || high < 0.0 {
-                scan.settled(low.max(-high));
+                scan.record(Leaf::settled(&a, &b, low.max(-high)));
                 true
             } else if let Some(slope) = monotone(&a, &b, length, self.k) {
                 let sides = a.h.abs().min(b.h.abs());
+                let mut leaf = Leaf::settled(&a, &b, sides);
                 if below_a != below_b {
                     let root = self.crossing(&a, &b)?;
                     scan.cross(root);
-                    scan.certify_crossing(Crossing {
-                        lo: a.at.beta,
-                        hi: b.at.beta,
-                        root: root.beta,
-                        sides,
-                        slope,
-                    });
-                } else {
-                    scan.settled(sides);
+                    leaf.root = root.beta;
+                    leaf.slope = slope;
                 }
+                scan.record(leaf);
                 true
             } else if below_a == below_b
                 && (if below_a {
@@ -285,15 +304,18 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
         self.settle(mid, b, level + 1, scan)
     }
 
-    /// The runs of a wheel that has moved since `certificate` was made, if the
-    /// certificate still holds (see [`SearchMemory`]): each crossing refined
-    /// by Newton's method from its last root inside its arc. `slopes` are
-    /// `sqrt(1 + G²)` and `sqrt(1 + G²) + C·R`, the factors from the rim's
-    /// displacement to the clearances' and to their slopes'.
-    fn reuse(&self, c: &Certificate, slopes: [f64; 2]) -> Result<Option<Runs>, OffMap> {
+    /// The search of a wheel that has moved since `c` was made, into `scan`
+    /// (new, for this rim): every arc of `c` whose margins still hold keeps
+    /// its outcome (a crossing refined by Newton's method from its last
+    /// root), the others are searched again from fresh queries at their
+    /// ends. False if the certificate does not cover the rim any more (the
+    /// caller searches afresh). `slopes` are `sqrt(1 + G²)` and
+    /// `sqrt(1 + G²) + C·R`, the factors from the rim's displacement to the
+    /// clearances' and to their slopes' (see [`SearchMemory`]).
+    fn reuse(&self, c: &Certificate, slopes: [f64; 2], scan: &mut Scan) -> Result<bool, OffMap> {
         let f = &self.frame;
         if f.radius != c.radius {
-            return Ok(None);
+            return Ok(false);
         }
         let norm = |a: [f64; 3], b: [f64; 3]| {
             ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
@@ -307,33 +329,52 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
         );
         // (NaN never holds.)
         let holds = |change: f64, margin: f64| change < margin;
-        if !holds(dh, c.margin) {
-            return Ok(None);
+        if !holds(dh, c.cover) {
+            return Ok(false);
         }
-        let mut roots = [RimAngle::default(); MAX_CROSSINGS];
-        for (root, x) in roots.iter_mut().zip(&c.crossings[..c.count]) {
-            if !(holds(dh, x.sides) && holds(ds, x.slope)) {
-                return Ok(None);
+        scan.restart(f, c.cover - dh);
+        let mut last: Option<Node> = None;
+        for leaf in &c.leaves[..c.count] {
+            if leaf.below != scan.start.is_some() {
+                return Ok(false);
             }
-            match self.newton(x)? {
-                Some(r) => *root = r,
-                None => return Ok(None),
+            let crossing = leaf.root.is_finite();
+            if holds(dh, leaf.margin) && (!crossing || holds(ds, leaf.slope)) {
+                let moved_leaf = Leaf {
+                    margin: leaf.margin - dh,
+                    depth: (leaf.depth - dh).max(0.0),
+                    slope: leaf.slope - ds,
+                    ..*leaf
+                };
+                if !crossing {
+                    scan.deepen(moved_leaf.depth);
+                    scan.record(moved_leaf);
+                    last = None;
+                    continue;
+                }
+                if let Some(root) = self.newton_in(leaf.lo, leaf.hi, leaf.root)? {
+                    scan.cross(root);
+                    scan.deepen(moved_leaf.depth);
+                    scan.record(Leaf {
+                        root: root.beta,
+                        ..moved_leaf
+                    });
+                    last = None;
+                    continue;
+                }
             }
+            let a = match last {
+                Some(n) if n.at.beta == leaf.lo => n,
+                _ => self.node(leaf.lo)?,
+            };
+            if (a.h < 0.0) != scan.start.is_some() {
+                return Ok(false);
+            }
+            let b = self.node(leaf.hi)?;
+            self.settle(a, b, 1, scan)?;
+            last = Some(b);
         }
-        let mut runs = Runs::default();
-        for (pair, depth) in roots[..c.count].chunks(2).zip(c.depths) {
-            if let [a, b] = pair {
-                runs.push(*a, *b, depth - dh);
-            }
-        }
-        Ok(Some(runs))
-    }
-
-    /// The root of `h` in the crossing's arc by Newton's method from its last
-    /// root (h is monotone there, so it has one); `None` if a step leaves the
-    /// arc or the iteration does not settle.
-    fn newton(&self, x: &Crossing) -> Result<Option<RimAngle>, OffMap> {
-        self.newton_in(x.lo, x.hi, x.root)
+        Ok(scan.start.is_none() && scan.proven)
     }
 
     /// Newton's method for the root of `h` on `(lo, hi)` from `beta`. A step
@@ -442,7 +483,7 @@ fn monotone(a: &Node, b: &Node, l: f64, k: f64) -> Option<f64> {
 
 /// The runs below ground as the search reports nodes and crossings in rim
 /// order.
-struct Scan {
+struct Scan<'m> {
     runs: Runs,
     /// Start of the run the rim is in, if below ground.
     start: Option<RimAngle>,
@@ -450,51 +491,65 @@ struct Scan {
     depth: f64,
     /// A run touches an end of the half rim.
     deep: bool,
-    /// What the search proved, while it can be reused.
-    certificate: Option<Certificate>,
+    /// What the search proves, arc by arc; reusable while `proven`.
+    certificate: &'m mut Certificate,
+    proven: bool,
 }
 
-impl Scan {
-    fn new(frame: &RimFrame, margin: f64) -> Scan {
-        Scan {
+impl<'m> Scan<'m> {
+    /// A scan of the rim `frame`, its certificate written into `certificate`
+    /// and covering the rim `cover` below the searched arc's ends.
+    fn new(frame: &RimFrame, cover: f64, certificate: &'m mut Certificate) -> Scan<'m> {
+        let mut scan = Scan {
             runs: Runs::default(),
             start: None,
             depth: 0.0,
             deep: false,
-            certificate: Some(Certificate {
-                centre: frame.centre,
-                down: frame.down,
-                forward: frame.forward,
-                radius: frame.radius,
-                margin,
-                ..Certificate::default()
-            }),
+            certificate,
+            proven: true,
+        };
+        scan.restart(frame, cover);
+        scan
+    }
+
+    /// Back to the start of the rim `frame` (see [`Scan::new`]).
+    fn restart(&mut self, frame: &RimFrame, cover: f64) {
+        self.runs = Runs::default();
+        self.start = None;
+        self.depth = 0.0;
+        self.deep = false;
+        self.proven = true;
+        let c = &mut *self.certificate;
+        c.centre = frame.centre;
+        c.down = frame.down;
+        c.forward = frame.forward;
+        c.radius = frame.radius;
+        c.cover = cover;
+        c.count = 0;
+    }
+
+    /// A settled arc, for the certificate.
+    fn record(&mut self, leaf: Leaf) {
+        let c = &mut *self.certificate;
+        if c.count < MAX_LEAVES {
+            c.leaves[c.count] = leaf;
+            c.count += 1;
+        } else {
+            self.proven = false;
         }
     }
 
-    /// An arc settled clear of the ground or below it by `margin`.
-    fn settled(&mut self, margin: f64) {
-        if let Some(c) = &mut self.certificate {
-            c.margin = c.margin.min(margin);
-        }
-    }
-
-    /// A crossing found on a monotone arc.
-    fn certify_crossing(&mut self, crossing: Crossing) {
-        if let Some(c) = &mut self.certificate {
-            if c.count < MAX_CROSSINGS {
-                c.crossings[c.count] = crossing;
-                c.count += 1;
-            } else {
-                self.certificate = None;
-            }
+    /// The run the rim is in is at least `depth` deep.
+    fn deepen(&mut self, depth: f64) {
+        if self.start.is_some() {
+            self.depth = self.depth.max(depth);
         }
     }
 
     /// An arc settled without proof (a feature below [`NEGLIGIBLE`], or the
     /// deepest halving): the next call searches again.
     fn unproven(&mut self) {
-        self.certificate = None;
+        self.proven = false;
     }
 
     /// The first node: an end of the half rim when it is below ground.
@@ -504,7 +559,7 @@ impl Scan {
             self.depth = -n.h;
             self.deep = true;
             // Runs would not pair the crossings: not reused.
-            self.certificate = None;
+            self.proven = false;
         }
     }
 
@@ -520,15 +575,7 @@ impl Scan {
                 self.start = Some(at);
                 self.depth = 0.0;
             }
-            Some(a) => {
-                if let Some(c) = &mut self.certificate {
-                    let run = c.count / 2;
-                    if run < c.depths.len() {
-                        c.depths[run] = self.depth;
-                    }
-                }
-                self.runs.push(a, at, self.depth)
-            }
+            Some(a) => self.runs.push(a, at, self.depth),
         }
     }
 
@@ -536,7 +583,7 @@ impl Scan {
     fn end(&mut self, n: &Node) {
         if let Some(a) = self.start.take() {
             self.deep = true;
-            self.certificate = None;
+            self.proven = false;
             self.runs.push(a, n.at, self.depth);
         }
     }
@@ -593,10 +640,9 @@ impl BoundedContact {
         self.find_with(terrain, centre, axis, radius, &mut memory, out)
     }
 
-    /// [`BoundedContact::find_into`] with the terrain's bounds under the
-    /// wheel kept in `bounds` between calls (one per wheel): the same
-    /// patches, without the bound queries while the wheel stays on the same
-    /// lattice square.
+    /// [`BoundedContact::find_into`] with what the search learns about the
+    /// wheel kept in `memory` between calls (one per wheel, see
+    /// [`SearchMemory`]): the same patches, for fewer queries.
     pub fn find_with<H: HeightField + ?Sized>(
         &self,
         terrain: &H,
@@ -643,28 +689,35 @@ impl BoundedContact {
             tolerance: CROSSING_TOLERANCE,
         };
         let slopes = [slope.hypot(1.0), slope.hypot(1.0) + curvature * radius];
-        if let Some(certificate) = &memory.certificate
-            && let Some(mut runs) = search.reuse(certificate, slopes)?
-        {
-            runs.measure_shallow(terrain, &frame)?;
-            return runs.emit(terrain, &frame, out);
-        }
-        // The arc searched reaches `PAD` above the terrain's highest point,
-        // so that a certificate still covers every rim point that can reach
-        // the ground after the wheel moves by less than that.
-        let pad = PAD * radius;
-        let Reach::Arc(lo, hi) = reach(&frame, top + pad) else {
-            memory.certificate = None;
-            return Ok(());
+        let (old, new) = {
+            let [first, second] = &mut memory.certificates;
+            if memory.current == 0 {
+                (&*first, second)
+            } else {
+                (&*second, first)
+            }
         };
-        let (first, last) = (search.node(lo)?, search.node(hi)?);
-        let mut scan = Scan::new(&frame, pad);
-        scan.begin(&first);
-        search.settle(first, last, 0, &mut scan)?;
-        scan.end(&last);
-        memory.certificate = scan.certificate;
-        out.deep = scan.deep;
-        let mut runs = scan.runs;
+        let mut scan = Scan::new(&frame, 0.0, new);
+        let reused = memory.proven && search.reuse(old, slopes, &mut scan)?;
+        if !reused {
+            // The arc searched reaches `PAD` above the terrain's highest
+            // point, so that a certificate still covers every rim point that
+            // can reach the ground after the wheel moves by less than that.
+            let pad = PAD * radius;
+            let Reach::Arc(lo, hi) = reach(&frame, top + pad) else {
+                memory.proven = false;
+                return Ok(());
+            };
+            let (first, last) = (search.node(lo)?, search.node(hi)?);
+            scan.restart(&frame, pad);
+            scan.begin(&first);
+            search.settle(first, last, 0, &mut scan)?;
+            scan.end(&last);
+        }
+        let (mut runs, deep, proven) = (scan.runs, scan.deep, scan.proven);
+        memory.proven = proven;
+        memory.current ^= 1;
+        out.deep = deep;
         runs.measure_shallow(terrain, &frame)?;
         runs.emit(terrain, &frame, out)
     }
