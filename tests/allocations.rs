@@ -90,6 +90,7 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
         ("rk4", ContactMethod::Bounded),
         ("rk4", ContactMethod::Meridional),
         ("semi_implicit_euler", ContactMethod::Bounded),
+        ("ros2", ContactMethod::Bounded),
     ] {
         let ground = Ground::new(
             terrain.clone(),
@@ -115,6 +116,13 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
             "rk4" => {
                 rover_runtime::integrate::IntegratorConfig::Rk4(FixedStepConfig { step: 1e-4 })
             }
+            // Its Jacobian every step (by differences), a 0.1 ms step as the others.
+            "ros2" => rover_runtime::integrate::IntegratorConfig::Ros2(
+                rover_runtime::integrate::Ros2Config {
+                    step: 1e-4,
+                    jacobian_every: 1,
+                },
+            ),
             _ => rover_runtime::integrate::IntegratorConfig::SemiImplicitEuler(FixedStepConfig {
                 step: 1e-4,
             }),

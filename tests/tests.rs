@@ -11,6 +11,7 @@ mod control;
 mod dynamics;
 mod failures;
 mod fidelity;
+mod fixed_step;
 mod free_flight;
 mod ground;
 mod linearize;

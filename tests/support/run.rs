@@ -38,7 +38,12 @@ impl Run {
 
 /// Run the built-in `rover` on the scenario `toml` (generic plant).
 pub fn run(rover: &str, toml: &str) -> Run {
-    let scenario = Scenario::parse(toml, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}"));
+    run_in(rover, toml, Path::new("."))
+}
+
+/// [`run`] with the scenario's files (commands, terrain maps) found from `dir`.
+pub fn run_in(rover: &str, toml: &str, dir: &Path) -> Run {
+    let scenario = Scenario::parse(toml, &dir.join("test.toml")).unwrap_or_else(|e| panic!("{e}"));
     let spec = rover_spec::load_str(rover_models::builtin(rover).unwrap(), rover).unwrap();
     let plant = GenericPlant::new(spec.model.clone()).unwrap();
     let mut csv = Vec::new();
@@ -48,7 +53,7 @@ pub fn run(rover: &str, toml: &str) -> Run {
         &spec.model,
         rover,
         &scenario,
-        Path::new("."),
+        dir,
         &mut csv,
         &stop,
         |_| {},

@@ -1,6 +1,8 @@
 //! One of the integrators, chosen at run time from a scenario file.
 
-use super::{Bdf, Dopri5, IntegrateError, Integrator, OdeSystem, Rk4, SemiImplicitEuler, Stats};
+use super::{
+    Bdf, Dopri5, IntegrateError, Integrator, OdeSystem, Rk4, Ros2, SemiImplicitEuler, Stats,
+};
 
 /// One of the integration methods, as built by
 /// [`IntegratorConfig::build`](super::IntegratorConfig::build); forwards to the method.
@@ -14,6 +16,8 @@ pub enum AnyIntegrator {
     Dopri5(Box<Dopri5>),
     /// Variable-order NDF/BDF (boxed: its workspace handles are larger).
     Bdf(Box<Bdf>),
+    /// Fixed-step Rosenbrock ROS2 (boxed, as BDF).
+    Ros2(Box<Ros2>),
 }
 
 impl Integrator for AnyIntegrator {
@@ -29,6 +33,7 @@ impl Integrator for AnyIntegrator {
             Self::SemiImplicitEuler(m) => m.advance(sys, t, y, t_target),
             Self::Dopri5(m) => m.advance(sys, t, y, t_target),
             Self::Bdf(m) => m.advance(sys, t, y, t_target),
+            Self::Ros2(m) => m.advance(sys, t, y, t_target),
         }
     }
 
@@ -38,6 +43,7 @@ impl Integrator for AnyIntegrator {
             Self::SemiImplicitEuler(m) => m.restart(),
             Self::Dopri5(m) => m.restart(),
             Self::Bdf(m) => m.restart(),
+            Self::Ros2(m) => m.restart(),
         }
     }
 
@@ -47,6 +53,7 @@ impl Integrator for AnyIntegrator {
             Self::SemiImplicitEuler(m) => m.stats(),
             Self::Dopri5(m) => m.stats(),
             Self::Bdf(m) => m.stats(),
+            Self::Ros2(m) => m.stats(),
         }
     }
 
@@ -56,6 +63,7 @@ impl Integrator for AnyIntegrator {
             Self::SemiImplicitEuler(m) => m.dim(),
             Self::Dopri5(m) => m.dim(),
             Self::Bdf(m) => m.dim(),
+            Self::Ros2(m) => m.dim(),
         }
     }
 
@@ -65,6 +73,7 @@ impl Integrator for AnyIntegrator {
             Self::SemiImplicitEuler(m) => m.name(),
             Self::Dopri5(m) => m.name(),
             Self::Bdf(m) => m.name(),
+            Self::Ros2(m) => m.name(),
         }
     }
 }

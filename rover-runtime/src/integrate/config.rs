@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{AnyIntegrator, Bdf, ConfigError, Dopri5, Rk4, SemiImplicitEuler};
+use super::{AnyIntegrator, Bdf, ConfigError, Dopri5, Rk4, Ros2, Ros2Config, SemiImplicitEuler};
 
 /// The integrator of a run: the method and its parameters. In TOML, one table named after
 /// the method (unknown keys are rejected; omitted keys take the defaults below):
@@ -19,6 +19,10 @@ use super::{AnyIntegrator, Bdf, ConfigError, Dopri5, Rk4, SemiImplicitEuler};
 /// [integrator.bdf]
 /// rtol = 1e-4
 /// max_order = 5
+///
+/// # or
+/// [integrator.ros2]
+/// step = 5e-3
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
@@ -31,6 +35,8 @@ pub enum IntegratorConfig {
     Dopri5(AdaptiveConfig),
     /// Variable-order, variable-step NDF/BDF, orders 1–5 (stiff runs, like ode15s).
     Bdf(BdfConfig),
+    /// Fixed-step linearly implicit Rosenbrock ROS2, order 2 (real-time path at long steps).
+    Ros2(Ros2Config),
 }
 
 /// Parameters of a fixed-step method.
@@ -114,6 +120,7 @@ impl IntegratorConfig {
             Self::SemiImplicitEuler(_) => "semi_implicit_euler",
             Self::Dopri5(_) => "dopri5",
             Self::Bdf(_) => "bdf",
+            Self::Ros2(_) => "ros2",
         }
     }
 
@@ -124,6 +131,7 @@ impl IntegratorConfig {
             Self::Rk4(c) | Self::SemiImplicitEuler(c) => c.validate(method),
             Self::Dopri5(c) => c.validate(method),
             Self::Bdf(c) => c.validate(),
+            Self::Ros2(c) => c.validate(),
         }
     }
 
@@ -137,6 +145,7 @@ impl IntegratorConfig {
             }
             Self::Dopri5(c) => AnyIntegrator::Dopri5(Box::new(Dopri5::new(dim, c)?)),
             Self::Bdf(c) => AnyIntegrator::Bdf(Box::new(Bdf::new(dim, c)?)),
+            Self::Ros2(c) => AnyIntegrator::Ros2(Box::new(Ros2::new(dim, c)?)),
         })
     }
 }

@@ -8,10 +8,12 @@
 //! | [`SemiImplicitEuler`] (`semi_implicit_euler`) | symplectic, fixed step | 1 | h·ω < 2 (undamped) | 2 `f` (or `f` + `ẋ`) | real-time path, long runs with bounded energy error; teaching |
 //! | [`Dopri5`] (`dopri5`) | explicit embedded RK 5(4), adaptive | 5 | ≈ −3.3 (real axis) | 6 `f` | accurate runs, reference solutions |
 //! | [`Bdf`] (`bdf`) | implicit NDF/BDF multistep, variable order and step | 1–5 | A (k ≤ 2), A(α) | ≈ 1–4 `f`, rare `J` + LU | stiff tyre contact, as the paper's ode15s |
+//! | [`Ros2`] (`ros2`) | linearly implicit Rosenbrock, fixed step | 2 | L | 2 `f` + `J` + LU | real-time path at steps of milliseconds, stiff contact |
 //!
 //! References: Rk4 — Hairer, Nørsett & Wanner, *Solving ODEs I* (2nd ed.), §II.1, p. 138.
 //! Semi-implicit Euler — Hairer, Lubich & Wanner, *Geometric Numerical Integration*, §I.1.2,
-//! Thm VI.3.3. Dopri5 — Dormand & Prince (1980); HNW I, §II.4–5, pp. 167–178 (starting step
+//! Thm VI.3.3. Ros2 — Verwer, Spee, Blom & Hundsdorfer (1999), SIAM J. Sci. Comput. 20(4);
+//! HW II, §IV.7. Dopri5 — Dormand & Prince (1980); HNW I, §II.4–5, pp. 167–178 (starting step
 //! p. 169, PI control in Hairer & Wanner, *Solving ODEs II*, §IV.2). Bdf — Shampine & Reichelt
 //! (1997), "The MATLAB ODE Suite", SIAM J. Sci. Comput. 18(1); HW II, §III.1, §IV.8.
 //!
@@ -69,6 +71,7 @@ mod lu;
 mod norm;
 mod resume;
 mod rk4;
+mod ros2;
 mod semi_implicit_euler;
 mod stats;
 mod step_size;
@@ -83,6 +86,7 @@ pub use dopri5::Dopri5;
 pub use error::IntegrateError;
 pub use integrator::Integrator;
 pub use rk4::Rk4;
+pub use ros2::{Ros2, Ros2Config};
 pub use semi_implicit_euler::SemiImplicitEuler;
 pub use stats::Stats;
 pub use system::OdeSystem;
