@@ -17,5 +17,6 @@ mod ground;
 mod linearize;
 mod models;
 mod no_std;
+mod paper_accuracy;
 mod reproduction;
 mod wheel_law;
