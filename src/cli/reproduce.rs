@@ -36,6 +36,26 @@ fn other(e: impl std::fmt::Display) -> CliError {
     CliError::Other(e.to_string())
 }
 
+/// Roughness of the paper's Fig. 11 cases.
+const FIG11_ROUGHNESS: [f64; 3] = [0.1, 0.3, 1.0];
+
+/// Runs of a case whose median wall time is taken.
+const TIMED_RUNS: usize = 5;
+
+/// [`run_case`] [`TIMED_RUNS`] times: the last run and the median wall time \[s\].
+fn timed(rover: &str, text: &str, csv: &Path) -> Result<(Case, f64), CliError> {
+    let mut times = Vec::with_capacity(TIMED_RUNS);
+    let mut last = None;
+    for _ in 0..TIMED_RUNS {
+        let case = run_case(rover, text, csv)?;
+        times.push(case.summary.wall_time_s);
+        last = Some(case);
+    }
+    times.sort_by(f64::total_cmp);
+    let case = last.ok_or_else(|| other("no run"))?;
+    Ok((case, times[TIMED_RUNS / 2]))
+}
+
 /// Run `rover` on the scenario text, CSV into `csv`.
 fn run_case(rover: &str, text: &str, csv: &Path) -> Result<Case, CliError> {
     let scenario = Scenario::parse(text, csv)?;
@@ -370,7 +390,7 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
          R < R_k as in the paper. Against speed at Z_R = 0.3 ours does not degrade monotonically: at 0.05 m/s the \
          rover drifts down side slopes (0.89), from 0.1 m/s its momentum carries it over them (≈ 1.0); at 1 m/s it slides out of the \
          turn (R several times R_k; the hops make this run chaotic, so the number moves with the last bits of any \
-         change to the arithmetic: between 8 and 15·R_k from one version of the code to the next). There the front wheels hop; their landings made eq. 37's damper jump to c_w·Δ̇ at the first touch and stalled the \
+         change to the arithmetic: between 7 and 15·R_k from one version of the code to the next). There the front wheels hop; their landings made eq. 37's damper jump to c_w·Δ̇ at the first touch and stalled the \
          integrator until the damper was made to ramp in over the first 0.1 mm of deflection \
          (`wheel_law::DAMPING_RAMP`, docs in the code).\n",
     );
@@ -402,66 +422,89 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
         ),
     );
 
-    // Fig. 11: cost of the four levels, measured one after the other (no contention).
+    // Fig. 11: cost of the four levels, each the median of five runs made one
+    // after the other (no contention), the full model's share beside it.
     w(
         &mut md,
         "## Fig. 11 — cost of the four levels, Example 2, Δτ = 0.2 N·m, V = 0.1 m/s\n",
     );
     w(
         &mut md,
-        "| Z_R | full [s] | simplified | linearized | quasi-static |\n|---|---|---|---|---|",
+        "| Z_R | full [s] | simplified | linearized | quasi-static | right-hand sides: full / simplified / linearized | µs per right-hand side (full) |\n|---|---|---|---|---|---|---|",
     );
     let mut cost_rows = Vec::new();
-    for z in [0.1, 0.3] {
+    let mut failures = Vec::new();
+    for z in FIG11_ROUGHNESS {
         let dir = work.join(format!("fig11/zr{z}"));
-        let full = run_case(
-            "swing4",
-            &slip(z, 0.1, 0.2, 40.0, "fidelity = \"full\""),
-            &dir.join("full.csv"),
+        let level = |name: &str, extra: &str| {
+            timed(
+                "swing4",
+                &slip(z, 0.1, 0.2, 40.0, extra),
+                &dir.join(format!("{name}.csv")),
+            )
+        };
+        let (full, t) = level("full", "fidelity = \"full\"")?;
+        let simp = level("simplified", "fidelity = \"simplified\"")?;
+        let lin = level("linearized", "fidelity = \"linearized\"")?;
+        let qs = level(
+            "quasi_static",
+            "fidelity = \"quasi_static\"\npath_from = \"full.csv\"",
         )?;
-        let simp = run_case(
-            "swing4",
-            &slip(z, 0.1, 0.2, 40.0, "fidelity = \"simplified\""),
-            &dir.join("simplified.csv"),
-        )?;
-        let lin = run_case(
-            "swing4",
-            &slip(z, 0.1, 0.2, 40.0, "fidelity = \"linearized\""),
-            &dir.join("linearized.csv"),
-        )?;
-        let qs = run_case(
-            "swing4",
-            &slip(
-                z,
-                0.1,
-                0.2,
-                40.0,
-                "fidelity = \"quasi_static\"\npath_from = \"full.csv\"",
-            ),
-            &dir.join("quasi_static.csv"),
-        )?;
-        let t = full.summary.wall_time_s;
-        let pct = |c: &Case| format!("{:.0} %", 100.0 * c.summary.wall_time_s / t);
+        let share = |(c, time): &(Case, f64)| {
+            if c.summary.complete {
+                format!("{:.0} %", 100.0 * time / t)
+            } else {
+                format!("stopped at {:.1} s", c.summary.t_end)
+            }
+        };
+        let per_rhs = 1e6 * t / full.summary.rhs_evals.max(1) as f64;
         w(
             &mut md,
             &format!(
-                "| {z} | {t:.2} | {} | {} | {} |",
-                pct(&simp),
-                pct(&lin),
-                pct(&qs)
+                "| {z} | {t:.3} | {} | {} | {} | {} / {} / {} | {per_rhs:.1} |",
+                share(&simp),
+                share(&lin),
+                share(&qs),
+                full.summary.rhs_evals,
+                simp.0.summary.rhs_evals,
+                lin.0.summary.rhs_evals,
             ),
         );
-        cost_rows.push((z, full, simp, lin, qs));
+        let stopped: Vec<String> = [
+            ("simplified", &simp),
+            ("linearized", &lin),
+            ("quasi-static", &qs),
+        ]
+        .iter()
+        .filter(|(_, (c, _))| !c.summary.complete)
+        .map(|(name, (c, _))| {
+            format!(
+                "the {name} run at Z_R = {z} stopped at t = {:.1} s ({})",
+                c.summary.t_end,
+                c.summary.error.as_deref().unwrap_or("no reason given")
+            )
+        })
+        .collect();
+        failures.extend(stopped);
+        cost_rows.push((z, full, simp.0, lin.0, qs.0));
+    }
+    if !failures.is_empty() {
+        w(
+            &mut md,
+            &format!(
+                "\nNot timed, because they did not complete: {}.",
+                failures.join("; ")
+            ),
+        );
     }
     w(
         &mut md,
         "\nPaper (Z_R = 0.3, V = 0.1 m/s): simplified ≈ 70 %, linearized ≈ 58 %, quasi-static ≈ 15 %. \
-         Ours: the reduced levels save little because most of our right-hand side is the contact search \
-         (the rim samples near the ground, refined crossings, on a bicubic terrain: a few microseconds for four \
-         wheels), not the dynamics (1.4 µs full, 0.5 µs reduced, generic plant), and the step counts differ \
-         from level to level; the quasi-static level saves by taking one Newton solve per output instant \
-         instead of an ODE. These are wall-clock times of single runs, with sweeps running in parallel: \
-         they move by up to ±15 % from one regeneration to the next on the same machine.\n",
+         Ours: each figure is the median wall time of five runs made one after the other. The reduced \
+         levels save less than the paper's because most of a right-hand side on rough ground is the contact \
+         search and the wheel law, which every level carries, not the dynamics (1.4 µs full, 0.5 µs reduced, \
+         generic plant), and the step counts differ from level to level; the quasi-static level saves by \
+         taking one Newton solve per output instant instead of an ODE.\n",
     );
 
     // Fig. 12: agreement at Z_R = 0.1.
