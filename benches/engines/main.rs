@@ -38,7 +38,8 @@ use rover_runtime::GenericPlant;
 use rover_runtime::control::SpeedConfig;
 use rover_runtime::ground::ContactMethod;
 use rover_runtime::integrate::{
-    FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4, SemiImplicitEuler,
+    FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4, Ros2, Ros2Config,
+    SemiImplicitEuler,
 };
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::{Grid, Terrain};
@@ -53,6 +54,9 @@ const STEP: f64 = 1e-3;
 /// Relative tolerances of our BDF runs: the scenarios' default, and one
 /// as loose as MuJoCo's longest steps are accurate (docs/ENGINES.md).
 const BDF_RTOL: [f64; 2] = [1e-6, 1e-4];
+
+/// Steps of the fixed-step linearly implicit method (ROS2) \[s\].
+const ROS2_STEPS: [f64; 2] = [5e-3, 1e-2];
 /// When the single evaluations of the dynamics are timed: driving, past
 /// the settling [s].
 const SAMPLE_TIME: f64 = 10.0;
@@ -183,7 +187,7 @@ fn drive<P: Plant, I: Integrator>(
     until: f64,
 ) -> (RoverSystem<P, Terrain>, Vec<f64>, I) {
     let (mut sys, mut y) =
-        support::system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+        support::system_on(terrain.clone(), model, plant, ContactMethod::default());
     let mut integrator = make(y.len());
     let mut t = 0.0;
     integrator.advance(&mut sys, &mut t, &mut y, until).unwrap();
@@ -215,6 +219,17 @@ fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain, rtol: f64) ->
     let make = |dim| config.build(dim).unwrap();
     let (_, y, bdf) = drive(model, plant, terrain, make, DURATION);
     (end_of(model, &y), bdf.stats().rhs_evals)
+}
+
+/// The run with ROS2 at a fixed `step`; also its right-hand sides.
+fn rover_ros2<P: Plant>(model: &Model, plant: P, terrain: &Terrain, step: f64) -> (End, u64) {
+    let config = Ros2Config {
+        step,
+        jacobian_every: 1,
+    };
+    let make = |dim| Ros2::new(dim, &config).unwrap();
+    let (_, y, ros2) = drive(model, plant, terrain, make, DURATION);
+    (end_of(model, &y), ros2.stats().rhs_evals)
 }
 
 fn mujoco_run(sim: &mut mujoco::Sim<'_>, wheels: usize) -> End {
@@ -368,6 +383,12 @@ fn main() {
             print_end(&label, &bdf);
             check_same_motion(&reference, &bdf, &ground.tolerance, &label);
         }
+        for step in ROS2_STEPS {
+            let (ros2, rhs) = rover_ros2(&model, rover_models::Swing4::new(), terrain, step);
+            let label = format!("rover ROS2 {} ms ({rhs} RHS)", step * 1e3);
+            print_end(&label, &ros2);
+            check_same_motion(&reference, &ros2, &ground.tolerance, &label);
+        }
         for (setup, sim) in &mut sims {
             let end = mujoco_run(sim, wheels);
             let label = format!("MuJoCo {setup}");
@@ -399,6 +420,18 @@ fn main() {
                 b.iter(|| {
                     black_box(
                         rover_bdf(&model, rover_models::Swing4::new(), terrain, rtol)
+                            .0
+                            .x,
+                    )
+                })
+            });
+        }
+        for step in ROS2_STEPS {
+            let id = BenchmarkId::new("rover_ros2", format!("generated_{}ms", step * 1e3));
+            group.bench_function(id, |b| {
+                b.iter(|| {
+                    black_box(
+                        rover_ros2(&model, rover_models::Swing4::new(), terrain, step)
                             .0
                             .x,
                     )
