@@ -169,7 +169,8 @@ pub struct ContactConfig {
     /// `"tracked"` (docs/TERRAIN.md).
     #[serde(default)]
     pub method: ContactMethod,
-    /// Rim samples over the lower half (default 181: 1° apart).
+    /// Rim samples over the lower half (default 181: 1° apart), for the
+    /// sampled search and where the bounded one falls back on it.
     #[serde(default = "default_samples")]
     pub samples: usize,
     /// The wheel law (`{ kind = "chen_genta" }` by default, or `"magic_formula"`).
