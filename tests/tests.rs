@@ -18,5 +18,6 @@ mod linearize;
 mod models;
 mod no_std;
 mod paper_accuracy;
+mod profile;
 mod reproduction;
 mod wheel_law;

@@ -82,6 +82,12 @@ pub struct Scenario {
     /// another run (relative to this file) whose X, Y, ψ are imposed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path_from: Option<PathBuf>,
+    /// Time the parts of every right-hand side (wheels, contact search, wheel
+    /// law, plant) and report them, with the integrator's and the output's
+    /// share, in the summary's `profile` (default false; reading the clock
+    /// costs a few percent of the run).
+    #[serde(default)]
+    pub profile: bool,
 }
 
 /// The four fidelity levels of MODEL.md §9.

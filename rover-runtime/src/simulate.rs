@@ -168,6 +168,9 @@ pub fn simulate<P: Plant, W: Write>(
     let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
     let kinematic_radius = control.kinematic_radius(scenario.duration);
     let mut sys = RoverSystem::new(plant, ground, control);
+    if scenario.profile {
+        sys.enable_profile();
+    }
     // The integral states beyond the speed loop's start at 0 too.
     y.resize(sys.dim(), 0.0);
     let mut integ = scenario.integrator.build(sys.dim())?;
@@ -233,6 +236,7 @@ pub fn simulate<P: Plant, W: Write>(
         },
     );
     summary.path_deviation = path_deviation;
+    summary.profile = sys.profile().map(|p| crate::sim::Profile::new(&p, wall));
     Ok(summary)
 }
 

@@ -430,7 +430,7 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
     );
     w(
         &mut md,
-        "| Z_R | full [s] | simplified | linearized | quasi-static | right-hand sides: full / simplified / linearized | µs per right-hand side (full) |\n|---|---|---|---|---|---|---|",
+        "| Z_R | full [s] | simplified | linearized | quasi-static | right-hand sides: full / simplified / linearized | full: contact / wheel law / plant / wheels / integrator and output |\n|---|---|---|---|---|---|---|",
     );
     let mut cost_rows = Vec::new();
     let mut failures = Vec::new();
@@ -439,7 +439,7 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
         let level = |name: &str, extra: &str| {
             timed(
                 "swing4",
-                &slip(z, 0.1, 0.2, 40.0, extra),
+                &slip(z, 0.1, 0.2, 40.0, &format!("profile = true\n{extra}")),
                 &dir.join(format!("{name}.csv")),
             )
         };
@@ -457,11 +457,24 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
                 format!("stopped at {:.1} s", c.summary.t_end)
             }
         };
-        let per_rhs = 1e6 * t / full.summary.rhs_evals.max(1) as f64;
+        let split = match &full.summary.profile {
+            Some(p) => {
+                let pct = |v: f64| 100.0 * v / p.total_s();
+                format!(
+                    "{:.0} / {:.0} / {:.0} / {:.0} / {:.0} %",
+                    pct(p.contact_s),
+                    pct(p.law_s),
+                    pct(p.plant_s),
+                    pct(p.wheels_s),
+                    pct(p.integrator_and_output_s)
+                )
+            }
+            None => "—".to_owned(),
+        };
         w(
             &mut md,
             &format!(
-                "| {z} | {t:.3} | {} | {} | {} | {} / {} / {} | {per_rhs:.1} |",
+                "| {z} | {t:.3} | {} | {} | {} | {} / {} / {} | {split} |",
                 share(&simp),
                 share(&lin),
                 share(&qs),
@@ -500,11 +513,12 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
     w(
         &mut md,
         "\nPaper (Z_R = 0.3, V = 0.1 m/s): simplified ≈ 70 %, linearized ≈ 58 %, quasi-static ≈ 15 %. \
-         Ours: each figure is the median wall time of five runs made one after the other. The reduced \
-         levels save less than the paper's because most of a right-hand side on rough ground is the contact \
-         search and the wheel law, which every level carries, not the dynamics (1.4 µs full, 0.5 µs reduced, \
-         generic plant), and the step counts differ from level to level; the quasi-static level saves by \
-         taking one Newton solve per output instant instead of an ODE.\n",
+         Ours: each figure is the median wall time of five runs made one after the other, timed with \
+         `profile = true` (the last column splits the full model's last run). The reduced \
+         levels save less than the paper's: the contact search and the wheel law, which every level \
+         carries, take about 40 % of the full model's run, the plant (the generic one, 1.4 µs full, 0.5 µs \
+         reduced) about 30 %, and the step counts differ from level to level; the quasi-static level saves \
+         by taking one Newton solve per output instant instead of an ODE.\n",
     );
 
     // Fig. 12: agreement at Z_R = 0.1.

@@ -82,6 +82,9 @@ pub struct Summary {
     /// LU factorizations of the Newton iteration matrix (implicit
     /// integrators).
     pub lu_decompositions: u64,
+    /// Where the wall time went, when the scenario asked (`profile = true`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profile: Option<crate::sim::Profile>,
 }
 
 /// G's distance from a heading hold's path at output instants after
@@ -330,6 +333,7 @@ impl RunLog {
             rejected_steps: end.rejected_steps,
             jacobian_evals: end.jacobian_evals,
             lu_decompositions: end.lu_decompositions,
+            profile: None,
         }
     }
 }

@@ -11,6 +11,7 @@ use crate::integrate::OdeSystem;
 use crate::terrain::HeightField;
 
 use super::error::{CommandError, SimError};
+use super::profile::{Lap, RhsProfile};
 
 /// Plant, ground and controller, with every buffer a right-hand side needs
 /// (sized once: an evaluation allocates nothing).
@@ -32,6 +33,8 @@ pub struct RoverSystem<P, H> {
     torque_commands: Vec<f64>,
     steer_commands: Vec<f64>,
     next_break: f64,
+    /// Where the right-hand sides' time goes, when asked for.
+    profile: Option<RhsProfile>,
 }
 
 impl<P: Plant, H: HeightField> RoverSystem<P, H> {
@@ -53,7 +56,20 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             steer_commands: vec![0.0; k],
             control,
             next_break: f64::INFINITY,
+            profile: None,
         }
+    }
+
+    /// Times the parts of every right-hand side from now on (see
+    /// [`RhsProfile`]); reading the clock costs a few percent of one.
+    pub fn enable_profile(&mut self) {
+        self.profile = Some(RhsProfile::default());
+    }
+
+    /// The time spent in each part of the right-hand sides since
+    /// [`RoverSystem::enable_profile`], if it was called.
+    pub fn profile(&self) -> Option<RhsProfile> {
+        self.profile
     }
 
     /// The next time the commands jump (a breakpoint of a profile, the end
@@ -130,6 +146,33 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
 
     /// The full evaluation: wheels, contacts, control, loads, accelerations.
     fn evaluate(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
+        let mut lap = self.profile.is_some().then(Lap::start);
+        let mut laps = [0.0; 4];
+        let mut mark = |part: usize| {
+            if let Some(lap) = &mut lap {
+                laps[part] += lap.next();
+            }
+        };
+        let result = self.evaluate_parts(t, y, dy, &mut mark);
+        if let Some(p) = &mut self.profile {
+            p.evaluations += 1;
+            p.wheels_s += laps[0];
+            p.contact_s += laps[1];
+            p.law_s += laps[2];
+            p.plant_s += laps[3];
+        }
+        result
+    }
+
+    /// [`RoverSystem::evaluate`], calling `mark(part)` at the end of each
+    /// part: 0 the wheels, 1 the contact search, 2 the law, 3 the plant.
+    fn evaluate_parts(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        mark: &mut impl FnMut(usize),
+    ) -> Result<(), SimError> {
         let n = self.n;
         // The commands' time: before the next break, its left limit on it.
         let t = if t >= self.next_break {
@@ -144,10 +187,12 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             *s += c;
         }
         self.plant.wheels(x, w, &self.steer, &mut self.wheels);
+        mark(0);
         match &mut self.ground {
             Some(g) => {
                 g.find_contacts(&self.wheels, &mut self.normals)
                     .map_err(SimError::OffMap)?;
+                mark(1);
                 self.control.torques(
                     t,
                     x,
@@ -186,12 +231,14 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 }
             }
         }
+        mark(2);
         let (xd, rest) = dy.split_at_mut(n);
         let (wd, zd) = rest.split_at_mut(n);
         self.plant
             .derivatives(x, w, &self.loads, xd, wd)
             .map_err(SimError::Plant)?;
         self.control.integral_rates(t, x, w, z, zd);
+        mark(3);
         Ok(())
     }
 }
