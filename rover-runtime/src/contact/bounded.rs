@@ -16,7 +16,8 @@
 //! - above the ground: no crossing, no patch, no dip;
 //! - below the ground: no crossing, no ridge;
 //! - monotone: one crossing if its ends are on opposite sides (refined by
-//!   the meridional search's Newton/Illinois steps), none otherwise;
+//!   Newton's method from the end nearer the ground, with the meridional
+//!   search's Illinois steps as the safeguard), none otherwise;
 //!
 //! and halved otherwise. The search starts from the arc of the rim that can
 //! reach below the terrain's highest point under the wheel, so every
@@ -30,9 +31,13 @@
 //! module's `Runs`), so the two searches differ only by how precisely they
 //! locate the crossings and by what the sampled one misses between samples.
 //!
-//! A terrain that gives no curvature bound (a step, a bilinear grid, a
-//! point off a clamped map) and a plane (cut in closed form) take the
-//! meridional search.
+//! Each wheel keeps what its last search proved ([`SearchMemory`]): after a
+//! small move only the arcs whose margins no longer hold are searched
+//! again, and the crossings are refined from their last roots.
+//!
+//! A plane, and a wheel over a part of a map without curvature, is cut in
+//! closed form. A terrain that gives no curvature bound (a step, a bilinear
+//! grid, a square reaching off a clamped map) takes the meridional search.
 
 use crate::terrain::{HeightField, OffMap, Plane};
 
