@@ -36,15 +36,6 @@ fn drive(duration: f64, rate: f64, file: &str, integrator: &str) -> Run {
 /// Dormand–Prince at rtol 1e-10: the reference.
 const TIGHT: &str = "[integrator.dopri5]\nrtol = 1e-10\natol = 1e-12\n";
 
-fn final_value(r: &Run, name: &str) -> f64 {
-    r.summary
-        .final_state
-        .iter()
-        .find(|(n, _)| n == name)
-        .unwrap_or_else(|| panic!("no {name} in the final state"))
-        .1
-}
-
 /// The final pose of `r` agrees with the reference's.
 fn assert_same_pose(r: &Run, reference: &Run, what: &str) {
     assert!(r.summary.complete, "{what}: {:?}", r.summary.error);
@@ -56,7 +47,7 @@ fn assert_same_pose(r: &Run, reference: &Run, what: &str) {
         ("theta", ANGLE_TOL),
         ("psi", ANGLE_TOL),
     ] {
-        let (a, b) = (final_value(r, name), final_value(reference, name));
+        let (a, b) = (r.final_value(name), reference.final_value(name));
         assert!(
             (a - b).abs() < tol,
             "{what}: final {name} {a} against the reference's {b} (tolerance {tol})"

@@ -4,16 +4,7 @@
 
 use std::path::Path;
 
-use crate::support::run::{Run, run_in};
-
-fn final_value(r: &Run, name: &str) -> f64 {
-    r.summary
-        .final_state
-        .iter()
-        .find(|(n, _)| n == name)
-        .unwrap_or_else(|| panic!("no {name} in the final state"))
-        .1
-}
+use crate::support::run::run_in;
 
 /// The scenario's text with its duration cut to `longest` seconds and its
 /// `[integrator.*]` table replaced by `integrator` (kept when empty).
@@ -88,14 +79,14 @@ fn ros2_is_stable_at_5_and_10_ms_on_every_shipped_scenario() {
                 "{name} at {step} s: {:?}",
                 r.summary.error
             );
-            let distance = (final_value(&r, "X") - final_value(&reference, "X"))
-                .hypot(final_value(&r, "Y") - final_value(&reference, "Y"));
+            let distance = (r.final_value("X") - reference.final_value("X"))
+                .hypot(r.final_value("Y") - reference.final_value("Y"));
             assert!(
                 distance < position,
                 "{name} at {step} s: ends {distance} m from the default integrator's run"
             );
             for k in ["phi", "theta", "psi"] {
-                let d = (final_value(&r, k) - final_value(&reference, k)).to_degrees();
+                let d = (r.final_value(k) - reference.final_value(k)).to_degrees();
                 assert!(
                     d.abs() < angle_deg,
                     "{name} at {step} s: {k} differs by {d}°"

@@ -24,14 +24,7 @@ fn the_paper_runs_end_within_a_millimetre_and_a_tenth_of_a_degree_of_the_referen
             .unwrap();
         let run = run_in(&rover, &scenario, &dir);
         assert!(run.summary.complete, "{name}: {:?}", run.summary.error);
-        let value = |k: &str| {
-            run.summary
-                .final_state
-                .iter()
-                .find(|(n, _)| n == k)
-                .unwrap()
-                .1
-        };
+        let value = |k: &str| run.final_value(k);
         assert_eq!(value("t"), reference["t"], "{name}: the run's end");
         let distance = ["X", "Y", "Z"]
             .map(|k| value(k) - reference[k])

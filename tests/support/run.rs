@@ -24,6 +24,15 @@ impl Run {
             .unwrap_or_else(|| panic!("no column {name}"));
         self.rows.iter().map(|r| r[k]).collect()
     }
+    /// The summary's final value of state column `name`.
+    pub fn final_value(&self, name: &str) -> f64 {
+        self.summary
+            .final_state
+            .iter()
+            .find(|(n, _)| n == name)
+            .unwrap_or_else(|| panic!("no {name} in the final state"))
+            .1
+    }
     /// Rows with t ≥ t0.
     pub fn after(&self, name: &str, t0: f64) -> Vec<f64> {
         let t = self.col("t");

@@ -245,16 +245,8 @@ impl Bdf {
         self.f_pred_valid = false;
 
         if self.lu_c.to_bits() != c.to_bits() {
-            let n = self.dim;
-            let m = self.lu.matrix_mut();
-            for (mi, ji) in m.iter_mut().zip(&self.jac) {
-                *mi = -c * ji;
-            }
-            for i in 0..n {
-                m[i * n + i] += 1.0;
-            }
             self.stats.lu_decompositions += 1;
-            if self.lu.factor().is_err() {
+            if self.lu.factor_shifted(&self.jac, c).is_err() {
                 self.lu_c = f64::NAN;
                 return Ok(Attempt::NewtonFailed);
             }

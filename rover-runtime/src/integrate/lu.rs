@@ -25,8 +25,22 @@ impl Lu {
     }
 
     /// The matrix to fill (row-major) before [`Lu::factor`].
+    #[cfg(test)]
     pub(crate) fn matrix_mut(&mut self) -> &mut [f64] {
         &mut self.a
+    }
+
+    /// Factors `I − c·J` (`jac` row-major, `n × n`): the Newton matrix of the
+    /// implicit methods.
+    pub(crate) fn factor_shifted(&mut self, jac: &[f64], c: f64) -> Result<(), Singular> {
+        let n = self.n;
+        for (mi, ji) in self.a.iter_mut().zip(jac) {
+            *mi = -c * ji;
+        }
+        for i in 0..n {
+            self.a[i * n + i] += 1.0;
+        }
+        self.factor()
     }
 
     /// Factors the matrix in place.

@@ -1,7 +1,7 @@
 //! Classical fixed-step Runge–Kutta method of order 4.
 
-use super::call_check::{check_call, check_finite};
-use super::step_size::clamp_to_target;
+use super::call_check::check_call;
+use super::step_size::fixed_steps;
 use super::{ConfigError, FixedStepConfig, IntegrateError, Integrator, OdeSystem, Stats};
 
 /// The classical Runge–Kutta method (Kutta 1901; Hairer, Nørsett & Wanner I, §II.1, Table 1.2,
@@ -104,14 +104,12 @@ impl Integrator for Rk4 {
         if check_call(self.dim, sys, *t, y, t_target)? {
             return Ok(());
         }
-        while *t < t_target {
-            let (h, lands) = clamp_to_target(*t, self.step, t_target);
-            self.step_once(sys, *t, h, y)?;
-            *t = if lands { t_target } else { *t + h };
+        let step = self.step;
+        fixed_steps(step, t, y, t_target, |t, h, y| {
+            self.step_once(sys, t, h, y)?;
             self.stats.steps += 1;
-            check_finite(*t, y)?;
-        }
-        Ok(())
+            Ok(())
+        })
     }
 
     fn restart(&mut self) {}

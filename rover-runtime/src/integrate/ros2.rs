@@ -3,10 +3,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::call_check::{check_call, check_finite};
+use super::call_check::check_call;
 use super::jacobian::{JacobianScratch, jacobian};
 use super::lu::Lu;
-use super::step_size::clamp_to_target;
+use super::step_size::fixed_steps;
 use super::{ConfigError, IntegrateError, Integrator, OdeSystem, Stats};
 
 /// `γ = 1 + 1/√2`: the value that makes ROS2 L-stable.
@@ -121,7 +121,6 @@ impl Ros2 {
         h: f64,
         y: &mut [f64],
     ) -> Result<(), IntegrateError<S::Error>> {
-        let n = self.dim;
         self.stats.rhs_evals += 1;
         sys.rhs(t, y, &mut self.f0)
             .map_err(|source| IntegrateError::Rhs { t, source })?;
@@ -153,15 +152,8 @@ impl Ros2 {
         };
         let gamma_h = GAMMA * h;
         if fresh || self.lu_gamma_h.to_bits() != gamma_h.to_bits() {
-            let m = self.lu.matrix_mut();
-            for (mi, ji) in m.iter_mut().zip(&self.jac) {
-                *mi = -gamma_h * ji;
-            }
-            for i in 0..n {
-                m[i * n + i] += 1.0;
-            }
             self.stats.lu_decompositions += 1;
-            if self.lu.factor().is_err() {
+            if self.lu.factor_shifted(&self.jac, gamma_h).is_err() {
                 self.lu_gamma_h = f64::NAN;
                 // A singular W: the Jacobian has an eigenvalue at exactly 1/(γh), which no
                 // physical state has; report it as the divergence it comes with.
@@ -215,14 +207,12 @@ impl Integrator for Ros2 {
         if check_call(self.dim, sys, *t, y, t_target)? {
             return Ok(());
         }
-        while *t < t_target {
-            let (h, lands) = clamp_to_target(*t, self.config.step, t_target);
-            self.step_once(sys, *t, h, y)?;
-            *t = if lands { t_target } else { *t + h };
+        let step = self.config.step;
+        fixed_steps(step, t, y, t_target, |t, h, y| {
+            self.step_once(sys, t, h, y)?;
             self.stats.steps += 1;
-            check_finite(*t, y)?;
-        }
-        Ok(())
+            Ok(())
+        })
     }
 
     /// A jump in the right-hand side (new commands): the next step takes a fresh Jacobian.

@@ -1,7 +1,7 @@
 //! Fixed-step semi-implicit (symplectic) Euler method.
 
-use super::call_check::{check_call, check_finite};
-use super::step_size::clamp_to_target;
+use super::call_check::check_call;
+use super::step_size::fixed_steps;
 use super::{ConfigError, FixedStepConfig, IntegrateError, Integrator, OdeSystem, Stats};
 
 /// Semi-implicit Euler (symplectic Euler; Hairer, Lubich & Wanner, *Geometric Numerical
@@ -87,14 +87,12 @@ impl Integrator for SemiImplicitEuler {
                 dim: self.dim,
             });
         }
-        while *t < t_target {
-            let (h, lands) = clamp_to_target(*t, self.step, t_target);
-            self.step_once(sys, *t, h, split, y)?;
-            *t = if lands { t_target } else { *t + h };
+        let step = self.step;
+        fixed_steps(step, t, y, t_target, |t, h, y| {
+            self.step_once(sys, t, h, split, y)?;
             self.stats.steps += 1;
-            check_finite(*t, y)?;
-        }
-        Ok(())
+            Ok(())
+        })
     }
 
     fn restart(&mut self) {}

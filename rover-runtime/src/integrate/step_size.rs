@@ -1,6 +1,7 @@
 //! Step-size logic shared by the adaptive methods: the starting step, landing on the target
 //! and the step-size controllers.
 
+use super::call_check::check_finite;
 use super::norm::scaled_norm;
 use super::{IntegrateError, OdeSystem, Stats};
 
@@ -18,6 +19,26 @@ pub(crate) fn clamp_to_target(t: f64, h: f64, t_target: f64) -> (f64, bool) {
     } else {
         (h, false)
     }
+}
+
+/// Fixed steps of `step` from `*t` to `t_target`, the last one shortened to
+/// land exactly on it (see [`clamp_to_target`]): `one(t, h, y)` takes one
+/// step of `h` from `(t, y)` in place. A non-finite state stops the loop
+/// with the time it was reached at. The loop of every fixed-step method.
+pub(crate) fn fixed_steps<E>(
+    step: f64,
+    t: &mut f64,
+    y: &mut [f64],
+    t_target: f64,
+    mut one: impl FnMut(f64, f64, &mut [f64]) -> Result<(), IntegrateError<E>>,
+) -> Result<(), IntegrateError<E>> {
+    while *t < t_target {
+        let (h, lands) = clamp_to_target(*t, step, t_target);
+        one(*t, h, y)?;
+        *t = if lands { t_target } else { *t + h };
+        check_finite(*t, y)?;
+    }
+    Ok(())
 }
 
 /// Tolerances and limits the starting-step heuristic needs.
