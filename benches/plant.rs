@@ -1,11 +1,14 @@
-//! Generated vs generic plant (issue 6): per built-in rover, the plant's
+//! Generated vs generic plant: per built-in rover, the plant's
 //! right-hand side alone, plant + contact through `RoverSystem::rhs` on flat
 //! ground (meridional and tracked contact; the meridional search cuts the
-//! rim with the ground plane in closed form) and on the same flat ground
-//! given as a grid (the meridional search samples the rim, as on any rough
-//! map), and the mass matrix alone; and whole 40 s runs of swing4 on flat
-//! ground with RK4. Same seeded states for both back ends, setup outside
-//! the timing. `cargo bench --bench plant -- --warm-up-time 1 --measurement-time 3`.
+//! rim with the ground plane in closed form), on the same flat ground given
+//! as a grid (the meridional search samples the rim, as on any rough map),
+//! and on the paper's rough terrain (the sampled and the bounded search, at
+//! one state and along a path of states), and the mass matrix alone; whole
+//! 40 s runs of swing4 on flat ground with RK4; and where swing4's
+//! right-hand side on rough ground spends its time. Same seeded states for
+//! both back ends, setup outside the timing.
+//! `cargo bench --bench plant -- --warm-up-time 1 --measurement-time 3`.
 
 mod support;
 

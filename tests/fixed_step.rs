@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use crate::support::run::run_in;
+use crate::support::run::{rover_of, run_in};
 
 /// The scenario's text with its duration cut to `longest` seconds and its
 /// `[integrator.*]` table replaced by `integrator` (kept when empty).
@@ -59,11 +59,7 @@ fn ros2_is_stable_at_5_and_10_ms_on_every_shipped_scenario() {
     assert!(names.len() >= 8, "{names:?}");
     for path in names {
         let text = std::fs::read_to_string(&path).unwrap();
-        let rover = text
-            .lines()
-            .find_map(|l| l.strip_prefix("rover = "))
-            .map(|v| v.trim().trim_matches('"').to_owned())
-            .unwrap_or_else(|| panic!("{}: no rover", path.display()));
+        let rover = rover_of(&text);
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
         let reference = run_in(&rover, &variant(&text, 30.0, ""), &dir);
         assert!(

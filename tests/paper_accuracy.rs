@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use crate::support::run::run_in;
+use crate::support::run::{rover_of, run_in};
 
 #[test]
 fn the_paper_runs_end_within_a_millimetre_and_a_tenth_of_a_degree_of_the_reference() {
@@ -17,11 +17,7 @@ fn the_paper_runs_end_within_a_millimetre_and_a_tenth_of_a_degree_of_the_referen
     let dir = root.join("scenarios");
     for (name, reference) in &references {
         let scenario = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
-        let rover = scenario
-            .lines()
-            .find_map(|l| l.strip_prefix("rover = "))
-            .map(|v| v.trim().trim_matches('"').to_owned())
-            .unwrap();
+        let rover = rover_of(&scenario);
         let run = run_in(&rover, &scenario, &dir);
         assert!(run.summary.complete, "{name}: {:?}", run.summary.error);
         let value = |k: &str| run.final_value(k);

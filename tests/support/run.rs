@@ -45,6 +45,15 @@ impl Run {
     }
 }
 
+/// The built-in rover a scenario's text names (`rover = "…"`).
+pub fn rover_of(scenario: &str) -> String {
+    scenario
+        .lines()
+        .find_map(|l| l.strip_prefix("rover = "))
+        .map(|v| v.trim().trim_matches('"').to_owned())
+        .unwrap_or_else(|| panic!("no `rover = …` line in\n{scenario}"))
+}
+
 /// Run the built-in `rover` on the scenario `toml` (generic plant).
 pub fn run(rover: &str, toml: &str) -> Run {
     run_in(rover, toml, Path::new("."))

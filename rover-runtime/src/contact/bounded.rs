@@ -42,7 +42,7 @@
 use crate::terrain::{HeightField, OffMap, Plane};
 
 use super::meridional::{MeridionalContact, Runs, clearance_slope, crossing_from, cut_by_plane};
-use super::patch::{Contact, RimAngle, RimFrame};
+use super::patch::{Below, Contact, RimAngle, RimFrame, norm};
 
 /// Height \[m\] below which a feature's excursion through the rim is not
 /// resolved: an arc whose ends are on the same side of the ground and whose
@@ -241,16 +241,15 @@ struct Node {
 }
 
 /// What the search needs to settle an arc: the terrain, the rim, the bound
-/// `K` of `|h''|`, the rounding of `h` and the crossing tolerance.
-struct Bounds<'a, H: ?Sized> {
+/// `K` of `|h''|` and the rounding of `h`.
+struct Search<'a, H: ?Sized> {
     terrain: &'a H,
     frame: RimFrame,
     k: f64,
     rounding: f64,
-    tolerance: f64,
 }
 
-impl<H: HeightField + ?Sized> Bounds<'_, H> {
+impl<H: HeightField + ?Sized> Search<'_, H> {
     fn node(&self, beta: f64) -> Result<Node, OffMap> {
         let at = RimAngle::new(beta);
         let (h, slope) = clearance_slope(self.terrain, &self.frame, at)?;
@@ -322,12 +321,10 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
         if f.radius != c.radius {
             return Ok(false);
         }
-        let norm = |a: [f64; 3], b: [f64; 3]| {
-            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-        };
+        let apart = |a: [f64; 3], b: [f64; 3]| norm([0, 1, 2].map(|k| a[k] - b[k]));
         // Every rim point P = G + R·(cos β·d + sin β·f) moved by at most δ.
-        let moved = norm(f.centre, c.centre)
-            + f.radius * (norm(f.down, c.down) + norm(f.forward, c.forward));
+        let moved = apart(f.centre, c.centre)
+            + f.radius * (apart(f.down, c.down) + apart(f.forward, c.forward));
         let (dh, ds) = (
             moved * slopes[0] + self.rounding,
             moved * slopes[1] + self.rounding,
@@ -343,32 +340,33 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
             if leaf.below != scan.start.is_some() {
                 return Ok(false);
             }
-            let crossing = leaf.root.is_some();
-            if holds(dh, leaf.margin) && (!crossing || holds(ds, leaf.slope)) {
-                let moved_leaf = Leaf {
-                    margin: leaf.margin - dh,
-                    depth: (leaf.depth - dh).max(0.0),
-                    slope: leaf.slope - ds,
-                    ..*leaf
-                };
-                if !crossing {
-                    scan.deepen(moved_leaf.depth);
-                    scan.record(moved_leaf);
-                    last = None;
-                    continue;
+            let moved_leaf = Leaf {
+                margin: leaf.margin - dh,
+                depth: (leaf.depth - dh).max(0.0),
+                slope: leaf.slope - ds,
+                ..*leaf
+            };
+            // The arc's outcome, if its margins still hold.
+            let kept = match leaf.root {
+                _ if !holds(dh, leaf.margin) => None,
+                None => Some(moved_leaf),
+                Some(_) if !holds(ds, leaf.slope) => None,
+                Some(last_root) => {
+                    self.newton_from(leaf.lo, leaf.hi, last_root)?
+                        .map(|root| Leaf {
+                            root: Some(root),
+                            ..moved_leaf
+                        })
                 }
-                if let Some(last_root) = leaf.root
-                    && let Some(root) = self.newton_from(leaf.lo, leaf.hi, last_root)?
-                {
+            };
+            if let Some(kept) = kept {
+                if let Some(root) = kept.root {
                     scan.cross(root);
-                    scan.deepen(moved_leaf.depth);
-                    scan.record(Leaf {
-                        root: Some(root),
-                        ..moved_leaf
-                    });
-                    last = None;
-                    continue;
                 }
+                scan.deepen(kept.depth);
+                scan.record(kept);
+                last = None;
+                continue;
             }
             let a = match last {
                 Some(n) if n.at.beta == leaf.lo => n,
@@ -392,12 +390,12 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
         self.newton_from(lo, hi, RimAngle::new(beta))
     }
 
-    /// [`Bounds::newton_in`] from a rim angle whose sine and cosine are known.
+    /// [`Search::newton_in`] from a rim angle whose sine and cosine are known.
     fn newton_from(&self, lo: f64, hi: f64, start: RimAngle) -> Result<Option<RimAngle>, OffMap> {
         let mut at = start;
         for _ in 0..8 {
             let (h, slope) = clearance_slope(self.terrain, &self.frame, at)?;
-            if h.abs() <= self.tolerance {
+            if h.abs() <= CROSSING_TOLERANCE {
                 return Ok(Some(at));
             }
             let step = -h / slope;
@@ -405,7 +403,7 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
             if !(at.beta > lo && at.beta < hi) {
                 return Ok(None);
             }
-            if 0.5 * self.k * step * step <= self.tolerance {
+            if 0.5 * self.k * step * step <= CROSSING_TOLERANCE {
                 return Ok(Some(at));
             }
         }
@@ -431,7 +429,7 @@ impl<H: HeightField + ?Sized> Bounds<'_, H> {
             [a.at.beta, a.h],
             [b.at.beta, b.h],
             guess,
-            self.tolerance,
+            CROSSING_TOLERANCE,
         )
     }
 }
@@ -528,22 +526,20 @@ struct Scan<'m> {
 }
 
 impl<'m> Scan<'m> {
-    /// A scan of the rim `frame`, its certificate written into `certificate`
-    /// and covering the rim `cover` below the searched arc's ends.
-    fn new(frame: &RimFrame, cover: f64, certificate: &'m mut Certificate) -> Scan<'m> {
-        let mut scan = Scan {
+    /// A scan whose certificate is written into `certificate`.
+    fn new(certificate: &'m mut Certificate) -> Scan<'m> {
+        Scan {
             runs: Runs::default(),
             start: None,
             depth: 0.0,
             deep: false,
             certificate,
             proven: true,
-        };
-        scan.restart(frame, cover);
-        scan
+        }
     }
 
-    /// Back to the start of the rim `frame` (see [`Scan::new`]).
+    /// A scan from the start of the rim `frame`, its certificate covering the
+    /// rim `cover` below the searched arc's ends (every search starts here).
     fn restart(&mut self, frame: &RimFrame, cover: f64) {
         self.runs = Runs::default();
         self.start = None;
@@ -620,39 +616,21 @@ impl<'m> Scan<'m> {
     }
 }
 
-/// The part of the half rim that can reach below height `top`.
-enum Reach {
-    /// β in `[lo, hi]`; the rim is above `top` at an end that is not an end
-    /// of the half rim.
-    Arc(f64, f64),
-    /// The rim stays above `top`.
-    Nothing,
-}
-
-/// The rim height is `Z(β) = Z_G − R·A·cos(β − β_m)` with `A = |(d_z, f_z)|`
-/// and β_m the lowest point, so `Z(β) ≤ z` on `|β − β_m| ≤ acos((Z_G − z)/(R·A))`.
-fn reach(frame: &RimFrame, top: f64) -> Reach {
+/// The part of the half rim that can reach below height `top`: `[lo, hi]`,
+/// where the rim is above `top` at an end that is not an end of the half
+/// rim; `None` if the rim stays above it.
+fn reach(frame: &RimFrame, top: f64) -> Option<(f64, f64)> {
     let half = core::f64::consts::FRAC_PI_2;
-    let whole = Reach::Arc(-half, half);
-    let (cz, r) = (frame.centre[2], frame.radius);
     // Rounding of the rim points and of the terrain's bound: far below 1 nm.
-    let z = top + 1e-9 * (1.0 + top.abs() + cz.abs());
-    let (dz, fz) = (frame.down[2], frame.forward[2]);
-    let a = dz.hypot(fz);
-    if !(a > 1e-6 && z.is_finite() && cz.is_finite() && r > 0.0) {
-        return whole;
+    let z = top + 1e-9 * (1.0 + top.abs() + frame.centre[2].abs());
+    match frame.below(z) {
+        Below::Unknown => Some((-half, half)),
+        Below::Nowhere => None,
+        Below::Around { lowest, width } => {
+            let (lo, hi) = ((lowest - width).max(-half), (lowest + width).min(half));
+            (lo < hi).then_some((lo, hi))
+        }
     }
-    let c = (cz - z) / (r * a);
-    if c > 1.0 {
-        return Reach::Nothing;
-    }
-    let width = c.clamp(-1.0, 1.0).acos();
-    let lowest = (-fz).atan2(-dz);
-    let (lo, hi) = ((lowest - width).max(-half), (lowest + width).min(half));
-    if lo >= hi {
-        return Reach::Nothing;
-    }
-    Reach::Arc(lo, hi)
 }
 
 impl BoundedContact {
@@ -714,12 +692,11 @@ impl BoundedContact {
                 return Ok(());
             }
         }
-        let search = Bounds {
+        let search = Search {
             terrain,
             frame,
             k,
             rounding,
-            tolerance: CROSSING_TOLERANCE,
         };
         let slopes = [secant, secant + curvature * radius];
         let (old, new) = {
@@ -730,14 +707,14 @@ impl BoundedContact {
                 (&*second, first)
             }
         };
-        let mut scan = Scan::new(&frame, 0.0, new);
+        let mut scan = Scan::new(new);
         let reused = memory.proven && search.reuse(old, slopes, &mut scan)?;
         if !reused {
             // The arc searched reaches `PAD` above the terrain's highest
             // point, so that a certificate still covers every rim point that
             // can reach the ground after the wheel moves by less than that.
             let pad = PAD * radius;
-            let Reach::Arc(lo, hi) = reach(&frame, top + pad) else {
+            let Some((lo, hi)) = reach(&frame, top + pad) else {
                 memory.proven = false;
                 return Ok(());
             };

@@ -32,7 +32,7 @@
 
 use crate::terrain::{Bounds, HeightField, OffMap};
 
-use super::patch::{Contact, Patch, RimAngle, RimFrame, cross};
+use super::patch::{Below, Contact, Patch, RimAngle, RimFrame, cross};
 
 /// How the rim is sampled and how precisely crossings are located.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -750,11 +750,7 @@ enum Reach {
 /// The samples of the rim that can come within `hidden` of the ground, from
 /// the terrain's height bound under the wheel, widened by two samples on
 /// each side (the search looks two samples back) and one for rounding. All
-/// samples when the terrain gives no bound.
-///
-/// The rim height is `Z(β) = Z_G + R·(cos β·d_z + sin β·f_z) = Z_G − R·A·cos(β − β_m)`
-/// with `A = |(d_z, f_z)|` and `β_m` the lowest point, so `Z(β) ≤ z` on the
-/// arc `|β − β_m| ≤ acos((Z_G − z)/(R·A))`.
+/// samples when the terrain gives no bound ([`RimFrame::below`]).
 fn reach<H: HeightField + ?Sized>(
     terrain: &H,
     frame: &RimFrame,
@@ -765,28 +761,21 @@ fn reach<H: HeightField + ?Sized>(
 ) -> Reach {
     let all = Reach::Samples(0, n - 1);
     let cz = frame.centre[2];
-    let r = frame.radius;
     let Some(top) = terrain.max_height_in(area) else {
         return all;
     };
     // Rounding of the rim points and of the interpolant: far below 1 nm.
     let z = top + hidden + 1e-9 * (1.0 + top.abs() + cz.abs());
-    let (dz, fz) = (frame.down[2], frame.forward[2]);
-    let a = dz.hypot(fz);
-    if !(a > 1e-6 && z.is_finite() && cz.is_finite() && r > 0.0) {
-        return all;
-    }
-    let c = (cz - z) / (r * a);
-    if c > 1.0 {
-        return Reach::Nothing;
-    }
+    let (lowest, width) = match frame.below(z) {
+        Below::Unknown => return all,
+        Below::Nowhere => return Reach::Nothing,
+        Below::Around { lowest, width } => (lowest, width),
+    };
     let half = core::f64::consts::FRAC_PI_2;
     // Beyond a quarter turn the arc could wrap onto both ends of the half rim.
-    let width = c.clamp(-1.0, 1.0).acos();
     if width > half - 0.01 {
         return all;
     }
-    let lowest = (-fz).atan2(-dz);
     let last = (n - 1) as f64;
     let from = ((lowest - width + half) / step).floor() - 3.0;
     let to = ((lowest + width + half) / step).ceil() + 3.0;

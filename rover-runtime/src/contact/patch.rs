@@ -71,6 +71,17 @@ impl RimAngle {
     }
 }
 
+/// Where a rim comes down to a height ([`RimFrame::below`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Below {
+    /// A wheel plane near the horizontal, or a non-finite state: anywhere.
+    Unknown,
+    /// Nowhere: the whole rim is above.
+    Nowhere,
+    /// On `|β − lowest| ≤ width` \[rad\].
+    Around { lowest: f64, width: f64 },
+}
+
 /// The wheel's mid-plane frame: `d` downward in the plane, `f = d × a` forward.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RimFrame {
@@ -112,6 +123,26 @@ impl RimFrame {
             x_max: cx + r,
             y_min: cy - r,
             y_max: cy + r,
+        }
+    }
+
+    /// Where the rim comes down to height `z` or below. The rim height is
+    /// `Z(β) = Z_G − R·A·cos(β − β_m)` with `A = |(d_z, f_z)|` and β_m the
+    /// lowest point, so `Z(β) ≤ z` on `|β − β_m| ≤ acos((Z_G − z)/(R·A))`.
+    pub(crate) fn below(&self, z: f64) -> Below {
+        let (cz, r) = (self.centre[2], self.radius);
+        let (dz, fz) = (self.down[2], self.forward[2]);
+        let a = dz.hypot(fz);
+        if !(a > 1e-6 && z.is_finite() && cz.is_finite() && r > 0.0) {
+            return Below::Unknown;
+        }
+        let c = (cz - z) / (r * a);
+        if c > 1.0 {
+            return Below::Nowhere;
+        }
+        Below::Around {
+            lowest: (-fz).atan2(-dz),
+            width: c.clamp(-1.0, 1.0).acos(),
         }
     }
 

@@ -204,8 +204,8 @@ impl Bdf {
     /// A forward difference `(f(y + δ·e_j) − f_pred)/δ` taken about a point that is not the one
     /// `f_pred` belongs to divides an `O(h·f)` mismatch by `δ ≈ 1e-8`: a Jacobian of garbage
     /// whose `(I − cJ)⁻¹` shrinks every Newton correction, so that unconverged iterates pass the
-    /// convergence test and the error estimate (a torque step on an output instant once sent
-    /// swing4 off to a 28° pitch that way).
+    /// convergence test and the error estimate (`tests/breakpoints.rs`: a torque step on an
+    /// output instant, where such a refresh follows the restart).
     fn update_jacobian<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
