@@ -61,7 +61,7 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
     let fidelity = take_fidelity(&mut entries)?;
     let y_ref = take_numbers(&mut entries, "y_ref")?;
     let file = entries.iter().position(|e| e.key == "file");
-    let (spec, include) = match file {
+    let (spec, description) = match file {
         Some(k) => {
             let entry = entries.remove(k);
             if let Some(other) = entries.first() {
@@ -85,8 +85,16 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
             })?;
             let spec = rover_spec::load_str(&text, &rel)
                 .map_err(|e| file_errors(&e, &rel, &text, span))?;
+            // `include_str!` makes the file an input of the crate: editing
+            // it rebuilds, and the text carried is the text validated.
             let abs = path.display().to_string();
-            (spec, Some(quote! { const _: &str = include_str!(#abs); }))
+            (
+                spec,
+                Source {
+                    text: quote! { include_str!(#abs) },
+                    origin: quote! { #rel },
+                },
+            )
         }
         None => {
             if entries.is_empty() {
@@ -98,10 +106,27 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
             let (text, spans) = to_toml(&entries);
             let spec = rover_spec::load_str(&text, "<inline>")
                 .map_err(|e| inline_errors(&e, &spans, attr_span(attr)))?;
-            (spec, None)
+            (
+                spec,
+                Source {
+                    text: quote! { #text },
+                    origin: quote! { ::core::concat!(::core::file!(), ":", ::core::line!()) },
+                },
+            )
         }
     };
     let level = level(fidelity, y_ref, &spec)?;
+    let (fidelity, y_ref) = match &level {
+        None => ("full", Vec::new()),
+        Some(l) => (
+            match l.fidelity {
+                Fidelity::Full => "full",
+                Fidelity::Simplified => "simplified",
+                Fidelity::Linearized => "linearized",
+            },
+            l.y_ref.clone(),
+        ),
+    };
     let name = &input.ident;
     let plant = format_ident!("{}Plant", name);
     let vis = &input.vis;
@@ -122,8 +147,8 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
         )
     })?;
     let doc = format!("A [`{plant}`] with the description's spring neutrals.");
+    let described = described(name, &plant, &spec.name, &description, fidelity, &y_ref);
     Ok(quote! {
-        #include
         #items
         impl #name {
             #[doc = #doc]
@@ -131,7 +156,56 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
                 #plant::new()
             }
         }
+        #described
     })
+}
+
+/// The description as the generated code carries it: its TOML text (a
+/// literal, or `include_str!` of the file) and where it was written.
+struct Source {
+    text: TokenStream,
+    origin: TokenStream,
+}
+
+/// `rover_dynamics::described::Described` for the struct and for its
+/// plant, so that either names the description (`MyRover::report()`,
+/// `Simulation::new(MyRover::plant())`).
+fn described(
+    name: &syn::Ident,
+    plant: &syn::Ident,
+    rover: &str,
+    source: &Source,
+    fidelity: &str,
+    y_ref: &[f64],
+) -> TokenStream {
+    let Source { text, origin } = source;
+    let y_ref = y_ref.iter().map(|v| proc_macro2::Literal::f64_suffixed(*v));
+    quote! {
+        impl ::rover_dynamics::described::Described for #name {
+            type Plant = #plant;
+            const NAME: &'static str = #rover;
+            const DESCRIPTION: &'static str = #text;
+            const ORIGIN: &'static str = #origin;
+            const FIDELITY: &'static str = #fidelity;
+            const Y_REF: &'static [f64] = &[#(#y_ref),*];
+            fn plant() -> #plant {
+                #plant::new()
+            }
+        }
+        impl ::rover_dynamics::described::Described for #plant {
+            type Plant = #plant;
+            const NAME: &'static str = <#name as ::rover_dynamics::described::Described>::NAME;
+            const DESCRIPTION: &'static str =
+                <#name as ::rover_dynamics::described::Described>::DESCRIPTION;
+            const ORIGIN: &'static str = <#name as ::rover_dynamics::described::Described>::ORIGIN;
+            const FIDELITY: &'static str =
+                <#name as ::rover_dynamics::described::Described>::FIDELITY;
+            const Y_REF: &'static [f64] = <#name as ::rover_dynamics::described::Described>::Y_REF;
+            fn plant() -> #plant {
+                #plant::new()
+            }
+        }
+    }
 }
 
 fn attr_span(attr: &syn::Attribute) -> Span {
@@ -352,41 +426,147 @@ fn inline_errors(
     first
 }
 
-/// A minimal companion type and impls next to the errors, so the user sees
-/// our message and not a cascade of "cannot find type" (it never runs: the
-/// crate does not compile).
+/// The companion type with every item a generated one has, next to the
+/// errors, so that a bad description is its own error only: code using
+/// `MyRover::plant()`, `MyRoverPlant::DOF`, the array and nalgebra methods,
+/// the traits or `MyRover::report()` still resolves (it never runs: the
+/// crate does not compile). The sizes are unknown, so the methods that
+/// take arrays are generic over them; the nalgebra ones are inherent too,
+/// so that a call infers its sizes from its arguments.
 fn stub(input: &syn::DeriveInput) -> TokenStream {
     let name = &input.ident;
     let plant = format_ident!("{}Plant", name);
     let vis = &input.vis;
+    let rover = name.to_string();
+    let pl = quote!(::rover_dynamics::plant);
+    let na = quote!(::rover_dynamics::nalgebra);
+    let result = quote!(::core::result::Result<(), #pl::PlantError>);
+    let described = described(
+        name,
+        &plant,
+        &rover,
+        &Source {
+            text: quote!(""),
+            origin: quote!(""),
+        },
+        "full",
+        &[],
+    );
     quote! {
         #[derive(Clone, Copy, Debug, Default, PartialEq)]
         #vis struct #plant;
+        #[allow(clippy::all, unused_variables, dead_code)]
         impl #plant {
             /// Stub.
+            pub const NAME: &'static str = #rover;
+            /// Stub.
+            pub const DOF: usize = 0;
+            /// Stub.
+            pub const WHEELS: usize = 0;
+            /// Stub.
+            pub const COORDINATES: [&'static str; 0] = [];
+            /// Stub.
+            pub const WHEEL_NAMES: [&'static str; 0] = [];
+            /// Stub.
+            pub const SPRING_NEUTRALS: [f64; 0] = [];
+            /// Stub.
+            pub const MIN_COS_ROLL: f64 = 1e-6;
+            /// Stub.
             pub const fn new() -> Self { #plant }
+            /// Stub.
+            pub fn spring_neutrals(&self) -> &[f64; 0] { &[] }
+            /// Stub.
+            pub fn derivatives_array<const N: usize, const W: usize>(
+                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
+                xdot: &mut [f64; N], wdot: &mut [f64; N],
+            ) -> #result { Ok(()) }
+            /// Stub.
+            pub fn derivatives_portable<const N: usize, const W: usize>(
+                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
+                xdot: &mut [f64; N], wdot: &mut [f64; N],
+            ) -> #result { Ok(()) }
+            /// Stub.
+            pub fn mass_matrix_array<const N: usize>(&self, x: &[f64; N]) -> [[f64; N]; N] {
+                [[0.0; N]; N]
+            }
+            /// Stub.
+            pub fn wheels_array<const N: usize, const W: usize>(
+                &self, x: &[f64; N], w: &[f64; N], steer: &[f64; W],
+            ) -> [#pl::WheelState; W] {
+                [#pl::WheelState { centre: [0.0; 3], velocity: [0.0; 3], spin_axis: [0.0; 3] }; W]
+            }
+            /// Stub.
+            pub fn jacobian_array<const N: usize, const W: usize>(
+                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
+            ) -> ::rover_dynamics::described::StubMatrix {
+                ::rover_dynamics::described::StubMatrix
+            }
+            /// Stub.
+            pub fn jacobian_fixed<const N: usize, const W: usize>(
+                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
+                loads: &[#pl::WheelLoad; W],
+            ) -> ::rover_dynamics::described::StubMatrix {
+                ::rover_dynamics::described::StubMatrix
+            }
+            /// Stub.
+            pub fn derivatives_fixed<const N: usize, const W: usize>(
+                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
+                loads: &[#pl::WheelLoad; W], xdot: &mut #na::SVector<f64, N>,
+                wdot: &mut #na::SVector<f64, N>,
+            ) -> #result { Ok(()) }
+            /// Stub.
+            pub fn mass_matrix_fixed<const N: usize>(
+                &self, x: &#na::SVector<f64, N>,
+            ) -> #na::SMatrix<f64, N, N> {
+                #na::SMatrix::<f64, N, N>::from_array_storage(#na::ArrayStorage([[0.0; N]; N]))
+            }
+            /// Stub.
+            pub fn wheels_fixed<const N: usize, const W: usize>(
+                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
+                steer: &#na::SVector<f64, W>,
+            ) -> [#pl::WheelState; W] {
+                [#pl::WheelState { centre: [0.0; 3], velocity: [0.0; 3], spin_axis: [0.0; 3] }; W]
+            }
         }
         impl #name {
             /// Stub.
             pub const fn plant() -> #plant { #plant }
         }
-        impl ::rover_dynamics::plant::Plant for #plant {
+        impl #pl::Plant for #plant {
             fn dof(&self) -> usize { 0 }
             fn wheel_count(&self) -> usize { 0 }
-            fn wheels(&mut self, _: &[f64], _: &[f64], _: &[f64], _: &mut [::rover_dynamics::plant::WheelState]) {}
+            fn wheels(&mut self, _: &[f64], _: &[f64], _: &[f64], _: &mut [#pl::WheelState]) {}
             fn derivatives(
                 &mut self,
                 _: &[f64],
                 _: &[f64],
-                _: &[::rover_dynamics::plant::WheelLoad],
+                _: &[#pl::WheelLoad],
                 _: &mut [f64],
                 _: &mut [f64],
-            ) -> ::core::result::Result<(), ::rover_dynamics::plant::PlantError> {
+            ) -> #result {
                 Ok(())
             }
             fn mass_matrix(&mut self, _: &[f64], _: &mut [f64]) {}
             fn set_spring_neutral(&mut self, _: usize, _: f64) {}
         }
+        #[allow(unused_variables)]
+        impl<const N: usize, const W: usize> #pl::FixedPlant<N, W> for #plant {
+            fn derivatives_fixed(
+                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
+                loads: &[#pl::WheelLoad; W], xdot: &mut #na::SVector<f64, N>,
+                wdot: &mut #na::SVector<f64, N>,
+            ) -> #result { Ok(()) }
+            fn mass_matrix_fixed(&self, x: &#na::SVector<f64, N>) -> #na::SMatrix<f64, N, N> {
+                #plant::mass_matrix_fixed(self, x)
+            }
+            fn wheels_fixed(
+                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
+                steer: &#na::SVector<f64, W>,
+            ) -> [#pl::WheelState; W] {
+                #plant::wheels_fixed(self, x, w, steer)
+            }
+        }
+        #described
     }
 }
 

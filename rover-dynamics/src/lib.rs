@@ -23,6 +23,7 @@ extern crate std;
 
 pub mod attitude;
 pub mod cpu;
+pub mod described;
 pub mod dual;
 pub mod linalg;
 pub mod plant;
@@ -36,6 +37,7 @@ pub mod poly;
 /// The nalgebra this crate's fixed-size types come from, so that generated
 /// code and its users name one version.
 pub use nalgebra;
+pub use described::Described;
 pub use plant::{FixedPlant, Plant};
 pub use scalar::Scalar;
 

@@ -1,4 +1,4 @@
-//! Scenario files: what a run does (issue 5). TOML, every table
+//! Scenario files: what a run does. TOML, every table
 //! `deny_unknown_fields`, SI units, `*_deg` where degrees are accepted.
 //!
 //! ```toml
@@ -53,7 +53,7 @@ pub struct Scenario {
     /// Output rows per second \[Hz\]; > 0.
     #[serde(default = "default_rate")]
     pub output_rate: f64,
-    /// No ground at all (free flight, issue 3's first use): the terrain is ignored.
+    /// No ground at all (free flight): the terrain is ignored.
     #[serde(default)]
     pub free_flight: bool,
     /// The ground.
@@ -225,6 +225,17 @@ impl ContactConfig {
     }
 }
 
+/// A scenario field that cannot be used: its dotted path, what is wrong
+/// and how to fix it.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{message}")]
+pub struct FieldError {
+    /// The field, as a dotted path (`duration`, `contact.samples`).
+    pub field: &'static str,
+    /// What is wrong (naming the field) and how to fix it.
+    pub message: String,
+}
+
 /// A scenario file that cannot be used: the file, where, what, how to fix.
 #[derive(Debug, thiserror::Error)]
 #[error("{}{}: {message}", file.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
@@ -261,6 +272,34 @@ impl Scenario {
             message,
         })?;
         Ok(s)
+    }
+
+    /// A scenario of `duration` seconds with every other field at its
+    /// default, as a file holding only `duration = …` reads.
+    pub fn with_duration(duration: f64) -> Self {
+        Scenario {
+            rover: None,
+            duration,
+            settle: 0.0,
+            output_rate: default_rate(),
+            free_flight: false,
+            terrain: TerrainConfig::default(),
+            initial: InitialState::default(),
+            integrator: default_integrator(),
+            control: ControllerConfig::default(),
+            contact: ContactConfig::default(),
+            rollover_limit_deg: default_rollover(),
+            fidelity: FidelityLevel::default(),
+            path_from: None,
+            profile: false,
+        }
+    }
+
+    /// The checks that need no rover, which a scenario file gets when it
+    /// is read: the error names the field and says how to fix it.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        self.check()
+            .map_err(|(field, message)| FieldError { field, message })
     }
 
     /// Checks that need no rover; the error names the field.

@@ -1,6 +1,6 @@
 //! A whole run from a scenario: build the pieces, place the rover, run,
-//! write the CSV, summarize (issue 5 item 3; the CLI adds plots and the
-//! progress bar).
+//! write the CSV, summarize (the CLI adds plots and the progress bar;
+//! [`crate::simulation::Simulation`] assembles the same run in Rust).
 
 use std::io::Write;
 use std::path::Path;
@@ -49,6 +49,9 @@ pub enum SetupError {
     /// A quasi-static run has no path to follow.
     #[error("path_from: {0}")]
     Path(String),
+    /// The plant and the model are of different rovers.
+    #[error("{0}")]
+    Mismatch(#[from] crate::described::Mismatch),
 }
 
 impl SetupError {
@@ -145,6 +148,11 @@ fn ground_contact_height(model: &Model, x: &[f64], terrain: &Terrain) -> Result<
 
 /// Run `scenario` with `plant` (whose model is `model`, named `name`),
 /// writing the CSV to `csv`. `progress(t)` is called at every output row.
+///
+/// A plant that does not fit the model (another number of coordinates or
+/// wheels, another total mass) is a [`SetupError::Mismatch`] naming what
+/// differs: the ground and the controllers read the model, so a run of
+/// one rover's plant with another's model would be neither.
 pub fn simulate<P: Plant, W: Write>(
     plant: P,
     model: &Model,
@@ -155,6 +163,11 @@ pub fn simulate<P: Plant, W: Write>(
     interrupt: &AtomicBool,
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
+    let mut plant = plant;
+    let differences = crate::described::plant_differences(&mut plant, model);
+    if !differences.is_empty() {
+        return Err(crate::described::Mismatch { differences }.into());
+    }
     if scenario.fidelity == FidelityLevel::QuasiStatic {
         return quasi_static_run(model, name, scenario, base_dir, csv, interrupt, progress);
     }

@@ -46,3 +46,13 @@ impl Default for SpeedConfig {
         }
     }
 }
+
+/// A constant set-point V [m/s] with the default gains and distribution.
+impl From<f64> for SpeedConfig {
+    fn from(speed: f64) -> Self {
+        Self {
+            speed: Profile::Constant(speed),
+            ..Self::default()
+        }
+    }
+}

@@ -26,6 +26,16 @@ pub enum Steering {
     Heading(HeadingHold),
 }
 
+impl Steering {
+    /// Slip steering by a constant torque difference Δτ [N·m] (eq. 48);
+    /// Δτ > 0 turns left.
+    pub fn slip(delta_tau: f64) -> Self {
+        Steering::Slip {
+            delta_tau: Profile::Constant(delta_tau),
+        }
+    }
+}
+
 /// What a [`HeadingHold`] moves.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]

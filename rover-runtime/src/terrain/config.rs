@@ -223,6 +223,30 @@ fn default_extent() -> [f64; 4] {
 }
 
 impl RandomConfig {
+    /// The random field of roughness `z_r` (0 … 1 in the paper) with every
+    /// other setting at MODEL.md §11's default, as `kind = "random"` with
+    /// only `z_r` reads.
+    pub fn new(z_r: f64) -> Self {
+        RandomConfig {
+            z_r,
+            seed: default_seed(),
+            node_spacing: default_node_spacing(),
+            node_amplitude: default_node_amplitude(),
+            grid_spacing: default_grid_spacing(),
+            patch_center: [0.0; 2],
+            patch_radius: default_patch_radius(),
+            patch_blend: default_patch_blend(),
+            extent: default_extent(),
+            interpolation: Interpolation::default(),
+            edge: EdgePolicy::default(),
+        }
+    }
+
+    /// The same field with another seed.
+    pub fn seed(self, seed: u64) -> Self {
+        RandomConfig { seed, ..self }
+    }
+
     /// The random field these settings describe.
     pub fn field(&self) -> RandomField {
         let [x_min, x_max, y_min, y_max] = self.extent;
@@ -278,6 +302,12 @@ pub struct FileConfig {
 }
 
 impl TerrainConfig {
+    /// MODEL.md §11's random field of roughness `z_r` (0 … 1 in the paper),
+    /// every other setting at its default ([`RandomConfig::new`]).
+    pub fn random(z_r: f64) -> Self {
+        TerrainConfig::Random(RandomConfig::new(z_r))
+    }
+
     /// Builds the terrain; file paths are resolved against `base_dir` (the
     /// scenario file's directory). Every parameter is checked.
     pub fn build(&self, base_dir: &Path) -> Result<Terrain, TerrainError> {
