@@ -7,6 +7,10 @@
 //! `CARGO_MANIFEST_DIR` the derive resolves `file = "…"` against: the
 //! files name the TOML files by `../../../../rover-derive/tests/ui/…`
 //! (the default target directory).
+//!
+//! Each case then uses every item of the rover (`uses/use_all.rs`), as a
+//! user's code does, so that its `.stderr` holds the description's error
+//! and no error of the code that uses the rover.
 
 #[test]
 fn bad_descriptions_fail_to_compile_and_good_ones_run() {
@@ -14,4 +18,23 @@ fn bad_descriptions_fail_to_compile_and_good_ones_run() {
     t.compile_fail("tests/ui/*.rs");
     // The same rover from a file and inline, both compiled and run.
     t.pass("tests/pass/*.rs");
+}
+
+/// One mistake, one error: every `.stderr` holds exactly one `error`, and
+/// none from rustc (an `error[E…]` would be code that uses the rover
+/// failing because of the stub, not the description).
+#[test]
+fn each_mistake_is_exactly_one_error() {
+    let mut cases = 0;
+    for entry in std::fs::read_dir("tests/ui").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "stderr") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let errors = text.lines().filter(|l| l.starts_with("error")).count();
+            assert_eq!(errors, 1, "{}:\n{text}", path.display());
+            assert!(!text.contains("error["), "{}:\n{text}", path.display());
+            cases += 1;
+        }
+    }
+    assert!(cases >= 13, "{cases} cases");
 }

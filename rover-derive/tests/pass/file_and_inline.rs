@@ -19,7 +19,11 @@ struct FromFile;
 )]
 pub struct Inline;
 
+include!("../uses/use_all.rs");
+
 fn main() {
+    // The items the error stub mirrors exist on a real plant.
+    use_all!(Inline, InlinePlant, 7, 1);
     let (mut a, mut b) = (FromFile::plant(), Inline::plant());
     assert_eq!(FromFilePlant::DOF, 7);
     assert_eq!(a.dof(), b.dof());

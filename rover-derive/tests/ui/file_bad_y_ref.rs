@@ -8,4 +8,8 @@ use rover_derive::Rover;
 )]
 struct Frozen;
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(Frozen, FrozenPlant, 7, 2);
+}

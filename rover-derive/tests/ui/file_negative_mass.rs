@@ -4,4 +4,8 @@ use rover_derive::Rover;
 #[rover(file = "../../../../rover-derive/tests/ui/negative_mass.toml")]
 struct NegativeMass;
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(NegativeMass, NegativeMassPlant, 7, 2);
+}

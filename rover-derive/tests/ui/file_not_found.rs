@@ -4,4 +4,8 @@ use rover_derive::Rover;
 #[rover(file = "../../../../rover-derive/tests/ui/no_such_rover.toml")]
 struct Missing;
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(Missing, MissingPlant, 7, 2);
+}

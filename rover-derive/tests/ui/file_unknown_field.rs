@@ -4,4 +4,8 @@ use rover_derive::Rover;
 #[rover(file = "../../../../rover-derive/tests/ui/unknown_field.toml")]
 struct Typo;
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(Typo, TypoPlant, 7, 2);
+}

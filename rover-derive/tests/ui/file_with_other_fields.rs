@@ -4,4 +4,8 @@ use rover_derive::Rover;
 #[rover(file = "../../../../rover-derive/tests/ui/good.toml", gravity = 9.81)]
 struct Both;
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(Both, BothPlant, 7, 2);
+}

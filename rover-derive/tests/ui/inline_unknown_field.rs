@@ -12,4 +12,8 @@ use rover_derive::Rover;
 )]
 struct Inline;
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(Inline, InlinePlant, 7, 2);
+}

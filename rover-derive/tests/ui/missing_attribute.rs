@@ -3,4 +3,8 @@ use rover_derive::Rover;
 #[derive(Rover)]
 struct NoDescription;
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(NoDescription, NoDescriptionPlant, 7, 2);
+}

@@ -6,4 +6,8 @@ struct WithFields {
     speed: f64,
 }
 
-fn main() {}
+include!("../uses/use_all.rs");
+
+fn main() {
+    use_all!(WithFields, WithFieldsPlant, 7, 2);
+}
