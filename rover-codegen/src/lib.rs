@@ -37,6 +37,7 @@ pub mod emit;
 pub mod error;
 pub mod graph;
 pub mod lanes;
+#[cfg(feature = "module")]
 pub mod module;
 pub mod ordered_solve;
 pub mod plant_source;
@@ -48,6 +49,7 @@ pub mod trace;
 pub use derive::{expand_derive, expand_derive_in};
 pub use error::CodegenError;
 pub use graph::{Graph, Id, Node};
+#[cfg(feature = "module")]
 pub use module::{ModuleOptions, generate_module, generate_module_with};
 pub use plant_source::{Options, PlantSource, plant_source};
 pub use sym::Sym;

@@ -117,7 +117,7 @@ pub fn generate_module_with(
     }
     let _ = writeln!(
         out,
-        "// Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap."
+        "// Needs the crates rover-dynamics (default-features = false, features = [\"plant\"]) and libm; no_std, no heap."
     );
     out.push_str("#![cfg_attr(rustfmt, rustfmt::skip)]\n");
     out.push_str(&comments(&body));

@@ -8,11 +8,16 @@
 //! ```
 //! x = [X, Y, Z, φ, θ, ψ, y1 … ym], w = [vx, vy, vz, Ωx, Ωy, Ωz, ẏ1 … ẏm].
 //!
-//! The crate is `#![no_std]`. Without features it holds the [`Scalar`] trait
-//! and the [`Plant`] trait that a generated, allocation-free plant
-//! implements; with `alloc` (default) it also holds the numeric [`Model`] and
-//! the equations, written once, generic over the scalar, so that the generic
-//! plant runs them with `f64` and the code generator traces them.
+//! The crate is `#![no_std]`. Its features (both default):
+//! - `plant`: the [`Plant`] and [`FixedPlant`] traits that a generated,
+//!   allocation-free plant implements (with nalgebra for the fixed-size
+//!   types). A firmware crate using a generated plant takes
+//!   `default-features = false, features = ["plant"]`.
+//! - `alloc`: the numeric [`Model`] and the equations, written once,
+//!   generic over the scalar, so that the generic plant runs them with
+//!   `f64` and the code generator traces them. The code generator needs
+//!   only this one, which keeps nalgebra out of what `#[derive(Rover)]`
+//!   compiles for the compiler's host.
 #![no_std]
 #![warn(missing_docs)]
 
@@ -26,6 +31,7 @@ pub mod cpu;
 pub mod described;
 pub mod dual;
 pub mod linalg;
+#[cfg(feature = "plant")]
 pub mod plant;
 pub mod scalar;
 
@@ -36,8 +42,10 @@ pub mod poly;
 
 /// The nalgebra this crate's fixed-size types come from, so that generated
 /// code and its users name one version.
+#[cfg(feature = "plant")]
 pub use nalgebra;
 pub use described::Described;
+#[cfg(feature = "plant")]
 pub use plant::{FixedPlant, Plant};
 pub use scalar::Scalar;
 

@@ -4,7 +4,7 @@
 // ops mass_matrix: 147 mul, 158 add, 0 div, 24 neg, 0 sin/cos, 0 sqrt, 0 other, depth 18
 // ops wheels: 247 mul, 229 add, 0 div, 57 neg, 16 sin/cos, 0 sqrt, 0 other, depth 14
 // ops jacobian: 3510 mul, 3022 add, 19 div, 1326 neg, 6 sin/cos, 0 sqrt, 36 other, depth 69
-// Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
+// Needs the crates rover-dynamics (default-features = false, features = ["plant"]) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `exomars` rover as a generated plant: 9 degrees of freedom
 /// (X, Y, Z, φ, θ, ψ, y1 `y1`, y2 `y2`, y3 `y3`), 6 wheels (front_left, front_right, middle_left, middle_right, rear_left, rear_right).

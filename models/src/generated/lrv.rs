@@ -5,7 +5,7 @@
 // ops wheels: 211 mul, 178 add, 0 div, 39 neg, 22 sin/cos, 0 sqrt, 0 other, depth 14
 // ops jacobian: 3404 mul, 2684 add, 23 div, 1129 neg, 6 sin/cos, 0 sqrt, 48 other, depth 62
 // lanes derivatives: 165 four-lane operations (660 of 1210 scalar ones), 31 sums over the lanes
-// Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
+// Needs the crates rover-dynamics (default-features = false, features = ["plant"]) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `lrv` rover as a generated plant: 10 degrees of freedom
 /// (X, Y, Z, φ, θ, ψ, y1 `front_left`, y2 `front_right`, y3 `rear_left`, y4 `rear_right`), 4 wheels (front_left, front_right, rear_left, rear_right).

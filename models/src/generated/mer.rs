@@ -4,7 +4,7 @@
 // ops mass_matrix: 334 mul, 367 add, 0 div, 55 neg, 0 sin/cos, 0 sqrt, 0 other, depth 19
 // ops wheels: 269 mul, 258 add, 0 div, 58 neg, 14 sin/cos, 0 sqrt, 0 other, depth 15
 // ops jacobian: 5019 mul, 4529 add, 22 div, 1775 neg, 6 sin/cos, 0 sqrt, 36 other, depth 96
-// Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
+// Needs the crates rover-dynamics (default-features = false, features = ["plant"]) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `mer` rover as a generated plant: 9 degrees of freedom
 /// (X, Y, Z, φ, θ, ψ, y1 `rocker`, y2 `bogie_left`, y3 `bogie_right`), 6 wheels (front_left, front_right, middle_left, middle_right, rear_left, rear_right).

@@ -6,7 +6,7 @@
 // ops wheels: 111 mul, 98 add, 0 div, 44 neg, 6 sin/cos, 0 sqrt, 0 other, depth 9
 // ops jacobian: 616 mul, 604 add, 49 div, 252 neg, 6 sin/cos, 0 sqrt, 40 other, depth 53
 // lanes derivatives: 27 four-lane operations (108 of 437 scalar ones), 9 sums over the lanes
-// Needs the crates rover-dynamics (default-features = false) and libm; no_std, no heap.
+// Needs the crates rover-dynamics (default-features = false, features = ["plant"]) and libm; no_std, no heap.
 #![cfg_attr(rustfmt, rustfmt::skip)]
 /// The `swing4` rover as a generated plant: 10 degrees of freedom
 /// (X, Y, Z, φ, θ, ψ, y1 `y1`, y2 `y2`, y3 `y3`, y4 `y4`), 4 wheels (front_left, front_right, rear_left, rear_right).
