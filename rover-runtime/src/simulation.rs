@@ -2,7 +2,7 @@
 //! scenario's tables as typed builder calls.
 //!
 //! [`Simulation`] fills a [`Scenario`] and hands it to
-//! [`simulate`](crate::simulate::simulate), the function `rover simulate`
+//! [`simulate`](crate::simulate::simulate()), the function `rover simulate`
 //! runs: the same defaults, the same checks, the same errors naming the
 //! field, the same [`Summary`]. With a rover declared by `#[derive(Rover)]`
 //! the plant alone is enough: the model the terrain contact and the
