@@ -88,6 +88,20 @@ pub trait Plant {
     fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]);
     /// Set the neutral value y_0 of coordinate i's spring (active suspension, eq. 42).
     fn set_spring_neutral(&mut self, coord: usize, neutral: f64);
+    /// The exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` at fixed wheel loads into `jac`,
+    /// row-major `2·dof × 2·dof`, for implicit integrators; the loads' own
+    /// dependence on the state is the ground's to add. `None` when the plant
+    /// has none: the generic plant, or a generated one built without
+    /// `jacobian = true` (the integrators then difference the right-hand side).
+    fn jacobian(
+        &mut self,
+        _x: &[f64],
+        _w: &[f64],
+        _loads: &[WheelLoad],
+        _jac: &mut [f64],
+    ) -> Option<()> {
+        None
+    }
 }
 
 /// A plant whose sizes are known at compile time: `N` generalized

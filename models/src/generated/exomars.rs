@@ -3380,6 +3380,28 @@ impl ::rover_dynamics::plant::Plant for Exomars {
             *n = neutral;
         }
     }
+    fn jacobian(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[::rover_dynamics::plant::WheelLoad],
+        jac: &mut [f64],
+    ) -> ::core::option::Option<()> {
+        let (Ok(x), Ok(w), Ok(loads)) = (
+            <&[f64; 9]>::try_from(x),
+            <&[f64; 9]>::try_from(w),
+            <&[::rover_dynamics::plant::WheelLoad; 6]>::try_from(loads),
+        ) else {
+            return None;
+        };
+        for (o, v) in jac
+            .iter_mut()
+            .zip(self.jacobian_array(x, w, loads).iter().flatten())
+        {
+            *o = *v;
+        }
+        Some(())
+    }
 }
 /// The same plant on nalgebra's fixed-size types (no length checks, no heap).
 impl ::rover_dynamics::plant::FixedPlant<9, 6> for Exomars {

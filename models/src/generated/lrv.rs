@@ -4509,6 +4509,28 @@ impl ::rover_dynamics::plant::Plant for Lrv {
             *n = neutral;
         }
     }
+    fn jacobian(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[::rover_dynamics::plant::WheelLoad],
+        jac: &mut [f64],
+    ) -> ::core::option::Option<()> {
+        let (Ok(x), Ok(w), Ok(loads)) = (
+            <&[f64; 10]>::try_from(x),
+            <&[f64; 10]>::try_from(w),
+            <&[::rover_dynamics::plant::WheelLoad; 4]>::try_from(loads),
+        ) else {
+            return None;
+        };
+        for (o, v) in jac
+            .iter_mut()
+            .zip(self.jacobian_array(x, w, loads).iter().flatten())
+        {
+            *o = *v;
+        }
+        Some(())
+    }
 }
 /// The same plant on nalgebra's fixed-size types (no length checks, no heap).
 impl ::rover_dynamics::plant::FixedPlant<10, 4> for Lrv {
