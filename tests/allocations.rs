@@ -1,8 +1,9 @@
 //! Zero heap allocations over 10,000 steps of a full simulation with a
-//! generated plant (issue 6): swing4 driving on flat ground with terrain
+//! generated plant: swing4 driving on flat ground with terrain
 //! contact, the speed loop and the fixed-step RK4 integrator; and the same
-//! real-time path with the generic plant on random terrain, with RK4 and
-//! semi-implicit Euler (issue 5), under a heading hold with both integrals
+//! real-time path with the generic plant on random terrain, with RK4,
+//! semi-implicit Euler and ROS2 (and ROS2 with the generated plant's
+//! assembled Jacobian), under a heading hold with both integrals
 //! and with open-loop torques set between steps. Its own test binary: it installs a
 //! counting global allocator.
 

@@ -16,7 +16,7 @@ mod free_flight;
 mod ground;
 mod jacobian;
 mod linearize;
-mod models;
+mod hand_built_models;
 mod no_std;
 mod paper_accuracy;
 mod profile;
