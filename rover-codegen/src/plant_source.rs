@@ -216,7 +216,7 @@ impl {name} {{
     /// The description's spring neutrals y_0.
     pub const SPRING_NEUTRALS: [f64; {m}] = [{neutrals}];
     /// Smallest |cos φ| accepted before the attitude is singular (as the generic plant).
-    pub const MIN_COS_ROLL: f64 = 1e-6;
+    pub const MIN_COS_ROLL: f64 = {PLANT}::MIN_COS_ROLL;
 
     /// The plant with the description's spring neutrals.
     pub const fn new() -> Self {{

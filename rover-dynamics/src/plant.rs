@@ -61,6 +61,11 @@ impl core::fmt::Display for PlantError {
     }
 }
 
+/// Smallest |cos φ| a plant accepts before it declares the attitude
+/// singular (the Euler angles' rates divide by cos φ): the generic plant and
+/// every generated one test against this one value.
+pub const MIN_COS_ROLL: f64 = 1e-6;
+
 /// A rover plant model: state in, wheel kinematics out; wheel loads in,
 /// derivatives out (MODEL.md §2–§5).
 ///

@@ -262,6 +262,31 @@ fn lever_gradient<H: HeightField>(terrain: &H, s: &WheelState, p: &Patch) -> [f6
     [0, 1, 2].map(|k| 0.5 * (ends[0][k] + ends[1][k]))
 }
 
+/// The height of G at which the lowest wheel of `model` just touches the
+/// ground, G above `(X, Y)` at `attitude` with suspension coordinates
+/// `coordinates` (each wheel's lowest rim point taken straight below its
+/// centre: exact for upright wheels over level ground, and where a start
+/// or a first solve is placed).
+pub fn touchdown_height<H: HeightField + ?Sized>(
+    model: &Model,
+    at: [f64; 2],
+    attitude: rover_dynamics::attitude::Attitude<f64>,
+    coordinates: &[f64],
+    terrain: &H,
+) -> Result<f64, WheelOffMap> {
+    let r = attitude.rotation();
+    let mut z = f64::NEG_INFINITY;
+    for (wheel, w) in model.wheels.iter().enumerate() {
+        let u = model.bodies[w.body].position.value(coordinates);
+        let p = [0, 1, 2].map(|k| r[k][0] * u[0] + r[k][1] * u[1] + r[k][2] * u[2]);
+        let g = terrain
+            .height(at[0] + p[0], at[1] + p[1])
+            .map_err(|off| WheelOffMap { wheel, off })?;
+        z = z.max(g + w.radius - p[2]);
+    }
+    Ok(z)
+}
+
 /// Smallest drive lever, as a fraction of the wheel radius. Eq. 38's
 /// `F_d = τ/|G_jH|` is singular for a wheel buried to its centre (a chord
 /// through G_j, `|G_jH| = 0`): any drive torque saturates the pull at

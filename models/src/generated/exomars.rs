@@ -42,7 +42,7 @@ impl Exomars {
     /// The description's spring neutrals y_0.
     pub const SPRING_NEUTRALS: [f64; 3] = [0.0, 0.0, 0.0];
     /// Smallest |cos φ| accepted before the attitude is singular (as the generic plant).
-    pub const MIN_COS_ROLL: f64 = 1e-6;
+    pub const MIN_COS_ROLL: f64 = ::rover_dynamics::plant::MIN_COS_ROLL;
     /// The plant with the description's spring neutrals.
     pub const fn new() -> Self {
         Self {

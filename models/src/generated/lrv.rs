@@ -51,7 +51,7 @@ impl Lrv {
         0.17453292519943295,
     ];
     /// Smallest |cos φ| accepted before the attitude is singular (as the generic plant).
-    pub const MIN_COS_ROLL: f64 = 1e-6;
+    pub const MIN_COS_ROLL: f64 = ::rover_dynamics::plant::MIN_COS_ROLL;
     /// The plant with the description's spring neutrals.
     pub const fn new() -> Self {
         Self {

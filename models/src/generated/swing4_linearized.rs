@@ -47,7 +47,7 @@ impl Swing4Linearized {
         0.30019663134302466,
     ];
     /// Smallest |cos φ| accepted before the attitude is singular (as the generic plant).
-    pub const MIN_COS_ROLL: f64 = 1e-6;
+    pub const MIN_COS_ROLL: f64 = ::rover_dynamics::plant::MIN_COS_ROLL;
     /// The plant with the description's spring neutrals.
     pub const fn new() -> Self {
         Self {
