@@ -132,6 +132,26 @@ fn step(v: f64) -> f64 {
     perturbed - v
 }
 
+/// Calls `f(j, h, x, w, z)` at `y + h·e_j` for every state j, `h` the
+/// difference step: forward differences of what is cheap to evaluate (the
+/// controller), `scratch` holding the perturbed state.
+fn each_perturbed(
+    y: &[f64],
+    n: usize,
+    scratch: &mut [f64],
+    mut f: impl FnMut(usize, f64, &[f64], &[f64], &[f64]),
+) {
+    scratch.copy_from_slice(y);
+    for j in 0..y.len() {
+        let h = step(y[j]);
+        scratch[j] = y[j] + h;
+        let (x, rest) = scratch.split_at(n);
+        let (w, z) = rest.split_at(n);
+        f(j, h, x, w, z);
+        scratch[j] = y[j];
+    }
+}
+
 impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// Writes the assembled `∂f/∂y` at `(t, y)` into `jac` (row-major) and
     /// returns the right-hand sides it spent; `None` when the plant has no
@@ -166,7 +186,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             return Some(Err(e));
         }
         let (x, rest) = y.split_at(n);
-        let (w, z) = rest.split_at(n);
+        let w = &rest[..n];
         // None is not reached for a plant that had a Jacobian at construction.
         self.plant.jacobian(x, w, &self.loads, &mut work.plant)?;
         jac.iter_mut().for_each(|v| *v = 0.0);
@@ -209,27 +229,15 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
 
         // The controller's torques, differenced.
         let tc = self.command_time(t);
-        work.y.copy_from_slice(y);
-        for j in 0..dim {
-            let h = step(y[j]);
-            work.y[j] = y[j] + h;
-            let (xp, rest) = work.y.split_at(n);
-            let (wp, zp) = rest.split_at(n);
-            self.control.torques(
-                tc,
-                xp,
-                wp,
-                zp,
-                &self.normals,
-                &self.torque_commands,
-                &mut work.tau,
-            );
-            work.y[j] = y[j];
+        let (control, normals, commands) = (&self.control, &self.normals, &self.torque_commands);
+        let torques = &self.torques;
+        let (tau, torque) = (&mut work.tau, &mut work.torque);
+        each_perturbed(y, n, &mut work.y, |j, h, xp, wp, zp| {
+            control.torques(tc, xp, wp, zp, normals, commands, tau);
             for wheel in 0..k {
-                work.torque[wheel * dim + j] = (work.tau[wheel] - self.torques[wheel]) / h;
+                torque[wheel * dim + j] = (tau[wheel] - torques[wheel]) / h;
             }
-        }
-        let _ = z;
+        });
 
         ground.load_derivatives(&self.wheels, &self.torques, &mut work.loads);
 
@@ -293,17 +301,12 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             return;
         }
         let tc = self.command_time(t);
-        work.y.copy_from_slice(y);
-        for j in 0..dim {
-            let h = step(y[j]);
-            work.y[j] = y[j] + h;
-            let (xp, rest) = work.y.split_at(n);
-            let (wp, zp) = rest.split_at(n);
-            self.control.integral_rates(tc, xp, wp, zp, &mut work.zd);
-            work.y[j] = y[j];
+        let (zd, f0) = (&mut work.zd, &work.f0);
+        each_perturbed(y, n, &mut work.y, |j, h, xp, wp, zp| {
+            self.control.integral_rates(tc, xp, wp, zp, zd);
             for i in 0..states {
-                jac[(2 * n + i) * dim + j] = (work.zd[i] - work.f0[2 * n + i]) / h;
+                jac[(2 * n + i) * dim + j] = (zd[i] - f0[2 * n + i]) / h;
             }
-        }
+        });
     }
 }
