@@ -495,5 +495,77 @@ fn rhs_parts(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, per_model, whole_runs, fidelity_levels, rhs_parts);
+/// The Jacobian an implicit integrator takes on swing4 driving on the
+/// paper's rough terrain (the generated plant, the states of
+/// `rhs_contact_rough_path` in turn): assembled from the plant's exact one
+/// and the wheels' load derivatives, and by forward differences of the
+/// whole right-hand side (what the integrators do without it); and the
+/// plant's exact Jacobian at fixed loads alone.
+fn jacobians(c: &mut Criterion) {
+    let model = model("swing4");
+    let rough = Terrain::Grid(support::rough_field());
+    let generic = GenericPlant::new(model.clone()).unwrap();
+    let state = driven(&rough, &model, generic.clone(), 5.0);
+    let path = path_from(&rough, &model, generic, &state, 200);
+    let n = model.dof();
+    let (mut sys, _) = system_on(
+        rough,
+        &model,
+        rover_models::Swing4::new(),
+        ContactMethod::Bounded,
+    );
+    let dim = path[0].len();
+    let mut jac = vec![0.0; dim * dim];
+    let mut group = c.benchmark_group("swing4_jacobian");
+    let mut at = 0;
+    group.bench_function(BenchmarkId::new("assembled", "generated"), |b| {
+        b.iter(|| {
+            at += 1;
+            let y = &path[at % path.len()];
+            sys.jacobian(0.0, black_box(y), &mut jac).unwrap().unwrap();
+            black_box(&jac);
+        })
+    });
+    let (mut f0, mut f, mut yp) = (vec![0.0; dim], vec![0.0; dim], vec![0.0; dim]);
+    group.bench_function(BenchmarkId::new("differences", "generated"), |b| {
+        b.iter(|| {
+            at += 1;
+            let y = &path[at % path.len()];
+            sys.rhs(0.0, black_box(y), &mut f0).unwrap();
+            yp.copy_from_slice(y);
+            for j in 0..dim {
+                let h = 1e-8 * y[j].abs().max(1.0);
+                yp[j] = y[j] + h;
+                sys.rhs(0.0, &yp, &mut f).unwrap();
+                yp[j] = y[j];
+                for i in 0..dim {
+                    jac[i * dim + j] = (f[i] - f0[i]) / h;
+                }
+            }
+            black_box(&jac);
+        })
+    });
+    let loads = vec![WheelLoad::default(); model.wheels.len()];
+    let mut fixed = vec![0.0; 4 * n * n];
+    group.bench_function(BenchmarkId::new("plant_at_fixed_loads", "generated"), |b| {
+        b.iter(|| {
+            at += 1;
+            let y = &path[at % path.len()];
+            sys.plant
+                .jacobian(black_box(&y[..n]), &y[n..2 * n], &loads, &mut fixed)
+                .unwrap();
+            black_box(&fixed);
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    per_model,
+    whole_runs,
+    fidelity_levels,
+    rhs_parts,
+    jacobians
+);
 criterion_main!(benches);

@@ -1,8 +1,9 @@
 //! Zero heap allocations over 10,000 steps of a full simulation with a
-//! generated plant (issue 6): swing4 driving on flat ground with terrain
+//! generated plant: swing4 driving on flat ground with terrain
 //! contact, the speed loop and the fixed-step RK4 integrator; and the same
-//! real-time path with the generic plant on random terrain, with RK4 and
-//! semi-implicit Euler (issue 5), under a heading hold with both integrals
+//! real-time path with the generic plant on random terrain, with RK4,
+//! semi-implicit Euler and ROS2 (and ROS2 with the generated plant's
+//! assembled Jacobian), under a heading hold with both integrals
 //! and with open-loop torques set between steps. Its own test binary: it installs a
 //! counting global allocator.
 
@@ -76,8 +77,45 @@ fn ten_thousand_rk4_steps_with_a_generated_plant_allocate_nothing() {
 
 #[test]
 fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
-    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
-    let model = spec.model;
+    for (method, contact) in [
+        ("rk4", ContactMethod::Bounded),
+        ("rk4", ContactMethod::Meridional),
+        ("semi_implicit_euler", ContactMethod::Bounded),
+        ("ros2", ContactMethod::Bounded),
+    ] {
+        let model = swing4_model();
+        let plant = rover_runtime::GenericPlant::new(model.clone()).unwrap();
+        drive_without_allocating(plant, &model, method, contact);
+    }
+}
+
+/// ROS2 with the Jacobian assembled from the generated plant's exact one and
+/// the wheels' load derivatives.
+#[test]
+fn ros2_with_the_assembled_jacobian_allocates_nothing_per_step() {
+    let model = swing4_model();
+    drive_without_allocating(
+        rover_models::Swing4::new(),
+        &model,
+        "ros2",
+        ContactMethod::Bounded,
+    );
+}
+
+fn swing4_model() -> rover_dynamics::Model {
+    rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")
+        .unwrap()
+        .model
+}
+
+/// 10 000 steps of `method` at 0.1 ms on random ground, under a speed loop,
+/// a heading hold and external torques, without one allocation.
+fn drive_without_allocating<P: rover_dynamics::Plant>(
+    plant: P,
+    model: &rover_dynamics::Model,
+    method: &str,
+    contact: ContactMethod,
+) {
     let terrain: rover_runtime::terrain::TerrainConfig =
         toml::from_str("kind = \"random\"\nz_r = 0.1\nextent = [-3.0, 3.0, -3.0, 3.0]").unwrap();
     let terrain = terrain.build(std::path::Path::new(".")).unwrap();
@@ -86,69 +124,57 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
          heading_deg = 10.0\nkp = 2.0\nki = 0.5\nkd = 0.2\ncross_track = 1.0\ncross_track_integral = 0.1\n",
     )
     .unwrap();
-    for (method, contact) in [
-        ("rk4", ContactMethod::Bounded),
-        ("rk4", ContactMethod::Meridional),
-        ("semi_implicit_euler", ContactMethod::Bounded),
-        ("ros2", ContactMethod::Bounded),
-    ] {
-        let ground = Ground::new(
-            terrain.clone(),
-            &model,
-            contact,
-            RimSampling::default(),
-            WheelLawConfig::default(),
-        );
-        let controller = Controller::new(control.clone(), &model, 0.0).unwrap();
-        let mut sys = RoverSystem::new(
-            rover_runtime::GenericPlant::new(model.clone()).unwrap(),
-            Some(ground),
-            controller,
-        );
-        let n = model.dof();
-        // The speed loop's integral and the heading hold's two.
-        assert_eq!(sys.dim(), 2 * n + 3);
-        let mut y = vec![0.0; sys.dim()];
-        y[2] = 0.27;
-        y[6..n].copy_from_slice(&model.rest());
-        y[n] = 0.1;
-        let config = match method {
-            "rk4" => {
-                rover_runtime::integrate::IntegratorConfig::Rk4(FixedStepConfig { step: 1e-4 })
-            }
-            // Its Jacobian every step (by differences), a 0.1 ms step as the others.
-            "ros2" => rover_runtime::integrate::IntegratorConfig::Ros2(
-                rover_runtime::integrate::Ros2Config {
-                    step: 1e-4,
-                    jacobian_every: 1,
-                },
-            ),
-            _ => rover_runtime::integrate::IntegratorConfig::SemiImplicitEuler(FixedStepConfig {
+    let ground = Ground::new(
+        terrain,
+        model,
+        contact,
+        RimSampling::default(),
+        WheelLawConfig::default(),
+    );
+    let controller = Controller::new(control, model, 0.0).unwrap();
+    let mut sys = RoverSystem::new(plant, Some(ground), controller);
+    let n = model.dof();
+    // The speed loop's integral and the heading hold's two.
+    assert_eq!(sys.dim(), 2 * n + 3);
+    let mut y = vec![0.0; sys.dim()];
+    y[2] = 0.27;
+    y[6..n].copy_from_slice(&model.rest());
+    y[n] = 0.1;
+    let config = match method {
+        "rk4" => rover_runtime::integrate::IntegratorConfig::Rk4(FixedStepConfig { step: 1e-4 }),
+        // Its Jacobian every step, a 0.1 ms step as the others.
+        "ros2" => {
+            rover_runtime::integrate::IntegratorConfig::Ros2(rover_runtime::integrate::Ros2Config {
                 step: 1e-4,
-            }),
-        };
-        let mut integ = config.build(sys.dim()).unwrap();
-        let mut t = 0.0;
-        integ.advance(&mut sys, &mut t, &mut y, 1e-4).unwrap();
-        // An external controller's torques on top, set every other step.
-        let commands = [[0.01, -0.01, 0.02, 0.0], [0.0; 4]];
-        let counted = allocation_counter::measure(|| {
-            for k in 2..=10_001 {
-                sys.set_torques(&commands[k % 2]).unwrap();
-                integ
-                    .advance(&mut sys, &mut t, &mut y, k as f64 * 1e-4)
-                    .unwrap();
-            }
-        });
-        assert_eq!(
-            counted.count_total, 0,
-            "{method}, {contact:?}: {} allocations over 10 000 steps",
-            counted.count_total
-        );
-        assert!((t - 1.0001).abs() < 1e-12 && y.iter().all(|v| v.is_finite()));
-        assert!(
-            sys.reports().iter().any(|r| r.normal > 0.0),
-            "{method}: the wheels touch the ground"
-        );
-    }
+                jacobian_every: 1,
+                jacobian: Default::default(),
+            })
+        }
+        _ => rover_runtime::integrate::IntegratorConfig::SemiImplicitEuler(FixedStepConfig {
+            step: 1e-4,
+        }),
+    };
+    let mut integ = config.build(sys.dim()).unwrap();
+    let mut t = 0.0;
+    integ.advance(&mut sys, &mut t, &mut y, 1e-4).unwrap();
+    // An external controller's torques on top, set every other step.
+    let commands = [[0.01, -0.01, 0.02, 0.0], [0.0; 4]];
+    let counted = allocation_counter::measure(|| {
+        for k in 2..=10_001 {
+            sys.set_torques(&commands[k % 2]).unwrap();
+            integ
+                .advance(&mut sys, &mut t, &mut y, k as f64 * 1e-4)
+                .unwrap();
+        }
+    });
+    assert_eq!(
+        counted.count_total, 0,
+        "{method}, {contact:?}: {} allocations over 10 000 steps",
+        counted.count_total
+    );
+    assert!((t - 1.0001).abs() < 1e-12 && y.iter().all(|v| v.is_finite()));
+    assert!(
+        sys.reports().iter().any(|r| r.normal > 0.0),
+        "{method}: the wheels touch the ground"
+    );
 }

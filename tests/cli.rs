@@ -1,4 +1,4 @@
-//! The command line end to end (issue 5): every output file of both paper
+//! The command line end to end: every output file of both paper
 //! rovers, located errors for bad scenario files, exit codes.
 
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! Generated == generic (issue 6): the checked-in generated plants of
+//! Generated == generic: the checked-in generated plants of
 //! models/ against the generic plant on the same rover, on 1000 random
 //! states each, to 1e-12 relative; the generated exact Jacobian against
 //! forward-mode duals through the generic equations.

@@ -1,4 +1,4 @@
-//! Runs with the controllers (issue 5): the paper's Fig. 5 turn, the speed
+//! Runs with the controllers: the paper's Fig. 5 turn, the speed
 //! loop, slip steering, active suspension, the integrators against each
 //! other.
 

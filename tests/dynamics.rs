@@ -1,4 +1,4 @@
-//! Invariants of the equations of motion (issue 3): M symmetric positive
+//! Invariants of the equations of motion: M symmetric positive
 //! definite and equal to the Hessian of T; ∂M/∂y against finite differences;
 //! the momentum form of Ṁ·w and f2 against the explicit one; an independent
 //! Lagrangian route; invariance in X, Y, ψ; virtual work of applied loads.

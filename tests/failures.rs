@@ -1,4 +1,4 @@
-//! Runs that cannot finish (issues 3 and 5): they stop with an error naming
+//! Runs that cannot finish: they stop with an error naming
 //! the time and the cause, keep the rows computed so far, and say so.
 
 use std::path::Path;

@@ -1,4 +1,4 @@
-//! The four fidelity levels (issue 7, MODEL.md §9).
+//! The four fidelity levels (MODEL.md §9).
 
 use rover_dynamics::fidelity::Fidelity;
 use rover_dynamics::plant::{Plant, WheelLoad};

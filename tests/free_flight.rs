@@ -1,4 +1,4 @@
-//! Conservation laws in free flight (issue 3): with g = 0 and no springs,
+//! Conservation laws in free flight: with g = 0 and no springs,
 //! dampers or contacts, T and the inertial linear and angular momenta are
 //! conserved; with gravity and springs but no damping, T + U is.
 

@@ -1,4 +1,4 @@
-//! Wheel–ground interaction (issue 4): static equilibrium on flat ground,
+//! Wheel–ground interaction: static equilibrium on flat ground,
 //! contact geometry over a bump, the two contact methods against each other.
 
 use rover_dynamics::Model;

@@ -1,4 +1,4 @@
-//! The no_std build is part of the test suite (issue 6): the canary crate
+//! The no_std build is part of the test suite: the canary crate
 //! tests/no_std_canary (`#![no_std]`, its own panic handler, a generated
 //! plant) must build alone; a std dependency would fail it with E0152.
 //! And "no panics" is checked on the machine code: no path of the

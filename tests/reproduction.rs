@@ -1,4 +1,4 @@
-//! The paper's results (issue 7, MODEL.md §10), on the terrain amplitude
+//! The paper's results (MODEL.md §10), on the terrain amplitude
 //! docs/REPRODUCTION.md chooses (node amplitude ±0.25 m).
 
 use crate::support::run::run;

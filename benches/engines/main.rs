@@ -226,6 +226,7 @@ fn rover_ros2<P: Plant>(model: &Model, plant: P, terrain: &Terrain, step: f64) -
     let config = Ros2Config {
         step,
         jacobian_every: 1,
+        jacobian: Default::default(),
     };
     let make = |dim| Ros2::new(dim, &config).unwrap();
     let (_, y, ros2) = drive(model, plant, terrain, make, DURATION);

@@ -134,6 +134,15 @@ impl Plant for BuiltinPlant {
     fn set_spring_neutral(&mut self, coord: usize, neutral: f64) {
         dispatch!(self, p => p.set_spring_neutral(coord, neutral))
     }
+    fn jacobian(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[WheelLoad],
+        jac: &mut [f64],
+    ) -> Option<()> {
+        dispatch!(self, p => p.jacobian(x, w, loads, jac))
+    }
 }
 
 /// The path of a built-in rover's file, relative to the workspace root

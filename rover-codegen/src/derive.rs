@@ -470,7 +470,7 @@ fn stub(input: &syn::DeriveInput) -> TokenStream {
             /// Stub.
             pub const SPRING_NEUTRALS: [f64; 0] = [];
             /// Stub.
-            pub const MIN_COS_ROLL: f64 = 1e-6;
+            pub const MIN_COS_ROLL: f64 = ::rover_dynamics::plant::MIN_COS_ROLL;
             /// Stub.
             pub const fn new() -> Self { #plant }
             /// Stub.

@@ -216,7 +216,7 @@ impl {name} {{
     /// The description's spring neutrals y_0.
     pub const SPRING_NEUTRALS: [f64; {m}] = [{neutrals}];
     /// Smallest |cos φ| accepted before the attitude is singular (as the generic plant).
-    pub const MIN_COS_ROLL: f64 = 1e-6;
+    pub const MIN_COS_ROLL: f64 = {PLANT}::MIN_COS_ROLL;
 
     /// The plant with the description's spring neutrals.
     pub const fn new() -> Self {{
@@ -354,6 +354,33 @@ impl {name} {{
         );
     }
     s.push_str("}\n");
+    let jacobian_method = if traced.jacobian.is_some() {
+        format!(
+            r#"
+    fn jacobian(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[{PLANT}::WheelLoad],
+        jac: &mut [f64],
+    ) -> ::core::option::Option<()> {{
+        let (Ok(x), Ok(w), Ok(loads)) = (
+            <&[f64; {n}]>::try_from(x),
+            <&[f64; {n}]>::try_from(w),
+            <&[{PLANT}::WheelLoad; {k}]>::try_from(loads),
+        ) else {{
+            return None;
+        }};
+        for (o, v) in jac.iter_mut().zip(self.jacobian_array(x, w, loads).iter().flatten()) {{
+            *o = *v;
+        }}
+        Some(())
+    }}
+"#
+        )
+    } else {
+        String::new()
+    };
     let _ = write!(
         s,
         r#"
@@ -437,7 +464,7 @@ impl {PLANT}::Plant for {name} {{
             *n = neutral;
         }}
     }}
-}}
+{jacobian_method}}}
 "#
     );
     let _ = write!(

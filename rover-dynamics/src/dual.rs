@@ -114,16 +114,35 @@ impl<T: Scalar + PartialOrd> Scalar for Dual<T> {
     }
     fn sqrt(self) -> Self {
         let r = self.re.sqrt();
-        Self {
-            re: r,
-            eps: self.eps / (r + r),
-        }
+        // At 0 along a direction that does not move the argument, the
+        // derivative is 0, not 0/0: the lateral force of a wheel at full
+        // drive saturation, `F_c·sqrt(1 − 1)`, is flat in every direction
+        // that keeps it saturated.
+        let eps = if self.eps == T::zero() {
+            T::zero()
+        } else {
+            self.eps / (r + r)
+        };
+        Self { re: r, eps }
     }
     fn atan2(self, x: Self) -> Self {
         let d = x.re * x.re + self.re * self.re;
         Self {
             re: self.re.atan2(x.re),
             eps: (x.re * self.eps - self.re * x.eps) / d,
+        }
+    }
+    fn atan(self) -> Self {
+        Self {
+            re: self.re.atan(),
+            eps: self.eps / (T::one() + self.re * self.re),
+        }
+    }
+    fn hypot(self, other: Self) -> Self {
+        let h = self.re.hypot(other.re);
+        Self {
+            re: h,
+            eps: (self.re * self.eps + other.re * other.eps) / h,
         }
     }
     fn exp(self) -> Self {

@@ -34,6 +34,7 @@ pub mod linalg;
 #[cfg(feature = "plant")]
 pub mod plant;
 pub mod scalar;
+pub mod wheel_law;
 
 #[cfg(feature = "alloc")]
 pub mod model;

@@ -61,6 +61,11 @@ impl core::fmt::Display for PlantError {
     }
 }
 
+/// Smallest |cos φ| a plant accepts before it declares the attitude
+/// singular (the Euler angles' rates divide by cos φ): the generic plant and
+/// every generated one test against this one value.
+pub const MIN_COS_ROLL: f64 = 1e-6;
+
 /// A rover plant model: state in, wheel kinematics out; wheel loads in,
 /// derivatives out (MODEL.md §2–§5).
 ///
@@ -88,6 +93,20 @@ pub trait Plant {
     fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]);
     /// Set the neutral value y_0 of coordinate i's spring (active suspension, eq. 42).
     fn set_spring_neutral(&mut self, coord: usize, neutral: f64);
+    /// The exact Jacobian `∂(ẋ, ẇ)/∂(x, w)` at fixed wheel loads into `jac`,
+    /// row-major `2·dof × 2·dof`, for implicit integrators; the loads' own
+    /// dependence on the state is the ground's to add. `None` when the plant
+    /// has none: the generic plant, or a generated one built without
+    /// `jacobian = true` (the integrators then difference the right-hand side).
+    fn jacobian(
+        &mut self,
+        _x: &[f64],
+        _w: &[f64],
+        _loads: &[WheelLoad],
+        _jac: &mut [f64],
+    ) -> Option<()> {
+        None
+    }
 }
 
 /// A plant whose sizes are known at compile time: `N` generalized

@@ -56,6 +56,15 @@ pub trait Scalar:
     fn sq(self) -> Self {
         self * self
     }
+    /// Arctangent, as `atan2(self, 1)` unless the scalar has its own.
+    fn atan(self) -> Self {
+        self.atan2(Self::one())
+    }
+    /// `sqrt(self² + other²)`, written out unless the scalar has its own
+    /// (f64's avoids overflow and rounds once).
+    fn hypot(self, other: Self) -> Self {
+        (self * self + other * other).sqrt()
+    }
 }
 
 impl Scalar for f64 {
@@ -98,5 +107,13 @@ impl Scalar for f64 {
     #[inline(always)]
     fn copysign(self, sign: Self) -> Self {
         libm::copysign(self, sign)
+    }
+    #[inline(always)]
+    fn atan(self) -> Self {
+        libm::atan(self)
+    }
+    #[inline(always)]
+    fn hypot(self, other: Self) -> Self {
+        libm::hypot(self, other)
     }
 }

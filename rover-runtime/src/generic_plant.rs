@@ -11,8 +11,7 @@ use rover_dynamics::mass::{MAX_DOF, mass_matrix};
 use rover_dynamics::plant::{Plant, PlantError, WheelLoad, WheelState};
 use rover_dynamics::workspace::Workspace;
 
-/// Smallest |cos φ| accepted before the attitude is declared singular.
-pub const MIN_COS_ROLL: f64 = 1e-6;
+pub use rover_dynamics::plant::MIN_COS_ROLL;
 
 /// A plant that interprets a [`Model`]: any rover, no recompilation. Sized
 /// once in [`GenericPlant::new`]; no call allocates.

@@ -1,14 +1,17 @@
 //! The ground acting on the wheels: contact geometry, force law and the
 //! reduction of the patch forces to loads on the plant (MODEL.md §6–§7).
 
-use rover_dynamics::Model;
+use rover_dynamics::dual::Dual;
+use rover_dynamics::linalg::{cross, dot, v3};
 use rover_dynamics::plant::{WheelLoad, WheelState};
+use rover_dynamics::wheel_law::PatchForces;
+use rover_dynamics::{Model, Scalar};
 use serde::{Deserialize, Serialize};
 
+use crate::contact::Patch;
 use crate::contact::{
     BoundedContact, Contact, MeridionalContact, RimSampling, SearchMemory, TrackedContact,
 };
-use crate::contact::{cross, dot};
 use crate::terrain::{HeightField, OffMap};
 use crate::wheel_law::{PatchMotion, Tyre, WheelLaw, WheelLawConfig};
 
@@ -202,6 +205,88 @@ impl<H: HeightField> Ground<H> {
     }
 }
 
+impl<H: HeightField> Ground<H> {
+    /// Each wheel's [`LoadDerivative`] at the contacts of the last
+    /// [`Ground::find_contacts`] and the motor torques `torques`.
+    pub fn load_derivatives(
+        &self,
+        states: &[WheelState],
+        torques: &[f64],
+        out: &mut [LoadDerivative],
+    ) {
+        for (k, d) in out.iter_mut().enumerate() {
+            *d = load_derivative(
+                &self.law,
+                &self.tyres[k],
+                &self.terrain,
+                &states[k],
+                &self.contacts[k],
+                torques[k],
+            );
+        }
+    }
+}
+
+/// How patch `p`'s lever |G_jH| changes as the wheel centre moves, the rim
+/// and the ground held: `∂|G_jH|/∂G_j`. The chord's ends A and B slide
+/// along the ground; by the implicit function theorem on the rim angle at
+/// which the rim meets the ground (`ν` the ground's upward normal
+/// `(−∂h/∂X, −∂h/∂Y, 1)` there, `u′` the rim's direction of travel),
+/// ```text
+/// ∂|G_jH|/∂G_j = ½·Σ_{A, B} (n·u′)/(ν·u′)·ν
+/// ```
+/// which is `n` on a plane under an upright wheel and grows as `1/(1 − κR)`
+/// in a hollow of curvature κ (a large wheel in a dip presses harder than
+/// the plane through its contact point says). An end the ground cannot be
+/// queried at, or where the rim runs along the ground, counts as on a plane
+/// through H.
+fn lever_gradient<H: HeightField>(terrain: &H, s: &WheelState, p: &Patch) -> [f64; 3] {
+    let radius = p.lever + p.deflection;
+    let half = (radius * radius - p.lever * p.lever).max(0.0).sqrt();
+    let ends = [-1.0, 1.0].map(|side| {
+        let end = [0, 1, 2].map(|k| p.point[k] + side * half * p.tangent[k]);
+        let radial = [0, 1, 2].map(|k| end[k] - s.centre[k]);
+        // The rim's direction of travel at the end, in the wheel's plane.
+        let travel = cross(s.spin_axis, radial);
+        let ground = match terrain.height_gradient(end[0], end[1]) {
+            Ok((_, [gx, gy])) => [-gx, -gy, 1.0],
+            Err(_) => p.normal,
+        };
+        let across = dot(ground, travel);
+        if across.abs() < 1e-9 * radius {
+            return p.normal;
+        }
+        let ratio = dot(p.normal, travel) / across;
+        [0, 1, 2].map(|k| ratio * ground[k])
+    });
+    [0, 1, 2].map(|k| 0.5 * (ends[0][k] + ends[1][k]))
+}
+
+/// The height of G at which the lowest wheel of `model` just touches the
+/// ground, G above `(X, Y)` at `attitude` with suspension coordinates
+/// `coordinates` (each wheel's lowest rim point taken straight below its
+/// centre: exact for upright wheels over level ground, and where a start
+/// or a first solve is placed).
+pub fn touchdown_height<H: HeightField + ?Sized>(
+    model: &Model,
+    at: [f64; 2],
+    attitude: rover_dynamics::attitude::Attitude<f64>,
+    coordinates: &[f64],
+    terrain: &H,
+) -> Result<f64, WheelOffMap> {
+    let r = attitude.rotation();
+    let mut z = f64::NEG_INFINITY;
+    for (wheel, w) in model.wheels.iter().enumerate() {
+        let u = model.bodies[w.body].position.value(coordinates);
+        let p = [0, 1, 2].map(|k| r[k][0] * u[0] + r[k][1] * u[1] + r[k][2] * u[2]);
+        let g = terrain
+            .height(at[0] + p[0], at[1] + p[1])
+            .map_err(|off| WheelOffMap { wheel, off })?;
+        z = z.max(g + w.radius - p[2]);
+    }
+    Ok(z)
+}
+
 /// Smallest drive lever, as a fraction of the wheel radius. Eq. 38's
 /// `F_d = τ/|G_jH|` is singular for a wheel buried to its centre (a chord
 /// through G_j, `|G_jH| = 0`): any drive torque saturates the pull at
@@ -212,21 +297,86 @@ impl<H: HeightField> Ground<H> {
 /// the pull continuous there and the paper's law untouched elsewhere.
 pub const MIN_LEVER_FRACTION: f64 = 0.5;
 
-fn motion(s: &WheelState, p: &crate::contact::Patch, torque: f64) -> PatchMotion {
+/// The motion of patch `p` of a wheel whose centre is displaced by `shift`
+/// from where the patch was found and moves at `velocity`, with the patch's
+/// frame held: `|G_jH| = |G_jH|₀ + g·shift` (`g` = `lever_gradient`, see
+/// [`lever_gradient`]), `Δ = Δ₀ − g·shift`, `Δ̇ = −V·n`, `v_t = V·t`,
+/// `v_c = V·c`. A run evaluates it with `shift = 0` (exactly the patch
+/// found); the Jacobian differentiates it in `shift` and `velocity`.
+fn motion<S: Scalar>(
+    p: &Patch,
+    lever_gradient: [f64; 3],
+    shift: [S; 3],
+    velocity: [S; 3],
+    torque: S,
+) -> PatchMotion<S> {
+    let normal = v3::<S>(p.normal);
+    let along = dot(v3::<S>(lever_gradient), shift);
+    let lever = S::cst(p.lever) + along;
     // R = |G_jH| + Δ for every patch.
     let radius = p.lever + p.deflection;
     PatchMotion {
-        deflection: p.deflection,
-        deflection_rate: -dot(s.velocity, p.normal),
-        v_t: dot(s.velocity, p.tangent),
-        v_c: dot(s.velocity, p.lateral),
-        lever: p.lever.max(MIN_LEVER_FRACTION * radius),
+        deflection: S::cst(p.deflection) - along,
+        deflection_rate: -dot(velocity, normal),
+        v_t: dot(velocity, v3(p.tangent)),
+        v_c: dot(velocity, v3(p.lateral)),
+        lever: lever.max(S::cst(MIN_LEVER_FRACTION * radius)),
         torque,
     }
 }
 
-fn normal_force(tyre: &Tyre, s: &WheelState, p: &crate::contact::Patch) -> f64 {
-    crate::wheel_law::normal_force_of(tyre, &motion(s, p, 0.0))
+fn normal_force(tyre: &Tyre, s: &WheelState, p: &Patch) -> f64 {
+    crate::wheel_law::normal_force_of(tyre, &motion(p, p.normal, [0.0; 3], s.velocity, 0.0))
+}
+
+/// What one patch does to its wheel, reduced to the centre G_j.
+struct PatchLoad<S> {
+    /// The patch's resultant force F_n·n + (F_d + F_rr)·t + F_c*·c \[N\].
+    force: [S; 3],
+    /// Its moment about G_j, less the component along the spin axis [N·m].
+    moment: [S; 3],
+    /// The motor torque that drives the pull, |G_jH|·F_d [N·m].
+    motor: S,
+    /// The law's forces.
+    forces: PatchForces<S>,
+    /// The ground's longitudinal force F_d + F_rr \[N\].
+    along: S,
+}
+
+/// [`PatchLoad`] of patch `p` under the torque `share`, for a centre
+/// displaced by `shift` and moving at `velocity` (see [`motion`]); the arm
+/// from G_j to H is `(H − G_j)₀ − (g·shift)·n`, the measured arm when
+/// `shift = 0`.
+#[allow(clippy::too_many_arguments)]
+fn patch_load<L: WheelLaw, S: Scalar + PartialOrd>(
+    law: &L,
+    tyre: &Tyre,
+    s: &WheelState,
+    p: &Patch,
+    lever_gradient: [f64; 3],
+    shift: [S; 3],
+    velocity: [S; 3],
+    share: S,
+) -> PatchLoad<S> {
+    let m = motion(p, lever_gradient, shift, velocity, share);
+    let forces = law.forces(tyre, &m);
+    // The ground's longitudinal force: the pull plus the rolling resistance
+    // (exactly 0 without it).
+    let along = forces.drawbar + crate::wheel_law::rolling_resistance(tyre, &m, forces.normal);
+    let (n, t, c) = (v3::<S>(p.normal), v3::<S>(p.tangent), v3::<S>(p.lateral));
+    let force = [0, 1, 2].map(|k| forces.normal * n[k] + along * t[k] + forces.lateral * c[k]);
+    let moved = dot(v3::<S>(lever_gradient), shift);
+    let arm = [0, 1, 2].map(|k| S::cst(p.point[k] - s.centre[k]) - moved * n[k]);
+    let moment = cross(arm, force);
+    let axis = v3::<S>(s.spin_axis);
+    let axial = dot(moment, axis);
+    PatchLoad {
+        force,
+        moment: [0, 1, 2].map(|k| moment[k] - axial * axis[k]),
+        motor: m.lever * forces.drawbar,
+        forces,
+        along,
+    }
 }
 
 /// Reduce the forces on a wheel's patches to its centre (MODEL.md §7):
@@ -256,41 +406,87 @@ pub fn wheel_load<L: WheelLaw>(
     let total: f64 = normals.iter().sum();
     let mut strongest = 0.0;
     for (i, p) in patches.iter().enumerate() {
-        let share = if total > 0.0 {
-            torque * normals[i] / total
-        } else {
-            0.0
-        };
-        let patch_motion = motion(s, p, share);
-        let f = law.forces(tyre, &patch_motion);
-        // The ground's longitudinal force: the pull, less the rolling
-        // resistance (exactly the pull without it, bit for bit).
-        let rolling = crate::wheel_law::rolling_resistance(tyre, &patch_motion, f.normal);
-        let along = if rolling != 0.0 {
-            f.drawbar + rolling
-        } else {
-            f.drawbar
-        };
-        let force = [0, 1, 2]
-            .map(|k| f.normal * p.normal[k] + along * p.tangent[k] + f.lateral * p.lateral[k]);
-        let arm = [0, 1, 2].map(|k| p.point[k] - s.centre[k]);
-        let m = cross(arm, force);
-        let axial = dot(m, s.spin_axis);
-        // The motor's reaction: the torque that drives the pull.
-        let tau = patch_motion.lever * f.drawbar;
+        let share = torque_share(torque, &normals, total, i);
+        let pl = patch_load(law, tyre, s, p, p.normal, [0.0; 3], s.velocity, share);
         for k in 0..3 {
-            load.force[k] += force[k];
-            load.moment[k] += m[k] - axial * s.spin_axis[k];
-            load.stator_torque[k] -= tau * s.spin_axis[k];
+            load.force[k] += pl.force[k];
+            load.moment[k] += pl.moment[k];
+            load.stator_torque[k] -= pl.motor * s.spin_axis[k];
         }
-        report.normal += f.normal;
-        report.drawbar += along;
-        report.lateral += f.lateral;
-        report.torque += tau;
-        if f.normal > strongest || i == 0 {
-            strongest = f.normal;
+        report.normal += pl.forces.normal;
+        report.drawbar += pl.along;
+        report.lateral += pl.forces.lateral;
+        report.torque += pl.motor;
+        if pl.forces.normal > strongest || i == 0 {
+            strongest = pl.forces.normal;
             report.point = p.point;
         }
     }
     (load, report)
+}
+
+/// Patch i's part of the drive torque, in proportion to its normal force.
+fn torque_share(torque: f64, normals: &[f64], total: f64, i: usize) -> f64 {
+    if total > 0.0 {
+        torque * normals[i] / total
+    } else {
+        0.0
+    }
+}
+
+/// How a wheel's load changes with its centre, velocity and drive torque:
+/// `∂L/∂(G_j, V_j, τ)`, rows the load's force, moment and stator torque
+/// (3 each, as in [`WheelLoad`]), columns the centre's displacement (3), its
+/// velocity (3) and the torque (1).
+pub type LoadDerivative = [[f64; 7]; 9];
+
+/// [`LoadDerivative`] of one wheel at the patches of its last contact, by
+/// dual numbers through the very [`patch_load`] the run evaluates, each
+/// patch's lever moving with the centre as [`lever_gradient`] says. The
+/// patches' frames (n, t, c) are held: what this keeps is the stiff part of
+/// the load — the tyre's spring and damper (k_w, c_w), the cornering law's
+/// lateral damping and the rolling resistance along the velocity, the pull's
+/// dependence on the torque and lever — and what it leaves out turns with
+/// the geometry (terms of order F/R, against k_w). The torque split between
+/// patches is held too.
+pub fn load_derivative<L: WheelLaw, H: HeightField>(
+    law: &L,
+    tyre: &Tyre,
+    terrain: &H,
+    s: &WheelState,
+    contact: &Contact,
+    torque: f64,
+) -> LoadDerivative {
+    let mut d = [[0.0; 7]; 9];
+    let patches = contact.patches();
+    let normals: [f64; crate::contact::MAX_PATCHES] =
+        core::array::from_fn(|i| patches.get(i).map_or(0.0, |p| normal_force(tyre, s, p)));
+    let total: f64 = normals.iter().sum();
+    for (i, p) in patches.iter().enumerate() {
+        let share = torque_share(torque, &normals, total, i);
+        let share_rate = if total > 0.0 { normals[i] / total } else { 0.0 };
+        let gradient = lever_gradient(terrain, s, p);
+        for col in 0..7 {
+            let seed = |j: usize| if col == j { 1.0 } else { 0.0 };
+            let shift = [0, 1, 2].map(|k| Dual {
+                re: 0.0,
+                eps: seed(k),
+            });
+            let velocity = [0, 1, 2].map(|k| Dual {
+                re: s.velocity[k],
+                eps: seed(3 + k),
+            });
+            let torque = Dual {
+                re: share,
+                eps: seed(6) * share_rate,
+            };
+            let pl = patch_load(law, tyre, s, p, gradient, shift, velocity, torque);
+            for k in 0..3 {
+                d[k][col] += pl.force[k].eps;
+                d[3 + k][col] += pl.moment[k].eps;
+                d[6 + k][col] -= pl.motor.eps * s.spin_axis[k];
+            }
+        }
+    }
+    d
 }

@@ -163,18 +163,17 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         // Nose up on a rise ahead is a negative pitch (θ turns x towards −z);
         // left side up on a rise to the left is a positive roll.
         let (theta, phi) = (-forward.atan(), left.atan());
-        let att = Attitude::new(phi, theta, pose[2]);
-        let r = att.rotation();
-        let mut z = f64::NEG_INFINITY;
-        for (k, w) in model.wheels.iter().enumerate() {
-            let u = model.bodies[w.body].position.value(&y);
-            let p = [0, 1, 2].map(|i| r[i][0] * u[0] + r[i][1] * u[1] + r[i][2] * u[2]);
-            let g = self
-                .terrain
-                .height(pose[0] + p[0], pose[1] + p[1])
-                .map_err(|off| QuasiStaticError::OffMap { wheel: k, off })?;
-            z = z.max(g + w.radius - p[2]);
-        }
+        let z = crate::ground::touchdown_height(
+            model,
+            [pose[0], pose[1]],
+            Attitude::new(phi, theta, pose[2]),
+            &y,
+            self.terrain,
+        )
+        .map_err(|e| QuasiStaticError::OffMap {
+            wheel: e.wheel,
+            off: e.off,
+        })?;
         let stiffness: f64 = model.wheels.iter().map(|w| w.stiffness).sum();
         self.q[0] = z - model.total_mass() * model.gravity / stiffness;
         self.q[1] = phi;

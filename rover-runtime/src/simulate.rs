@@ -17,7 +17,7 @@ use crate::integrate::{Integrator, OdeSystem};
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::sim::{RoverSystem, RunError, RunOptions, Stop, run};
-use crate::terrain::{HeightField, Terrain};
+use crate::terrain::Terrain;
 
 /// A run that could not start: the scenario does not fit the rover, or a
 /// piece could not be built.
@@ -133,17 +133,9 @@ pub fn initial_state(
 
 /// Z of G such that the lowest wheel just touches the ground below it.
 fn ground_contact_height(model: &Model, x: &[f64], terrain: &Terrain) -> Result<f64, SetupError> {
-    let r = Attitude::new(x[3], x[4], x[5]).rotation();
-    let mut z = f64::NEG_INFINITY;
-    for w in &model.wheels {
-        let u = model.bodies[w.body].position.value(&x[6..]);
-        let p = [0, 1, 2].map(|k| r[k][0] * u[0] + r[k][1] * u[1] + r[k][2] * u[2]);
-        let g = terrain
-            .height(x[0] + p[0], x[1] + p[1])
-            .map_err(SetupError::OffMap)?;
-        z = z.max(g + w.radius - p[2]);
-    }
-    Ok(z)
+    let attitude = Attitude::new(x[3], x[4], x[5]);
+    crate::ground::touchdown_height(model, [x[0], x[1]], attitude, &x[6..], terrain)
+        .map_err(|e| SetupError::OffMap(e.off))
 }
 
 /// Run `scenario` with `plant` (whose model is `model`, named `name`),

@@ -121,10 +121,15 @@ impl OdeSystem for StiffLinearExact {
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Infallible> {
         StiffLinear.rhs(t, y, dy)
     }
-    fn jacobian(&mut self, _t: f64, _y: &[f64], jac: &mut [f64]) -> Option<Result<(), Infallible>> {
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        _y: &[f64],
+        jac: &mut [f64],
+    ) -> Option<Result<usize, Infallible>> {
         self.jacobian_calls += 1;
         jac.copy_from_slice(&[-500.5, 499.5, 499.5, -500.5]);
-        Some(Ok(()))
+        Some(Ok(0))
     }
 }
 

@@ -1,4 +1,4 @@
-//! Terrain: interpolants, library, random field, file formats, config (issue 4, item 1).
+//! Terrain: interpolants, library, random field, file formats, config.
 
 use std::path::{Path, PathBuf};
 

@@ -5,5 +5,5 @@ mod fig1;
 mod fuzz;
 mod jet;
 mod library;
-mod models;
+mod builtin_models;
 mod roundtrip;

@@ -47,7 +47,7 @@ impl Swing4Simplified {
         0.30019663134302466,
     ];
     /// Smallest |cos φ| accepted before the attitude is singular (as the generic plant).
-    pub const MIN_COS_ROLL: f64 = 1e-6;
+    pub const MIN_COS_ROLL: f64 = ::rover_dynamics::plant::MIN_COS_ROLL;
     /// The plant with the description's spring neutrals.
     pub const fn new() -> Self {
         Self {
@@ -3128,6 +3128,28 @@ impl ::rover_dynamics::plant::Plant for Swing4Simplified {
         if let Some(n) = self.neutral.get_mut(coord) {
             *n = neutral;
         }
+    }
+    fn jacobian(
+        &mut self,
+        x: &[f64],
+        w: &[f64],
+        loads: &[::rover_dynamics::plant::WheelLoad],
+        jac: &mut [f64],
+    ) -> ::core::option::Option<()> {
+        let (Ok(x), Ok(w), Ok(loads)) = (
+            <&[f64; 10]>::try_from(x),
+            <&[f64; 10]>::try_from(w),
+            <&[::rover_dynamics::plant::WheelLoad; 4]>::try_from(loads),
+        ) else {
+            return None;
+        };
+        for (o, v) in jac
+            .iter_mut()
+            .zip(self.jacobian_array(x, w, loads).iter().flatten())
+        {
+            *o = *v;
+        }
+        Some(())
     }
 }
 /// The same plant on nalgebra's fixed-size types (no length checks, no heap).

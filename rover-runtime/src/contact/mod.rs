@@ -8,5 +8,4 @@ mod tracked;
 pub use bounded::{BoundedContact, CROSSING_TOLERANCE, NEGLIGIBLE, SearchMemory};
 pub use meridional::{MeridionalContact, RimSampling};
 pub use patch::{Contact, MAX_PATCHES, Patch};
-pub(crate) use patch::{cross, dot};
 pub use tracked::TrackedContact;

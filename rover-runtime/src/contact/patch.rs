@@ -1,5 +1,7 @@
 //! What the contact search finds for one wheel.
 
+pub(crate) use rover_dynamics::linalg::{cross, dot, norm};
+
 /// Most contact patches one wheel can have (a wheel straddling a ridge or
 /// the two edges of a ditch); fixed so the search never allocates.
 pub const MAX_PATCHES: usize = 4;
@@ -212,18 +214,4 @@ impl RimFrame {
             angle: mid,
         }
     }
-}
-
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(crate) fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
 }

@@ -113,7 +113,7 @@ impl Bdf {
             t_hist: 0.0,
             spare: BdfHistory::new(dim),
             jac: vec![0.0; dim * dim],
-            jac_scratch: JacobianScratch::new(dim),
+            jac_scratch: JacobianScratch::new(dim, config.jacobian),
             have_jac: false,
             jac_current: false,
             lu: Lu::new(dim),

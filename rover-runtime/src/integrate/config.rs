@@ -2,7 +2,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{AnyIntegrator, Bdf, ConfigError, Dopri5, Rk4, Ros2, Ros2Config, SemiImplicitEuler};
+use super::{
+    AnyIntegrator, Bdf, ConfigError, Dopri5, JacobianSource, Rk4, Ros2, Ros2Config,
+    SemiImplicitEuler,
+};
 
 /// The integrator of a run: the method and its parameters. In TOML, one table named after
 /// the method (unknown keys are rejected; omitted keys take the defaults below):
@@ -96,6 +99,9 @@ pub struct BdfConfig {
     pub min_step: f64,
     /// Step attempts allowed in one `advance` call (default 100 000).
     pub max_steps: u64,
+    /// Where the Newton iterations' Jacobian comes from (default `"system"`: the rover's
+    /// own where its plant has one, differences otherwise).
+    pub jacobian: JacobianSource,
 }
 
 impl Default for BdfConfig {
@@ -108,6 +114,7 @@ impl Default for BdfConfig {
             max_step: f64::INFINITY,
             min_step: 1e-10,
             max_steps: 100_000,
+            jacobian: JacobianSource::System,
         }
     }
 }

@@ -1,19 +1,37 @@
 //! The Jacobian `∂f/∂y` for implicit methods: the system's own, or forward differences.
 
+use serde::{Deserialize, Serialize};
+
 use super::{IntegrateError, OdeSystem, Stats};
+
+/// Where an implicit method takes its Jacobian from (`jacobian = "system"` in
+/// `[integrator.bdf]` or `[integrator.ros2]`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JacobianSource {
+    /// The system's own ([`OdeSystem::jacobian`]: for a rover with a generated plant,
+    /// assembled from the plant's exact Jacobian and the wheels' load derivatives), and
+    /// forward differences where it has none. The default.
+    #[default]
+    System,
+    /// Forward differences of the right-hand side, `dim` evaluations each time.
+    Differences,
+}
 
 /// Scratch for [`jacobian`]: a perturbed state and its derivative, allocated once.
 #[derive(Debug, Clone)]
 pub(crate) struct JacobianScratch {
     y: Vec<f64>,
     f: Vec<f64>,
+    source: JacobianSource,
 }
 
 impl JacobianScratch {
-    pub(crate) fn new(dim: usize) -> Self {
+    pub(crate) fn new(dim: usize, source: JacobianSource) -> Self {
         Self {
             y: vec![0.0; dim],
             f: vec![0.0; dim],
+            source,
         }
     }
 }
@@ -36,8 +54,11 @@ pub(crate) fn jacobian<S: OdeSystem + ?Sized>(
 ) -> Result<(), IntegrateError<S::Error>> {
     let rhs_error = |source| IntegrateError::Rhs { t, source };
     stats.jacobian_evals += 1;
-    if let Some(result) = sys.jacobian(t, y, jac) {
-        return result.map_err(rhs_error);
+    if scratch.source == JacobianSource::System
+        && let Some(result) = sys.jacobian(t, y, jac)
+    {
+        stats.rhs_evals += result.map_err(rhs_error)? as u64;
+        return Ok(());
     }
     let n = y.len();
     let sqrt_eps = f64::EPSILON.sqrt();

@@ -25,7 +25,6 @@ impl Lu {
     }
 
     /// The matrix to fill (row-major) before [`Lu::factor`].
-    #[cfg(test)]
     pub(crate) fn matrix_mut(&mut self) -> &mut [f64] {
         &mut self.a
     }

@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::call_check::check_call;
-use super::jacobian::{JacobianScratch, jacobian};
+use super::jacobian::{JacobianScratch, JacobianSource, jacobian};
 use super::lu::Lu;
 use super::step_size::fixed_steps;
 use super::{ConfigError, IntegrateError, Integrator, OdeSystem, Stats};
@@ -23,6 +23,10 @@ pub struct Ros2Config {
     /// a cheaper step can trade stability margin for cost; the cost per step is then uneven.
     #[serde(default = "one")]
     pub jacobian_every: u32,
+    /// Where the Jacobian comes from (default `"system"`: the rover's own where its plant
+    /// has one, differences otherwise).
+    #[serde(default)]
+    pub jacobian: JacobianSource,
 }
 
 fn one() -> u32 {
@@ -95,7 +99,7 @@ impl Ros2 {
             dim,
             config: *config,
             jac: vec![0.0; dim * dim],
-            scratch: JacobianScratch::new(dim),
+            scratch: JacobianScratch::new(dim, config.jacobian),
             lu: Lu::new(dim),
             lu_gamma_h: f64::NAN,
             jac_age: None,
@@ -256,6 +260,7 @@ mod tests {
         let config = Ros2Config {
             step: h,
             jacobian_every: 1,
+            jacobian: JacobianSource::Differences,
         };
         let mut m = Ros2::new(1, &config).unwrap();
         let (mut t, mut y) = (0.0, [1.0]);

@@ -40,15 +40,17 @@ pub trait OdeSystem {
         None
     }
 
-    /// The exact Jacobian `∂f/∂y` at `(t, y)`, row-major (`jac[i·dim + j] = ∂f_i/∂y_j`), for
-    /// the implicit BDF method. Default: `None`, and the integrator uses forward finite
+    /// The system's own Jacobian `∂f/∂y` at `(t, y)`, row-major (`jac[i·dim + j] =
+    /// ∂f_i/∂y_j`), for the implicit methods (BDF, ROS2), with the number of right-hand-side
+    /// evaluations it spent. It may approximate: the methods need it for convergence and
+    /// stability, not for their order. Default: `None`, and the integrator uses forward finite
     /// differences (`dim` extra right-hand-side evaluations).
     fn jacobian(
         &mut self,
         _t: f64,
         _y: &[f64],
         _jac: &mut [f64],
-    ) -> Option<Result<(), Self::Error>> {
+    ) -> Option<Result<usize, Self::Error>> {
         None
     }
 }

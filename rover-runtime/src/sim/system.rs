@@ -13,6 +13,10 @@ use crate::terrain::HeightField;
 use super::error::{CommandError, SimError};
 use super::profile::{Lap, RhsProfile};
 
+mod jacobian;
+
+use jacobian::JacobianWork;
+
 /// Plant, ground and controller, with every buffer a right-hand side needs
 /// (sized once: an evaluation allocates nothing).
 #[derive(Clone, Debug)]
@@ -35,14 +39,18 @@ pub struct RoverSystem<P, H> {
     next_break: f64,
     /// Where the right-hand sides' time goes, when asked for.
     profile: Option<RhsProfile>,
+    /// Buffers of the assembled Jacobian ([`OdeSystem::jacobian`]).
+    jacobian_work: JacobianWork,
 }
 
 impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// Assemble a system.
-    pub fn new(plant: P, ground: Option<Ground<H>>, control: Controller) -> Self {
+    pub fn new(mut plant: P, ground: Option<Ground<H>>, control: Controller) -> Self {
         let n = plant.dof();
         let k = plant.wheel_count();
+        let dim = 2 * n + control.states();
         Self {
+            jacobian_work: JacobianWork::new(&mut plant, n, k, dim),
             plant,
             ground,
             n,
@@ -135,6 +143,10 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     pub fn reports(&self) -> &[WheelReport] {
         &self.reports
     }
+    /// Wheel loads of the last evaluation, as the plant received them.
+    pub fn loads(&self) -> &[WheelLoad] {
+        &self.loads
+    }
     /// Motor torques of the last evaluation [N·m].
     pub fn torques(&self) -> &[f64] {
         &self.torques
@@ -142,6 +154,16 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// Steering angles of the last evaluation \[rad\].
     pub fn steering(&self) -> &[f64] {
         &self.steer
+    }
+
+    /// The commands' time for an evaluation at `t`: before the next break,
+    /// its left limit on it ([`RoverSystem::set_next_break`]).
+    fn command_time(&self, t: f64) -> f64 {
+        if t >= self.next_break {
+            self.next_break.next_down()
+        } else {
+            t
+        }
     }
 
     /// The full evaluation: wheels, contacts, control, loads, accelerations.
@@ -174,12 +196,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         mark: &mut impl FnMut(usize),
     ) -> Result<(), SimError> {
         let n = self.n;
-        // The commands' time: before the next break, its left limit on it.
-        let t = if t >= self.next_break {
-            self.next_break.next_down()
-        } else {
-            t
-        };
+        let t = self.command_time(t);
         let (x, rest) = y.split_at(n);
         let (w, z) = rest.split_at(n);
         self.control.steer(t, x, z, &mut self.steer);
@@ -267,6 +284,12 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
         let n = self.n;
         position_rates(&y[..n], &y[n..2 * n], dx);
         Some(Ok(()))
+    }
+
+    /// Assembled from the plant's exact Jacobian and the wheels' load
+    /// derivatives (see the `jacobian` module) when the plant has one.
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut [f64]) -> Option<Result<usize, SimError>> {
+        self.assembled_jacobian(t, y, jac)
     }
 }
 

@@ -1,15 +1,16 @@
 //! Pacejka's magic formula for the lateral force, as a second law (MODEL.md §7).
 
+use rover_dynamics::wheel_law::Lateral;
 use serde::{Deserialize, Serialize};
 
-use super::chen_genta::sideslip;
-use super::law::{PatchForces, PatchMotion, Tyre, WheelLaw, combined, drawbar_pull, normal_force};
+use super::law::WheelLaw;
 
 /// Normal and drive forces as in the paper; the lateral force by
 /// ```text
 /// F_c = −D·sin(C_s·atan(B·α − E·(B·α − atan(B·α)))),  D = μy·F_n,  B = C/(C_s·D)
 /// ```
-/// so that the slope at α = 0 is the wheel's cornering stiffness C, like eq. 40.
+/// so that the slope at α = 0 is the wheel's cornering stiffness C, like eq. 40
+/// ([`rover_dynamics::wheel_law::magic_formula`]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MagicFormula {
@@ -42,21 +43,11 @@ impl Default for MagicFormula {
 }
 
 impl WheelLaw for MagicFormula {
-    fn forces(&self, tyre: &Tyre, motion: &PatchMotion) -> PatchForces {
-        let normal = normal_force(tyre, motion);
-        if normal <= 0.0 {
-            return PatchForces::default();
-        }
-        let drawbar = drawbar_pull(tyre, motion, normal);
-        let alpha = sideslip(motion, self.v_eps);
-        let d = tyre.mu_y * normal;
-        let b = tyre.cornering_stiffness / (self.shape * d);
-        let ba = b * alpha;
-        let lateral = -d * (self.shape * (ba - self.curvature * (ba - ba.atan())).atan()).sin();
-        PatchForces {
-            normal,
-            drawbar,
-            lateral: combined(lateral, drawbar, tyre, normal),
+    fn lateral(&self) -> Lateral {
+        Lateral::MagicFormula {
+            shape: self.shape,
+            curvature: self.curvature,
+            v_eps: self.v_eps,
         }
     }
 }

@@ -1,0 +1,312 @@
+//! The rover's Jacobian `∂f/∂y` assembled from its parts, for the implicit
+//! integrators (BDF's Newton iterations, ROS2's `W = I − γhJ`), in place of
+//! `dim` differenced right-hand sides:
+//! ```text
+//! ∂f/∂y = ∂f/∂y|_L  +  ∂f/∂L · Σ_j ∂L_j/∂(G_j, V_j, τ_j) · ∂(G_j, V_j, τ_j)/∂y
+//! ```
+//! - `∂f/∂y|_L`, the plant at fixed wheel loads: the generator's exact
+//!   Jacobian ([`Plant::jacobian`]);
+//! - `∂L_j/∂(G_j, V_j, τ_j)`, each wheel's load against its centre, velocity
+//!   and torque: dual numbers through the run's own wheel law
+//!   ([`crate::ground::load_derivative`]), with the contact patches' frames
+//!   held;
+//! - `∂V_j/∂w = J_j(x)`: exact, the wheel velocities being linear in `w`
+//!   (the plant's kinematics at unit `w`); `∂G_j/∂x = J_j·B⁻¹`, since
+//!   `Ġ_j = J_j·w` and `ẋ = B·w`;
+//! - `∂f/∂L`: exact, `ẇ` being linear in the loads (one plant evaluation per
+//!   column, no difference quotient);
+//! - `∂τ/∂y` and the controller's integral rates `∂ζ̇/∂y`: differences of the
+//!   controller alone (no contact search, no plant).
+//!
+//! Left out are the terms that turn with the geometry — the patch frames,
+//! `∂V_j/∂x` at fixed `w`, the steering's dependence on the state — of order
+//! F/R and V·C against the tyre's k_w and the cornering law's lateral damping,
+//! which make the system stiff. Neither method needs more: BDF's Newton
+//! iteration converges to the same solution with any good approximation of
+//! `J`, and ROS2 keeps its order with any `W`. The cost is one right-hand side,
+//! 2N + dim plant-sized calls and a few µs of per-wheel algebra, against `dim`
+//! right-hand sides for differences.
+
+use rover_dynamics::kinematics::position_rates;
+use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
+
+use crate::ground::LoadDerivative;
+use crate::integrate::Lu;
+use crate::sim::SimError;
+use crate::terrain::HeightField;
+
+use super::RoverSystem;
+
+/// Buffers of the assembled Jacobian, sized once with the system.
+#[derive(Clone, Debug)]
+pub(super) struct JacobianWork {
+    /// The plant has an exact Jacobian.
+    available: bool,
+    f0: Vec<f64>,
+    plant: Vec<f64>,
+    unit: Vec<f64>,
+    rates: Vec<f64>,
+    kinematics: Vec<WheelState>,
+    /// `∂V_k/∂w_j` at `[k·n + j]`.
+    velocity: Vec<[f64; 3]>,
+    /// `∂G_k/∂x_j` at `[k·n + j]`.
+    centre: Vec<[f64; 3]>,
+    /// `Bᵀ`, factored.
+    b_t: Lu,
+    column: Vec<f64>,
+    loads: Vec<LoadDerivative>,
+    /// `∂τ_k/∂y_j` at `[k·dim + j]`.
+    torque: Vec<f64>,
+    tau: Vec<f64>,
+    y: Vec<f64>,
+    zd: Vec<f64>,
+    perturbed: Vec<WheelLoad>,
+    xd: Vec<f64>,
+    wd: Vec<f64>,
+}
+
+impl Default for JacobianWork {
+    fn default() -> Self {
+        Self {
+            available: false,
+            f0: Vec::new(),
+            plant: Vec::new(),
+            unit: Vec::new(),
+            rates: Vec::new(),
+            kinematics: Vec::new(),
+            velocity: Vec::new(),
+            centre: Vec::new(),
+            b_t: Lu::new(0),
+            column: Vec::new(),
+            loads: Vec::new(),
+            torque: Vec::new(),
+            tau: Vec::new(),
+            y: Vec::new(),
+            zd: Vec::new(),
+            perturbed: Vec::new(),
+            xd: Vec::new(),
+            wd: Vec::new(),
+        }
+    }
+}
+
+impl JacobianWork {
+    /// Buffers for `n` coordinates, `k` wheels and state dimension `dim`,
+    /// and whether `plant` has an exact Jacobian (asked once, at rest).
+    pub(super) fn new(plant: &mut impl Plant, n: usize, k: usize, dim: usize) -> Self {
+        let mut plant_jacobian = vec![0.0; 4 * n * n];
+        let available = plant
+            .jacobian(
+                &vec![0.0; n],
+                &vec![0.0; n],
+                &vec![WheelLoad::default(); k],
+                &mut plant_jacobian,
+            )
+            .is_some();
+        Self {
+            available,
+            f0: vec![0.0; dim],
+            plant: plant_jacobian,
+            unit: vec![0.0; n],
+            rates: vec![0.0; n],
+            kinematics: vec![WheelState::default(); k],
+            velocity: vec![[0.0; 3]; k * n],
+            centre: vec![[0.0; 3]; k * n],
+            b_t: Lu::new(n),
+            column: vec![0.0; n],
+            loads: vec![[[0.0; 7]; 9]; k],
+            torque: vec![0.0; k * dim],
+            tau: vec![0.0; k],
+            y: vec![0.0; dim],
+            zd: vec![0.0; dim - 2 * n],
+            perturbed: vec![WheelLoad::default(); k],
+            xd: vec![0.0; n],
+            wd: vec![0.0; n],
+        }
+    }
+}
+
+/// The difference step for coordinate value `v` (Hairer & Wanner II, §IV.8).
+fn step(v: f64) -> f64 {
+    let perturbed = v + f64::EPSILON.sqrt() * v.abs().max(1.0);
+    perturbed - v
+}
+
+/// Calls `f(j, h, x, w, z)` at `y + h·e_j` for every state j, `h` the
+/// difference step: forward differences of what is cheap to evaluate (the
+/// controller), `scratch` holding the perturbed state.
+fn each_perturbed(
+    y: &[f64],
+    n: usize,
+    scratch: &mut [f64],
+    mut f: impl FnMut(usize, f64, &[f64], &[f64], &[f64]),
+) {
+    scratch.copy_from_slice(y);
+    for j in 0..y.len() {
+        let h = step(y[j]);
+        scratch[j] = y[j] + h;
+        let (x, rest) = scratch.split_at(n);
+        let (w, z) = rest.split_at(n);
+        f(j, h, x, w, z);
+        scratch[j] = y[j];
+    }
+}
+
+impl<P: Plant, H: HeightField> RoverSystem<P, H> {
+    /// Writes the assembled `∂f/∂y` at `(t, y)` into `jac` (row-major) and
+    /// returns the right-hand sides it spent; `None` when the plant has no
+    /// exact Jacobian or the attitude is singular there, and the integrator
+    /// differences the right-hand side instead.
+    pub(super) fn assembled_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        jac: &mut [f64],
+    ) -> Option<Result<usize, SimError>> {
+        if !self.jacobian_work.available {
+            return None;
+        }
+        let mut work = std::mem::take(&mut self.jacobian_work);
+        let result = self.assemble(t, y, jac, &mut work);
+        self.jacobian_work = work;
+        result
+    }
+
+    fn assemble(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        jac: &mut [f64],
+        work: &mut JacobianWork,
+    ) -> Option<Result<usize, SimError>> {
+        let (n, k, dim) = (self.n, self.wheels.len(), y.len());
+        let two_n = 2 * n;
+        // The wheels, contacts, torques and loads at y.
+        if let Err(e) = self.evaluate(t, y, &mut work.f0) {
+            return Some(Err(e));
+        }
+        let (x, rest) = y.split_at(n);
+        let w = &rest[..n];
+        // None is not reached for a plant that had a Jacobian at construction.
+        self.plant.jacobian(x, w, &self.loads, &mut work.plant)?;
+        jac.iter_mut().for_each(|v| *v = 0.0);
+        for i in 0..two_n {
+            jac[i * dim..i * dim + two_n].copy_from_slice(&work.plant[i * two_n..(i + 1) * two_n]);
+        }
+        let Some(ground) = &self.ground else {
+            // Free flight: no load depends on the state.
+            self.controller_rows(t, y, jac, work);
+            return Some(Ok(1));
+        };
+
+        // The kinematics at unit pseudo-velocities: J_j's columns, B's columns.
+        for j in 0..n {
+            work.unit.iter_mut().for_each(|v| *v = 0.0);
+            work.unit[j] = 1.0;
+            self.plant
+                .wheels(x, &work.unit, &self.steer, &mut work.kinematics);
+            for (wheel, s) in work.kinematics.iter().enumerate() {
+                work.velocity[wheel * n + j] = s.velocity;
+            }
+            position_rates(x, &work.unit, &mut work.rates);
+            work.b_t.matrix_mut()[j * n..(j + 1) * n].copy_from_slice(&work.rates);
+        }
+        if work.b_t.factor().is_err() {
+            return None;
+        }
+        // ∂G/∂x = J·B⁻¹, one row at a time: Bᵀ·gᵀ = jᵀ.
+        for wheel in 0..k {
+            for axis in 0..3 {
+                for j in 0..n {
+                    work.column[j] = work.velocity[wheel * n + j][axis];
+                }
+                work.b_t.solve(&mut work.column);
+                for j in 0..n {
+                    work.centre[wheel * n + j][axis] = work.column[j];
+                }
+            }
+        }
+
+        // The controller's torques, differenced.
+        let tc = self.command_time(t);
+        let (control, normals, commands) = (&self.control, &self.normals, &self.torque_commands);
+        let torques = &self.torques;
+        let (tau, torque) = (&mut work.tau, &mut work.torque);
+        each_perturbed(y, n, &mut work.y, |j, h, xp, wp, zp| {
+            control.torques(tc, xp, wp, zp, normals, commands, tau);
+            for wheel in 0..k {
+                torque[wheel * dim + j] = (tau[wheel] - torques[wheel]) / h;
+            }
+        });
+
+        ground.load_derivatives(&self.wheels, &self.torques, &mut work.loads);
+
+        // Each column through the loads: ẇ is linear in them, so one plant
+        // evaluation at L + s·ΔL gives ∂ẇ/∂L·ΔL exactly (s only keeps the
+        // sum well scaled).
+        let largest_load = self
+            .loads
+            .iter()
+            .flat_map(|l| l.force.iter().chain(&l.moment).chain(&l.stator_torque))
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        for j in 0..dim {
+            let mut largest = 0.0f64;
+            for wheel in 0..k {
+                let mut input = [0.0; 7];
+                if j < n {
+                    input[..3].copy_from_slice(&work.centre[wheel * n + j]);
+                } else if j < two_n {
+                    input[3..6].copy_from_slice(&work.velocity[wheel * n + j - n]);
+                }
+                input[6] = work.torque[wheel * dim + j];
+                let d = &work.loads[wheel];
+                let delta: [f64; 9] =
+                    core::array::from_fn(|r| (0..7).map(|c| d[r][c] * input[c]).sum());
+                largest = delta.iter().fold(largest, |m, v| m.max(v.abs()));
+                let p = &mut work.perturbed[wheel];
+                p.force.copy_from_slice(&delta[..3]);
+                p.moment.copy_from_slice(&delta[3..6]);
+                p.stator_torque.copy_from_slice(&delta[6..]);
+            }
+            if largest == 0.0 {
+                continue;
+            }
+            let scale = (1.0 + largest_load) / largest;
+            for (p, l) in work.perturbed.iter_mut().zip(&self.loads) {
+                for axis in 0..3 {
+                    p.force[axis] = l.force[axis] + scale * p.force[axis];
+                    p.moment[axis] = l.moment[axis] + scale * p.moment[axis];
+                    p.stator_torque[axis] = l.stator_torque[axis] + scale * p.stator_torque[axis];
+                }
+            }
+            if let Err(e) =
+                self.plant
+                    .derivatives(x, w, &work.perturbed, &mut work.xd, &mut work.wd)
+            {
+                return Some(Err(SimError::Plant(e)));
+            }
+            for i in 0..n {
+                jac[(n + i) * dim + j] += (work.wd[i] - work.f0[n + i]) / scale;
+            }
+        }
+        self.controller_rows(t, y, jac, work);
+        Some(Ok(1))
+    }
+
+    /// The rows of the controller's integral states, `∂ζ̇/∂y`, differenced.
+    fn controller_rows(&self, t: f64, y: &[f64], jac: &mut [f64], work: &mut JacobianWork) {
+        let (n, dim) = (self.n, y.len());
+        let states = dim - 2 * n;
+        if states == 0 {
+            return;
+        }
+        let tc = self.command_time(t);
+        let (zd, f0) = (&mut work.zd, &work.f0);
+        each_perturbed(y, n, &mut work.y, |j, h, xp, wp, zp| {
+            self.control.integral_rates(tc, xp, wp, zp, zd);
+            for i in 0..states {
+                jac[(2 * n + i) * dim + j] = (zd[i] - f0[2 * n + i]) / h;
+            }
+        });
+    }
+}
