@@ -14,6 +14,7 @@ mod fidelity;
 mod fixed_step;
 mod free_flight;
 mod ground;
+mod hostile;
 mod linearize;
 mod models;
 mod no_std;

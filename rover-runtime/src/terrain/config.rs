@@ -372,7 +372,9 @@ impl FileConfig {
         {
             return Err(TerrainError::parameter(
                 "scale",
-                format!("scale must be a finite number other than 0, got {scale}: heights are offset + scale·value"),
+                format!(
+                    "scale must be a finite number other than 0, got {scale}: heights are offset + scale·value"
+                ),
                 "give the metres per unit of the file's values (1 for metres, 0.001 for millimetres)",
             ));
         }
@@ -410,7 +412,7 @@ impl FileConfig {
                 &path,
                 super::error::Place::Whole,
                 format!(
-                    "the height at node (column {}, row {} from the south) is {} m after scale and offset; heights must lie within ±{MAX_HEIGHT:e} m",
+                    "the height at node (column {}, row {} from the south) is {:e} m after scale and offset; heights must lie within ±{MAX_HEIGHT:e} m",
                     k % nx + 1,
                     k / nx + 1,
                     heights[k]

@@ -108,8 +108,7 @@ pub fn decode_geotiff(
     if rotated {
         return Err(tag_error(
             TRANSFORMATION,
-            "the raster is placed by a transformation matrix, which may rotate or shear it"
-                .into(),
+            "the raster is placed by a transformation matrix, which may rotate or shear it".into(),
             "warp the DEM north-up first (gdalwarp), which writes ModelPixelScale and \
              ModelTiepoint alone",
         ));

@@ -28,12 +28,19 @@ pub fn magnitudes(ctx: &mut Ctx, value: &toml::Value, path: &str) {
     match value {
         toml::Value::Float(f) if f.is_finite() && f.abs() > MAX_MAGNITUDE => ctx.error(
             path,
-            format!("{} is too large: no rover quantity in SI units exceeds ±{}", num(*f), num(MAX_MAGNITUDE)),
+            format!(
+                "{} is too large: no rover quantity in SI units exceeds ±{}",
+                num(*f),
+                num(MAX_MAGNITUDE)
+            ),
             "give the value in SI units (kg, m, N/m, kg·m²)",
         ),
         toml::Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => ctx.error(
             path,
-            format!("{i} is too large: no rover quantity in SI units exceeds ±{}", num(MAX_MAGNITUDE)),
+            format!(
+                "{i} is too large: no rover quantity in SI units exceeds ±{}",
+                num(MAX_MAGNITUDE)
+            ),
             "give the value in SI units (kg, m, N/m, kg·m²)",
         ),
         toml::Value::Array(a) => {
@@ -68,14 +75,22 @@ pub fn fields(ctx: &mut Ctx, desc: &crate::description::Description) {
     if desc.gravity.is_finite() && desc.gravity > MAX_GRAVITY {
         ctx.error(
             "gravity",
-            format!("gravity {} m/s² is beyond any planet (at most {})", num(desc.gravity), num(MAX_GRAVITY)),
+            format!(
+                "gravity {} m/s² is beyond any planet (at most {})",
+                num(desc.gravity),
+                num(MAX_GRAVITY)
+            ),
             "g is in m/s²: Moon 1.62, Mars 3.71, Earth 9.81",
         );
     }
     if desc.body.mass.is_finite() && desc.body.mass > 0.0 && desc.body.mass < MIN_BODY_MASS {
         ctx.error(
             "body.mass",
-            format!("body mass {} kg is below {} kg", num(desc.body.mass), num(MIN_BODY_MASS)),
+            format!(
+                "body mass {} kg is below {} kg",
+                num(desc.body.mass),
+                num(MIN_BODY_MASS)
+            ),
             "the body mass is in kg",
         );
     }
@@ -127,7 +142,12 @@ pub fn model(
             if d < 1e-3 * radius {
                 ctx.error(
                     format!("wheel[{j}]"),
-                    format!("wheel {} sits at the same place as wheel {} at rest ({} m apart)", j + 1, k + 1, num(d)),
+                    format!(
+                        "wheel {} sits at the same place as wheel {} at rest ({} m apart)",
+                        j + 1,
+                        k + 1,
+                        num(d)
+                    ),
                     "give each wheel its own suspension point",
                 );
             }
@@ -172,9 +192,15 @@ pub fn model(
             let (path, what) = match k.checked_sub(6) {
                 Some(i) => (
                     coordinate_paths.get(i).cloned().unwrap_or_default(),
-                    format!("suspension coordinate {} moves no mass independently of the others", i + 1),
+                    format!(
+                        "suspension coordinate {} moves no mass independently of the others",
+                        i + 1
+                    ),
                 ),
-                None => ("body".to_string(), "the body's mass and inertia leave a direction without inertia".to_string()),
+                None => (
+                    "body".to_string(),
+                    "the body's mass and inertia leave a direction without inertia".to_string(),
+                ),
             };
             ctx.error(
                 path,
