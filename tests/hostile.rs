@@ -250,9 +250,14 @@ fn scenarios_that_would_hang_or_flood_are_refused_naming_the_field() {
             &["samples.toml:3", "contact.samples", "10000", "help:"],
         ),
         (
+            "path_twice",
+            "duration = 1.0\nfidelity = \"quasi_static\"\npath_from = \"path.csv\"\n",
+            &["path.csv:3", "t = 0", "must increase"],
+        ),
+        (
             "long",
             "duration = 1e12\n",
-            &["output rows", "1000000", "help:"],
+            &["long.toml:1", "output rows", "1000000", "help:"],
         ),
         (
             "dense",
@@ -310,6 +315,7 @@ fn scenarios_that_would_hang_or_flood_are_refused_naming_the_field() {
             &["huge.png", "20000 × 20000", "at most 50000000", "crop"],
         ),
     ];
+    write(&dir, "path.csv", "t,X,Y,psi\n0,0,0,0\n0,1,0,0\n1,2,0,0\n");
     write(
         &dir,
         "m.asc",

@@ -443,7 +443,7 @@ pub fn operating_system<P: Plant>(
     use crate::control::{Profile, Steering};
     let n = model.dof();
     let not_steady = |why: &str| Err(LinearizeError::NotSteady(why.to_string()));
-    if !(point.speed.abs() <= MAX_SPEED) {
+    if point.speed.is_nan() || point.speed.abs() > MAX_SPEED {
         return not_steady(&format!(
             "the speed {} m/s is not a finite number within ±{MAX_SPEED} m/s: give the forward speed in m/s (e.g. --speed 0.1)",
             point.speed
@@ -697,4 +697,25 @@ fn dominant(energy: &[f64], names: &[String]) -> Vec<(String, f64)> {
     idx.into_iter()
         .filter_map(|(i, s)| names.get(i).map(|name| (name.clone(), s)))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_equilibrium_advises_what_applies_to_linearizing() {
+        let e = LinearizeError::Equilibrium(QuasiStaticError::NoConvergence {
+            x: 0.0,
+            y: 0.0,
+            iterations: 50,
+            residual: 12.0,
+        });
+        let text = e.to_string();
+        assert!(
+            text.contains("does not stand on its wheels") && text.contains("rover check"),
+            "{text}"
+        );
+        assert!(!text.contains("fidelity"), "{text}");
+    }
 }

@@ -299,7 +299,9 @@ impl Scenario {
         })?;
         s.check().map_err(|(field, message)| ScenarioError {
             file: path.to_path_buf(),
-            line: line_of_field(text, field),
+            // Too many rows at the default rate: the duration's line.
+            line: line_of_field(text, field)
+                .or_else(|| line_of_field(text, "duration").filter(|_| field == "output_rate")),
             message,
         })?;
         Ok(s)
@@ -389,7 +391,7 @@ impl Scenario {
             ));
         }
         let rows = (self.duration * self.output_rate).floor() + 2.0;
-        if !(rows <= MAX_OUTPUT_ROWS as f64) {
+        if rows.is_nan() || rows > MAX_OUTPUT_ROWS as f64 {
             return Err((
                 "output_rate",
                 format!(
@@ -414,7 +416,7 @@ impl Scenario {
             I::Bdf(c) => ("integrator.bdf.max_step", c.max_step, "max_step"),
         };
         // Non-positive or NaN values are the integrator's own check.
-        if !(step > 0.0) {
+        if step.is_nan() || step <= 0.0 {
             return Ok(());
         }
         let steps = self.duration / step;

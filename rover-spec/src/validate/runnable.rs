@@ -160,7 +160,7 @@ pub fn model(
         let deflection = total_mass * model.gravity / k_sum;
         let mean_radius =
             model.wheels.iter().map(|w| w.radius).sum::<f64>() / model.wheels.len() as f64;
-        if !(deflection < 0.5 * mean_radius) {
+        if deflection.is_nan() || deflection >= 0.5 * mean_radius {
             ctx.error(
                 "body.mass",
                 format!(
@@ -188,7 +188,7 @@ pub fn model(
     let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
     for k in 0..n {
         let pivot = a[k * n + k];
-        if !(pivot > 1e-12 * scale) {
+        if pivot.is_nan() || pivot <= 1e-12 * scale {
             let (path, what) = match k.checked_sub(6) {
                 Some(i) => (
                     coordinate_paths.get(i).cloned().unwrap_or_default(),
