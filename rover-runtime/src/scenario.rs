@@ -491,7 +491,10 @@ fn locate(_text: &str, e: &toml::de::Error) -> String {
     let rendered = e.to_string();
     let mut out = String::new();
     for line in rendered.trim_end().lines() {
-        if line.chars().count() > ECHO_WIDTH {
+        // The source echo (`12 | …`) and its caret line (`   |  ^^^`).
+        let gutter = line.trim_start().trim_start_matches(|c: char| c.is_ascii_digit());
+        let echo = gutter.starts_with('|') || gutter.starts_with(" |");
+        if echo && line.chars().count() > ECHO_WIDTH {
             out.extend(line.chars().take(ECHO_WIDTH));
             out.push_str(" …");
         } else {
