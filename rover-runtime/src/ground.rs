@@ -262,29 +262,33 @@ fn lever_gradient<H: HeightField>(terrain: &H, s: &WheelState, p: &Patch) -> [f6
     [0, 1, 2].map(|k| 0.5 * (ends[0][k] + ends[1][k]))
 }
 
-/// The height of G at which the lowest wheel of `model` just touches the
+/// For each wheel of `model`, the height of G at which it just touches the
 /// ground, G above `(X, Y)` at `attitude` with suspension coordinates
 /// `coordinates` (each wheel's lowest rim point taken straight below its
 /// centre: exact for upright wheels over level ground, and where a start
-/// or a first solve is placed).
-pub fn touchdown_height<H: HeightField + ?Sized>(
+/// or a first solve is placed); the largest is where the lowest wheel
+/// touches.
+pub fn touchdown_heights<H: HeightField + ?Sized>(
     model: &Model,
     at: [f64; 2],
     attitude: rover_dynamics::attitude::Attitude<f64>,
     coordinates: &[f64],
     terrain: &H,
-) -> Result<f64, WheelOffMap> {
+) -> Result<Vec<f64>, WheelOffMap> {
     let r = attitude.rotation();
-    let mut z = f64::NEG_INFINITY;
-    for (wheel, w) in model.wheels.iter().enumerate() {
-        let u = model.bodies[w.body].position.value(coordinates);
-        let p = [0, 1, 2].map(|k| r[k][0] * u[0] + r[k][1] * u[1] + r[k][2] * u[2]);
-        let g = terrain
-            .height(at[0] + p[0], at[1] + p[1])
-            .map_err(|off| WheelOffMap { wheel, off })?;
-        z = z.max(g + w.radius - p[2]);
-    }
-    Ok(z)
+    model
+        .wheels
+        .iter()
+        .enumerate()
+        .map(|(wheel, w)| {
+            let u = model.bodies[w.body].position.value(coordinates);
+            let p = [0, 1, 2].map(|k| r[k][0] * u[0] + r[k][1] * u[1] + r[k][2] * u[2]);
+            let g = terrain
+                .height(at[0] + p[0], at[1] + p[1])
+                .map_err(|off| WheelOffMap { wheel, off })?;
+            Ok(g + w.radius - p[2])
+        })
+        .collect()
 }
 
 /// Smallest drive lever, as a fraction of the wheel radius. Eq. 38's

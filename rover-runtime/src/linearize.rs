@@ -36,11 +36,31 @@ use crate::scenario::ContactConfig;
 use crate::sim::{RoverSystem, SimError};
 use crate::terrain::{HeightField, Terrain};
 
+/// Largest forward speed linearized about \[m/s\] (in either direction):
+/// far beyond any planetary rover.
+pub const MAX_SPEED: f64 = 100.0;
+
+/// The equilibrium's error, with advice that applies to linearizing: modes
+/// exist only about a rover that stands on its wheels.
+fn equilibrium_message(e: &QuasiStaticError) -> String {
+    match e {
+        QuasiStaticError::NoConvergence {
+            x,
+            y,
+            iterations,
+            residual,
+        } => format!(
+            "Newton–Raphson did not converge at X = {x:.3} m, Y = {y:.3} m after {iterations} iterations (residual {residual:.3e} N): the rover does not stand on its wheels on flat ground; check with `rover check` that its wheels are below the body and its springs carry its weight, or simulate it to see where it goes"
+        ),
+        other => other.to_string(),
+    }
+}
+
 /// Why a rover could not be linearized.
 #[derive(Debug, thiserror::Error)]
 pub enum LinearizeError {
     /// No static equilibrium on flat ground.
-    #[error("no static equilibrium on flat ground: {0}")]
+    #[error("no static equilibrium on flat ground: {}", equilibrium_message(.0))]
     Equilibrium(#[from] QuasiStaticError),
     /// The right-hand side failed at or near the equilibrium.
     #[error("the right-hand side failed near the equilibrium: {0}")]
@@ -423,8 +443,11 @@ pub fn operating_system<P: Plant>(
     use crate::control::{Profile, Steering};
     let n = model.dof();
     let not_steady = |why: &str| Err(LinearizeError::NotSteady(why.to_string()));
-    if !point.speed.is_finite() {
-        return not_steady("the speed must be finite");
+    if point.speed.is_nan() || point.speed.abs() > MAX_SPEED {
+        return not_steady(&format!(
+            "the speed {} m/s is not a finite number within ±{MAX_SPEED} m/s: give the forward speed in m/s (e.g. --speed 0.1)",
+            point.speed
+        ));
     }
     if point.control.commands.is_some() {
         return not_steady(
@@ -674,4 +697,25 @@ fn dominant(energy: &[f64], names: &[String]) -> Vec<(String, f64)> {
     idx.into_iter()
         .filter_map(|(i, s)| names.get(i).map(|name| (name.clone(), s)))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_equilibrium_advises_what_applies_to_linearizing() {
+        let e = LinearizeError::Equilibrium(QuasiStaticError::NoConvergence {
+            x: 0.0,
+            y: 0.0,
+            iterations: 50,
+            residual: 12.0,
+        });
+        let text = e.to_string();
+        assert!(
+            text.contains("does not stand on its wheels") && text.contains("rover check"),
+            "{text}"
+        );
+        assert!(!text.contains("fidelity"), "{text}");
+    }
 }

@@ -163,7 +163,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         // Nose up on a rise ahead is a negative pitch (θ turns x towards −z);
         // left side up on a rise to the left is a positive roll.
         let (theta, phi) = (-forward.atan(), left.atan());
-        let z = crate::ground::touchdown_height(
+        let z = crate::ground::touchdown_heights(
             model,
             [pose[0], pose[1]],
             Attitude::new(phi, theta, pose[2]),
@@ -173,7 +173,9 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         .map_err(|e| QuasiStaticError::OffMap {
             wheel: e.wheel,
             off: e.off,
-        })?;
+        })?
+        .into_iter()
+        .fold(f64::NEG_INFINITY, f64::max);
         let stiffness: f64 = model.wheels.iter().map(|w| w.stiffness).sum();
         self.q[0] = z - model.total_mass() * model.gravity / stiffness;
         self.q[1] = phi;

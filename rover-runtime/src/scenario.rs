@@ -118,6 +118,18 @@ impl FidelityLevel {
     }
 }
 
+/// Most rim samples `contact.samples` accepts (0.018° apart).
+pub const MAX_CONTACT_SAMPLES: usize = 10_000;
+/// Most output rows a run writes (duration × output_rate + 1), a few GB of
+/// CSV for the largest rovers.
+pub const MAX_OUTPUT_ROWS: u64 = 1_000_000;
+/// Most steps a fixed-step method takes over a run (duration / step), or an
+/// adaptive one at least takes under its `max_step`.
+pub const MAX_STEPS: u64 = 100_000_000;
+/// Farthest a run may start from the origin \[m\] (three Mars radii):
+/// within it a double holds positions to 2 nm.
+pub const MAX_POSITION: f64 = 1e7;
+
 fn default_rate() -> f64 {
     20.0
 }
@@ -251,10 +263,29 @@ pub struct ScenarioError {
 impl Scenario {
     /// Parse and check a scenario file.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError {
+        let error = |line: Option<usize>, message: String| ScenarioError {
             file: path.to_path_buf(),
-            line: None,
-            message: format!("cannot read the scenario file: {e}"),
+            line,
+            message,
+        };
+        if path.is_dir() {
+            return Err(error(
+                None,
+                "is a directory, not a scenario file\n  = help: give the path of a scenario file (.toml)".into(),
+            ));
+        }
+        let bytes = std::fs::read(path)
+            .map_err(|e| error(None, format!("cannot read the scenario file: {e}")))?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            let at = e.utf8_error().valid_up_to();
+            let (line, column) = rover_spec::line_column(e.as_bytes(), at);
+            error(
+                Some(line),
+                format!(
+                    "column {column}: byte {} is not valid UTF-8\n  = help: save the scenario as UTF-8 text (TOML is UTF-8)",
+                    at + 1
+                ),
+            )
         })?;
         Self::parse(&text, path)
     }
@@ -268,7 +299,9 @@ impl Scenario {
         })?;
         s.check().map_err(|(field, message)| ScenarioError {
             file: path.to_path_buf(),
-            line: line_of_field(text, field),
+            // Too many rows at the default rate: the duration's line.
+            line: line_of_field(text, field)
+                .or_else(|| line_of_field(text, "duration").filter(|_| field == "output_rate")),
             message,
         })?;
         Ok(s)
@@ -348,32 +381,138 @@ impl Scenario {
                 ),
             ));
         }
-        if self.contact.samples < 3 {
+        if !(3..=MAX_CONTACT_SAMPLES).contains(&self.contact.samples) {
             return Err((
                 "contact.samples",
-                format!("contact.samples must be ≥ 3, got {}", self.contact.samples),
+                format!(
+                    "contact.samples must lie in [3, {MAX_CONTACT_SAMPLES}], got {}\n  = help: the rim samples over the lower half of each wheel; the default 181 places them 1° apart",
+                    self.contact.samples
+                ),
             ));
         }
-        let i = &self.initial;
-        let mut numbers =
-            i.xy.iter()
-                .chain(&i.attitude_deg)
-                .chain(&i.velocity)
-                .chain(&i.angular_velocity)
-                .chain(i.z.iter());
-        if numbers.any(|v| !v.is_finite()) {
+        let rows = (self.duration * self.output_rate).floor() + 2.0;
+        if rows.is_nan() || rows > MAX_OUTPUT_ROWS as f64 {
             return Err((
-                "initial",
-                "initial: every number must be finite".to_string(),
+                "output_rate",
+                format!(
+                    "duration × output_rate = {} s × {} Hz asks for {rows:.3e} output rows; at most {MAX_OUTPUT_ROWS} are written\n  = help: lower output_rate (rows per second) or shorten duration",
+                    self.duration, self.output_rate
+                ),
+            ));
+        }
+        self.check_steps()?;
+        self.check_initial()
+    }
+
+    /// The number of steps a fixed-step method takes (or an adaptive one
+    /// at least takes under its `max_step`): at most [`MAX_STEPS`].
+    fn check_steps(&self) -> Result<(), (&'static str, String)> {
+        use crate::integrate::IntegratorConfig as I;
+        let (field, step, what): (&'static str, f64, &str) = match &self.integrator {
+            I::Rk4(c) => ("integrator.rk4.step", c.step, "step"),
+            I::SemiImplicitEuler(c) => ("integrator.semi_implicit_euler.step", c.step, "step"),
+            I::Ros2(c) => ("integrator.ros2.step", c.step, "step"),
+            I::Dopri5(c) => ("integrator.dopri5.max_step", c.max_step, "max_step"),
+            I::Bdf(c) => ("integrator.bdf.max_step", c.max_step, "max_step"),
+        };
+        // Non-positive or NaN values are the integrator's own check.
+        if step.is_nan() || step <= 0.0 {
+            return Ok(());
+        }
+        let steps = self.duration / step;
+        if steps > MAX_STEPS as f64 {
+            return Err((
+                field,
+                format!(
+                    "{field} = {step:e} s takes {steps:.3e} steps over duration = {} s; at most {MAX_STEPS} are allowed\n  = help: a rover needs steps of 1e-5 to 1e-3 s: {what} = 1e-4 takes {:.0} steps here",
+                    self.duration,
+                    self.duration / 1e-4
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The `[initial]` numbers: finite, within reach of the origin, and an
+    /// attitude inside the roll-over limit.
+    fn check_initial(&self) -> Result<(), (&'static str, String)> {
+        let i = &self.initial;
+        let fields: [(&'static str, &[f64]); 6] = [
+            ("initial.xy", &i.xy),
+            ("initial.z", i.z.as_slice()),
+            ("initial.attitude_deg", &i.attitude_deg),
+            ("initial.velocity", &i.velocity),
+            ("initial.angular_velocity", &i.angular_velocity),
+            (
+                "initial.suspension_rates",
+                i.suspension_rates.as_deref().unwrap_or(&[]),
+            ),
+        ];
+        for (field, values) in fields {
+            if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+                return Err((
+                    field,
+                    format!(
+                        "{field}: every number must be finite, got {v}\n  = help: give finite numbers in SI units (m, deg, m/s, rad/s)"
+                    ),
+                ));
+            }
+        }
+        for (field, values) in [("initial.xy", &i.xy[..]), ("initial.z", i.z.as_slice())] {
+            if let Some(v) = values.iter().find(|v| v.abs() > MAX_POSITION) {
+                return Err((
+                    field,
+                    format!(
+                        "{field}: {v:e} m is farther than {MAX_POSITION:e} m from the origin, where positions lose their precision\n  = help: place the rover near the origin of its terrain"
+                    ),
+                ));
+            }
+        }
+        let [roll, pitch, _] = i.attitude_deg;
+        if roll.abs() > self.rollover_limit_deg || pitch.abs() > self.rollover_limit_deg {
+            return Err((
+                "initial.attitude_deg",
+                format!(
+                    "initial.attitude_deg: roll {roll}° and pitch {pitch}° must both lie within the roll-over limit ±{}°: the run would stop as a roll-over at once\n  = help: start the rover upright, or raise rollover_limit_deg (below 90)",
+                    self.rollover_limit_deg
+                ),
             ));
         }
         Ok(())
     }
 }
 
-/// The toml error with its line/column and caret (toml's own rendering).
+/// Longest source line echoed in an error (characters).
+const ECHO_WIDTH: usize = 160;
+
+/// The toml error with its line/column and caret (toml's own rendering,
+/// long lines cut to [`ECHO_WIDTH`] characters), then how to fix it.
 fn locate(_text: &str, e: &toml::de::Error) -> String {
-    e.to_string().trim_end().to_string()
+    let rendered = e.to_string();
+    let mut out = String::new();
+    for line in rendered.trim_end().lines() {
+        // The source echo (`12 | …`) and its caret line (`   |  ^^^`).
+        let gutter = line.trim_start().trim_start_matches(|c: char| c.is_ascii_digit());
+        let echo = gutter.starts_with('|') || gutter.starts_with(" |");
+        if echo && line.chars().count() > ECHO_WIDTH {
+            out.extend(line.chars().take(ECHO_WIDTH));
+            out.push_str(" …");
+        } else {
+            out.push_str(line);
+        }
+        out.push('\n');
+    }
+    let message = e.message();
+    let help = if message.contains("wanted exactly 1 element") {
+        "give exactly one method table, e.g. `[integrator.bdf]` or `[integrator.rk4]`, not two"
+    } else if message.contains("recursion limit") {
+        "the file nests arrays or tables too deeply for a scenario: a scenario's tables are at most a few levels deep"
+    } else if message.contains("unknown field") {
+        "remove or correct the key: the fields each table accepts are listed in the message and in the doc of rover-runtime/src/scenario.rs"
+    } else {
+        "a scenario is TOML: its tables and fields are in the doc of rover-runtime/src/scenario.rs (README.md, Files)"
+    };
+    format!("{}  = help: {help}", out)
 }
 
 /// 1-based line where the dotted field `path` (e.g. `control.speed.kp`,

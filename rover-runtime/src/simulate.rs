@@ -124,17 +124,44 @@ pub fn initial_state(
         y[n + 6..2 * n].copy_from_slice(r);
     }
     y[2] = match (init.z, terrain) {
-        (Some(z), _) => z,
+        (Some(z), None) => z,
+        (Some(z), Some(t)) => {
+            // A wheel deeper than half its radius is not a start on the
+            // ground but inside it: the tyre law does not hold there.
+            let touching = wheel_touching_heights(model, &y[..n], t)?;
+            for (j, (zj, w)) in touching.iter().zip(&model.wheels).enumerate() {
+                if zj - z > 0.5 * w.radius {
+                    let lowest = touching.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    return Err(SetupError::Initial {
+                        field: "z",
+                        message: format!(
+                            "z = {z} m puts wheel {} {:.3} m into the ground, more than half its radius ({} m); give z ≥ {lowest:.4} m (every wheel at or above the ground), or leave z out to start with the lowest wheel touching",
+                            j + 1,
+                            zj - z,
+                            w.radius
+                        ),
+                    });
+                }
+            }
+            z
+        }
         (None, None) => 0.0,
-        (None, Some(t)) => ground_contact_height(model, &y[..n], t)?,
+        (None, Some(t)) => wheel_touching_heights(model, &y[..n], t)?
+            .into_iter()
+            .fold(f64::NEG_INFINITY, f64::max),
     };
     Ok(y)
 }
 
-/// Z of G such that the lowest wheel just touches the ground below it.
-fn ground_contact_height(model: &Model, x: &[f64], terrain: &Terrain) -> Result<f64, SetupError> {
+/// For each wheel, the Z of G at which it just touches the ground below
+/// it; the largest is where the lowest wheel touches.
+fn wheel_touching_heights(
+    model: &Model,
+    x: &[f64],
+    terrain: &Terrain,
+) -> Result<Vec<f64>, SetupError> {
     let attitude = Attitude::new(x[3], x[4], x[5]);
-    crate::ground::touchdown_height(model, [x[0], x[1]], attitude, &x[6..], terrain)
+    crate::ground::touchdown_heights(model, [x[0], x[1]], attitude, &x[6..], terrain)
         .map_err(|e| SetupError::OffMap(e.off))
 }
 
@@ -292,8 +319,17 @@ fn imposed_path(
 ) -> Result<Vec<[f64; 3]>, SetupError> {
     if let Some(file) = &scenario.path_from {
         let path = base_dir.join(file);
-        let text = std::fs::read_to_string(&path)
+        let bytes = std::fs::read(&path)
             .map_err(|e| SetupError::Path(format!("{}: {e}", path.display())))?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            let at = e.utf8_error().valid_up_to();
+            let (line, column) = rover_spec::line_column(e.as_bytes(), at);
+            SetupError::Path(format!(
+                "{}:{line}:{column}: byte {} is not valid UTF-8: give the CSV of a run (`run.csv`)",
+                path.display(),
+                at + 1
+            ))
+        })?;
         let mut lines = text.lines();
         let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
         let col = |name: &str| {
@@ -315,6 +351,17 @@ fn imposed_path(
                     "{}:{}: not a number in t, X, Y or psi",
                     path.display(),
                     i + 2
+                )));
+            }
+            if let Some(prev) = rows.last()
+                && r[0] <= prev[0]
+            {
+                return Err(SetupError::Path(format!(
+                    "{}:{}: t = {} does not follow the previous row's t = {}: the times of a path must increase",
+                    path.display(),
+                    i + 2,
+                    r[0],
+                    prev[0]
                 )));
             }
             rows.push(r);
@@ -388,10 +435,13 @@ fn quasi_static_run<W: Write>(
     let y0 = initial_state(model, scenario, Some(&terrain))?;
     let n = model.dof();
     let k = model.wheels.len();
-    let steps = (scenario.duration * scenario.output_rate).round() as usize;
-    let times: Vec<f64> = (0..=steps)
-        .map(|i| (i as f64 / scenario.output_rate).min(scenario.duration))
+    let steps = (scenario.duration * scenario.output_rate).ceil() as usize;
+    let mut times: Vec<f64> = (0..=steps)
+        .map(|i| i as f64 / scenario.output_rate)
+        .take_while(|&t| t < scenario.duration - 1e-12 * (1.0 + scenario.duration))
         .collect();
+    // The end of the run is always a row.
+    times.push(scenario.duration);
     let poses = imposed_path(model, scenario, base_dir, &y0, &times)?;
     let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
     let kinematic_radius = control.kinematic_radius(scenario.duration);

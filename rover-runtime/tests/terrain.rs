@@ -1319,6 +1319,40 @@ fn geotiff_round_trips_and_places_pixel_is_area_rasters() {
 }
 
 #[test]
+fn a_geotiff_placed_by_a_transformation_matrix_is_refused_even_with_a_pixel_scale() {
+    use tiff::encoder::{TiffEncoder, colortype::GrayI16};
+    use tiff::tags::Tag;
+    let mut out = std::io::Cursor::new(Vec::new());
+    {
+        let mut encoder = TiffEncoder::new(&mut out).unwrap();
+        let mut image = encoder.new_image::<GrayI16>(2, 2).unwrap();
+        let tags = image.encoder();
+        tags.write_tag(Tag::ModelPixelScaleTag, &[2.0, 3.0, 0.0][..])
+            .unwrap();
+        tags.write_tag(
+            Tag::ModelTiepointTag,
+            &[0.0, 0.0, 0.0, 100.0, 500.0, 0.0][..],
+        )
+        .unwrap();
+        // A 30° rotation.
+        let (s, c) = 30f64.to_radians().sin_cos();
+        let matrix = [
+            2.0 * c, -3.0 * s, 0.0, 100.0, 2.0 * s, 3.0 * c, 0.0, 500.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+            0.0, 0.0, 1.0,
+        ];
+        tags.write_tag(Tag::ModelTransformationTag, &matrix[..])
+            .unwrap();
+        image.write_data(&[1i16, 2, 3, 4][..]).unwrap();
+    }
+    let path = file("rotated.tif", out.into_inner());
+    let text = message(read_geotiff(&path, 1.0, 0.0));
+    assert!(
+        text.contains("tag ModelTransformation (34264)") && text.contains("gdalwarp"),
+        "{text}"
+    );
+}
+
+#[test]
 fn geotiff_corrupt_files_each_say_what_and_where() {
     let path = file(
         "hole.tif",

@@ -78,9 +78,14 @@ mod spec;
 pub mod suspension;
 mod validate;
 
+/// The limits a description is checked against (docs/DESCRIPTION.md).
+pub mod limits {
+    pub use crate::validate::runnable::{MAX_DOF, MAX_GRAVITY, MAX_MAGNITUDE, MIN_BODY_MASS};
+}
+
 pub use description::Description;
 pub use diagnostic::Diagnostic;
 pub use error::SpecError;
-pub use load::{from_description, load_file, load_str, parse_str};
+pub use load::{from_description, line_column, load_file, load_str, parse_str};
 pub use spec::{BodyFit, Spec, SuspensionInfo};
 pub use validate::validate;

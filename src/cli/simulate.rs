@@ -71,7 +71,24 @@ fn io_err(path: &Path, doing: &str, e: std::io::Error) -> CliError {
 }
 
 /// Run the scenario and write `run.csv` and `summary.json` into `args.out`.
+///
+/// A run that cannot start, for whatever reason, leaves a summary saying
+/// `failed` with the error, and no CSV: an earlier run's outputs in the
+/// same folder never pass for this one's.
 pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
+    let csv_path = args.out.join("run.csv");
+    let summary_path = args.out.join("summary.json");
+    let mut summarized = false;
+    simulate_in(args, &mut summarized).inspect_err(|e| {
+        if !summarized && args.out.is_dir() {
+            fail_outputs(&csv_path, &summary_path, e);
+        }
+    })
+}
+
+/// The run; `summarized` turns true once its summary is written (later
+/// errors, of the plots, leave the run's outputs as they are).
+fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateReport, CliError> {
     let scenario = Scenario::load(&args.scenario)?;
     let base = args
         .scenario
@@ -146,10 +163,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
             Some(l) => format!("{}:{l}: ", args.scenario.display()),
             None => format!("{}: ", args.scenario.display()),
         };
-        let e = CliError::Setup { location, source };
-        // Nothing was computed: no CSV, and a summary that says why.
-        fail_outputs(&csv_path, &summary_path, &e);
-        e
+        CliError::Setup { location, source }
     })?;
     summary.plant = backend;
     bar.finish_and_clear();
@@ -157,6 +171,7 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
         serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
     std::fs::write(&summary_path, json + "\n")
         .map_err(|e| io_err(&summary_path, "write the summary", e))?;
+    *summarized = true;
     let mut files = vec![csv_path.clone(), summary_path];
     if !args.no_plots {
         files.extend(plots(&csv_path, &args.out, &spec, scenario.settle)?);
@@ -216,14 +231,12 @@ fn stalled_warning(spec: &rover_spec::Spec, summary: &Summary) {
     );
 }
 
-/// The outputs of a run that could not start: the CSV (created before the
-/// setup, holding not even its header) is removed and the "running"
-/// summary replaced by a failed one carrying the error. Best effort: the
-/// error itself is what the caller reports.
+/// The outputs of a run that could not start: its CSV (holding not even
+/// its header), or an earlier run's, is removed and the summary replaced by
+/// a failed one carrying the error. Best effort: the error itself is what
+/// the caller reports.
 fn fail_outputs(csv: &Path, summary: &Path, e: &CliError) {
-    if std::fs::metadata(csv).is_ok_and(|m| m.len() == 0) {
-        let _ = std::fs::remove_file(csv);
-    }
+    let _ = std::fs::remove_file(csv);
     let json = serde_json::json!({
         "status": "failed",
         "complete": false,

@@ -106,7 +106,8 @@ impl<E: fmt::Display> fmt::Display for IntegrateError<E> {
             } => write!(
                 f,
                 "{max_steps} step attempts reached only t = {t} s on the way to {t_target} s: \
-                 raise `max_steps` or loosen the tolerances; with an explicit method, \
+                 raise `max_steps`, raise `max_step` if it is set (no step is longer), \
+                 or loosen the tolerances; with an explicit method, \
                  `[integrator.bdf]` takes stiff contact in larger steps"
             ),
             Self::NonFinite {

@@ -112,7 +112,10 @@ where
             }
             k_sample += 1;
         }
-        if (t_out - t).abs() <= 1e-12 * (1.0 + t) {
+        // The end of the run is always a row, on an output instant or not
+        // (an output step that does not divide the duration, or exceeds it).
+        let at_output = (t_out - t).abs() <= 1e-12 * (1.0 + t);
+        if at_output || t >= opts.duration {
             let (roll, pitch) = (y[3], y[4]);
             outcome.max_roll = outcome.max_roll.max(roll.abs());
             outcome.max_pitch = outcome.max_pitch.max(pitch.abs());
@@ -186,6 +189,21 @@ where
             integ.restart();
         }
         let (roll, pitch) = (y[3], y[4]);
+        // Past half a turn between two events is no roll-over but a
+        // numerical blow-up: a rover tips through the limit first.
+        if roll.abs() > std::f64::consts::PI || pitch.abs() > std::f64::consts::PI {
+            let e = RunError::Integration {
+                t,
+                message: format!(
+                    "the attitude jumped to roll {:.1}°, pitch {:.1}° since the previous event: the integration diverged; with a fixed-step method, shorten `step` (1e-4 s suits a rover), or use the adaptive `[integrator.bdf]`",
+                    roll.to_degrees(),
+                    pitch.to_degrees()
+                ),
+                step_control: false,
+            };
+            fail(&mut outcome, t, e);
+            return outcome;
+        }
         if roll.abs() > opts.rollover_limit || pitch.abs() > opts.rollover_limit {
             let e = RunError::RolledOver {
                 t,

@@ -173,6 +173,7 @@ pub fn parse_asc(text: &str, path: &Path) -> Result<Grid, TerrainError> {
     };
     let ncols = count("ncols")?;
     let nrows = count("nrows")?;
+    super::grid::check_file_nodes(path, ncols, nrows)?;
     let spacing = |key: &str| -> Result<Option<f64>, TerrainError> {
         match header.get(key) {
             Some((value, line)) if value <= 0.0 => Err(err(

@@ -353,10 +353,31 @@ impl TerrainConfig {
     }
 }
 
+/// Largest height a terrain file may hold \[m\], after scale and offset.
+pub const MAX_HEIGHT: f64 = 1e6;
+
 impl FileConfig {
     /// Loads the grid, with this table's interpolation and edge policy.
     pub fn load(&self, base_dir: &Path) -> Result<super::grid::Grid, TerrainError> {
         let path = base_dir.join(&self.path);
+        if path.is_dir() {
+            return Err(TerrainError::parameter(
+                "path",
+                format!("`{}` is a directory, not a terrain file", path.display()),
+                "give the path of a .asc, .csv, .png or .tif file (relative to the scenario file)",
+            ));
+        }
+        if let Some(scale) = self.scale
+            && !(scale.is_finite() && scale != 0.0)
+        {
+            return Err(TerrainError::parameter(
+                "scale",
+                format!(
+                    "scale must be a finite number other than 0, got {scale}: heights are offset + scale·value"
+                ),
+                "give the metres per unit of the file's values (1 for metres, 0.001 for millimetres)",
+            ));
+        }
         let format = match self.format {
             Some(format) => format,
             None => FileFormat::from_path(&path)?,
@@ -384,7 +405,22 @@ impl FileConfig {
             scale: self.scale,
             offset: self.offset,
         };
-        Ok(load_grid(&path, format, options)?
+        let grid = load_grid(&path, format, options)?;
+        let (nx, heights) = (grid.nx(), grid.heights());
+        if let Some(k) = heights.iter().position(|z| z.is_nan() || z.abs() > MAX_HEIGHT) {
+            return Err(super::error::FileError::at(
+                &path,
+                super::error::Place::Whole,
+                format!(
+                    "the height at node (column {}, row {} from the south) is {:e} m after scale and offset; heights must lie within ±{MAX_HEIGHT:e} m",
+                    k % nx + 1,
+                    k / nx + 1,
+                    heights[k]
+                ),
+                "check the file's values at that node (a no-data value?) and the scale (metres per unit)",
+            ));
+        }
+        Ok(grid
             .with_interpolation(self.interpolation)
             .with_edge_policy(self.edge))
     }

@@ -83,6 +83,7 @@ pub fn decode_geotiff(
             "give a DEM of at least two rows and two columns",
         ));
     }
+    super::grid::check_file_nodes(path, width, height)?;
 
     // Georeference.
     let doubles =
@@ -101,17 +102,18 @@ pub fn decode_geotiff(
         };
     let pixel_scale = doubles(&mut decoder, Tag::ModelPixelScaleTag, PIXEL_SCALE)?;
     let tiepoint = doubles(&mut decoder, Tag::ModelTiepointTag, TIEPOINT)?;
+    // A transformation matrix places the raster, whatever else is given:
+    // it may rotate or shear it, which a grid cannot represent.
+    let rotated = matches!(decoder.find_tag(Tag::ModelTransformationTag), Ok(Some(_)));
+    if rotated {
+        return Err(tag_error(
+            TRANSFORMATION,
+            "the raster is placed by a transformation matrix, which may rotate or shear it".into(),
+            "warp the DEM north-up first (gdalwarp), which writes ModelPixelScale and \
+             ModelTiepoint alone",
+        ));
+    }
     let Some(pixel_scale) = pixel_scale else {
-        let rotated = matches!(decoder.find_tag(Tag::ModelTransformationTag), Ok(Some(_)));
-        if rotated {
-            return Err(tag_error(
-                TRANSFORMATION,
-                "the raster is placed by a transformation matrix, which may rotate or shear it"
-                    .into(),
-                "warp the DEM north-up first (gdalwarp), which writes ModelPixelScale and \
-                 ModelTiepoint",
-            ));
-        }
         return Err(tag_error(
             PIXEL_SCALE,
             "is missing: the TIFF has no georeference".into(),

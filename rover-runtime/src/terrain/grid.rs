@@ -12,6 +12,31 @@ use super::range_pyramid::{RangePyramid, UpperRows, larger};
 /// Tolerance, in cells, for a query on the map's edge.
 const EDGE_SLACK: f64 = 1e-9;
 
+/// Most nodes a terrain file may hold (as many as the random terrain's
+/// grid): 50 M nodes take about 2 GB with their range pyramid.
+pub const MAX_FILE_NODES: usize = 50_000_000;
+
+/// A file's `nx × ny` grid within [`MAX_FILE_NODES`], checked before
+/// anything of that size is allocated.
+pub(crate) fn check_file_nodes(
+    path: &std::path::Path,
+    nx: usize,
+    ny: usize,
+) -> Result<(), TerrainError> {
+    if nx.saturating_mul(ny) > MAX_FILE_NODES {
+        return Err(super::error::FileError::at(
+            path,
+            super::error::Place::Whole,
+            format!(
+                "the grid is {nx} × {ny} = {} nodes; at most {MAX_FILE_NODES} are loaded",
+                nx.saturating_mul(ny)
+            ),
+            "crop or downsample the map (gdal_translate -outsize, or -srcwin) to the area the rover drives over",
+        ));
+    }
+    Ok(())
+}
+
 /// How far the bicubic interpolant can rise above its nodes, as a share of
 /// their range: the Catmull–Rom weights' negative lobes sum to at most
 /// 1/8 in one dimension (Σ|w| ≤ 1.25, ghost nodes included), so the tensor

@@ -59,7 +59,7 @@ pub use file_format::{FileFormat, LoadOptions, load_grid};
 pub use flat::Flat;
 pub use georeference::Georeference;
 pub use geotiff::{read_geotiff, write_geotiff};
-pub use grid::{EdgePolicy, Grid, Interpolation};
+pub use grid::{EdgePolicy, Grid, Interpolation, MAX_FILE_NODES};
 pub use height_field::{Bounds, HeightField, OffMap, Plane};
 pub use png_map::{SampleScale, read_png, write_png};
 pub use profile::Footprint;

@@ -91,6 +91,7 @@ pub fn decode_png(
             "give a height map of at least two rows and two columns",
         ));
     }
+    super::grid::check_file_nodes(path, width, height)?;
     let size = reader.output_buffer_size().ok_or_else(|| {
         whole(
             format!("the image ({width} × {height}) is too large to decode"),

@@ -4,6 +4,7 @@ mod body;
 mod coordinate;
 mod names;
 mod rover;
+pub mod runnable;
 mod suspension;
 mod wheel;
 

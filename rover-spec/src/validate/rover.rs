@@ -51,7 +51,9 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
     let mut ctx = Ctx::default();
     if let Ok(value) = toml::Value::try_from(desc) {
         non_finite(&mut ctx, &value, "");
+        super::runnable::magnitudes(&mut ctx, &value, "");
     }
+    super::runnable::fields(&mut ctx, desc);
     let gravity = ctx.positive(
         "gravity",
         desc.gravity,
@@ -315,10 +317,39 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         return Err(ctx.diags);
     }
     let rest = coordinates.iter().map(|c| c.rest).collect::<Vec<_>>();
-    let rest_wheel_centres = model_wheels
+    let rest_wheel_centres: Vec<[f64; 3]> = model_wheels
         .iter()
         .map(|w| bodies[w.body].position.value(&rest))
         .collect();
+    let model = Model {
+        gravity,
+        body: RigidBody {
+            mass: body_mass,
+            inertia: body_inertia,
+        },
+        coordinates,
+        bodies,
+        wheels: model_wheels,
+    };
+    let coordinate_paths: Vec<String> = built
+        .iter()
+        .flat_map(|b| b.coords.iter().map(|c| c.path.clone()))
+        .collect();
+    let suspension_of: Vec<String> = built
+        .iter()
+        .enumerate()
+        .flat_map(|(i, b)| b.coords.iter().map(move |_| format!("suspension[{i}]")))
+        .collect();
+    super::runnable::model(
+        &mut ctx,
+        &model,
+        &coordinate_paths,
+        &suspension_of,
+        &rest_wheel_centres,
+    );
+    if !ctx.diags.is_empty() {
+        return Err(ctx.diags);
+    }
     let mut first = 0;
     let suspensions = built
         .iter()
@@ -350,16 +381,7 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         .collect();
     Ok(Spec {
         name: desc.name.clone(),
-        model: Model {
-            gravity,
-            body: RigidBody {
-                mass: body_mass,
-                inertia: body_inertia,
-            },
-            coordinates,
-            bodies,
-            wheels: model_wheels,
-        },
+        model,
         coordinate_names,
         coordinate_linear,
         body_names: carried.iter().map(|c| c.name.clone()).collect(),

@@ -1,0 +1,219 @@
+//! Checks of the assembled model that a run, a linearization and the code
+//! generator all rely on: each names the field to change.
+//!
+//! Limits (docs/DESCRIPTION.md, "Limits"): at most [`MAX_DOF`] degrees of
+//! freedom, at least one wheel, every number within ±[`MAX_MAGNITUDE`],
+//! gravity up to [`MAX_GRAVITY`], a body mass of at least [`MIN_BODY_MASS`],
+//! tyres that carry the rover's weight, wheels at distinct places and a mass
+//! matrix that is positive definite at rest.
+
+use rover_dynamics::Model;
+use rover_dynamics::mass::mass_matrix;
+use rover_dynamics::workspace::Workspace;
+
+use crate::checks::{Ctx, num};
+
+/// Most degrees of freedom (6 + suspension coordinates) a rover may have:
+/// the dense buffers of the plant and of the generated code hold this many.
+pub const MAX_DOF: usize = rover_dynamics::mass::MAX_DOF;
+/// Largest magnitude of any number of a description, in SI units.
+pub const MAX_MAGNITUDE: f64 = 1e12;
+/// Largest gravity \[m/s²\] (ten times Jupiter's).
+pub const MAX_GRAVITY: f64 = 250.0;
+/// Smallest body mass \[kg\].
+pub const MIN_BODY_MASS: f64 = 1e-3;
+
+/// Numbers too large to be a rover quantity in SI units.
+pub fn magnitudes(ctx: &mut Ctx, value: &toml::Value, path: &str) {
+    match value {
+        toml::Value::Float(f) if f.is_finite() && f.abs() > MAX_MAGNITUDE => ctx.error(
+            path,
+            format!(
+                "{} is too large: no rover quantity in SI units exceeds ±{}",
+                num(*f),
+                num(MAX_MAGNITUDE)
+            ),
+            "give the value in SI units (kg, m, N/m, kg·m²)",
+        ),
+        toml::Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => ctx.error(
+            path,
+            format!(
+                "{i} is too large: no rover quantity in SI units exceeds ±{}",
+                num(MAX_MAGNITUDE)
+            ),
+            "give the value in SI units (kg, m, N/m, kg·m²)",
+        ),
+        toml::Value::Array(a) => {
+            for (i, v) in a.iter().enumerate() {
+                magnitudes(ctx, v, &format!("{path}[{i}]"));
+            }
+        }
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let p = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
+                magnitudes(ctx, v, &p);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Checks of single fields that need no model: the name, gravity, the
+/// body mass, the number of wheels.
+pub fn fields(ctx: &mut Ctx, desc: &crate::description::Description) {
+    if desc.name.trim().is_empty() {
+        ctx.error(
+            "name",
+            "the rover's name is empty",
+            "name the rover, e.g. name = \"my_rover\": it heads reports, plots and generated code",
+        );
+    }
+    if desc.gravity.is_finite() && desc.gravity > MAX_GRAVITY {
+        ctx.error(
+            "gravity",
+            format!(
+                "gravity {} m/s² is beyond any planet (at most {})",
+                num(desc.gravity),
+                num(MAX_GRAVITY)
+            ),
+            "g is in m/s²: Moon 1.62, Mars 3.71, Earth 9.81",
+        );
+    }
+    if desc.body.mass.is_finite() && desc.body.mass > 0.0 && desc.body.mass < MIN_BODY_MASS {
+        ctx.error(
+            "body.mass",
+            format!(
+                "body mass {} kg is below {} kg",
+                num(desc.body.mass),
+                num(MIN_BODY_MASS)
+            ),
+            "the body mass is in kg",
+        );
+    }
+    if desc.wheels.is_empty() {
+        ctx.error(
+            "",
+            "the rover has no wheel: it cannot stand on the ground nor be driven",
+            "add at least one `[[wheel]]` table, each on a `[[suspension]]`",
+        );
+    }
+}
+
+/// Checks of the assembled model. `coordinate_paths[i]`: the field path of
+/// coordinate i; `suspension_of[i]`: the path of its suspension;
+/// `wheel_paths[j]`: the path of wheel j.
+pub fn model(
+    ctx: &mut Ctx,
+    model: &Model,
+    coordinate_paths: &[String],
+    suspension_of: &[String],
+    rest_wheel_centres: &[[f64; 3]],
+) {
+    let m = model.m();
+    if model.dof() > MAX_DOF {
+        let path = suspension_of
+            .get(MAX_DOF - 6)
+            .cloned()
+            .unwrap_or_else(|| "suspension".into());
+        ctx.error(
+            path,
+            format!(
+                "the rover has {m} suspension coordinates ({} degrees of freedom); at most {} are supported ({MAX_DOF} degrees of freedom)",
+                model.dof(),
+                MAX_DOF - 6
+            ),
+            "remove suspensions or wheels, or lock coordinates that do not matter",
+        );
+        return;
+    }
+    // Wheels at the same place: one of them is a copy.
+    let radius = model
+        .wheels
+        .iter()
+        .map(|w| w.radius)
+        .fold(f64::INFINITY, f64::min);
+    for (j, a) in rest_wheel_centres.iter().enumerate() {
+        for (k, b) in rest_wheel_centres.iter().enumerate().take(j) {
+            let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            if d < 1e-3 * radius {
+                ctx.error(
+                    format!("wheel[{j}]"),
+                    format!(
+                        "wheel {} sits at the same place as wheel {} at rest ({} m apart)",
+                        j + 1,
+                        k + 1,
+                        num(d)
+                    ),
+                    "give each wheel its own suspension point",
+                );
+            }
+        }
+    }
+    // The tyres must carry the rover: static deflection below the radius.
+    let total_mass = model.body.mass + model.bodies.iter().map(|b| b.mass).sum::<f64>();
+    let k_sum: f64 = model.wheels.iter().map(|w| w.stiffness).sum();
+    if !model.wheels.is_empty() && k_sum > 0.0 {
+        let deflection = total_mass * model.gravity / k_sum;
+        let mean_radius =
+            model.wheels.iter().map(|w| w.radius).sum::<f64>() / model.wheels.len() as f64;
+        if deflection.is_nan() || deflection >= 0.5 * mean_radius {
+            ctx.error(
+                "body.mass",
+                format!(
+                    "the tyres cannot carry the rover: {} kg at g = {} m/s² on a total tyre stiffness of {} N/m deflects them {} m, more than half their radius ({} m)",
+                    num(total_mass),
+                    num(model.gravity),
+                    num(k_sum),
+                    num(deflection),
+                    num(mean_radius)
+                ),
+                "check the masses (kg) and the wheels' `stiffness` k_w (N/m)",
+            );
+        }
+    }
+    // The mass matrix at rest: positive definite, or a coordinate moves no mass.
+    if model.wheels.is_empty() {
+        return;
+    }
+    let mut ws = Workspace::<f64>::new(model);
+    let rest = model.rest();
+    rover_dynamics::kinematics::body_kinematics(model, &rest, &mut ws);
+    mass_matrix(model, &mut ws);
+    let n = model.dof();
+    let mut a = ws.mass.clone();
+    let scale = (0..n).map(|i| a[i * n + i].abs()).fold(0.0, f64::max);
+    for k in 0..n {
+        let pivot = a[k * n + k];
+        if pivot.is_nan() || pivot <= 1e-12 * scale {
+            let (path, what) = match k.checked_sub(6) {
+                Some(i) => (
+                    coordinate_paths.get(i).cloned().unwrap_or_default(),
+                    format!(
+                        "suspension coordinate {} moves no mass independently of the others",
+                        i + 1
+                    ),
+                ),
+                None => (
+                    "body".to_string(),
+                    "the body's mass and inertia leave a direction without inertia".to_string(),
+                ),
+            };
+            ctx.error(
+                path,
+                format!("{what}: the mass matrix is singular at rest (pivot {k} = {})", num(pivot)),
+                "put a wheel or a carried body with mass on the member this coordinate moves, or remove the coordinate",
+            );
+            return;
+        }
+        for i in k + 1..n {
+            let f = a[i * n + k] / pivot;
+            for j in k..n {
+                a[i * n + j] -= f * a[k * n + j];
+            }
+        }
+    }
+}
