@@ -154,7 +154,9 @@ impl Plan {
     pub fn run_task(&self, index: usize) -> serde_json::Value {
         let params = self.tasks.get(index).cloned().unwrap_or_default();
         let outcome = self.scenario_text(index).and_then(|text| {
-            let origin = PathBuf::from(format!("{} (task {index})", self.base_origin.display()));
+            // Named by its task alone: the same message on every machine,
+            // whatever the plan's folder there.
+            let origin = PathBuf::from(format!("task {index}"));
             run_text(self.file.rover.as_deref(), &text, &origin, &self.base_dir)
         });
         record(index, &params, outcome)
@@ -173,7 +175,10 @@ pub fn run_text(
     origin: &Path,
     base_dir: &Path,
 ) -> Result<serde_json::Value, CliError> {
-    let prepared = Prepared::from_text(rover, text, origin, base_dir)?;
+    let mut prepared = Prepared::from_text(rover, text, origin, base_dir)?;
+    // A line of the generated text would point nowhere the user can see:
+    // a run that cannot start names the field alone.
+    prepared.text.clear();
     let never = AtomicBool::new(false);
     let summary = prepared.run(false, std::io::sink(), &never, |_| {})?;
     serde_json::to_value(&summary).map_err(|e| CliError::Other(e.to_string()))
@@ -360,8 +365,9 @@ pub fn gather_csv(plan: &Plan) -> Result<PathBuf, CliError> {
     let rank = |c: &str| match c {
         "task" => 0,
         c if c.starts_with("param.") => 1,
-        "status" | "error" => 2,
-        _ => 3,
+        "status" => 2,
+        "error" => 3,
+        _ => 4,
     };
     for r in &rows {
         if let Some(m) = r.as_object() {

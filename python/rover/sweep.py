@@ -151,9 +151,11 @@ def gather(out: Union[str, os.PathLike], count: int, *, table: str = "parquet"):
             return 0
         if c.startswith("param."):
             return 1
-        if c in ("status", "error"):
+        if c == "status":
             return 2
-        return 3
+        if c == "error":
+            return 3
+        return 4
 
     df = df[sorted(df.columns, key=rank)]
     if table == "parquet":

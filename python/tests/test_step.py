@@ -1,5 +1,6 @@
 """The step-wise Simulation."""
 
+import sys
 import threading
 import time
 
@@ -107,12 +108,26 @@ def test_a_failed_run_raises_and_stays_failed_until_reset():
 
 def test_long_steps_let_other_threads_run(data):
     sim = rover.Simulation(None, data / "slip_rough.toml")
-    ticks = []
-    worker = threading.Thread(target=lambda: sim.step(60))
+    count = [0]
+    stop = threading.Event()
+
+    def counter():
+        while not stop.is_set():
+            count[0] += 1
+
+    # A long switch interval: the counter runs during the steps only if
+    # they release the GIL (held, the count could not move at all).
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(0.05)
+    worker = threading.Thread(target=counter)
     worker.start()
-    while worker.is_alive():
-        ticks.append(time.perf_counter())
-        time.sleep(0.001)
-    worker.join()
-    # The main thread went on while the steps ran.
-    assert len(ticks) > 5
+    try:
+        time.sleep(0.01)
+        before = count[0]
+        sim.step(2000)
+        during = count[0] - before
+    finally:
+        stop.set()
+        worker.join()
+        sys.setswitchinterval(old)
+    assert during > 1000, during
