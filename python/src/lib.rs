@@ -86,11 +86,8 @@ impl Rover {
         self.spec.model.wheels.iter().map(|w| w.steerable).collect()
     }
     /// What `rover check` prints.
-    fn report(&self) -> PyResult<String> {
-        rover::cli::check(&rover::cli::CheckArgs {
-            rover: self.key.clone(),
-        })
-        .map_err(py_err)
+    fn report(&self) -> String {
+        rover_spec::report::check_report(&self.spec)
     }
     fn __repr__(&self) -> String {
         format!(
@@ -189,7 +186,9 @@ fn simulate<'py>(
     Ok((columns, PyBytes::new(py, &data), rows, json))
 }
 
-/// A step-wise run of either kind of plant.
+/// A step-wise run of either kind of plant. One lives in each Simulation
+/// and is never moved, so the variants' sizes differing costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 enum AnyStepper {
     Generated(Stepper<BuiltinPlant>),

@@ -88,3 +88,21 @@ def test_a_loaded_rover_describes_itself():
     assert len(r.wheel_names) == 4
     assert r.dof == 6 + len(r.coordinate_names)
     assert r.report().startswith("rover `swing4`")
+
+
+def test_a_rover_from_a_file_or_text_runs_the_generic_plant_to_the_same_numbers(data):
+    from conftest import REPO
+
+    path = REPO / "models" / "swing4.toml"
+    by_name = rover.simulate("swing4", data / "slip_rough.toml", generic=True)
+    for r in (rover.load(path), rover.load(path.read_text())):
+        assert r.report() == rover.load("swing4").report()
+        run = rover.simulate(r, data / "slip_rough.toml")
+        assert run.summary["plant"] == "generic"
+        assert np.array_equal(run.table, by_name.table)
+
+
+def test_a_bad_description_text_is_an_error_with_its_diagnostics():
+    with pytest.raises(rover.RoverError) as e:
+        rover.load('name = "x"\n[body]\nmass = -1.0\n')
+    assert "error" in str(e.value) and "<string>" in str(e.value)
