@@ -25,7 +25,7 @@ STEP = {
     "output_rate": 1000.0,
     "terrain": {"kind": "flat"},
     "control": {"speed": {"speed": 0.1}},
-    "integrator": {"rk4": {"dt": 1e-3}},
+    "integrator": {"rk4": {"step": 1e-3}},
 }
 
 TASK = {
