@@ -3,3 +3,4 @@
 
 pub mod cli;
 pub mod rover_source;
+pub mod sweep;

@@ -9,11 +9,7 @@ fn main() -> ExitCode {
     match rover::cli::run(args) {
         Ok(code) => code,
         Err(e) => {
-            if e.is_rendered() {
-                eprintln!("{e}");
-            } else {
-                eprintln!("error: {e}");
-            }
+            eprintln!("{}", e.user_message());
             ExitCode::from(2)
         }
     }

@@ -178,3 +178,40 @@ fn drive_without_allocating<P: rover_dynamics::Plant>(
         "{method}: the wheels touch the ground"
     );
 }
+
+/// The step-wise run that the Python package's `Simulation` drives: its
+/// steps, command changes and set-point changes allocate nothing, so a
+/// caller stepping from another language pays only its own call.
+#[test]
+fn a_stepper_allocates_nothing_per_step_nor_per_command() {
+    use rover_runtime::scenario::Scenario;
+    use rover_runtime::sim::Stepper;
+    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
+    let scenario = Scenario::parse(
+        "duration = 100.0\noutput_rate = 100.0\n[terrain]\nkind = \"random\"\nz_r = 0.2\nseed = 2\n\
+         [control.speed]\nspeed = 0.1\n[control.steering]\nkind = \"slip\"\ndelta_tau = 0.05\n\
+         [integrator.rk4]\ndt = 1e-3\n",
+        std::path::Path::new("s.toml"),
+    )
+    .unwrap();
+    let mut s = Stepper::new(
+        rover_models::Swing4::new(),
+        &spec.model,
+        &scenario,
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    s.step(1).unwrap();
+    let counts = allocation_counter::measure(|| {
+        for k in 0..500 {
+            let v = 0.1 * (k % 3) as f64;
+            s.command_buffer().fill(v);
+            s.apply_torques().unwrap();
+            s.set_speed(0.05 + 0.01 * v).unwrap();
+            s.set_steering_setpoint(v).unwrap();
+            s.step(1).unwrap();
+        }
+    });
+    assert_eq!(counts.count_total, 0, "{counts:?}");
+    assert!((s.time() - 5.01).abs() < 1e-9);
+}

@@ -22,4 +22,5 @@ mod no_std;
 mod paper_accuracy;
 mod profile;
 mod reproduction;
+mod sweep;
 mod wheel_law;

@@ -7,6 +7,7 @@ mod linearize;
 #[cfg(feature = "reproduce")]
 mod reproduce;
 mod simulate;
+mod sweep;
 
 use std::process::ExitCode;
 
@@ -18,7 +19,10 @@ pub use codegen::{CodegenArgs, CodegenLevel, codegen};
 pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, reproduce};
-pub use simulate::{SimulateArgs, SimulateReport, build_plant, simulate};
+pub use simulate::{
+    Prepared, SimulateArgs, SimulateReport, build_plant, generated_plant, simulate,
+};
+pub use sweep::{SweepArgs, sweep};
 
 /// Simulate wheeled planetary rovers on rough terrain (Chen & Genta 2012).
 #[derive(Debug, Parser)]
@@ -41,6 +45,8 @@ pub enum Command {
     /// Write a rover's generated, allocation-free plant as a standalone Rust module.
     #[cfg(feature = "codegen")]
     Codegen(CodegenArgs),
+    /// Run tasks of a sweep plan (one worker of a job array), or gather their records into one table.
+    Sweep(SweepArgs),
     /// Rerun the paper's figures and write docs/REPRODUCTION.md.
     #[cfg(feature = "reproduce")]
     Reproduce(ReproduceArgs),
@@ -74,6 +80,17 @@ impl CliError {
     pub fn is_rendered(&self) -> bool {
         matches!(self, CliError::Spec(_))
     }
+
+    /// The message as the command line prints it: rendered diagnostics as
+    /// they are, anything else headed `error: `. The Python package raises
+    /// exceptions with this same text.
+    pub fn user_message(&self) -> String {
+        if self.is_rendered() {
+            self.to_string()
+        } else {
+            format!("error: {self}")
+        }
+    }
 }
 
 /// Print a command's text on standard output. A reader that has gone
@@ -93,7 +110,7 @@ pub(crate) fn print_stdout(text: &str) -> Result<(), CliError> {
 /// Write `text` to `path` whole or not at all: into a sibling temporary
 /// file first, renamed over `path` only once complete, so that a full disk
 /// or an interrupted run never leaves a truncated file that looks finished.
-pub(crate) fn write_whole(path: &std::path::Path, text: &str) -> Result<(), CliError> {
+pub fn write_whole(path: &std::path::Path, text: &str) -> Result<(), CliError> {
     let mut partial = path.as_os_str().to_owned();
     partial.push(format!(".partial-{}", std::process::id()));
     let partial = std::path::PathBuf::from(partial);
@@ -125,6 +142,10 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
         }
         Command::Linearize(a) => {
             print_stdout(&linearize_cmd(&a)?)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Sweep(a) => {
+            sweep(&a)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate(a) => {

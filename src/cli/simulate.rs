@@ -70,6 +70,121 @@ fn io_err(path: &Path, doing: &str, e: std::io::Error) -> CliError {
     CliError::Other(format!("{}: cannot {doing}: {e}", path.display()))
 }
 
+/// A scenario read and its rover loaded: everything a run needs before it
+/// writes anything. The CLI and the Python package both start here, so a
+/// run from either gives the same numbers and the same messages.
+#[derive(Debug)]
+pub struct Prepared {
+    /// The rover's description.
+    pub spec: rover_spec::Spec,
+    /// The rover as named (built-in name or path), which picks the plant.
+    pub rover: String,
+    /// The scenario.
+    pub scenario: Scenario,
+    /// Where the scenario's relative paths start.
+    pub base: PathBuf,
+    /// The scenario's name in messages (its path, or a stand-in for text).
+    pub origin: PathBuf,
+    /// The scenario's text, to locate a field that a message names.
+    pub text: String,
+}
+
+impl Prepared {
+    /// Read the scenario file at `path` and load its rover (`rover`
+    /// overrides the scenario's).
+    pub fn from_file(rover: Option<&str>, path: &Path) -> Result<Self, CliError> {
+        let scenario = Scenario::load(path)?;
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Self::new(rover, scenario, text, path, &base)
+    }
+
+    /// A scenario given as TOML `text`, named `origin` in messages, its
+    /// relative paths taken from `base`.
+    pub fn from_text(
+        rover: Option<&str>,
+        text: &str,
+        origin: &Path,
+        base: &Path,
+    ) -> Result<Self, CliError> {
+        let scenario = Scenario::parse(text, origin)?;
+        Self::new(rover, scenario, text.to_string(), origin, base)
+    }
+
+    fn new(
+        rover: Option<&str>,
+        scenario: Scenario,
+        text: String,
+        origin: &Path,
+        base: &Path,
+    ) -> Result<Self, CliError> {
+        let rover = rover
+            .map(str::to_string)
+            .or_else(|| scenario.rover.clone())
+            .ok_or_else(|| {
+                CliError::Other(format!(
+                    "no rover: give one on the command line or as `rover = \"...\"` in {} (built-in: {})",
+                    origin.display(),
+                    builtin_names()
+                ))
+            })?;
+        let spec = load_rover(&rover, Some(base))?;
+        Ok(Self {
+            spec,
+            rover,
+            scenario,
+            base: base.to_path_buf(),
+            origin: origin.to_path_buf(),
+            text,
+        })
+    }
+
+    /// A run that could not start, located at the scenario's offending
+    /// field (`file:line: `) when the error names one.
+    pub fn locate(&self, source: rover_runtime::simulate::SetupError) -> CliError {
+        let line = source
+            .field_path()
+            .and_then(|f| rover_runtime::scenario::line_of_field(&self.text, &f));
+        let location = match line {
+            Some(l) => format!("{}:{l}: ", self.origin.display()),
+            None => format!("{}: ", self.origin.display()),
+        };
+        CliError::Setup { location, source }
+    }
+
+    /// Run the scenario, writing the CSV to `csv`; the summary names the
+    /// plant that ran. A run that could not start is an error located at
+    /// the scenario's offending field.
+    pub fn run<W: std::io::Write>(
+        &self,
+        generic: bool,
+        csv: W,
+        interrupt: &AtomicBool,
+        progress: impl FnMut(f64),
+    ) -> Result<Summary, CliError> {
+        let level = self.scenario.fidelity.dynamic().unwrap_or_default();
+        let run = Run {
+            spec: &self.spec,
+            scenario: &self.scenario,
+            base: &self.base,
+            flag: interrupt,
+        };
+        let (result, backend) = match generated_plant(&self.rover, level, generic) {
+            Some(p) => (
+                run.go(p, csv, progress),
+                format!("generated ({})", p.name()),
+            ),
+            None => (
+                run.go(build_plant(&self.spec.model, level)?, csv, progress),
+                "generic".to_string(),
+            ),
+        };
+        let mut summary = result.map_err(|source| self.locate(source))?;
+        summary.plant = backend;
+        Ok(summary)
+    }
+}
+
 /// Run the scenario and write `run.csv` and `summary.json` into `args.out`.
 ///
 /// A run that cannot start, for whatever reason, leaves a summary saying
@@ -89,20 +204,8 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
 /// The run; `summarized` turns true once its summary is written (later
 /// errors, of the plots, leave the run's outputs as they are).
 fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateReport, CliError> {
-    let scenario = Scenario::load(&args.scenario)?;
-    let base = args
-        .scenario
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_default();
-    let rover = args.rover.clone().or_else(|| scenario.rover.clone()).ok_or_else(|| {
-        CliError::Other(format!(
-            "no rover: give one on the command line or as `rover = \"...\"` in {} (built-in: {})",
-            args.scenario.display(),
-            builtin_names()
-        ))
-    })?;
-    let spec = load_rover(&rover, Some(&base))?;
+    let prepared = Prepared::from_file(args.rover.as_deref(), &args.scenario)?;
+    let (spec, scenario) = (&prepared.spec, &prepared.scenario);
     if args.out.exists() && !args.out.is_dir() {
         return Err(CliError::Other(format!(
             "{}: is a file, not a folder; give `--out` a folder (it is created if missing)",
@@ -134,38 +237,9 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     );
     bar.set_message(format!("{} t = 0 s", spec.name));
     let duration = scenario.duration;
-    let level = scenario.fidelity.dynamic().unwrap_or_default();
     let flag = interrupt_flag();
     let progress = |t: f64| bar.set_position((1000.0 * t / duration) as u64);
-    let generated = generated_plant(&rover, level, args.generic);
-    let run = Run {
-        spec: &spec,
-        scenario: &scenario,
-        base: &base,
-        flag: &flag,
-    };
-    let (result, backend) = match generated {
-        Some(p) => (
-            run.go(p, csv, progress),
-            format!("generated ({})", p.name()),
-        ),
-        None => (
-            run.go(build_plant(&spec.model, level)?, csv, progress),
-            "generic".to_string(),
-        ),
-    };
-    let mut summary = result.map_err(|source| {
-        let text = std::fs::read_to_string(&args.scenario).unwrap_or_default();
-        let line = source
-            .field_path()
-            .and_then(|f| rover_runtime::scenario::line_of_field(&text, &f));
-        let location = match line {
-            Some(l) => format!("{}:{l}: ", args.scenario.display()),
-            None => format!("{}: ", args.scenario.display()),
-        };
-        CliError::Setup { location, source }
-    })?;
-    summary.plant = backend;
+    let summary = prepared.run(args.generic, csv, &flag, progress)?;
     bar.finish_and_clear();
     let json =
         serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
@@ -174,11 +248,11 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     *summarized = true;
     let mut files = vec![csv_path.clone(), summary_path];
     if !args.no_plots {
-        files.extend(plots(&csv_path, &args.out, &spec, scenario.settle)?);
+        files.extend(plots(&csv_path, &args.out, spec, scenario.settle)?);
     }
     bar.suspend(|| {
         report_end(&spec.name, &summary, &args.out);
-        stalled_warning(&spec, &summary);
+        stalled_warning(spec, &summary);
     });
     Ok(SimulateReport { summary, files })
 }
@@ -328,10 +402,10 @@ struct Run<'a> {
 }
 
 impl Run<'_> {
-    fn go<P: rover_dynamics::plant::Plant>(
+    fn go<P: rover_dynamics::plant::Plant, W: std::io::Write>(
         &self,
         plant: P,
-        csv: BufWriter<File>,
+        csv: W,
         progress: impl FnMut(f64),
     ) -> Result<Summary, rover_runtime::simulate::SetupError> {
         let s = self.spec;

@@ -245,6 +245,52 @@ impl Controller {
         &self.neutral
     }
 
+    /// Hold the speed set-point at `speed` [m/s] from now on (after
+    /// settling), in place of the scenario's profile: how a step-wise
+    /// caller (a Python loop, a learning agent) steers the speed loop
+    /// without rebuilding the controller. Allocates nothing.
+    pub fn set_speed(&mut self, speed: f64) -> Result<(), ControlError> {
+        if !speed.is_finite() {
+            return Err(err("speed.speed", format!("must be finite, got {speed}")));
+        }
+        match &mut self.config.speed {
+            Some(s) => {
+                s.speed = crate::control::Profile::Constant(speed);
+                Ok(())
+            }
+            None => Err(err(
+                "speed",
+                "this run has no speed loop; add `[control.speed]` to the scenario",
+            )),
+        }
+    }
+
+    /// Hold the steering set-point at `value` from now on: the torque
+    /// difference Δτ [N·m] of slip steering, the turning radius [m] of
+    /// Ackermann steering by radius, or its front-left angle [°]; like
+    /// [`Controller::set_speed`], in place of the scenario's profile.
+    pub fn set_steering_setpoint(&mut self, value: f64) -> Result<(), ControlError> {
+        use crate::control::Profile;
+        if !value.is_finite() {
+            return Err(err("steering", format!("must be finite, got {value}")));
+        }
+        match &mut self.config.steering {
+            Steering::Slip { delta_tau } => *delta_tau = Profile::Constant(value),
+            Steering::Ackermann(a) => match (&mut a.radius, &mut a.front_left_deg) {
+                (Some(r), _) => *r = Profile::Constant(value),
+                (None, Some(d)) => *d = Profile::Constant(value),
+                (None, None) => return Err(err("steering", "Ackermann steering has no set-point")),
+            },
+            _ => {
+                return Err(err(
+                    "steering",
+                    "a steering set-point needs slip or Ackermann steering (`kind = \"slip\"` or `\"ackermann\"`)",
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Speed set-point V(t) [m/s]: zero while settling.
     pub fn speed_setpoint(&self, t: f64) -> f64 {
         match &self.config.speed {

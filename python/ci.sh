@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The Python package's tests: a virtual environment made here, the package
+# built into it by maturin, then pytest. .ci/run calls this after the cargo
+# tests, whose build (the `test` profile) the package's build reuses.
+#
+#   python/ci.sh                      # as CI runs it
+#   ROVER_PY_PROFILE=release python/ci.sh   # an optimized build (slower to build)
+set -euo pipefail
+cd "$(dirname "$0")"
+root="$(cd .. && pwd)"
+target="${CARGO_TARGET_DIR:-$root/target}"
+export CARGO_TARGET_DIR="$target"
+venv="${ROVER_PY_VENV:-$target/python-venv}"
+profile="${ROVER_PY_PROFILE:-test}"
+
+if [ ! -x "$venv/bin/python" ]; then
+    python3 -m venv "$venv"
+fi
+# shellcheck disable=SC1091
+source "$venv/bin/activate"
+python -m pip install --quiet --upgrade pip
+python -m pip install --quiet "maturin>=1.9,<2" pytest numpy pandas pyarrow ray gymnasium
+
+if [ "$profile" = release ]; then
+    maturin develop --release --locked
+else
+    maturin develop --profile "$profile" --locked
+fi
+
+# The command line the Python runs are compared with: the one the cargo
+# tests built, else a fresh build.
+if [ -z "${ROVER_CLI:-}" ]; then
+    if [ ! -x "$target/debug/rover" ]; then
+        cargo build -p rover --locked
+    fi
+    export ROVER_CLI="$target/debug/rover"
+fi
+
+# Ray's token authentication writes under $HOME; a local test cluster
+# needs none.
+export RAY_AUTH_MODE=disabled
+python -m pytest -q tests "$@"

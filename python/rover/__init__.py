@@ -1,0 +1,156 @@
+"""Dynamics of wheeled planetary rovers on rough terrain, from Python.
+
+>>> import rover
+>>> r = rover.simulate(rover.load("swing4"), "scenarios/fig13_slip_rough.toml")
+>>> r.status, r.trajectory["X"][-1]
+
+The runs are the command line's (`rover simulate`): the same numbers bit
+for bit, the same messages in the exceptions (`RoverError`). Units are SI
+(m, s, rad, N, N·m), as in the CSV columns.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+from typing import Any, Mapping, Optional, Union
+
+import numpy as np
+
+from . import _native
+from ._native import Rover, RoverError, RunFailed
+from ._toml import dumps as _toml_dumps
+
+__all__ = [
+    "Result",
+    "Rover",
+    "RoverError",
+    "RunFailed",
+    "Simulation",
+    "builtins",
+    "load",
+    "simulate",
+    "sweep",
+    "sweep_plan",
+]
+
+ScenarioLike = Union[str, os.PathLike, Mapping[str, Any]]
+
+
+def builtins() -> list[str]:
+    """The built-in rovers' names."""
+    return list(_native.builtins())
+
+
+def load(source: Union[str, os.PathLike]) -> Rover:
+    """A rover: a built-in name (``"swing4"``), a description file, or a
+    description's TOML text."""
+    return _native.load(os.fspath(source))
+
+
+def _scenario_source(scenario: ScenarioLike) -> tuple[str, str, str]:
+    """(TOML text, name in messages, folder of relative paths) of a scenario
+    given as a path, TOML text or a dict."""
+    if isinstance(scenario, Mapping):
+        return _toml_dumps(scenario), "<dict>", os.getcwd()
+    if isinstance(scenario, os.PathLike) or (
+        isinstance(scenario, str) and "\n" not in scenario and "=" not in scenario
+    ):
+        path = Path(scenario)
+        try:
+            text = path.read_text()
+        except OSError as e:
+            raise RoverError(f"error: {path}: cannot read the scenario: {e.strerror}") from None
+        return text, str(path), str(path.parent)
+    if isinstance(scenario, str):
+        return scenario, "<string>", os.getcwd()
+    raise TypeError(f"a scenario is a path, TOML text or a dict, not {type(scenario).__name__}")
+
+
+class Result:
+    """A whole run: ``trajectory`` (numpy arrays by CSV column name),
+    ``summary`` (summary.json as a dict) and ``status`` ("completed",
+    "failed" or "interrupted"; a run that stopped early keeps what it
+    computed)."""
+
+    def __init__(self, columns: list[str], table: np.ndarray, summary: dict):
+        self.columns = columns
+        self.table = table
+        self.trajectory = {c: table[:, i] for i, c in enumerate(columns)}
+        self.summary = summary
+        self.status = summary.get("status")
+
+    @property
+    def error(self) -> Optional[str]:
+        """Why the run stopped early, or None."""
+        return self.summary.get("error")
+
+    def to_pandas(self):
+        """The trajectory as a pandas DataFrame (pandas must be installed)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.table, columns=self.columns)
+
+    def __repr__(self) -> str:
+        return f"<rover.Result {self.status}: {len(self.table)} rows, t_end = {self.summary.get('t_end')} s>"
+
+
+def simulate(
+    rover: Optional[Union[Rover, str]] = None,
+    scenario: Optional[ScenarioLike] = None,
+    *,
+    generic: bool = False,
+) -> Result:
+    """Run ``scenario`` (a path, TOML text or a dict) with ``rover`` (a
+    loaded rover or a name; None: the scenario's own), as ``rover simulate``
+    does. ``generic`` runs the interpreted plant even for a built-in rover.
+    Raises RoverError for a scenario that cannot run."""
+    if scenario is None:
+        raise TypeError("simulate() needs a scenario")
+    if isinstance(rover, (str, os.PathLike)):
+        rover = load(rover)
+    text, origin, base = _scenario_source(scenario)
+    columns, data, rows, summary = _native.simulate(rover, text, origin, base, generic)
+    table = np.frombuffer(data, dtype=np.float64).reshape(rows, len(columns))
+    return Result(list(columns), table, json.loads(summary))
+
+
+class Simulation(_native.Simulation):
+    """A scenario run step by step.
+
+    ``step(n)`` advances n output intervals (``dt`` = 1 / output_rate);
+    ``state`` is [x; w] as numpy (2N values: the trajectory's columns after
+    ``t``); ``set_torques``/``set_steering`` take a numpy float64 array, one
+    value per wheel; ``set_speed``/``set_steering_setpoint`` move the
+    built-in loops' set-points. Stepped without changes, the states are the
+    whole run's rows bit for bit. Long ``step(n)`` calls release the GIL.
+    """
+
+    def __new__(cls, rover=None, scenario=None, *, generic: bool = False):
+        if scenario is None:
+            raise TypeError("Simulation() needs a scenario")
+        if isinstance(rover, (str, os.PathLike)):
+            rover = load(rover)
+        text, origin, base = _scenario_source(scenario)
+        return super().__new__(cls, rover, text, origin, base, generic)
+
+    def __init__(self, rover=None, scenario=None, *, generic: bool = False):
+        self._state = np.empty(2 * self.dof)
+        self._row = np.empty(len(self.columns))
+
+    @property
+    def state(self) -> np.ndarray:
+        """The state [x; w] (a new array each call; ``state_into`` fills one)."""
+        out = np.empty(2 * self.dof)
+        self.state_into(out)
+        return out
+
+    @property
+    def row(self) -> dict:
+        """The current trajectory row, by column name."""
+        self.row_into(self._row)
+        return dict(zip(self.columns, self._row.tolist()))
+
+
+from .sweep import sweep, sweep_plan  # noqa: E402

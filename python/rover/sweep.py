@@ -1,0 +1,167 @@
+"""Sweeps on Ray: one Ray task per parameter set, the records gathered into
+one table.
+
+The plan is the command line's (`rover sweep plan.toml --index I --count
+N`, docs/SCALE.md): the same tasks, numbered alike, and the same record
+per task, so either route can start a sweep and the other finish it.
+Ray is the scheduler: this module only submits tasks and collects what
+they return, on a local Ray or on a cluster given its address.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+from typing import Any, Mapping, Optional, Sequence, Union
+
+from . import _native
+from ._toml import dumps as _toml_dumps
+
+#: Figures that differ from run to run of the same task (the machine's
+#: speed), left out when comparing records.
+TIMING = ("wall_time_s", "real_time_factor")
+
+
+def _run_task(plan_text: str, origin: str, folder: str, index: int, base_text: str) -> str:
+    """One task's record as JSON. A run that fails or cannot start gives a
+    record saying so; anything else that goes wrong in the worker too, so
+    that one task never stops the sweep."""
+    try:
+        return _native.plan_task(plan_text, origin, folder, index, base_text)
+    except BaseException as e:  # noqa: BLE001 - recorded, not raised
+        return json.dumps({"task": index, "status": "error", "error": f"error: {type(e).__name__}: {e}"})
+
+
+def _write_whole(path: Path, text: str) -> None:
+    """Write `text` to `path` whole or not at all (a rename over it)."""
+    partial = path.with_name(f"{path.name}.partial-{os.getpid()}")
+    partial.write_text(text)
+    partial.replace(path)
+
+
+def _plan_text(scenario_file: str, rover, seeds, samples, sample_seed, grid, ranges) -> str:
+    plan: dict[str, Any] = {"scenario": scenario_file, "out": "."}
+    if rover is not None:
+        plan["rover"] = rover
+    if seeds is not None:
+        plan["seeds"] = [int(s) for s in seeds]
+    if samples:
+        plan["samples"] = int(samples)
+        plan["sample_seed"] = int(sample_seed)
+    if grid:
+        plan["grid"] = {k: list(v) for k, v in grid.items()}
+    if ranges:
+        plan["ranges"] = {k: list(v) for k, v in ranges.items()}
+    return _toml_dumps(plan)
+
+
+def sweep(
+    base_scenario,
+    grid: Optional[Mapping[str, Sequence]] = None,
+    samples: Optional[int] = None,
+    ranges: Optional[Mapping[str, Sequence[float]]] = None,
+    seeds: Optional[Sequence[int]] = None,
+    *,
+    rover: Optional[str] = None,
+    out: Union[str, os.PathLike] = "sweep-out",
+    sample_seed: int = 0,
+    address: Optional[str] = None,
+    table: str = "parquet",
+):
+    """Run ``base_scenario`` (a path, TOML text or a dict) over every
+    combination of ``grid`` (dotted field -> values), and/or ``samples``
+    parameter sets drawn uniformly from ``ranges`` (dotted field ->
+    [low, high]), each once per terrain seed in ``seeds``; one Ray task per
+    run. ``rover`` (a built-in name or a path) overrides the scenario's.
+
+    ``out`` receives plan.toml (the command line's plan of this sweep),
+    one record per task in tasks/, and the table: results.parquet
+    (``table="parquet"``, needs pyarrow) or results.csv. A rerun on the
+    same folder runs only the tasks without a record. A failed run is a
+    row with its status and error. ``address`` is a Ray cluster's (None: a
+    running Ray, or a local one). Returns the table as a pandas DataFrame.
+    """
+    from . import _scenario_source
+
+    out = Path(out).resolve()
+    (out / "tasks").mkdir(parents=True, exist_ok=True)
+    text, origin, base = _scenario_source(base_scenario)
+    if origin in ("<dict>", "<string>"):
+        scenario_file = "base.toml"
+        _write_whole(out / scenario_file, text)
+    else:
+        scenario_file = str(Path(origin).resolve())
+    plan_text = _plan_text(scenario_file, rover, seeds, samples, sample_seed, grid, ranges)
+    plan_path = out / "plan.toml"
+    if plan_path.exists() and plan_path.read_text() != plan_text:
+        raise _native.RoverError(
+            f"error: {plan_path}: another sweep's plan is there; give this sweep another `out` folder"
+        )
+    _write_whole(plan_path, plan_text)
+    return sweep_plan(plan_path, address=address, table=table)
+
+
+def sweep_plan(plan: Union[str, os.PathLike], *, address: Optional[str] = None, table: str = "parquet"):
+    """Run a plan file on Ray (the tasks without a record), then gather
+    every record into the table; returns it as a pandas DataFrame."""
+    import ray
+
+    plan_path = Path(plan).resolve()
+    plan_text = plan_path.read_text()
+    origin, folder = str(plan_path), str(plan_path.parent)
+    count, out_dir, base_text = _native.plan_info(plan_text, origin, folder)
+    out_dir = Path(out_dir)
+    tasks_dir = out_dir / "tasks"
+    tasks_dir.mkdir(parents=True, exist_ok=True)
+    todo = [i for i in range(count) if not (tasks_dir / f"{i:06}.json").exists()]
+    if todo:
+        if not ray.is_initialized():
+            ray.init(address=address)
+        remote = ray.remote(num_cpus=1, max_retries=1)(_run_task)
+        # The texts go to the object store once, not with every task.
+        plan_ref, base_ref = ray.put(plan_text), ray.put(base_text)
+        pending = {remote.remote(plan_ref, origin, folder, i, base_ref): i for i in todo}
+        while pending:
+            done, _ = ray.wait(list(pending), num_returns=1)
+            for ref in done:
+                i = pending.pop(ref)
+                try:
+                    record = ray.get(ref)
+                except Exception as e:  # noqa: BLE001 - a lost worker, recorded
+                    record = json.dumps({"task": i, "status": "error", "error": f"error: {e}"})
+                _write_whole(tasks_dir / f"{i:06}.json", record + "\n")
+    return gather(out_dir, count, table=table)
+
+
+def gather(out: Union[str, os.PathLike], count: int, *, table: str = "parquet"):
+    """Every task's record under ``out`` as one table (task, param.*,
+    status, error, figures), written as results.parquet or results.csv."""
+    import pandas as pd
+
+    out = Path(out)
+    rows = []
+    for i in range(count):
+        path = out / "tasks" / f"{i:06}.json"
+        rows.append(json.loads(path.read_text()) if path.exists() else {"task": i, "status": "missing"})
+    df = pd.DataFrame(rows)
+
+    def rank(c: str) -> int:
+        if c == "task":
+            return 0
+        if c.startswith("param."):
+            return 1
+        if c == "status":
+            return 2
+        if c == "error":
+            return 3
+        return 4
+
+    df = df[sorted(df.columns, key=rank)]
+    if table == "parquet":
+        df.to_parquet(out / "results.parquet", index=False)
+    elif table == "csv":
+        df.to_csv(out / "results.csv", index=False)
+    else:
+        raise ValueError(f"table: 'parquet' or 'csv', not {table!r}")
+    return df

@@ -1,0 +1,513 @@
+//! The native half of the Python package `rover`: loading rovers, whole
+//! runs, step-wise runs and sweep tasks, all through the CLI's library so
+//! that Python gets the CLI's numbers and messages. The Python half
+//! (python/rover/) turns what crosses here into numpy arrays, dicts and
+//! tables.
+//!
+//! Arrays cross as buffers: numpy arrays come in through the buffer
+//! protocol (read or written in place, no copy held), whole trajectories go
+//! out as bytes that numpy views. Long work runs with the interpreter
+//! released, so other Python threads (and Ray's) go on meanwhile.
+
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+use pyo3::create_exception;
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+use rover::cli::{CliError, Prepared, build_plant, generated_plant};
+use rover_models::BuiltinPlant;
+use rover_runtime::GenericPlant;
+use rover_runtime::sim::Stepper;
+
+create_exception!(
+    _native,
+    RoverError,
+    PyException,
+    "A rover, scenario or plan that cannot run; the message is the command line's, located at the offending file, line and field."
+);
+create_exception!(
+    _native,
+    RunFailed,
+    RoverError,
+    "A step-wise run failed (the integrator gave up, the rover rolled over or left the map); reset() starts it again."
+);
+
+/// The CLI's error as the exception the Python side raises.
+fn py_err(e: CliError) -> PyErr {
+    RoverError::new_err(e.user_message())
+}
+
+/// A loaded rover: its description, and the name or path it came from
+/// (a built-in name also picks its generated plant, as on the CLI).
+#[pyclass(frozen, module = "rover._native")]
+struct Rover {
+    spec: rover_spec::Spec,
+    key: String,
+}
+
+#[pymethods]
+impl Rover {
+    /// The rover's name.
+    #[getter]
+    fn name(&self) -> String {
+        self.spec.name.clone()
+    }
+    /// Number of generalized coordinates N.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.spec.model.dof()
+    }
+    /// The suspension coordinates' names, y1 ... in the state.
+    #[getter]
+    fn coordinate_names(&self) -> Vec<String> {
+        self.spec.coordinate_names.clone()
+    }
+    /// The wheels' names, in the description's order (the order of every
+    /// per-wheel command).
+    #[getter]
+    fn wheel_names(&self) -> Vec<String> {
+        self.spec.wheel_names.clone()
+    }
+    /// Each wheel's motor torque limit [N·m].
+    #[getter]
+    fn max_torque(&self) -> Vec<f64> {
+        self.spec
+            .model
+            .wheels
+            .iter()
+            .map(|w| w.max_torque)
+            .collect()
+    }
+    /// Whether each wheel steers.
+    #[getter]
+    fn steerable(&self) -> Vec<bool> {
+        self.spec.model.wheels.iter().map(|w| w.steerable).collect()
+    }
+    /// What `rover check` prints.
+    fn report(&self) -> String {
+        rover_spec::report::check_report(&self.spec)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "<rover {} ({} DOF, {} wheels)>",
+            self.spec.name,
+            self.spec.model.dof(),
+            self.spec.model.wheels.len()
+        )
+    }
+}
+
+/// Load a rover: a built-in name, a description file, or a description's
+/// TOML text (told apart by a line break, which no name or path has).
+#[pyfunction]
+fn load(source: &str) -> PyResult<Rover> {
+    let spec = if source.contains('\n') {
+        rover_spec::load_str(source, "<string>")
+    } else {
+        rover::rover_source::load_rover(source, None)
+    };
+    let spec = spec.map_err(|e| py_err(e.into()))?;
+    Ok(Rover {
+        spec,
+        key: source.to_string(),
+    })
+}
+
+/// The scenario, ready to run: from TOML `text` named `origin` in
+/// messages, relative paths from `base`; `rover` overrides its rover.
+fn prepare(
+    rover: Option<&Rover>,
+    text: &str,
+    origin: &str,
+    base: &str,
+) -> Result<Prepared, CliError> {
+    let (origin, base) = (Path::new(origin), Path::new(base));
+    match rover {
+        None => Prepared::from_text(None, text, origin, base),
+        Some(r) => {
+            let scenario = rover_runtime::scenario::Scenario::parse(text, origin)?;
+            Ok(Prepared {
+                spec: r.spec.clone(),
+                rover: r.key.clone(),
+                scenario,
+                base: base.to_path_buf(),
+                origin: origin.to_path_buf(),
+                text: text.to_string(),
+            })
+        }
+    }
+}
+
+/// A whole run, as `rover simulate` runs it: (column names, the rows as
+/// native-endian f64 bytes, row count, the summary as JSON).
+#[pyfunction]
+#[pyo3(signature = (rover, text, origin, base, generic=false))]
+fn simulate<'py>(
+    py: Python<'py>,
+    rover: Option<&Rover>,
+    text: &str,
+    origin: &str,
+    base: &str,
+    generic: bool,
+) -> PyResult<(Vec<String>, Bound<'py, PyBytes>, usize, String)> {
+    let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
+    let run = py.detach(|| -> Result<(Vec<u8>, String), CliError> {
+        let mut csv = Vec::new();
+        let never = AtomicBool::new(false);
+        let summary = prepared.run(generic, &mut csv, &never, |_| {})?;
+        let json =
+            serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
+        Ok((csv, json))
+    });
+    let (csv, json) = run.map_err(py_err)?;
+    let text = String::from_utf8_lossy(&csv);
+    let mut lines = text.lines();
+    let columns: Vec<String> = lines
+        .next()
+        .unwrap_or("")
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let mut data: Vec<u8> = Vec::with_capacity(csv.len());
+    let mut rows = 0;
+    for line in lines {
+        for cell in line.split(',') {
+            // The CSV holds each number's shortest exact form: parsing it
+            // back gives the computed value bit for bit.
+            let v: f64 = cell.parse().map_err(|_| {
+                RoverError::new_err(format!("error: not a number in the run's output: {cell}"))
+            })?;
+            data.extend_from_slice(&v.to_ne_bytes());
+        }
+        rows += 1;
+    }
+    Ok((columns, PyBytes::new(py, &data), rows, json))
+}
+
+/// A step-wise run of either kind of plant. One lives in each Simulation
+/// and is never moved, so the variants' sizes differing costs nothing.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+enum AnyStepper {
+    Generated(Stepper<BuiltinPlant>),
+    Generic(Stepper<GenericPlant>),
+}
+
+macro_rules! with_stepper {
+    ($s:expr, $v:ident => $e:expr) => {
+        match $s {
+            AnyStepper::Generated($v) => $e,
+            AnyStepper::Generic($v) => $e,
+        }
+    };
+}
+
+/// Steps of a run up to this many hold the interpreter: releasing and
+/// taking it back costs more than a few steps of a small rover.
+const HOLD_GIL_STEPS: u64 = 1;
+
+/// A scenario run step by step: `step(n)` advances n output intervals;
+/// between steps the state can be read and the commands and set-points
+/// changed. Arrays in and out are the caller's numpy arrays (float64, one
+/// value per wheel for commands), read or filled in place.
+#[pyclass(subclass, module = "rover._native")]
+struct Simulation {
+    inner: AnyStepper,
+    dof: usize,
+    wheels: usize,
+    columns: Vec<String>,
+}
+
+/// The f64 buffer of a Python object (a C-contiguous float64 numpy array),
+/// lent to `f` without a copy or an allocation; `writable` asks for write
+/// access.
+fn with_buffer<R>(
+    obj: &Bound<'_, PyAny>,
+    writable: bool,
+    f: impl FnOnce(&mut [f64]) -> PyResult<R>,
+) -> PyResult<R> {
+    use pyo3::ffi;
+    let mut flags = ffi::PyBUF_C_CONTIGUOUS | ffi::PyBUF_FORMAT;
+    if writable {
+        flags |= ffi::PyBUF_WRITABLE;
+    }
+    let mut view = std::mem::MaybeUninit::<ffi::Py_buffer>::zeroed();
+    // SAFETY: `view` is filled by the interpreter on success and released
+    // below on every path; the slice lives only during `f`, while the
+    // buffer is held.
+    unsafe {
+        if ffi::PyObject_GetBuffer(obj.as_ptr(), view.as_mut_ptr(), flags) != 0 {
+            return Err(PyErr::fetch(obj.py()));
+        }
+        let mut view = view.assume_init();
+        let format_ok = !view.format.is_null() && {
+            let fmt = std::ffi::CStr::from_ptr(view.format).to_bytes();
+            fmt == b"d" || fmt == b"<d" || fmt == b"=d" || fmt == b"@d"
+        };
+        let result = if !format_ok || view.itemsize != 8 {
+            Err(PyValueError::new_err(
+                "expected a float64 array (numpy.float64)",
+            ))
+        } else {
+            let len = (view.len / 8) as usize;
+            let slice = if len == 0 {
+                &mut [][..]
+            } else {
+                std::slice::from_raw_parts_mut(view.buf.cast::<f64>(), len)
+            };
+            f(slice)
+        };
+        ffi::PyBuffer_Release(&mut view);
+        result
+    }
+}
+
+fn length_err(what: &str, want: usize, got: usize) -> PyErr {
+    PyValueError::new_err(format!("{what}: expected {want} values, got {got}"))
+}
+
+#[pymethods]
+impl Simulation {
+    /// Set up the scenario's run (from its TOML text, as for `simulate`),
+    /// placed at t = 0.
+    #[new]
+    #[pyo3(signature = (rover, text, origin, base, generic=false))]
+    fn new(
+        rover: Option<&Rover>,
+        text: &str,
+        origin: &str,
+        base: &str,
+        generic: bool,
+    ) -> PyResult<Self> {
+        let p = prepare(rover, text, origin, base).map_err(py_err)?;
+        let level = p.scenario.fidelity.dynamic().unwrap_or_default();
+        let model = &p.spec.model;
+        let inner = match generated_plant(&p.rover, level, generic) {
+            Some(plant) => {
+                Stepper::new(plant, model, &p.scenario, &p.base).map(AnyStepper::Generated)
+            }
+            None => {
+                let plant = build_plant(model, level).map_err(py_err)?;
+                Stepper::new(plant, model, &p.scenario, &p.base).map(AnyStepper::Generic)
+            }
+        }
+        .map_err(|e| py_err(p.locate(e)))?;
+        let k = model.wheels.len();
+        let columns = rover_runtime::output::header(model.m(), k);
+        Ok(Self {
+            inner,
+            dof: model.dof(),
+            wheels: k,
+            columns,
+        })
+    }
+
+    /// Back to t = 0 with the scenario's commands and set-points.
+    fn reset(&mut self) {
+        with_stepper!(&mut self.inner, s => s.reset());
+    }
+
+    /// Advance `n` output intervals; the time reached. Raises RunFailed
+    /// when the run fails (it then stays failed until reset()).
+    #[pyo3(signature = (n=1))]
+    fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<f64> {
+        let inner = &mut self.inner;
+        let result = if n > HOLD_GIL_STEPS {
+            py.detach(|| with_stepper!(inner, s => s.step(n)))
+        } else {
+            with_stepper!(inner, s => s.step(n))
+        };
+        match result {
+            Ok(()) => Ok(with_stepper!(&self.inner, s => s.time())),
+            Err(e) => Err(RunFailed::new_err(format!("error: {e}"))),
+        }
+    }
+
+    /// Time \[s\].
+    #[getter]
+    fn time(&self) -> f64 {
+        with_stepper!(&self.inner, s => s.time())
+    }
+
+    /// One step: the output interval \[s\].
+    #[getter]
+    fn dt(&self) -> f64 {
+        with_stepper!(&self.inner, s => s.dt())
+    }
+
+    /// Number of generalized coordinates N (the state has 2N values).
+    #[getter]
+    fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Number of wheels (the length of each command).
+    #[getter]
+    fn wheel_count(&self) -> usize {
+        self.wheels
+    }
+
+    /// The trajectory's column names (as in `run.csv`).
+    #[getter]
+    fn columns(&self) -> Vec<String> {
+        self.columns.clone()
+    }
+
+    /// The failed run's message, or None.
+    #[getter]
+    fn error(&self) -> Option<String> {
+        with_stepper!(&self.inner, s => s.failure().map(|e| format!("error: {e}")))
+    }
+
+    /// Write the state [x; w] (2N values, the trajectory's columns after
+    /// `t`) into `out`.
+    fn state_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
+        let y = with_stepper!(&self.inner, s => s.state());
+        let n2 = 2 * self.dof;
+        with_buffer(out, true, |o| {
+            if o.len() != n2 {
+                return Err(length_err("state", n2, o.len()));
+            }
+            o.copy_from_slice(&y[..n2]);
+            Ok(())
+        })
+    }
+
+    /// Write the current trajectory row (every column of `run.csv`) into
+    /// `out`.
+    fn row_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
+        let cols = self.columns.len();
+        let n2 = 2 * self.dof;
+        with_buffer(out, true, |o| {
+            if o.len() != cols {
+                return Err(length_err("row", cols, o.len()));
+            }
+            with_stepper!(&self.inner, s => {
+                let sys = s.system();
+                let mut k = 0;
+                let mut put = |v: f64| {
+                    o[k] = v;
+                    k += 1;
+                };
+                put(s.time());
+                s.state()[..n2].iter().for_each(|&v| put(v));
+                for w in sys.wheel_states() {
+                    w.centre.iter().for_each(|&v| put(v));
+                }
+                for r in sys.reports() {
+                    r.point.iter().for_each(|&v| put(v));
+                    [r.normal, r.drawbar, r.lateral].iter().for_each(|&v| put(v));
+                }
+                sys.torques().iter().for_each(|&v| put(v));
+                sys.steering().iter().for_each(|&v| put(v));
+                put(sys.control.speed_setpoint(s.time()));
+            });
+            Ok(())
+        })
+    }
+
+    /// Open-loop motor torques [N·m] per wheel, added to the controller's
+    /// and held until changed.
+    fn set_torques(&mut self, torques: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.command(torques, true)
+    }
+
+    /// Open-loop steering angles \[rad\] per wheel, added to the
+    /// controller's and held until changed.
+    fn set_steering(&mut self, angles: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.command(angles, false)
+    }
+
+    /// Hold the speed set-point at `speed` [m/s].
+    fn set_speed(&mut self, speed: f64) -> PyResult<()> {
+        with_stepper!(&mut self.inner, s => s.set_speed(speed))
+            .map_err(|e| RoverError::new_err(format!("error: {e}")))
+    }
+
+    /// Hold the steering set-point at `value` (slip steering's Δτ [N·m],
+    /// or Ackermann steering's radius [m] or front-left angle [°]).
+    fn set_steering_setpoint(&mut self, value: f64) -> PyResult<()> {
+        with_stepper!(&mut self.inner, s => s.set_steering_setpoint(value))
+            .map_err(|e| RoverError::new_err(format!("error: {e}")))
+    }
+}
+
+impl Simulation {
+    fn command(&mut self, values: &Bound<'_, PyAny>, torques: bool) -> PyResult<()> {
+        let what = if torques { "torques" } else { "steering" };
+        let inner = &mut self.inner;
+        with_buffer(values, false, |v| {
+            with_stepper!(inner, s => {
+                let buf = s.command_buffer();
+                if v.len() != buf.len() {
+                    return Err(length_err(what, buf.len(), v.len()));
+                }
+                buf.copy_from_slice(v);
+                let applied = if torques { s.apply_torques() } else { s.apply_steering() };
+                applied.map_err(|e| RoverError::new_err(format!("error: {e}")))
+            })
+        })
+    }
+}
+
+/// A sweep plan's task count and results folder (the plan as TOML text,
+/// named `origin`, its paths from `dir`).
+#[pyfunction]
+#[pyo3(signature = (text, origin, dir, base_text=None))]
+fn plan_info(
+    text: &str,
+    origin: &str,
+    dir: &str,
+    base_text: Option<&str>,
+) -> PyResult<(usize, String, String)> {
+    let plan = rover::sweep::Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text)
+        .map_err(py_err)?;
+    let base = std::fs::read_to_string(&plan.base_origin).unwrap_or_default();
+    let base = base_text.map(str::to_string).unwrap_or(base);
+    Ok((plan.tasks.len(), plan.out.display().to_string(), base))
+}
+
+/// Run task `index` of a plan; its record as JSON (never an exception for
+/// a run that fails or cannot start: the record says so).
+#[pyfunction]
+#[pyo3(signature = (text, origin, dir, index, base_text=None))]
+fn plan_task(
+    py: Python<'_>,
+    text: &str,
+    origin: &str,
+    dir: &str,
+    index: usize,
+    base_text: Option<&str>,
+) -> PyResult<String> {
+    let plan = rover::sweep::Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text)
+        .map_err(py_err)?;
+    if index >= plan.tasks.len() {
+        return Err(PyValueError::new_err(format!(
+            "no task {index}: the plan has {}",
+            plan.tasks.len()
+        )));
+    }
+    Ok(py.detach(|| plan.run_task(index).to_string()))
+}
+
+/// The built-in rovers' names.
+#[pyfunction]
+fn builtins() -> Vec<&'static str> {
+    rover_models::NAMES.to_vec()
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(plan_info, m)?)?;
+    m.add_function(wrap_pyfunction!(plan_task, m)?)?;
+    m.add_function(wrap_pyfunction!(builtins, m)?)?;
+    m.add_class::<Rover>()?;
+    m.add_class::<Simulation>()?;
+    m.add("RoverError", m.py().get_type::<RoverError>())?;
+    m.add("RunFailed", m.py().get_type::<RunFailed>())?;
+    Ok(())
+}

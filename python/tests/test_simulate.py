@@ -1,0 +1,108 @@
+"""Whole runs from Python against the command line's."""
+
+import json
+import tomllib
+
+import numpy as np
+import pytest
+
+import rover
+
+TIMING = {"wall_time_s", "real_time_factor"}
+
+
+def read_csv(path):
+    """run.csv parsed with Python's float (exact for shortest forms)."""
+    lines = path.read_text().splitlines()
+    cols = lines[0].split(",")
+    rows = [[float(c) for c in line.split(",")] for line in lines[1:]]
+    return cols, np.array(rows)
+
+
+def without_timing(summary):
+    return {k: v for k, v in summary.items() if k not in TIMING}
+
+
+@pytest.mark.parametrize("generic", [False, True])
+def test_trajectory_and_summary_equal_the_command_lines_bit_for_bit(cli, data, tmp_path, generic):
+    scenario = data / "slip_rough.toml"
+    args = ["simulate", "--scenario", scenario, "--out", tmp_path, "--quiet", "--no-plots"]
+    cli(*args, *(["--generic"] if generic else []))
+    cols, table = read_csv(tmp_path / "run.csv")
+    expected = json.loads((tmp_path / "summary.json").read_text())
+
+    r = rover.simulate(None, scenario, generic=generic)
+    assert r.status == "completed"
+    assert r.columns == cols
+    assert r.table.shape == table.shape
+    # Bit for bit: the same 64-bit patterns, not merely close values.
+    assert np.array_equal(r.table.view(np.uint64), table.view(np.uint64))
+    assert without_timing(r.summary) == without_timing(expected)
+    assert r.trajectory["X"][-1] == table[-1, cols.index("X")]
+
+
+def test_a_scenario_as_a_dict_or_text_runs_as_its_file(data):
+    path = data / "slip_rough.toml"
+    from_file = rover.simulate("swing4", path)
+    from_dict = rover.simulate(rover.load("swing4"), tomllib.loads(path.read_text()))
+    from_text = rover.simulate(None, path.read_text())
+    for r in (from_dict, from_text):
+        assert np.array_equal(r.table, from_file.table)
+        assert without_timing(r.summary) == without_timing(from_file.summary)
+
+
+def test_to_pandas_gives_the_columns(data):
+    pd = pytest.importorskip("pandas")
+    r = rover.simulate(None, data / "slip_rough.toml")
+    df = r.to_pandas()
+    assert isinstance(df, pd.DataFrame)
+    assert list(df.columns) == r.columns
+    assert (df["t"].to_numpy() == r.trajectory["t"]).all()
+
+
+@pytest.mark.parametrize("name", ["bad_gain.toml", "not_toml.toml"])
+def test_errors_carry_the_command_lines_message(cli, data, tmp_path, name):
+    scenario = data / name
+    done = cli("simulate", "--scenario", scenario, "--out", tmp_path, "--quiet", "--no-plots", check=False)
+    assert done.returncode == 2
+    with pytest.raises(rover.RoverError) as e:
+        rover.simulate(None, str(scenario))
+    assert str(e.value) == done.stderr.rstrip("\n")
+
+
+def test_a_bad_gain_is_located_at_its_line(data):
+    with pytest.raises(rover.RoverError) as e:
+        rover.simulate(None, data / "bad_gain.toml")
+    assert f"{data / 'bad_gain.toml'}:4: control.speed" in str(e.value)
+
+
+def test_an_unknown_rover_is_an_error_naming_it():
+    with pytest.raises(rover.RoverError) as e:
+        rover.load("no-such-rover")
+    assert "no-such-rover" in str(e.value)
+
+
+def test_a_loaded_rover_describes_itself():
+    r = rover.load("swing4")
+    assert r.name == "swing4"
+    assert len(r.wheel_names) == 4
+    assert r.dof == 6 + len(r.coordinate_names)
+    assert r.report().startswith("rover `swing4`")
+
+
+def test_a_rover_from_a_file_or_text_runs_the_generic_plant_to_the_same_numbers(data):
+    from conftest import REPO
+
+    path = REPO / "models" / "swing4.toml"
+    by_name = rover.simulate("swing4", data / "slip_rough.toml", generic=True)
+    for r in (rover.load(path), rover.load(path.read_text())):
+        assert r.report() == rover.load("swing4").report()
+        run = rover.simulate(r, data / "slip_rough.toml")
+        assert run.summary["plant"] == "generic"
+        assert np.array_equal(run.table, by_name.table)
+
+
+def test_a_bad_description_text_is_an_error_with_its_diagnostics():
+    with pytest.raises(rover.RoverError) as e:
+        rover.load('name = "x"\n[body]\nmass = -1.0\n')
+    assert "error" in str(e.value) and "<string>" in str(e.value)

@@ -1,0 +1,133 @@
+"""The step-wise Simulation."""
+
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import rover
+
+
+@pytest.fixture
+def sim(data):
+    return rover.Simulation(None, data / "slip_rough.toml")
+
+
+def test_stepping_without_changes_gives_the_whole_runs_rows_bit_for_bit(data, sim):
+    whole = rover.simulate(None, data / "slip_rough.toml")
+    n2 = 2 * sim.dof
+    row = np.empty(len(sim.columns))
+    assert sim.columns == whole.columns
+    for k in range(len(whole.table)):
+        if k > 0:
+            sim.step()
+        sim.row_into(row)
+        assert np.array_equal(row.view(np.uint64), whole.table[k].view(np.uint64)), k
+        assert np.array_equal(sim.state, whole.table[k, 1 : 1 + n2])
+
+
+def test_step_n_equals_n_steps(data):
+    a = rover.Simulation(None, data / "slip_rough.toml")
+    b = rover.Simulation(None, data / "slip_rough.toml")
+    a.step(30)
+    for _ in range(30):
+        b.step()
+    assert a.time == b.time == pytest.approx(30 * a.dt)
+    assert np.array_equal(a.state, b.state)
+
+
+def test_reset_starts_the_run_again(sim):
+    first = sim.state
+    sim.step(10)
+    assert not np.array_equal(sim.state, first)
+    sim.reset()
+    assert sim.time == 0.0
+    assert np.array_equal(sim.state, first)
+
+
+def test_open_loop_torques_and_set_points_change_the_motion(data):
+    base = rover.Simulation(None, data / "slip_rough.toml")
+    pushed = rover.Simulation(None, data / "slip_rough.toml")
+    faster = rover.Simulation(None, data / "slip_rough.toml")
+    pushed.set_torques(np.full(pushed.wheel_count, 0.5))
+    faster.set_speed(0.2)
+    for s in (base, pushed, faster):
+        s.step(50)
+    x = lambda s: s.row["X"]  # noqa: E731
+    assert x(pushed) > x(base)
+    assert x(faster) > x(base)
+    assert pushed.row["V_set"] == 0.1 and faster.row["V_set"] == 0.2
+
+
+def test_commands_of_the_wrong_length_or_type_are_errors(sim):
+    with pytest.raises(ValueError, match="torques: expected 4 values, got 3"):
+        sim.set_torques(np.zeros(3))
+    with pytest.raises(ValueError, match="float64"):
+        sim.set_torques(np.zeros(4, dtype=np.float32))
+    with pytest.raises(rover.RoverError, match="finite"):
+        sim.set_torques(np.array([0.0, np.nan, 0.0, 0.0]))
+    with pytest.raises(rover.RoverError, match="not steerable|steer"):
+        sim.set_steering(np.full(4, 0.1))
+    with pytest.raises(ValueError, match="state: expected 20 values"):
+        sim.state_into(np.empty(3))
+
+
+def test_a_steering_set_point_needs_a_steering_loop(data):
+    s = rover.Simulation(None, {"rover": "swing4", "duration": 1.0})
+    with pytest.raises(rover.RoverError, match="slip or Ackermann"):
+        s.set_steering_setpoint(0.1)
+    with pytest.raises(rover.RoverError, match=r"\[control.speed\]"):
+        s.set_speed(0.1)
+
+
+def test_a_failed_run_raises_and_stays_failed_until_reset():
+    # Spun about x with a roll-over limit far below the first step's roll.
+    s = rover.Simulation(
+        None,
+        {
+            "rover": "swing4",
+            "duration": 5.0,
+            "rollover_limit_deg": 0.0001,
+            "initial": {"z": 0.5, "attitude_deg": [0.0, 0.0, 0.0], "angular_velocity": [0.5, 0.0, 0.0]},
+        },
+    )
+    with pytest.raises(rover.RunFailed, match="rolled over") as first:
+        s.step(40)
+    assert s.error == str(first.value)
+    with pytest.raises(rover.RunFailed):
+        s.step()
+    s.reset()
+    assert s.error is None and s.time == 0.0
+    # Deterministic: the same failure again.
+    with pytest.raises(rover.RunFailed) as again:
+        s.step(40)
+    assert str(again.value) == str(first.value)
+
+
+def test_long_steps_let_other_threads_run(data):
+    sim = rover.Simulation(None, data / "slip_rough.toml")
+    count = [0]
+    stop = threading.Event()
+
+    def counter():
+        while not stop.is_set():
+            count[0] += 1
+
+    # A long switch interval: the counter runs during the steps only if
+    # they release the GIL (held, the count could not move at all).
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(0.05)
+    worker = threading.Thread(target=counter)
+    worker.start()
+    try:
+        time.sleep(0.01)
+        before = count[0]
+        sim.step(2000)
+        during = count[0] - before
+    finally:
+        stop.set()
+        worker.join()
+        sys.setswitchinterval(old)
+    assert during > 1000, during
