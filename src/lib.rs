@@ -2,4 +2,6 @@
 //! test can call (`rover::cli::simulate(&SimulateArgs)`).
 
 pub mod cli;
+#[cfg(feature = "drive")]
+pub mod drive;
 pub mod rover_source;

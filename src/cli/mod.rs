@@ -18,7 +18,7 @@ pub use codegen::{CodegenArgs, CodegenLevel, codegen};
 pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, reproduce};
-pub use simulate::{SimulateArgs, SimulateReport, build_plant, simulate};
+pub use simulate::{SimulateArgs, SimulateReport, build_plant, generated_plant, simulate};
 
 /// Simulate wheeled planetary rovers on rough terrain (Chen & Genta 2012).
 #[derive(Debug, Parser)]
@@ -44,6 +44,13 @@ pub enum Command {
     /// Rerun the paper's figures and write docs/REPRODUCTION.md.
     #[cfg(feature = "reproduce")]
     Reproduce(ReproduceArgs),
+    /// Drive a rover live: the simulation paced to the wall clock, a 3D view
+    /// in the browser, a WebSocket for rigs (docs/DRIVE.md).
+    #[cfg(feature = "drive")]
+    Drive(crate::drive::DriveArgs),
+    /// Animate a finished run's run.csv in the browser.
+    #[cfg(feature = "drive")]
+    View(crate::drive::ViewArgs),
 }
 
 /// Errors a subcommand reports; printed once by `main`.
@@ -125,6 +132,16 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
         }
         Command::Linearize(a) => {
             print_stdout(&linearize_cmd(&a)?)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        #[cfg(feature = "drive")]
+        Command::Drive(a) => {
+            crate::drive::drive(&a)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        #[cfg(feature = "drive")]
+        Command::View(a) => {
+            crate::drive::view(&a)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate(a) => {
