@@ -152,6 +152,7 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
         "/" | "/index.html" => respond(&mut stream, "200 OK", "text/html; charset=utf-8", INDEX.as_bytes()),
         "/app.js" => respond(&mut stream, "200 OK", "text/javascript; charset=utf-8", APP.as_bytes()),
         "/three.min.js" => respond(&mut stream, "200 OK", "text/javascript; charset=utf-8", THREE.as_bytes()),
+        "/favicon.ico" => respond(&mut stream, "204 No Content", "image/x-icon", b""),
         "/meta.json" => respond(&mut stream, "200 OK", "application/json", app.meta.as_bytes()),
         "/terrain.json" => respond(&mut stream, "200 OK", "application/json", app.terrain.as_bytes()),
         "/run.csv" => match &app.content {
