@@ -63,8 +63,7 @@ fn get(port: u16, path: &str) -> String {
 fn a_websocket_client_drives_the_rover_to_its_speed_set_point() {
     let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
     let running = start(&args("swing4", &scenario)).unwrap();
-    let (mut ws, _) =
-        tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
     let hello = next_of(&mut ws, "hello");
     let columns = hello["meta"]["columns"].as_array().unwrap().clone();
     assert_eq!(hello["meta"]["steering"], "slip", "{hello}");
@@ -114,8 +113,7 @@ fn a_websocket_client_drives_the_rover_to_its_speed_set_point() {
 fn bad_commands_are_answered_with_errors_and_change_nothing() {
     let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
     let running = start(&args("swing4", &scenario)).unwrap();
-    let (mut ws, _) =
-        tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
     next_of(&mut ws, "hello");
     ws.send(Message::text(r#"{"speed": 0.05}"#)).unwrap();
     for (bad, says) in [
@@ -126,7 +124,10 @@ fn bad_commands_are_answered_with_errors_and_change_nothing() {
         (r#"{"torques": [1, 2]}"#, "4 wheels"),
         (r#"{"steer": 0.1}"#, "steers by slip"),
         (r#"{"steering": [0.1, 0, 0, 0]}"#, "does not steer"),
-        (r#"{"speed": 1, "torques": [0, 0, 0, 0]}"#, "cannot be mixed"),
+        (
+            r#"{"speed": 1, "torques": [0, 0, 0, 0]}"#,
+            "cannot be mixed",
+        ),
         (r#"{"rate": 0}"#, "`rate`"),
         (r#"{"rate": 1e9}"#, "`rate`"),
         (r#"{"speed": 1e999}"#, "not JSON"),
@@ -173,5 +174,60 @@ fn a_port_in_use_is_a_clear_error() {
     let mut a = args("swing4", &scenario);
     a.port = port;
     let e = start(&a).err().expect("the port is taken").to_string();
-    assert!(e.contains(&format!("127.0.0.1:{port}")) && e.contains("--port"), "{e}");
+    assert!(
+        e.contains(&format!("127.0.0.1:{port}")) && e.contains("--port"),
+        "{e}"
+    );
+}
+
+/// `rover view` serves a finished run: its CSV, the rover named in its
+/// summary (with its wheels' sizes) and no WebSocket; a folder without a
+/// run is a clear error.
+#[test]
+fn view_serves_a_finished_run() {
+    let scenario = scratch_file(
+        "drive-view",
+        "run.toml",
+        "rover = \"swing4\"\nduration = 0.5\n[control.speed]\nspeed = 0.05\n[integrator.rk4]\nstep = 1e-3\n",
+    );
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("drive-view/out");
+    rover::cli::simulate(&rover::cli::SimulateArgs {
+        rover: None,
+        scenario: scenario.clone().into(),
+        out: out.clone(),
+        quiet: true,
+        no_plots: true,
+        generic: false,
+    })
+    .unwrap();
+    let (port, _) = rover::drive::start_view(&rover::drive::ViewArgs {
+        out: out.clone(),
+        rover: None,
+        scenario: Some(scenario.into()),
+        port: 0,
+    })
+    .unwrap();
+    let csv = get(port, "/run.csv");
+    assert!(
+        csv.starts_with("HTTP/1.1 200") && csv.contains("\r\n\r\nt,X,Y,Z"),
+        "{csv}"
+    );
+    let meta = get(port, "/meta.json");
+    assert!(
+        meta.contains("\"mode\":\"view\"") && meta.contains("\"radius\":[0.09"),
+        "{meta}"
+    );
+    assert!(get(port, "/ws").starts_with("HTTP/1.1 404"));
+    let empty = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("drive-view/empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let e = rover::drive::start_view(&rover::drive::ViewArgs {
+        out: empty,
+        rover: None,
+        scenario: None,
+        port: 0,
+    })
+    .err()
+    .expect("no run there")
+    .to_string();
+    assert!(e.contains("run.csv") && e.contains("cannot read"), "{e}");
 }

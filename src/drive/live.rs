@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 use rover_runtime::control::{
-    ControllerConfig, Controller, SpeedConfig, ackermann_angle, curvature_from_angle,
+    Controller, ControllerConfig, SpeedConfig, ackermann_angle, curvature_from_angle,
 };
 use rover_runtime::integrate::{
     AnyIntegrator, FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Ros2Config,
@@ -386,8 +386,8 @@ impl<P: Plant> Sim<P> {
         let mut y = rover_runtime::simulate::initial_state(model, scenario, Some(&terrain))
             .map_err(|e| e.to_string())?;
         let ground = scenario.contact.ground(terrain, model);
-        let control = Controller::new(ControllerConfig::default(), model, 0.0)
-            .map_err(|e| e.to_string())?;
+        let control =
+            Controller::new(ControllerConfig::default(), model, 0.0).map_err(|e| e.to_string())?;
         let sys = RoverSystem::new(plant, Some(ground), control);
         y.resize(sys.dim(), 0.0);
         let h = 1.0 / config.rate_hz;
@@ -522,7 +522,9 @@ impl<P: Plant> Sim<P> {
         self.actuate();
         // Torques and steering were checked (finite, one per wheel, only
         // steerable wheels steer) when the command came in.
-        self.sys.set_torques(&self.torques).map_err(|e| e.to_string())?;
+        self.sys
+            .set_torques(&self.torques)
+            .map_err(|e| e.to_string())?;
         self.sys
             .set_steering(&self.steering)
             .map_err(|e| e.to_string())?;

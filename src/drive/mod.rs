@@ -163,11 +163,19 @@ fn meta(
         m["rest"] = json!(info.rest);
         m["radius"] = json!(info.radius);
         m["steerable"] = json!(info.steerable);
-        m["steering"] = json!(if info.ackermann() { "ackermann" } else { "slip" });
+        m["steering"] = json!(if info.ackermann() {
+            "ackermann"
+        } else {
+            "slip"
+        });
         m["max_steer"] = json!(0.5);
         m["max_torque"] = json!(info.max_torque);
         m["max_delta_tau"] = json!(
-            0.5 * info.max_torque.iter().cloned().fold(f64::INFINITY, f64::min)
+            0.5 * info
+                .max_torque
+                .iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min)
         );
         // A brisk walking pace for the rover's size: two wheel radii a second.
         m["speed_hint"] = json!(2.0 * r_max);
@@ -239,7 +247,13 @@ pub fn start(args: &DriveArgs) -> Result<Running, CliError> {
     let level = rover_dynamics::fidelity::Fidelity::Full;
     match generated_plant(&rover, level, args.generic) {
         Some(p) => launch(p, &spec, &scenario, &base, args),
-        None => launch(build_plant(&spec.model, level)?, &spec, &scenario, &base, args),
+        None => launch(
+            build_plant(&spec.model, level)?,
+            &spec,
+            &scenario,
+            &base,
+            args,
+        ),
     }
 }
 
@@ -316,7 +330,11 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
         t.compute.count(),
         t.wall_s,
         t.simulated_s,
-        if t.wall_s > 0.0 { t.simulated_s / t.wall_s } else { 0.0 },
+        if t.wall_s > 0.0 {
+            t.simulated_s / t.wall_s
+        } else {
+            0.0
+        },
         us(t.compute.quantile(0.5)),
         us(t.compute.quantile(0.999)),
         us(t.compute.max()),

@@ -72,7 +72,11 @@ fn number(obj: &Map<String, Value>, key: &str) -> Result<Option<f64>, String> {
     }
 }
 
-fn per_wheel(obj: &Map<String, Value>, key: &str, wheels: usize) -> Result<Option<Vec<f64>>, String> {
+fn per_wheel(
+    obj: &Map<String, Value>,
+    key: &str,
+    wheels: usize,
+) -> Result<Option<Vec<f64>>, String> {
     let Some(v) = obj.get(key) else {
         return Ok(None);
     };
@@ -103,8 +107,7 @@ fn per_wheel(obj: &Map<String, Value>, key: &str, wheels: usize) -> Result<Optio
 
 /// Parse and check one message for a rover; `max_rate` is the loop's rate.
 pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, String> {
-    let value: Value =
-        serde_json::from_str(text).map_err(|e| format!("not JSON: {e}"))?;
+    let value: Value = serde_json::from_str(text).map_err(|e| format!("not JSON: {e}"))?;
     let Value::Object(obj) = value else {
         return Err(format!(
             "a message is a JSON object such as {{\"speed\": 0.1}}, got {value}"
@@ -145,9 +148,7 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Str
             );
         }
         if s.abs() > MAX_STEER {
-            return Err(format!(
-                "`steer` = {s} rad is beyond ±{MAX_STEER} rad"
-            ));
+            return Err(format!("`steer` = {s} rad is beyond ±{MAX_STEER} rad"));
         }
     }
     if r.delta_tau.is_some() && info.ackermann() {

@@ -149,12 +149,37 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
     }
     let path = req.path.split('?').next().unwrap_or("");
     match path {
-        "/" | "/index.html" => respond(&mut stream, "200 OK", "text/html; charset=utf-8", INDEX.as_bytes()),
-        "/app.js" => respond(&mut stream, "200 OK", "text/javascript; charset=utf-8", APP.as_bytes()),
-        "/three.min.js" => respond(&mut stream, "200 OK", "text/javascript; charset=utf-8", THREE.as_bytes()),
+        "/" | "/index.html" => respond(
+            &mut stream,
+            "200 OK",
+            "text/html; charset=utf-8",
+            INDEX.as_bytes(),
+        ),
+        "/app.js" => respond(
+            &mut stream,
+            "200 OK",
+            "text/javascript; charset=utf-8",
+            APP.as_bytes(),
+        ),
+        "/three.min.js" => respond(
+            &mut stream,
+            "200 OK",
+            "text/javascript; charset=utf-8",
+            THREE.as_bytes(),
+        ),
         "/favicon.ico" => respond(&mut stream, "204 No Content", "image/x-icon", b""),
-        "/meta.json" => respond(&mut stream, "200 OK", "application/json", app.meta.as_bytes()),
-        "/terrain.json" => respond(&mut stream, "200 OK", "application/json", app.terrain.as_bytes()),
+        "/meta.json" => respond(
+            &mut stream,
+            "200 OK",
+            "application/json",
+            app.meta.as_bytes(),
+        ),
+        "/terrain.json" => respond(
+            &mut stream,
+            "200 OK",
+            "application/json",
+            app.terrain.as_bytes(),
+        ),
         "/run.csv" => match &app.content {
             Content::View { csv } => match std::fs::read(csv) {
                 Ok(bytes) => respond(&mut stream, "200 OK", "text/csv", &bytes),
@@ -165,7 +190,12 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
                     format!("{}: {e}\n", csv.display()).as_bytes(),
                 ),
             },
-            Content::Drive { .. } => respond(&mut stream, "404 Not Found", "text/plain", b"no run file while driving live\n"),
+            Content::Drive { .. } => respond(
+                &mut stream,
+                "404 Not Found",
+                "text/plain",
+                b"no run file while driving live\n",
+            ),
         },
         "/ws" => match (&app.content, req.websocket_key) {
             (Content::Drive { .. }, Some(key)) => {
@@ -184,7 +214,12 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
                 "text/plain",
                 b"/ws is a WebSocket: connect with a WebSocket client\n",
             ),
-            (Content::View { .. }, _) => respond(&mut stream, "404 Not Found", "text/plain", b"no live loop when viewing a run\n"),
+            (Content::View { .. }, _) => respond(
+                &mut stream,
+                "404 Not Found",
+                "text/plain",
+                b"no live loop when viewing a run\n",
+            ),
         },
         _ => respond(&mut stream, "404 Not Found", "text/plain", b"not found\n"),
     }
@@ -231,27 +266,28 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
             .clamp(Duration::from_micros(500), Duration::from_millis(20));
         let _ = ws.get_mut().set_read_timeout(Some(wait));
         match ws.read() {
-            Ok(Message::Text(text)) => {
-                match protocol::parse(text.as_str(), info, *rate_hz) {
-                    Ok(req) => {
-                        if let Ok(mut inbox) = shared.inbox.lock() {
-                            protocol::apply(&req, &mut inbox);
-                        }
-                        if let Some(rate) = req.rate {
-                            period = Duration::from_secs_f64(1.0 / rate);
-                            if let Ok(mut r) = app.rates.lock() {
-                                r.insert(id, rate);
-                            }
-                            update_publication(app, shared, *rate_hz);
-                        }
+            Ok(Message::Text(text)) => match protocol::parse(text.as_str(), info, *rate_hz) {
+                Ok(req) => {
+                    if let Ok(mut inbox) = shared.inbox.lock() {
+                        protocol::apply(&req, &mut inbox);
                     }
-                    Err(message) => {
-                        if ws.send(Message::text(protocol::error_json(&message))).is_err() {
-                            break;
+                    if let Some(rate) = req.rate {
+                        period = Duration::from_secs_f64(1.0 / rate);
+                        if let Ok(mut r) = app.rates.lock() {
+                            r.insert(id, rate);
                         }
+                        update_publication(app, shared, *rate_hz);
                     }
                 }
-            }
+                Err(message) => {
+                    if ws
+                        .send(Message::text(protocol::error_json(&message)))
+                        .is_err()
+                    {
+                        break;
+                    }
+                }
+            },
             Ok(Message::Binary(_)) => {
                 let m = protocol::error_json("send commands as JSON text messages");
                 if ws.send(Message::text(m)).is_err() {
