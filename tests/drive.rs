@@ -226,8 +226,43 @@ fn view_serves_a_finished_run() {
         scenario: None,
         port: 0,
     })
-    .err()
-    .expect("no run there")
+    .expect_err("no run there")
     .to_string();
     assert!(e.contains("run.csv") && e.contains("cannot read"), "{e}");
+}
+
+/// With a watchdog, a client that stops sending commands has the speed
+/// zeroed once it expires; a message that is not a command (a rate) does
+/// not bring the old set-point back, and the next command does.
+#[test]
+fn the_watchdog_zeroes_the_command_of_a_silent_client() {
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let running = start(&args("swing4", &scenario)).unwrap();
+    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    next_of(&mut ws, "hello");
+    ws.send(Message::text(r#"{"watchdog": 0.3, "speed": 0.05}"#))
+        .unwrap();
+    let give_up = Instant::now() + Duration::from_secs(60);
+    loop {
+        let s = next_of(&mut ws, "state");
+        if s["watchdog_tripped"] == true {
+            assert_eq!(s["V_set"].as_f64(), Some(0.0), "{s}");
+            break;
+        }
+        assert!(Instant::now() < give_up, "the watchdog never tripped");
+    }
+    ws.send(Message::text(r#"{"rate": 60}"#)).unwrap();
+    for _ in 0..5 {
+        let s = next_of(&mut ws, "state");
+        assert_eq!(s["V_set"].as_f64(), Some(0.0), "{s}");
+    }
+    ws.send(Message::text(r#"{"speed": 0.02}"#)).unwrap();
+    loop {
+        let s = next_of(&mut ws, "state");
+        if s["V_set"].as_f64() == Some(0.02) {
+            break;
+        }
+        assert!(Instant::now() < give_up, "the new command never took");
+    }
+    running.stop();
 }

@@ -623,12 +623,20 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
         sleep_until(deadline);
         let woke = Instant::now();
         timing.late.record((woke - deadline).as_secs_f64());
-        if let Ok(inbox) = shared.inbox.try_lock() {
+        if let Ok(mut inbox) = shared.inbox.try_lock() {
+            let expired = inbox.watchdog_s > 0.0
+                && inbox.last_command.elapsed().as_secs_f64() > inbox.watchdog_s;
+            if expired && !tripped {
+                // Zeroed in the inbox itself: a later message that is not
+                // a command (a rate, a pause) does not bring it back.
+                inbox.command.stop();
+                inbox.seq += 1;
+            }
+            tripped = expired;
             if inbox.seq != seen_seq {
                 seen_seq = inbox.seq;
                 command.assign(&inbox.command);
                 paused = inbox.paused;
-                tripped = false;
                 sim.set_command(&command);
             }
             if inbox.resets != seen_resets {
@@ -636,14 +644,6 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
                 sim.reset();
                 command.stop();
                 error = None;
-            }
-            if !tripped
-                && inbox.watchdog_s > 0.0
-                && inbox.last_command.elapsed().as_secs_f64() > inbox.watchdog_s
-            {
-                tripped = true;
-                command.stop();
-                sim.set_command(&command);
             }
         }
         let stepping = !paused && error.is_none();
@@ -655,26 +655,26 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
             window_sim += sim.h;
         }
         let publish_every = shared.publish_every.load(Ordering::Relaxed).max(1);
-        if tick >= published_at + publish_every {
-            if let Ok(mut s) = shared.state.try_lock() {
-                published_at = tick;
-                sim.row(&mut row);
-                s.values.copy_from_slice(&row);
-                s.seq += 1;
-                s.wall_s = (woke - start).as_secs_f64();
-                s.real_time_factor = rtf;
-                s.overruns = timing.overruns;
-                s.dropped_ticks = timing.dropped_ticks;
-                s.steps = steps;
-                s.step_s = last_step_s;
-                s.paused = paused;
-                s.watchdog_tripped = tripped;
-                if s.error.is_none() && error.is_some() {
-                    // Once per failure: a message for the clients.
-                    s.error = error.clone();
-                } else if error.is_none() {
-                    s.error = None;
-                }
+        if tick >= published_at + publish_every
+            && let Ok(mut s) = shared.state.try_lock()
+        {
+            published_at = tick;
+            sim.row(&mut row);
+            s.values.copy_from_slice(&row);
+            s.seq += 1;
+            s.wall_s = (woke - start).as_secs_f64();
+            s.real_time_factor = rtf;
+            s.overruns = timing.overruns;
+            s.dropped_ticks = timing.dropped_ticks;
+            s.steps = steps;
+            s.step_s = last_step_s;
+            s.paused = paused;
+            s.watchdog_tripped = tripped;
+            if s.error.is_none() && error.is_some() {
+                // Once per failure: a message for the clients.
+                s.error = error.clone();
+            } else if error.is_none() {
+                s.error = None;
             }
         }
         let done = Instant::now();
