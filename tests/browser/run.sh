@@ -4,7 +4,7 @@
 # Node.js; where either is missing it is skipped with a message saying
 # what to install, and exits 0.
 set -euo pipefail
-cd "$(dirname "$0")"
+cd "${0%/*}"
 browser=${CHROMIUM:-$(command -v chromium || command -v chromium-browser || true)}
 if [ -z "$browser" ]; then
   echo "SKIPPED: the browser test of rover drive needs Chromium (apt-get install chromium, or .ci/setup-browser; or set CHROMIUM=/path/to/chrome)"
