@@ -266,3 +266,29 @@ fn the_watchdog_zeroes_the_command_of_a_silent_client() {
     }
     running.stop();
 }
+
+/// `--report` drives without a server and prints the latencies; bad
+/// rates and durations are errors naming the flag.
+#[test]
+fn the_report_gives_latencies_and_bad_settings_are_errors() {
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let mut a = args("lrv", &scenario);
+    a.rate = 200.0;
+    let text = rover::drive::report(&a, 0.5).unwrap();
+    assert!(text.starts_with("lrv with ros2:"), "{text}");
+    for part in ["median", "99.9th percentile", "overruns:"] {
+        assert!(text.contains(part), "{text}");
+    }
+    assert!(!text.contains("stopped"), "{text}");
+    assert!(
+        rover::drive::report(&a, -1.0)
+            .unwrap_err()
+            .to_string()
+            .contains("--report -1")
+    );
+    for bad in [0.0, f64::NAN, 1e9] {
+        a.rate = bad;
+        let e = rover::drive::report(&a, 0.5).unwrap_err().to_string();
+        assert!(e.contains("--rate"), "{e}");
+    }
+}

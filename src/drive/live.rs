@@ -348,6 +348,8 @@ pub struct Timing {
     pub simulated_s: f64,
     /// See `simulated_s`.
     pub wall_s: f64,
+    /// Why the simulation stopped, if it did (it then waits for a reset).
+    pub error: Option<String>,
 }
 
 /// The simulation the loop advances: the system, its integrator, the
@@ -703,6 +705,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
     }
     timing.simulated_s = sim.t();
     timing.wall_s = start.elapsed().as_secs_f64();
+    timing.error = error;
     timing
 }
 

@@ -326,7 +326,7 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
         "{} steps at {rate} Hz in {:.1} s (simulated {:.2} s, real-time factor {:.3})\n\
          step computing time: median {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs (period {:.0} µs)\n\
          start lateness (jitter): median {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs\n\
-         overruns: {} ({} ticks dropped)",
+         overruns: {} ({} ticks dropped){}",
         t.compute.count(),
         t.wall_s,
         t.simulated_s,
@@ -344,6 +344,10 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
         us(t.late.max()),
         t.overruns,
         t.dropped_ticks,
+        match &t.error {
+            Some(e) => format!("\nthe simulation stopped: {e}"),
+            None => String::new(),
+        },
     )
 }
 
