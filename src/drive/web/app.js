@@ -130,7 +130,7 @@ function pathClear() { pathCount = 0; pathGeo.setDrawRange(0, 0); }
 // Rest positions of the wheels in body axes; in `rover view` without a
 // known rover, from the first row (the body's frame applied backwards).
 let rest = meta.rest || null;
-let forceScale = null;
+let meanLoad = 0;
 const euler = new THREE.Euler(), q = new THREE.Quaternion(), qs = new THREE.Quaternion();
 const zAxis = new THREE.Vector3(0, 0, 1), v = new THREE.Vector3(), up = new THREE.Vector3();
 
@@ -152,12 +152,12 @@ function show(s) {
   q.setFromEuler(euler);
   body.position.set(s.X, s.Y, s.Z);
   body.quaternion.copy(q);
-  if (forceScale === null) {
-    let sum = 0;
-    for (let j = 1; j <= wheels; j++) sum += Math.max(0, s[`Fn${j}`]);
-    // The mean static load is drawn three wheel radii long.
-    if (sum > 0) forceScale = 3 * rMax / (sum / wheels);
-  }
+  // Forces are drawn against the recent mean load (two wheel radii long):
+  // what the arrows show is how the load is shared, at any rover's scale.
+  let sum = 0;
+  for (let j = 1; j <= wheels; j++) sum += Math.max(0, s[`Fn${j}`]);
+  const mean = sum / wheels;
+  meanLoad = meanLoad > 0 ? 0.97 * meanLoad + 0.03 * mean : mean;
   for (let j = 0; j < wheels; j++) {
     const k = j + 1, c = [s[`W${k}X`], s[`W${k}Y`], s[`W${k}Z`]];
     wheelMeshes[j].position.set(...c);
@@ -168,15 +168,17 @@ function show(s) {
     a.set([v.x, v.y, v.z, ...c]);
     links[j].geometry.attributes.position.needsUpdate = true;
     const fn = s[`Fn${k}`];
-    if (fn > 0 && forceScale) {
+    if (fn > 0 && meanLoad > 1e-9) {
       arrows[j].visible = true;
-      arrows[j].position.set(s[`H${k}X`], s[`H${k}Y`], s[`H${k}Z`]);
-      // Along the line from the contact point to the wheel centre: the
-      // direction of the normal force on a round wheel.
+      // Along the line from the contact point to the wheel centre (the
+      // normal force's line of action on a round wheel), drawn from the top
+      // of the wheel so that the tyre does not hide it.
       up.set(c[0] - s[`H${k}X`], c[1] - s[`H${k}Y`], c[2] - s[`H${k}Z`]);
       if (up.lengthSq() < 1e-12) up.set(0, 0, 1);
-      arrows[j].setDirection(up.normalize());
-      const len = Math.max(1e-3, fn * forceScale);
+      up.normalize();
+      arrows[j].position.set(c[0] + up.x * radius[j], c[1] + up.y * radius[j], c[2] + up.z * radius[j]);
+      arrows[j].setDirection(up);
+      const len = Math.min(8 * rMax, Math.max(1e-3, 2 * rMax * fn / meanLoad));
       arrows[j].setLength(len, 0.25 * Math.min(len, rMax), 0.15 * Math.min(len, rMax));
     } else {
       arrows[j].visible = false;
@@ -184,6 +186,7 @@ function show(s) {
   }
   pathPush(s.X, s.Y, groundBelow(s));
 }
+
 
 // The ground's height under G, from the lowest wheel at rest.
 function groundBelow(s) {
