@@ -2,5 +2,7 @@
 //! test can call (`rover::cli::simulate(&SimulateArgs)`).
 
 pub mod cli;
+#[cfg(feature = "drive")]
+pub mod drive;
 pub mod rover_source;
 pub mod sweep;

@@ -215,3 +215,46 @@ fn a_stepper_allocates_nothing_per_step_nor_per_command() {
     assert_eq!(counts.count_total, 0, "{counts:?}");
     assert!((s.time() - 5.01).abs() < 1e-9);
 }
+
+/// `rover drive`'s loop (commands read, one RK4 step, the state published
+/// at every step, the worst case) allocates the same whether it runs 0.1 s
+/// or 0.5 s of wall-clock time: what it allocates is set up before the
+/// first tick, nothing per step.
+#[cfg(feature = "drive")]
+#[test]
+fn the_drive_loop_allocates_nothing_per_step() {
+    use rover::drive::{live, protocol};
+    use std::sync::atomic::Ordering;
+    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
+    let path = std::path::Path::new("flat.toml");
+    let scenario = rover_runtime::scenario::Scenario::parse("duration = 1.0\n", path).unwrap();
+    let config = live::LoopConfig::new(1000.0, None, &scenario);
+    let columns = rover_runtime::output::header(spec.model.m(), spec.model.wheels.len()).len();
+    let count = |seconds: f64| {
+        let plant = rover_models::Swing4::new();
+        let dir = std::path::Path::new(".");
+        let mut sim = live::Sim::new(plant, &spec.model, &scenario, dir, &config).unwrap();
+        let shared = live::shared(columns, spec.model.wheels.len(), 1000.0);
+        shared.publish_every.store(1, Ordering::Relaxed);
+        let go = protocol::Request {
+            speed: Some(0.1),
+            ..Default::default()
+        };
+        protocol::apply(&go, &mut shared.inbox.lock().unwrap());
+        let mut steps = 0;
+        let counts = allocation_counter::measure(|| {
+            steps = live::run(&mut sim, &shared, Some(seconds)).compute.count();
+        });
+        (counts.count_total, steps)
+    };
+    let (short, short_steps) = count(0.1);
+    let (long, long_steps) = count(0.5);
+    assert!(
+        long_steps > short_steps + 100,
+        "{short_steps} and {long_steps} steps"
+    );
+    assert_eq!(
+        short, long,
+        "{short_steps} steps: {short} allocations, {long_steps}: {long}"
+    );
+}

@@ -8,6 +8,8 @@ mod codegen;
 mod commands;
 mod contact_accuracy;
 mod control;
+#[cfg(feature = "drive")]
+mod drive;
 mod dynamics;
 mod failures;
 mod fidelity;

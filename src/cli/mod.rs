@@ -50,6 +50,13 @@ pub enum Command {
     /// Rerun the paper's figures and write docs/REPRODUCTION.md.
     #[cfg(feature = "reproduce")]
     Reproduce(ReproduceArgs),
+    /// Drive a rover live: the simulation paced to the wall clock, a 3D view
+    /// in the browser, a WebSocket for rigs (docs/DRIVE.md).
+    #[cfg(feature = "drive")]
+    Drive(crate::drive::DriveArgs),
+    /// Animate a finished run's run.csv in the browser.
+    #[cfg(feature = "drive")]
+    View(crate::drive::ViewArgs),
 }
 
 /// Errors a subcommand reports; printed once by `main`.
@@ -146,6 +153,16 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
         }
         Command::Sweep(a) => {
             sweep(&a)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        #[cfg(feature = "drive")]
+        Command::Drive(a) => {
+            crate::drive::drive(&a)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        #[cfg(feature = "drive")]
+        Command::View(a) => {
+            crate::drive::view(&a)?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate(a) => {

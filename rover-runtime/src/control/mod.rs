@@ -22,5 +22,5 @@ pub use profile::Profile;
 pub use speed::SpeedConfig;
 pub use steering::{
     Ackermann, HeadingActuator, HeadingHold, HeadingIntegrals, LEG_CHECK_PERIOD, LINE_INTEGRAL_CAP,
-    Steering, wrap_angle,
+    Steering, ackermann_angle, curvature_from_angle, wrap_angle,
 };

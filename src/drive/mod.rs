@@ -1,0 +1,495 @@
+//! `rover drive`: the simulation paced to the wall clock, driven live from
+//! a browser or a rig over a WebSocket; `rover view`: a finished run's CSV
+//! animated in the same page. docs/DRIVE.md is the user's guide and the
+//! protocol's reference.
+//!
+//! The web side (a small HTTP server and tungstenite) is behind the
+//! `drive` feature of the `rover` package only: the plant and runtime
+//! crates never depend on it.
+
+pub mod live;
+pub mod protocol;
+pub mod server;
+
+use std::net::TcpListener;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::Ordering;
+use std::thread::JoinHandle;
+
+use clap::Args;
+use rover_dynamics::plant::Plant;
+use rover_runtime::output::header;
+use rover_runtime::scenario::Scenario;
+use rover_runtime::terrain::{HeightField, Terrain};
+use serde_json::json;
+
+use crate::cli::{CliError, build_plant, generated_plant};
+use crate::rover_source::{builtin_names, load_rover};
+
+use live::{LoopConfig, Method, RoverInfo, Shared, Sim, Timing};
+use server::{App, Content};
+
+/// The ground `rover drive` runs on without a scenario: the paper's rough
+/// terrain (Z_R = 0.2, as Figs. 13–14), flat where the rover starts.
+pub const DEFAULT_SCENARIO: &str = "duration = 1.0
+[terrain]
+kind = \"random\"
+z_r = 0.2
+node_amplitude = 0.25
+patch_radius = 0.6
+patch_blend = 0.5
+";
+
+/// Arguments of `rover drive`.
+#[derive(Debug, Args)]
+pub struct DriveArgs {
+    /// A built-in rover (exomars, swing4, mer, lrv) or a description file;
+    /// overrides the scenario's `rover`.
+    pub rover: Option<String>,
+    /// A scenario file for the terrain, contact, initial state and speed
+    /// loop gains (its duration, integrator and other controllers are not
+    /// used); default: rough random terrain.
+    #[arg(long)]
+    pub scenario: Option<PathBuf>,
+    /// TCP port on 127.0.0.1 (0: any free port, printed).
+    #[arg(long, default_value_t = 8080)]
+    pub port: u16,
+    /// Steps per second of wall-clock time.
+    #[arg(long, default_value_t = 1000.0)]
+    pub rate: f64,
+    /// The fixed-step method; default RK4 from 500 Hz up, ROS2 below.
+    #[arg(long, value_enum)]
+    pub method: Option<Method>,
+    /// Use the generic plant even for a built-in rover.
+    #[arg(long)]
+    pub generic: bool,
+    /// No server: drive straight ahead at `--report-speed` for this many
+    /// seconds and print the step latencies, jitter and overruns.
+    #[arg(long, value_name = "SECONDS")]
+    pub report: Option<f64>,
+    /// The speed set-point of a `--report` run [m/s].
+    #[arg(long, default_value_t = 0.1)]
+    pub report_speed: f64,
+}
+
+/// Arguments of `rover view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// A `rover simulate` output folder (its `run.csv` is animated).
+    pub out: PathBuf,
+    /// The rover, when `summary.json` does not name one (for its wheel
+    /// sizes; without one they are estimated from the CSV).
+    #[arg(long)]
+    pub rover: Option<String>,
+    /// The run's scenario, for its terrain (without it the ground is drawn
+    /// flat at the contact points' mean height).
+    #[arg(long)]
+    pub scenario: Option<PathBuf>,
+    /// TCP port on 127.0.0.1 (0: any free port, printed).
+    #[arg(long, default_value_t = 8080)]
+    pub port: u16,
+}
+
+/// A running `rover drive`: its address, and a way to stop it.
+pub struct Running {
+    /// The port it listens on.
+    pub port: u16,
+    /// Shared with the loop.
+    pub shared: Arc<Shared>,
+    sim: JoinHandle<Timing>,
+}
+
+impl Running {
+    /// Stop the loop and return its timing. The server threads end with
+    /// the process; their clients see the socket close.
+    pub fn stop(self) -> Timing {
+        self.shared.stop.store(true, Ordering::Relaxed);
+        self.sim.join().unwrap_or_default()
+    }
+}
+
+fn other(e: impl std::fmt::Display) -> CliError {
+    CliError::Other(e.to_string())
+}
+
+/// The scenario and the folder its relative paths are read from.
+fn load_scenario(path: Option<&Path>) -> Result<(Scenario, PathBuf), CliError> {
+    Ok(match path {
+        Some(p) => (
+            Scenario::load(p)?,
+            p.parent().map(Path::to_path_buf).unwrap_or_default(),
+        ),
+        None => (
+            Scenario::parse(DEFAULT_SCENARIO, Path::new("<built-in drive scenario>"))?,
+            PathBuf::from("."),
+        ),
+    })
+}
+
+fn check_rate(rate: f64) -> Result<(), CliError> {
+    if !(rate.is_finite() && (1.0..=20_000.0).contains(&rate)) {
+        return Err(CliError::Other(format!(
+            "--rate {rate}: steps per second, between 1 and 20000 (1000 is the default)"
+        )));
+    }
+    Ok(())
+}
+
+/// The rover's geometry and the loop's settings, for the page and rigs.
+fn meta(
+    mode: &str,
+    name: &str,
+    columns: &[String],
+    info: Option<&RoverInfo>,
+    loop_config: Option<&LoopConfig>,
+) -> String {
+    let mut m = json!({
+        "mode": mode,
+        "rover": name,
+        "columns": columns,
+        "wheels": columns.iter().filter(|c| c.starts_with("Fn")).count(),
+    });
+    if let Some(info) = info {
+        let xs = info.rest.iter().map(|p| p[0]);
+        let ys = info.rest.iter().map(|p| p[1]);
+        let span = |v: &mut dyn Iterator<Item = f64>| {
+            let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+            hi - lo
+        };
+        let r_max = info.radius.iter().cloned().fold(0.0, f64::max);
+        m["rest"] = json!(info.rest);
+        m["radius"] = json!(info.radius);
+        m["steerable"] = json!(info.steerable);
+        m["steering"] = json!(if info.ackermann() {
+            "ackermann"
+        } else {
+            "slip"
+        });
+        m["max_steer"] = json!(0.5);
+        m["max_torque"] = json!(info.max_torque);
+        m["max_delta_tau"] = json!(
+            0.5 * info
+                .max_torque
+                .iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min)
+        );
+        // A brisk walking pace for the rover's size: two wheel radii a second.
+        m["speed_hint"] = json!(2.0 * r_max);
+        m["body"] = json!({
+            "length": 0.8 * span(&mut xs.clone()).max(2.0 * r_max),
+            "width": (span(&mut ys.clone()) - 2.0 * r_max).max(r_max),
+            "height": r_max,
+        });
+    }
+    if let Some(c) = loop_config {
+        m["rate_hz"] = json!(c.rate_hz);
+        m["step_s"] = json!(1.0 / c.rate_hz);
+        m["method"] = json!(c.method.name());
+    }
+    m.to_string()
+}
+
+/// Heights on a grid of at most 256 × 256 nodes over the terrain's map
+/// (or 40 m × 40 m around `centre` on an unbounded terrain), for the
+/// page's mesh. Nodes off the map are `null`.
+pub fn terrain_json(terrain: &Terrain, centre: [f64; 2]) -> String {
+    let b = terrain.bounds();
+    let half = 20.0;
+    let x0 = b.x_min.max(centre[0] - half);
+    let x1 = b.x_max.min(centre[0] + half);
+    let y0 = b.y_min.max(centre[1] - half);
+    let y1 = b.y_max.min(centre[1] + half);
+    let n = 256usize;
+    let (dx, dy) = ((x1 - x0) / (n - 1) as f64, (y1 - y0) / (n - 1) as f64);
+    let mut z = String::with_capacity(n * n * 8);
+    for j in 0..n {
+        for i in 0..n {
+            if i + j > 0 {
+                z.push(',');
+            }
+            match terrain.height(x0 + i as f64 * dx, y0 + j as f64 * dy) {
+                Ok(h) if h.is_finite() => z.push_str(&format!("{h:.4}")),
+                _ => z.push_str("null"),
+            }
+        }
+    }
+    format!("{{\"x0\":{x0},\"y0\":{y0},\"dx\":{dx},\"dy\":{dy},\"nx\":{n},\"ny\":{n},\"z\":[{z}]}}")
+}
+
+/// Bind 127.0.0.1:`port`, with the reason when that fails.
+fn bind(port: u16) -> Result<TcpListener, CliError> {
+    TcpListener::bind(("127.0.0.1", port)).map_err(|e| {
+        CliError::Other(format!(
+            "cannot listen on 127.0.0.1:{port}: {e}; give another `--port` (0 picks a free one)"
+        ))
+    })
+}
+
+/// Start `rover drive`: the loop on its own thread, the server on another.
+pub fn start(args: &DriveArgs) -> Result<Running, CliError> {
+    check_rate(args.rate)?;
+    let (scenario, base) = load_scenario(args.scenario.as_deref())?;
+    let rover = args
+        .rover
+        .clone()
+        .or_else(|| scenario.rover.clone())
+        .ok_or_else(|| {
+            CliError::Other(format!(
+                "no rover: give one (built-in: {}) or a scenario naming one",
+                builtin_names()
+            ))
+        })?;
+    let spec = load_rover(&rover, Some(&base))?;
+    let level = rover_dynamics::fidelity::Fidelity::Full;
+    match generated_plant(&rover, level, args.generic) {
+        Some(p) => launch(p, &spec, &scenario, &base, args),
+        None => launch(
+            build_plant(&spec.model, level)?,
+            &spec,
+            &scenario,
+            &base,
+            args,
+        ),
+    }
+}
+
+fn launch<P: Plant + Send + 'static>(
+    plant: P,
+    spec: &rover_spec::Spec,
+    scenario: &Scenario,
+    base: &Path,
+    args: &DriveArgs,
+) -> Result<Running, CliError> {
+    let model = &spec.model;
+    let config = LoopConfig::new(args.rate, args.method, scenario);
+    let mut sim = Sim::new(plant, model, scenario, base, &config).map_err(other)?;
+    let columns = Arc::new(header(model.m(), model.wheels.len()));
+    let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
+    let info = sim.info().clone();
+    let terrain = scenario.terrain.build(base).map_err(other)?;
+    let start = [sim.y()[0], sim.y()[1]];
+    let listener = bind(args.port)?;
+    let port = listener.local_addr().map_err(other)?.port();
+    let app = App::new(
+        meta("drive", &spec.name, &columns, Some(&info), Some(&config)),
+        terrain_json(&terrain, start),
+        Content::Drive {
+            shared: shared.clone(),
+            columns,
+            info,
+            rate_hz: args.rate,
+        },
+    );
+    std::thread::Builder::new()
+        .name("rover-server".into())
+        .spawn(move || server::serve(listener, app))
+        .map_err(other)?;
+    let loop_shared = shared.clone();
+    let sim = std::thread::Builder::new()
+        .name("rover-loop".into())
+        .spawn(move || live::run(&mut sim, &loop_shared, None))
+        .map_err(other)?;
+    Ok(Running { port, shared, sim })
+}
+
+/// `rover drive`: serve until Ctrl-C (or, with `--report`, measure and print).
+pub fn drive(args: &DriveArgs) -> Result<(), CliError> {
+    if let Some(seconds) = args.report {
+        let text = report(args, seconds)?;
+        return crate::cli::print_stdout(&text);
+    }
+    let running = start(args)?;
+    eprintln!(
+        "driving at http://127.0.0.1:{}/ (WebSocket at /ws; docs/DRIVE.md); Ctrl-C ends",
+        running.port
+    );
+    let (tx, rx) = std::sync::mpsc::channel();
+    // A second handler cannot be installed in one process; then only the
+    // loop's own end stops the wait.
+    let _ = ctrlc::set_handler(move || {
+        let _ = tx.send(());
+    });
+    let _ = rx.recv();
+    let timing = running.stop();
+    eprintln!("{}", timing_text(&timing, args.rate));
+    Ok(())
+}
+
+/// The timing of a loop as a few lines of text.
+pub fn timing_text(t: &Timing, rate: f64) -> String {
+    let us = |s: f64| s * 1e6;
+    format!(
+        "{} steps at {rate} Hz in {:.1} s (simulated {:.2} s, real-time factor {:.3})\n\
+         step computing time: median {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs (period {:.0} µs)\n\
+         start lateness (jitter): median {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs\n\
+         overruns: {} ({} ticks dropped){}",
+        t.compute.count(),
+        t.wall_s,
+        t.simulated_s,
+        if t.wall_s > 0.0 {
+            t.simulated_s / t.wall_s
+        } else {
+            0.0
+        },
+        us(t.compute.quantile(0.5)),
+        us(t.compute.quantile(0.999)),
+        us(t.compute.max()),
+        1e6 / rate,
+        us(t.late.quantile(0.5)),
+        us(t.late.quantile(0.999)),
+        us(t.late.max()),
+        t.overruns,
+        t.dropped_ticks,
+        match &t.error {
+            Some(e) => format!("\nthe simulation stopped: {e}"),
+            None => String::new(),
+        },
+    )
+}
+
+/// `--report`: the loop without a server, driving straight ahead.
+pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
+    if !(seconds.is_finite() && seconds > 0.0) {
+        return Err(CliError::Other(format!(
+            "--report {seconds}: seconds of driving, > 0"
+        )));
+    }
+    check_rate(args.rate)?;
+    let (scenario, base) = load_scenario(args.scenario.as_deref())?;
+    let rover = args
+        .rover
+        .clone()
+        .or_else(|| scenario.rover.clone())
+        .ok_or_else(|| CliError::Other("no rover".into()))?;
+    let spec = load_rover(&rover, Some(&base))?;
+    let level = rover_dynamics::fidelity::Fidelity::Full;
+    let timing = match generated_plant(&rover, level, args.generic) {
+        Some(p) => measure(p, &spec, &scenario, &base, args, seconds)?,
+        None => measure(
+            build_plant(&spec.model, level)?,
+            &spec,
+            &scenario,
+            &base,
+            args,
+            seconds,
+        )?,
+    };
+    let config = LoopConfig::new(args.rate, args.method, &scenario);
+    Ok(format!(
+        "{} with {}:\n{}\n",
+        spec.name,
+        config.method.name(),
+        timing_text(&timing, args.rate)
+    ))
+}
+
+fn measure<P: Plant>(
+    plant: P,
+    spec: &rover_spec::Spec,
+    scenario: &Scenario,
+    base: &Path,
+    args: &DriveArgs,
+    seconds: f64,
+) -> Result<Timing, CliError> {
+    let model = &spec.model;
+    let config = LoopConfig::new(args.rate, args.method, scenario);
+    let mut sim = Sim::new(plant, model, scenario, base, &config).map_err(other)?;
+    let columns = header(model.m(), model.wheels.len());
+    let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
+    if let Ok(mut inbox) = shared.inbox.lock() {
+        let r = protocol::Request {
+            speed: Some(args.report_speed),
+            ..Default::default()
+        };
+        protocol::apply(&r, &mut inbox);
+    }
+    Ok(live::run(&mut sim, &shared, Some(seconds)))
+}
+
+/// `rover view`: serve the page animating `<out>/run.csv` until Ctrl-C.
+pub fn view(args: &ViewArgs) -> Result<(), CliError> {
+    let (port, _app) = start_view(args)?;
+    eprintln!(
+        "viewing {} at http://127.0.0.1:{port}/; Ctrl-C ends",
+        args.out.join("run.csv").display()
+    );
+    let (tx, rx) = std::sync::mpsc::channel();
+    let _ = ctrlc::set_handler(move || {
+        let _ = tx.send(());
+    });
+    let _ = rx.recv();
+    Ok(())
+}
+
+/// Start `rover view`'s server; returns its port.
+pub fn start_view(args: &ViewArgs) -> Result<(u16, JoinHandle<()>), CliError> {
+    let csv = args.out.join("run.csv");
+    let text = std::fs::read_to_string(&csv)
+        .map_err(|e| CliError::Other(format!("{}: cannot read: {e}", csv.display())))?;
+    let columns: Vec<String> = text
+        .lines()
+        .next()
+        .unwrap_or("")
+        .split(',')
+        .map(|s| s.trim().to_string())
+        .collect();
+    for c in ["t", "X", "Y", "Z", "phi", "theta", "psi", "W1X", "Fn1"] {
+        if !columns.iter().any(|h| h == c) {
+            return Err(CliError::Other(format!(
+                "{}: no column `{c}`: not a run.csv of `rover simulate`",
+                csv.display()
+            )));
+        }
+    }
+    let name = args.rover.clone().or_else(|| {
+        let s = std::fs::read_to_string(args.out.join("summary.json")).ok()?;
+        let v: serde_json::Value = serde_json::from_str(&s).ok()?;
+        v.get("rover")?.as_str().map(str::to_string)
+    });
+    let spec = name.as_deref().and_then(|n| load_rover(n, None).ok());
+    let info = spec.as_ref().map(|s| RoverInfo::new(&s.model));
+    let terrain = match &args.scenario {
+        Some(p) => {
+            let (scenario, base) = load_scenario(Some(p))?;
+            let terrain = scenario.terrain.build(&base).map_err(other)?;
+            let first: Vec<f64> = text
+                .lines()
+                .nth(1)
+                .unwrap_or("")
+                .split(',')
+                .map(|v| v.trim().parse().unwrap_or(0.0))
+                .collect();
+            let at = |c: &str| {
+                columns
+                    .iter()
+                    .position(|h| h == c)
+                    .and_then(|i| first.get(i).copied())
+                    .unwrap_or(0.0)
+            };
+            terrain_json(&terrain, [at("X"), at("Y")])
+        }
+        None => "null".to_string(),
+    };
+    let listener = bind(args.port)?;
+    let port = listener.local_addr().map_err(other)?.port();
+    let app = App::new(
+        meta(
+            "view",
+            spec.as_ref().map_or("run", |s| s.name.as_str()),
+            &columns,
+            info.as_ref(),
+            None,
+        ),
+        terrain,
+        Content::View { csv },
+    );
+    let handle = std::thread::Builder::new()
+        .name("rover-server".into())
+        .spawn(move || server::serve(listener, app))
+        .map_err(other)?;
+    Ok((port, handle))
+}

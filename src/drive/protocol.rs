@@ -1,0 +1,294 @@
+//! The WebSocket protocol (docs/DRIVE.md): JSON text messages, commands in
+//! and state out. A message is checked whole before any of it applies, and
+//! a bad one is answered with `{"type": "error", "message": …}` naming the
+//! field: the connection and the loop go on.
+
+use std::fmt::Write as _;
+use std::time::Instant;
+
+use serde_json::{Map, Value};
+
+use super::live::{Inbox, Mode, RoverInfo, Snapshot};
+
+/// Every key a command message may have.
+pub const KEYS: &[&str] = &[
+    "speed",
+    "steer",
+    "delta_tau",
+    "torques",
+    "steering",
+    "pause",
+    "reset",
+    "rate",
+    "watchdog",
+];
+
+/// Largest |steer| accepted \[rad\]: beyond, the Ackermann angles of the
+/// inner wheels pass 90°.
+pub const MAX_STEER: f64 = 1.2;
+
+/// A command message, checked.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Request {
+    /// Speed set-point [m/s].
+    pub speed: Option<f64>,
+    /// Ackermann steering angle \[rad\].
+    pub steer: Option<f64>,
+    /// Slip steering torque difference [N·m].
+    pub delta_tau: Option<f64>,
+    /// Raw torques [N·m].
+    pub torques: Option<Vec<f64>>,
+    /// Raw steering angles \[rad\].
+    pub steering: Option<Vec<f64>>,
+    /// Pause or resume.
+    pub pause: Option<bool>,
+    /// Back to the initial state.
+    pub reset: bool,
+    /// State messages per second for this client.
+    pub rate: Option<f64>,
+    /// Watchdog timeout \[s\] (0: off).
+    pub watchdog: Option<f64>,
+}
+
+impl Request {
+    /// Whether it changes what drives the rover (and so feeds the watchdog).
+    pub fn is_command(&self) -> bool {
+        self.speed.is_some()
+            || self.steer.is_some()
+            || self.delta_tau.is_some()
+            || self.torques.is_some()
+            || self.steering.is_some()
+    }
+}
+
+fn number(obj: &Map<String, Value>, key: &str) -> Result<Option<f64>, String> {
+    match obj.get(key) {
+        None => Ok(None),
+        Some(Value::Number(n)) => match n.as_f64() {
+            Some(v) if v.is_finite() => Ok(Some(v)),
+            _ => Err(format!("`{key}` must be a finite number, got {n}")),
+        },
+        Some(other) => Err(format!("`{key}` must be a number, got {other}")),
+    }
+}
+
+fn per_wheel(
+    obj: &Map<String, Value>,
+    key: &str,
+    wheels: usize,
+) -> Result<Option<Vec<f64>>, String> {
+    let Some(v) = obj.get(key) else {
+        return Ok(None);
+    };
+    let Value::Array(items) = v else {
+        return Err(format!(
+            "`{key}` must be an array of {wheels} numbers (one per wheel), got {v}"
+        ));
+    };
+    if items.len() != wheels {
+        return Err(format!(
+            "`{key}` has {} values; the rover has {wheels} wheels",
+            items.len()
+        ));
+    }
+    items
+        .iter()
+        .enumerate()
+        .map(|(k, x)| match x.as_f64() {
+            Some(v) if v.is_finite() => Ok(v),
+            _ => Err(format!(
+                "`{key}`[{k}] (wheel {}) must be a finite number, got {x}",
+                k + 1
+            )),
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(Some)
+}
+
+/// Parse and check one message for a rover; `max_rate` is the loop's rate.
+pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, String> {
+    let value: Value = serde_json::from_str(text).map_err(|e| format!("not JSON: {e}"))?;
+    let Value::Object(obj) = value else {
+        return Err(format!(
+            "a message is a JSON object such as {{\"speed\": 0.1}}, got {value}"
+        ));
+    };
+    if let Some(k) = obj.keys().find(|k| !KEYS.contains(&k.as_str())) {
+        return Err(format!(
+            "unknown key `{k}`; the keys are {}",
+            KEYS.join(", ")
+        ));
+    }
+    let wheels = info.steerable.len();
+    let mut r = Request {
+        speed: number(&obj, "speed")?,
+        steer: number(&obj, "steer")?,
+        delta_tau: number(&obj, "delta_tau")?,
+        torques: per_wheel(&obj, "torques", wheels)?,
+        steering: per_wheel(&obj, "steering", wheels)?,
+        rate: number(&obj, "rate")?,
+        watchdog: number(&obj, "watchdog")?,
+        ..Request::default()
+    };
+    match obj.get("pause") {
+        None => {}
+        Some(Value::Bool(b)) => r.pause = Some(*b),
+        Some(v) => return Err(format!("`pause` must be true or false, got {v}")),
+    }
+    match obj.get("reset") {
+        None | Some(Value::Bool(false)) => {}
+        Some(Value::Bool(true)) => r.reset = true,
+        Some(v) => return Err(format!("`reset` must be true, got {v}")),
+    }
+    if let Some(s) = r.steer {
+        if !info.ackermann() {
+            return Err(
+                "this rover has no steerable wheel: it steers by slip, send `delta_tau` [N·m]"
+                    .into(),
+            );
+        }
+        if s.abs() > MAX_STEER {
+            return Err(format!("`steer` = {s} rad is beyond ±{MAX_STEER} rad"));
+        }
+    }
+    if r.delta_tau.is_some() && info.ackermann() {
+        return Err(
+            "this rover steers its wheels (Ackermann): send `steer` [rad], or raw `steering`"
+                .into(),
+        );
+    }
+    let loop_mode = r.speed.is_some() || r.steer.is_some() || r.delta_tau.is_some();
+    let raw = r.torques.is_some() || r.steering.is_some();
+    if loop_mode && raw {
+        return Err(
+            "`speed`/`steer`/`delta_tau` (the loop's speed controller) and raw `torques`/`steering` cannot be mixed in one message"
+                .into(),
+        );
+    }
+    if let Some(angles) = &r.steering
+        && let Some(k) = (0..wheels).find(|&k| !info.steerable[k] && angles[k] != 0.0)
+    {
+        return Err(format!(
+            "`steering`[{k}]: wheel {} does not steer; give it 0",
+            k + 1
+        ));
+    }
+    if let Some(rate) = r.rate
+        && !(rate > 0.0 && rate <= max_rate)
+    {
+        return Err(format!(
+            "`rate` = {rate}: state messages per second, in (0, {max_rate}] (the loop's rate)"
+        ));
+    }
+    if let Some(w) = r.watchdog
+        && w < 0.0
+    {
+        return Err(format!("`watchdog` = {w}: seconds, ≥ 0 (0 turns it off)"));
+    }
+    Ok(r)
+}
+
+/// Apply a checked request to the inbox (the loop takes it at its next step).
+pub fn apply(r: &Request, inbox: &mut Inbox) {
+    let c = &mut inbox.command;
+    if r.speed.is_some() || r.steer.is_some() || r.delta_tau.is_some() {
+        if c.mode == Mode::Raw {
+            // Leaving raw mode: no raw value carries over.
+            c.torques.iter_mut().for_each(|v| *v = 0.0);
+            c.steering.iter_mut().for_each(|v| *v = 0.0);
+        }
+        c.mode = Mode::Speed;
+    }
+    if let Some(v) = r.speed {
+        c.speed = v;
+    }
+    if let Some(v) = r.steer {
+        c.steer = v;
+    }
+    if let Some(v) = r.delta_tau {
+        c.delta_tau = v;
+    }
+    if r.torques.is_some() || r.steering.is_some() {
+        if c.mode == Mode::Speed {
+            c.speed = 0.0;
+            c.steer = 0.0;
+            c.delta_tau = 0.0;
+        }
+        c.mode = Mode::Raw;
+    }
+    if let Some(t) = &r.torques {
+        c.torques.copy_from_slice(t);
+    }
+    if let Some(s) = &r.steering {
+        c.steering.copy_from_slice(s);
+    }
+    if let Some(p) = r.pause {
+        inbox.paused = p;
+    }
+    if r.reset {
+        inbox.resets += 1;
+        c.speed = 0.0;
+        c.steer = 0.0;
+        c.delta_tau = 0.0;
+        c.torques.iter_mut().for_each(|v| *v = 0.0);
+        c.steering.iter_mut().for_each(|v| *v = 0.0);
+    }
+    if let Some(w) = r.watchdog {
+        inbox.watchdog_s = w;
+    }
+    if r.is_command() {
+        inbox.last_command = Instant::now();
+    }
+    inbox.seq += 1;
+}
+
+/// A number as JSON (non-finite values are `null`).
+fn num(out: &mut String, v: f64) {
+    if v.is_finite() {
+        let _ = write!(out, "{v}");
+    } else {
+        out.push_str("null");
+    }
+}
+
+/// A JSON string literal.
+fn string(out: &mut String, s: &str) {
+    out.push_str(&Value::String(s.to_string()).to_string());
+}
+
+/// The state message: `"type": "state"`, every CSV column under its CSV
+/// name, then the loop's own figures.
+pub fn state_json(columns: &[String], s: &Snapshot) -> String {
+    let mut out = String::with_capacity(32 * columns.len() + 256);
+    out.push_str("{\"type\":\"state\"");
+    for (name, v) in columns.iter().zip(&s.values) {
+        let _ = write!(out, ",\"{name}\":");
+        num(&mut out, *v);
+    }
+    out.push_str(",\"wall\":");
+    num(&mut out, s.wall_s);
+    out.push_str(",\"rtf\":");
+    num(&mut out, s.real_time_factor);
+    let _ = write!(
+        out,
+        ",\"steps\":{},\"overruns\":{},\"dropped_ticks\":{},\"step_us\":",
+        s.steps, s.overruns, s.dropped_ticks
+    );
+    num(&mut out, s.step_s * 1e6);
+    let _ = write!(
+        out,
+        ",\"paused\":{},\"watchdog_tripped\":{},\"error\":",
+        s.paused, s.watchdog_tripped
+    );
+    match &s.error {
+        Some(e) => string(&mut out, e),
+        None => out.push_str("null"),
+    }
+    out.push('}');
+    out
+}
+
+/// An error reply.
+pub fn error_json(message: &str) -> String {
+    serde_json::json!({"type": "error", "message": message}).to_string()
+}

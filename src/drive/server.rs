@@ -1,0 +1,331 @@
+//! The web side: a small HTTP/1.1 server on std's sockets (one thread per
+//! connection; the page, its script, three.js, the rover's description,
+//! the terrain, a run's CSV) and the WebSocket at `/ws` (tungstenite over
+//! the same socket). No async runtime: a handful of clients at tens of
+//! messages per second is what it serves, and the real-time loop runs on
+//! its own thread whatever the server does.
+
+use std::collections::HashMap;
+use std::io::{Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use tungstenite::protocol::Role;
+use tungstenite::{Message, WebSocket};
+
+use super::live::{RoverInfo, Shared};
+use super::protocol;
+
+/// The page and its scripts, in the binary: nothing is fetched at run time.
+const INDEX: &str = include_str!("web/index.html");
+const APP: &str = include_str!("web/app.js");
+const THREE: &str = include_str!("web/three.min.js");
+
+/// What the server serves besides the page.
+pub enum Content {
+    /// A live loop: `/ws` reaches it.
+    Drive {
+        /// Shared with the loop.
+        shared: Arc<Shared>,
+        /// The CSV's column names.
+        columns: Arc<Vec<String>>,
+        /// The rover, to check commands.
+        info: RoverInfo,
+        /// The loop's rate \[Hz\].
+        rate_hz: f64,
+    },
+    /// A finished run: `/run.csv` is its CSV.
+    View {
+        /// The CSV file.
+        csv: PathBuf,
+    },
+}
+
+/// The server's state, shared by the connection threads.
+pub struct App {
+    /// `/meta.json`: the mode, the rover's geometry, the loop's settings.
+    pub meta: String,
+    /// `/terrain.json`: a grid of heights.
+    pub terrain: String,
+    /// Mode-specific content.
+    pub content: Content,
+    /// Each WebSocket client's state rate, to set the loop's publication rate.
+    rates: Mutex<HashMap<u64, f64>>,
+    next_client: AtomicU64,
+}
+
+impl App {
+    /// A server's state.
+    pub fn new(meta: String, terrain: String, content: Content) -> Arc<Self> {
+        Arc::new(App {
+            meta,
+            terrain,
+            content,
+            rates: Mutex::new(HashMap::new()),
+            next_client: AtomicU64::new(0),
+        })
+    }
+}
+
+/// Accept connections until the listener fails; one thread each.
+pub fn serve(listener: TcpListener, app: Arc<App>) {
+    for stream in listener.incoming() {
+        let Ok(stream) = stream else { continue };
+        let app = app.clone();
+        let _ = std::thread::Builder::new()
+            .name("rover-http".into())
+            .spawn(move || {
+                // A client that goes away mid-request is nothing to report.
+                let _ = connection(stream, &app);
+            });
+    }
+}
+
+/// A request's method, path and the headers that matter here.
+struct Request {
+    method: String,
+    path: String,
+    websocket_key: Option<String>,
+}
+
+fn read_request(stream: &mut TcpStream) -> std::io::Result<Option<Request>> {
+    stream.set_read_timeout(Some(Duration::from_secs(10)))?;
+    let mut buf = Vec::with_capacity(1024);
+    let mut chunk = [0u8; 1024];
+    while !buf.windows(4).any(|w| w == b"\r\n\r\n") {
+        let n = stream.read(&mut chunk)?;
+        if n == 0 {
+            return Ok(None);
+        }
+        buf.extend_from_slice(&chunk[..n]);
+        if buf.len() > 32 * 1024 {
+            return Ok(None);
+        }
+    }
+    let text = String::from_utf8_lossy(&buf);
+    let mut lines = text.split("\r\n");
+    let mut first = lines.next().unwrap_or("").split_whitespace();
+    let method = first.next().unwrap_or("").to_string();
+    let path = first.next().unwrap_or("").to_string();
+    let mut websocket_key = None;
+    for line in lines {
+        if let Some((name, value)) = line.split_once(':')
+            && name.trim().eq_ignore_ascii_case("sec-websocket-key")
+        {
+            websocket_key = Some(value.trim().to_string());
+        }
+    }
+    Ok(Some(Request {
+        method,
+        path,
+        websocket_key,
+    }))
+}
+
+fn respond(stream: &mut TcpStream, status: &str, kind: &str, body: &[u8]) -> std::io::Result<()> {
+    let head = format!(
+        "HTTP/1.1 {status}\r\nContent-Type: {kind}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n",
+        body.len()
+    );
+    stream.write_all(head.as_bytes())?;
+    stream.write_all(body)?;
+    stream.flush()
+}
+
+fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
+    let Some(req) = read_request(&mut stream)? else {
+        return Ok(());
+    };
+    if req.method != "GET" {
+        return respond(
+            &mut stream,
+            "405 Method Not Allowed",
+            "text/plain",
+            b"only GET\n",
+        );
+    }
+    let path = req.path.split('?').next().unwrap_or("");
+    match path {
+        "/" | "/index.html" => respond(
+            &mut stream,
+            "200 OK",
+            "text/html; charset=utf-8",
+            INDEX.as_bytes(),
+        ),
+        "/app.js" => respond(
+            &mut stream,
+            "200 OK",
+            "text/javascript; charset=utf-8",
+            APP.as_bytes(),
+        ),
+        "/three.min.js" => respond(
+            &mut stream,
+            "200 OK",
+            "text/javascript; charset=utf-8",
+            THREE.as_bytes(),
+        ),
+        "/favicon.ico" => respond(&mut stream, "204 No Content", "image/x-icon", b""),
+        "/meta.json" => respond(
+            &mut stream,
+            "200 OK",
+            "application/json",
+            app.meta.as_bytes(),
+        ),
+        "/terrain.json" => respond(
+            &mut stream,
+            "200 OK",
+            "application/json",
+            app.terrain.as_bytes(),
+        ),
+        "/run.csv" => match &app.content {
+            Content::View { csv } => match std::fs::read(csv) {
+                Ok(bytes) => respond(&mut stream, "200 OK", "text/csv", &bytes),
+                Err(e) => respond(
+                    &mut stream,
+                    "500 Internal Server Error",
+                    "text/plain",
+                    format!("{}: {e}\n", csv.display()).as_bytes(),
+                ),
+            },
+            Content::Drive { .. } => respond(
+                &mut stream,
+                "404 Not Found",
+                "text/plain",
+                b"no run file while driving live\n",
+            ),
+        },
+        "/ws" => match (&app.content, req.websocket_key) {
+            (Content::Drive { .. }, Some(key)) => {
+                let accept = tungstenite::handshake::derive_accept_key(key.as_bytes());
+                let head = format!(
+                    "HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Accept: {accept}\r\n\r\n"
+                );
+                stream.write_all(head.as_bytes())?;
+                let ws = WebSocket::from_raw_socket(stream, Role::Server, None);
+                session(ws, app);
+                Ok(())
+            }
+            (Content::Drive { .. }, None) => respond(
+                &mut stream,
+                "400 Bad Request",
+                "text/plain",
+                b"/ws is a WebSocket: connect with a WebSocket client\n",
+            ),
+            (Content::View { .. }, _) => respond(
+                &mut stream,
+                "404 Not Found",
+                "text/plain",
+                b"no live loop when viewing a run\n",
+            ),
+        },
+        _ => respond(&mut stream, "404 Not Found", "text/plain", b"not found\n"),
+    }
+}
+
+/// The loop publishes at the highest rate any client asked for.
+fn update_publication(app: &App, shared: &Shared, rate_hz: f64) {
+    let Ok(rates) = app.rates.lock() else { return };
+    let highest = rates.values().cloned().fold(30.0, f64::max);
+    let every = ((rate_hz / highest).floor() as u64).max(1);
+    shared.publish_every.store(every, Ordering::Relaxed);
+}
+
+/// One WebSocket client: its commands in, the state out at its rate.
+fn session(mut ws: WebSocket<TcpStream>, app: &App) {
+    let Content::Drive {
+        shared,
+        columns,
+        info,
+        rate_hz,
+    } = &app.content
+    else {
+        return;
+    };
+    let id = app.next_client.fetch_add(1, Ordering::Relaxed);
+    let mut period = Duration::from_secs_f64(1.0 / 30.0);
+    if let Ok(mut r) = app.rates.lock() {
+        r.insert(id, 30.0);
+    }
+    let hello = format!("{{\"type\":\"hello\",\"meta\":{}}}", app.meta);
+    if ws.send(Message::text(hello)).is_err() {
+        return;
+    }
+    let mut next_send = Instant::now();
+    let mut sent_seq = 0u64;
+    loop {
+        if shared.stop.load(Ordering::Relaxed) {
+            let _ = ws.close(None);
+            let _ = ws.flush();
+            break;
+        }
+        let wait = next_send
+            .saturating_duration_since(Instant::now())
+            .clamp(Duration::from_micros(500), Duration::from_millis(20));
+        let _ = ws.get_mut().set_read_timeout(Some(wait));
+        match ws.read() {
+            Ok(Message::Text(text)) => match protocol::parse(text.as_str(), info, *rate_hz) {
+                Ok(req) => {
+                    if let Ok(mut inbox) = shared.inbox.lock() {
+                        protocol::apply(&req, &mut inbox);
+                    }
+                    if let Some(rate) = req.rate {
+                        period = Duration::from_secs_f64(1.0 / rate);
+                        if let Ok(mut r) = app.rates.lock() {
+                            r.insert(id, rate);
+                        }
+                        update_publication(app, shared, *rate_hz);
+                    }
+                }
+                Err(message) => {
+                    if ws
+                        .send(Message::text(protocol::error_json(&message)))
+                        .is_err()
+                    {
+                        break;
+                    }
+                }
+            },
+            Ok(Message::Binary(_)) => {
+                let m = protocol::error_json("send commands as JSON text messages");
+                if ws.send(Message::text(m)).is_err() {
+                    break;
+                }
+            }
+            Ok(Message::Close(_)) => break,
+            Ok(_) => {}
+            Err(tungstenite::Error::Io(e))
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+                ) => {}
+            Err(_) => break,
+        }
+        let now = Instant::now();
+        if now >= next_send {
+            let text = match shared.state.lock() {
+                Ok(s) if s.seq != sent_seq => {
+                    sent_seq = s.seq;
+                    Some(protocol::state_json(columns, &s))
+                }
+                _ => None,
+            };
+            if let Some(text) = text
+                && ws.send(Message::text(text)).is_err()
+            {
+                break;
+            }
+            next_send += period;
+            if next_send < now {
+                // Behind (a slow client): skip, never burst.
+                next_send = now + period;
+            }
+        }
+    }
+    if let Ok(mut r) = app.rates.lock() {
+        r.remove(&id);
+    }
+    update_publication(app, shared, *rate_hz);
+}

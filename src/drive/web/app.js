@@ -1,0 +1,395 @@
+// The page of `rover drive` (live, over the WebSocket at /ws) and of
+// `rover view` (a finished run's run.csv). One scene for both: the terrain
+// mesh, the rover's body, a link from the body to each wheel, the wheels,
+// the contact forces as arrows and the path so far. Z is up, as in the
+// simulation; the attitude is R = Rz(psi)·Rx(phi)·Ry(theta) (MODEL.md).
+import * as THREE from '/three.min.js';
+
+const canvas = document.getElementById('view');
+const hud = document.getElementById('hud');
+const help = document.getElementById('help');
+
+// What a test (or a curious user at the console) can read.
+const page = { hello: null, meta: null, states: 0, first: null, last: null, errors: [], send: null };
+window.roverPage = page;
+
+const meta = await (await fetch('/meta.json')).json();
+const terrainGrid = await (await fetch('/terrain.json')).json();
+page.meta = meta;
+const wheels = meta.wheels;
+
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x10141a);
+const camera = new THREE.PerspectiveCamera(50, 1, 0.02, 500);
+camera.up.set(0, 0, 1);
+scene.add(new THREE.HemisphereLight(0xdde8ff, 0x3a2a1a, 1.2));
+const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+sun.position.set(-3, -2, 6);
+scene.add(sun);
+
+function resize() {
+  const w = window.innerWidth, h = window.innerHeight;
+  renderer.setSize(w, h, false);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+}
+window.addEventListener('resize', resize);
+resize();
+
+// ---- terrain ----
+function terrainMesh(g, zFallback) {
+  const geo = new THREE.BufferGeometry();
+  const pos = new Float32Array(g.nx * g.ny * 3);
+  const col = new Float32Array(g.nx * g.ny * 3);
+  let lo = Infinity, hi = -Infinity;
+  for (const z of g.z) if (z !== null) { lo = Math.min(lo, z); hi = Math.max(hi, z); }
+  if (!isFinite(lo)) { lo = hi = zFallback; }
+  const c = new THREE.Color();
+  for (let j = 0; j < g.ny; j++) for (let i = 0; i < g.nx; i++) {
+    const k = j * g.nx + i;
+    const z = g.z[k] === null ? lo : g.z[k];
+    pos.set([g.x0 + i * g.dx, g.y0 + j * g.dy, z], 3 * k);
+    const s = hi > lo ? (z - lo) / (hi - lo) : 0.5;
+    c.setHSL(0.07, 0.35, 0.28 + 0.35 * s);
+    col.set([c.r, c.g, c.b], 3 * k);
+  }
+  const idx = [];
+  for (let j = 0; j + 1 < g.ny; j++) for (let i = 0; i + 1 < g.nx; i++) {
+    const a = j * g.nx + i, b = a + 1, d = a + g.nx, e = d + 1;
+    idx.push(a, b, e, a, e, d);
+  }
+  geo.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  geo.setAttribute('color', new THREE.BufferAttribute(col, 3));
+  geo.setIndex(idx);
+  geo.computeVertexNormals();
+  return new THREE.Mesh(geo, new THREE.MeshLambertMaterial({ vertexColors: true }));
+}
+
+// ---- rover ----
+const radius = meta.radius || new Array(wheels).fill(0.1);
+const rMax = Math.max(...radius);
+const body = new THREE.Group();
+const bodyDims = meta.body || { length: 8 * rMax, width: 5 * rMax, height: rMax };
+const bodyBox = new THREE.Mesh(
+  new THREE.BoxGeometry(bodyDims.length, bodyDims.width, bodyDims.height),
+  new THREE.MeshLambertMaterial({ color: 0xd8d2c4 }));
+body.add(bodyBox);
+const nose = new THREE.Mesh(new THREE.ConeGeometry(bodyDims.height * 0.4, bodyDims.height, 12),
+  new THREE.MeshLambertMaterial({ color: 0xc0392b }));
+nose.rotation.z = -Math.PI / 2;
+nose.position.set(bodyDims.length / 2 + bodyDims.height * 0.5, 0, 0);
+body.add(nose);
+scene.add(body);
+
+const wheelMeshes = [], links = [], arrows = [];
+const linkMat = new THREE.LineBasicMaterial({ color: 0x9ad0ff });
+for (let j = 0; j < wheels; j++) {
+  const r = radius[j];
+  const tyre = new THREE.Mesh(new THREE.CylinderGeometry(r, r, 0.5 * r, 24),
+    new THREE.MeshLambertMaterial({ color: 0x333333 }));
+  const hub = new THREE.Mesh(new THREE.BoxGeometry(1.6 * r, 0.52 * r, 0.25 * r),
+    new THREE.MeshLambertMaterial({ color: 0x888888 }));
+  const w = new THREE.Group();
+  w.add(tyre); w.add(hub);
+  scene.add(w);
+  wheelMeshes.push(w);
+  const lg = new THREE.BufferGeometry();
+  lg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
+  const line = new THREE.Line(lg, linkMat);
+  line.frustumCulled = false;
+  scene.add(line);
+  links.push(line);
+  const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 0.1, 0xffd23f);
+  scene.add(arrow);
+  arrows.push(arrow);
+}
+
+const PATH_MAX = 50000;
+const pathGeo = new THREE.BufferGeometry();
+pathGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(PATH_MAX * 3), 3));
+pathGeo.setDrawRange(0, 0);
+const path = new THREE.Line(pathGeo, new THREE.LineBasicMaterial({ color: 0x4cd964 }));
+path.frustumCulled = false;
+scene.add(path);
+let pathCount = 0;
+function pathPush(x, y, z) {
+  if (pathCount > 0) {
+    const a = pathGeo.attributes.position.array, k = 3 * (pathCount - 1);
+    if (Math.hypot(a[k] - x, a[k + 1] - y) < 0.01) return;
+  }
+  if (pathCount >= PATH_MAX) return;
+  pathGeo.attributes.position.array.set([x, y, z + 0.01], 3 * pathCount);
+  pathCount++;
+  pathGeo.setDrawRange(0, pathCount);
+  pathGeo.attributes.position.needsUpdate = true;
+}
+function pathClear() { pathCount = 0; pathGeo.setDrawRange(0, 0); }
+
+// Rest positions of the wheels in body axes; in `rover view` without a
+// known rover, from the first row (the body's frame applied backwards).
+let rest = meta.rest || null;
+let meanLoad = 0;
+const euler = new THREE.Euler(), q = new THREE.Quaternion(), qs = new THREE.Quaternion();
+const zAxis = new THREE.Vector3(0, 0, 1), v = new THREE.Vector3(), up = new THREE.Vector3();
+
+function restFrom(s) {
+  euler.set(s.phi, s.theta, s.psi, 'ZXY');
+  q.setFromEuler(euler).invert();
+  const out = [];
+  for (let j = 1; j <= wheels; j++) {
+    v.set(s[`W${j}X`] - s.X, s[`W${j}Y`] - s.Y, s[`W${j}Z`] - s.Z).applyQuaternion(q);
+    out.push([v.x, v.y, v.z]);
+  }
+  return out;
+}
+
+// Place everything from one state (an object keyed by the CSV's names).
+function show(s) {
+  if (!rest) rest = restFrom(s);
+  euler.set(s.phi, s.theta, s.psi, 'ZXY');
+  q.setFromEuler(euler);
+  body.position.set(s.X, s.Y, s.Z);
+  body.quaternion.copy(q);
+  // Forces are drawn against the recent mean load (two wheel radii long):
+  // what the arrows show is how the load is shared, at any rover's scale.
+  let sum = 0;
+  for (let j = 1; j <= wheels; j++) sum += Math.max(0, s[`Fn${j}`]);
+  const mean = sum / wheels;
+  meanLoad = meanLoad > 0 ? 0.97 * meanLoad + 0.03 * mean : mean;
+  for (let j = 0; j < wheels; j++) {
+    const k = j + 1, c = [s[`W${k}X`], s[`W${k}Y`], s[`W${k}Z`]];
+    wheelMeshes[j].position.set(...c);
+    qs.setFromAxisAngle(zAxis, s[`delta${k}`] || 0);
+    wheelMeshes[j].quaternion.copy(q).multiply(qs);
+    v.set(rest[j][0], rest[j][1], 0).applyQuaternion(q).add(body.position);
+    const a = links[j].geometry.attributes.position.array;
+    a.set([v.x, v.y, v.z, ...c]);
+    links[j].geometry.attributes.position.needsUpdate = true;
+    const fn = s[`Fn${k}`];
+    if (fn > 0 && meanLoad > 1e-9) {
+      arrows[j].visible = true;
+      // Along the line from the contact point to the wheel centre (the
+      // normal force's line of action on a round wheel), drawn from the top
+      // of the wheel so that the tyre does not hide it.
+      up.set(c[0] - s[`H${k}X`], c[1] - s[`H${k}Y`], c[2] - s[`H${k}Z`]);
+      if (up.lengthSq() < 1e-12) up.set(0, 0, 1);
+      up.normalize();
+      arrows[j].position.set(c[0] + up.x * radius[j], c[1] + up.y * radius[j], c[2] + up.z * radius[j]);
+      arrows[j].setDirection(up);
+      const len = Math.min(8 * rMax, Math.max(1e-3, 2 * rMax * fn / meanLoad));
+      arrows[j].setLength(len, 0.25 * Math.min(len, rMax), 0.15 * Math.min(len, rMax));
+    } else {
+      arrows[j].visible = false;
+    }
+  }
+  pathPush(s.X, s.Y, groundBelow(s));
+}
+
+
+// The ground's height under G, from the lowest wheel at rest.
+function groundBelow(s) {
+  return s.Z + (rest ? Math.min(...rest.map(p => p[2])) : 0) - rMax;
+}
+
+// ---- cameras: follow (behind the rover, along its heading) and free
+// (orbit about a target: drag to turn, wheel to zoom, right-drag to pan) ----
+let follow = true;
+const orbit = { target: new THREE.Vector3(), dist: 12 * rMax, az: -Math.PI / 2 - 0.6, el: 0.45 };
+let dragging = null;
+canvas.addEventListener('pointerdown', e => { dragging = { x: e.clientX, y: e.clientY, b: e.button }; });
+window.addEventListener('pointerup', () => { dragging = null; });
+window.addEventListener('pointermove', e => {
+  if (!dragging) return;
+  const dx = e.clientX - dragging.x, dy = e.clientY - dragging.y;
+  dragging.x = e.clientX; dragging.y = e.clientY;
+  if (follow) { follow = false; }
+  if (dragging.b === 2) {
+    const right = new THREE.Vector3(Math.sin(orbit.az), -Math.cos(orbit.az), 0);
+    orbit.target.addScaledVector(right, -dx * orbit.dist * 0.002);
+    orbit.target.z += dy * orbit.dist * 0.002;
+  } else {
+    orbit.az -= dx * 0.005;
+    orbit.el = Math.min(1.5, Math.max(-0.2, orbit.el + dy * 0.005));
+  }
+});
+canvas.addEventListener('contextmenu', e => e.preventDefault());
+canvas.addEventListener('wheel', e => {
+  orbit.dist = Math.min(200, Math.max(0.2, orbit.dist * Math.exp(e.deltaY * 0.001)));
+  e.preventDefault();
+}, { passive: false });
+
+function placeCamera() {
+  if (follow) {
+    const psi = lastShown ? lastShown.psi : 0;
+    orbit.target.copy(body.position);
+    orbit.az = psi + Math.PI;
+  }
+  const t = orbit.target;
+  camera.position.set(
+    t.x + orbit.dist * Math.cos(orbit.el) * Math.cos(orbit.az),
+    t.y + orbit.dist * Math.cos(orbit.el) * Math.sin(orbit.az),
+    t.z + orbit.dist * Math.sin(orbit.el));
+  camera.lookAt(t);
+}
+
+// ---- HUD ----
+const deg = r => (r * 180 / Math.PI).toFixed(1);
+function hudHtml(s, extra) {
+  const loads = [];
+  for (let j = 1; j <= wheels; j++) loads.push(s[`Fn${j}`].toFixed(0));
+  let rows = `<tr><td>t</td><td>${s.t.toFixed(2)} s</td></tr>
+    <tr><td>speed</td><td>${s.vx.toFixed(3)} m/s (set ${(s.V_set ?? 0).toFixed(3)})</td></tr>
+    <tr><td>roll</td><td>${deg(s.phi)}°</td></tr><tr><td>pitch</td><td>${deg(s.theta)}°</td></tr>
+    <tr><td>wheel loads</td><td>${loads.join(' ')} N</td></tr>`;
+  return `<b>${meta.rover}</b> ${extra.title}<table>${rows}${extra.rows}</table>${extra.tail}`;
+}
+let lastShown = null;
+
+// ---- live: the WebSocket ----
+function live() {
+  const keysHelp = meta.steering === 'ackermann' ? 'steer' : 'slip-steer (Δτ)';
+  help.innerHTML = `W/S or ↑/↓ speed · A/D or ←/→ ${keysHelp} · space stop · P pause · R reset · C follow/free camera · gamepad: left stick`;
+  const ws = new WebSocket(`ws://${location.host}/ws`);
+  const cmd = { speed: 0, turn: 0 };
+  let status = 'connecting';
+  let lastSent = '';
+  function send(obj) {
+    if (ws.readyState === WebSocket.OPEN) ws.send(JSON.stringify(obj));
+  }
+  page.send = send;
+  function sendDrive() {
+    const turn = meta.steering === 'ackermann'
+      ? { steer: cmd.turn * meta.max_steer } : { delta_tau: cmd.turn * meta.max_delta_tau };
+    const msg = JSON.stringify({ speed: cmd.speed, ...turn });
+    if (msg !== lastSent) { lastSent = msg; if (ws.readyState === WebSocket.OPEN) ws.send(msg); }
+  }
+  ws.onopen = () => { status = 'connected'; send({ rate: 60 }); };
+  ws.onclose = () => { status = 'disconnected'; };
+  ws.onmessage = ev => {
+    const m = JSON.parse(ev.data);
+    if (m.type === 'hello') { page.hello = m; return; }
+    if (m.type === 'error') { page.errors.push(m.message); return; }
+    if (m.type !== 'state') return;
+    if (page.last && m.t < page.last.t) pathClear();
+    page.states++;
+    if (!page.first) page.first = m;
+    page.last = m;
+  };
+  const step = () => meta.speed_hint / 5;
+  const held = new Set();
+  window.addEventListener('keydown', e => {
+    const k = e.key.toLowerCase();
+    if (['arrowup', 'w'].includes(k)) cmd.speed = +(cmd.speed + step()).toFixed(6);
+    else if (['arrowdown', 's'].includes(k)) cmd.speed = +(cmd.speed - step()).toFixed(6);
+    else if (['arrowleft', 'a', 'arrowright', 'd'].includes(k)) held.add(k);
+    else if (k === ' ') cmd.speed = 0;
+    else if (k === 'p') send({ pause: !(page.last && page.last.paused) });
+    else if (k === 'r') { cmd.speed = 0; cmd.turn = 0; lastSent = ''; send({ reset: true }); pathClear(); }
+    else if (k === 'c') follow = !follow;
+    else return;
+    e.preventDefault();
+  });
+  window.addEventListener('keyup', e => held.delete(e.key.toLowerCase()));
+  let padSpeed = false;
+  function input() {
+    let turn = 0;
+    if (held.has('arrowleft') || held.has('a')) turn += 1;
+    if (held.has('arrowright') || held.has('d')) turn -= 1;
+    for (const pad of (navigator.getGamepads ? navigator.getGamepads() : [])) {
+      if (!pad) continue;
+      const dz = x => Math.abs(x) < 0.12 ? 0 : x;
+      const fwd = -dz(pad.axes[1] || 0), side = -dz(pad.axes[0] || 0);
+      if (fwd !== 0 || padSpeed) { cmd.speed = +(fwd * meta.speed_hint).toFixed(4); padSpeed = fwd !== 0; }
+      if (side !== 0) turn = side;
+      if (pad.buttons[9] && pad.buttons[9].pressed && !pad._p) send({ pause: !(page.last && page.last.paused) });
+      if (pad.buttons[8] && pad.buttons[8].pressed && !pad._r) send({ reset: true });
+      pad._p = pad.buttons[9] && pad.buttons[9].pressed;
+      pad._r = pad.buttons[8] && pad.buttons[8].pressed;
+    }
+    cmd.turn = Math.round(turn * 100) / 100;
+    sendDrive();
+  }
+  return () => {
+    input();
+    const s = page.last;
+    if (!s) { hud.textContent = status; return; }
+    show(s);
+    lastShown = s;
+    const warn = s.overruns > 0 ? 'warn' : '';
+    hud.innerHTML = hudHtml(s, {
+      title: `live · ${meta.method} at ${meta.rate_hz} Hz · ${status}${s.paused ? ' · <b>paused</b>' : ''}`,
+      rows: `<tr><td>real-time factor</td><td>${s.rtf.toFixed(3)}</td></tr>
+        <tr><td>overruns</td><td class="${warn}">${s.overruns} (${s.dropped_ticks} ticks dropped)</td></tr>
+        <tr><td>step</td><td>${(s.step_us ?? 0).toFixed(0)} µs</td></tr>
+        <tr><td>command</td><td>${cmd.speed.toFixed(3)} m/s, turn ${cmd.turn}</td></tr>`,
+      tail: (s.error ? `<div class="err">${s.error} — press R to reset</div>` : '') +
+        (s.watchdog_tripped ? '<div class="warn">watchdog: command zeroed</div>' : ''),
+    });
+  };
+}
+
+// ---- view: a finished run ----
+async function view() {
+  help.textContent = 'space play/pause · C follow/free camera · drag to turn, wheel to zoom';
+  const text = await (await fetch('/run.csv')).text();
+  const lines = text.trim().split('\n');
+  const cols = lines[0].split(',');
+  const rows = lines.slice(1).map(l => l.split(',').map(Number));
+  const at = i => Object.fromEntries(cols.map((c, k) => [c, rows[i][k]]));
+  const ti = cols.indexOf('t');
+  const t0 = rows[0][ti], t1 = rows[rows.length - 1][ti];
+  const player = document.getElementById('player');
+  player.style.display = 'flex';
+  const playBtn = document.getElementById('play'), scrub = document.getElementById('scrub');
+  const clock = document.getElementById('clock'), rateSel = document.getElementById('rate');
+  let playing = true, t = t0, lastFrame = performance.now(), shownRow = -1;
+  playBtn.onclick = () => { playing = !playing; playBtn.textContent = playing ? 'pause' : 'play'; };
+  scrub.oninput = () => { t = t0 + (t1 - t0) * scrub.value / 1000; pathClear(); shownRow = -1; };
+  window.addEventListener('keydown', e => {
+    if (e.key === ' ') { playBtn.onclick(); e.preventDefault(); }
+    if (e.key.toLowerCase() === 'c') follow = !follow;
+  });
+  page.states = rows.length;
+  page.first = at(0);
+  return () => {
+    const now = performance.now();
+    if (playing) t = Math.min(t1, t + (now - lastFrame) / 1000 * Number(rateSel.value));
+    lastFrame = now;
+    // The last row at or before t.
+    let lo = 0, hi = rows.length - 1;
+    while (lo < hi) { const mid = (lo + hi + 1) >> 1; if (rows[mid][ti] <= t) lo = mid; else hi = mid - 1; }
+    if (lo < shownRow) pathClear();
+    for (let i = Math.max(0, shownRow + 1); i < lo; i++) { const r = at(i); pathPush(r.X, r.Y, groundBelow(r)); }
+    shownRow = lo;
+    const s = at(lo);
+    page.last = s;
+    show(s);
+    lastShown = s;
+    scrub.value = Math.round(1000 * (t - t0) / Math.max(1e-9, t1 - t0));
+    clock.textContent = `${t.toFixed(2)} / ${t1.toFixed(2)} s`;
+    hud.innerHTML = hudHtml(s, { title: `replay ×${rateSel.value}`, rows: '', tail: '' });
+  };
+}
+
+const frame = meta.mode === 'view' ? await view() : live();
+if (terrainGrid) {
+  scene.add(terrainMesh(terrainGrid, 0));
+} else {
+  // No terrain known: a plane at the mean contact height of the first state.
+  const s = page.first || {};
+  let z = 0, n = 0;
+  for (let j = 1; j <= wheels; j++) if (isFinite(s[`H${j}Z`])) { z += s[`H${j}Z`]; n++; }
+  const g = { x0: (s.X || 0) - 20, y0: (s.Y || 0) - 20, dx: 40, dy: 40, nx: 2, ny: 2, z: new Array(4).fill(n ? z / n : 0) };
+  scene.add(terrainMesh(g, 0));
+}
+scene.add(new THREE.AxesHelper(rMax * 4));
+
+function loop() {
+  frame();
+  placeCamera();
+  renderer.render(scene, camera);
+  requestAnimationFrame(loop);
+}
+loop();

@@ -1,0 +1,61 @@
+// The page of `rover drive` in headless Chromium: it loads, its canvas has
+// a WebGL context, the keyboard drives the rover forward, and the states
+// the page received over its WebSocket show the rover moved.
+//
+// node drive.mjs <rover binary> <chromium binary>
+import { spawn } from 'node:child_process';
+import { chromium } from 'playwright-core';
+
+const [rover, browserPath] = process.argv.slice(2);
+const fail = (msg) => { console.error(`FAIL: ${msg}`); process.exitCode = 1; };
+
+const server = spawn(rover, ['drive', 'swing4', '--port', '0', '--rate', '500'], {
+  stdio: ['ignore', 'ignore', 'pipe'],
+});
+const port = await new Promise((resolve, reject) => {
+  let err = '';
+  const timer = setTimeout(() => reject(new Error(`no port printed: ${err}`)), 60000);
+  server.stderr.on('data', (d) => {
+    err += d;
+    const m = /127\.0\.0\.1:(\d+)/.exec(err);
+    if (m) { clearTimeout(timer); resolve(Number(m[1])); }
+  });
+  server.on('exit', (code) => reject(new Error(`rover drive exited (${code}): ${err}`)));
+});
+
+const browser = await chromium.launch({
+  executablePath: browserPath,
+  // Software WebGL: a headless machine has no GPU.
+  args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+});
+try {
+  const page = await browser.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(`http://127.0.0.1:${port}/`);
+  const webgl = await page.evaluate(() => {
+    const c = document.querySelector('canvas');
+    return !!c && !!(c.getContext('webgl2') || c.getContext('webgl'));
+  });
+  if (!webgl) fail('the canvas has no WebGL context');
+  await page.waitForFunction(() => window.roverPage && window.roverPage.states > 5, null, { timeout: 60000 });
+  const before = await page.evaluate(() => window.roverPage.last);
+  // Drive from the keyboard: five presses of W raise the set-point to the
+  // rover's speed hint.
+  await page.locator('canvas').click();
+  for (let i = 0; i < 5; i++) await page.keyboard.press('w');
+  await page.waitForFunction(
+    (x0) => window.roverPage.last && window.roverPage.last.X - x0 > 0.05,
+    before.X, { timeout: 90000 });
+  const after = await page.evaluate(() => window.roverPage.last);
+  if (!(after.V_set > 0)) fail(`no speed set-point in the state: V_set = ${after.V_set}`);
+  const hud = await page.locator('#hud').innerText();
+  if (!/real-time factor/.test(hud)) fail(`HUD without the real-time factor: ${hud}`);
+  if (errors.length) fail(`page errors: ${errors.join('; ')}`);
+  console.log(`ok: WebGL canvas; the rover moved ${(after.X - before.X).toFixed(3)} m at set-point ${after.V_set} m/s (t ${before.t.toFixed(2)} → ${after.t.toFixed(2)} s)`);
+} catch (e) {
+  fail(e.message);
+} finally {
+  await browser.close();
+  server.kill();
+}
