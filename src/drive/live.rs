@@ -55,6 +55,7 @@ impl Method {
             Method::Ros2 => IntegratorConfig::Ros2(Ros2Config {
                 step: h,
                 jacobian_every: 1,
+                jacobian: Default::default(),
             }),
         }
     }
