@@ -1,17 +1,16 @@
 #!/usr/bin/env bash
 # The Python package's tests: a virtual environment made here, the package
-# built into it by maturin, then pytest. .ci/run calls this after the cargo
-# tests, whose build (the `test` profile) the package's build reuses.
+# built into it by maturin (optimized: the sweep tests run 60 simulations),
+# then pytest. .ci/run calls this after the cargo tests, whose `rover`
+# executable the tests compare with.
 #
-#   python/ci.sh                      # as CI runs it
-#   ROVER_PY_PROFILE=release python/ci.sh   # an optimized build (slower to build)
+#   python/ci.sh
 set -euo pipefail
 cd "$(dirname "$0")"
 root="$(cd .. && pwd)"
 target="${CARGO_TARGET_DIR:-$root/target}"
 export CARGO_TARGET_DIR="$target"
 venv="${ROVER_PY_VENV:-$target/python-venv}"
-profile="${ROVER_PY_PROFILE:-test}"
 
 if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
@@ -21,11 +20,7 @@ source "$venv/bin/activate"
 python -m pip install --quiet --upgrade pip
 python -m pip install --quiet "maturin>=1.9,<2" pytest numpy pandas pyarrow ray gymnasium
 
-if [ "$profile" = release ]; then
-    maturin develop --release --locked
-else
-    maturin develop --profile "$profile" --locked
-fi
+maturin develop --release --locked
 
 # The command line the Python runs are compared with: the one the cargo
 # tests built, else a fresh build.

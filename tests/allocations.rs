@@ -190,7 +190,7 @@ fn a_stepper_allocates_nothing_per_step_nor_per_command() {
     let scenario = Scenario::parse(
         "duration = 100.0\noutput_rate = 100.0\n[terrain]\nkind = \"random\"\nz_r = 0.2\nseed = 2\n\
          [control.speed]\nspeed = 0.1\n[control.steering]\nkind = \"slip\"\ndelta_tau = 0.05\n\
-         [integrator.rk4]\ndt = 1e-3\n",
+         [integrator.rk4]\nstep = 1e-3\n",
         std::path::Path::new("s.toml"),
     )
     .unwrap();
