@@ -40,11 +40,11 @@ pub mod model;
 #[cfg(feature = "alloc")]
 pub mod poly;
 
+pub use described::Described;
 /// The nalgebra this crate's fixed-size types come from, so that generated
 /// code and its users name one version.
 #[cfg(feature = "plant")]
 pub use nalgebra;
-pub use described::Described;
 #[cfg(feature = "plant")]
 pub use plant::{FixedPlant, Plant};
 pub use scalar::Scalar;
