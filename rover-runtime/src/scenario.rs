@@ -492,7 +492,9 @@ fn locate(_text: &str, e: &toml::de::Error) -> String {
     let mut out = String::new();
     for line in rendered.trim_end().lines() {
         // The source echo (`12 | …`) and its caret line (`   |  ^^^`).
-        let gutter = line.trim_start().trim_start_matches(|c: char| c.is_ascii_digit());
+        let gutter = line
+            .trim_start()
+            .trim_start_matches(|c: char| c.is_ascii_digit());
         let echo = gutter.starts_with('|') || gutter.starts_with(" |");
         if echo && line.chars().count() > ECHO_WIDTH {
             out.extend(line.chars().take(ECHO_WIDTH));
@@ -512,7 +514,7 @@ fn locate(_text: &str, e: &toml::de::Error) -> String {
     } else {
         "a scenario is TOML: its tables and fields are in the doc of rover-runtime/src/scenario.rs (README.md, Files)"
     };
-    format!("{}  = help: {help}", out)
+    format!("{out}  = help: {help}")
 }
 
 /// 1-based line where the dotted field `path` (e.g. `control.speed.kp`,

@@ -805,9 +805,9 @@ fn too_many_steps_stops_the_run_where_it_got_to() {
     assert_eq!(
         err.to_string(),
         format!(
-            "5 step attempts reached only t = {t} s on the way to 100 s: raise `max_steps` or \
-             loosen the tolerances; with an explicit method, `[integrator.bdf]` takes stiff \
-             contact in larger steps"
+            "5 step attempts reached only t = {t} s on the way to 100 s: raise `max_steps`, \
+             raise `max_step` if it is set (no step is longer), or loosen the tolerances; with \
+             an explicit method, `[integrator.bdf]` takes stiff contact in larger steps"
         )
     );
 }

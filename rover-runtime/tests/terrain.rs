@@ -1337,8 +1337,22 @@ fn a_geotiff_placed_by_a_transformation_matrix_is_refused_even_with_a_pixel_scal
         // A 30° rotation.
         let (s, c) = 30f64.to_radians().sin_cos();
         let matrix = [
-            2.0 * c, -3.0 * s, 0.0, 100.0, 2.0 * s, 3.0 * c, 0.0, 500.0, 0.0, 0.0, 0.0, 0.0, 0.0,
-            0.0, 0.0, 1.0,
+            2.0 * c,
+            -3.0 * s,
+            0.0,
+            100.0,
+            2.0 * s,
+            3.0 * c,
+            0.0,
+            500.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            1.0,
         ];
         tags.write_tag(Tag::ModelTransformationTag, &matrix[..])
             .unwrap();
@@ -1703,8 +1717,9 @@ fn huge_headers_do_not_allocate_their_claims() {
     assert_eq!(
         message(grid),
         format!(
-            "{}:6: row 1 has 3 values, expected ncols = 100000000\n  = help: each line holds one \
-             whole row of the grid; check for a missing or extra value",
+            "{}: the grid is 100000000 × 100000000 = 10000000000000000 nodes; at most 50000000 \
+             are loaded\n  = help: crop or downsample the map (gdal_translate -outsize, or \
+             -srcwin) to the area the rover drives over",
             path.display()
         )
     );

@@ -35,7 +35,7 @@ kind = "longitudinal_rocker"
 pivot = [-0.2, 0.0, -0.01]
 arms = [
     { name = "left", length = 0.25, angle_deg = 45.0 },
-    { name = "right", length = 0.25, angle_deg = 45.0 },
+    { name = "right", length = 0.25, angle_deg = -45.0 },
 ]
 coordinate = { min_deg = -30.0, max_deg = 30.0 }
 

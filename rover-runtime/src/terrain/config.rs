@@ -407,7 +407,10 @@ impl FileConfig {
         };
         let grid = load_grid(&path, format, options)?;
         let (nx, heights) = (grid.nx(), grid.heights());
-        if let Some(k) = heights.iter().position(|z| z.is_nan() || z.abs() > MAX_HEIGHT) {
+        if let Some(k) = heights
+            .iter()
+            .position(|z| z.is_nan() || z.abs() > MAX_HEIGHT)
+        {
             return Err(super::error::FileError::at(
                 &path,
                 super::error::Place::Whole,
