@@ -405,9 +405,7 @@ pub fn wheel_load<L: WheelLaw>(
         ..Default::default()
     };
     let patches = contact.patches();
-    let normals: [f64; crate::contact::MAX_PATCHES] =
-        core::array::from_fn(|i| patches.get(i).map_or(0.0, |p| normal_force(tyre, s, p)));
-    let total: f64 = normals.iter().sum();
+    let (normals, total) = patch_normals(tyre, s, patches);
     let mut strongest = 0.0;
     for (i, p) in patches.iter().enumerate() {
         let share = torque_share(torque, &normals, total, i);
@@ -427,6 +425,18 @@ pub fn wheel_load<L: WheelLaw>(
         }
     }
     (load, report)
+}
+
+/// Each patch's normal force (0 past the last) and their sum: what the
+/// drive torque is shared by.
+fn patch_normals(
+    tyre: &Tyre,
+    s: &WheelState,
+    patches: &[Patch],
+) -> ([f64; crate::contact::MAX_PATCHES], f64) {
+    let normals: [f64; crate::contact::MAX_PATCHES] =
+        core::array::from_fn(|i| patches.get(i).map_or(0.0, |p| normal_force(tyre, s, p)));
+    (normals, normals.iter().sum())
 }
 
 /// Patch i's part of the drive torque, in proportion to its normal force.
@@ -463,9 +473,7 @@ pub fn load_derivative<L: WheelLaw, H: HeightField>(
 ) -> LoadDerivative {
     let mut d = [[0.0; 7]; 9];
     let patches = contact.patches();
-    let normals: [f64; crate::contact::MAX_PATCHES] =
-        core::array::from_fn(|i| patches.get(i).map_or(0.0, |p| normal_force(tyre, s, p)));
-    let total: f64 = normals.iter().sum();
+    let (normals, total) = patch_normals(tyre, s, patches);
     for (i, p) in patches.iter().enumerate() {
         let share = torque_share(torque, &normals, total, i);
         let share_rate = if total > 0.0 { normals[i] / total } else { 0.0 };

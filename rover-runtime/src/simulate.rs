@@ -165,6 +165,29 @@ fn wheel_touching_heights(
         .map_err(|e| SetupError::OffMap(e.off))
 }
 
+/// The rover of `scenario` as an ODE system — its terrain (none in free
+/// flight), ground, controller and `plant` — and its initial state, the
+/// integral states beyond the speed loop's at 0: what a whole run and a
+/// stepped one start from.
+pub(crate) fn system_of<P: Plant>(
+    plant: P,
+    model: &Model,
+    scenario: &Scenario,
+    base_dir: &Path,
+) -> Result<(RoverSystem<P, Terrain>, Vec<f64>), SetupError> {
+    let terrain = if scenario.free_flight {
+        None
+    } else {
+        Some(scenario.terrain.build(base_dir)?)
+    };
+    let mut y = initial_state(model, scenario, terrain.as_ref())?;
+    let ground = terrain.map(|t| scenario.contact.ground(t, model));
+    let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
+    let sys = RoverSystem::new(plant, ground, control);
+    y.resize(sys.dim(), 0.0);
+    Ok((sys, y))
+}
+
 /// Run `scenario` with `plant` (whose model is `model`, named `name`),
 /// writing the CSV to `csv`. `progress(t)` is called at every output row.
 ///
@@ -190,21 +213,11 @@ pub fn simulate<P: Plant, W: Write>(
     if scenario.fidelity == FidelityLevel::QuasiStatic {
         return quasi_static_run(model, name, scenario, base_dir, csv, interrupt, progress);
     }
-    let terrain = if scenario.free_flight {
-        None
-    } else {
-        Some(scenario.terrain.build(base_dir)?)
-    };
-    let mut y = initial_state(model, scenario, terrain.as_ref())?;
-    let ground = terrain.map(|t| scenario.contact.ground(t, model));
-    let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
-    let kinematic_radius = control.kinematic_radius(scenario.duration);
-    let mut sys = RoverSystem::new(plant, ground, control);
+    let (mut sys, mut y) = system_of(plant, model, scenario, base_dir)?;
+    let kinematic_radius = sys.control.kinematic_radius(scenario.duration);
     if scenario.profile {
         sys.enable_profile();
     }
-    // The integral states beyond the speed loop's start at 0 too.
-    y.resize(sys.dim(), 0.0);
     let mut integ = scenario.integrator.build(sys.dim())?;
     let n = model.dof();
     let k = model.wheels.len();

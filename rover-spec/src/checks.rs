@@ -138,15 +138,26 @@ impl Ctx {
 /// Every non-finite number of the description, reported where it is
 /// (TOML allows `nan` and `inf`; a Rust description may hold them too).
 pub fn non_finite(ctx: &mut Ctx, value: &toml::Value, path: &str) {
+    each_leaf(value, path, &mut |v, path| {
+        if let toml::Value::Float(f) = v
+            && !f.is_finite()
+        {
+            ctx.error(
+                path,
+                format!("must be a finite number, got {f}"),
+                "every number of a description is finite: replace it with a value in SI units",
+            );
+        }
+    });
+}
+
+/// Calls `f(value, path)` for every value of a TOML document that is not an
+/// array or a table, `path` its dotted field path (`a.b[2]`) below `path`.
+pub fn each_leaf(value: &toml::Value, path: &str, f: &mut impl FnMut(&toml::Value, &str)) {
     match value {
-        toml::Value::Float(f) if !f.is_finite() => ctx.error(
-            path,
-            format!("must be a finite number, got {f}"),
-            "every number of a description is finite: replace it with a value in SI units",
-        ),
         toml::Value::Array(a) => {
             for (i, v) in a.iter().enumerate() {
-                non_finite(ctx, v, &format!("{path}[{i}]"));
+                each_leaf(v, &format!("{path}[{i}]"), f);
             }
         }
         toml::Value::Table(t) => {
@@ -156,10 +167,10 @@ pub fn non_finite(ctx: &mut Ctx, value: &toml::Value, path: &str) {
                 } else {
                     format!("{path}.{k}")
                 };
-                non_finite(ctx, v, &p);
+                each_leaf(v, &p, f);
             }
         }
-        _ => {}
+        leaf => f(leaf, path),
     }
 }
 

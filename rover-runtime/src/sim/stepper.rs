@@ -10,10 +10,10 @@ use std::path::Path;
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
-use crate::control::{ControlError, Controller};
+use crate::control::ControlError;
 use crate::integrate::{AnyIntegrator, Integrator, OdeSystem};
 use crate::scenario::{FidelityLevel, Scenario};
-use crate::simulate::{SetupError, initial_state};
+use crate::simulate::{SetupError, system_of};
 use crate::terrain::Terrain;
 
 use super::{CommandError, RoverSystem, RunError};
@@ -56,17 +56,7 @@ impl<P: Plant + Clone> Stepper<P> {
                 "a quasi-static run has no dynamics to step; run it whole".into(),
             ));
         }
-        let terrain = if scenario.free_flight {
-            None
-        } else {
-            Some(scenario.terrain.build(base_dir)?)
-        };
-        let mut y = initial_state(model, scenario, terrain.as_ref())?;
-        let ground = terrain.map(|t| scenario.contact.ground(t, model));
-        let control =
-            Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
-        let sys = RoverSystem::new(plant, ground, control);
-        y.resize(sys.dim(), 0.0);
+        let (sys, y) = system_of(plant, model, scenario, base_dir)?;
         let integ = scenario.integrator.build(sys.dim())?;
         let mut breaks: Vec<f64> = sys
             .control

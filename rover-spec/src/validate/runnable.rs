@@ -25,41 +25,23 @@ pub const MIN_BODY_MASS: f64 = 1e-3;
 
 /// Numbers too large to be a rover quantity in SI units.
 pub fn magnitudes(ctx: &mut Ctx, value: &toml::Value, path: &str) {
-    match value {
-        toml::Value::Float(f) if f.is_finite() && f.abs() > MAX_MAGNITUDE => ctx.error(
-            path,
-            format!(
-                "{} is too large: no rover quantity in SI units exceeds ±{}",
-                num(*f),
-                num(MAX_MAGNITUDE)
-            ),
-            "give the value in SI units (kg, m, N/m, kg·m²)",
-        ),
-        toml::Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => ctx.error(
-            path,
-            format!(
-                "{i} is too large: no rover quantity in SI units exceeds ±{}",
-                num(MAX_MAGNITUDE)
-            ),
-            "give the value in SI units (kg, m, N/m, kg·m²)",
-        ),
-        toml::Value::Array(a) => {
-            for (i, v) in a.iter().enumerate() {
-                magnitudes(ctx, v, &format!("{path}[{i}]"));
-            }
+    crate::checks::each_leaf(value, path, &mut |v, path| {
+        let too_large = match v {
+            toml::Value::Float(f) if f.is_finite() && f.abs() > MAX_MAGNITUDE => Some(num(*f)),
+            toml::Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => Some(i.to_string()),
+            _ => None,
+        };
+        if let Some(value) = too_large {
+            ctx.error(
+                path,
+                format!(
+                    "{value} is too large: no rover quantity in SI units exceeds ±{}",
+                    num(MAX_MAGNITUDE)
+                ),
+                "give the value in SI units (kg, m, N/m, kg·m²)",
+            );
         }
-        toml::Value::Table(t) => {
-            for (k, v) in t {
-                let p = if path.is_empty() {
-                    k.clone()
-                } else {
-                    format!("{path}.{k}")
-                };
-                magnitudes(ctx, v, &p);
-            }
-        }
-        _ => {}
-    }
+    });
 }
 
 /// Checks of single fields that need no model: the name, gravity, the
