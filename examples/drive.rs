@@ -4,10 +4,10 @@
 
 use std::sync::atomic::AtomicBool;
 
+use rover_integrate::{BdfConfig, IntegratorConfig};
 use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::{ContactMethod, Ground};
-use rover_runtime::integrate::{BdfConfig, IntegratorConfig};
 use rover_runtime::scenario::Scenario;
 use rover_runtime::sim::{RoverSystem, RunOptions, Stop, run};
 use rover_runtime::simulate::initial_state;

@@ -5,9 +5,9 @@
 //! Neither allocates (the printing does). Run:
 //! `cargo run --release --example external_control`.
 
+use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::Ground;
-use rover_runtime::integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::scenario::Scenario;
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::simulate::initial_state;

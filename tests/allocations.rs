@@ -8,10 +8,10 @@
 //! counting global allocator.
 
 use rover_dynamics::plant::Plant;
+use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
 use rover_runtime::ground::{ContactMethod, Ground};
-use rover_runtime::integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use rover_runtime::wheel_law::WheelLawConfig;
@@ -141,18 +141,14 @@ fn drive_without_allocating<P: rover_dynamics::Plant>(
     y[6..n].copy_from_slice(&model.rest());
     y[n] = 0.1;
     let config = match method {
-        "rk4" => rover_runtime::integrate::IntegratorConfig::Rk4(FixedStepConfig { step: 1e-4 }),
+        "rk4" => rover_integrate::IntegratorConfig::Rk4(FixedStepConfig { step: 1e-4 }),
         // Its Jacobian every step, a 0.1 ms step as the others.
-        "ros2" => {
-            rover_runtime::integrate::IntegratorConfig::Ros2(rover_runtime::integrate::Ros2Config {
-                step: 1e-4,
-                jacobian_every: 1,
-                jacobian: Default::default(),
-            })
-        }
-        _ => rover_runtime::integrate::IntegratorConfig::SemiImplicitEuler(FixedStepConfig {
+        "ros2" => rover_integrate::IntegratorConfig::Ros2(rover_integrate::Ros2Config {
             step: 1e-4,
+            jacobian_every: 1,
+            jacobian: Default::default(),
         }),
+        _ => rover_integrate::IntegratorConfig::SemiImplicitEuler(FixedStepConfig { step: 1e-4 }),
     };
     let mut integ = config.build(sys.dim()).unwrap();
     let mut t = 0.0;

@@ -6,9 +6,9 @@ use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::model::Spring;
 use rover_dynamics::plant::Plant;
+use rover_integrate::{AdaptiveConfig, Integrator, IntegratorConfig};
 use rover_runtime::GenericPlant;
 use rover_runtime::control::{Controller, ControllerConfig};
-use rover_runtime::integrate::{AdaptiveConfig, Integrator, IntegratorConfig};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 

@@ -2,11 +2,11 @@
 //! contact geometry over a bump, the two contact methods against each other.
 
 use rover_dynamics::Model;
+use rover_integrate::{BdfConfig, Integrator, IntegratorConfig, OdeSystem};
 use rover_runtime::GenericPlant;
 use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::{ContactMethod, Ground};
-use rover_runtime::integrate::{BdfConfig, Integrator, IntegratorConfig, OdeSystem};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use rover_runtime::wheel_law::WheelLawConfig;

@@ -5,12 +5,10 @@
 
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
+use rover_integrate::{BdfConfig, Integrator, IntegratorConfig, JacobianSource, OdeSystem};
 use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::{ContactMethod, Ground};
-use rover_runtime::integrate::{
-    BdfConfig, Integrator, IntegratorConfig, JacobianSource, OdeSystem,
-};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::{Bounds, RandomField, Terrain};
 use rover_runtime::wheel_law::WheelLawConfig;
@@ -183,7 +181,7 @@ fn bdf_with_the_assembled_jacobian_runs_the_same_for_fewer_evaluations() {
             jacobian: source,
             ..BdfConfig::default()
         };
-        let mut integ = rover_runtime::integrate::Bdf::new(y.len(), &config).unwrap();
+        let mut integ = rover_integrate::Bdf::new(y.len(), &config).unwrap();
         let mut t = 0.0;
         integ.advance(&mut sys, &mut t, &mut y, 10.0).unwrap();
         (y, integ.stats().rhs_evals)

@@ -6,8 +6,8 @@
 use rover_dynamics::Model;
 use rover_dynamics::nalgebra::{Complex, DMatrix, DVector};
 use rover_dynamics::plant::{Plant, WheelLoad};
+use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::control::{Controller, ControllerConfig};
-use rover_runtime::integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::linearize::{ModeKind, linearize, parked, state_matrix};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;

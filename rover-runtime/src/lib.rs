@@ -1,6 +1,6 @@
 //! The rover runtime: everything around the plant — the generic plant,
-//! terrain, contact, wheel laws, control, integrators, the simulation
-//! driver and its outputs.
+//! terrain, contact, wheel laws, control, the simulation driver and its
+//! outputs; the integrators come from `rover-integrate`.
 //!
 //! # A rover declared in Rust
 //!
@@ -60,7 +60,6 @@ pub mod control;
 pub mod described;
 pub mod generic_plant;
 pub mod ground;
-pub mod integrate;
 pub mod linearize;
 pub mod output;
 pub mod quasi_static;
@@ -70,6 +69,10 @@ pub mod simulate;
 pub mod simulation;
 pub mod terrain;
 pub mod wheel_law;
+
+/// The integrators (crate `rover-integrate`), re-exported so that one
+/// dependency gives a whole run.
+pub use rover_integrate as integrate;
 
 pub use described::RoverDescription;
 pub use generic_plant::GenericPlant;

@@ -29,12 +29,12 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
 use crate::control::{ControlError, Controller, ControllerConfig};
-use crate::integrate::OdeSystem;
 use crate::output::header;
 use crate::quasi_static::{QuasiStaticError, flat_ground_pose};
 use crate::scenario::ContactConfig;
 use crate::sim::{RoverSystem, SimError};
 use crate::terrain::{HeightField, Terrain};
+use rover_integrate::OdeSystem;
 
 /// Largest forward speed linearized about \[m/s\] (in either direction):
 /// far beyond any planetary rover.

@@ -32,9 +32,9 @@ use serde::{Deserialize, Serialize};
 use crate::contact::RimSampling;
 use crate::control::ControllerConfig;
 use crate::ground::ContactMethod;
-use crate::integrate::{BdfConfig, IntegratorConfig};
 use crate::terrain::TerrainConfig;
 use crate::wheel_law::WheelLawConfig;
+use rover_integrate::{BdfConfig, IntegratorConfig};
 
 /// A whole scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -407,7 +407,7 @@ impl Scenario {
     /// The number of steps a fixed-step method takes (or an adaptive one
     /// at least takes under its `max_step`): at most [`MAX_STEPS`].
     fn check_steps(&self) -> Result<(), (&'static str, String)> {
-        use crate::integrate::IntegratorConfig as I;
+        use rover_integrate::IntegratorConfig as I;
         let (field, step, what): (&'static str, f64, &str) = match &self.integrator {
             I::Rk4(c) => ("integrator.rk4.step", c.step, "step"),
             I::SemiImplicitEuler(c) => ("integrator.semi_implicit_euler.step", c.step, "step"),

@@ -13,11 +13,11 @@ use rover_dynamics::plant::Plant;
 
 use crate::control::Controller;
 use crate::ground::ContactMethod;
-use crate::integrate::{Integrator, OdeSystem};
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use crate::terrain::Terrain;
+use rover_integrate::{Integrator, OdeSystem};
 
 /// A run that could not start: the scenario does not fit the rover, or a
 /// piece could not be built.
@@ -31,7 +31,7 @@ pub enum SetupError {
     Control(#[from] crate::control::ControlError),
     /// The integrator's parameters are invalid.
     #[error("{0}")]
-    Integrator(#[from] crate::integrate::ConfigError),
+    Integrator(#[from] rover_integrate::ConfigError),
     /// The initial state does not fit the rover.
     #[error("initial.{field}: {message}")]
     Initial {

@@ -56,11 +56,11 @@ use rover_spec::{Spec, SpecError};
 
 use crate::control::{ControllerConfig, SpeedConfig, Steering};
 use crate::described::{Mismatch, RoverDescription, model_differences};
-use crate::integrate::IntegratorConfig;
 use crate::output::{Status, Summary};
 use crate::scenario::{ContactConfig, FieldError, InitialState, Scenario};
 use crate::simulate::{SetupError, simulate};
 use crate::terrain::TerrainConfig;
+use rover_integrate::IntegratorConfig;
 
 /// Why a [`Simulation`] did not run to its end.
 #[derive(Debug, thiserror::Error)]

@@ -10,11 +10,11 @@ use std::time::{Duration, Instant};
 
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
+use rover_integrate::{
+    AnyIntegrator, FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Ros2Config,
+};
 use rover_runtime::control::{
     Controller, ControllerConfig, SpeedConfig, ackermann_angle, curvature_from_angle,
-};
-use rover_runtime::integrate::{
-    AnyIntegrator, FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Ros2Config,
 };
 use rover_runtime::scenario::Scenario;
 use rover_runtime::sim::RoverSystem;

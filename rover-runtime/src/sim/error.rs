@@ -79,7 +79,7 @@ pub enum RunError {
         /// What happened.
         message: String,
         /// The step-size control gave up (see
-        /// [`IntegrateError::is_step_control`](crate::integrate::IntegrateError::is_step_control)).
+        /// [`IntegrateError::is_step_control`](rover_integrate::IntegrateError::is_step_control)).
         step_control: bool,
     },
     /// The output sink failed (disk full, closed pipe).

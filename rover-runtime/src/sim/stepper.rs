@@ -11,10 +11,10 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
 use crate::control::ControlError;
-use crate::integrate::{AnyIntegrator, Integrator, OdeSystem};
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::simulate::{SetupError, system_of};
 use crate::terrain::Terrain;
+use rover_integrate::{AnyIntegrator, Integrator, OdeSystem};
 
 use super::{CommandError, RoverSystem, RunError};
 

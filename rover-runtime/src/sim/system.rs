@@ -7,8 +7,8 @@ use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
 
 use crate::control::Controller;
 use crate::ground::{Ground, WheelReport};
-use crate::integrate::OdeSystem;
 use crate::terrain::HeightField;
+use rover_integrate::OdeSystem;
 
 use super::error::{CommandError, SimError};
 use super::profile::{Lap, RhsProfile};

@@ -31,9 +31,9 @@ use rover_dynamics::kinematics::position_rates;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
 
 use crate::ground::LoadDerivative;
-use crate::integrate::Lu;
 use crate::sim::SimError;
 use crate::terrain::HeightField;
+use rover_integrate::Lu;
 
 use super::RoverSystem;
 

@@ -36,7 +36,7 @@
 //! `min_step`, too many steps, a non-finite state component.
 //!
 //! ```
-//! use rover_runtime::integrate::{Integrator, IntegratorConfig, OdeSystem};
+//! use rover_integrate::{Integrator, IntegratorConfig, OdeSystem};
 //!
 //! /// ẏ = −y.
 //! struct Decay;
@@ -57,6 +57,8 @@
 //! assert!((y[0] - (-1.0f64).exp()).abs() < 1e-7);
 //! ```
 
+#![warn(missing_docs)]
+
 mod any_integrator;
 mod bdf;
 mod bdf_state;
@@ -69,7 +71,7 @@ mod integrator;
 mod jacobian;
 pub use jacobian::JacobianSource;
 mod lu;
-pub(crate) use lu::Lu;
+pub use lu::{Lu, Singular};
 mod norm;
 mod resume;
 mod rk4;

@@ -4,7 +4,7 @@
 /// `L` below the diagonal, `U` on and above it) and the row permutation. Storage is allocated
 /// once in [`Lu::new`] (Golub & Van Loan, *Matrix Computations*, Algorithm 3.4.1).
 #[derive(Debug, Clone)]
-pub(crate) struct Lu {
+pub struct Lu {
     n: usize,
     a: Vec<f64>,
     pivots: Vec<usize>,
@@ -12,11 +12,11 @@ pub(crate) struct Lu {
 
 /// The matrix has a zero (or non-finite) pivot: it is singular to working precision.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Singular;
+pub struct Singular;
 
 impl Lu {
     /// Room for an `n × n` matrix.
-    pub(crate) fn new(n: usize) -> Self {
+    pub fn new(n: usize) -> Self {
         Self {
             n,
             a: vec![0.0; n * n],
@@ -25,13 +25,13 @@ impl Lu {
     }
 
     /// The matrix to fill (row-major) before [`Lu::factor`].
-    pub(crate) fn matrix_mut(&mut self) -> &mut [f64] {
+    pub fn matrix_mut(&mut self) -> &mut [f64] {
         &mut self.a
     }
 
     /// Factors `I − c·J` (`jac` row-major, `n × n`): the Newton matrix of the
     /// implicit methods.
-    pub(crate) fn factor_shifted(&mut self, jac: &[f64], c: f64) -> Result<(), Singular> {
+    pub fn factor_shifted(&mut self, jac: &[f64], c: f64) -> Result<(), Singular> {
         let n = self.n;
         for (mi, ji) in self.a.iter_mut().zip(jac) {
             *mi = -c * ji;
@@ -48,7 +48,7 @@ impl Lu {
     /// loop `a_ij −= m·a_kj` over two distinct rows then compiles to packed
     /// SSE2 without bounds checks (each element is the same IEEE operation
     /// as in the indexed loop, so the factors are the same bits).
-    pub(crate) fn factor(&mut self) -> Result<(), Singular> {
+    pub fn factor(&mut self) -> Result<(), Singular> {
         let n = self.n;
         for k in 0..n {
             // The first row of largest magnitude in column k.
@@ -87,7 +87,7 @@ impl Lu {
 
     /// Solves `A·x = b` with the factors, `b` overwritten by `x` (sums in
     /// the same order as `Σ_j` over increasing j, on row slices).
-    pub(crate) fn solve(&self, b: &mut [f64]) {
+    pub fn solve(&self, b: &mut [f64]) {
         let n = self.n;
         for (k, &p) in self.pivots.iter().enumerate() {
             b.swap(k, p);

@@ -3,7 +3,7 @@
 
 use std::convert::Infallible;
 
-use rover_runtime::integrate::{
+use rover_integrate::{
     AdaptiveConfig, BdfConfig, FixedStepConfig, Integrator, IntegratorConfig, OdeSystem,
 };
 

@@ -8,7 +8,7 @@
 use std::convert::Infallible;
 use std::fmt;
 
-use rover_runtime::integrate::{
+use rover_integrate::{
     AdaptiveConfig, BdfConfig, FixedStepConfig, IntegrateError, Integrator, IntegratorConfig,
     OdeSystem, Stats,
 };
