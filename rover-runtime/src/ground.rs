@@ -12,8 +12,8 @@ use crate::contact::Patch;
 use crate::contact::{
     BoundedContact, Contact, MeridionalContact, RimSampling, SearchMemory, TrackedContact,
 };
-use crate::terrain::{HeightField, OffMap};
 use crate::wheel_law::{PatchMotion, Tyre, WheelLaw, WheelLawConfig};
+use rover_terrain::{HeightField, OffMap};
 
 /// Which contact search the run uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

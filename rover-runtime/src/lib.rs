@@ -1,6 +1,7 @@
 //! The rover runtime: everything around the plant — the generic plant,
-//! terrain, contact, wheel laws, control, the simulation driver and its
-//! outputs; the integrators come from `rover-integrate`.
+//! contact, wheel laws, control, the simulation driver and its outputs; the
+//! integrators come from `rover-integrate` and the terrains from
+//! `rover-terrain`.
 //!
 //! # A rover declared in Rust
 //!
@@ -67,12 +68,13 @@ pub mod scenario;
 pub mod sim;
 pub mod simulate;
 pub mod simulation;
-pub mod terrain;
 pub mod wheel_law;
 
 /// The integrators (crate `rover-integrate`), re-exported so that one
 /// dependency gives a whole run.
 pub use rover_integrate as integrate;
+/// The terrains (crate `rover-terrain`), re-exported for the same reason.
+pub use rover_terrain as terrain;
 
 pub use described::RoverDescription;
 pub use generic_plant::GenericPlant;

@@ -33,8 +33,8 @@ use crate::output::header;
 use crate::quasi_static::{QuasiStaticError, flat_ground_pose};
 use crate::scenario::ContactConfig;
 use crate::sim::{RoverSystem, SimError};
-use crate::terrain::{HeightField, Terrain};
 use rover_integrate::OdeSystem;
+use rover_terrain::{HeightField, Terrain};
 
 /// Largest forward speed linearized about \[m/s\] (in either direction):
 /// far beyond any planetary rover.

@@ -18,7 +18,7 @@ use rover_dynamics::kinematics::{body_kinematics, wheel_kinematics};
 use rover_dynamics::workspace::Workspace;
 
 use crate::contact::MeridionalContact;
-use crate::terrain::{HeightField, OffMap};
+use rover_terrain::{HeightField, OffMap};
 
 /// Why an equilibrium could not be found.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -439,7 +439,7 @@ struct FlatGround {
 
 /// Solve the static equilibrium on flat ground.
 fn flat_ground_solution(model: &Model) -> Result<FlatGround, QuasiStaticError> {
-    let flat = crate::terrain::Terrain::default();
+    let flat = rover_terrain::Terrain::default();
     let mut q0 = vec![model.touchdown_height(), 0.0, 0.0];
     q0.extend_from_slice(&model.rest());
     let mut solver = QuasiStatic::new(model, &flat, MeridionalContact::default(), q0);

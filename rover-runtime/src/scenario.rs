@@ -32,9 +32,9 @@ use serde::{Deserialize, Serialize};
 use crate::contact::RimSampling;
 use crate::control::ControllerConfig;
 use crate::ground::ContactMethod;
-use crate::terrain::TerrainConfig;
 use crate::wheel_law::WheelLawConfig;
 use rover_integrate::{BdfConfig, IntegratorConfig};
+use rover_terrain::TerrainConfig;
 
 /// A whole scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -227,7 +227,7 @@ impl ContactConfig {
 
     /// The ground of this table on `terrain`: search, sampling, law and
     /// rolling resistance.
-    pub fn ground<H: crate::terrain::HeightField>(
+    pub fn ground<H: rover_terrain::HeightField>(
         &self,
         terrain: H,
         model: &rover_dynamics::Model,

@@ -16,8 +16,8 @@ use crate::ground::ContactMethod;
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::sim::{RoverSystem, RunError, RunOptions, Stop, run};
-use crate::terrain::Terrain;
 use rover_integrate::{Integrator, OdeSystem};
+use rover_terrain::Terrain;
 
 /// A run that could not start: the scenario does not fit the rover, or a
 /// piece could not be built.
@@ -25,7 +25,7 @@ use rover_integrate::{Integrator, OdeSystem};
 pub enum SetupError {
     /// The terrain could not be built or loaded.
     #[error("{0}")]
-    Terrain(#[from] crate::terrain::TerrainError),
+    Terrain(#[from] rover_terrain::TerrainError),
     /// The controller does not fit the rover.
     #[error("{0}")]
     Control(#[from] crate::control::ControlError),
@@ -42,7 +42,7 @@ pub enum SetupError {
     },
     /// The rover starts off the terrain map.
     #[error("the rover starts off the terrain: {0}")]
-    OffMap(crate::terrain::OffMap),
+    OffMap(rover_terrain::OffMap),
     /// The CSV could not be started.
     #[error("cannot write the CSV: {0}")]
     Io(#[from] std::io::Error),
@@ -58,7 +58,7 @@ impl SetupError {
     /// The scenario field the error is about, as a dotted path, when it has one.
     pub fn field_path(&self) -> Option<String> {
         match self {
-            SetupError::Terrain(crate::terrain::TerrainError::Parameter { name, .. }) => {
+            SetupError::Terrain(rover_terrain::TerrainError::Parameter { name, .. }) => {
                 Some(format!("terrain.{name}"))
             }
             SetupError::Control(e) => Some(format!("control.{}", e.field)),

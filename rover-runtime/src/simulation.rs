@@ -59,8 +59,8 @@ use crate::described::{Mismatch, RoverDescription, model_differences};
 use crate::output::{Status, Summary};
 use crate::scenario::{ContactConfig, FieldError, InitialState, Scenario};
 use crate::simulate::{SetupError, simulate};
-use crate::terrain::TerrainConfig;
 use rover_integrate::IntegratorConfig;
+use rover_terrain::TerrainConfig;
 
 /// Why a [`Simulation`] did not run to its end.
 #[derive(Debug, thiserror::Error)]

@@ -39,7 +39,7 @@
 //! closed form. A terrain that gives no curvature bound (a step, a bilinear
 //! grid, a square reaching off a clamped map) takes the meridional search.
 
-use crate::terrain::{HeightField, OffMap, Plane};
+use rover_terrain::{HeightField, OffMap, Plane};
 
 use super::meridional::{MeridionalContact, Runs, clearance_slope, crossing_from, cut_by_plane};
 use super::patch::{Below, Contact, RimAngle, RimFrame, norm};
@@ -134,7 +134,7 @@ impl SearchMemory {
         }
         let slack = 1e-9 * (quantum + x.abs() + y.abs());
         let at = |k: i64| k as f64 * quantum;
-        let square = crate::terrain::Bounds {
+        let square = rover_terrain::Bounds {
             x_min: at(i - 2) - slack,
             x_max: at(i + 3) + slack,
             y_min: at(j - 2) - slack,

@@ -30,7 +30,7 @@
 //! crossing tolerance, for a tenth of its cost (a test holds the two
 //! against each other).
 
-use crate::terrain::{Bounds, HeightField, OffMap};
+use rover_terrain::{Bounds, HeightField, OffMap};
 
 use super::patch::{Below, Contact, Patch, RimAngle, RimFrame, cross};
 
@@ -165,7 +165,7 @@ enum PlaneCut {
 /// the angle sums, without evaluating any. The sampled search finds the same run (a plane has no dip or ridge
 /// between samples to miss) with its ends to the crossing tolerance
 /// (1e-9 m of height); here they are exact to rounding.
-fn plane_cut(plane: &crate::terrain::Plane, frame: &RimFrame, n: usize, step: f64) -> PlaneCut {
+fn plane_cut(plane: &rover_terrain::Plane, frame: &RimFrame, n: usize, step: f64) -> PlaneCut {
     let (g, d, f, r) = (frame.centre, frame.down, frame.forward, frame.radius);
     let [gx, gy] = plane.gradient;
     let c0 = g[2] - plane.height_at(g[0], g[1]);
@@ -234,7 +234,7 @@ fn plane_cut(plane: &crate::terrain::Plane, frame: &RimFrame, n: usize, step: f6
 /// cut settles the contact; false for the cases [`plane_cut`] leaves to a
 /// search.
 pub(crate) fn cut_by_plane(
-    plane: &crate::terrain::Plane,
+    plane: &rover_terrain::Plane,
     frame: &RimFrame,
     n: usize,
     step: f64,

@@ -118,9 +118,9 @@ impl RimFrame {
     }
 
     /// The square of side 2R around the centre, which holds the whole rim.
-    pub fn area(&self) -> crate::terrain::Bounds {
+    pub fn area(&self) -> rover_terrain::Bounds {
         let ([cx, cy, _], r) = (self.centre, self.radius);
-        crate::terrain::Bounds {
+        rover_terrain::Bounds {
             x_min: cx - r,
             x_max: cx + r,
             y_min: cy - r,

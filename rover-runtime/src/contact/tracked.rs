@@ -9,7 +9,7 @@
 //! and the search itself on a plane (flat ground, a slope), where it cuts
 //! the rim in closed form.
 
-use crate::terrain::{HeightField, OffMap};
+use rover_terrain::{HeightField, OffMap};
 
 use super::meridional::{MeridionalContact, clearance, clearance_slope, crossing};
 use super::patch::{Contact, RimAngle, RimFrame};
@@ -151,7 +151,7 @@ impl TrackedContact {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::terrain::Sinusoid;
+    use rover_terrain::Sinusoid;
 
     #[test]
     fn the_clearance_slope_is_the_derivative_of_the_clearance() {

@@ -26,7 +26,7 @@ use rover_dynamics::Model;
 use serde::{Deserialize, Serialize};
 
 use super::profile::Interpolation;
-use crate::terrain::{FileError, Place};
+use rover_terrain::{FileError, Place};
 
 /// The `[control.commands]` table of a scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -5,8 +5,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rover_dynamics::plant::Plant;
 
-use crate::terrain::HeightField;
 use rover_integrate::{Integrator, OdeSystem};
+use rover_terrain::HeightField;
 
 use super::error::RunError;
 use super::system::RoverSystem;

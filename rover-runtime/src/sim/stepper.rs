@@ -13,8 +13,8 @@ use rover_dynamics::plant::Plant;
 use crate::control::ControlError;
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::simulate::{SetupError, system_of};
-use crate::terrain::Terrain;
 use rover_integrate::{AnyIntegrator, Integrator, OdeSystem};
+use rover_terrain::Terrain;
 
 use super::{CommandError, RoverSystem, RunError};
 

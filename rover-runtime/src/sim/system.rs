@@ -7,8 +7,8 @@ use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
 
 use crate::control::Controller;
 use crate::ground::{Ground, WheelReport};
-use crate::terrain::HeightField;
 use rover_integrate::OdeSystem;
+use rover_terrain::HeightField;
 
 use super::error::{CommandError, SimError};
 use super::profile::{Lap, RhsProfile};

@@ -32,8 +32,8 @@ use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
 
 use crate::ground::LoadDerivative;
 use crate::sim::SimError;
-use crate::terrain::HeightField;
 use rover_integrate::Lu;
+use rover_terrain::HeightField;
 
 use super::RoverSystem;
 

@@ -210,7 +210,7 @@ mod tests {
     /// with the tiles.
     #[test]
     fn a_span_bounds_the_nodes_of_its_rectangle() {
-        let mut rng = crate::terrain::prng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
+        let mut rng = crate::prng::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
         let mut next = move |n: usize| (rng.next_u64() % n as u64) as usize;
         for (nx, ny) in [(2, 2), (3, 7), (17, 5), (64, 64), (101, 37)] {
             let heights: Vec<f64> = (0..nx * ny)

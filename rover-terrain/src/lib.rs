@@ -1,4 +1,5 @@
-//! Terrain: the ground height `Z_G(X, Y)` the wheels touch (MODEL.md §6, §11).
+//! Terrain height fields for rover contact: the ground height `Z_G(X, Y)`
+//! the wheels touch (docs/MODEL.md §6, §11).
 //!
 //! - [`HeightField`] is what the contact code queries: height and gradient at
 //!   a point, or an [`OffMap`] error, with no allocation.
@@ -10,14 +11,18 @@
 //!   MODEL.md §11 (SplitMix64 node values, see [`prng`]); [`TerrainStatistics`]
 //!   gives its RMS height, RMS slope, steepest slope and correlation length.
 //! - Files: ESRI ASCII grids ([`asc`]), CSV matrices ([`csv_grid`]), 16-bit PNG
-//!   height maps ([`png_map`]) and GeoTIFF DEMs ([`geotiff`]), each with a
-//!   reader and a writer; corrupt files give a [`TerrainError`] naming the
-//!   file, the line (or pixel, or tag), the problem and the fix.
+//!   height maps (`png_map`, feature `png`) and GeoTIFF DEMs (`geotiff`,
+//!   feature `geotiff`), each with a reader and a writer; corrupt files give
+//!   a [`TerrainError`] naming the file, the line (or pixel, or tag), the
+//!   problem and the fix. Both features are on by default; a rig that only
+//!   needs the contact can leave them (and their decoders) out.
 //! - [`TerrainConfig`] is the scenario's `[terrain]` table;
 //!   [`TerrainConfig::build`] checks it and makes the [`Terrain`].
 //!
 //! `docs/TERRAIN.md` is the long form: formats, the library's formulas, the
 //! random field's statistics.
+
+#![warn(missing_docs)]
 
 pub mod asc;
 mod bump;
@@ -28,12 +33,14 @@ mod error;
 mod file_format;
 mod flat;
 mod georeference;
+#[cfg(feature = "geotiff")]
 pub mod geotiff;
 mod grid;
 mod height_field;
 mod io;
 mod kernel;
 mod param;
+#[cfg(feature = "png")]
 pub mod png_map;
 pub mod prng;
 mod profile;
@@ -58,9 +65,11 @@ pub use error::{FileError, Place, TerrainError};
 pub use file_format::{FileFormat, LoadOptions, load_grid};
 pub use flat::Flat;
 pub use georeference::Georeference;
+#[cfg(feature = "geotiff")]
 pub use geotiff::{read_geotiff, write_geotiff};
 pub use grid::{EdgePolicy, Grid, Interpolation, MAX_FILE_NODES};
 pub use height_field::{Bounds, HeightField, OffMap, Plane};
+#[cfg(feature = "png")]
 pub use png_map::{SampleScale, read_png, write_png};
 pub use profile::Footprint;
 pub use random_field::RandomField;

@@ -8,9 +8,7 @@ use super::asc::read_asc;
 use super::csv_grid::read_csv;
 use super::error::TerrainError;
 use super::georeference::Georeference;
-use super::geotiff::read_geotiff;
 use super::grid::Grid;
-use super::png_map::{SampleScale, read_png};
 
 /// A terrain file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -90,32 +88,66 @@ pub fn load_grid(
         FileFormat::Csv => read_csv(path, options.georeference)?,
         FileFormat::Geotiff => {
             refuse_georeference("GeoTIFF")?;
-            return read_geotiff(path, options.scale.unwrap_or(1.0), options.offset);
+            return load_geotiff(path, options);
         }
-        FileFormat::Png => {
-            let Some(georeference) = options.georeference else {
-                return Err(TerrainError::parameter(
-                    "origin",
-                    "a PNG height map needs origin and spacing".to_string(),
-                    "set origin = [x, y] (centre of the bottom-left pixel) and \
-                     spacing = [dx, dy] in metres",
-                ));
-            };
-            let Some(scale) = options.scale else {
-                return Err(TerrainError::parameter(
-                    "scale",
-                    "a PNG height map needs scale (metres per count)".to_string(),
-                    "set scale (and offset, the height of sample 0), e.g. scale = 0.001",
-                ));
-            };
-            let scale = SampleScale {
-                scale,
-                offset: options.offset,
-            };
-            return read_png(path, georeference, scale);
-        }
+        FileFormat::Png => return load_png(path, options),
     };
     rescale(grid, options.scale.unwrap_or(1.0), options.offset)
+}
+
+/// A PNG height map: it carries no georeference and no height scale, so
+/// the scenario gives both.
+#[cfg(feature = "png")]
+fn load_png(path: &Path, options: LoadOptions) -> Result<Grid, TerrainError> {
+    use super::png_map::{SampleScale, read_png};
+    let Some(georeference) = options.georeference else {
+        return Err(TerrainError::parameter(
+            "origin",
+            "a PNG height map needs origin and spacing".to_string(),
+            "set origin = [x, y] (centre of the bottom-left pixel) and \
+             spacing = [dx, dy] in metres",
+        ));
+    };
+    let Some(scale) = options.scale else {
+        return Err(TerrainError::parameter(
+            "scale",
+            "a PNG height map needs scale (metres per count)".to_string(),
+            "set scale (and offset, the height of sample 0), e.g. scale = 0.001",
+        ));
+    };
+    let scale = SampleScale {
+        scale,
+        offset: options.offset,
+    };
+    read_png(path, georeference, scale)
+}
+
+#[cfg(not(feature = "png"))]
+fn load_png(_: &Path, _: LoadOptions) -> Result<Grid, TerrainError> {
+    Err(missing_feature("PNG height maps", "png"))
+}
+
+/// A GeoTIFF DEM, with its own georeference.
+#[cfg(feature = "geotiff")]
+fn load_geotiff(path: &Path, options: LoadOptions) -> Result<Grid, TerrainError> {
+    super::geotiff::read_geotiff(path, options.scale.unwrap_or(1.0), options.offset)
+}
+
+#[cfg(not(feature = "geotiff"))]
+fn load_geotiff(_: &Path, _: LoadOptions) -> Result<Grid, TerrainError> {
+    Err(missing_feature("GeoTIFF DEMs", "geotiff"))
+}
+
+/// The error of a format whose reader this build left out.
+#[cfg(not(all(feature = "png", feature = "geotiff")))]
+fn missing_feature(what: &str, feature: &str) -> TerrainError {
+    TerrainError::parameter(
+        "format",
+        format!("this build of rover-terrain reads no {what}"),
+        format!(
+            "enable the `{feature}` feature of rover-terrain, or convert the file to .asc or .csv"
+        ),
+    )
 }
 
 /// Applies `offset + scale·z` to a text grid's heights.

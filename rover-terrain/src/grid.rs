@@ -786,7 +786,7 @@ mod tests {
     fn interior_blocks_are_the_stencils_bit_for_bit() {
         let f = |x: f64, y: f64| 0.03 * (7.0 * x).sin() * (5.0 * y).cos() + 0.01 * (23.0 * y).sin();
         let grid = Grid::from_fn([-1.0, -0.5], [0.1, 0.05], 21, 23, f).unwrap();
-        let mut rng = crate::terrain::prng::SplitMix64::new(0x0dd_b1a5);
+        let mut rng = crate::prng::SplitMix64::new(0x0dd_b1a5);
         let mut interior = 0;
         for _ in 0..5000 {
             let (i, j) = (
@@ -827,7 +827,7 @@ mod tests {
     /// edge cells included; and the bound is not vacuous.
     #[test]
     fn cell_curvatures_bound_the_hessian() {
-        let mut rng = crate::terrain::prng::SplitMix64::new(0x0c0f_fee5_eed5_0001);
+        let mut rng = crate::prng::SplitMix64::new(0x0c0f_fee5_eed5_0001);
         for (nx, ny) in [(2, 2), (3, 2), (5, 4), (9, 7)] {
             let heights: Vec<f64> = (0..nx * ny).map(|_| rng.next_f64() - 0.5).collect();
             let spacing = [0.3, 0.2];
@@ -891,7 +891,7 @@ mod tests {
     /// 1.25 times its slope.
     #[test]
     fn cell_slopes_bound_the_gradient() {
-        let mut rng = crate::terrain::prng::SplitMix64::new(0x5eed_51a0_be5e_c0de);
+        let mut rng = crate::prng::SplitMix64::new(0x5eed_51a0_be5e_c0de);
         for (nx, ny) in [(2, 2), (3, 2), (5, 4), (9, 7)] {
             let heights: Vec<f64> = (0..nx * ny).map(|_| rng.next_f64() - 0.5).collect();
             let spacing = [0.3, 0.2];
@@ -953,7 +953,7 @@ mod tests {
     #[test]
     fn height_alone_is_the_height_of_the_full_query() {
         let f = |x: f64, y: f64| 0.03 * (7.0 * x).sin() * (5.0 * y).cos() + 0.01 * (23.0 * y).sin();
-        let mut rng = crate::terrain::prng::SplitMix64::new(0x2545_f491_4f6c_dd1d);
+        let mut rng = crate::prng::SplitMix64::new(0x2545_f491_4f6c_dd1d);
         let mut uniform = |lo: f64, hi: f64| lo + (hi - lo) * rng.next_f64();
         for interpolation in [Interpolation::Bicubic, Interpolation::Bilinear] {
             for edge in [EdgePolicy::Error, EdgePolicy::Clamp] {

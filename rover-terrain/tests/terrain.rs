@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rover_runtime::terrain::*;
+use rover_terrain::*;
 
 // ---------------------------------------------------------------- helpers
 
