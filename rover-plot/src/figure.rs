@@ -4,8 +4,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::coordinates::draw_coordinates;
+use crate::draw_result::DrawResult;
 use crate::labels::Labels;
-use crate::render::DrawResult;
 use crate::run_data::RunData;
 use crate::speed::draw_speed;
 use crate::trajectory::{Projection, draw_trajectory};

@@ -4,8 +4,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+use crate::draw_result::{DrawResult, failed};
 use crate::font::FAMILY;
-use crate::render::{DrawResult, failed};
 use crate::style::{LABEL_SIZE, LINE_WIDTH};
 
 /// Width of a legend column, px.

@@ -67,6 +67,7 @@ mod column_layout;
 mod convex_hull;
 mod coordinates;
 mod decimate;
+mod draw_result;
 mod error;
 mod figure;
 mod font;

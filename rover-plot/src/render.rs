@@ -8,14 +8,6 @@ use crate::figure::Figure;
 use crate::labels::Labels;
 use crate::run_data::RunData;
 
-/// What a drawing step returns: the plotting library's message on failure.
-pub(crate) type DrawResult = Result<(), String>;
-
-/// Turns a plotting-library error into its message.
-pub(crate) fn failed<E: std::fmt::Display>(error: E) -> String {
-    error.to_string()
-}
-
 /// The SVG document of `figure`.
 pub(crate) fn render_svg(
     figure: Figure,

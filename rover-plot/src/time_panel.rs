@@ -8,9 +8,9 @@ use plotters::prelude::*;
 
 use crate::axis_range::{bounds, padded};
 use crate::decimate::{MAX_POINTS, drop_flat, min_max};
+use crate::draw_result::{DrawResult, failed};
 use crate::font::FAMILY;
 use crate::legend::{LEGEND_WIDTH, LegendEntry, draw_legend};
-use crate::render::{DrawResult, failed};
 use crate::style::{AXIS_DESC_SIZE, CAPTION_SIZE, LABEL_SIZE, LINE_WIDTH, MARKER};
 use crate::tick_label::tick_label;
 

@@ -10,10 +10,10 @@ use plotters::prelude::*;
 use crate::axis_range::{bounds, equal_scale};
 use crate::convex_hull::convex_hull;
 use crate::decimate::{MAX_PATH_POINTS, stride_indices};
+use crate::draw_result::{DrawResult, failed};
 use crate::font::FAMILY;
 use crate::labels::Labels;
 use crate::legend::{LEGEND_WIDTH, LegendEntry, draw_legend};
-use crate::render::{DrawResult, failed};
 use crate::run_data::RunData;
 use crate::style::{
     AXIS_DESC_SIZE, BODY, LABEL_SIZE, LINE_WIDTH, MARKER, TITLE_SIZE, tint, wheel_colour,

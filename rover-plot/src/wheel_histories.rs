@@ -5,9 +5,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::axis_range::time_axis;
+use crate::draw_result::{DrawResult, failed};
 use crate::font::FAMILY;
 use crate::labels::Labels;
-use crate::render::{DrawResult, failed};
 use crate::run_data::RunData;
 use crate::style::{TITLE_SIZE, wheel_colour};
 use crate::time_panel::{Line, TimePanel, draw_time_panel};

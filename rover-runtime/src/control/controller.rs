@@ -7,11 +7,11 @@ use serde::{Deserialize, Serialize};
 
 use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
 use super::commands::{CommandSchedule, CommandsConfig};
-use super::distribution::{Distribution, add_share};
+use super::law::{CurvatureCommand, SpeedLaw, SteeringLaw};
+use super::profile::Profile;
 use super::speed::SpeedConfig;
 use super::steering::{
-    Ackermann, HeadingActuator, HeadingHold, HeadingIntegrals, LINE_INTEGRAL_CAP, Steering,
-    ackermann_angle, curvature_from_angle,
+    HeadingActuator, HeadingHold, HeadingIntegrals, LINE_INTEGRAL_CAP, Steering, ackermann_angle,
 };
 
 /// The `[control]` table of a scenario.
@@ -50,17 +50,17 @@ fn err(field: &str, message: impl Into<String>) -> ControlError {
     }
 }
 
-/// The running controller.
+/// The running controller: the `[control]` table checked and settled
+/// (see the `law` module), with the rover's data it reads.
 #[derive(Clone, Debug)]
 pub struct Controller {
-    config: ControllerConfig,
+    speed: Option<SpeedLaw>,
+    steering: SteeringLaw,
     settle: f64,
     left: Vec<bool>,
     rest_xy: Vec<(f64, f64)>,
     steerable: Vec<bool>,
     max_torque: Vec<f64>,
-    centre_x: f64,
-    static_weights: Option<Vec<f64>>,
     active: Option<ActiveSuspension>,
     neutral: Vec<f64>,
     lo: Vec<f64>,
@@ -89,7 +89,8 @@ impl Controller {
     }
 
     /// [`Controller::new`], with a command file read relative to `base_dir`
-    /// (the scenario's folder).
+    /// (the scenario's folder). Every check of the `[control]` table is
+    /// here: a controller that is built runs without re-reading it.
     pub fn new_in(
         config: ControllerConfig,
         model: &Model,
@@ -106,89 +107,25 @@ impl Controller {
             })
             .collect();
         let steerable: Vec<bool> = model.wheels.iter().map(|w| w.steerable).collect();
-        if let Some(s) = &config.speed {
-            s.speed.validate().map_err(|m| err("speed.speed", m))?;
-            if !(s.kp.is_finite() && s.kp >= 0.0 && s.ki.is_finite() && s.ki >= 0.0) {
-                return Err(err(
-                    "speed",
-                    format!(
-                        "gains must be finite and ≥ 0, got kp = {}, ki = {}",
-                        s.kp, s.ki
-                    ),
-                ));
-            }
-        }
-        let mut centre_x = 0.0;
-        match &config.steering {
-            Steering::None => {}
-            Steering::Slip { delta_tau } => delta_tau
-                .validate()
-                .map_err(|m| err("steering.delta_tau", m))?,
-            Steering::Heading(h) => {
-                validate_heading(h, config.speed.is_some(), &steerable)?;
-                if h.via == HeadingActuator::Ackermann {
-                    centre_x = heading_centre_x(&rest_xy, &steerable);
-                }
-            }
-            Steering::Ackermann(a) => {
-                if !steerable.iter().any(|&s| s) {
-                    return Err(err(
-                        "steering",
-                        "Ackermann steering needs steerable wheels; this rover has none (use kind = \"slip\")",
-                    ));
-                }
-                match (&a.radius, &a.front_left_deg) {
-                    (Some(p), None) => p.validate().map_err(|m| err("steering.radius", m))?,
-                    (None, Some(p)) => p
-                        .validate()
-                        .map_err(|m| err("steering.front_left_deg", m))?,
-                    _ => {
-                        return Err(err(
-                            "steering",
-                            "give exactly one of `radius` (m) or `front_left_deg`",
-                        ));
-                    }
-                }
-                centre_x = a
-                    .centre_x
-                    .unwrap_or_else(|| default_centre_x(&rest_xy, &steerable));
-            }
-        }
-        let active = match &config.active_suspension {
+        let speed = match config.speed {
+            Some(s) => Some(speed_law(s, model)?),
             None => None,
-            Some(c) => {
-                if !(c.sample_time.is_finite() && c.sample_time > 0.0) {
-                    return Err(err(
-                        "active_suspension.sample_time",
-                        format!("must be > 0 s, got {}", c.sample_time),
-                    ));
-                }
-                let sprung: Vec<bool> = model
-                    .coordinates
-                    .iter()
-                    .map(|c| !matches!(c.spring, rover_dynamics::model::Spring::None))
-                    .collect();
-                if !sprung.iter().any(|&s| s) {
-                    return Err(err(
-                        "active_suspension",
-                        "the rover has no sprung coordinate whose neutral could be moved",
-                    ));
-                }
-                Some(ActiveSuspension::new(
-                    c.clone(),
-                    &sprung,
-                    &slopes(model, &rest),
-                ))
+        };
+        let (heading_state, line_state) = match &config.steering {
+            Steering::Heading(h) => {
+                let heading = h.integrates_heading().then_some(1);
+                let line = h
+                    .integrates_line()
+                    .then_some(1 + usize::from(heading.is_some()));
+                (heading, line)
             }
+            _ => (None, None),
         };
-        let hold = match &config.steering {
-            Steering::Heading(h) => Some(h),
-            _ => None,
+        let steering = steering_law(config.steering, speed.is_some(), &rest_xy, &steerable)?;
+        let active = match &config.active_suspension {
+            Some(c) => Some(active_suspension(c, model, &rest)?),
+            None => None,
         };
-        let heading_state = hold.is_some_and(|h| h.integrates_heading()).then_some(1);
-        let line_state = hold
-            .is_some_and(|h| h.integrates_line())
-            .then_some(1 + usize::from(heading_state.is_some()));
         let schedule = match &config.commands {
             Some(c) => Some(
                 CommandSchedule::load(c, base_dir, model).map_err(|m| err("commands.file", m))?,
@@ -196,6 +133,8 @@ impl Controller {
             None => None,
         };
         Ok(Self {
+            speed,
+            steering,
             schedule,
             heading_state,
             line_state,
@@ -203,23 +142,10 @@ impl Controller {
             rest_xy,
             steerable,
             max_torque: model.wheels.iter().map(|w| w.max_torque).collect(),
-            centre_x,
-            static_weights: match &config.speed {
-                Some(s) if s.distribution == Distribution::StaticLoad => {
-                    Some(crate::quasi_static::flat_ground_loads(model).map_err(|e| {
-                        err(
-                            "speed.distribution",
-                            format!("cannot find the static loads: {e}"),
-                        )
-                    })?)
-                }
-                _ => None,
-            },
             active,
             neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
             lo: model.coordinates.iter().map(|c| c.min).collect(),
             hi: model.coordinates.iter().map(|c| c.max).collect(),
-            config,
             settle,
             leg: 0,
         })
@@ -235,11 +161,6 @@ impl Controller {
         &self.steerable
     }
 
-    /// The configuration.
-    pub fn config(&self) -> &ControllerConfig {
-        &self.config
-    }
-
     /// The current spring neutrals y0 (moved by the active suspension).
     pub fn neutrals(&self) -> &[f64] {
         &self.neutral
@@ -253,9 +174,9 @@ impl Controller {
         if !speed.is_finite() {
             return Err(err("speed.speed", format!("must be finite, got {speed}")));
         }
-        match &mut self.config.speed {
+        match &mut self.speed {
             Some(s) => {
-                s.speed = crate::control::Profile::Constant(speed);
+                s.speed = Profile::Constant(speed);
                 Ok(())
             }
             None => Err(err(
@@ -270,17 +191,12 @@ impl Controller {
     /// Ackermann steering by radius, or its front-left angle [°]; like
     /// [`Controller::set_speed`], in place of the scenario's profile.
     pub fn set_steering_setpoint(&mut self, value: f64) -> Result<(), ControlError> {
-        use crate::control::Profile;
         if !value.is_finite() {
             return Err(err("steering", format!("must be finite, got {value}")));
         }
-        match &mut self.config.steering {
-            Steering::Slip { delta_tau } => *delta_tau = Profile::Constant(value),
-            Steering::Ackermann(a) => match (&mut a.radius, &mut a.front_left_deg) {
-                (Some(r), _) => *r = Profile::Constant(value),
-                (None, Some(d)) => *d = Profile::Constant(value),
-                (None, None) => return Err(err("steering", "Ackermann steering has no set-point")),
-            },
+        match &mut self.steering {
+            SteeringLaw::Slip { delta_tau } => *delta_tau = Profile::Constant(value),
+            SteeringLaw::Ackermann { curvature, .. } => curvature.hold(value),
             _ => {
                 return Err(err(
                     "steering",
@@ -293,7 +209,7 @@ impl Controller {
 
     /// Speed set-point V(t) [m/s]: zero while settling.
     pub fn speed_setpoint(&self, t: f64) -> f64 {
-        match &self.config.speed {
+        match &self.speed {
             Some(s) if t >= self.settle => s.speed.at(t - self.settle),
             _ => 0.0,
         }
@@ -311,7 +227,7 @@ impl Controller {
     /// [`LINE_INTEGRAL`]) in ζ's order, each with whether it acts on the
     /// rover (the speed loop's does only with `ki > 0`).
     pub fn state_names(&self) -> Vec<(&'static str, bool)> {
-        let speed = self.config.speed.as_ref().is_some_and(|s| s.ki > 0.0);
+        let speed = self.speed.as_ref().is_some_and(|s| s.ki > 0.0);
         let mut names = vec![(SPEED_INTEGRAL, speed)];
         if self.heading_state.is_some() {
             names.push((HEADING_INTEGRAL, true));
@@ -350,16 +266,19 @@ impl Controller {
                 e
             }
         };
-        if let Some(s) = &self.config.speed {
+        if let Some(s) = &self.speed {
             out[0] = hold(self.speed_setpoint(t) - w[0], s.ki * z[0], cap);
         }
-        let Steering::Heading(h) = &self.config.steering else {
+        let SteeringLaw::Heading {
+            hold: h, heading, ..
+        } = &self.steering
+        else {
             return;
         };
         if t < self.settle {
             return;
         }
-        let line = h.line(t - self.settle, self.leg);
+        let line = h.line_with(heading.at(t - self.settle), self.leg);
         let integrals = self.heading_integrals(z);
         let position = [x[0], x[1]];
         if let Some(i) = self.heading_state {
@@ -412,30 +331,25 @@ impl Controller {
         normals: &[f64],
         out: &mut [f64],
     ) {
-        let Some(s) = &self.config.speed else {
+        let Some(s) = &self.speed else {
             return;
         };
         let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * z[0];
-        match s.distribution {
-            Distribution::Even => out.iter_mut().for_each(|o| *o += tau0),
-            Distribution::MeasuredLoad => add_share(tau0, normals, out),
-            Distribution::StaticLoad => {
-                let weights = self.static_weights.as_deref().unwrap_or(normals);
-                add_share(tau0, weights, out)
-            }
-        }
+        s.add_shares(tau0, normals, out);
         let settled = t >= self.settle;
-        let dt = match &self.config.steering {
-            Steering::Slip { delta_tau } => Some(if settled {
+        let dt = match &self.steering {
+            SteeringLaw::Slip { delta_tau } => Some(if settled {
                 delta_tau.at(t - self.settle)
             } else {
                 0.0
             }),
-            Steering::Heading(h) if h.via == HeadingActuator::Slip => Some(if settled {
+            SteeringLaw::Heading {
+                hold: h, heading, ..
+            } if h.via == HeadingActuator::Slip => Some(if settled {
                 let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
                 let psi_rate = att.rates([w[3], w[4], w[5]])[2];
                 h.delta_tau(
-                    h.line(t - self.settle, self.leg),
+                    h.line_with(heading.at(t - self.settle), self.leg),
                     [x[0], x[1]],
                     x[5],
                     psi_rate,
@@ -444,7 +358,7 @@ impl Controller {
             } else {
                 0.0
             }),
-            Steering::None | Steering::Ackermann(_) | Steering::Heading(_) => None,
+            _ => None,
         };
         if let Some(dt) = dt {
             for (o, &left) in out.iter_mut().zip(&self.left) {
@@ -465,83 +379,78 @@ impl Controller {
         if let Some(s) = &self.schedule {
             s.add_steering(tc, out);
         }
-        let kappa = match &self.config.steering {
-            Steering::Ackermann(a) => self.ackermann_curvature(a, tc),
-            Steering::Heading(h) if h.via == HeadingActuator::Ackermann => h.curvature(
-                h.line(tc, self.leg),
-                [x[0], x[1]],
-                x[5],
-                self.heading_integrals(z),
+        let (kappa, centre_x) = match &self.steering {
+            SteeringLaw::Ackermann {
+                curvature,
+                centre_x,
+            } => (curvature.curvature(tc, *centre_x), *centre_x),
+            SteeringLaw::Heading {
+                hold: h,
+                heading,
+                centre_x,
+            } if h.via == HeadingActuator::Ackermann => (
+                h.curvature(
+                    h.line_with(heading.at(tc), self.leg),
+                    [x[0], x[1]],
+                    x[5],
+                    self.heading_integrals(z),
+                ),
+                *centre_x,
             ),
             _ => return,
         };
         for (k, o) in out.iter_mut().enumerate() {
             if self.steerable[k] {
                 let (x, y) = self.rest_xy[k];
-                *o += ackermann_angle(kappa, x, y, self.centre_x);
+                *o += ackermann_angle(kappa, x, y, centre_x);
             }
-        }
-    }
-
-    /// The Ackermann command's curvature κ = 1/R at time `tc` after
-    /// settling: from the radius, or from the first steerable wheel's angle
-    /// (0 without one).
-    fn ackermann_curvature(&self, a: &Ackermann, tc: f64) -> f64 {
-        match (&a.radius, &a.front_left_deg) {
-            (Some(r), _) => {
-                let r = r.at(tc);
-                if r == 0.0 { 0.0 } else { 1.0 / r }
-            }
-            (None, Some(d)) => match self.steerable.iter().position(|&s| s) {
-                Some(k) => {
-                    let (x1, y1) = self.rest_xy[k];
-                    curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x)
-                }
-                None => 0.0,
-            },
-            (None, None) => 0.0,
         }
     }
 
     /// Commanded path curvature κ = 1/R at time t (Ackermann; 0 otherwise or
     /// while settling), and the turn centre's body x, x_c.
     pub fn curvature(&self, t: f64) -> (f64, f64) {
-        let Steering::Ackermann(a) = &self.config.steering else {
+        let SteeringLaw::Ackermann {
+            curvature,
+            centre_x,
+        } = &self.steering
+        else {
             return (0.0, 0.0);
         };
         if t < self.settle {
-            return (0.0, self.centre_x);
+            return (0.0, *centre_x);
         }
-        let kappa = self.ackermann_curvature(a, t - self.settle);
-        (kappa, self.centre_x)
+        (curvature.curvature(t - self.settle, *centre_x), *centre_x)
     }
 
     /// Kinematic turning radius R_k = sqrt(x_c² + R²) at time t, when steering
     /// kinematically with a non-zero curvature.
     pub fn kinematic_radius(&self, t: f64) -> Option<f64> {
-        let Steering::Ackermann(a) = &self.config.steering else {
+        let SteeringLaw::Ackermann {
+            curvature,
+            centre_x,
+        } = &self.steering
+        else {
             return None;
         };
         let tc = (t - self.settle).max(0.0);
-        let r = match (&a.radius, &a.front_left_deg) {
-            (Some(r), _) => r.at(tc),
-            (None, Some(d)) => {
-                let k = self.steerable.iter().position(|&s| s)?;
-                let (x1, y1) = self.rest_xy[k];
-                let kappa = curvature_from_angle(d.at(tc).to_radians(), x1, y1, self.centre_x);
+        let r = match curvature {
+            CurvatureCommand::Radius(r) => r.at(tc),
+            CurvatureCommand::Angle { .. } => {
+                let kappa = curvature.curvature(tc, *centre_x);
                 if kappa == 0.0 {
                     return None;
                 }
                 1.0 / kappa
             }
-            _ => return None,
         };
-        (r != 0.0 && r.is_finite()).then(|| (self.centre_x * self.centre_x + r * r).sqrt())
+        (r != 0.0 && r.is_finite()).then(|| (centre_x * centre_x + r * r).sqrt())
     }
 
     /// Period of the sampled part (active suspension), if any.
     pub fn sample_period(&self) -> Option<f64> {
-        let legs = matches!(&self.config.steering, Steering::Heading(h) if h.waypoints.len() > 2);
+        let legs =
+            matches!(&self.steering, SteeringLaw::Heading { hold, .. } if hold.waypoints.len() > 2);
         match &self.active {
             Some(a) => Some(a.config.sample_time),
             None if legs => Some(crate::control::LEG_CHECK_PERIOD),
@@ -558,18 +467,16 @@ impl Controller {
     pub fn breakpoints(&self) -> Vec<f64> {
         let mut b = vec![self.settle];
         let shift = |v: Vec<f64>| v.into_iter().map(|t| t + self.settle);
-        if let Some(s) = &self.config.speed {
+        if let Some(s) = &self.speed {
             b.extend(shift(s.speed.breakpoints()));
         }
-        match &self.config.steering {
-            Steering::Slip { delta_tau } => b.extend(shift(delta_tau.breakpoints())),
-            Steering::Heading(h) => b.extend(shift(h.heading_deg.breakpoints())),
-            Steering::Ackermann(a) => {
-                for p in a.radius.iter().chain(a.front_left_deg.iter()) {
-                    b.extend(shift(p.breakpoints()));
-                }
+        match &self.steering {
+            SteeringLaw::Slip { delta_tau } => b.extend(shift(delta_tau.breakpoints())),
+            SteeringLaw::Heading { heading, .. } => b.extend(shift(heading.breakpoints())),
+            SteeringLaw::Ackermann { curvature, .. } => {
+                b.extend(shift(curvature.profile().breakpoints()))
             }
-            Steering::None => {}
+            SteeringLaw::None => {}
         }
         if let Some(s) = &self.schedule {
             b.extend(shift(s.breakpoints()));
@@ -593,7 +500,7 @@ impl Controller {
             return false;
         }
         let mut changed = false;
-        if let Steering::Heading(h) = &self.config.steering {
+        if let SteeringLaw::Heading { hold: h, .. } = &self.steering {
             while h.passed(self.leg, [x[0], x[1]]) {
                 self.leg += 1;
                 changed = true;
@@ -618,6 +525,123 @@ impl Controller {
         }
         true
     }
+}
+
+/// The speed loop, checked: its profile and non-negative finite gains; the
+/// static loads found once when it shares by them.
+fn speed_law(s: SpeedConfig, model: &Model) -> Result<SpeedLaw, ControlError> {
+    s.speed.validate().map_err(|m| err("speed.speed", m))?;
+    if !(s.kp.is_finite() && s.kp >= 0.0 && s.ki.is_finite() && s.ki >= 0.0) {
+        return Err(err(
+            "speed",
+            format!(
+                "gains must be finite and ≥ 0, got kp = {}, ki = {}",
+                s.kp, s.ki
+            ),
+        ));
+    }
+    SpeedLaw::new(s.speed, s.kp, s.ki, s.distribution, || {
+        crate::quasi_static::flat_ground_loads(model)
+            .map_err(|e| format!("cannot find the static loads: {e}"))
+    })
+    .map_err(|m| err("speed.distribution", m))
+}
+
+/// The steering, checked and settled: degrees become radians, an Ackermann
+/// angle names the wheel it belongs to, the turn centre is placed.
+fn steering_law(
+    steering: Steering,
+    has_speed: bool,
+    rest_xy: &[(f64, f64)],
+    steerable: &[bool],
+) -> Result<SteeringLaw, ControlError> {
+    Ok(match steering {
+        Steering::None => SteeringLaw::None,
+        Steering::Slip { delta_tau } => {
+            delta_tau
+                .validate()
+                .map_err(|m| err("steering.delta_tau", m))?;
+            SteeringLaw::Slip { delta_tau }
+        }
+        Steering::Heading(h) => {
+            validate_heading(&h, has_speed, steerable)?;
+            let centre_x = if h.via == HeadingActuator::Ackermann {
+                heading_centre_x(rest_xy, steerable)
+            } else {
+                0.0
+            };
+            SteeringLaw::Heading {
+                heading: h.heading_deg.map(f64::to_radians),
+                hold: h,
+                centre_x,
+            }
+        }
+        Steering::Ackermann(a) => {
+            let Some(first) = steerable.iter().position(|&s| s) else {
+                return Err(err(
+                    "steering",
+                    "Ackermann steering needs steerable wheels; this rover has none (use kind = \"slip\")",
+                ));
+            };
+            let curvature = match (a.radius, a.front_left_deg) {
+                (Some(p), None) => {
+                    p.validate().map_err(|m| err("steering.radius", m))?;
+                    CurvatureCommand::Radius(p)
+                }
+                (None, Some(p)) => {
+                    p.validate()
+                        .map_err(|m| err("steering.front_left_deg", m))?;
+                    CurvatureCommand::Angle {
+                        radians: p.map(f64::to_radians),
+                        wheel: rest_xy[first],
+                    }
+                }
+                _ => {
+                    return Err(err(
+                        "steering",
+                        "give exactly one of `radius` (m) or `front_left_deg`",
+                    ));
+                }
+            };
+            SteeringLaw::Ackermann {
+                curvature,
+                centre_x: a
+                    .centre_x
+                    .unwrap_or_else(|| default_centre_x(rest_xy, steerable)),
+            }
+        }
+    })
+}
+
+/// The active suspension, checked: a positive sample time and a sprung
+/// coordinate to move.
+fn active_suspension(
+    c: &ActiveSuspensionConfig,
+    model: &Model,
+    rest: &[f64],
+) -> Result<ActiveSuspension, ControlError> {
+    if !(c.sample_time.is_finite() && c.sample_time > 0.0) {
+        return Err(err(
+            "active_suspension.sample_time",
+            format!("must be > 0 s, got {}", c.sample_time),
+        ));
+    }
+    let sprung: Vec<bool> = model
+        .coordinates
+        .iter()
+        .map(|c| !matches!(c.spring, rover_dynamics::model::Spring::None))
+        .collect();
+    if !sprung.iter().any(|&s| s) {
+        return Err(err(
+            "active_suspension",
+            "the rover has no sprung coordinate whose neutral could be moved",
+        ));
+    }
+    Ok(ActiveSuspension::new(
+        c.clone(),
+        &sprung,
+        &slopes(model, rest),
+    ))
 }
 
 /// The checks of a heading hold: finite set-point and line, the gains its
@@ -668,7 +692,7 @@ fn validate_heading(
                 ),
             ));
         }
-        if h.heading_deg != crate::control::Profile::Constant(0.0) || h.line_origin != [0.0, 0.0] {
+        if h.heading_deg != Profile::Constant(0.0) || h.line_origin != [0.0, 0.0] {
             return Err(err(
                 "steering.waypoints",
                 "waypoints replace `heading_deg` and `line_origin`: give one or the other",

@@ -8,6 +8,7 @@ mod active_suspension;
 mod commands;
 mod controller;
 mod distribution;
+mod law;
 mod profile;
 mod speed;
 mod steering;

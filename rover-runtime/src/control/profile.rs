@@ -71,6 +71,21 @@ impl Profile {
         }
     }
 
+    /// The same profile with `f` applied to every value (a unit
+    /// conversion, done once).
+    pub fn map(&self, f: impl Fn(f64) -> f64) -> Profile {
+        match self {
+            Profile::Constant(v) => Profile::Constant(f(*v)),
+            Profile::Table {
+                points,
+                interpolation,
+            } => Profile::Table {
+                points: points.iter().map(|&[t, v]| [t, f(v)]).collect(),
+                interpolation: *interpolation,
+            },
+        }
+    }
+
     /// Times at which the value jumps (step tables), for the driver to stop at.
     pub fn breakpoints(&self) -> Vec<f64> {
         match self {

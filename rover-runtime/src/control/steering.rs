@@ -122,11 +122,21 @@ impl HeadingHold {
     /// heading ψ_ref \[rad\] and a point of it.
     pub fn line(&self, tc: f64, leg: usize) -> (f64, [f64; 2]) {
         if self.waypoints.len() >= 2 {
+            self.line_with(0.0, leg)
+        } else {
+            self.line_with(self.heading_deg.at(tc).to_radians(), leg)
+        }
+    }
+
+    /// [`HeadingHold::line`] with the set-point ψ_ref \[rad\] already read
+    /// (it is not read on waypoints).
+    pub fn line_with(&self, heading: f64, leg: usize) -> (f64, [f64; 2]) {
+        if self.waypoints.len() >= 2 {
             let k = leg.min(self.waypoints.len() - 2);
             let (a, b) = (self.waypoints[k], self.waypoints[k + 1]);
             ((b[1] - a[1]).atan2(b[0] - a[0]), a)
         } else {
-            (self.heading_deg.at(tc).to_radians(), self.line_origin)
+            (heading, self.line_origin)
         }
     }
 

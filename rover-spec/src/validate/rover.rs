@@ -9,7 +9,7 @@ use rover_dynamics::model::{CarriedBody, Coordinate, RigidBody, Spring};
 use super::body::check_inertia;
 use super::names::check_unique;
 use super::suspension::{Built, Source, build};
-use super::wheel::check_wheel;
+use super::wheel::{CheckedWheel, check_wheel};
 use crate::checks::{Ctx, coord_value, non_finite, num};
 use crate::description::{Description, MassDesc};
 use crate::diagnostic::Diagnostic;
@@ -47,6 +47,11 @@ struct Carried {
 }
 
 /// Check a description and build its [`Spec`], or return every problem.
+///
+/// In three stages, each reporting every problem it finds before the next
+/// would trip over them: the fields one by one; the relations between them
+/// (names, references, the fits of the suspensions); the numeric model and
+/// what it implies (finite derived numbers, a rover that can run).
 pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
     let mut ctx = Ctx::default();
     if let Ok(value) = toml::Value::try_from(desc) {
@@ -65,135 +70,10 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         "the body mass is in kg and positive",
     );
     let body_inertia = check_inertia(&mut ctx, "body.inertia", &desc.body.inertia);
-
-    // Names.
-    let suspension_names: Vec<(String, String, &str)> = desc
-        .suspensions
-        .iter()
-        .enumerate()
-        .map(|(i, s)| {
-            (
-                s.name().to_string(),
-                format!("suspension[{i}].name"),
-                "suspension",
-            )
-        })
-        .collect();
-    check_unique(&mut ctx, &suspension_names);
-    let mut body_names: Vec<(String, String, &str)> = desc
-        .wheels
-        .iter()
-        .enumerate()
-        .map(|(i, w)| (w.name.clone(), format!("wheel[{i}].name"), "wheel"))
-        .collect();
-    for (i, s) in desc.suspensions.iter().enumerate() {
-        for (k, b) in s.bodies().iter().enumerate() {
-            body_names.push((
-                b.name.clone(),
-                format!("suspension[{i}].bodies[{k}].name"),
-                "carried body",
-            ));
-        }
-    }
-    check_unique(&mut ctx, &body_names);
-
-    // Suspensions and their coordinates.
-    let mut built: Vec<Option<Built>> = Vec::new();
-    let mut first = 0;
-    for (i, s) in desc.suspensions.iter().enumerate() {
-        let b = build(&mut ctx, i, s, first);
-        if let Some(b) = &b {
-            first += b.coords.len();
-        }
-        built.push(b);
-    }
-    let coord_names: Vec<(String, String, &str)> = built
-        .iter()
-        .flatten()
-        .flat_map(|b| b.coords.iter())
-        .map(|c| (c.name.clone(), format!("{}.name", c.path), "coordinate"))
-        .collect();
-    check_unique(&mut ctx, &coord_names);
-
-    // Wheels and masses, tied to their suspension points.
-    let defaults = desc.wheel_defaults.clone().unwrap_or_default();
-    let mut carried = Vec::new();
-    let mut wheels = Vec::new();
-    for (i, w) in desc.wheels.iter().enumerate() {
-        let checked = check_wheel(&mut ctx, i, w, &defaults);
-        let place = find_suspension(
-            &mut ctx,
-            &format!("wheel[{i}].suspension"),
-            &w.suspension,
-            desc,
-            &built,
-        )
-        .and_then(|s| {
-            wheel_point(&mut ctx, i, w.point.as_deref(), s, built[s].as_ref()?).map(|p| (s, p))
-        });
-        if let (Some(c), Some((s, point))) = (checked, place) {
-            carried.push(Carried {
-                name: w.name.clone(),
-                suspension: s,
-                place: Place::Point(point.clone()),
-                at: point,
-                mass: c.mass,
-                inertia: c.inertia.clone(),
-            });
-            wheels.push(c);
-        }
-    }
-    check_points_used_once(&mut ctx, &carried, desc);
-    for (i, s) in desc.suspensions.iter().enumerate() {
-        let Some(b) = built[i].as_ref() else { continue };
-        for (k, m) in s.bodies().iter().enumerate() {
-            if let Some(c) = mass_place(&mut ctx, &format!("suspension[{i}].bodies[{k}]"), m, i, b)
-            {
-                carried.push(c);
-            }
-        }
-    }
-
-    // Fits.
-    let mut cache: BTreeMap<(usize, String), FittedPoint> = BTreeMap::new();
-    // Every named point is fitted, used or not: a linkage that cannot
-    // cover its travel is an error even before a wheel sits on it.
-    for (s, b) in built.iter().enumerate() {
-        let Some(b) = b else { continue };
-        for name in point_names(b) {
-            let place = Place::Point(name);
-            if let Some(p) = fit_carried(&mut ctx, b, &place, global_of(&built, s)) {
-                cache.insert((s, format!("{place:?}")), p);
-            }
-        }
-    }
-    let mut fitted = Vec::new();
-    for c in &carried {
-        let Some(b) = built[c.suspension].as_ref() else {
-            continue;
-        };
-        let key = (c.suspension, format!("{:?}", c.place));
-        let point = match cache.get(&key) {
-            Some(p) => Some(p.clone()),
-            None => {
-                let p = fit_carried(&mut ctx, b, &c.place, global_of(&built, c.suspension));
-                if let Some(p) = &p {
-                    cache.insert(key, p.clone());
-                }
-                p
-            }
-        };
-        if let (Some(p), Some((_, path))) = (&point, &c.inertia)
-            && p.member.len() > 1
-        {
-            ctx.error(
-                path.clone(),
-                format!("`{}` turns with {} coordinates, so its inertia cannot be carried", c.name, p.member.len()),
-                "give inertia only to bodies on a member that turns with one coordinate, or omit it",
-            );
-        }
-        fitted.push(point);
-    }
+    check_names(&mut ctx, desc);
+    let built = build_suspensions(&mut ctx, desc);
+    let (carried, wheels) = place_bodies(&mut ctx, desc, &built);
+    let fitted = fit_bodies(&mut ctx, &built, &carried);
 
     if ctx.diags.is_empty() && fitted.iter().any(Option::is_none) {
         ctx.error(
@@ -216,7 +96,6 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         )]);
     };
 
-    // The numeric model.
     let bodies: Vec<CarriedBody> = carried
         .iter()
         .zip(&fitted)
@@ -227,61 +106,257 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
             member: p.member.clone(),
         })
         .collect();
-    let mut model_wheels = Vec::new();
-    for (j, w) in wheels.into_iter().enumerate() {
-        let mut wheel = w.wheel;
-        wheel.body = j;
-        wheel.camber = fitted[j].camber.clone();
-        wheel.toe = fitted[j].toe.clone();
-        model_wheels.push(wheel);
-    }
-    let mut coordinates = Vec::new();
-    let mut coordinate_names = Vec::new();
-    let mut coordinate_linear = Vec::new();
-    for c in built.iter().flat_map(|b| b.coords.iter()) {
-        let i = coordinates.len();
-        let k_ref = match &c.spring {
-            Spring::Linear { stiffness } => *stiffness,
-            Spring::Table { deflection, force } => deflection
-                .windows(2)
-                .zip(force.windows(2))
-                .map(|(d, f)| ((f[1] - f[0]) / (d[1] - d[0])).abs())
-                .fold(0.0, f64::max),
-            Spring::None => 0.0,
-        };
-        let stop_stiffness = c.stop_stiffness.unwrap_or(if k_ref > 0.0 {
-            STOP_STIFFNESS_FACTOR * k_ref
-        } else {
-            FREE_STOP_STIFFNESS
-        });
-        let inertia = effective_inertia(&bodies, i);
-        let inertia = if inertia > 0.0 {
-            inertia
-        } else {
-            MIN_STOP_INERTIA
-        };
-        coordinates.push(Coordinate {
-            rest: c.range.rest,
-            neutral: c.neutral,
-            spring: c.spring.clone(),
-            damping: c.damping,
-            min: c.range.min,
-            max: c.range.max,
-            stop_stiffness,
-            stop_damping: c
-                .stop_damping
-                .unwrap_or(2.0 * (stop_stiffness * inertia).sqrt()),
-        });
-        coordinate_names.push(c.name.clone());
-        coordinate_linear.push(c.linear);
-    }
-    // Huge inputs can overflow what is derived from them (1e308 kg times a
-    // slope): nothing non-finite leaves this function.
-    let mut ctx = Ctx::default();
-    for (c, checked) in coordinates
+    let model_wheels: Vec<_> = wheels
+        .into_iter()
+        .enumerate()
+        .map(|(j, w)| {
+            let mut wheel = w.wheel;
+            wheel.body = j;
+            wheel.camber = fitted[j].camber.clone();
+            wheel.toe = fitted[j].toe.clone();
+            wheel
+        })
+        .collect();
+    let coordinates = model_coordinates(&built, &bodies);
+    check_derived_numbers(&coordinates, &built, &carried, &bodies)?;
+    let rest = coordinates.iter().map(|c| c.rest).collect::<Vec<_>>();
+    let rest_wheel_centres: Vec<[f64; 3]> = model_wheels
         .iter()
-        .zip(built.iter().flat_map(|b| b.coords.iter()))
-    {
+        .map(|w| bodies[w.body].position.value(&rest))
+        .collect();
+    let model = Model {
+        gravity,
+        body: RigidBody {
+            mass: body_mass,
+            inertia: body_inertia,
+        },
+        coordinates,
+        bodies,
+        wheels: model_wheels,
+    };
+    check_runnable(&model, &built, &rest_wheel_centres)?;
+    Ok(Spec {
+        name: desc.name.clone(),
+        model,
+        coordinate_names: coords_of(&built).map(|c| c.name.clone()).collect(),
+        coordinate_linear: coords_of(&built).map(|c| c.linear).collect(),
+        body_names: carried.iter().map(|c| c.name.clone()).collect(),
+        wheel_names: desc.wheels.iter().map(|w| w.name.clone()).collect(),
+        suspensions: suspension_infos(&built),
+        fits: body_fits(desc, &built, &carried, &fitted),
+        rest_wheel_centres,
+        description: desc.clone(),
+    })
+}
+
+/// The checked coordinates of every suspension, in the model's order.
+fn coords_of(built: &[Built]) -> impl Iterator<Item = &super::coordinate::CheckedCoord> {
+    built.iter().flat_map(|b| b.coords.iter())
+}
+
+/// Suspension names, and wheel and carried-body names, each unique.
+fn check_names(ctx: &mut Ctx, desc: &Description) {
+    let suspension_names: Vec<(String, String, &str)> = desc
+        .suspensions
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            (
+                s.name().to_string(),
+                format!("suspension[{i}].name"),
+                "suspension",
+            )
+        })
+        .collect();
+    check_unique(ctx, &suspension_names);
+    let mut body_names: Vec<(String, String, &str)> = desc
+        .wheels
+        .iter()
+        .enumerate()
+        .map(|(i, w)| (w.name.clone(), format!("wheel[{i}].name"), "wheel"))
+        .collect();
+    for (i, s) in desc.suspensions.iter().enumerate() {
+        for (k, b) in s.bodies().iter().enumerate() {
+            body_names.push((
+                b.name.clone(),
+                format!("suspension[{i}].bodies[{k}].name"),
+                "carried body",
+            ));
+        }
+    }
+    check_unique(ctx, &body_names);
+}
+
+/// Each suspension built (`None` where it has errors), its coordinates
+/// numbered in order; coordinate names unique across the rover.
+fn build_suspensions(ctx: &mut Ctx, desc: &Description) -> Vec<Option<Built>> {
+    let mut built: Vec<Option<Built>> = Vec::new();
+    let mut first = 0;
+    for (i, s) in desc.suspensions.iter().enumerate() {
+        let b = build(ctx, i, s, first);
+        if let Some(b) = &b {
+            first += b.coords.len();
+        }
+        built.push(b);
+    }
+    let coord_names: Vec<(String, String, &str)> = built
+        .iter()
+        .flatten()
+        .flat_map(|b| b.coords.iter())
+        .map(|c| (c.name.clone(), format!("{}.name", c.path), "coordinate"))
+        .collect();
+    check_unique(ctx, &coord_names);
+    built
+}
+
+/// The carried bodies, wheels first (in the description's order, each on
+/// its suspension's point), then each suspension's other masses; and the
+/// checked wheels.
+fn place_bodies(
+    ctx: &mut Ctx,
+    desc: &Description,
+    built: &[Option<Built>],
+) -> (Vec<Carried>, Vec<CheckedWheel>) {
+    let defaults = desc.wheel_defaults.clone().unwrap_or_default();
+    let mut carried = Vec::new();
+    let mut wheels = Vec::new();
+    for (i, w) in desc.wheels.iter().enumerate() {
+        let checked = check_wheel(ctx, i, w, &defaults);
+        let place = find_suspension(
+            ctx,
+            &format!("wheel[{i}].suspension"),
+            &w.suspension,
+            desc,
+            built,
+        )
+        .and_then(|s| {
+            wheel_point(ctx, i, w.point.as_deref(), s, built[s].as_ref()?).map(|p| (s, p))
+        });
+        if let (Some(c), Some((s, point))) = (checked, place) {
+            carried.push(Carried {
+                name: w.name.clone(),
+                suspension: s,
+                place: Place::Point(point.clone()),
+                at: point,
+                mass: c.mass,
+                inertia: c.inertia.clone(),
+            });
+            wheels.push(c);
+        }
+    }
+    check_points_used_once(ctx, &carried, desc);
+    for (i, s) in desc.suspensions.iter().enumerate() {
+        let Some(b) = built[i].as_ref() else { continue };
+        for (k, m) in s.bodies().iter().enumerate() {
+            if let Some(c) = mass_place(ctx, &format!("suspension[{i}].bodies[{k}]"), m, i, b) {
+                carried.push(c);
+            }
+        }
+    }
+    (carried, wheels)
+}
+
+/// Every carried body's fitted position, one per body (`None` where the
+/// fit failed). Every named point is fitted, used or not: a linkage that
+/// cannot cover its travel is an error even before a wheel sits on it.
+fn fit_bodies(
+    ctx: &mut Ctx,
+    built: &[Option<Built>],
+    carried: &[Carried],
+) -> Vec<Option<FittedPoint>> {
+    let mut cache: BTreeMap<(usize, String), FittedPoint> = BTreeMap::new();
+    for (s, b) in built.iter().enumerate() {
+        let Some(b) = b else { continue };
+        for name in point_names(b) {
+            let place = Place::Point(name);
+            if let Some(p) = fit_carried(ctx, b, &place, global_of(built, s)) {
+                cache.insert((s, format!("{place:?}")), p);
+            }
+        }
+    }
+    let mut fitted = Vec::new();
+    for c in carried {
+        let Some(b) = built[c.suspension].as_ref() else {
+            continue;
+        };
+        let key = (c.suspension, format!("{:?}", c.place));
+        let point = match cache.get(&key) {
+            Some(p) => Some(p.clone()),
+            None => {
+                let p = fit_carried(ctx, b, &c.place, global_of(built, c.suspension));
+                if let Some(p) = &p {
+                    cache.insert(key, p.clone());
+                }
+                p
+            }
+        };
+        if let (Some(p), Some((_, path))) = (&point, &c.inertia)
+            && p.member.len() > 1
+        {
+            ctx.error(
+                path.clone(),
+                format!("`{}` turns with {} coordinates, so its inertia cannot be carried", c.name, p.member.len()),
+                "give inertia only to bodies on a member that turns with one coordinate, or omit it",
+            );
+        }
+        fitted.push(point);
+    }
+    fitted
+}
+
+/// The model's coordinates: each checked coordinate with its bump stop,
+/// stiff against its spring and critically damped against the inertia it
+/// moves at rest.
+fn model_coordinates(built: &[Built], bodies: &[CarriedBody]) -> Vec<Coordinate> {
+    coords_of(built)
+        .enumerate()
+        .map(|(i, c)| {
+            let k_ref = match &c.spring {
+                Spring::Linear { stiffness } => *stiffness,
+                Spring::Table { deflection, force } => deflection
+                    .windows(2)
+                    .zip(force.windows(2))
+                    .map(|(d, f)| ((f[1] - f[0]) / (d[1] - d[0])).abs())
+                    .fold(0.0, f64::max),
+                Spring::None => 0.0,
+            };
+            let stop_stiffness = c.stop_stiffness.unwrap_or(if k_ref > 0.0 {
+                STOP_STIFFNESS_FACTOR * k_ref
+            } else {
+                FREE_STOP_STIFFNESS
+            });
+            let inertia = effective_inertia(bodies, i);
+            let inertia = if inertia > 0.0 {
+                inertia
+            } else {
+                MIN_STOP_INERTIA
+            };
+            Coordinate {
+                rest: c.range.rest,
+                neutral: c.neutral,
+                spring: c.spring.clone(),
+                damping: c.damping,
+                min: c.range.min,
+                max: c.range.max,
+                stop_stiffness,
+                stop_damping: c
+                    .stop_damping
+                    .unwrap_or(2.0 * (stop_stiffness * inertia).sqrt()),
+            }
+        })
+        .collect()
+}
+
+/// Huge inputs can overflow what is derived from them (1e308 kg times a
+/// slope): nothing non-finite leaves [`validate`].
+fn check_derived_numbers(
+    coordinates: &[Coordinate],
+    built: &[Built],
+    carried: &[Carried],
+    bodies: &[CarriedBody],
+) -> Result<(), Vec<Diagnostic>> {
+    let mut ctx = Ctx::default();
+    for (c, checked) in coordinates.iter().zip(coords_of(built)) {
         let numbers = [
             c.stop_stiffness,
             c.stop_damping,
@@ -298,7 +373,7 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
             );
         }
     }
-    for (c, b) in carried.iter().zip(&bodies) {
+    for (c, b) in carried.iter().zip(bodies) {
         let poly = b
             .position
             .terms
@@ -313,28 +388,22 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
             );
         }
     }
-    if !ctx.diags.is_empty() {
-        return Err(ctx.diags);
+    if ctx.diags.is_empty() {
+        Ok(())
+    } else {
+        Err(ctx.diags)
     }
-    let rest = coordinates.iter().map(|c| c.rest).collect::<Vec<_>>();
-    let rest_wheel_centres: Vec<[f64; 3]> = model_wheels
-        .iter()
-        .map(|w| bodies[w.body].position.value(&rest))
-        .collect();
-    let model = Model {
-        gravity,
-        body: RigidBody {
-            mass: body_mass,
-            inertia: body_inertia,
-        },
-        coordinates,
-        bodies,
-        wheels: model_wheels,
-    };
-    let coordinate_paths: Vec<String> = built
-        .iter()
-        .flat_map(|b| b.coords.iter().map(|c| c.path.clone()))
-        .collect();
+}
+
+/// The checks of a rover that `check` accepts and a run must be able to
+/// use (see the `runnable` module), located at its coordinates.
+fn check_runnable(
+    model: &Model,
+    built: &[Built],
+    rest_wheel_centres: &[[f64; 3]],
+) -> Result<(), Vec<Diagnostic>> {
+    let mut ctx = Ctx::default();
+    let coordinate_paths: Vec<String> = coords_of(built).map(|c| c.path.clone()).collect();
     let suspension_of: Vec<String> = built
         .iter()
         .enumerate()
@@ -342,16 +411,22 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         .collect();
     super::runnable::model(
         &mut ctx,
-        &model,
+        model,
         &coordinate_paths,
         &suspension_of,
-        &rest_wheel_centres,
+        rest_wheel_centres,
     );
-    if !ctx.diags.is_empty() {
-        return Err(ctx.diags);
+    if ctx.diags.is_empty() {
+        Ok(())
+    } else {
+        Err(ctx.diags)
     }
+}
+
+/// Each suspension's name, kind, coordinate indices and fit options.
+fn suspension_infos(built: &[Built]) -> Vec<SuspensionInfo> {
     let mut first = 0;
-    let suspensions = built
+    built
         .iter()
         .map(|b| {
             let info = SuspensionInfo {
@@ -366,11 +441,20 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
             first += b.coords.len();
             info
         })
-        .collect();
+        .collect()
+}
+
+/// What each carried body's fit shares and misses, for the report.
+fn body_fits(
+    desc: &Description,
+    built: &[Built],
+    carried: &[Carried],
+    fitted: &[FittedPoint],
+) -> Vec<BodyFit> {
     let suspension_index = |name: &str| built.iter().position(|b| b.name == name).unwrap_or(0);
-    let fits = carried
+    carried
         .iter()
-        .zip(&fitted)
+        .zip(fitted)
         .map(|(c, p)| BodyFit {
             suspension: suspension_index(desc.suspensions[c.suspension].name()),
             at: c.at.clone(),
@@ -378,19 +462,7 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
             max_position_error: p.max_position_error,
             max_angle_error: p.max_angle_error,
         })
-        .collect();
-    Ok(Spec {
-        name: desc.name.clone(),
-        model,
-        coordinate_names,
-        coordinate_linear,
-        body_names: carried.iter().map(|c| c.name.clone()).collect(),
-        wheel_names: desc.wheels.iter().map(|w| w.name.clone()).collect(),
-        suspensions,
-        fits,
-        rest_wheel_centres,
-        description: desc.clone(),
-    })
+        .collect()
 }
 
 /// Σ_j m_j·|∂u_j/∂y_i|² at rest: the inertia the coordinate's bump stop
