@@ -6,9 +6,10 @@
 //! Run: `cargo run --release --example derive_simulate`.
 
 use rover_derive::Rover;
+use rover_runtime::RoverDescription;
 use rover_runtime::control::{Profile, SpeedConfig, Steering};
 use rover_runtime::terrain::TerrainConfig;
-use rover_runtime::{RoverDescription, Simulation};
+use rover_scenario::Simulation;
 
 #[derive(Rover)]
 #[rover(

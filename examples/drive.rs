@@ -8,11 +8,11 @@ use rover_integrate::{BdfConfig, IntegratorConfig};
 use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::{ContactMethod, Ground};
-use rover_runtime::scenario::Scenario;
 use rover_runtime::sim::{RoverSystem, RunOptions, Stop, run};
-use rover_runtime::simulate::initial_state;
 use rover_runtime::terrain::TerrainConfig;
 use rover_runtime::wheel_law::WheelLawConfig;
+use rover_scenario::scenario::Scenario;
+use rover_scenario::simulate::initial_state;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The description (for the model's numbers) and its generated plant.

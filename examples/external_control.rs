@@ -8,10 +8,10 @@
 use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::Ground;
-use rover_runtime::scenario::Scenario;
 use rover_runtime::sim::RoverSystem;
-use rover_runtime::simulate::initial_state;
 use rover_runtime::terrain::TerrainConfig;
+use rover_scenario::scenario::Scenario;
+use rover_scenario::simulate::initial_state;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let spec = rover_spec::load_str(

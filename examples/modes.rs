@@ -5,7 +5,7 @@
 //! `cargo run --release --example modes`.
 
 use rover_runtime::control::ControllerConfig;
-use rover_runtime::linearize::{ModeKind, OperatingPoint, linearize_at};
+use rover_scenario::linearize::{ModeKind, OperatingPoint, linearize_at};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let spec = rover_spec::load_str(

@@ -180,8 +180,8 @@ fn drive_without_allocating<P: rover_dynamics::Plant>(
 /// caller stepping from another language pays only its own call.
 #[test]
 fn a_stepper_allocates_nothing_per_step_nor_per_command() {
-    use rover_runtime::scenario::Scenario;
-    use rover_runtime::sim::Stepper;
+    use rover_scenario::Stepper;
+    use rover_scenario::scenario::Scenario;
     let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
     let scenario = Scenario::parse(
         "duration = 100.0\noutput_rate = 100.0\n[terrain]\nkind = \"random\"\nz_r = 0.2\nseed = 2\n\
@@ -223,9 +223,9 @@ fn the_drive_loop_allocates_nothing_per_step() {
     use std::sync::atomic::Ordering;
     let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
     let path = std::path::Path::new("flat.toml");
-    let scenario = rover_runtime::scenario::Scenario::parse("duration = 1.0\n", path).unwrap();
+    let scenario = rover_scenario::scenario::Scenario::parse("duration = 1.0\n", path).unwrap();
     let config = live::LoopConfig::new(1000.0, None, &scenario);
-    let columns = rover_runtime::output::header(spec.model.m(), spec.model.wheels.len()).len();
+    let columns = rover_scenario::output::header(spec.model.m(), spec.model.wheels.len()).len();
     let count = |seconds: f64| {
         let plant = rover_models::Swing4::new();
         let dir = std::path::Path::new(".");

@@ -399,7 +399,7 @@ fn reduced_levels_of_example_2_run_their_generated_plant_and_match_the_generic_o
         "generated (rover_models::Swing4Simplified)"
     );
     assert_eq!(generic.plant, "generic");
-    let state = |s: &rover_runtime::output::Summary| {
+    let state = |s: &rover_scenario::output::Summary| {
         s.final_state.iter().map(|(_, v)| *v).collect::<Vec<f64>>()
     };
     for (a, b) in state(&generated).iter().zip(state(&generic)) {
@@ -527,7 +527,7 @@ fn every_shipped_scenario_runs() {
     names.sort();
     assert!(names.len() >= 9, "{names:?}");
     for path in names {
-        let mut scenario = rover_runtime::scenario::Scenario::load(&path)
+        let mut scenario = rover_scenario::scenario::Scenario::load(&path)
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         scenario.duration = scenario.duration.min(1.5);
         let rover = scenario
@@ -536,7 +536,7 @@ fn every_shipped_scenario_runs() {
             .expect("a shipped scenario names its rover");
         let spec = rover_spec::load_str(rover_models::builtin(&rover).unwrap(), &rover).unwrap();
         let plant = rover_runtime::GenericPlant::new(spec.model.clone()).unwrap();
-        let summary = rover_runtime::simulate::simulate(
+        let summary = rover_scenario::simulate::simulate(
             plant,
             &spec.model,
             &rover,
@@ -549,7 +549,7 @@ fn every_shipped_scenario_runs() {
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         assert_eq!(
             summary.status,
-            rover_runtime::output::Status::Completed,
+            rover_scenario::output::Status::Completed,
             "{}",
             path.display()
         );

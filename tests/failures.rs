@@ -5,8 +5,8 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use rover_runtime::GenericPlant;
-use rover_runtime::output::Status;
-use rover_runtime::scenario::Scenario;
+use rover_scenario::output::Status;
+use rover_scenario::scenario::Scenario;
 
 use crate::support::run::{Run, run};
 
@@ -50,7 +50,7 @@ fn leaving_the_terrain_map_stops_the_run_naming_the_wheel() {
     let scenario = Scenario::parse(text, &dir.join("s.toml")).unwrap();
     let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
     let mut csv = Vec::new();
-    let summary = rover_runtime::simulate::simulate(
+    let summary = rover_scenario::simulate::simulate(
         GenericPlant::new(spec.model.clone()).unwrap(),
         &spec.model,
         "swing4",
@@ -80,7 +80,7 @@ fn an_interrupted_run_keeps_what_was_computed_marked_partial() {
     let scenario = Scenario::parse("duration = 10.0\n", Path::new("s.toml")).unwrap();
     let spec = rover_spec::load_str(rover_models::builtin("exomars").unwrap(), "exomars").unwrap();
     let mut csv = Vec::new();
-    let summary = rover_runtime::simulate::simulate(
+    let summary = rover_scenario::simulate::simulate(
         GenericPlant::new(spec.model.clone()).unwrap(),
         &spec.model,
         "exomars",

@@ -1,4 +1,4 @@
-//! The linearized parked rover (`rover_runtime::linearize`): its difference
+//! The linearized parked rover (`rover_scenario::linearize`): its difference
 //! quotients against the generated plant's exact Jacobian, its linear
 //! response against the nonlinear run it stands for, and its modes against
 //! their own eigen-equation.
@@ -8,9 +8,9 @@ use rover_dynamics::nalgebra::{Complex, DMatrix, DVector};
 use rover_dynamics::plant::{Plant, WheelLoad};
 use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::control::{Controller, ControllerConfig};
-use rover_runtime::linearize::{ModeKind, linearize, parked, state_matrix};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
+use rover_scenario::linearize::{ModeKind, linearize, parked, state_matrix};
 
 use crate::support::rel;
 
@@ -326,24 +326,27 @@ fn spring_neutral_inputs_are_the_springs_through_the_mass_matrix() {
 #[test]
 fn rolling_resistance_damps_the_rolling_mode() {
     let m = model("exomars");
-    let contact = rover_runtime::scenario::ContactConfig {
+    let contact = rover_scenario::scenario::ContactConfig {
         rolling_resistance: 0.1,
         ..Default::default()
     };
-    let point = rover_runtime::linearize::OperatingPoint {
+    let point = rover_scenario::linearize::OperatingPoint {
         contact,
         ..Default::default()
     };
-    let lin =
-        rover_runtime::linearize::linearize_at(&m, rover_models::plant("exomars").unwrap(), &point)
-            .unwrap();
+    let lin = rover_scenario::linearize::linearize_at(
+        &m,
+        rover_models::plant("exomars").unwrap(),
+        &point,
+    )
+    .unwrap();
     let neutral = lin
         .modes
         .iter()
         .filter(|md| md.kind == ModeKind::Neutral)
         .count();
     assert_eq!(neutral, 3, "X, Y, ψ");
-    let vx = |md: &rover_runtime::linearize::Mode| md.energy.first().copied().unwrap_or(0.0);
+    let vx = |md: &rover_scenario::linearize::Mode| md.energy.first().copied().unwrap_or(0.0);
     let surging: Vec<_> = lin
         .modes
         .iter()
@@ -415,7 +418,7 @@ fn a_rover_balanced_on_one_axle_has_one_growing_pitch_mode() {
 /// and heave follows the linear model, closer in proportion to the offset.
 #[test]
 fn closed_loop_at_speed_follows_its_linearization() {
-    use rover_runtime::linearize::{OperatingPoint, linearize_at, operating_system};
+    use rover_scenario::linearize::{OperatingPoint, linearize_at, operating_system};
     let m = model("swing4");
     let n = m.dof();
     let control = toml::from_str(
@@ -473,7 +476,7 @@ fn closed_loop_at_speed_follows_its_linearization() {
 /// resistance (no speed loop holds v_x, and it decays).
 #[test]
 fn unsteady_operating_points_are_refused() {
-    use rover_runtime::linearize::{LinearizeError, OperatingPoint, linearize_at};
+    use rover_scenario::linearize::{LinearizeError, OperatingPoint, linearize_at};
     let m = model("swing4");
     let timed = OperatingPoint {
         speed: 0.1,
@@ -486,7 +489,7 @@ fn unsteady_operating_points_are_refused() {
     };
     let coasting = OperatingPoint {
         speed: 0.1,
-        contact: rover_runtime::scenario::ContactConfig {
+        contact: rover_scenario::scenario::ContactConfig {
             rolling_resistance: 0.1,
             ..Default::default()
         },
@@ -507,7 +510,7 @@ fn unsteady_operating_points_are_refused() {
 /// gain its integral is left out and the others keep their places.
 #[test]
 fn heading_hold_integrals_are_states_of_the_closed_loop() {
-    use rover_runtime::linearize::{OperatingPoint, linearize_at};
+    use rover_scenario::linearize::{OperatingPoint, linearize_at};
     let m = model("swing4");
     let n = m.dof();
     let (k_e, k_y) = (2.0, 0.2);
@@ -573,7 +576,7 @@ fn heading_hold_integrals_are_states_of_the_closed_loop() {
 /// second-order term).
 #[test]
 fn torque_and_steering_inputs_are_what_the_commands_do() {
-    use rover_runtime::linearize::{OperatingPoint, linearize_at, operating_system};
+    use rover_scenario::linearize::{OperatingPoint, linearize_at, operating_system};
     let cases: [(&str, f64, &str); 2] = [("swing4", 0.0, "tau"), ("lrv", 0.5, "delta")];
     for (name, speed, kind) in cases {
         let m = model(name);
@@ -647,7 +650,7 @@ fn torque_and_steering_inputs_are_what_the_commands_do() {
 /// 60 s run of the same scenario (BDF, rtol 1e-9), to 3e-13.
 #[test]
 fn a_steady_turn_is_where_a_run_settles() {
-    use rover_runtime::linearize::{OperatingPoint, linearize_at};
+    use rover_scenario::linearize::{OperatingPoint, linearize_at};
     let cases = [
         (
             "exomars",
@@ -693,7 +696,7 @@ fn a_steady_turn_is_where_a_run_settles() {
         assert!(
             lin.modes
                 .iter()
-                .all(|md| md.kind == rover_runtime::linearize::ModeKind::Neutral
+                .all(|md| md.kind == rover_scenario::linearize::ModeKind::Neutral
                     || md.eigenvalue[0] < 0.0),
             "{name}: the turn is stable"
         );
@@ -707,13 +710,13 @@ fn a_steady_turn_is_where_a_run_settles() {
 /// longitudinal ground force vanishes).
 #[test]
 fn a_speed_loop_against_rolling_resistance_settles_below_its_set_point() {
-    use rover_runtime::linearize::{OperatingPoint, linearize_at, operating_system};
+    use rover_scenario::linearize::{OperatingPoint, linearize_at, operating_system};
     let m = model("exomars");
     let n = m.dof();
     let (speed, kp, c_rr) = (0.1, 10.0, 0.05);
     let point = OperatingPoint {
         speed,
-        contact: rover_runtime::scenario::ContactConfig {
+        contact: rover_scenario::scenario::ContactConfig {
             rolling_resistance: c_rr,
             ..Default::default()
         },
@@ -735,10 +738,7 @@ fn a_speed_loop_against_rolling_resistance_settles_below_its_set_point() {
         "net pull {net} N against a resistance of {} N",
         c_rr * normal
     );
-    assert!(
-        lin.modes
-            .iter()
-            .all(|md| md.eigenvalue[0] < 0.0
-                || md.kind == rover_runtime::linearize::ModeKind::Neutral)
-    );
+    assert!(lin.modes.iter().all(
+        |md| md.eigenvalue[0] < 0.0 || md.kind == rover_scenario::linearize::ModeKind::Neutral
+    ));
 }

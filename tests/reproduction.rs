@@ -39,7 +39,7 @@ fn kinematic_steering_holds_on_moderate_ground_and_fails_on_very_rough() {
     }
 }
 
-fn example2(active: bool, duration: f64) -> rover_runtime::output::Summary {
+fn example2(active: bool, duration: f64) -> rover_scenario::output::Summary {
     let gains = "[control.active_suspension]\nsample_time = 0.1\nkp_pitch = 0.6\nkd_pitch = 0.05\nkp_roll = 0.6\nkd_roll = 0.05\n";
     run(
         "swing4",

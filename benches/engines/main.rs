@@ -211,7 +211,7 @@ fn rover_fixed<P: Plant, I: Integrator, E: std::fmt::Debug>(
 /// `rtol` (its default 1e-6; `atol` 100 times less); also its right-hand
 /// sides.
 fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain, rtol: f64) -> (End, u64) {
-    let mut config = rover_runtime::scenario::default_integrator();
+    let mut config = rover_scenario::scenario::default_integrator();
     if let IntegratorConfig::Bdf(bdf) = &mut config {
         bdf.rtol = rtol;
         bdf.atol = rtol / 100.0;

@@ -19,7 +19,7 @@ use pyo3::types::PyBytes;
 use rover::cli::{CliError, Prepared, build_plant, generated_plant};
 use rover_models::BuiltinPlant;
 use rover_runtime::GenericPlant;
-use rover_runtime::sim::Stepper;
+use rover_scenario::Stepper;
 
 create_exception!(
     _native,
@@ -127,7 +127,7 @@ fn prepare(
     match rover {
         None => Prepared::from_text(None, text, origin, base),
         Some(r) => {
-            let scenario = rover_runtime::scenario::Scenario::parse(text, origin)?;
+            let scenario = rover_scenario::scenario::Scenario::parse(text, origin)?;
             Ok(Prepared {
                 spec: r.spec.clone(),
                 rover: r.key.clone(),
@@ -295,7 +295,7 @@ impl Simulation {
         }
         .map_err(|e| py_err(p.locate(e)))?;
         let k = model.wheels.len();
-        let columns = rover_runtime::output::header(model.m(), k);
+        let columns = rover_scenario::output::header(model.m(), k);
         Ok(Self {
             inner,
             dof: model.dof(),

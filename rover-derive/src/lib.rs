@@ -10,7 +10,8 @@
 //!
 //! ```
 //! use rover_derive::Rover;
-//! use rover_runtime::{RoverDescription, Simulation};
+//! use rover_runtime::RoverDescription;
+//! use rover_scenario::Simulation;
 //! use rover_runtime::terrain::TerrainConfig;
 //!
 //! #[derive(Rover)]
@@ -65,7 +66,7 @@
 //! - `rover_dynamics::Described` for both types: the description as TOML
 //!   text (`DESCRIPTION`), where it was written, the fidelity level. With
 //!   it, `rover_runtime::RoverDescription` gives `spec()`, `model()` and
-//!   `report()`, and `rover_runtime::Simulation::new` runs the plant alone.
+//!   `report()`, and `rover_scenario::Simulation::new` runs the plant alone.
 //!
 //! Options in the attribute: `jacobian = true` adds the exact Jacobian
 //! (`jacobian_array`, `jacobian_fixed`); `fidelity = "simplified"` or

@@ -5,8 +5,8 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Args;
-use rover_runtime::linearize::{Linearization, Mode, ModeKind, OperatingPoint, linearize_at};
-use rover_runtime::scenario::Scenario;
+use rover_scenario::linearize::{Linearization, Mode, ModeKind, OperatingPoint, linearize_at};
+use rover_scenario::scenario::Scenario;
 
 use crate::rover_source::load_rover;
 
@@ -59,7 +59,7 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
             ))
         })?;
     }
-    let fail = |e: rover_runtime::linearize::LinearizeError| {
+    let fail = |e: rover_scenario::linearize::LinearizeError| {
         CliError::Other(format!("{}: cannot linearize: {e}", spec.name))
     };
     let generated = generated_plant(&args.rover, level, args.generic);

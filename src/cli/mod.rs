@@ -67,14 +67,14 @@ pub enum CliError {
     Spec(#[from] rover_spec::SpecError),
     /// The scenario file is invalid.
     #[error("{0}")]
-    Scenario(#[from] rover_runtime::scenario::ScenarioError),
+    Scenario(#[from] rover_scenario::scenario::ScenarioError),
     /// The run could not start: the scenario does not fit the rover.
     #[error("{}{}", location, source)]
     Setup {
         /// `file:line: ` of the offending field, when known.
         location: String,
         /// The error.
-        source: rover_runtime::simulate::SetupError,
+        source: rover_scenario::simulate::SetupError,
     },
     /// Something else, with its message.
     #[error("{0}")]

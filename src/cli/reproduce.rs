@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use clap::Args;
 use rayon::prelude::*;
-use rover_runtime::output::{Status, Summary};
-use rover_runtime::scenario::Scenario;
+use rover_scenario::output::{Status, Summary};
+use rover_scenario::scenario::Scenario;
 
 use super::CliError;
 use super::simulate::build_plant;
@@ -67,7 +67,7 @@ fn run_case(rover: &str, text: &str, csv: &Path) -> Result<Case, CliError> {
     }
     let file = std::io::BufWriter::new(std::fs::File::create(csv).map_err(other)?);
     let base = csv.parent().unwrap_or(Path::new("."));
-    let summary = rover_runtime::simulate::simulate(
+    let summary = rover_scenario::simulate::simulate(
         plant,
         &spec.model,
         &spec.name,

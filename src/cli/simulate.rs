@@ -9,8 +9,8 @@ use std::sync::{Arc, OnceLock};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rover_runtime::GenericPlant;
-use rover_runtime::output::{Status, Summary};
-use rover_runtime::scenario::Scenario;
+use rover_scenario::output::{Status, Summary};
+use rover_scenario::scenario::Scenario;
 
 use crate::rover_source::{builtin_names, load_rover};
 
@@ -141,10 +141,10 @@ impl Prepared {
 
     /// A run that could not start, located at the scenario's offending
     /// field (`file:line: `) when the error names one.
-    pub fn locate(&self, source: rover_runtime::simulate::SetupError) -> CliError {
+    pub fn locate(&self, source: rover_scenario::simulate::SetupError) -> CliError {
         let line = source
             .field_path()
-            .and_then(|f| rover_runtime::scenario::line_of_field(&self.text, &f));
+            .and_then(|f| rover_scenario::scenario::line_of_field(&self.text, &f));
         let location = match line {
             Some(l) => format!("{}:{l}: ", self.origin.display()),
             None => format!("{}: ", self.origin.display()),
@@ -407,9 +407,9 @@ impl Run<'_> {
         plant: P,
         csv: W,
         progress: impl FnMut(f64),
-    ) -> Result<Summary, rover_runtime::simulate::SetupError> {
+    ) -> Result<Summary, rover_scenario::simulate::SetupError> {
         let s = self.spec;
-        rover_runtime::simulate::simulate(
+        rover_scenario::simulate::simulate(
             plant,
             &s.model,
             &s.name,

@@ -16,9 +16,9 @@ use rover_integrate::{
 use rover_runtime::control::{
     Controller, ControllerConfig, SpeedConfig, ackermann_angle, curvature_from_angle,
 };
-use rover_runtime::scenario::Scenario;
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
+use rover_scenario::scenario::Scenario;
 
 /// The fixed-step method of the loop.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -150,7 +150,7 @@ pub struct Inbox {
 pub struct Snapshot {
     /// Bumped at every publication.
     pub seq: u64,
-    /// The CSV's columns (`rover_runtime::output::header`), in its order.
+    /// The CSV's columns (`rover_scenario::output::header`), in its order.
     pub values: Vec<f64>,
     /// Wall-clock seconds since the loop started, when the state was computed.
     pub wall_s: f64,
@@ -386,7 +386,7 @@ impl<P: Plant> Sim<P> {
         config: &LoopConfig,
     ) -> Result<Self, String> {
         let terrain = scenario.terrain.build(base).map_err(|e| e.to_string())?;
-        let mut y = rover_runtime::simulate::initial_state(model, scenario, Some(&terrain))
+        let mut y = rover_scenario::simulate::initial_state(model, scenario, Some(&terrain))
             .map_err(|e| e.to_string())?;
         let ground = scenario.contact.ground(terrain, model);
         let control =

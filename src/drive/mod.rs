@@ -19,9 +19,9 @@ use std::thread::JoinHandle;
 
 use clap::Args;
 use rover_dynamics::plant::Plant;
-use rover_runtime::output::header;
-use rover_runtime::scenario::Scenario;
 use rover_runtime::terrain::{HeightField, Terrain};
+use rover_scenario::output::header;
+use rover_scenario::scenario::Scenario;
 use serde_json::json;
 
 use crate::cli::{CliError, build_plant, generated_plant};

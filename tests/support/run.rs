@@ -4,8 +4,8 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 use rover_runtime::GenericPlant;
-use rover_runtime::output::Summary;
-use rover_runtime::scenario::Scenario;
+use rover_scenario::output::Summary;
+use rover_scenario::scenario::Scenario;
 
 /// A finished run: its summary and its CSV as columns by name.
 pub struct Run {
@@ -66,7 +66,7 @@ pub fn run_in(rover: &str, toml: &str, dir: &Path) -> Run {
     let plant = GenericPlant::new(spec.model.clone()).unwrap();
     let mut csv = Vec::new();
     let stop = AtomicBool::new(false);
-    let summary = rover_runtime::simulate::simulate(
+    let summary = rover_scenario::simulate::simulate(
         plant,
         &spec.model,
         rover,

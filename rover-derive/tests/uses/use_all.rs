@@ -8,7 +8,8 @@ macro_rules! use_all {
         use rover_dynamics::described::Described;
         use rover_dynamics::nalgebra::SVector;
         use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
-        use rover_runtime::{RoverDescription, Simulation};
+        use rover_runtime::RoverDescription;
+        use rover_scenario::Simulation;
 
         let mut plant: $plant = $rover::plant();
         let _ = $plant::new();

@@ -4,11 +4,9 @@
 mod error;
 mod profile;
 mod run;
-mod stepper;
 mod system;
 
 pub use error::{CommandError, RunError, SimError};
 pub use profile::{Profile, RhsProfile};
 pub use run::{OutputRow, RunOptions, RunOutcome, Stop, run};
-pub use stepper::Stepper;
 pub use system::RoverSystem;

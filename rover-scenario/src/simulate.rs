@@ -11,12 +11,12 @@ use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::plant::Plant;
 
-use crate::control::Controller;
-use crate::ground::ContactMethod;
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
 use crate::scenario::{FidelityLevel, Scenario};
-use crate::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use rover_integrate::{Integrator, OdeSystem};
+use rover_runtime::control::Controller;
+use rover_runtime::ground::ContactMethod;
+use rover_runtime::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use rover_terrain::Terrain;
 
 /// A run that could not start: the scenario does not fit the rover, or a
@@ -28,7 +28,7 @@ pub enum SetupError {
     Terrain(#[from] rover_terrain::TerrainError),
     /// The controller does not fit the rover.
     #[error("{0}")]
-    Control(#[from] crate::control::ControlError),
+    Control(#[from] rover_runtime::control::ControlError),
     /// The integrator's parameters are invalid.
     #[error("{0}")]
     Integrator(#[from] rover_integrate::ConfigError),
@@ -51,7 +51,7 @@ pub enum SetupError {
     Path(String),
     /// The plant and the model are of different rovers.
     #[error("{0}")]
-    Mismatch(#[from] crate::described::Mismatch),
+    Mismatch(#[from] rover_runtime::described::Mismatch),
 }
 
 impl SetupError {
@@ -161,7 +161,7 @@ fn wheel_touching_heights(
     terrain: &Terrain,
 ) -> Result<Vec<f64>, SetupError> {
     let attitude = Attitude::new(x[3], x[4], x[5]);
-    crate::ground::touchdown_heights(model, [x[0], x[1]], attitude, &x[6..], terrain)
+    rover_runtime::ground::touchdown_heights(model, [x[0], x[1]], attitude, &x[6..], terrain)
         .map_err(|e| SetupError::OffMap(e.off))
 }
 
@@ -206,9 +206,9 @@ pub fn simulate<P: Plant, W: Write>(
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
     let mut plant = plant;
-    let differences = crate::described::plant_differences(&mut plant, model);
+    let differences = rover_runtime::described::plant_differences(&mut plant, model);
     if !differences.is_empty() {
-        return Err(crate::described::Mismatch { differences }.into());
+        return Err(rover_runtime::described::Mismatch { differences }.into());
     }
     if scenario.fidelity == FidelityLevel::QuasiStatic {
         return quasi_static_run(model, name, scenario, base_dir, csv, interrupt, progress);
@@ -281,7 +281,9 @@ pub fn simulate<P: Plant, W: Write>(
         },
     );
     summary.path_deviation = path_deviation;
-    summary.profile = sys.profile().map(|p| crate::sim::Profile::new(&p, wall));
+    summary.profile = sys
+        .profile()
+        .map(|p| rover_runtime::sim::Profile::new(&p, wall));
     Ok(summary)
 }
 
@@ -304,7 +306,7 @@ fn with_contact_hint(e: &RunError, scenario: &Scenario) -> String {
 /// G's distance from the path its heading hold follows, over the output
 /// instants after settling; `None` without one.
 fn path_deviation(log: &RunLog, scenario: &Scenario) -> Option<crate::output::PathDeviation> {
-    let crate::control::Steering::Heading(h) = &scenario.control.steering else {
+    let rover_runtime::control::Steering::Heading(h) = &scenario.control.steering else {
         return None;
     };
     if !h.follows_a_path() {
@@ -401,7 +403,8 @@ fn imposed_path(
     }
     if matches!(
         scenario.control.steering,
-        crate::control::Steering::Slip { .. } | crate::control::Steering::Heading(_)
+        rover_runtime::control::Steering::Slip { .. }
+            | rover_runtime::control::Steering::Heading(_)
     ) || scenario.control.commands.is_some()
     {
         return Err(SetupError::Path(
@@ -460,10 +463,10 @@ fn quasi_static_run<W: Write>(
     let kinematic_radius = control.kinematic_radius(scenario.duration);
     let mut q0 = vec![y0[2], y0[3], y0[4]];
     q0.extend_from_slice(&y0[6..n]);
-    let mut solver = crate::quasi_static::QuasiStatic::new(
+    let mut solver = rover_runtime::quasi_static::QuasiStatic::new(
         model,
         &terrain,
-        crate::contact::MeridionalContact {
+        rover_runtime::contact::MeridionalContact {
             sampling: scenario.contact.sampling(),
         },
         q0,
@@ -475,8 +478,8 @@ fn quasi_static_run<W: Write>(
     let mut stop = (Status::Completed, None, scenario.duration);
     let mut normals = vec![0.0; k];
     let mut wheels = vec![rover_dynamics::plant::WheelState::default(); k];
-    let mut plant =
-        crate::GenericPlant::new(model.clone()).map_err(|e| SetupError::Path(e.to_string()))?;
+    let mut plant = rover_runtime::GenericPlant::new(model.clone())
+        .map_err(|e| SetupError::Path(e.to_string()))?;
     let zeros = vec![0.0; n];
     let no_steer = vec![0.0; k];
     // The first solve starts standing on the terrain's plane under the

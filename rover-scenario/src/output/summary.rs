@@ -84,7 +84,7 @@ pub struct Summary {
     pub lu_decompositions: u64,
     /// Where the wall time went, when the scenario asked (`profile = true`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub profile: Option<crate::sim::Profile>,
+    pub profile: Option<rover_runtime::sim::Profile>,
 }
 
 /// G's distance from a heading hold's path at output instants after

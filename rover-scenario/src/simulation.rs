@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use rover_derive::Rover;
-//! use rover_runtime::simulation::Simulation;
+//! use rover_scenario::simulation::Simulation;
 //! use rover_runtime::terrain::TerrainConfig;
 //!
 //! #[derive(Rover)]
@@ -43,7 +43,7 @@
 //!     .speed(0.1)
 //!     .run(2.0)?;
 //! assert!(summary.complete);
-//! # Ok::<(), rover_runtime::simulation::SimulationError>(())
+//! # Ok::<(), rover_scenario::simulation::SimulationError>(())
 //! ```
 
 use std::io::Write;
@@ -54,12 +54,12 @@ use rover_dynamics::described::Described;
 use rover_dynamics::plant::Plant;
 use rover_spec::{Spec, SpecError};
 
-use crate::control::{ControllerConfig, SpeedConfig, Steering};
-use crate::described::{Mismatch, RoverDescription, model_differences};
 use crate::output::{Status, Summary};
 use crate::scenario::{ContactConfig, FieldError, InitialState, Scenario};
 use crate::simulate::{SetupError, simulate};
 use rover_integrate::IntegratorConfig;
+use rover_runtime::control::{ControllerConfig, SpeedConfig, Steering};
+use rover_runtime::described::{Mismatch, RoverDescription, model_differences};
 use rover_terrain::TerrainConfig;
 
 /// Why a [`Simulation`] did not run to its end.
@@ -126,7 +126,7 @@ impl<P: Plant + Described> Simulation<P> {
 
 impl<P: Plant> Simulation<P> {
     /// A run of any plant with its model: the generic plant
-    /// ([`crate::GenericPlant`]), a built-in rover's generated one, a
+    /// ([`rover_runtime::GenericPlant`]), a built-in rover's generated one, a
     /// hand-written one. Without a description to compare, `run` checks
     /// what the plant itself shows: its sizes and its total mass.
     pub fn from_parts(plant: P, spec: Spec) -> Self {

@@ -29,11 +29,11 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::contact::RimSampling;
-use crate::control::ControllerConfig;
-use crate::ground::ContactMethod;
-use crate::wheel_law::WheelLawConfig;
 use rover_integrate::{BdfConfig, IntegratorConfig};
+use rover_runtime::contact::RimSampling;
+use rover_runtime::control::ControllerConfig;
+use rover_runtime::ground::ContactMethod;
+use rover_runtime::wheel_law::WheelLawConfig;
 use rover_terrain::TerrainConfig;
 
 /// A whole scenario.
@@ -196,7 +196,7 @@ pub struct ContactConfig {
     pub law: WheelLawConfig,
     /// Rolling-resistance coefficient C_rr (ours, not the paper's): a force
     /// `C_rr·F_n` against each patch's rolling, on top of either law;
-    /// default 0, the paper's law (see [`crate::wheel_law::rolling_resistance`]).
+    /// default 0, the paper's law (see [`rover_runtime::wheel_law::rolling_resistance`]).
     #[serde(default)]
     pub rolling_resistance: f64,
 }
@@ -231,8 +231,8 @@ impl ContactConfig {
         &self,
         terrain: H,
         model: &rover_dynamics::Model,
-    ) -> crate::ground::Ground<H> {
-        crate::ground::Ground::new(terrain, model, self.method, self.sampling(), self.law)
+    ) -> rover_runtime::ground::Ground<H> {
+        rover_runtime::ground::Ground::new(terrain, model, self.method, self.sampling(), self.law)
             .with_rolling_resistance(self.rolling_resistance)
     }
 }
@@ -510,9 +510,9 @@ fn locate(_text: &str, e: &toml::de::Error) -> String {
     } else if message.contains("recursion limit") {
         "the file nests arrays or tables too deeply for a scenario: a scenario's tables are at most a few levels deep"
     } else if message.contains("unknown field") {
-        "remove or correct the key: the fields each table accepts are listed in the message and in the doc of rover-runtime/src/scenario.rs"
+        "remove or correct the key: the fields each table accepts are listed in the message and in the doc of rover-scenario/src/scenario.rs"
     } else {
-        "a scenario is TOML: its tables and fields are in the doc of rover-runtime/src/scenario.rs (README.md, Files)"
+        "a scenario is TOML: its tables and fields are in the doc of rover-scenario/src/scenario.rs (README.md, Files)"
     };
     format!("{out}  = help: {help}")
 }

@@ -28,12 +28,12 @@ use nalgebra::{Complex, DMatrix, DVector};
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
-use crate::control::{ControlError, Controller, ControllerConfig};
 use crate::output::header;
-use crate::quasi_static::{QuasiStaticError, flat_ground_pose};
 use crate::scenario::ContactConfig;
-use crate::sim::{RoverSystem, SimError};
 use rover_integrate::OdeSystem;
+use rover_runtime::control::{ControlError, Controller, ControllerConfig};
+use rover_runtime::quasi_static::{QuasiStaticError, flat_ground_pose};
+use rover_runtime::sim::{RoverSystem, SimError};
 use rover_terrain::{HeightField, Terrain};
 
 /// Largest forward speed linearized about \[m/s\] (in either direction):
@@ -416,8 +416,8 @@ fn input_matrix<P: Plant, H: HeightField>(
 }
 
 /// Whether the steering turns the rover (slip or Ackermann commands).
-fn turns(steering: &crate::control::Steering) -> bool {
-    use crate::control::Steering;
+fn turns(steering: &rover_runtime::control::Steering) -> bool {
+    use rover_runtime::control::Steering;
     matches!(steering, Steering::Slip { .. } | Steering::Ackermann(_))
 }
 
@@ -440,7 +440,7 @@ pub fn operating_system<P: Plant>(
     plant: P,
     point: &OperatingPoint,
 ) -> Result<(RoverSystem<P, Terrain>, Vec<f64>), LinearizeError> {
-    use crate::control::{Profile, Steering};
+    use rover_runtime::control::{Profile, Steering};
     let n = model.dof();
     let not_steady = |why: &str| Err(LinearizeError::NotSteady(why.to_string()));
     if point.speed.is_nan() || point.speed.abs() > MAX_SPEED {

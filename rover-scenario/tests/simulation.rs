@@ -11,10 +11,10 @@ use rover_dynamics::plant::{Plant, WheelLoad};
 use rover_runtime::GenericPlant;
 use rover_runtime::RoverDescription;
 use rover_runtime::control::Steering;
-use rover_runtime::scenario::Scenario;
-use rover_runtime::simulate::{SetupError, simulate};
-use rover_runtime::simulation::{Simulation, SimulationError};
 use rover_runtime::terrain::TerrainConfig;
+use rover_scenario::scenario::Scenario;
+use rover_scenario::simulate::{SetupError, simulate};
+use rover_scenario::simulation::{Simulation, SimulationError};
 
 /// Two swing arms a side, the paper's Example 2 geometry, on the Moon.
 #[derive(Rover)]
@@ -179,7 +179,7 @@ fn a_bad_setting_is_the_scenario_files_error_naming_the_field() {
     );
     // One that needs the rover: the setup's error, with its field.
     let e = Simulation::new(Quad::plant())
-        .initial(rover_runtime::scenario::InitialState {
+        .initial(rover_scenario::scenario::InitialState {
             suspension: Some(vec![0.0; 3]),
             ..Default::default()
         })

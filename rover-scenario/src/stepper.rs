@@ -2,7 +2,7 @@
 //! step-wise caller (the Python package's `Simulation`, a learning agent's
 //! environment) drives. Between steps it may read the state and change the
 //! open-loop commands and the set-points. A step takes the same events, in
-//! the same order, as [`crate::sim::run`], so that a run stepped without
+//! the same order, as [`rover_runtime::sim::run`], so that a run stepped without
 //! changes gives the rows of the whole run bit for bit.
 
 use std::path::Path;
@@ -10,13 +10,13 @@ use std::path::Path;
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
-use crate::control::ControlError;
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::simulate::{SetupError, system_of};
 use rover_integrate::{AnyIntegrator, Integrator, OdeSystem};
+use rover_runtime::control::ControlError;
 use rover_terrain::Terrain;
 
-use super::{CommandError, RoverSystem, RunError};
+use rover_runtime::sim::{CommandError, RoverSystem, RunError};
 
 /// A run under the caller's control (see the module's documentation).
 #[derive(Clone, Debug)]
