@@ -1,5 +1,11 @@
 //! The scalar the exact suspension kinematics are written over: `f64` for
 //! values, [`crate::jet::Jet`] for exact Taylor coefficients.
+//!
+//! It is narrower than `rover_dynamics::Scalar`, which the equations of
+//! motion are written over: the fits expand the linkages in Taylor series,
+//! and a series has no `abs`, `max`, `min` or `copysign` (the contact and
+//! the bump stops need them), so the linkages ask only for the smooth
+//! functions a series can carry.
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
