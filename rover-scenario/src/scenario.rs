@@ -512,7 +512,7 @@ fn locate(_text: &str, e: &toml::de::Error) -> String {
     } else if message.contains("unknown field") {
         "remove or correct the key: the fields each table accepts are listed in the message and in the doc of rover-scenario/src/scenario.rs"
     } else {
-        "a scenario is TOML: its tables and fields are in the doc of rover-scenario/src/scenario.rs (docs/CLI.md, "Files")"
+        "a scenario is TOML: its tables and fields are in the doc of rover-scenario/src/scenario.rs (docs/CLI.md, Files)"
     };
     format!("{out}  = help: {help}")
 }
