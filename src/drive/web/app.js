@@ -11,7 +11,7 @@ const hud = document.getElementById('hud');
 const help = document.getElementById('help');
 
 // What a test (or a curious user at the console) can read.
-const page = { hello: null, meta: null, states: 0, first: null, last: null, errors: [], send: null };
+const page = { hello: null, meta: null, states: 0, first: null, last: null, shown: null, errors: [], send: null };
 window.roverPage = page;
 
 const meta = await (await fetch('/meta.json')).json();
@@ -227,6 +227,7 @@ const yAxis = new THREE.Vector3(0, 1, 0), dir = new THREE.Vector3();
 // Joints in world axes (a wheel centre where the state has it), then one
 // rod between the two joints of each link.
 function showMembers(s) {
+  page.shown = s;
   sketch.joints.forEach((j, i) => {
     const p = jointAt[i];
     if (j.wheel !== null) {
