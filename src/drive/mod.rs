@@ -48,9 +48,10 @@ pub struct DriveArgs {
     /// A built-in rover (exomars, swing4, mer, lrv) or a description file;
     /// overrides the scenario's `rover`.
     pub rover: Option<String>,
-    /// A scenario file for the terrain, contact, initial state and speed
-    /// loop gains (its duration, integrator and other controllers are not
-    /// used); default: rough random terrain.
+    /// A scenario file for the terrain, contact, initial state, speed loop
+    /// gains and torque distribution, and active suspension (its duration,
+    /// integrator, speed profile, steering and command file are not used);
+    /// default: rough random terrain.
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// TCP port on 127.0.0.1 (0: any free port, printed).
