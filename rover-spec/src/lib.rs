@@ -74,6 +74,7 @@ mod load;
 pub mod point_fit;
 pub mod real;
 pub mod report;
+pub mod sketch;
 mod spec;
 pub mod suspension;
 mod validate;

@@ -113,6 +113,39 @@ pub trait Linkage {
     /// the rest value, due to local coordinate `coord` at `y`; `None` where
     /// the linkage cannot assemble.
     fn motion<R: Real>(&self, member: usize, coord: usize, y: R) -> Option<([R; 3], R)>;
+
+    /// The drawing of the linkage: its links as pairs of joints, each
+    /// joint a point of a member at rest (the pivots, the ball joints, the
+    /// points). By default, a link from each member's pivot to each of
+    /// its points.
+    fn sketch(&self) -> Vec<[LinkEnd; 2]> {
+        let members = self.members();
+        self.points()
+            .iter()
+            .map(|p| {
+                [
+                    LinkEnd {
+                        member: p.member,
+                        rest: members[p.member].pivot,
+                    },
+                    LinkEnd {
+                        member: p.member,
+                        rest: p.rest,
+                    },
+                ]
+            })
+            .collect()
+    }
+}
+
+/// One end of a drawn link: a point of a member, by its position at rest;
+/// it moves with the member ([`point_share`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkEnd {
+    /// The member (index into [`Linkage::members`]).
+    pub member: usize,
+    /// The point at rest, body components \[m\].
+    pub rest: [f64; 3],
 }
 
 /// The share of one coordinate in the motion of a point on a member:

@@ -4,6 +4,7 @@ use rover_dynamics::Model;
 
 use crate::description::Description;
 use crate::linkage::{FitOptions, ShareError};
+use crate::sketch::Sketch;
 
 /// A validated rover description.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,6 +27,9 @@ pub struct Spec {
     pub fits: Vec<BodyFit>,
     /// Wheel centres at rest u_j(y_c), body components \[m\], wheel order.
     pub rest_wheel_centres: Vec<[f64; 3]>,
+    /// The members of the library suspensions as joints and links, for
+    /// drawing the rover (empty for raw polynomial suspensions).
+    pub sketch: Sketch,
     /// The description it came from.
     pub description: Description,
 }

@@ -163,3 +163,100 @@ fn lrv_is_on_four_double_wishbones() {
 fn check_report_of_exomars() {
     insta::assert_snapshot!(check_report(&load("exomars")));
 }
+
+/// The sketch of each built-in rover draws every library member rigid: at
+/// coordinates spread over the travel box, each link keeps its rest length
+/// (to the fits' tolerance), every wheel is the end of a link, and a joint
+/// shared by two members (a bogie's pivot on its rocker, a wishbone's ball
+/// joints) is at one place on both.
+#[test]
+fn the_sketch_draws_rigid_members_that_carry_every_wheel() {
+    let dist = |a: [f64; 3], b: [f64; 3]| {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    };
+    let mut kinds = std::collections::BTreeSet::new();
+    for name in rover_models::NAMES {
+        let s = load(name);
+        let sketch = &s.sketch;
+        let m = &s.model;
+        for w in 0..m.wheels.len() {
+            assert!(
+                sketch
+                    .links
+                    .iter()
+                    .any(|l| l.joints.iter().any(|&j| sketch.joints[j].wheel == Some(w))),
+                "{name}: wheel {w} is on no link"
+            );
+        }
+        for su in &s.suspensions {
+            assert!(
+                sketch.links.iter().any(|l| l.suspension == su.name),
+                "{name}: suspension {} has no link",
+                su.name
+            );
+            kinds.insert(su.kind);
+        }
+        let rest = sketch.positions(&m.rest());
+        // Joints at one place at rest on different members stay together.
+        let mut pairs = Vec::new();
+        for a in 0..rest.len() {
+            for b in 0..a {
+                if dist(rest[a], rest[b]) < 1e-9 {
+                    pairs.push((a, b));
+                }
+            }
+        }
+        for k in 0..=8 {
+            // Corners and the middle of the travel box, and points between.
+            let y: Vec<f64> = m
+                .coordinates
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    let f = ((k * (i + 3)) % 9) as f64 / 8.0;
+                    c.min + f * (c.max - c.min)
+                })
+                .collect();
+            let now = sketch.positions(&y);
+            for l in &sketch.links {
+                let [a, b] = l.joints;
+                let (r, d) = (dist(rest[a], rest[b]), dist(now[a], now[b]));
+                assert!(
+                    (r - d).abs() < 3e-3,
+                    "{name}: {}.{} is {r} m long at rest and {d} m at y = {y:?}",
+                    l.suspension,
+                    l.member
+                );
+            }
+            for &(a, b) in &pairs {
+                assert!(
+                    dist(now[a], now[b]) < 3e-3,
+                    "{name}: joints {a} and {b} part at y = {y:?}"
+                );
+            }
+            // A wheel's joint is where the model puts the wheel.
+            for (j, joint) in sketch.joints.iter().enumerate() {
+                if let Some(w) = joint.wheel {
+                    let u = m.bodies[m.wheels[w].body].position.value(&y);
+                    assert!(dist(u, now[j]) < 1e-12);
+                }
+            }
+        }
+        // Something moves: the sketch is not the rest pose drawn forever.
+        let y: Vec<f64> = m.coordinates.iter().map(|c| c.max).collect();
+        let moved = sketch.positions(&y);
+        assert!(
+            rest.iter().zip(&moved).any(|(a, b)| dist(*a, *b) > 1e-3),
+            "{name}: no joint moves"
+        );
+    }
+    for kind in [
+        "longitudinal_swing_arm",
+        "double_wishbone",
+        "longitudinal_rocker",
+        "transversal_rocker",
+        "rocker_bogie",
+    ] {
+        assert!(kinds.contains(kind), "no built-in rover has a {kind}");
+    }
+}

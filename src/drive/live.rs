@@ -11,10 +11,11 @@ use std::time::{Duration, Instant};
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 use rover_integrate::{
-    AnyIntegrator, FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Ros2Config,
+    AnyIntegrator, FixedStepConfig, Integrator, IntegratorConfig, JacobianSource, OdeSystem,
+    Ros2Config,
 };
 use rover_runtime::control::{
-    Controller, ControllerConfig, SpeedConfig, ackermann_angle, curvature_from_angle,
+    Controller, ControllerConfig, Distribution, SpeedConfig, ackermann_angle, curvature_from_angle,
 };
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
@@ -52,10 +53,14 @@ impl Method {
             Method::SemiImplicitEuler => {
                 IntegratorConfig::SemiImplicitEuler(FixedStepConfig { step: h })
             }
+            // The system's assembled Jacobian: the generated plant's exact
+            // one and the wheels' load derivatives, one right-hand side
+            // and a few plant-sized calls in place of `dim` differenced
+            // right-hand sides (a generic plant has none: it differences).
             Method::Ros2 => IntegratorConfig::Ros2(Ros2Config {
                 step: h,
                 jacobian_every: 1,
-                jacobian: Default::default(),
+                jacobian: JacobianSource::System,
             }),
         }
     }
@@ -66,6 +71,29 @@ impl Method {
             Method::Rk4 => "rk4",
             Method::Ros2 => "ros2",
             Method::SemiImplicitEuler => "semi_implicit_euler",
+        }
+    }
+}
+
+/// How the loop waits for the next tick.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Pacing {
+    /// Sleep until shortly before the tick (a margin that follows how late
+    /// the sleeps wake), then spin on the clock: start lateness of a few
+    /// µs, at the cost of the margin's CPU time each period.
+    #[default]
+    Spin,
+    /// Sleep until the tick: no CPU time spent waiting, the scheduler's
+    /// wake-up latency (tens of µs) as jitter.
+    Sleep,
+}
+
+impl Pacing {
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Pacing::Spin => "spin",
+            Pacing::Sleep => "sleep",
         }
     }
 }
@@ -100,7 +128,8 @@ pub struct Command {
 }
 
 impl Command {
-    fn zero(wheels: usize) -> Self {
+    /// Standing still: speed mode, every value zero.
+    pub fn zero(wheels: usize) -> Self {
         Command {
             mode: Mode::Speed,
             speed: 0.0,
@@ -258,16 +287,36 @@ pub struct LoopConfig {
     pub ki: f64,
     /// |φ| or |θ| beyond this stops the simulation \[rad\].
     pub rollover_limit: f64,
+    /// How the speed loop's torque is shared among the wheels (the
+    /// scenario's `[control.speed] distribution`).
+    pub distribution: Distribution,
+    /// The scenario's controllers that run in the loop besides the speed
+    /// loop: its active suspension.
+    pub control: ControllerConfig,
+    /// How the loop waits for a tick.
+    pub pacing: Pacing,
 }
 
 impl LoopConfig {
     /// The loop at `rate_hz` with the scenario's speed gains (its
     /// `[control.speed]` `kp` and `ki`, or 10 and 10: a PI loop, so that the
     /// rover holds the set-point against rolling resistance and slopes).
+    ///
+    /// Of the scenario's other controllers, the active suspension runs in
+    /// the loop as in a scenario run (sampled at its `sample_time`, moving
+    /// the springs' neutrals); the speed profile, the steering (slip,
+    /// Ackermann, heading hold) and the command file do not: the operator
+    /// or rig gives the speed and steering live, and a second source of
+    /// the same command would fight it.
     pub fn new(rate_hz: f64, method: Option<Method>, scenario: &Scenario) -> Self {
-        let (kp, ki) = match &scenario.control.speed {
-            Some(SpeedConfig { kp, ki, .. }) => (*kp, *ki),
-            None => (10.0, 10.0),
+        let (kp, ki, distribution) = match &scenario.control.speed {
+            Some(SpeedConfig {
+                kp,
+                ki,
+                distribution,
+                ..
+            }) => (*kp, *ki, *distribution),
+            None => (10.0, 10.0, Distribution::Even),
         };
         LoopConfig {
             rate_hz,
@@ -275,6 +324,12 @@ impl LoopConfig {
             kp,
             ki,
             rollover_limit: scenario.rollover_limit_deg.to_radians(),
+            distribution,
+            control: ControllerConfig {
+                active_suspension: scenario.control.active_suspension.clone(),
+                ..ControllerConfig::default()
+            },
+            pacing: Pacing::default(),
         }
     }
 }
@@ -351,6 +406,9 @@ pub struct Timing {
     pub wall_s: f64,
     /// Why the simulation stopped, if it did (it then waits for a reset).
     pub error: Option<String>,
+    /// With [`Pacing::Spin`], how long before each tick the sleep ended at
+    /// the end of the run (the spin's share of each period) \[s\].
+    pub spin_margin_s: Option<f64>,
 }
 
 /// The simulation the loop advances: the system, its integrator, the
@@ -373,6 +431,17 @@ pub struct Sim<P> {
     torques: Vec<f64>,
     steering: Vec<f64>,
     rollover_limit: f64,
+    distribution: Distribution,
+    /// The speed loop's weights per wheel: 1 (even), the static loads, or
+    /// the loads of the last evaluation (measured), refreshed each step.
+    weights: Vec<f64>,
+    /// The controller as built, for a reset (the active suspension's
+    /// neutrals back at rest).
+    control0: Controller,
+    /// The active suspension's period and its next sample \[s\].
+    sample: Option<f64>,
+    next_sample: f64,
+    pacing: Pacing,
 }
 
 impl<P: Plant> Sim<P> {
@@ -389,9 +458,15 @@ impl<P: Plant> Sim<P> {
         let mut y = rover_scenario::simulate::initial_state(model, scenario, Some(&terrain))
             .map_err(|e| e.to_string())?;
         let ground = scenario.contact.ground(terrain, model);
-        let control =
-            Controller::new(ControllerConfig::default(), model, 0.0).map_err(|e| e.to_string())?;
-        let sys = RoverSystem::new(plant, Some(ground), control);
+        let control = Controller::new_in(config.control.clone(), model, 0.0, base)
+            .map_err(|e| e.to_string())?;
+        let weights = match config.distribution {
+            Distribution::StaticLoad => rover_runtime::quasi_static::flat_ground_loads(model)
+                .map_err(|e| format!("control.speed.distribution: {e}"))?,
+            Distribution::Even | Distribution::MeasuredLoad => vec![1.0; model.wheels.len()],
+        };
+        let sample = control.sample_period();
+        let sys = RoverSystem::new(plant, Some(ground), control.clone());
         y.resize(sys.dim(), 0.0);
         let h = 1.0 / config.rate_hz;
         let integ = config
@@ -417,7 +492,18 @@ impl<P: Plant> Sim<P> {
             torques: vec![0.0; k],
             steering: vec![0.0; k],
             rollover_limit: config.rollover_limit,
+            distribution: config.distribution,
+            weights,
+            control0: control,
+            sample,
+            next_sample: 0.0,
+            pacing: config.pacing,
         })
+    }
+
+    /// The springs' neutrals y0 in force (moved by an active suspension).
+    pub fn neutrals(&self) -> &[f64] {
+        self.sys.control.neutrals()
     }
 
     /// Simulated time \[s\].
@@ -444,6 +530,15 @@ impl<P: Plant> Sim<P> {
     pub fn reset(&mut self) {
         self.y.copy_from_slice(&self.y0);
         self.t = 0.0;
+        self.next_sample = 0.0;
+        if self.sample.is_some() {
+            // The neutrals back where they started (a reset is not a step:
+            // the copy may allocate).
+            self.sys.control = self.control0.clone();
+            for (i, &n) in self.control0.neutrals().iter().enumerate() {
+                self.sys.plant.set_spring_neutral(i, n);
+            }
+        }
         self.integral = 0.0;
         self.integ.restart();
         self.command.stop();
@@ -492,9 +587,23 @@ impl<P: Plant> Sim<P> {
                 } else {
                     self.command.delta_tau
                 };
+                if self.distribution == Distribution::MeasuredLoad {
+                    for (w, r) in self.weights.iter_mut().zip(self.sys.reports()) {
+                        *w = r.normal.max(0.0);
+                    }
+                }
+                // τ0 per wheel on the mean: wheel k gets τ0·N·w_k/Σw
+                // (every wheel τ0 when no wheel bears a load).
+                let n = self.weights.len() as f64;
+                let total: f64 = self.weights.iter().sum();
                 for (k, t) in self.torques.iter_mut().enumerate() {
+                    let share = if total > 0.0 {
+                        tau0 * n * self.weights[k] / total
+                    } else {
+                        tau0
+                    };
                     let side = if info.left[k] { -dt } else { dt };
-                    *t = (tau0 + side).clamp(-info.max_torque[k], info.max_torque[k]);
+                    *t = (share + side).clamp(-info.max_torque[k], info.max_torque[k]);
                 }
                 let first = info.steerable.iter().position(|s| *s);
                 let kappa = match first {
@@ -522,6 +631,21 @@ impl<P: Plant> Sim<P> {
     /// failure (the integrator's error, a wheel off the terrain map, a
     /// roll-over) the state is that of the last good step.
     pub fn step(&mut self) -> Result<(), String> {
+        if let Some(dt) = self.sample
+            && self.t >= self.next_sample - 1e-9 * dt
+        {
+            // The sampled controllers (the active suspension) at their
+            // period, between steps as in a scenario run.
+            let (x, rest) = self.y.split_at(self.n);
+            let sys = &mut self.sys;
+            if sys
+                .control
+                .sample(self.t, x, &rest[..self.n], &mut sys.plant)
+            {
+                self.integ.restart();
+            }
+            self.next_sample += dt;
+        }
         self.actuate();
         // Torques and steering were checked (finite, one per wheel, only
         // steerable wheels steer) when the command came in.
@@ -578,14 +702,85 @@ impl<P: Plant> Sim<P> {
     }
 }
 
-/// Sleep until `deadline`; the kernel's timer slack makes the wake-up a
-/// few tens of µs late, which [`Timing::late`] measures.
-fn sleep_until(deadline: Instant) {
-    let now = Instant::now();
-    if deadline > now {
-        std::thread::sleep(deadline - now);
+/// Waits for the ticks: [`Pacing::Sleep`] sleeps to the tick;
+/// [`Pacing::Spin`] sleeps to `margin` before it and spins the rest. The
+/// margin tracks the 99th percentile of how late the sleeps wake (a
+/// stochastic quantile estimate: up 99 units when a sleep wakes later
+/// than the margin, down one unit otherwise, a unit being 0.2 µs), between
+/// 10 µs and a tenth of the period. A wake-up delayed by a preemption
+/// (later than that bound) is no timer latency and leaves the margin
+/// alone: no margin would catch it, and spinning longer only costs CPU.
+struct Waiter {
+    pacing: Pacing,
+    margin: f64,
+    min: f64,
+    max: f64,
+}
+
+/// The quantile estimate's unit \[s\].
+const MARGIN_UNIT: f64 = 0.2e-6;
+
+impl Waiter {
+    fn new(pacing: Pacing, period: Duration) -> Self {
+        let min = 10e-6;
+        let max = (0.1 * period.as_secs_f64()).max(min);
+        if pacing == Pacing::Spin {
+            timer_slack_1ns();
+        }
+        Waiter {
+            pacing,
+            margin: (50e-6f64).clamp(min, max),
+            min,
+            max,
+        }
+    }
+
+    fn wait_until(&mut self, deadline: Instant) {
+        let now = Instant::now();
+        if deadline <= now {
+            return;
+        }
+        match self.pacing {
+            Pacing::Sleep => std::thread::sleep(deadline - now),
+            Pacing::Spin => {
+                let margin = Duration::from_secs_f64(self.margin);
+                if let Some(nap) = (deadline - now).checked_sub(margin) {
+                    let target = now + nap;
+                    std::thread::sleep(nap);
+                    let late = Instant::now()
+                        .saturating_duration_since(target)
+                        .as_secs_f64();
+                    if late > self.margin && late <= self.max {
+                        self.margin = (self.margin + 99.0 * MARGIN_UNIT).min(self.max);
+                    } else if late <= self.margin {
+                        self.margin = (self.margin - MARGIN_UNIT).max(self.min);
+                    }
+                }
+                while Instant::now() < deadline {
+                    std::hint::spin_loop();
+                }
+            }
+        }
     }
 }
+
+/// Linux: this thread's timer slack to 1 ns (from the default 50 µs), so
+/// that a sleep wakes when asked rather than up to 50 µs later.
+#[cfg(target_os = "linux")]
+fn timer_slack_1ns() {
+    const PR_SET_TIMERSLACK: std::ffi::c_int = 29;
+    unsafe extern "C" {
+        fn prctl(option: std::ffi::c_int, ...) -> std::ffi::c_int;
+    }
+    // SAFETY: PR_SET_TIMERSLACK takes one unsigned long and changes only
+    // the calling thread's timer slack; a failure leaves it as it was.
+    unsafe {
+        prctl(PR_SET_TIMERSLACK, 1 as std::ffi::c_ulong);
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn timer_slack_1ns() {}
 
 /// Run the loop until `shared.stop` is set (or, with `max_wall_s`, for
 /// that long), publishing into `shared`. Each tick: read the inbox
@@ -616,6 +811,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
     let start = Instant::now();
     let mut tick: u64 = 0;
     let mut published_at = 0u64;
+    let mut waiter = Waiter::new(sim.pacing, period);
     while !shared.stop.load(Ordering::Relaxed) {
         let deadline = start + period.mul_f64(tick as f64);
         if let Some(limit) = max_wall_s
@@ -623,7 +819,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
         {
             break;
         }
-        sleep_until(deadline);
+        waiter.wait_until(deadline);
         let woke = Instant::now();
         timing.late.record((woke - deadline).as_secs_f64());
         if let Ok(mut inbox) = shared.inbox.try_lock() {
@@ -707,6 +903,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
     timing.simulated_s = sim.t();
     timing.wall_s = start.elapsed().as_secs_f64();
     timing.error = error;
+    timing.spin_margin_s = (waiter.pacing == Pacing::Spin).then_some(waiter.margin);
     timing
 }
 

@@ -14,7 +14,7 @@ pub mod server;
 use std::net::TcpListener;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 
 use clap::Args;
@@ -22,13 +22,14 @@ use rover_dynamics::plant::Plant;
 use rover_runtime::terrain::{HeightField, Terrain};
 use rover_scenario::output::header;
 use rover_scenario::scenario::Scenario;
+use rover_spec::sketch::Sketch;
 use serde_json::json;
 
 use crate::cli::{CliError, build_plant, generated_plant};
 use crate::rover_source::{builtin_names, load_rover};
 
-use live::{LoopConfig, Method, RoverInfo, Shared, Sim, Timing};
-use server::{App, Content};
+use live::{LoopConfig, Method, Pacing, RoverInfo, Shared, Sim, Timing};
+use server::{App, Content, Server};
 
 /// The ground `rover drive` runs on without a scenario: the paper's rough
 /// terrain (Z_R = 0.2, as Figs. 13–14), flat where the rover starts.
@@ -47,9 +48,10 @@ pub struct DriveArgs {
     /// A built-in rover (exomars, swing4, mer, lrv) or a description file;
     /// overrides the scenario's `rover`.
     pub rover: Option<String>,
-    /// A scenario file for the terrain, contact, initial state and speed
-    /// loop gains (its duration, integrator and other controllers are not
-    /// used); default: rough random terrain.
+    /// A scenario file for the terrain, contact, initial state, speed loop
+    /// gains and torque distribution, and active suspension (its duration,
+    /// integrator, speed profile, steering and command file are not used);
+    /// default: rough random terrain.
     #[arg(long)]
     pub scenario: Option<PathBuf>,
     /// TCP port on 127.0.0.1 (0: any free port, printed).
@@ -71,6 +73,18 @@ pub struct DriveArgs {
     /// The speed set-point of a `--report` run [m/s].
     #[arg(long, default_value_t = 0.1)]
     pub report_speed: f64,
+    /// How the loop waits for a tick: sleep, then spin the last tens of µs
+    /// (default), or sleep only (no CPU spent waiting, more jitter).
+    #[arg(long, value_enum, default_value_t = Pacing::Spin)]
+    pub pacing: Pacing,
+}
+
+/// The loop's settings from the command line and the scenario.
+fn loop_config(args: &DriveArgs, scenario: &Scenario) -> LoopConfig {
+    LoopConfig {
+        pacing: args.pacing,
+        ..LoopConfig::new(args.rate, args.method, scenario)
+    }
 }
 
 /// Arguments of `rover view`.
@@ -98,14 +112,49 @@ pub struct Running {
     /// Shared with the loop.
     pub shared: Arc<Shared>,
     sim: JoinHandle<Timing>,
+    server: Server,
 }
 
 impl Running {
-    /// Stop the loop and return its timing. The server threads end with
-    /// the process; their clients see the socket close.
+    /// Stop the loop and the server and return the loop's timing. When it
+    /// returns, every thread it started has ended (the WebSocket clients
+    /// were sent a close frame) and the port is free.
     pub fn stop(self) -> Timing {
         self.shared.stop.store(true, Ordering::Relaxed);
-        self.sim.join().unwrap_or_default()
+        let timing = self.sim.join().unwrap_or_default();
+        self.server.stop();
+        timing
+    }
+
+    /// The server's live threads (its accept loop and its connections).
+    pub fn server_threads(&self) -> Arc<AtomicUsize> {
+        self.server.threads()
+    }
+}
+
+/// A running `rover view`: its address, and a way to stop it.
+pub struct Viewing {
+    /// The port it listens on.
+    pub port: u16,
+    server: Server,
+}
+
+impl std::fmt::Debug for Viewing {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Viewing").field("port", &self.port).finish()
+    }
+}
+
+impl Viewing {
+    /// Stop the server; when it returns its threads have ended and the
+    /// port is free.
+    pub fn stop(self) {
+        self.server.stop();
+    }
+
+    /// The server's live threads (its accept loop and its connections).
+    pub fn server_threads(&self) -> Arc<AtomicUsize> {
+        self.server.threads()
     }
 }
 
@@ -136,20 +185,49 @@ fn check_rate(rate: f64) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The suspension members as joints (each a polynomial in the
+/// coordinates, as the description's raw polynomials are written) and the
+/// links between them (docs/DRIVE.md, "Rover geometry").
+pub fn sketch_json(sketch: &Sketch) -> serde_json::Value {
+    let joints: Vec<serde_json::Value> = sketch
+        .joints
+        .iter()
+        .map(|j| {
+            let terms: Vec<serde_json::Value> = j
+                .position
+                .terms
+                .iter()
+                .map(|t| json!({"coord": t.coord, "center": t.center, "coeffs": t.coeffs}))
+                .collect();
+            json!({"wheel": j.wheel, "c": j.position.constant, "terms": terms})
+        })
+        .collect();
+    let links: Vec<serde_json::Value> = sketch
+        .links
+        .iter()
+        .map(|l| json!({"suspension": l.suspension, "member": l.member, "joints": l.joints}))
+        .collect();
+    json!({"joints": joints, "links": links})
+}
+
 /// The rover's geometry and the loop's settings, for the page and rigs.
 fn meta(
     mode: &str,
-    name: &str,
+    spec: Option<&rover_spec::Spec>,
     columns: &[String],
     info: Option<&RoverInfo>,
     loop_config: Option<&LoopConfig>,
 ) -> String {
     let mut m = json!({
         "mode": mode,
-        "rover": name,
+        "rover": spec.map_or("run", |s| s.name.as_str()),
         "columns": columns,
         "wheels": columns.iter().filter(|c| c.starts_with("Fn")).count(),
     });
+    if let Some(spec) = spec {
+        m["coordinates"] = json!(spec.coordinate_names);
+        m["sketch"] = sketch_json(&spec.sketch);
+    }
     if let Some(info) = info {
         let xs = info.rest.iter().map(|p| p[0]);
         let ys = info.rest.iter().map(|p| p[1]);
@@ -186,6 +264,7 @@ fn meta(
         });
     }
     if let Some(c) = loop_config {
+        m["binary_layout"] = json!(protocol::binary_layout(columns));
         m["rate_hz"] = json!(c.rate_hz);
         m["step_s"] = json!(1.0 / c.rate_hz);
         m["method"] = json!(c.method.name());
@@ -265,7 +344,7 @@ fn launch<P: Plant + Send + 'static>(
     args: &DriveArgs,
 ) -> Result<Running, CliError> {
     let model = &spec.model;
-    let config = LoopConfig::new(args.rate, args.method, scenario);
+    let config = loop_config(args, scenario);
     let mut sim = Sim::new(plant, model, scenario, base, &config).map_err(other)?;
     let columns = Arc::new(header(model.m(), model.wheels.len()));
     let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
@@ -275,7 +354,7 @@ fn launch<P: Plant + Send + 'static>(
     let listener = bind(args.port)?;
     let port = listener.local_addr().map_err(other)?.port();
     let app = App::new(
-        meta("drive", &spec.name, &columns, Some(&info), Some(&config)),
+        meta("drive", Some(spec), &columns, Some(&info), Some(&config)),
         terrain_json(&terrain, start),
         Content::Drive {
             shared: shared.clone(),
@@ -284,16 +363,24 @@ fn launch<P: Plant + Send + 'static>(
             rate_hz: args.rate,
         },
     );
-    std::thread::Builder::new()
-        .name("rover-server".into())
-        .spawn(move || server::serve(listener, app))
-        .map_err(other)?;
+    let server = Server::start(listener, app).map_err(other)?;
     let loop_shared = shared.clone();
-    let sim = std::thread::Builder::new()
+    let sim = match std::thread::Builder::new()
         .name("rover-loop".into())
         .spawn(move || live::run(&mut sim, &loop_shared, None))
-        .map_err(other)?;
-    Ok(Running { port, shared, sim })
+    {
+        Ok(sim) => sim,
+        Err(e) => {
+            server.stop();
+            return Err(other(e));
+        }
+    };
+    Ok(Running {
+        port,
+        shared,
+        sim,
+        server,
+    })
 }
 
 /// `rover drive`: serve until Ctrl-C (or, with `--report`, measure and print).
@@ -325,7 +412,7 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
     format!(
         "{} steps at {rate} Hz in {:.1} s (simulated {:.2} s, real-time factor {:.3})\n\
          step computing time: median {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs (period {:.0} µs)\n\
-         start lateness (jitter): median {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs\n\
+         start lateness (jitter): median {:.0} µs, 99th percentile {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs{}\n\
          overruns: {} ({} ticks dropped){}",
         t.compute.count(),
         t.wall_s,
@@ -340,8 +427,16 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
         us(t.compute.max()),
         1e6 / rate,
         us(t.late.quantile(0.5)),
+        us(t.late.quantile(0.99)),
         us(t.late.quantile(0.999)),
         us(t.late.max()),
+        match t.spin_margin_s {
+            Some(m) => format!(
+                " (sleeping to {:.0} µs before each tick, then spinning)",
+                us(m)
+            ),
+            None => String::new(),
+        },
         t.overruns,
         t.dropped_ticks,
         match &t.error {
@@ -378,11 +473,12 @@ pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
             seconds,
         )?,
     };
-    let config = LoopConfig::new(args.rate, args.method, &scenario);
+    let config = loop_config(args, &scenario);
     Ok(format!(
-        "{} with {}:\n{}\n",
+        "{} with {}, pacing {}:\n{}\n",
         spec.name,
         config.method.name(),
+        config.pacing.name(),
         timing_text(&timing, args.rate)
     ))
 }
@@ -396,7 +492,7 @@ fn measure<P: Plant>(
     seconds: f64,
 ) -> Result<Timing, CliError> {
     let model = &spec.model;
-    let config = LoopConfig::new(args.rate, args.method, scenario);
+    let config = loop_config(args, scenario);
     let mut sim = Sim::new(plant, model, scenario, base, &config).map_err(other)?;
     let columns = header(model.m(), model.wheels.len());
     let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
@@ -412,21 +508,23 @@ fn measure<P: Plant>(
 
 /// `rover view`: serve the page animating `<out>/run.csv` until Ctrl-C.
 pub fn view(args: &ViewArgs) -> Result<(), CliError> {
-    let (port, _app) = start_view(args)?;
+    let viewing = start_view(args)?;
     eprintln!(
-        "viewing {} at http://127.0.0.1:{port}/; Ctrl-C ends",
-        args.out.join("run.csv").display()
+        "viewing {} at http://127.0.0.1:{}/; Ctrl-C ends",
+        args.out.join("run.csv").display(),
+        viewing.port
     );
     let (tx, rx) = std::sync::mpsc::channel();
     let _ = ctrlc::set_handler(move || {
         let _ = tx.send(());
     });
     let _ = rx.recv();
+    viewing.stop();
     Ok(())
 }
 
-/// Start `rover view`'s server; returns its port.
-pub fn start_view(args: &ViewArgs) -> Result<(u16, JoinHandle<()>), CliError> {
+/// Start `rover view`'s server.
+pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
     let csv = args.out.join("run.csv");
     let text = std::fs::read_to_string(&csv)
         .map_err(|e| CliError::Other(format!("{}: cannot read: {e}", csv.display())))?;
@@ -477,19 +575,10 @@ pub fn start_view(args: &ViewArgs) -> Result<(u16, JoinHandle<()>), CliError> {
     let listener = bind(args.port)?;
     let port = listener.local_addr().map_err(other)?.port();
     let app = App::new(
-        meta(
-            "view",
-            spec.as_ref().map_or("run", |s| s.name.as_str()),
-            &columns,
-            info.as_ref(),
-            None,
-        ),
+        meta("view", spec.as_ref(), &columns, info.as_ref(), None),
         terrain,
         Content::View { csv },
     );
-    let handle = std::thread::Builder::new()
-        .name("rover-server".into())
-        .spawn(move || server::serve(listener, app))
-        .map_err(other)?;
-    Ok((port, handle))
+    let server = Server::start(listener, app).map_err(other)?;
+    Ok(Viewing { port, server })
 }

@@ -21,7 +21,50 @@ pub const KEYS: &[&str] = &[
     "reset",
     "rate",
     "watchdog",
+    "subscribe",
 ];
+
+/// How a client receives the state.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Format {
+    /// JSON text messages, every value by name ([`state_json`]).
+    #[default]
+    Json,
+    /// Binary messages: little-endian f64 in the fixed order of
+    /// [`binary_layout`] ([`state_binary`]).
+    Binary,
+}
+
+/// The loop's own figures at the head of a binary state frame, before the
+/// CSV's columns.
+pub const BINARY_HEAD: &[&str] = &[
+    "seq",
+    "wall",
+    "rtf",
+    "steps",
+    "overruns",
+    "dropped_ticks",
+    "step_us",
+    "flags",
+];
+
+/// Bits of the binary frame's `flags`.
+pub const FLAG_PAUSED: u32 = 1;
+/// See [`FLAG_PAUSED`].
+pub const FLAG_WATCHDOG: u32 = 2;
+/// See [`FLAG_PAUSED`]: the simulation has stopped on an error (its text
+/// comes in the JSON state; subscribe to JSON to read it).
+pub const FLAG_ERROR: u32 = 4;
+
+/// The name of each f64 of a binary state frame, in order: [`BINARY_HEAD`]
+/// then the CSV's columns.
+pub fn binary_layout(columns: &[String]) -> Vec<String> {
+    BINARY_HEAD
+        .iter()
+        .map(|s| s.to_string())
+        .chain(columns.iter().cloned())
+        .collect()
+}
 
 /// Largest |steer| accepted \[rad\]: beyond, the Ackermann angles of the
 /// inner wheels pass 90°.
@@ -48,6 +91,8 @@ pub struct Request {
     pub rate: Option<f64>,
     /// Watchdog timeout \[s\] (0: off).
     pub watchdog: Option<f64>,
+    /// This client's state format from now on.
+    pub subscribe: Option<Format>,
 }
 
 impl Request {
@@ -134,6 +179,16 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Str
         None => {}
         Some(Value::Bool(b)) => r.pause = Some(*b),
         Some(v) => return Err(format!("`pause` must be true or false, got {v}")),
+    }
+    match obj.get("subscribe") {
+        None => {}
+        Some(Value::String(f)) if f == "json" => r.subscribe = Some(Format::Json),
+        Some(Value::String(f)) if f == "binary" => r.subscribe = Some(Format::Binary),
+        Some(v) => {
+            return Err(format!(
+                "`subscribe` must be \"json\" or \"binary\" (the state's format), got {v}"
+            ));
+        }
     }
     match obj.get("reset") {
         None | Some(Value::Bool(false)) => {}
@@ -285,6 +340,38 @@ pub fn state_json(columns: &[String], s: &Snapshot) -> String {
         None => out.push_str("null"),
     }
     out.push('}');
+    out
+}
+
+/// The binary state frame: the f64 of [`binary_layout`], little-endian,
+/// 8 · (8 + columns) bytes. Counts are exact as f64 up to 2^53; a
+/// non-finite value is NaN.
+pub fn state_binary(s: &Snapshot) -> Vec<u8> {
+    let mut flags = 0;
+    if s.paused {
+        flags |= FLAG_PAUSED;
+    }
+    if s.watchdog_tripped {
+        flags |= FLAG_WATCHDOG;
+    }
+    if s.error.is_some() {
+        flags |= FLAG_ERROR;
+    }
+    let head = [
+        s.seq as f64,
+        s.wall_s,
+        s.real_time_factor,
+        s.steps as f64,
+        s.overruns as f64,
+        s.dropped_ticks as f64,
+        s.step_s * 1e6,
+        f64::from(flags),
+    ];
+    let mut out = Vec::with_capacity(8 * (head.len() + s.values.len()));
+    for v in head.iter().chain(&s.values) {
+        let v = if v.is_finite() { *v } else { f64::NAN };
+        out.extend_from_slice(&v.to_le_bytes());
+    }
     out
 }
 

@@ -9,8 +9,9 @@ use std::collections::HashMap;
 use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use tungstenite::protocol::Role;
@@ -55,6 +56,94 @@ pub struct App {
     /// Each WebSocket client's state rate, to set the loop's publication rate.
     rates: Mutex<HashMap<u64, f64>>,
     next_client: AtomicU64,
+    /// Ends the accept loop and every connection.
+    stop: AtomicBool,
+    /// The connection threads, each with a handle on its socket (to shut
+    /// it down when a client holds it past the stop).
+    connections: Mutex<Vec<(Option<TcpStream>, JoinHandle<()>)>>,
+    /// Live server threads: the accept loop and the connections.
+    threads: Arc<AtomicUsize>,
+}
+
+/// Counts a live thread until it ends (however it ends).
+struct Alive(Arc<AtomicUsize>);
+
+impl Alive {
+    fn new(count: &Arc<AtomicUsize>) -> Self {
+        count.fetch_add(1, Ordering::SeqCst);
+        Alive(count.clone())
+    }
+}
+
+impl Drop for Alive {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// A running server: its port, and [`Server::stop`], which returns once
+/// every one of its threads has ended and the port is free.
+pub struct Server {
+    /// The port it listens on (127.0.0.1).
+    pub port: u16,
+    app: Arc<App>,
+    accept: JoinHandle<()>,
+}
+
+/// How long [`Server::stop`] lets the WebSocket sessions close their
+/// connections themselves (they look every 20 ms) before shutting the
+/// remaining sockets down.
+const CLOSE_GRACE: Duration = Duration::from_millis(250);
+
+impl Server {
+    /// Serve `app` on `listener`: an accept thread, one thread per connection.
+    pub fn start(listener: TcpListener, app: Arc<App>) -> std::io::Result<Server> {
+        let port = listener.local_addr()?.port();
+        let alive = Alive::new(&app.threads);
+        let accept_app = app.clone();
+        let accept = std::thread::Builder::new()
+            .name("rover-server".into())
+            .spawn(move || {
+                let _alive = alive;
+                serve(listener, &accept_app);
+            })?;
+        Ok(Server { port, app, accept })
+    }
+
+    /// The number of the server's threads still running (the accept loop
+    /// and the connections); 0 once [`Server::stop`] has returned.
+    pub fn threads(&self) -> Arc<AtomicUsize> {
+        self.app.threads.clone()
+    }
+
+    /// Stop: the accept loop ends and closes the listening socket, each
+    /// WebSocket client is sent a close frame, any connection still open
+    /// after a short grace is shut down, and every thread is joined.
+    pub fn stop(self) {
+        self.app.stop.store(true, Ordering::SeqCst);
+        // Wake the blocking accept; it sees the flag and returns.
+        let _ = TcpStream::connect_timeout(
+            &std::net::SocketAddr::from(([127, 0, 0, 1], self.port)),
+            Duration::from_secs(1),
+        );
+        let _ = self.accept.join();
+        let connections = match self.app.connections.lock() {
+            Ok(mut c) => std::mem::take(&mut *c),
+            Err(_) => Vec::new(),
+        };
+        let until = Instant::now() + CLOSE_GRACE;
+        while Instant::now() < until && connections.iter().any(|(_, h)| !h.is_finished()) {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        for (stream, handle) in connections {
+            if !handle.is_finished()
+                && let Some(s) = &stream
+            {
+                let _ = s.shutdown(std::net::Shutdown::Both);
+            }
+            let _ = handle.join();
+        }
+    }
 }
 
 impl App {
@@ -66,21 +155,52 @@ impl App {
             content,
             rates: Mutex::new(HashMap::new()),
             next_client: AtomicU64::new(0),
+            stop: AtomicBool::new(false),
+            connections: Mutex::new(Vec::new()),
+            threads: Arc::new(AtomicUsize::new(0)),
         })
+    }
+
+    fn stopping(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
     }
 }
 
-/// Accept connections until the listener fails; one thread each.
-pub fn serve(listener: TcpListener, app: Arc<App>) {
+/// Accept connections until stopped; one thread each, kept to be joined.
+fn serve(listener: TcpListener, app: &Arc<App>) {
     for stream in listener.incoming() {
+        if app.stopping() {
+            break;
+        }
         let Ok(stream) = stream else { continue };
-        let app = app.clone();
-        let _ = std::thread::Builder::new()
+        // The list's copy of the socket keeps it open: each connection
+        // shuts its socket down when done, so that its client sees the end.
+        let handle = stream.try_clone().ok();
+        let closer = stream.try_clone().ok();
+        let conn_app = app.clone();
+        let alive = Alive::new(&app.threads);
+        let spawned = std::thread::Builder::new()
             .name("rover-http".into())
             .spawn(move || {
+                let _alive = alive;
                 // A client that goes away mid-request is nothing to report.
-                let _ = connection(stream, &app);
+                let _ = connection(stream, &conn_app);
+                if let Some(s) = closer {
+                    let _ = s.shutdown(std::net::Shutdown::Both);
+                }
             });
+        if let (Ok(thread), Ok(mut c)) = (spawned, app.connections.lock()) {
+            // Ended connections are joined here, so that the list stays short.
+            let mut k = 0;
+            while k < c.len() {
+                if c[k].1.is_finished() {
+                    let _ = c.swap_remove(k).1.join();
+                } else {
+                    k += 1;
+                }
+            }
+            c.push((handle, thread));
+        }
     }
 }
 
@@ -255,8 +375,9 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
     }
     let mut next_send = Instant::now();
     let mut sent_seq = 0u64;
+    let mut format = protocol::Format::Json;
     loop {
-        if shared.stop.load(Ordering::Relaxed) {
+        if shared.stop.load(Ordering::Relaxed) || app.stopping() {
             let _ = ws.close(None);
             let _ = ws.flush();
             break;
@@ -270,6 +391,9 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
                 Ok(req) => {
                     if let Ok(mut inbox) = shared.inbox.lock() {
                         protocol::apply(&req, &mut inbox);
+                    }
+                    if let Some(f) = req.subscribe {
+                        format = f;
                     }
                     if let Some(rate) = req.rate {
                         period = Duration::from_secs_f64(1.0 / rate);
@@ -305,15 +429,18 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
         }
         let now = Instant::now();
         if now >= next_send {
-            let text = match shared.state.lock() {
+            let message = match shared.state.lock() {
                 Ok(s) if s.seq != sent_seq => {
                     sent_seq = s.seq;
-                    Some(protocol::state_json(columns, &s))
+                    Some(match format {
+                        protocol::Format::Json => Message::text(protocol::state_json(columns, &s)),
+                        protocol::Format::Binary => Message::binary(protocol::state_binary(&s)),
+                    })
                 }
                 _ => None,
             };
-            if let Some(text) = text
-                && ws.send(Message::text(text)).is_err()
+            if let Some(message) = message
+                && ws.send(message).is_err()
             {
                 break;
             }

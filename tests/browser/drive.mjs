@@ -1,6 +1,7 @@
 // The page of `rover drive` in headless Chromium: it loads, its canvas has
-// a WebGL context, the keyboard drives the rover forward, and the states
-// the page received over its WebSocket show the rover moved.
+// a WebGL context, the keyboard drives the rover forward, the states the
+// page received over its WebSocket show the rover moved, and the
+// suspension members are drawn on the rover.
 //
 // node drive.mjs <rover binary> <chromium binary>
 import { spawn } from 'node:child_process';
@@ -49,10 +50,25 @@ try {
     before.X, { timeout: 90000 });
   const after = await page.evaluate(() => window.roverPage.last);
   if (!(after.V_set > 0)) fail(`no speed set-point in the state: V_set = ${after.V_set}`);
+  // The suspension members: every joint of the rover's sketch placed in
+  // world axes near the rover, the wheel joints on the wheels.
+  const members = await page.evaluate(() => ({
+    sketch: window.roverPage.meta.sketch, joints: window.roverPage.sketchJoints(), s: window.roverPage.shown,
+  }));
+  if (!(members.sketch && members.sketch.links.length >= 4)) fail(`no suspension links in the sketch: ${JSON.stringify(members.sketch)}`);
+  members.joints.forEach((p, i) => {
+    const d = Math.hypot(p[0] - members.s.X, p[1] - members.s.Y, p[2] - members.s.Z);
+    if (!(d < 1)) fail(`joint ${i} drawn ${d} m from the rover's centre of mass`);
+    const w = members.sketch.joints[i].wheel;
+    if (w !== null) {
+      const k = w + 1, e = Math.hypot(p[0] - members.s[`W${k}X`], p[1] - members.s[`W${k}Y`], p[2] - members.s[`W${k}Z`]);
+      if (!(e < 1e-9)) fail(`joint ${i} is ${e} m off wheel ${k}`);
+    }
+  });
   const hud = await page.locator('#hud').innerText();
   if (!/real-time factor/.test(hud)) fail(`HUD without the real-time factor: ${hud}`);
   if (errors.length) fail(`page errors: ${errors.join('; ')}`);
-  console.log(`ok: WebGL canvas; the rover moved ${(after.X - before.X).toFixed(3)} m at set-point ${after.V_set} m/s (t ${before.t.toFixed(2)} → ${after.t.toFixed(2)} s)`);
+  console.log(`ok: WebGL canvas; ${members.sketch.links.length} suspension links; the rover moved ${(after.X - before.X).toFixed(3)} m at set-point ${after.V_set} m/s (t ${before.t.toFixed(2)} → ${after.t.toFixed(2)} s)`);
 } catch (e) {
   fail(e.message);
 } finally {

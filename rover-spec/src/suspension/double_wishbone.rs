@@ -1,6 +1,6 @@
 //! The double wishbone: a four-bar linkage in the y–z plane (MODEL.md §3).
 
-use crate::linkage::{Linkage, Member, MemberShare, PointDef};
+use crate::linkage::{LinkEnd, Linkage, Member, MemberShare, PointDef};
 use crate::real::Real;
 
 /// Double wishbone in the plane x = `x`. With s = +1 on the left (lower
@@ -183,6 +183,29 @@ impl Linkage for DoubleWishbone {
             now.lower[1] - rest.lower[1],
         ];
         Some((t, phi - phi_c))
+    }
+
+    /// The lower arm from its inner pivot to the lower ball joint, the
+    /// upper arm likewise, the upright between the ball joints, and its
+    /// stub axle (from the upright's axis at the wheel's `along` offset out
+    /// to the wheel centre).
+    fn sketch(&self) -> Vec<[LinkEnd; 2]> {
+        let (b, c) = self.rest_pose();
+        let at = |p: [f64; 2]| [self.x, p[0], p[1]];
+        let h = self.upright_length;
+        let along = self.wheel_offset[0];
+        let axle = [
+            b[0] + along * (c[0] - b[0]) / h,
+            b[1] + along * (c[1] - b[1]) / h,
+        ];
+        let end = |member, rest| LinkEnd { member, rest };
+        let wheel = self.points()[0].rest;
+        vec![
+            [end(0, at(self.lower_pivot)), end(0, at(b))],
+            [end(1, at(self.upper_pivot)), end(1, at(c))],
+            [end(2, at(b)), end(2, at(c))],
+            [end(2, at(axle)), end(2, wheel)],
+        ]
     }
 }
 

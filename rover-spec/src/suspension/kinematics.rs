@@ -1,6 +1,6 @@
 //! Any kind of the library, behind one [`Linkage`].
 
-use crate::linkage::{Linkage, Member, PointDef};
+use crate::linkage::{LinkEnd, Linkage, Member, PointDef};
 use crate::real::Real;
 
 use super::{DoubleWishbone, Rocker, RockerBogie, SwingArm};
@@ -41,6 +41,14 @@ impl Linkage for Kinematics {
             Kinematics::Rocker(k) => k.motion(member, coord, y),
             Kinematics::RockerBogie(k) => k.motion(member, coord, y),
             Kinematics::DoubleWishbone(k) => k.motion(member, coord, y),
+        }
+    }
+    fn sketch(&self) -> Vec<[LinkEnd; 2]> {
+        match self {
+            Kinematics::SwingArm(k) => k.sketch(),
+            Kinematics::Rocker(k) => k.sketch(),
+            Kinematics::RockerBogie(k) => k.sketch(),
+            Kinematics::DoubleWishbone(k) => k.sketch(),
         }
     }
 }

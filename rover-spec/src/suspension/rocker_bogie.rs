@@ -1,6 +1,6 @@
 //! The MER-type rocker-bogie with a differential (MODEL.md §3).
 
-use crate::linkage::{Linkage, Member, MemberShare, PointDef};
+use crate::linkage::{LinkEnd, Linkage, Member, MemberShare, PointDef};
 use crate::real::{Real, rotate};
 
 /// Rocker-bogie, both sides. Local coordinates: 0 = rocker angle y_r (left
@@ -122,5 +122,21 @@ impl Linkage for RockerBogie {
             }
             (_, c) => (zero, y - R::cst(self.rest[c.min(2)])),
         })
+    }
+
+    /// Each rocker from its pivot to its front wheel and to its bogie's
+    /// pivot; each bogie from its pivot to its middle and rear wheels.
+    fn sketch(&self) -> Vec<[LinkEnd; 2]> {
+        let end = |member, rest| LinkEnd { member, rest };
+        let mut links = Vec::new();
+        for (side, (rocker, bogie)) in [(0, 2), (1, 3)].into_iter().enumerate() {
+            let m = |p: [f64; 3]| if side == 0 { p } else { mirror(p) };
+            let (a, p) = (m(self.pivot), m(self.bogie_pivot));
+            links.push([end(rocker, a), end(rocker, m(self.front))]);
+            links.push([end(rocker, a), end(rocker, p)]);
+            links.push([end(bogie, p), end(bogie, m(self.middle))]);
+            links.push([end(bogie, p), end(bogie, m(self.rear))]);
+        }
+        links
     }
 }

@@ -14,8 +14,9 @@ use crate::checks::{Ctx, coord_value, non_finite, num};
 use crate::description::{Description, MassDesc};
 use crate::diagnostic::Diagnostic;
 use crate::fit::FitFailure;
-use crate::linkage::{FitMethod, FittedPoint};
+use crate::linkage::{FitMethod, FittedPoint, LinkEnd, Linkage};
 use crate::point_fit::fit_point;
+use crate::sketch::{Sketch, SketchJoint, SketchLink};
 use crate::spec::{BodyFit, Spec, SuspensionInfo};
 
 /// Effective inertia used for the critical bump-stop damping of a
@@ -135,6 +136,7 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         wheels: model_wheels,
     };
     check_runnable(&model, &built, &rest_wheel_centres)?;
+    let sketch = sketch(&built, &carried, &model);
     Ok(Spec {
         name: desc.name.clone(),
         model,
@@ -145,6 +147,7 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         suspensions: suspension_infos(&built),
         fits: body_fits(desc, &built, &carried, &fitted),
         rest_wheel_centres,
+        sketch,
         description: desc.clone(),
     })
 }
@@ -463,6 +466,81 @@ fn body_fits(
             max_angle_error: p.max_angle_error,
         })
         .collect()
+}
+
+/// The joints and links of every library suspension ([`Linkage::sketch`]):
+/// a joint where a wheel sits is that wheel's centre `u_j(y)`; any other is
+/// fitted like a carried body. A joint whose fit fails (it cannot, where
+/// the suspension's own points fitted) leaves its link out.
+fn sketch(built: &[Built], carried: &[Carried], model: &Model) -> Sketch {
+    let mut out = Sketch::default();
+    let mut index: BTreeMap<(usize, usize, [u64; 3]), usize> = BTreeMap::new();
+    let mut first = 0;
+    for (s, b) in built.iter().enumerate() {
+        let global: Vec<usize> = (first..first + b.coords.len()).collect();
+        first += b.coords.len();
+        let Source::Library {
+            kin,
+            members,
+            points,
+            options,
+            ..
+        } = &b.source
+        else {
+            continue;
+        };
+        let ranges: Vec<_> = b.coords.iter().map(|c| c.range).collect();
+        let wheel_at = |end: &LinkEnd| {
+            carried
+                .iter()
+                .take(model.wheels.len())
+                .position(|c| {
+                    c.suspension == s
+                        && matches!(&c.place, Place::Point(name) if points
+                            .iter()
+                            .any(|p| &p.name == name && p.member == end.member && p.rest == end.rest))
+                })
+        };
+        for [a, z] in kin.sketch() {
+            let mut ends = [0usize; 2];
+            let mut placed = true;
+            for (k, end) in [a, z].iter().enumerate() {
+                let key = (s, end.member, end.rest.map(f64::to_bits));
+                if let Some(&i) = index.get(&key) {
+                    ends[k] = i;
+                    continue;
+                }
+                let joint = match wheel_at(end) {
+                    Some(w) => Some(SketchJoint {
+                        position: model.bodies[model.wheels[w].body].position.clone(),
+                        wheel: Some(w),
+                    }),
+                    None => fit_point(kin, end.member, end.rest, &ranges, &global, options)
+                        .ok()
+                        .map(|f| SketchJoint {
+                            position: f.position,
+                            wheel: None,
+                        }),
+                };
+                match joint {
+                    Some(j) => {
+                        index.insert(key, out.joints.len());
+                        ends[k] = out.joints.len();
+                        out.joints.push(j);
+                    }
+                    None => placed = false,
+                }
+            }
+            if placed {
+                out.links.push(SketchLink {
+                    suspension: b.name.clone(),
+                    member: members[a.member].name.to_string(),
+                    joints: ends,
+                });
+            }
+        }
+    }
+    out
 }
 
 /// Σ_j m_j·|∂u_j/∂y_i|² at rest: the inertia the coordinate's bump stop

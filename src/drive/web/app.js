@@ -1,7 +1,8 @@
 // The page of `rover drive` (live, over the WebSocket at /ws) and of
 // `rover view` (a finished run's run.csv). One scene for both: the terrain
-// mesh, the rover's body, a link from the body to each wheel, the wheels,
-// the contact forces as arrows and the path so far. Z is up, as in the
+// mesh, the rover's body, its suspension members (from the rover's sketch
+// in /meta.json, at the state's coordinates y1…ym), the wheels, the
+// contact forces as arrows and the path so far. Z is up, as in the
 // simulation; the attitude is R = Rz(psi)·Rx(phi)·Ry(theta) (MODEL.md).
 import * as THREE from '/three.min.js';
 
@@ -10,7 +11,7 @@ const hud = document.getElementById('hud');
 const help = document.getElementById('help');
 
 // What a test (or a curious user at the console) can read.
-const page = { hello: null, meta: null, states: 0, first: null, last: null, errors: [], send: null };
+const page = { hello: null, meta: null, states: 0, first: null, last: null, shown: null, errors: [], send: null };
 window.roverPage = page;
 
 const meta = await (await fetch('/meta.json')).json();
@@ -85,6 +86,34 @@ scene.add(body);
 
 const wheelMeshes = [], links = [], arrows = [];
 const linkMat = new THREE.LineBasicMaterial({ color: 0x9ad0ff });
+// The suspension members: one rod per link of the sketch, a small block at
+// each joint that is not a wheel centre (pivots, ball joints).
+const sketch = meta.sketch || { joints: [], links: [] };
+const drawn = new Set();
+for (const l of sketch.links) for (const i of l.joints) if (sketch.joints[i].wheel !== null) drawn.add(sketch.joints[i].wheel);
+const rodR = 0.08 * rMax;
+const rodMat = new THREE.MeshLambertMaterial({ color: 0x9ad0ff });
+const rodGeo = new THREE.CylinderGeometry(rodR, rodR, 1, 10);
+const rods = sketch.links.map(() => { const m = new THREE.Mesh(rodGeo, rodMat); scene.add(m); return m; });
+const jointGeo = new THREE.BoxGeometry(2.4 * rodR, 2.4 * rodR, 2.4 * rodR);
+const jointMat = new THREE.MeshLambertMaterial({ color: 0xf0f0f0 });
+const jointMeshes = sketch.joints.map(j => {
+  if (j.wheel !== null) return null;
+  const m = new THREE.Mesh(jointGeo, jointMat); scene.add(m); return m;
+});
+const jointAt = sketch.joints.map(() => new THREE.Vector3());
+page.sketchJoints = () => jointAt.map(p => [p.x, p.y, p.z]);
+// A joint's position from G in body axes at the state's coordinates:
+// c + Σ_terms Σ_p coeffs[p]·ξ^p, ξ = y_(coord+1) − center.
+function jointBody(j, s, out) {
+  out.set(j.c[0], j.c[1], j.c[2]);
+  for (const t of j.terms) {
+    const xi = s[`y${t.coord + 1}`] - t.center;
+    let p = 1;
+    for (const c of t.coeffs) { out.x += c[0] * p; out.y += c[1] * p; out.z += c[2] * p; p *= xi; }
+  }
+  return out;
+}
 for (let j = 0; j < wheels; j++) {
   const r = radius[j];
   const tyre = new THREE.Mesh(new THREE.CylinderGeometry(r, r, 0.5 * r, 24),
@@ -95,12 +124,16 @@ for (let j = 0; j < wheels; j++) {
   w.add(tyre); w.add(hub);
   scene.add(w);
   wheelMeshes.push(w);
-  const lg = new THREE.BufferGeometry();
-  lg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
-  const line = new THREE.Line(lg, linkMat);
-  line.frustumCulled = false;
-  scene.add(line);
-  links.push(line);
+  // A wheel on no member of the sketch (a suspension given as raw
+  // polynomials has no linkage to draw): a straight line from the body.
+  if (drawn.has(j)) { links.push(null); } else {
+    const lg = new THREE.BufferGeometry();
+    lg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
+    const line = new THREE.Line(lg, linkMat);
+    line.frustumCulled = false;
+    scene.add(line);
+    links.push(line);
+  }
   const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 0.1, 0xffd23f);
   scene.add(arrow);
   arrows.push(arrow);
@@ -163,10 +196,12 @@ function show(s) {
     wheelMeshes[j].position.set(...c);
     qs.setFromAxisAngle(zAxis, s[`delta${k}`] || 0);
     wheelMeshes[j].quaternion.copy(q).multiply(qs);
-    v.set(rest[j][0], rest[j][1], 0).applyQuaternion(q).add(body.position);
-    const a = links[j].geometry.attributes.position.array;
-    a.set([v.x, v.y, v.z, ...c]);
-    links[j].geometry.attributes.position.needsUpdate = true;
+    if (links[j]) {
+      v.set(rest[j][0], rest[j][1], 0).applyQuaternion(q).add(body.position);
+      const a = links[j].geometry.attributes.position.array;
+      a.set([v.x, v.y, v.z, ...c]);
+      links[j].geometry.attributes.position.needsUpdate = true;
+    }
     const fn = s[`Fn${k}`];
     if (fn > 0 && meanLoad > 1e-9) {
       arrows[j].visible = true;
@@ -184,7 +219,36 @@ function show(s) {
       arrows[j].visible = false;
     }
   }
+  showMembers(s);
   pathPush(s.X, s.Y, groundBelow(s));
+}
+
+const yAxis = new THREE.Vector3(0, 1, 0), dir = new THREE.Vector3();
+// Joints in world axes (a wheel centre where the state has it), then one
+// rod between the two joints of each link.
+function showMembers(s) {
+  page.shown = s;
+  sketch.joints.forEach((j, i) => {
+    const p = jointAt[i];
+    if (j.wheel !== null) {
+      const k = j.wheel + 1;
+      p.set(s[`W${k}X`], s[`W${k}Y`], s[`W${k}Z`]);
+    } else {
+      jointBody(j, s, p).applyQuaternion(q).add(body.position);
+      jointMeshes[i].position.copy(p);
+      jointMeshes[i].quaternion.copy(q);
+    }
+  });
+  sketch.links.forEach((l, i) => {
+    const a = jointAt[l.joints[0]], b = jointAt[l.joints[1]];
+    dir.subVectors(b, a);
+    const len = dir.length();
+    rods[i].visible = len > 1e-9;
+    if (!rods[i].visible) return;
+    rods[i].position.addVectors(a, b).multiplyScalar(0.5);
+    rods[i].quaternion.setFromUnitVectors(yAxis, dir.multiplyScalar(1 / len));
+    rods[i].scale.set(1, len, 1);
+  });
 }
 
 
