@@ -18,6 +18,10 @@
 //!   `f64` and the code generator traces them. The code generator needs
 //!   only this one, which keeps nalgebra out of what `#[derive(Rover)]`
 //!   compiles for the compiler's host.
+//!
+//! Without features it still has the wheel–ground law
+//! ([`wheel_law`]) and the height-field interface the contact search
+//! queries ([`HeightField`]), so that code outside `std` can use them.
 #![no_std]
 #![warn(missing_docs)]
 
@@ -30,6 +34,7 @@ pub mod attitude;
 pub mod cpu;
 pub mod described;
 pub mod dual;
+pub mod height_field;
 pub mod linalg;
 #[cfg(feature = "plant")]
 pub mod plant;
@@ -42,6 +47,7 @@ pub mod model;
 pub mod poly;
 
 pub use described::Described;
+pub use height_field::HeightField;
 /// The nalgebra this crate's fixed-size types come from, so that generated
 /// code and its users name one version.
 #[cfg(feature = "plant")]

@@ -120,9 +120,17 @@ impl SearchMemory {
         let quantum = 0.5 * radius;
         // Beyond ±2⁵² cells (or for a non-finite centre) nothing is kept.
         let limit = 4.5e15;
+        // The floor by truncation through i64 (exact below the limit): the
+        // baseline x86-64 target has no floor instruction, and a call to
+        // the software one per coordinate showed in the profile.
         let cell = |v: f64| {
-            let k = (v / quantum).floor();
-            (k.abs() < limit).then_some(k as i64)
+            let q = v / quantum;
+            if !(q.abs() < limit) {
+                return None;
+            }
+            let t = q as i64;
+            let k = if (t as f64) > q { t - 1 } else { t };
+            ((k as f64).abs() < limit).then_some(k)
         };
         let (Some(i), Some(j)) = (cell(x), cell(y)) else {
             *self = SearchMemory::default();
@@ -436,16 +444,25 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
 
 /// The rim angle `at` turned by `step`: its sine and cosine by the angle
 /// sums, with those of a step below 0.05 rad from their Taylor series to
-/// the ninth order (within 1e-18, a quarter of the cost of `sin_cos`, which
-/// was a tenth of a remembering search), and from `sin_cos` otherwise.
+/// the ninth order (within 1e-18), and from `sin_cos` otherwise. The series
+/// are in Horner's form with their coefficients folded: multiplications
+/// only, where a nest of divisions by 6, 20, 42, … was a chain of eight
+/// divisions on every Newton step.
 fn turned(at: RimAngle, step: f64) -> RimAngle {
     let beta = at.beta + step;
     if step.abs() >= 0.05 {
         return RimAngle::new(beta);
     }
+    const S3: f64 = 1.0 / 6.0;
+    const S5: f64 = 1.0 / 120.0;
+    const S7: f64 = 1.0 / 5040.0;
+    const S9: f64 = 1.0 / 362_880.0;
+    const C4: f64 = 1.0 / 24.0;
+    const C6: f64 = 1.0 / 720.0;
+    const C8: f64 = 1.0 / 40_320.0;
     let d2 = step * step;
-    let sin = step * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0 * (1.0 - d2 / 42.0 * (1.0 - d2 / 72.0))));
-    let cos = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0 * (1.0 - d2 / 56.0)));
+    let sin = step * (1.0 - d2 * (S3 - d2 * (S5 - d2 * (S7 - d2 * S9))));
+    let cos = 1.0 - d2 * (0.5 - d2 * (C4 - d2 * (C6 - d2 * C8)));
     RimAngle {
         beta,
         sin: at.sin * cos + at.cos * sin,
