@@ -125,7 +125,7 @@ impl SearchMemory {
         // the software one per coordinate showed in the profile.
         let cell = |v: f64| {
             let q = v / quantum;
-            if !(q.abs() < limit) {
+            if q.is_nan() || q.abs() >= limit {
                 return None;
             }
             let t = q as i64;
