@@ -231,7 +231,14 @@ mod tests {
     /// A rover driving at 0.05 m/s along a circle of radius 1 m (yaw rate
     /// 0.05 rad/s), with its rear axle 0.25 m behind G; `kick(t)` turns
     /// the body about G to the left, swinging the rear axle to the right.
-    fn track(kick: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<f64>, Vec<[f64; 2]>, Vec<Vec<[f64; 2]>>) {
+    struct Tracked {
+        t: Vec<f64>,
+        yaw: Vec<f64>,
+        path: Vec<[f64; 2]>,
+        axles: Vec<Vec<[f64; 2]>>,
+    }
+
+    fn track(kick: impl Fn(f64) -> f64) -> Tracked {
         let t: Vec<f64> = (0..=400).map(|i| i as f64 * 0.1).collect();
         let mut yaw = Vec::new();
         let mut path = Vec::new();
@@ -245,17 +252,22 @@ mod tests {
             path.push(g);
             rear.push(r);
         }
-        (t, yaw, path, vec![rear])
+        Tracked {
+            t,
+            yaw,
+            path,
+            axles: vec![rear],
+        }
     }
 
     fn measure(kick: impl Fn(f64) -> f64) -> Slide {
-        let (t, yaw, path, axles) = track(kick);
+        let r = track(kick);
         slide(
             &SlideTrack {
-                times: &t,
-                yaw: &yaw,
-                path: &path,
-                axles: &axles,
+                times: &r.t,
+                yaw: &r.yaw,
+                path: &r.path,
+                axles: &r.axles,
             },
             &[(vec![3, 4], -0.25)],
         )
@@ -263,7 +275,7 @@ mod tests {
     }
 
     #[test]
-    fn a_steady_turn_has_no_slide_and_no_sideways_speed_at_the_turn_centre_axle() {
+    fn a_steady_turn_has_no_slide_and_its_rear_axle_swings_out_by_the_yaw_rate_only() {
         let s = measure(|_| 0.0);
         assert!((s.median_yaw_rate_deg_s - 0.05f64.to_degrees()).abs() < 1e-6);
         assert!(s.max_yaw_rate_excursion_deg_s < 1e-6, "{s:?}");

@@ -23,8 +23,8 @@ pub const SPACINGS: [f64; 4] = [0.3, 0.4, 0.5, 0.7];
 /// search table; `rover reproduce` fails when the search ranks another
 /// setting above it).
 pub const CHOSEN: Field = Field {
-    amplitude: 0.35,
-    spacing: 0.4,
+    amplitude: 0.5,
+    spacing: 0.5,
 };
 
 /// Roughness values of Fig. 6 (the paper's, without the flat case).
@@ -269,6 +269,10 @@ impl Outcome {
 pub const BREAKDOWN: f64 = 0.1;
 /// The paper's band of R/R_k on moderate ground, to its two decimals.
 pub const BAND: (f64, f64) = (0.945, 0.995);
+/// Its width: the band holds when the mean over the seeds is in it and
+/// the seeds scatter by no more than this (standard deviation), so that a
+/// mean does not land in the band by seeds far above and below cancelling.
+pub const BAND_WIDTH: f64 = 0.05;
 
 /// A claim of the paper judged on one field.
 #[derive(Clone, Debug)]
@@ -307,15 +311,18 @@ impl ClaimSpec {
 pub const CLAIMS: [ClaimSpec; 7] = [
     ClaimSpec {
         figure: "Fig. 6",
-        paper: "R ≈ 0.95–0.99·R_k on moderate ground (Z_R = 0.1, 0.2)",
+        paper: "R ≈ 0.95–0.99·R_k on moderate ground (Z_R = 0.1, 0.2): mean in the band, spread (sd) ≤ 0.05",
         judge: |o, c| {
             let mut ours = Vec::new();
             let mut miss = 0.0f64;
             for z in [0.1, 0.2] {
                 let s = o.ratio(&format!("fig6_zr{z}"));
                 ours.push(format!("{}: {}", z, s.show(3)));
-                miss += match s.mean() {
-                    Some(m) if s.stopped == 0 => ((BAND.0 - m).max(m - BAND.1)).max(0.0) / 0.05,
+                miss += match (s.mean(), s.sd()) {
+                    (Some(m), Some(sd)) if s.stopped == 0 => {
+                        ((BAND.0 - m).max(m - BAND.1)).max(0.0) / BAND_WIDTH
+                            + (sd - BAND_WIDTH).max(0.0) / BAND_WIDTH
+                    }
                     _ => 1.0,
                 };
             }
