@@ -984,7 +984,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_single_track_model_turns_on_the_kinematic_radius_at_walking_speed() {
+    fn the_single_track_model_ignores_walking_speed_and_turns_kinematically_when_steered_gently() {
         let spec = load_rover("exomars", None).unwrap();
         let b = handling::SingleTrack::new(&spec.model);
         assert_eq!(b.axles.len(), 3);
