@@ -425,7 +425,8 @@ fn fig5(v: &mut Values, work: &Path, figs: &Path) -> Result<(), CliError> {
             ratio(rb)
         );
     }
-    let curve: Vec<(f64, f64)> = (1..=60)
+    // δ₁ from 2° to 30° in steps of 0.5°, as the simulated points.
+    let curve: Vec<(f64, f64)> = (4..=60)
         .filter_map(|k| {
             let d = (0.5 * k as f64).to_radians();
             Some((bicycle.ackermann(d).1, bicycle.radius(d, 0.05)?))
@@ -558,15 +559,18 @@ fn fig6(
         chart_series,
     )?;
     v.set("fig6_table", t);
-    let list = |l: &[String]| {
-        if l.is_empty() {
-            "none".to_string()
-        } else {
-            l.join(", ")
-        }
-    };
-    v.set("fig6_band_at", list(&band));
-    v.set("fig6_band_not_at", list(&no_band));
+    v.set(
+        "fig6_band",
+        match (band.is_empty(), no_band.is_empty()) {
+            (true, _) => "holds at none of them".to_string(),
+            (false, true) => "holds at each of them".to_string(),
+            (false, false) => format!(
+                "holds at δ₁ = {} and not at {}",
+                band.join(", "),
+                no_band.join(", ")
+            ),
+        },
+    );
     v.set(
         "fig6_deltas",
         FIG6_DELTAS.map(|d| format!("{d}°")).join(", "),
