@@ -23,6 +23,7 @@ mod linearize;
 mod no_std;
 mod paper_accuracy;
 mod profile;
+#[cfg(feature = "reproduce")]
 mod reproduction;
 mod sweep;
 mod wheel_law;

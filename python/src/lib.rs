@@ -402,6 +402,7 @@ impl Simulation {
                 }
                 sys.torques().iter().for_each(|&v| put(v));
                 sys.steering().iter().for_each(|&v| put(v));
+                sys.control.neutrals().iter().for_each(|&v| put(v));
                 put(sys.control.speed_setpoint(s.time()));
             });
             Ok(())

@@ -11,7 +11,7 @@ use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::plant::Plant;
 
-use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, header};
+use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x, header};
 use crate::scenario::{FidelityLevel, Scenario};
 use rover_integrate::{Integrator, OdeSystem};
 use rover_runtime::control::Controller;
@@ -228,7 +228,13 @@ pub fn simulate<P: Plant, W: Write>(
         output_step: 1.0 / scenario.output_rate,
         rollover_limit: scenario.rollover_limit_deg.to_radians(),
     };
-    let mut log = RunLog::new(scenario.settle, model.dof(), k);
+    let rest = model.rest();
+    let rest_x: Vec<f64> = model
+        .wheels
+        .iter()
+        .map(|w| model.bodies[w.body].position.value(&rest)[0])
+        .collect();
+    let mut log = RunLog::new(scenario.settle, model.dof(), k).with_axles(axles_by_rest_x(&rest_x));
     let started = Instant::now();
     let outcome = run(&mut sys, &mut integ, &mut y, &opts, interrupt, |row| {
         let s = row.system;
@@ -244,6 +250,7 @@ pub fn simulate<P: Plant, W: Write>(
         }
         v.extend_from_slice(s.torques());
         v.extend_from_slice(s.steering());
+        v.extend_from_slice(s.control.neutrals());
         v.push(s.control.speed_setpoint(row.t));
         log.record(v, s.reports().iter().map(|r| r.deep));
         progress(row.t);
@@ -520,6 +527,7 @@ fn quasi_static_run<W: Write>(
             v.extend_from_slice(&[*fz, 0.0, 0.0]);
         }
         v.extend(std::iter::repeat_n(0.0, 2 * k));
+        v.extend_from_slice(control.neutrals());
         v.push(control.speed_setpoint(t));
         log.record(v, std::iter::empty());
         progress(t);

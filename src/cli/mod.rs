@@ -18,7 +18,7 @@ pub use check::{CheckArgs, check};
 pub use codegen::{CodegenArgs, CodegenLevel, codegen};
 pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
-pub use reproduce::{ReproduceArgs, reproduce};
+pub use reproduce::{ReproduceArgs, calibrated, reproduce};
 pub use simulate::{
     Prepared, SimulateArgs, SimulateReport, build_plant, generated_plant, simulate,
 };

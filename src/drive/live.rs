@@ -698,6 +698,7 @@ impl<P: Plant> Sim<P> {
         }
         self.sys.torques().iter().for_each(|v| push(*v));
         self.sys.steering().iter().for_each(|v| push(*v));
+        self.sys.control.neutrals().iter().for_each(|v| push(*v));
         push(self.speed_setpoint());
     }
 }

@@ -5,7 +5,8 @@ use std::io::Write;
 
 /// The header: `t,X,Y,Z,phi,theta,psi,y1..ym,vx,vy,vz,Ox,Oy,Oz,dy1..dym`,
 /// `W{j}X,W{j}Y,W{j}Z` per wheel, `H{j}X,H{j}Y,H{j}Z,Fn{j},Fd{j},Fc{j}` per
-/// wheel, `tau{j}` and `delta{j}` per wheel, `V_set`.
+/// wheel, `tau{j}` and `delta{j}` per wheel, the spring neutrals
+/// `y0_1..y0_m` (moved by the active suspension), `V_set`.
 pub fn header(m: usize, wheels: usize) -> Vec<String> {
     let mut h: Vec<String> = ["t", "X", "Y", "Z", "phi", "theta", "psi"]
         .iter()
@@ -33,6 +34,7 @@ pub fn header(m: usize, wheels: usize) -> Vec<String> {
     }
     h.extend((1..=wheels).map(|j| format!("tau{j}")));
     h.extend((1..=wheels).map(|j| format!("delta{j}")));
+    h.extend((1..=m).map(|i| format!("y0_{i}")));
     h.push("V_set".into());
     h
 }

@@ -2,10 +2,14 @@
 
 mod circle_fit;
 mod csv_writer;
+mod slide;
 mod summary;
 
 pub use circle_fit::{Circle, fit_circle};
 pub use csv_writer::{CsvWriter, header};
+pub use slide::{
+    AxleSlide, SLIDE_WINDOW, SLIDE_YAW_DEG, Slide, SlideTrack, SuddenSlide, axles_by_rest_x, slide,
+};
 pub use summary::{
     PathDeviation, RunEnd, RunLog, STALL_FRACTION, STALL_MIN_DISTANCE, STALL_WINDOW, Stall, Status,
     Summary,

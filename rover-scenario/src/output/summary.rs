@@ -3,6 +3,7 @@
 use serde::Serialize;
 
 use super::Circle;
+use super::slide::{Slide, SlideTrack, slide};
 
 /// How the run ended.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -57,6 +58,10 @@ pub struct Summary {
     /// asked for at the end of the run (see [`Stall`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stalled: Option<Stall>,
+    /// Sideways slides after settling: the yaw-rate excursion, each axle's
+    /// sideways speed and the first sudden slide (dynamic runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slide: Option<Slide>,
     /// How far G strayed from the path a heading hold follows (a line or
     /// waypoints), at output instants after settling (set by the caller).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -190,6 +195,15 @@ pub struct RunLog {
     max_roll: f64,
     max_pitch: f64,
     deep: Vec<bool>,
+    /// Column of the first wheel centre in a row.
+    wheel_column: usize,
+    /// Axles (1-based wheels, rest x) whose sideways speed is measured.
+    axles: Vec<(Vec<usize>, f64)>,
+    /// Yaw of every row after settling.
+    yaw: Vec<f64>,
+    /// Per axle, its wheel centres' horizontal midpoint in every row after
+    /// settling.
+    axle_paths: Vec<Vec<[f64; 2]>>,
 }
 
 /// The parts of a summary the log does not know.
@@ -232,7 +246,18 @@ impl RunLog {
             deep: vec![false; wheels],
             // t, then x (dof columns), then w starting with v_x.
             forward_column: Some(1 + dof),
+            wheel_column: 1 + 2 * dof,
             ..Self::default()
+        }
+    }
+
+    /// Measure the sideways slides of these axles (each its wheels, 1-based,
+    /// and its rest x; [`super::axles_by_rest_x`] groups them).
+    pub fn with_axles(self, axles: Vec<(Vec<usize>, f64)>) -> Self {
+        Self {
+            axle_paths: vec![Vec::new(); axles.len()],
+            axles,
+            ..self
         }
     }
 
@@ -261,6 +286,16 @@ impl RunLog {
             self.setpoints.push(row.last().copied().unwrap_or(0.0));
             if let Some(k) = self.forward_column {
                 self.forward.push(row.get(k).copied().unwrap_or(0.0));
+            }
+            self.yaw.push(row[6]);
+            for ((wheels, _), path) in self.axles.iter().zip(&mut self.axle_paths) {
+                let mut mid = [0.0; 2];
+                for &j in wheels {
+                    let c = self.wheel_column + 3 * (j - 1);
+                    mid[0] += row[c] / wheels.len() as f64;
+                    mid[1] += row[c + 1] / wheels.len() as f64;
+                }
+                path.push(mid);
             }
         }
     }
@@ -319,6 +354,19 @@ impl RunLog {
                         .collect(),
                 )
             }),
+            slide: if self.axles.is_empty() {
+                None
+            } else {
+                slide(
+                    &SlideTrack {
+                        times: &self.times,
+                        yaw: &self.yaw,
+                        path: &self.path,
+                        axles: &self.axle_paths,
+                    },
+                    &self.axles,
+                )
+            },
             path_deviation: None,
             wall_time_s: end.wall_time_s,
             real_time_factor: if end.wall_time_s > 0.0 {
