@@ -168,6 +168,16 @@ impl Model {
         self.coordinates.iter().map(|c| c.rest).collect()
     }
 
+    /// Each wheel centre's body-frame position at rest \[m\], in the
+    /// description's wheel order.
+    pub fn rest_wheel_centres(&self) -> Vec<[f64; 3]> {
+        let rest = self.rest();
+        self.wheels
+            .iter()
+            .map(|w| self.bodies[w.body].position.value(&rest))
+            .collect()
+    }
+
     /// Height Z of G at which the rover, level and at rest, has its lowest
     /// wheel just touching flat ground at Z = 0 \[m\].
     pub fn touchdown_height(&self) -> f64 {

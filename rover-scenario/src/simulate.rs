@@ -228,12 +228,7 @@ pub fn simulate<P: Plant, W: Write>(
         output_step: 1.0 / scenario.output_rate,
         rollover_limit: scenario.rollover_limit_deg.to_radians(),
     };
-    let rest = model.rest();
-    let rest_x: Vec<f64> = model
-        .wheels
-        .iter()
-        .map(|w| model.bodies[w.body].position.value(&rest)[0])
-        .collect();
+    let rest_x: Vec<f64> = model.rest_wheel_centres().iter().map(|u| u[0]).collect();
     let mut log = RunLog::new(scenario.settle, model.dof(), k).with_axles(axles_by_rest_x(&rest_x));
     let started = Instant::now();
     let outcome = run(&mut sys, &mut integ, &mut y, &opts, interrupt, |row| {

@@ -99,12 +99,9 @@ impl Controller {
     ) -> Result<Self, ControlError> {
         let rest = model.rest();
         let rest_xy: Vec<(f64, f64)> = model
-            .wheels
+            .rest_wheel_centres()
             .iter()
-            .map(|w| {
-                let u = model.bodies[w.body].position.value(&rest);
-                (u[0], u[1])
-            })
+            .map(|u| (u[0], u[1]))
             .collect();
         let steerable: Vec<bool> = model.wheels.iter().map(|w| w.steerable).collect();
         let speed = match config.speed {

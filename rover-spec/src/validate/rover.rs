@@ -120,11 +120,6 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         .collect();
     let coordinates = model_coordinates(&built, &bodies);
     check_derived_numbers(&coordinates, &built, &carried, &bodies)?;
-    let rest = coordinates.iter().map(|c| c.rest).collect::<Vec<_>>();
-    let rest_wheel_centres: Vec<[f64; 3]> = model_wheels
-        .iter()
-        .map(|w| bodies[w.body].position.value(&rest))
-        .collect();
     let model = Model {
         gravity,
         body: RigidBody {
@@ -135,6 +130,7 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         bodies,
         wheels: model_wheels,
     };
+    let rest_wheel_centres = model.rest_wheel_centres();
     check_runnable(&model, &built, &rest_wheel_centres)?;
     let sketch = sketch(&built, &carried, &model);
     Ok(Spec {

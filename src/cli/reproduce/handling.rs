@@ -29,14 +29,10 @@ impl SingleTrack {
     /// From a rover description: axles by rest x (within 1 cm), the turn
     /// centre on the mean x of the non-steerable wheels.
     pub fn new(model: &Model) -> Self {
-        let rest = model.rest();
         let rest_xy: Vec<(f64, f64)> = model
-            .wheels
+            .rest_wheel_centres()
             .iter()
-            .map(|w| {
-                let u = model.bodies[w.body].position.value(&rest);
-                (u[0], u[1])
-            })
+            .map(|u| (u[0], u[1]))
             .collect();
         let xs: Vec<f64> = rest_xy.iter().map(|p| p.0).collect();
         let axles = rover_scenario::output::axles_by_rest_x(&xs)
