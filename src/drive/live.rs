@@ -15,7 +15,8 @@ use rover_integrate::{
     Ros2Config,
 };
 use rover_runtime::control::{
-    Controller, ControllerConfig, Distribution, SpeedConfig, ackermann_angle, curvature_from_angle,
+    Controller, ControllerConfig, Distribution, SpeedConfig, ackermann_angle, add_share,
+    curvature_from_angle,
 };
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
@@ -226,6 +227,8 @@ pub struct RoverInfo {
     pub left: Vec<bool>,
     /// Motor limits [N·m].
     pub max_torque: Vec<f64>,
+    /// The largest motor limit [N·m]: where the speed loop's integral stops.
+    pub torque_cap: f64,
     /// Wheel radii \[m\].
     pub radius: Vec<f64>,
     /// Turn centre's body x for Ackermann steering \[m\]: the mean x of the
@@ -238,12 +241,7 @@ pub struct RoverInfo {
 impl RoverInfo {
     /// From the model.
     pub fn new(model: &Model) -> Self {
-        let rest_y = model.rest();
-        let rest: Vec<[f64; 3]> = model
-            .wheels
-            .iter()
-            .map(|w| model.bodies[w.body].position.value(&rest_y))
-            .collect();
+        let rest = model.rest_wheel_centres();
         let steerable: Vec<bool> = model.wheels.iter().map(|w| w.steerable).collect();
         let fixed: Vec<f64> = rest
             .iter()
@@ -261,6 +259,11 @@ impl RoverInfo {
             rest,
             steerable,
             max_torque: model.wheels.iter().map(|w| w.max_torque).collect(),
+            torque_cap: model
+                .wheels
+                .iter()
+                .map(|w| w.max_torque)
+                .fold(0.0, f64::max),
             radius: model.wheels.iter().map(|w| w.radius).collect(),
             centre_x,
             m: model.m(),
@@ -574,7 +577,7 @@ impl<P: Plant> Sim<P> {
             Mode::Speed => {
                 let vx = self.y[self.n];
                 let e = self.command.speed - vx;
-                let cap = info.max_torque.iter().cloned().fold(0.0, f64::max);
+                let cap = info.torque_cap;
                 // Anti-windup: the integral stops growing while its term
                 // alone saturates the motors in the same direction.
                 let held = self.ki * self.integral;
@@ -592,18 +595,12 @@ impl<P: Plant> Sim<P> {
                         *w = r.normal.max(0.0);
                     }
                 }
-                // τ0 per wheel on the mean: wheel k gets τ0·N·w_k/Σw
-                // (every wheel τ0 when no wheel bears a load).
-                let n = self.weights.len() as f64;
-                let total: f64 = self.weights.iter().sum();
+                // τ0 per wheel on the mean, shared by the weights.
+                self.torques.iter_mut().for_each(|t| *t = 0.0);
+                add_share(tau0, &self.weights, &mut self.torques);
                 for (k, t) in self.torques.iter_mut().enumerate() {
-                    let share = if total > 0.0 {
-                        tau0 * n * self.weights[k] / total
-                    } else {
-                        tau0
-                    };
                     let side = if info.left[k] { -dt } else { dt };
-                    *t = (share + side).clamp(-info.max_torque[k], info.max_torque[k]);
+                    *t = (*t + side).clamp(-info.max_torque[k], info.max_torque[k]);
                 }
                 let first = info.steerable.iter().position(|s| *s);
                 let kappa = match first {

@@ -61,6 +61,8 @@ pub struct Controller {
     rest_xy: Vec<(f64, f64)>,
     steerable: Vec<bool>,
     max_torque: Vec<f64>,
+    /// The largest motor limit [N·m]: where the integrals stop (anti-windup).
+    torque_cap: f64,
     active: Option<ActiveSuspension>,
     neutral: Vec<f64>,
     lo: Vec<f64>,
@@ -139,6 +141,11 @@ impl Controller {
             rest_xy,
             steerable,
             max_torque: model.wheels.iter().map(|w| w.max_torque).collect(),
+            torque_cap: model
+                .wheels
+                .iter()
+                .map(|w| w.max_torque)
+                .fold(0.0, f64::max),
             active,
             neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
             lo: model.coordinates.iter().map(|c| c.min).collect(),
@@ -255,7 +262,7 @@ impl Controller {
     /// loop and the torque difference, [`LINE_INTEGRAL_CAP`] for the line.
     pub fn integral_rates(&self, t: f64, x: &[f64], w: &[f64], z: &[f64], out: &mut [f64]) {
         out.iter_mut().for_each(|o| *o = 0.0);
-        let cap = self.max_torque.iter().cloned().fold(0.0, f64::max);
+        let cap = self.torque_cap;
         let hold = |e: f64, held: f64, cap: f64| {
             if (held >= cap && e > 0.0) || (held <= -cap && e < 0.0) {
                 0.0

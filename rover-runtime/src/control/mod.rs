@@ -18,7 +18,7 @@ pub use commands::{CommandSchedule, CommandsConfig};
 pub use controller::{
     ControlError, Controller, ControllerConfig, HEADING_INTEGRAL, LINE_INTEGRAL, SPEED_INTEGRAL,
 };
-pub use distribution::Distribution;
+pub use distribution::{Distribution, add_share};
 pub use profile::Profile;
 pub use speed::SpeedConfig;
 pub use steering::{
