@@ -16,7 +16,7 @@ use rover_integrate::{
 };
 use rover_runtime::control::{
     Controller, ControllerConfig, Distribution, SpeedConfig, ackermann_angle, add_share,
-    curvature_from_angle,
+    curvature_from_angle, heading_centre_x,
 };
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
@@ -243,17 +243,8 @@ impl RoverInfo {
     pub fn new(model: &Model) -> Self {
         let rest = model.rest_wheel_centres();
         let steerable: Vec<bool> = model.wheels.iter().map(|w| w.steerable).collect();
-        let fixed: Vec<f64> = rest
-            .iter()
-            .zip(&steerable)
-            .filter(|(_, s)| !**s)
-            .map(|(p, _)| p[0])
-            .collect();
-        let centre_x = if fixed.is_empty() {
-            rest.iter().map(|p| p[0]).sum::<f64>() / rest.len().max(1) as f64
-        } else {
-            fixed.iter().sum::<f64>() / fixed.len() as f64
-        };
+        let rest_xy: Vec<(f64, f64)> = rest.iter().map(|p| (p[0], p[1])).collect();
+        let centre_x = heading_centre_x(&rest_xy, &steerable);
         RoverInfo {
             left: rest.iter().map(|p| p[1] > 0.0).collect(),
             rest,

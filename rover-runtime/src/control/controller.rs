@@ -768,8 +768,9 @@ fn non_negative(field: &str, value: f64, unit: &str) -> Result<(), ControlError>
 /// x_c of a heading hold via Ackermann: the mean rest x of the
 /// non-steerable wheels, or, when all steer, of all wheels (front and rear
 /// steer opposite ways; Ackermann steering's default would hold one axle
-/// straight on a four-wheeler whose axles are equally far from G).
-fn heading_centre_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> f64 {
+/// straight on a four-wheeler whose axles are equally far from G). The
+/// live drive loop steers about the same centre.
+pub fn heading_centre_x(rest_xy: &[(f64, f64)], steerable: &[bool]) -> f64 {
     fixed_mean_x(rest_xy, steerable)
         .unwrap_or_else(|| rest_xy.iter().map(|p| p.0).sum::<f64>() / rest_xy.len().max(1) as f64)
 }

@@ -17,6 +17,7 @@ pub use active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
 pub use commands::{CommandSchedule, CommandsConfig};
 pub use controller::{
     ControlError, Controller, ControllerConfig, HEADING_INTEGRAL, LINE_INTEGRAL, SPEED_INTEGRAL,
+    heading_centre_x,
 };
 pub use distribution::{Distribution, add_share};
 pub use profile::Profile;
