@@ -2,7 +2,8 @@
 //! tests/no_std_canary (`#![no_std]`, its own panic handler, a generated
 //! plant) must build alone; a std dependency would fail it with E0152.
 //! And "no panics" is checked on the machine code: no path of the
-//! generated plant's entries, compiled in release, reaches a panic.
+//! generated plant's entries and of its force path, compiled in release,
+//! reaches a panic.
 
 use std::path::Path;
 use std::process::Command;
@@ -26,7 +27,9 @@ fn a_generated_plant_builds_in_a_no_std_crate() {
 
 /// The release assembly of the canary, whose `rover_canary_<rover>`
 /// functions call every entry of each built-in rover's generated plant
-/// (both traits, the Jacobian) on inputs the compiler cannot see, holds no
+/// (both traits, the Jacobian) and `rover_canary_ground` swing4's whole
+/// force path (contact search, wheel law, plant) on inputs the compiler
+/// cannot see, holds no
 /// call or jump to a panicking
 /// function of core (bounds checks, unwraps, slice length checks, failed
 /// assertions: `core::panicking::*`, `*_fail`, `unwrap_failed`,
@@ -70,7 +73,7 @@ fn the_generated_plant_has_no_path_to_a_panic() {
     let text = std::fs::read_to_string(&asm).expect("read the assembly");
     // The entries and every generated function they call are compiled here
     // (whole: thousands of instructions), not folded away.
-    for rover in ["swing4", "exomars", "mer", "lrv"] {
+    for rover in ["swing4", "exomars", "mer", "lrv", "ground"] {
         let label = format!("rover_canary_{rover}:");
         assert!(text.contains(&label), "no {label} in {}", asm.display());
     }

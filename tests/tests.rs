@@ -15,6 +15,7 @@ mod failures;
 mod fidelity;
 mod fixed_step;
 mod free_flight;
+mod generated_ground;
 mod ground;
 mod hand_built_models;
 mod hostile;

@@ -50,6 +50,98 @@ pub struct PlantSource {
     pub lanes: Option<String>,
 }
 
+/// The path of `rover_dynamics::wheel_ground` in generated code.
+const GROUND: &str = "::rover_dynamics::wheel_ground";
+
+/// The force path's constants and methods: each wheel's tyre and radius as
+/// constants, and the whole right-hand side on a height field, which runs
+/// the contact search and the wheel law of `rover_dynamics::wheel_ground`
+/// (the generic plant's very code) with those constants, then the traced
+/// equations.
+fn ground_methods(spec: &Spec, n: usize, k: usize) -> String {
+    use crate::emit::literal;
+    let tyres: Vec<String> = spec
+        .model
+        .wheels
+        .iter()
+        .map(|w| {
+            format!(
+                "::rover_dynamics::wheel_law::Tyre {{ stiffness: {}, damping: {}, mu_x: {}, \
+                 mu_y: {}, cornering_stiffness: {}, rolling_resistance: 0.0 }}",
+                literal(w.stiffness),
+                literal(w.damping),
+                literal(w.mu_x),
+                literal(w.mu_y),
+                literal(w.cornering_stiffness)
+            )
+        })
+        .collect();
+    let radii: Vec<String> = spec
+        .model
+        .wheels
+        .iter()
+        .map(|w| literal(w.radius))
+        .collect();
+    format!(
+        r#"
+    /// Each wheel's tyre, in the description's order: stiffness k_w,
+    /// damping c_w, friction limits, cornering stiffness; no rolling
+    /// resistance (a copy with `rolling_resistance` set adds it).
+    pub const TYRES: [::rover_dynamics::wheel_law::Tyre; {k}] = [{tyres}];
+    /// Each wheel's radius R_w [m], in the description's order.
+    pub const RADII: [f64; {k}] = [{radii}];
+
+    /// The ground under this rover's wheels, searched by `search`, for
+    /// [`Self::derivatives_on_ground`]; it keeps what each wheel's search
+    /// proved between calls (a few kilobytes per wheel, no heap).
+    pub fn ground(search: {GROUND}::Search) -> {GROUND}::FixedGround<{k}> {{
+        {GROUND}::FixedGround::new(search)
+    }}
+
+    /// The whole right-hand side on the ground `terrain`, as the runtime
+    /// computes it with the generic plant: the wheels' kinematics for the
+    /// steering angles `steer`, each wheel's contact, the motor torques
+    /// `torques(normals)` [N·m] chosen from the wheels' normal forces \[N\]
+    /// (a controller that shares torque by load reads them; an open-loop
+    /// rig ignores them), the wheel law `law` on every patch with the
+    /// tyres `tyres` (`&Self::TYRES`, a constant the compiler folds in),
+    /// their reduction to loads, and `ẋ`, `ẇ`. The contact search and the
+    /// law are `rover_dynamics::wheel_ground`'s, the code the generic
+    /// plant's runs use; what each wheel did is in `ground.reports()`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub fn derivatives_on_ground<H, L>(
+        &self,
+        ground: &mut {GROUND}::FixedGround<{k}>,
+        terrain: &H,
+        law: &L,
+        tyres: &[::rover_dynamics::wheel_law::Tyre; {k}],
+        x: &[f64; {n}],
+        w: &[f64; {n}],
+        steer: &[f64; {k}],
+        torques: impl FnOnce(&[f64; {k}]) -> [f64; {k}],
+        xdot: &mut [f64; {n}],
+        wdot: &mut [f64; {n}],
+    ) -> ::core::result::Result<(), {GROUND}::GroundError>
+    where
+        H: ::rover_dynamics::HeightField + ?Sized,
+        L: ::rover_dynamics::wheel_law::WheelLaw,
+    {{
+        let states = self.wheels_array(x, w, steer);
+        let normals = ground
+            .find_contacts(terrain, &states, tyres, &Self::RADII)
+            .map_err({GROUND}::GroundError::OffMap)?;
+        let torques = torques(normals);
+        let loads = *ground.loads(law, &states, tyres, &torques);
+        self.derivatives_array(x, w, &loads, xdot, wdot)
+            .map_err({GROUND}::GroundError::Plant)
+    }}
+"#,
+        tyres = tyres.join(", "),
+        radii = radii.join(", "),
+    )
+}
+
 /// Text from the description made safe for a one-line comment.
 fn one_line(text: &str) -> String {
     text.chars()
@@ -353,6 +445,7 @@ impl {name} {{
 "#
         );
     }
+    s.push_str(&ground_methods(spec, n, k));
     s.push_str("}\n");
     let jacobian_method = if traced.jacobian.is_some() {
         format!(

@@ -31,6 +31,7 @@ extern crate alloc;
 extern crate std;
 
 pub mod attitude;
+pub mod contact;
 pub mod cpu;
 pub mod described;
 pub mod dual;
@@ -39,6 +40,8 @@ pub mod linalg;
 #[cfg(feature = "plant")]
 pub mod plant;
 pub mod scalar;
+#[cfg(feature = "plant")]
+pub mod wheel_ground;
 pub mod wheel_law;
 
 #[cfg(feature = "alloc")]

@@ -188,3 +188,31 @@ pub fn patch_forces<S: Scalar + PartialOrd>(
         lateral: combined(side, drawbar, tyre, normal),
     }
 }
+
+/// A wheel–ground force law. Laws that need the wheel spin as a degree of
+/// freedom (Bekker–Wong with Janosi–Hanamoto shear) will need more state;
+/// this interface covers the rigid-spin laws of the paper and the magic
+/// formula. A [`Lateral`] is itself a law; the runtime's scenario laws
+/// (`rover_runtime::wheel_law`) say which one from a file.
+pub trait WheelLaw {
+    /// The lateral law and its constants.
+    fn lateral(&self) -> Lateral;
+
+    /// The forces on a patch, for any scalar: `f64` in a run, dual numbers
+    /// for the derivatives an implicit integrator's Jacobian needs.
+    #[inline]
+    fn forces<S: Scalar + PartialOrd>(
+        &self,
+        tyre: &Tyre,
+        motion: &PatchMotion<S>,
+    ) -> PatchForces<S> {
+        patch_forces(&self.lateral(), tyre, motion)
+    }
+}
+
+impl WheelLaw for Lateral {
+    #[inline]
+    fn lateral(&self) -> Lateral {
+        *self
+    }
+}

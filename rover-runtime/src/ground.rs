@@ -1,65 +1,20 @@
 //! The ground acting on the wheels: contact geometry, force law and the
-//! reduction of the patch forces to loads on the plant (MODEL.md §6–§7).
+//! reduction of the patch forces to loads on the plant (MODEL.md §6–§7),
+//! for any number of wheels. Each wheel's work is
+//! [`rover_dynamics::wheel_ground`]'s, the very code a generated plant's
+//! force path runs.
 
-use rover_dynamics::dual::Dual;
-use rover_dynamics::linalg::{cross, dot, v3};
+use rover_dynamics::Model;
 use rover_dynamics::plant::{WheelLoad, WheelState};
-use rover_dynamics::wheel_law::PatchForces;
-use rover_dynamics::{Model, Scalar};
-use serde::{Deserialize, Serialize};
 
-use crate::contact::Patch;
-use crate::contact::{
-    BoundedContact, Contact, MeridionalContact, RimSampling, SearchMemory, TrackedContact,
-};
-use crate::wheel_law::{PatchMotion, Tyre, WheelLaw, WheelLawConfig};
+use crate::contact::{Contact, RimSampling};
+use crate::wheel_law::{Tyre, WheelLawConfig};
 use rover_terrain::{HeightField, OffMap};
 
-/// Which contact search the run uses.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ContactMethod {
-    /// The meridional profile, every evaluation (the paper's first method).
-    Meridional,
-    /// Track the contact centre from the previous evaluation (eq. 35).
-    Tracked,
-    /// The rim's crossings with the ground proved and found from the
-    /// terrain's bounds of height, slope and curvature, without sampling
-    /// ([`BoundedContact`]); the meridional search where the terrain gives no
-    /// curvature bound. The default: the same patches as a dense sampling,
-    /// none missed between samples, for fewer terrain queries.
-    #[default]
-    Bounded,
-}
-
-/// What the contact did on one wheel, for the CSV and the summary.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct WheelReport {
-    /// Contact point H of the patch with the largest normal force; the
-    /// wheel centre when the wheel is airborne \[m\].
-    pub point: [f64; 3],
-    /// Sum of the normal forces \[N\].
-    pub normal: f64,
-    /// Sum of the drawbar pulls \[N\].
-    pub drawbar: f64,
-    /// Sum of the lateral forces \[N\].
-    pub lateral: f64,
-    /// Torque the ground took from the motor, Σ |G_jH|·F_d [N·m].
-    pub torque: f64,
-    /// Number of patches.
-    pub patches: usize,
-    /// The whole lower half of the wheel was below ground.
-    pub deep: bool,
-}
-
-/// A wheel left the terrain map.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WheelOffMap {
-    /// Wheel index (0-based).
-    pub wheel: usize,
-    /// The failed query.
-    pub off: OffMap,
-}
+pub use rover_dynamics::wheel_ground::{
+    ContactMethod, LoadDerivative, MIN_LEVER_FRACTION, Search, WheelContact, WheelOffMap,
+    WheelReport, load_derivative, wheel_load,
+};
 
 /// Terrain, contact search and wheel law, with the per-wheel tracking state.
 #[derive(Clone, Debug)]
@@ -68,14 +23,26 @@ pub struct Ground<H> {
     pub terrain: H,
     /// The force law.
     pub law: WheelLawConfig,
-    method: ContactMethod,
-    meridional: MeridionalContact,
-    trackers: Vec<TrackedContact>,
-    /// The terrain's bounds under each wheel, for the bounded search.
-    bounds: Vec<SearchMemory>,
-    contacts: Vec<Contact>,
+    search: Search,
+    wheels: Vec<WheelContact>,
     tyres: Vec<Tyre>,
     radii: Vec<f64>,
+}
+
+/// The tyre of each wheel of `model`, without rolling resistance.
+pub fn tyres(model: &Model) -> Vec<Tyre> {
+    model
+        .wheels
+        .iter()
+        .map(|w| Tyre {
+            stiffness: w.stiffness,
+            damping: w.damping,
+            mu_x: w.mu_x,
+            mu_y: w.mu_y,
+            cornering_stiffness: w.cornering_stiffness,
+            rolling_resistance: 0.0,
+        })
+        .collect()
 }
 
 impl<H: HeightField> Ground<H> {
@@ -87,28 +54,13 @@ impl<H: HeightField> Ground<H> {
         sampling: RimSampling,
         law: WheelLawConfig,
     ) -> Self {
-        let meridional = MeridionalContact { sampling };
-        let tyres = model
-            .wheels
-            .iter()
-            .map(|w| Tyre {
-                stiffness: w.stiffness,
-                damping: w.damping,
-                mu_x: w.mu_x,
-                mu_y: w.mu_y,
-                cornering_stiffness: w.cornering_stiffness,
-                rolling_resistance: 0.0,
-            })
-            .collect();
+        let search = Search::new(method, sampling);
         Self {
             terrain,
             law,
-            method,
-            meridional,
-            trackers: vec![TrackedContact::new(meridional); model.wheels.len()],
-            bounds: vec![SearchMemory::default(); model.wheels.len()],
-            contacts: vec![Contact::default(); model.wheels.len()],
-            tyres,
+            search,
+            wheels: vec![WheelContact::new(&search); model.wheels.len()],
+            tyres: tyres(model),
             radii: model.wheels.iter().map(|w| w.radius).collect(),
         }
     }
@@ -122,37 +74,20 @@ impl<H: HeightField> Ground<H> {
         self
     }
 
-    /// Contact of wheel k in state `s`.
-    pub fn contact(&mut self, k: usize, s: &WheelState) -> Result<Contact, OffMap> {
-        let mut c = Contact::default();
-        self.contact_into(k, s, &mut c)?;
-        Ok(c)
+    /// Each wheel's tyre.
+    pub fn tyres(&self) -> &[Tyre] {
+        &self.tyres
     }
 
-    /// [`Ground::contact`] written into `out`: a contact is a few hundred
-    /// bytes, not worth returning by value on every right-hand side.
-    fn contact_into(&mut self, k: usize, s: &WheelState, out: &mut Contact) -> Result<(), OffMap> {
-        let (terrain, radius) = (&self.terrain, self.radii[k]);
-        match self.method {
-            ContactMethod::Meridional => {
-                self.meridional
-                    .find_into(terrain, s.centre, s.spin_axis, radius, out)
-            }
-            ContactMethod::Tracked => {
-                self.trackers[k].find_into(terrain, s.centre, s.spin_axis, radius, out)
-            }
-            ContactMethod::Bounded => BoundedContact {
-                fallback: self.meridional,
-            }
-            .find_with(
-                terrain,
-                s.centre,
-                s.spin_axis,
-                radius,
-                &mut self.bounds[k],
-                out,
-            ),
-        }
+    /// The contact search.
+    pub fn search(&self) -> Search {
+        self.search
+    }
+
+    /// Contact of wheel k in state `s`.
+    pub fn contact(&mut self, k: usize, s: &WheelState) -> Result<Contact, OffMap> {
+        self.wheels[k].find(&self.search, &self.terrain, s, self.radii[k])?;
+        Ok(*self.wheels[k].contact())
     }
 
     /// Find every wheel's contact (phase 1 of a right-hand side): the
@@ -164,21 +99,14 @@ impl<H: HeightField> Ground<H> {
         states: &[WheelState],
         normals: &mut [f64],
     ) -> Result<(), WheelOffMap> {
-        // Out of `self` for the loop (a move of the Vec, not of its items),
-        // so that each contact is written in place.
-        let mut contacts = std::mem::take(&mut self.contacts);
-        let found = states.iter().enumerate().try_for_each(|(k, s)| {
-            self.contact_into(k, s, &mut contacts[k])
+        for (k, s) in states.iter().enumerate() {
+            let wheel = &mut self.wheels[k];
+            wheel
+                .find(&self.search, &self.terrain, s, self.radii[k])
                 .map_err(|off| WheelOffMap { wheel: k, off })?;
-            normals[k] = contacts[k]
-                .patches()
-                .iter()
-                .map(|p| normal_force(&self.tyres[k], s, p))
-                .sum();
-            Ok(())
-        });
-        self.contacts = contacts;
-        found
+            normals[k] = wheel.normal(&self.tyres[k], s);
+        }
+        Ok(())
     }
 
     /// Loads on every wheel from the contacts of [`Ground::find_contacts`]
@@ -192,20 +120,13 @@ impl<H: HeightField> Ground<H> {
         reports: &mut [WheelReport],
     ) {
         for k in 0..states.len() {
-            let (load, report) = wheel_load(
-                &self.law,
-                &self.tyres[k],
-                &states[k],
-                &self.contacts[k],
-                torques[k],
-            );
+            let (load, report) =
+                self.wheels[k].load(&self.law, &self.tyres[k], &states[k], torques[k]);
             loads[k] = load;
             reports[k] = report;
         }
     }
-}
 
-impl<H: HeightField> Ground<H> {
     /// Each wheel's [`LoadDerivative`] at the contacts of the last
     /// [`Ground::find_contacts`] and the motor torques `torques`.
     pub fn load_derivatives(
@@ -215,51 +136,15 @@ impl<H: HeightField> Ground<H> {
         out: &mut [LoadDerivative],
     ) {
         for (k, d) in out.iter_mut().enumerate() {
-            *d = load_derivative(
+            *d = self.wheels[k].load_derivative(
                 &self.law,
                 &self.tyres[k],
                 &self.terrain,
                 &states[k],
-                &self.contacts[k],
                 torques[k],
             );
         }
     }
-}
-
-/// How patch `p`'s lever |G_jH| changes as the wheel centre moves, the rim
-/// and the ground held: `∂|G_jH|/∂G_j`. The chord's ends A and B slide
-/// along the ground; by the implicit function theorem on the rim angle at
-/// which the rim meets the ground (`ν` the ground's upward normal
-/// `(−∂h/∂X, −∂h/∂Y, 1)` there, `u′` the rim's direction of travel),
-/// ```text
-/// ∂|G_jH|/∂G_j = ½·Σ_{A, B} (n·u′)/(ν·u′)·ν
-/// ```
-/// which is `n` on a plane under an upright wheel and grows as `1/(1 − κR)`
-/// in a hollow of curvature κ (a large wheel in a dip presses harder than
-/// the plane through its contact point says). An end the ground cannot be
-/// queried at, or where the rim runs along the ground, counts as on a plane
-/// through H.
-fn lever_gradient<H: HeightField>(terrain: &H, s: &WheelState, p: &Patch) -> [f64; 3] {
-    let radius = p.lever + p.deflection;
-    let half = (radius * radius - p.lever * p.lever).max(0.0).sqrt();
-    let ends = [-1.0, 1.0].map(|side| {
-        let end = [0, 1, 2].map(|k| p.point[k] + side * half * p.tangent[k]);
-        let radial = [0, 1, 2].map(|k| end[k] - s.centre[k]);
-        // The rim's direction of travel at the end, in the wheel's plane.
-        let travel = cross(s.spin_axis, radial);
-        let ground = match terrain.height_gradient(end[0], end[1]) {
-            Ok((_, [gx, gy])) => [-gx, -gy, 1.0],
-            Err(_) => p.normal,
-        };
-        let across = dot(ground, travel);
-        if across.abs() < 1e-9 * radius {
-            return p.normal;
-        }
-        let ratio = dot(p.normal, travel) / across;
-        [0, 1, 2].map(|k| ratio * ground[k])
-    });
-    [0, 1, 2].map(|k| 0.5 * (ends[0][k] + ends[1][k]))
 }
 
 /// For each wheel of `model`, the height of G at which it just touches the
@@ -289,216 +174,4 @@ pub fn touchdown_heights<H: HeightField + ?Sized>(
             Ok(g + w.radius - p[2])
         })
         .collect()
-}
-
-/// Smallest drive lever, as a fraction of the wheel radius. Eq. 38's
-/// `F_d = τ/|G_jH|` is singular for a wheel buried to its centre (a chord
-/// through G_j, `|G_jH| = 0`): any drive torque saturates the pull at
-/// `±μx·F_n`, which flips sign with the torque (a 58 N jump on ExoMars when
-/// its speed loop was at its setpoint), and no motor reaction balances it.
-/// A deflection beyond half the radius is far outside the tyre law anyway
-/// (the run summary lists such wheels as deep penetrations); the floor keeps
-/// the pull continuous there and the paper's law untouched elsewhere.
-pub const MIN_LEVER_FRACTION: f64 = 0.5;
-
-/// The motion of patch `p` of a wheel whose centre is displaced by `shift`
-/// from where the patch was found and moves at `velocity`, with the patch's
-/// frame held: `|G_jH| = |G_jH|₀ + g·shift` (`g` = `lever_gradient`, see
-/// [`lever_gradient`]), `Δ = Δ₀ − g·shift`, `Δ̇ = −V·n`, `v_t = V·t`,
-/// `v_c = V·c`. A run evaluates it with `shift = 0` (exactly the patch
-/// found); the Jacobian differentiates it in `shift` and `velocity`.
-fn motion<S: Scalar>(
-    p: &Patch,
-    lever_gradient: [f64; 3],
-    shift: [S; 3],
-    velocity: [S; 3],
-    torque: S,
-) -> PatchMotion<S> {
-    let normal = v3::<S>(p.normal);
-    let along = dot(v3::<S>(lever_gradient), shift);
-    let lever = S::cst(p.lever) + along;
-    // R = |G_jH| + Δ for every patch.
-    let radius = p.lever + p.deflection;
-    PatchMotion {
-        deflection: S::cst(p.deflection) - along,
-        deflection_rate: -dot(velocity, normal),
-        v_t: dot(velocity, v3(p.tangent)),
-        v_c: dot(velocity, v3(p.lateral)),
-        lever: lever.max(S::cst(MIN_LEVER_FRACTION * radius)),
-        torque,
-    }
-}
-
-fn normal_force(tyre: &Tyre, s: &WheelState, p: &Patch) -> f64 {
-    crate::wheel_law::normal_force_of(tyre, &motion(p, p.normal, [0.0; 3], s.velocity, 0.0))
-}
-
-/// What one patch does to its wheel, reduced to the centre G_j.
-struct PatchLoad<S> {
-    /// The patch's resultant force F_n·n + (F_d + F_rr)·t + F_c*·c \[N\].
-    force: [S; 3],
-    /// Its moment about G_j, less the component along the spin axis [N·m].
-    moment: [S; 3],
-    /// The motor torque that drives the pull, |G_jH|·F_d [N·m].
-    motor: S,
-    /// The law's forces.
-    forces: PatchForces<S>,
-    /// The ground's longitudinal force F_d + F_rr \[N\].
-    along: S,
-}
-
-/// [`PatchLoad`] of patch `p` under the torque `share`, for a centre
-/// displaced by `shift` and moving at `velocity` (see [`motion`]); the arm
-/// from G_j to H is `(H − G_j)₀ − (g·shift)·n`, the measured arm when
-/// `shift = 0`.
-#[allow(clippy::too_many_arguments)]
-fn patch_load<L: WheelLaw, S: Scalar + PartialOrd>(
-    law: &L,
-    tyre: &Tyre,
-    s: &WheelState,
-    p: &Patch,
-    lever_gradient: [f64; 3],
-    shift: [S; 3],
-    velocity: [S; 3],
-    share: S,
-) -> PatchLoad<S> {
-    let m = motion(p, lever_gradient, shift, velocity, share);
-    let forces = law.forces(tyre, &m);
-    // The ground's longitudinal force: the pull plus the rolling resistance
-    // (exactly 0 without it).
-    let along = forces.drawbar + crate::wheel_law::rolling_resistance(tyre, &m, forces.normal);
-    let (n, t, c) = (v3::<S>(p.normal), v3::<S>(p.tangent), v3::<S>(p.lateral));
-    let force = [0, 1, 2].map(|k| forces.normal * n[k] + along * t[k] + forces.lateral * c[k]);
-    let moved = dot(v3::<S>(lever_gradient), shift);
-    let arm = [0, 1, 2].map(|k| S::cst(p.point[k] - s.centre[k]) - moved * n[k]);
-    let moment = cross(arm, force);
-    let axis = v3::<S>(s.spin_axis);
-    let axial = dot(moment, axis);
-    PatchLoad {
-        force,
-        moment: [0, 1, 2].map(|k| moment[k] - axial * axis[k]),
-        motor: m.lever * forces.drawbar,
-        forces,
-        along,
-    }
-}
-
-/// Reduce the forces on a wheel's patches to its centre (MODEL.md §7):
-/// ```text
-/// F = Σ (F_n·n + F_d·t + F_c*·c)                         at G_j
-/// μ = Σ (H − G_j) × F_patch,  less its component along a_w   on the carrier
-/// τ_stator = −τ_eff·a_w,  τ_eff = Σ |G_jH|·F_d              on the stator
-/// ```
-/// The drive torque is shared among patches in proportion to their normal forces.
-pub fn wheel_load<L: WheelLaw>(
-    law: &L,
-    tyre: &Tyre,
-    s: &WheelState,
-    contact: &Contact,
-    torque: f64,
-) -> (WheelLoad, WheelReport) {
-    let mut load = WheelLoad::default();
-    let mut report = WheelReport {
-        point: s.centre,
-        patches: contact.count,
-        deep: contact.deep,
-        ..Default::default()
-    };
-    let patches = contact.patches();
-    let (normals, total) = patch_normals(tyre, s, patches);
-    let mut strongest = 0.0;
-    for (i, p) in patches.iter().enumerate() {
-        let share = torque_share(torque, &normals, total, i);
-        let pl = patch_load(law, tyre, s, p, p.normal, [0.0; 3], s.velocity, share);
-        for k in 0..3 {
-            load.force[k] += pl.force[k];
-            load.moment[k] += pl.moment[k];
-            load.stator_torque[k] -= pl.motor * s.spin_axis[k];
-        }
-        report.normal += pl.forces.normal;
-        report.drawbar += pl.along;
-        report.lateral += pl.forces.lateral;
-        report.torque += pl.motor;
-        if pl.forces.normal > strongest || i == 0 {
-            strongest = pl.forces.normal;
-            report.point = p.point;
-        }
-    }
-    (load, report)
-}
-
-/// Each patch's normal force (0 past the last) and their sum: what the
-/// drive torque is shared by.
-fn patch_normals(
-    tyre: &Tyre,
-    s: &WheelState,
-    patches: &[Patch],
-) -> ([f64; crate::contact::MAX_PATCHES], f64) {
-    let normals: [f64; crate::contact::MAX_PATCHES] =
-        core::array::from_fn(|i| patches.get(i).map_or(0.0, |p| normal_force(tyre, s, p)));
-    (normals, normals.iter().sum())
-}
-
-/// Patch i's part of the drive torque, in proportion to its normal force.
-fn torque_share(torque: f64, normals: &[f64], total: f64, i: usize) -> f64 {
-    if total > 0.0 {
-        torque * normals[i] / total
-    } else {
-        0.0
-    }
-}
-
-/// How a wheel's load changes with its centre, velocity and drive torque:
-/// `∂L/∂(G_j, V_j, τ)`, rows the load's force, moment and stator torque
-/// (3 each, as in [`WheelLoad`]), columns the centre's displacement (3), its
-/// velocity (3) and the torque (1).
-pub type LoadDerivative = [[f64; 7]; 9];
-
-/// [`LoadDerivative`] of one wheel at the patches of its last contact, by
-/// dual numbers through the very [`patch_load`] the run evaluates, each
-/// patch's lever moving with the centre as [`lever_gradient`] says. The
-/// patches' frames (n, t, c) are held: what this keeps is the stiff part of
-/// the load — the tyre's spring and damper (k_w, c_w), the cornering law's
-/// lateral damping and the rolling resistance along the velocity, the pull's
-/// dependence on the torque and lever — and what it leaves out turns with
-/// the geometry (terms of order F/R, against k_w). The torque split between
-/// patches is held too.
-pub fn load_derivative<L: WheelLaw, H: HeightField>(
-    law: &L,
-    tyre: &Tyre,
-    terrain: &H,
-    s: &WheelState,
-    contact: &Contact,
-    torque: f64,
-) -> LoadDerivative {
-    let mut d = [[0.0; 7]; 9];
-    let patches = contact.patches();
-    let (normals, total) = patch_normals(tyre, s, patches);
-    for (i, p) in patches.iter().enumerate() {
-        let share = torque_share(torque, &normals, total, i);
-        let share_rate = if total > 0.0 { normals[i] / total } else { 0.0 };
-        let gradient = lever_gradient(terrain, s, p);
-        for col in 0..7 {
-            let seed = |j: usize| if col == j { 1.0 } else { 0.0 };
-            let shift = [0, 1, 2].map(|k| Dual {
-                re: 0.0,
-                eps: seed(k),
-            });
-            let velocity = [0, 1, 2].map(|k| Dual {
-                re: s.velocity[k],
-                eps: seed(3 + k),
-            });
-            let torque = Dual {
-                re: share,
-                eps: seed(6) * share_rate,
-            };
-            let pl = patch_load(law, tyre, s, p, gradient, shift, velocity, torque);
-            for k in 0..3 {
-                d[k][col] += pl.force[k].eps;
-                d[3 + k][col] += pl.moment[k].eps;
-                d[6 + k][col] -= pl.motor.eps * s.spin_axis[k];
-            }
-        }
-    }
-    d
 }

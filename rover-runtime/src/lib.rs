@@ -11,7 +11,6 @@
 
 #![warn(missing_docs)]
 
-pub mod contact;
 pub mod control;
 pub mod described;
 pub mod generic_plant;
@@ -28,3 +27,6 @@ pub use rover_terrain as terrain;
 
 pub use described::RoverDescription;
 pub use generic_plant::GenericPlant;
+/// The contact search (no_std, in `rover-dynamics`), re-exported where it
+/// has always been found.
+pub use rover_dynamics::contact;

@@ -3040,6 +3040,91 @@ impl Swing4Simplified {
             )
             .transpose()
     }
+    /// Each wheel's tyre, in the description's order: stiffness k_w,
+    /// damping c_w, friction limits, cornering stiffness; no rolling
+    /// resistance (a copy with `rolling_resistance` set adds it).
+    pub const TYRES: [::rover_dynamics::wheel_law::Tyre; 4] = [
+        ::rover_dynamics::wheel_law::Tyre {
+            stiffness: 4000.0,
+            damping: 300.0,
+            mu_x: 0.5,
+            mu_y: 0.5,
+            cornering_stiffness: 50.0,
+            rolling_resistance: 0.0,
+        },
+        ::rover_dynamics::wheel_law::Tyre {
+            stiffness: 4000.0,
+            damping: 300.0,
+            mu_x: 0.5,
+            mu_y: 0.5,
+            cornering_stiffness: 50.0,
+            rolling_resistance: 0.0,
+        },
+        ::rover_dynamics::wheel_law::Tyre {
+            stiffness: 4000.0,
+            damping: 300.0,
+            mu_x: 0.5,
+            mu_y: 0.5,
+            cornering_stiffness: 50.0,
+            rolling_resistance: 0.0,
+        },
+        ::rover_dynamics::wheel_law::Tyre {
+            stiffness: 4000.0,
+            damping: 300.0,
+            mu_x: 0.5,
+            mu_y: 0.5,
+            cornering_stiffness: 50.0,
+            rolling_resistance: 0.0,
+        },
+    ];
+    /// Each wheel's radius R_w [m], in the description's order.
+    pub const RADII: [f64; 4] = [0.09, 0.09, 0.09, 0.09];
+    /// The ground under this rover's wheels, searched by `search`, for
+    /// [`Self::derivatives_on_ground`]; it keeps what each wheel's search
+    /// proved between calls (a few kilobytes per wheel, no heap).
+    pub fn ground(
+        search: ::rover_dynamics::wheel_ground::Search,
+    ) -> ::rover_dynamics::wheel_ground::FixedGround<4> {
+        ::rover_dynamics::wheel_ground::FixedGround::new(search)
+    }
+    /// The whole right-hand side on the ground `terrain`, as the runtime
+    /// computes it with the generic plant: the wheels' kinematics for the
+    /// steering angles `steer`, each wheel's contact, the motor torques
+    /// `torques(normals)` [N·m] chosen from the wheels' normal forces \[N\]
+    /// (a controller that shares torque by load reads them; an open-loop
+    /// rig ignores them), the wheel law `law` on every patch with the
+    /// tyres `tyres` (`&Self::TYRES`, a constant the compiler folds in),
+    /// their reduction to loads, and `ẋ`, `ẇ`. The contact search and the
+    /// law are `rover_dynamics::wheel_ground`'s, the code the generic
+    /// plant's runs use; what each wheel did is in `ground.reports()`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub fn derivatives_on_ground<H, L>(
+        &self,
+        ground: &mut ::rover_dynamics::wheel_ground::FixedGround<4>,
+        terrain: &H,
+        law: &L,
+        tyres: &[::rover_dynamics::wheel_law::Tyre; 4],
+        x: &[f64; 10],
+        w: &[f64; 10],
+        steer: &[f64; 4],
+        torques: impl FnOnce(&[f64; 4]) -> [f64; 4],
+        xdot: &mut [f64; 10],
+        wdot: &mut [f64; 10],
+    ) -> ::core::result::Result<(), ::rover_dynamics::wheel_ground::GroundError>
+    where
+        H: ::rover_dynamics::HeightField + ?Sized,
+        L: ::rover_dynamics::wheel_law::WheelLaw,
+    {
+        let states = self.wheels_array(x, w, steer);
+        let normals = ground
+            .find_contacts(terrain, &states, tyres, &Self::RADII)
+            .map_err(::rover_dynamics::wheel_ground::GroundError::OffMap)?;
+        let torques = torques(normals);
+        let loads = *ground.loads(law, &states, tyres, &torques);
+        self.derivatives_array(x, w, &loads, xdot, wdot)
+            .map_err(::rover_dynamics::wheel_ground::GroundError::Plant)
+    }
 }
 /// Slices of the wrong length are not a panic: the outputs are filled with
 /// NaN (the runtime's finiteness check then stops the run). Missing

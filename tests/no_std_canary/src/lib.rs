@@ -11,7 +11,10 @@ pub mod mer;
 pub mod swing4;
 
 use rover_dynamics::nalgebra::SVector;
+use rover_dynamics::height_field::{Bounds, OffMap};
 use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
+use rover_dynamics::wheel_ground::{FixedGround, GroundError, Search};
+use rover_dynamics::wheel_law::Lateral;
 
 /// Vertical acceleration of swing4 in free fall at roll `phi`, through the
 /// `Plant` trait and through `FixedPlant` on nalgebra vectors (C ABI, so
@@ -111,6 +114,83 @@ every_entry!(rover_canary_swing4, swing4::Swing4, 10, 4);
 every_entry!(rover_canary_exomars, exomars::Exomars, 9, 6);
 every_entry!(rover_canary_mer, mer::Mer, 9, 6);
 every_entry!(rover_canary_lrv, lrv::Lrv, 10, 4);
+
+/// A wavy ground whose constants the caller gives (so that nothing is
+/// folded), with the bounds the bounded search needs:
+/// `Z = a·sin(k·X)·sin(k·Y)`.
+pub struct Waves {
+    a: f64,
+    k: f64,
+}
+
+impl rover_dynamics::HeightField for Waves {
+    fn height(&self, x: f64, y: f64) -> Result<f64, OffMap> {
+        Ok(self.a * libm::sin(self.k * x) * libm::sin(self.k * y))
+    }
+
+    fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
+        let (sx, cx) = libm::sincos(self.k * x);
+        let (sy, cy) = libm::sincos(self.k * y);
+        let ak = self.a * self.k;
+        Ok((self.a * sx * sy, [ak * cx * sy, ak * sx * cy]))
+    }
+
+    fn max_height_in(&self, _: &Bounds) -> Option<f64> {
+        Some(self.a.abs())
+    }
+
+    fn max_slope_in(&self, _: &Bounds) -> Option<f64> {
+        Some(2.0 * (self.a * self.k).abs())
+    }
+
+    fn max_curvature_in(&self, _: &Bounds) -> Option<f64> {
+        Some(2.0 * (self.a * self.k * self.k).abs())
+    }
+}
+
+/// swing4's whole right-hand side on the ground, its own force path
+/// (`derivatives_on_ground`: the contact search, the wheel law, the
+/// plant), on a ground, a state and torques the compiler cannot see; held
+/// to the same no-panic check as the plants' entries.
+#[unsafe(no_mangle)]
+pub extern "C" fn rover_canary_ground(
+    ground: &mut FixedGround<4>,
+    terrain: &Waves,
+    x: &[f64; 10],
+    w: &[f64; 10],
+    torques: &[f64; 4],
+    out: &mut [f64; 20],
+) -> i32 {
+    let plant = swing4::Swing4::new();
+    let law = Lateral::Exponential { v_eps: 1e-3 };
+    let (mut xd, mut wd) = ([0.0; 10], [0.0; 10]);
+    let status = plant.derivatives_on_ground(
+        ground,
+        terrain,
+        &law,
+        &swing4::Swing4::TYRES,
+        x,
+        w,
+        &[0.0; 4],
+        |_| *torques,
+        &mut xd,
+        &mut wd,
+    );
+    out[..10].copy_from_slice(&xd);
+    out[10..].copy_from_slice(&wd);
+    match status {
+        Ok(()) => 0,
+        Err(GroundError::OffMap(_)) => 1,
+        Err(GroundError::Plant(_)) => 2,
+    }
+}
+
+/// A ground for [`rover_canary_ground`], searched by the default
+/// (bounded) search.
+#[unsafe(no_mangle)]
+pub extern "C" fn rover_canary_new_ground(out: &mut FixedGround<4>) {
+    *out = swing4::Swing4::ground(Search::default());
+}
 
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {

@@ -1,6 +1,7 @@
 //! Contact geometry between a wheel and the terrain (MODEL.md §6, paper §4.1).
 
 mod bounded;
+mod math;
 mod meridional;
 mod patch;
 mod tracked;

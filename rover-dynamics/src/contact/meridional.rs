@@ -30,8 +30,9 @@
 //! crossing tolerance, for a tenth of its cost (a test holds the two
 //! against each other).
 
-use rover_terrain::{Bounds, HeightField, OffMap};
+use crate::height_field::{Bounds, HeightField, OffMap};
 
+use super::math;
 use super::patch::{Below, Contact, Patch, RimAngle, RimFrame, cross};
 
 /// How the rim is sampled and how precisely crossings are located.
@@ -67,7 +68,7 @@ pub(crate) fn clearance<H: HeightField + ?Sized>(
     frame: &RimFrame,
     beta: f64,
 ) -> Result<f64, OffMap> {
-    let (sin, cos) = beta.sin_cos();
+    let (sin, cos) = math::sin_cos(beta);
     clearance_sc(terrain, frame, sin, cos)
 }
 
@@ -89,18 +90,30 @@ const DEFAULT_SAMPLES: usize = 181;
 
 /// `(sin β_i, cos β_i)` of the default sampling's angles, computed by the
 /// same expression as an untabulated sample, so the results do not change.
-fn default_table() -> &'static [(f64, f64); DEFAULT_SAMPLES] {
+/// Kept once per process with `std`; without it (a firmware build, no
+/// `OnceLock`) every sample computes its own.
+#[cfg(feature = "std")]
+fn default_table() -> Option<&'static [(f64, f64); DEFAULT_SAMPLES]> {
     static TABLE: std::sync::OnceLock<[(f64, f64); DEFAULT_SAMPLES]> = std::sync::OnceLock::new();
-    TABLE.get_or_init(|| {
+    Some(TABLE.get_or_init(|| {
         let step = core::f64::consts::PI / (DEFAULT_SAMPLES - 1) as f64;
-        core::array::from_fn(|i| (-core::f64::consts::FRAC_PI_2 + i as f64 * step).sin_cos())
-    })
+        core::array::from_fn(|i| math::sin_cos(-core::f64::consts::FRAC_PI_2 + i as f64 * step))
+    }))
+}
+
+#[cfg(not(feature = "std"))]
+fn default_table() -> Option<&'static [(f64, f64); DEFAULT_SAMPLES]> {
+    None
 }
 
 /// Sample i's angle of `n` samples `step` apart, its sine and cosine from
 /// the table of the default sampling when there is one.
 fn sample_angle(n: usize, step: f64, i: usize) -> RimAngle {
-    tabulated_angle((n == DEFAULT_SAMPLES).then(default_table), step, i)
+    tabulated_angle(
+        (n == DEFAULT_SAMPLES).then(default_table).flatten(),
+        step,
+        i,
+    )
 }
 
 /// [`sample_angle`] with the table looked up once by the caller.
@@ -129,7 +142,7 @@ fn tabulated_sin_cos(
 ) -> (f64, f64) {
     match table.and_then(|t| t.get(i)) {
         Some(&sc) => sc,
-        None => sample_beta(step, i).sin_cos(),
+        None => math::sin_cos(sample_beta(step, i)),
     }
 }
 
@@ -165,13 +178,18 @@ enum PlaneCut {
 /// the angle sums, without evaluating any. The sampled search finds the same run (a plane has no dip or ridge
 /// between samples to miss) with its ends to the crossing tolerance
 /// (1e-9 m of height); here they are exact to rounding.
-fn plane_cut(plane: &rover_terrain::Plane, frame: &RimFrame, n: usize, step: f64) -> PlaneCut {
+fn plane_cut(
+    plane: &crate::height_field::Plane,
+    frame: &RimFrame,
+    n: usize,
+    step: f64,
+) -> PlaneCut {
     let (g, d, f, r) = (frame.centre, frame.down, frame.forward, frame.radius);
     let [gx, gy] = plane.gradient;
     let c0 = g[2] - plane.height_at(g[0], g[1]);
     let a = d[2] - gx * d[0] - gy * d[1];
     let b = f[2] - gx * f[0] - gy * f[1];
-    let rho = (a * a + b * b).sqrt();
+    let rho = math::sqrt(a * a + b * b);
     if !(c0.is_finite() && rho.is_finite() && rho > 1e-9 && r > 0.0) {
         return PlaneCut::Sample;
     }
@@ -201,13 +219,13 @@ fn plane_cut(plane: &rover_terrain::Plane, frame: &RimFrame, n: usize, step: f64
             lateral: cross(normal, tangent),
             deflection: r - lever,
             lever,
-            angle: sin_m.atan2(cos_m),
+            angle: math::atan2(sin_m, cos_m),
         });
     }
     let half = core::f64::consts::FRAC_PI_2;
-    let lowest = sin_m.atan2(cos_m);
-    let width = ratio.acos();
-    let (cos_w, sin_w) = (ratio, ((1.0 - ratio) * (1.0 + ratio)).sqrt());
+    let lowest = math::atan2(sin_m, cos_m);
+    let width = math::acos(ratio);
+    let (cos_w, sin_w) = (ratio, math::sqrt((1.0 - ratio) * (1.0 + ratio)));
     let (lo, hi) = (lowest - width, lowest + width);
     let start = if lo <= -half {
         sample_angle(n, step, 0)
@@ -234,7 +252,7 @@ fn plane_cut(plane: &rover_terrain::Plane, frame: &RimFrame, n: usize, step: f64
 /// cut settles the contact; false for the cases [`plane_cut`] leaves to a
 /// search.
 pub(crate) fn cut_by_plane(
-    plane: &rover_terrain::Plane,
+    plane: &crate::height_field::Plane,
     frame: &RimFrame,
     n: usize,
     step: f64,
@@ -411,7 +429,7 @@ impl MeridionalContact {
         let frame = *frame;
         let n = self.sampling.samples.max(3);
         let beta = |i: usize| sample_beta(step, i);
-        let table = (n == DEFAULT_SAMPLES).then(default_table);
+        let table = (n == DEFAULT_SAMPLES).then(default_table).flatten();
         let angle = |i: usize| tabulated_angle(table, step, i);
         let sample = |i: usize| -> Result<f64, OffMap> {
             let a = angle(i);
@@ -668,7 +686,7 @@ impl Runs {
         if self.count < 2 {
             return Ok(());
         }
-        for run in &mut self.runs[..self.count] {
+        for run in &mut self.runs[..self.count.min(MAX_RUNS)] {
             if run.depth < SPLIT_BAND {
                 let (_, lowest) =
                     extremum(terrain, frame, run.a.beta, run.b.beta, Extremum::Lowest)?;
@@ -687,26 +705,34 @@ impl Runs {
         frame: &RimFrame,
         contact: &mut Contact,
     ) -> Result<(), OffMap> {
-        let n = self.count;
+        let runs = &mut self.runs[..self.count.min(MAX_RUNS)];
         // Walk from the last run back, moving the ends in place: once the
         // splits to its right are blended in, run i + 1 is final.
         let mut merged = [false; MAX_RUNS];
-        for i in (0..n.saturating_sub(1)).rev() {
-            let (left, right) = (self.runs[i], self.runs[i + 1]);
+        for i in (0..runs.len().saturating_sub(1)).rev() {
+            let Some(&[left, right]) = runs.get(i..i + 2) else {
+                continue;
+            };
             let scale = SPLIT_BAND.min(left.depth).min(right.depth);
             let w = split_weight(terrain, frame, left.b.beta, right.a.beta, scale)?;
             if w <= 0.0 {
                 // One chord over both.
-                self.runs[i].b = right.b;
-                merged[i + 1] = true;
+                if let Some(l) = runs.get_mut(i) {
+                    l.b = right.b;
+                }
+                if let Some(m) = merged.get_mut(i + 1) {
+                    *m = true;
+                }
             } else if w < 1.0 {
                 let end = right.b;
                 let along = |to: RimAngle| RimAngle::new(end.beta + w * (to.beta - end.beta));
-                self.runs[i + 1].a = along(right.a);
-                self.runs[i].b = along(left.b);
+                if let Some([l, r]) = runs.get_mut(i..i + 2) {
+                    r.a = along(right.a);
+                    l.b = along(left.b);
+                }
             }
         }
-        for (run, merged) in self.runs[..n].iter().zip(merged) {
+        for (run, merged) in runs.iter().zip(merged) {
             if !merged {
                 contact.push(frame.patch(run.a, run.b));
             }
@@ -777,13 +803,16 @@ fn reach<H: HeightField + ?Sized>(
         return all;
     }
     let last = (n - 1) as f64;
-    let from = ((lowest - width + half) / step).floor() - 3.0;
-    let to = ((lowest + width + half) / step).ceil() + 3.0;
+    let from = math::floor((lowest - width + half) / step) - 3.0;
+    let to = math::ceil((lowest + width + half) / step) + 3.0;
     if to < 0.0 || from > last {
         return Reach::Nothing;
     }
     // Clamped into [0, n − 1]: the casts are exact.
-    Reach::Samples(from.clamp(0.0, last) as usize, to.clamp(0.0, last) as usize)
+    Reach::Samples(
+        from.max(0.0).min(last) as usize,
+        to.max(0.0).min(last) as usize,
+    )
 }
 
 /// Which extremum [`extremum`] looks for.

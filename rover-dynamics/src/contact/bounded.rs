@@ -39,8 +39,9 @@
 //! closed form. A terrain that gives no curvature bound (a step, a bilinear
 //! grid, a square reaching off a clamped map) takes the meridional search.
 
-use rover_terrain::{HeightField, OffMap, Plane};
+use crate::height_field::{HeightField, OffMap, Plane};
 
+use super::math;
 use super::meridional::{MeridionalContact, Runs, clearance_slope, crossing_from, cut_by_plane};
 use super::patch::{Below, Contact, RimAngle, RimFrame, norm};
 
@@ -142,7 +143,7 @@ impl SearchMemory {
         }
         let slack = 1e-9 * (quantum + x.abs() + y.abs());
         let at = |k: i64| k as f64 * quantum;
-        let square = rover_terrain::Bounds {
+        let square = crate::height_field::Bounds {
             x_min: at(i - 2) - slack,
             x_max: at(i + 3) + slack,
             y_min: at(j - 2) - slack,
@@ -344,7 +345,7 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
         }
         scan.restart(f, c.cover - dh);
         let mut last: Option<Node> = None;
-        for leaf in &c.leaves[..c.count] {
+        for leaf in &c.leaves[..c.count.min(MAX_LEAVES)] {
             if leaf.below != scan.start.is_some() {
                 return Ok(false);
             }
@@ -511,11 +512,11 @@ fn enclosure(a: &Node, b: &Node, length: f64, k: f64) -> (f64, f64) {
 /// `min(h'_a + k·u, h'_b + k·(l − u))`.
 fn monotone(a: &Node, b: &Node, l: f64, k: f64) -> Option<f64> {
     let lowest = {
-        let u = ((a.slope - b.slope + k * l) / (2.0 * k)).clamp(0.0, l);
+        let u = ((a.slope - b.slope + k * l) / (2.0 * k)).max(0.0).min(l);
         (a.slope - k * u).max(b.slope - k * (l - u))
     };
     let highest = {
-        let u = ((b.slope - a.slope + k * l) / (2.0 * k)).clamp(0.0, l);
+        let u = ((b.slope - a.slope + k * l) / (2.0 * k)).max(0.0).min(l);
         (a.slope + k * u).min(b.slope + k * (l - u))
     };
     if lowest > 0.0 {
@@ -690,7 +691,7 @@ impl BoundedContact {
             return self.fallback.find_into(terrain, centre, axis, radius, out);
         };
         // sqrt(1 + G²), not hypot: G is a slope, far from overflowing.
-        let secant = (1.0 + slope * slope).sqrt();
+        let secant = math::sqrt(1.0 + slope * slope);
         let k = (radius * secant + curvature * radius * radius) * (1.0 + 1e-9);
         // Rounding of a clearance: of the rim point and of the interpolant.
         let rounding = 1e-12 * (1.0 + centre[2].abs() + radius + top.abs());

@@ -9,8 +9,10 @@
 //! and the search itself on a plane (flat ground, a slope), where it cuts
 //! the rim in closed form.
 
-use rover_terrain::{HeightField, OffMap};
+use crate::height_field::{HeightField, OffMap};
 
+#[cfg(test)]
+use super::math;
 use super::meridional::{MeridionalContact, clearance, clearance_slope, crossing};
 use super::patch::{Contact, RimAngle, RimFrame};
 
@@ -75,14 +77,14 @@ impl TrackedContact {
                 .find_into(terrain, centre, axis, radius, out)?;
             // Keep the deepest patch only: tracking follows one patch.
             if out.count > 1 {
-                let deepest = (0..out.count)
-                    .max_by(|&a, &b| {
-                        out.patches[a]
-                            .deflection
-                            .total_cmp(&out.patches[b].deflection)
-                    })
-                    .unwrap_or(0);
-                out.patches[0] = out.patches[deepest];
+                let deepest = out
+                    .patches()
+                    .iter()
+                    .max_by(|a, b| a.deflection.total_cmp(&b.deflection))
+                    .copied();
+                if let Some(p) = deepest {
+                    out.patches[0] = p;
+                }
                 out.count = 1;
             }
         }
@@ -124,7 +126,9 @@ impl TrackedContact {
         let mut edge = |dir: f64| -> Result<RimAngle, OffMap> {
             let (mut inner, mut h_in) = (b, h_min);
             loop {
-                let outer = (inner + dir * MARCH).clamp(-half, half);
+                // (Not `clamp`: in the closure its bounds are not constants, and its
+                // check of them would be a path to a panic.)
+                let outer = (inner + dir * MARCH).max(-half).min(half);
                 let h_out = clearance(terrain, frame, outer)?;
                 if h_out >= 0.0 {
                     return crossing(terrain, frame, inner, h_in, outer, h_out, tol);
@@ -151,16 +155,35 @@ impl TrackedContact {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rover_terrain::Sinusoid;
+
+    /// `Z = a·sin(2π·X/λx)·cos(2π·Y/λy)`, a wavy field for the test.
+    struct Waves;
+
+    impl HeightField for Waves {
+        fn height(&self, x: f64, y: f64) -> Result<f64, OffMap> {
+            Ok(self.height_gradient(x, y)?.0)
+        }
+
+        fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
+            let (a, kx, ky) = (
+                0.03,
+                core::f64::consts::TAU / 0.45,
+                core::f64::consts::TAU / 0.7,
+            );
+            let (sx, cx) = math::sin_cos(kx * x);
+            let (sy, cy) = math::sin_cos(ky * y);
+            Ok((a * sx * cy, [a * kx * cx * cy, -a * ky * sx * sy]))
+        }
+    }
 
     #[test]
     fn the_clearance_slope_is_the_derivative_of_the_clearance() {
         // A wavy field, the wheel tilted and its axis skewed, so that every
         // term of the slope counts.
-        let terrain = Sinusoid::new(0.03, 0.45, 35.0, 20.0).unwrap();
+        let terrain = Waves;
         let axis = {
             let a: [f64; 3] = [0.2, 0.95, 0.15];
-            let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            let n = math::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
             a.map(|v| v / n)
         };
         let frame = RimFrame::new([0.31, -0.12, 0.08], axis, 0.1).unwrap();

@@ -1,6 +1,7 @@
 //! What the contact search finds for one wheel.
 
-pub(crate) use rover_dynamics::linalg::{cross, dot, norm};
+use super::math;
+pub(crate) use crate::linalg::{cross, dot, norm};
 
 /// Most contact patches one wheel can have (a wheel straddling a ridge or
 /// the two edges of a ditch); fixed so the search never allocates.
@@ -41,7 +42,7 @@ pub struct Contact {
 impl Contact {
     /// The patches found.
     pub fn patches(&self) -> &[Patch] {
-        &self.patches[..self.count]
+        &self.patches[..self.count.min(MAX_PATCHES)]
     }
 
     /// Add a patch if room is left; returns false when the wheel already has
@@ -68,7 +69,7 @@ pub(crate) struct RimAngle {
 
 impl RimAngle {
     pub fn new(beta: f64) -> Self {
-        let (sin, cos) = beta.sin_cos();
+        let (sin, cos) = math::sin_cos(beta);
         Self { beta, sin, cos }
     }
 }
@@ -103,7 +104,7 @@ impl RimFrame {
             axis[2] * axis[1],
             axis[2] * axis[2] - 1.0,
         ];
-        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let len = math::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if len < 1e-9 {
             return None;
         }
@@ -118,9 +119,9 @@ impl RimFrame {
     }
 
     /// The square of side 2R around the centre, which holds the whole rim.
-    pub fn area(&self) -> rover_terrain::Bounds {
+    pub fn area(&self) -> crate::height_field::Bounds {
         let ([cx, cy, _], r) = (self.centre, self.radius);
-        rover_terrain::Bounds {
+        crate::height_field::Bounds {
             x_min: cx - r,
             x_max: cx + r,
             y_min: cy - r,
@@ -134,7 +135,7 @@ impl RimFrame {
     pub(crate) fn below(&self, z: f64) -> Below {
         let (cz, r) = (self.centre[2], self.radius);
         let (dz, fz) = (self.down[2], self.forward[2]);
-        let a = dz.hypot(fz);
+        let a = math::hypot(dz, fz);
         if !(a > 1e-6 && z.is_finite() && cz.is_finite() && r > 0.0) {
             return Below::Unknown;
         }
@@ -143,14 +144,14 @@ impl RimFrame {
             return Below::Nowhere;
         }
         Below::Around {
-            lowest: (-fz).atan2(-dz),
-            width: c.clamp(-1.0, 1.0).acos(),
+            lowest: math::atan2(-fz, -dz),
+            width: math::acos(c.clamp(-1.0, 1.0)),
         }
     }
 
     /// Rim point P(β) = G + R·(cos β·d + sin β·f).
     pub fn point(&self, beta: f64) -> [f64; 3] {
-        let (s, c) = beta.sin_cos();
+        let (s, c) = math::sin_cos(beta);
         self.point_sc(s, c)
     }
 
@@ -200,7 +201,7 @@ impl RimFrame {
             ab.map(|v| v / la)
         } else {
             // A single-point contact: the rim tangent at H.
-            let (s, c) = mid.sin_cos();
+            let (s, c) = math::sin_cos(mid);
             [0, 1, 2].map(|k| c * self.forward[k] - s * self.down[k])
         };
         let lateral = cross(normal, tangent);
