@@ -560,8 +560,97 @@ fn jacobians(c: &mut Criterion) {
     group.finish();
 }
 
+/// A generated plant's own force path (`derivatives_on_ground`: the
+/// contact search, the wheel law with the tyres as constants, the plant)
+/// on the paper's rough terrain, at the states 1 ms apart of
+/// `rhs_contact_rough_path` in turn, open-loop torques; in the same run,
+/// the runtime's right-hand side with the generic plant on the same path
+/// (the bounded search, the speed loop), and the generated plant alone.
+fn force_path(c: &mut Criterion) {
+    use rover_dynamics::wheel_ground::Search;
+    use rover_runtime::wheel_law::WheelLawConfig;
+    macro_rules! one {
+        ($name:literal, $plant:ty) => {{
+            type P = $plant;
+            const N: usize = P::DOF;
+            const W: usize = P::WHEELS;
+            let model = model($name);
+            let grid = support::rough_field();
+            let rough = Terrain::Grid(grid.clone());
+            let generic = GenericPlant::new(model.clone()).unwrap();
+            let state = driven(&rough, &model, generic.clone(), 5.0);
+            let path = path_from(&rough, &model, generic.clone(), &state, 200);
+            let states: Vec<([f64; N], [f64; N])> = path
+                .iter()
+                .map(|y| {
+                    (
+                        y[..N].try_into().unwrap(),
+                        y[N..2 * N].try_into().unwrap(),
+                    )
+                })
+                .collect();
+            let mut group = c.benchmark_group(concat!("force_path_", $name));
+            let plant = P::new();
+            let law = WheelLawConfig::default();
+            let mut ground = P::ground(Search::default());
+            let torques = [0.1 * model.wheels[0].max_torque; W];
+            let mut k = 0;
+            group.bench_function("generated_on_ground", |b| {
+                b.iter(|| {
+                    let (x, w) = &states[k % states.len()];
+                    k += 1;
+                    let (mut xd, mut wd) = ([0.0; N], [0.0; N]);
+                    plant
+                        .derivatives_on_ground(
+                            &mut ground,
+                            &grid,
+                            &law,
+                            &P::TYRES,
+                            black_box(x),
+                            w,
+                            &[0.0; W],
+                            |_| torques,
+                            &mut xd,
+                            &mut wd,
+                        )
+                        .unwrap();
+                    black_box((&xd, &wd));
+                })
+            });
+            let loads = [WheelLoad::default(); W];
+            group.bench_function("generated_plant_only", |b| {
+                b.iter(|| {
+                    let (x, w) = &states[k % states.len()];
+                    k += 1;
+                    let (mut xd, mut wd) = ([0.0; N], [0.0; N]);
+                    plant
+                        .derivatives_array(black_box(x), w, &loads, &mut xd, &mut wd)
+                        .unwrap();
+                    black_box((&xd, &wd));
+                })
+            });
+            bench_path(
+                &mut group,
+                "runtime",
+                "generic",
+                rough.clone(),
+                &model,
+                generic,
+                ContactMethod::Bounded,
+                &path,
+            );
+            group.finish();
+        }};
+    }
+    one!("swing4", rover_models::Swing4);
+    one!("exomars", rover_models::Exomars);
+    one!("mer", rover_models::Mer);
+    one!("lrv", rover_models::Lrv);
+}
+
 criterion_group!(
     benches,
+    force_path,
     per_model,
     whole_runs,
     fidelity_levels,

@@ -82,6 +82,10 @@ pub enum GroundError {
     Plant(PlantError),
 }
 
+impl core::error::Error for WheelOffMap {}
+
+impl core::error::Error for GroundError {}
+
 impl core::fmt::Display for GroundError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
