@@ -582,12 +582,7 @@ fn force_path(c: &mut Criterion) {
             let path = path_from(&rough, &model, generic.clone(), &state, 200);
             let states: Vec<([f64; N], [f64; N])> = path
                 .iter()
-                .map(|y| {
-                    (
-                        y[..N].try_into().unwrap(),
-                        y[N..2 * N].try_into().unwrap(),
-                    )
-                })
+                .map(|y| (y[..N].try_into().unwrap(), y[N..2 * N].try_into().unwrap()))
                 .collect();
             let mut group = c.benchmark_group(concat!("force_path_", $name));
             let plant = P::new();

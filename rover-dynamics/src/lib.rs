@@ -19,9 +19,15 @@
 //!   only this one, which keeps nalgebra out of what `#[derive(Rover)]`
 //!   compiles for the compiler's host.
 //!
-//! Without features it still has the wheel–ground law
-//! ([`wheel_law`]) and the height-field interface the contact search
-//! queries ([`HeightField`]), so that code outside `std` can use them.
+//! Without features it still has the wheel–ground law ([`wheel_law`]),
+//! the contact search ([`contact`]) and the height-field interface it
+//! queries ([`HeightField`]), so that code outside `std` can use them;
+//! with `plant`, the ground acting on a wheel ([`wheel_ground`]): the
+//! search, the law and the reduction to loads that the runtime and a
+//! generated plant's own force path both run. Its `std` feature only
+//! takes the contact search's elementary functions from the platform
+//! instead of `libm` (the runtime's build); `serde` derives the choice of
+//! search for scenario files.
 #![no_std]
 #![warn(missing_docs)]
 
