@@ -488,8 +488,8 @@ fn torque_share(torque: f64, normals: &[f64; MAX_PATCHES], total: f64, i: usize)
 pub type LoadDerivative = [[f64; 7]; 9];
 
 /// [`LoadDerivative`] of one wheel at the patches of its last contact, by
-/// dual numbers through the very [`patch_load`] the run evaluates, each
-/// patch's lever moving with the centre as [`lever_gradient`] says. The
+/// dual numbers through the very `patch_load` the run evaluates, each
+/// patch's lever moving with the centre as `lever_gradient` says. The
 /// patches' frames (n, t, c) are held: what this keeps is the stiff part of
 /// the load — the tyre's spring and damper (k_w, c_w), the cornering law's
 /// lateral damping and the rolling resistance along the velocity, the pull's

@@ -191,7 +191,7 @@ impl Controller {
     }
 
     /// Hold the steering set-point at `value` from now on: the torque
-    /// difference Δτ [N·m] of slip steering, the turning radius [m] of
+    /// difference Δτ [N·m] of slip steering, the turning radius \[m\] of
     /// Ackermann steering by radius, or its front-left angle [°]; like
     /// [`Controller::set_speed`], in place of the scenario's profile.
     pub fn set_steering_setpoint(&mut self, value: f64) -> Result<(), ControlError> {
