@@ -4,8 +4,9 @@
 //! real-time path with the generic plant on random terrain, with RK4,
 //! semi-implicit Euler and ROS2 (and ROS2 with the generated plant's
 //! assembled Jacobian), under a heading hold with both integrals
-//! and with open-loop torques set between steps. Its own test binary: it installs a
-//! counting global allocator.
+//! and with open-loop torques set between steps; and a generated plant's
+//! own force path on rough ground, from its first call. Its own test
+//! binary: it installs a counting global allocator.
 
 use rover_dynamics::plant::Plant;
 use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
