@@ -213,8 +213,9 @@ impl WheelContact {
 
 /// The ground under `W` wheels, fixed in size: the force path of a
 /// generated plant (`derivatives_on_ground` in the module `rover codegen`
-/// writes), which passes its tyres and radii as constants.
-#[derive(Clone, Copy, Debug)]
+/// writes), which passes its tyres and radii as constants. `Clone`, not
+/// `Copy`: it is a few kilobytes a wheel.
+#[derive(Clone, Debug)]
 pub struct FixedGround<const W: usize> {
     /// The contact search.
     pub search: Search,
