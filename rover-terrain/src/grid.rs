@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap};
 use super::kernel::{Bound, catmull_rom, stencil};
+use super::lazy_cells::LazyCells;
 use super::range_pyramid::{RangePyramid, UpperRows, larger};
 
 /// Tolerance, in cells, for a query on the map's edge.
@@ -94,9 +95,9 @@ pub struct Grid {
     /// Bounds of the interpolant's gradient magnitude, cell by cell (cell
     /// (i, j) at node (i, j)), in a pyramid for [`HeightField::max_slope_in`].
     slopes: Arc<RangePyramid>,
-    /// Bounds of the bicubic interpolant's Hessian norm, cell by cell, in a
-    /// pyramid for [`HeightField::max_curvature_in`].
-    curvatures: Arc<RangePyramid>,
+    /// Bounds of the bicubic interpolant's Hessian norm, cell by cell,
+    /// computed where [`HeightField::max_curvature_in`] first asks.
+    curvatures: Arc<LazyCells>,
     interpolation: Interpolation,
     edge: EdgePolicy,
 }
@@ -163,6 +164,9 @@ impl Grid {
                 "every node needs a finite height in metres",
             ));
         }
+        let heights: Arc<[f64]> = heights.into();
+        let of_cell = Arc::clone(&heights);
+        let curvature = move |i, j| cell_curvature(nx, ny, spacing, &of_cell, i, j);
         Ok(Grid {
             origin,
             spacing,
@@ -171,8 +175,8 @@ impl Grid {
             last: [(nx - 1) as f64, (ny - 1) as f64],
             tiles: Arc::new(RangePyramid::new(nx, &heights)),
             slopes: Arc::new(cell_slopes(nx, ny, spacing, &heights)),
-            curvatures: Arc::new(cell_curvatures(nx, ny, spacing, &heights)),
-            heights: heights.into(),
+            curvatures: Arc::new(LazyCells::new(nx, ny, Box::new(curvature))),
+            heights,
             interpolation: Interpolation::default(),
             edge: EdgePolicy::default(),
         })
@@ -564,7 +568,7 @@ impl HeightField for Grid {
         Some(steepest)
     }
 
-    /// The largest cell bound (`cell_curvatures` in the source) over the
+    /// The largest cell bound (`cell_curvature` in the source) over the
     /// cells that `area` touches, for the bicubic interpolant; `None` for the
     /// bilinear one (its gradient jumps across cell edges) and for an area
     /// that reaches off the map (under the `clamp` policy the gradient jumps
@@ -578,8 +582,7 @@ impl HeightField for Grid {
             return None;
         }
         let [i, j] = self.index_ranges(area, [0.0, 0.0], 1.0)?;
-        let (largest, _) = self.curvatures.span(i, j);
-        Some(largest)
+        Some(self.curvatures.max(i, j))
     }
 }
 
@@ -693,9 +696,8 @@ fn cell_slope_rows(
     emit(&slopes);
 }
 
-/// Bounds of the bicubic interpolant's curvature, cell by cell (cell (i, j)
-/// at node (i, j); the last row and column, which start no cell, hold 0),
-/// in a pyramid.
+/// The bound of the bicubic interpolant's curvature on cell (i, j) (at
+/// node (i, j); the grid asks for them lazily, [`LazyCells`]).
 ///
 /// On a cell with local coordinates t, s ∈ [0, 1] the interpolant is
 /// `Σ_b w_b(s)·r_b(t)`, r_b the Catmull–Rom cubic along X of stencil row
@@ -712,22 +714,6 @@ fn cell_slope_rows(
 /// stencils take the ghost nodes beyond the map's edges, as the interpolant
 /// does. The second derivatives jump between cells (the interpolant is C1),
 /// which a Lipschitz bound of the gradient allows.
-fn cell_curvatures(nx: usize, ny: usize, spacing: [f64; 2], heights: &[f64]) -> RangePyramid {
-    let mut pyramid = UpperRows::new(nx, ny);
-    let mut row = vec![0.0; nx];
-    for j in 0..ny - 1 {
-        for (i, bound) in row.iter_mut().enumerate().take(nx - 1) {
-            *bound = cell_curvature(nx, ny, spacing, heights, i, j);
-        }
-        row[nx - 1] = 0.0;
-        pyramid.push(&row);
-    }
-    row.fill(0.0);
-    pyramid.push(&row);
-    pyramid.finish()
-}
-
-/// The curvature bound of cell (i, j) (see [`cell_curvatures`]).
 fn cell_curvature(
     nx: usize,
     ny: usize,
@@ -824,7 +810,7 @@ mod tests {
         assert!(interior > 3000);
     }
 
-    /// `Σ_b |w_b'(s)| ≤ 3` on [0, 1], the constant `cell_curvatures` takes
+    /// `Σ_b |w_b'(s)| ≤ 3` on [0, 1], the constant `cell_curvature` takes
     /// for the mixed derivative (reached at s = ½).
     #[test]
     fn the_kernel_slopes_sum_to_at_most_three() {

@@ -39,6 +39,7 @@ mod grid;
 mod height_field;
 mod io;
 mod kernel;
+mod lazy_cells;
 mod param;
 #[cfg(feature = "png")]
 pub mod png_map;

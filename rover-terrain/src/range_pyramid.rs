@@ -75,16 +75,9 @@ impl RangePyramid {
     /// superset: whole tiles of the finest level where they are at most
     /// [`MAX_TILES`]).
     pub(crate) fn span(&self, i: [usize; 2], j: [usize; 2]) -> (f64, f64) {
-        let tiles = |l: &Level| {
-            ((i[1] >> l.shift) - (i[0] >> l.shift) + 1)
-                * ((j[1] >> l.shift) - (j[0] >> l.shift) + 1)
-        };
-        let Some(level) = self
-            .levels
-            .iter()
-            .find(|l| tiles(l) <= MAX_TILES)
-            .or(self.levels.last())
-        else {
+        // Level k has tiles of 2^(k + 1) nodes a side.
+        let shift = chosen_shift(self.levels.len() as u32, i, j);
+        let Some(level) = self.levels.get(shift as usize - 1) else {
             return (f64::INFINITY, f64::NEG_INFINITY);
         };
         // Row by row over slices, without a bounds check for every tile (a
@@ -105,6 +98,26 @@ impl RangePyramid {
         }
         (hi, lo)
     }
+}
+
+/// The shift of the level (tiles of `2^shift` nodes a side) that a query
+/// over nodes `i[0]..=i[1]` × `j[0]..=j[1]` reads in a pyramid whose top
+/// level has shift `top`: the finest on which the query touches at most
+/// [`MAX_TILES`] tiles, else the top one. Shared with
+/// [`LazyCells`](super::lazy_cells::LazyCells), which reads the same cells.
+pub(crate) fn chosen_shift(top: u32, i: [usize; 2], j: [usize; 2]) -> u32 {
+    let tiles = |s: u32| ((i[1] >> s) - (i[0] >> s) + 1) * ((j[1] >> s) - (j[0] >> s) + 1);
+    (1..=top).find(|&s| tiles(s) <= MAX_TILES).unwrap_or(top)
+}
+
+/// The shift of the top level of a pyramid over `nx × ny` nodes: the first
+/// whose tiles cover the grid with one.
+pub(crate) fn top_shift(nx: usize, ny: usize) -> u32 {
+    let mut s = 1;
+    while nx.div_ceil(1 << s) * ny.div_ceil(1 << s) > 1 {
+        s += 1;
+    }
+    s
 }
 
 /// An upper pyramid ([`RangePyramid::upper`]) built from its values one row
