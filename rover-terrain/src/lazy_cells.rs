@@ -1,5 +1,5 @@
 //! A grid's cell bounds computed a block of cells at a time, the first time
-//! a query reaches the block, with the very maxima that a
+//! a query reaches the block, with no allocation, and the very maxima that a
 //! [`RangePyramid`](super::range_pyramid::RangePyramid) over all of them
 //! would give.
 //!
@@ -13,59 +13,88 @@
 
 use std::fmt;
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::range_pyramid::{chosen_shift, larger, top_shift};
 
-/// Cells a block has a side.
-const BLOCK: usize = 64;
+/// Tiles (of 2 × 2 cells, the pyramid's finest) a block has a side: small,
+/// so that the first query in a region, in a real-time loop, computes
+/// little more than it reads (a wheel's square on a 5 cm grid reads about
+/// 32 × 32 cells; filling one block is about 0.1 M instructions).
+const BLOCK: usize = 8;
 
 /// The value of cell (i, j) of an `nx × ny` grid, for `i < nx − 1` and
 /// `j < ny − 1` (the last row and column start no cell: 0).
 type CellFn = Box<dyn Fn(usize, usize) -> f64 + Send + Sync>;
 
-/// Cell values of an `nx × ny` grid (cell (i, j) at node (i, j)), each
-/// block of [`BLOCK`] × [`BLOCK`] cells computed once, when first read.
+/// The maxima of the cell values of an `nx × ny` grid (cell (i, j) at node
+/// (i, j)) over its tiles of 2 × 2 cells, the pyramid's finest level: every
+/// query reads whole tiles of a level at least as coarse, so these give
+/// its maximum exactly. The tiles' storage is allocated with the grid (a
+/// quarter of a value per node, less than the pyramid it replaces), so
+/// that filling a block of [`BLOCK`] × [`BLOCK`] tiles, the first time a
+/// query reaches it, allocates nothing: the contact search runs in a
+/// real-time loop.
 pub(crate) struct LazyCells {
     nx: usize,
     ny: usize,
+    tiles_x: usize,
     blocks_x: usize,
     top: u32,
-    blocks: Box<[OnceLock<Box<[f64]>>]>,
+    /// Tile maxima, row by row, as `f64` bits (written once per block,
+    /// before its `done` completes, which orders them before every read).
+    tiles: Box<[AtomicU64]>,
+    done: Box<[OnceLock<()>]>,
     cell: CellFn,
 }
 
 impl LazyCells {
     /// The cells of an `nx × ny` grid whose values `cell` gives.
     pub(crate) fn new(nx: usize, ny: usize, cell: CellFn) -> LazyCells {
-        let (blocks_x, blocks_y) = (nx.div_ceil(BLOCK), ny.div_ceil(BLOCK));
+        let (tiles_x, tiles_y) = (nx.div_ceil(2), ny.div_ceil(2));
+        let (blocks_x, blocks_y) = (tiles_x.div_ceil(BLOCK), tiles_y.div_ceil(BLOCK));
         LazyCells {
             nx,
             ny,
+            tiles_x,
             blocks_x,
             top: top_shift(nx, ny),
-            blocks: (0..blocks_x * blocks_y).map(|_| OnceLock::new()).collect(),
+            tiles: (0..tiles_x * tiles_y).map(|_| AtomicU64::new(0)).collect(),
+            done: (0..blocks_x * blocks_y).map(|_| OnceLock::new()).collect(),
             cell,
         }
     }
 
-    /// Block (bi, bj), row by row, computed on first use.
-    fn block(&self, bi: usize, bj: usize) -> &[f64] {
-        let Some(slot) = self.blocks.get(bj * self.blocks_x + bi) else {
-            return &[];
+    /// Cell (i, j)'s value, 0 on the last row and column.
+    fn value(&self, i: usize, j: usize) -> f64 {
+        if i + 1 < self.nx && j + 1 < self.ny {
+            (self.cell)(i, j)
+        } else {
+            0.0
+        }
+    }
+
+    /// Fills block (bi, bj)'s tiles, the first time only.
+    fn fill(&self, bi: usize, bj: usize) {
+        let Some(done) = self.done.get(bj * self.blocks_x + bi) else {
+            return;
         };
-        slot.get_or_init(|| {
-            let mut values = vec![0.0; BLOCK * BLOCK];
-            for (r, row) in values.chunks_mut(BLOCK).enumerate() {
-                let j = bj * BLOCK + r;
-                for (c, v) in row.iter_mut().enumerate() {
-                    let i = bi * BLOCK + c;
-                    if i + 1 < self.nx && j + 1 < self.ny {
-                        *v = (self.cell)(i, j);
+        done.get_or_init(|| {
+            let tiles_y = self.tiles.len() / self.tiles_x;
+            for tj in bj * BLOCK..((bj + 1) * BLOCK).min(tiles_y) {
+                for ti in bi * BLOCK..((bi + 1) * BLOCK).min(self.tiles_x) {
+                    let mut largest = f64::NEG_INFINITY;
+                    for j in 2 * tj..(2 * tj + 2).min(self.ny) {
+                        for i in 2 * ti..(2 * ti + 2).min(self.nx) {
+                            largest = larger(largest, self.value(i, j));
+                        }
+                    }
+                    if let Some(t) = self.tiles.get(tj * self.tiles_x + ti) {
+                        t.store(largest.to_bits(), Ordering::Relaxed);
                     }
                 }
             }
-            values.into_boxed_slice()
-        })
+        });
     }
 
     /// The largest value over cells `i[0]..=i[1]` × `j[0]..=j[1]` (indices
@@ -73,48 +102,50 @@ impl LazyCells {
     /// whole tiles of the level it reads.
     pub(crate) fn max(&self, i: [usize; 2], j: [usize; 2]) -> f64 {
         let s = chosen_shift(self.top, i, j);
+        // The widened range of cells, as tiles of 2 × 2 cells (s ≥ 1, so
+        // it starts on a tile's first cell and ends on a tile's last or
+        // the map's).
         let widen = |k: [usize; 2], n: usize| {
             let first = (k[0] >> s) << s;
             let last = (((k[1] >> s) + 1) << s).min(n) - 1;
-            [first, last]
+            [first / 2, last / 2]
         };
-        let ([i0, i1], [j0, j1]) = (widen(i, self.nx), widen(j, self.ny));
+        let ([t0, t1], [u0, u1]) = (widen(i, self.nx), widen(j, self.ny));
+        for bj in u0 / BLOCK..=u1 / BLOCK {
+            for bi in t0 / BLOCK..=t1 / BLOCK {
+                self.fill(bi, bj);
+            }
+        }
         let mut largest = f64::NEG_INFINITY;
-        for bj in j0 / BLOCK..=j1 / BLOCK {
-            for bi in i0 / BLOCK..=i1 / BLOCK {
-                let block = self.block(bi, bj);
-                let (c0, c1) = (
-                    i0.max(bi * BLOCK) - bi * BLOCK,
-                    i1.min(bi * BLOCK + BLOCK - 1) - bi * BLOCK,
-                );
-                let (r0, r1) = (
-                    j0.max(bj * BLOCK) - bj * BLOCK,
-                    j1.min(bj * BLOCK + BLOCK - 1) - bj * BLOCK,
-                );
-                for r in r0..=r1 {
-                    match block.get(r * BLOCK + c0..=r * BLOCK + c1) {
-                        Some(row) => largest = row.iter().fold(largest, |m, &v| larger(m, v)),
-                        None => largest = f64::INFINITY,
-                    }
+        for u in u0..=u1 {
+            match self
+                .tiles
+                .get(u * self.tiles_x + t0..=u * self.tiles_x + t1)
+            {
+                Some(row) => {
+                    largest = row.iter().fold(largest, |m, t| {
+                        larger(m, f64::from_bits(t.load(Ordering::Relaxed)))
+                    })
                 }
+                None => largest = f64::INFINITY,
             }
         }
         largest
     }
 
-    /// Blocks computed so far, of all.
+    /// Blocks filled so far, of all.
     pub(crate) fn computed(&self) -> (usize, usize) {
-        let done = self.blocks.iter().filter(|b| b.get().is_some()).count();
-        (done, self.blocks.len())
+        let filled = self.done.iter().filter(|b| b.get().is_some()).count();
+        (filled, self.done.len())
     }
 }
 
 impl fmt::Debug for LazyCells {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let (done, all) = self.computed();
+        let (filled, all) = self.computed();
         write!(
             f,
-            "LazyCells({} × {} cells, {done} of {all} blocks computed)",
+            "LazyCells({} × {} cells, {filled} of {all} blocks computed)",
             self.nx, self.ny
         )
     }
@@ -185,7 +216,7 @@ mod tests {
     #[test]
     fn a_small_query_computes_few_blocks() {
         let lazy = LazyCells::new(1000, 800, Box::new(|i, j| (i + j) as f64));
-        assert_eq!(lazy.computed(), (0, 16 * 13));
+        assert_eq!(lazy.computed(), (0, 63 * 50));
         // Read as the pyramid reads it: tiles of 4 × 4 cells, so up to
         // cell (523, 423).
         assert_eq!(lazy.max([500, 520], [400, 420]), (523 + 423) as f64);
