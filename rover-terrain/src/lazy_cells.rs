@@ -4,8 +4,8 @@
 //! would give.
 //!
 //! Bounding the bicubic interpolant's curvature on every cell of the
-//! paper's random terrain (640,000 nodes) cost as many instructions as
-//! the whole 40 s run of Fig. 8 on it (callgrind), while a run's contact
+//! paper's random terrain (640,000 nodes) up front would cost as many
+//! instructions as the whole 40 s run of Fig. 8 on it (callgrind), while a run's contact
 //! search asks for the cells along its wheels' tracks only. A query here
 //! reads the same cells the pyramid's tiles would cover (the level that
 //! [`chosen_shift`] picks, its tiles' whole extent), so its maximum is the
