@@ -8,7 +8,7 @@ use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap};
 use super::kernel::{Bound, catmull_rom, stencil};
 use super::lazy_cells::LazyCells;
-use super::range_pyramid::{RangePyramid, UpperRows, larger};
+use super::range_pyramid::{RangePyramid, larger};
 
 /// Tolerance, in cells, for a query on the map's edge.
 const EDGE_SLACK: f64 = 1e-9;
@@ -93,8 +93,9 @@ pub struct Grid {
     heights: Arc<[f64]>,
     tiles: Arc<RangePyramid>,
     /// Bounds of the interpolant's gradient magnitude, cell by cell (cell
-    /// (i, j) at node (i, j)), in a pyramid for [`HeightField::max_slope_in`].
-    slopes: Arc<RangePyramid>,
+    /// (i, j) at node (i, j)), computed where [`HeightField::max_slope_in`]
+    /// first asks.
+    slopes: Arc<LazyCells>,
     /// Bounds of the bicubic interpolant's Hessian norm, cell by cell,
     /// computed where [`HeightField::max_curvature_in`] first asks.
     curvatures: Arc<LazyCells>,
@@ -167,6 +168,8 @@ impl Grid {
         let heights: Arc<[f64]> = heights.into();
         let of_cell = Arc::clone(&heights);
         let curvature = move |i, j| cell_curvature(nx, ny, spacing, &of_cell, i, j);
+        let of_cell = Arc::clone(&heights);
+        let slope = move |i, j| cell_slope(nx, ny, spacing, &of_cell, i, j);
         Ok(Grid {
             origin,
             spacing,
@@ -174,7 +177,7 @@ impl Grid {
             ny,
             last: [(nx - 1) as f64, (ny - 1) as f64],
             tiles: Arc::new(RangePyramid::new(nx, &heights)),
-            slopes: Arc::new(cell_slopes(nx, ny, spacing, &heights)),
+            slopes: Arc::new(LazyCells::new(nx, ny, Box::new(slope))),
             curvatures: Arc::new(LazyCells::new(nx, ny, Box::new(curvature))),
             heights,
             interpolation: Interpolation::default(),
@@ -557,15 +560,14 @@ impl HeightField for Grid {
         })
     }
 
-    /// The largest cell bound (`cell_slopes` in the source) over the cells that
+    /// The largest cell bound (`cell_slope` in the source) over the cells that
     /// `area` touches; `None` if part of it is off the map under the
     /// `error` edge policy. Beyond a clamped edge the ground is the edge's
     /// height held: its gradient is the edge cell's along the edge, zero
     /// across it.
     fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
         let [i, j] = self.index_ranges(area, [0.0, 0.0], 1.0)?;
-        let (steepest, _) = self.slopes.span(i, j);
-        Some(steepest)
+        Some(self.slopes.max(i, j))
     }
 
     /// The largest cell bound (`cell_curvature` in the source) over the
@@ -599,9 +601,9 @@ fn interior_height(block: [&[f64; 4]; 4], wx: [f64; 4], wy: [f64; 4]) -> f64 {
     z
 }
 
-/// The pyramid of bounds of the interpolant's gradient magnitude on every
-/// cell, at the cell's south-west node (0 on the last row and column,
-/// which start no cell), for both interpolants.
+/// The bound of the interpolant's gradient magnitude on cell (i, j), at
+/// its south-west node (`i < nx − 1`, `j < ny − 1`), for both
+/// interpolants; the grid asks for them lazily ([`LazyCells`]).
 ///
 /// On a cell, ∂Z/∂t = Σ_k w_k(s)·r_k'(t), where r_k is the Catmull–Rom
 /// cubic along X of stencil row k = −1 … 2. Each r_k' is a quadratic in t,
@@ -615,16 +617,24 @@ fn interior_height(block: [&[f64; 4]; 4], wx: [f64; 4], wy: [f64; 4]) -> f64 {
 /// every sign made positive. The bilinear interpolant's derivative along
 /// X lies between the cell's two node differences p1 − p0, each of which
 /// is some r_k'(t) (mean value theorem): the same bound holds for it.
-fn cell_slopes(nx: usize, ny: usize, spacing: [f64; 2], heights: &[f64]) -> RangePyramid {
-    let mut pyramid = UpperRows::new(nx, ny);
-    cell_slope_rows(nx, ny, spacing, heights, |row| pyramid.push(row));
-    pyramid.finish()
+fn cell_slope(nx: usize, ny: usize, spacing: [f64; 2], heights: &[f64], i: usize, j: usize) -> f64 {
+    let at = |i: usize, j: usize| heights.get(j * nx + i).copied().unwrap_or(0.0);
+    let combine = |b: [f64; 4]| 1.125 * larger(b[1], b[2]) + 0.125 * larger(b[0], b[3]);
+    let (per_dx, per_dy) = (1.0 / spacing[0], 1.0 / spacing[1]);
+    // b along X of stencil row r, and along Y of stencil column c.
+    let along_x = |r: usize| steepest(stencil(nx, i, |c| at(c, r)));
+    let along_y = |c: usize| steepest(stencil(ny, j, |r| at(c, r)));
+    let gx = combine(ghost_bounds(ny, j, along_x)) * per_dx;
+    let gy = combine(ghost_bounds(nx, i, along_y)) * per_dy;
+    // Rounded up past the interpolant's own rounding (and the reciprocals').
+    (gx * gx + gy * gy).sqrt() * (1.0 + 1e-9)
 }
 
-/// The rows of [`cell_slopes`], south row first, each given to `emit`:
-/// one row at a time, with the b of the four stencil rows in a ring, so
-/// that a map's bounds never take more than a few rows of memory besides
-/// the pyramid (a third of a value per node).
+/// [`cell_slope`] row by row, south row first, each row given to `emit`
+/// (0 on the last row and column): the b of the four stencil rows kept in
+/// a ring, so that every b is computed once. The reference the tests hold
+/// [`cell_slope`] to, bit for bit.
+#[cfg(test)]
 fn cell_slope_rows(
     nx: usize,
     ny: usize,
@@ -894,13 +904,24 @@ mod tests {
     #[test]
     fn cell_slopes_bound_the_gradient() {
         let mut rng = crate::prng::SplitMix64::new(0x5eed_51a0_be5e_c0de);
-        for (nx, ny) in [(2, 2), (3, 2), (5, 4), (9, 7)] {
+        for (nx, ny) in [(2, 2), (3, 2), (2, 3), (3, 3), (5, 4), (9, 7), (16, 11)] {
             let heights: Vec<f64> = (0..nx * ny).map(|_| rng.next_f64() - 0.5).collect();
             let spacing = [0.3, 0.2];
             let mut slopes = Vec::new();
             cell_slope_rows(nx, ny, spacing, &heights, |row| {
                 slopes.extend_from_slice(row)
             });
+            // One cell at a time, as the grid computes them: the rows' bits.
+            for j in 0..ny - 1 {
+                for i in 0..nx - 1 {
+                    let one = cell_slope(nx, ny, spacing, &heights, i, j);
+                    assert_eq!(
+                        one.to_bits(),
+                        slopes[j * nx + i].to_bits(),
+                        "{nx} × {ny} ({i}, {j})"
+                    );
+                }
+            }
             for interpolation in [Interpolation::Bicubic, Interpolation::Bilinear] {
                 let grid = Grid::new([0.0, 0.0], spacing, nx, ny, heights.clone())
                     .unwrap()

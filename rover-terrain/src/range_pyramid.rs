@@ -44,12 +44,11 @@ impl RangePyramid {
     }
 
     /// The pyramid of the highest values only: [`RangePyramid::span`] then
-    /// bounds nothing from below (−∞), for half the memory.
+    /// bounds nothing from below (−∞). The reference the lazy cell bounds
+    /// are held to.
     #[cfg(test)]
     pub(crate) fn upper(nx: usize, values: &[f64]) -> RangePyramid {
-        let mut rows = UpperRows::new(nx, values.len() / nx);
-        values.chunks(nx).for_each(|row| rows.push(row));
-        rows.finish()
+        Self::build(nx, values, None)
     }
 
     fn build(nx: usize, max: &[f64], min: Option<&[f64]>) -> RangePyramid {
@@ -118,46 +117,6 @@ pub(crate) fn top_shift(nx: usize, ny: usize) -> u32 {
         s += 1;
     }
     s
-}
-
-/// An upper pyramid ([`RangePyramid::upper`]) built from its values one row
-/// at a time, south row first, so that they need never be held whole.
-pub(crate) struct UpperRows {
-    level: Level,
-    rows: usize,
-    pushed: usize,
-}
-
-impl UpperRows {
-    /// For `nx × ny` values.
-    pub(crate) fn new(nx: usize, ny: usize) -> UpperRows {
-        let columns = nx.div_ceil(2);
-        UpperRows {
-            level: Level {
-                shift: 1,
-                columns,
-                max: vec![f64::NEG_INFINITY; columns * ny.div_ceil(2)],
-                min: Vec::new(),
-            },
-            rows: ny,
-            pushed: 0,
-        }
-    }
-
-    /// The next row's `nx` values (rows beyond the `ny`-th are ignored).
-    pub(crate) fn push(&mut self, row: &[f64]) {
-        if self.pushed < self.rows {
-            let columns = self.level.columns;
-            let tiles = &mut self.level.max[(self.pushed / 2) * columns..][..columns];
-            fold_pairs(tiles, row, larger);
-            self.pushed += 1;
-        }
-    }
-
-    /// The pyramid (rows never pushed count as −∞).
-    pub(crate) fn finish(self) -> RangePyramid {
-        RangePyramid::above(self.level)
-    }
 }
 
 /// The ranges of every 2 × 2 block of a level of `columns` columns
