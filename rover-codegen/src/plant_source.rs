@@ -65,14 +65,16 @@ fn ground_methods(spec: &Spec, n: usize, k: usize) -> String {
         .wheels
         .iter()
         .map(|w| {
+            let t = w.tyre();
             format!(
                 "::rover_dynamics::wheel_law::Tyre {{ stiffness: {}, damping: {}, mu_x: {}, \
-                 mu_y: {}, cornering_stiffness: {}, rolling_resistance: 0.0 }}",
-                literal(w.stiffness),
-                literal(w.damping),
-                literal(w.mu_x),
-                literal(w.mu_y),
-                literal(w.cornering_stiffness)
+                 mu_y: {}, cornering_stiffness: {}, rolling_resistance: {} }}",
+                literal(t.stiffness),
+                literal(t.damping),
+                literal(t.mu_x),
+                literal(t.mu_y),
+                literal(t.cornering_stiffness),
+                literal(t.rolling_resistance)
             )
         })
         .collect();

@@ -150,6 +150,22 @@ pub struct Wheel {
     pub toe: ScalarPoly,
 }
 
+impl Wheel {
+    /// The tyre's constants for the wheel law, without rolling resistance
+    /// (a scenario's option): what the runtime's ground and a generated
+    /// plant's `TYRES` both take.
+    pub fn tyre(&self) -> crate::wheel_law::Tyre {
+        crate::wheel_law::Tyre {
+            stiffness: self.stiffness,
+            damping: self.damping,
+            mu_x: self.mu_x,
+            mu_y: self.mu_y,
+            cornering_stiffness: self.cornering_stiffness,
+            rolling_resistance: 0.0,
+        }
+    }
+}
+
 impl Model {
     /// Number of suspension coordinates m.
     pub fn m(&self) -> usize {

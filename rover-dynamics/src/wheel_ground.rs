@@ -247,13 +247,15 @@ impl<const W: usize> FixedGround<W> {
         tyres: &[Tyre; W],
         radii: &[f64; W],
     ) -> Result<&[f64; W], WheelOffMap> {
-        for k in 0..W {
-            let wheel = &mut self.wheels[k];
-            wheel
-                .find(&self.search, terrain, &states[k], radii[k])
-                .map_err(|off| WheelOffMap { wheel: k, off })?;
-            self.normals[k] = wheel.normal(&tyres[k], &states[k]);
-        }
+        let ground = (&self.search, terrain);
+        find_contacts(
+            ground,
+            &mut self.wheels,
+            states,
+            tyres,
+            radii,
+            &mut self.normals,
+        )?;
         Ok(&self.normals)
     }
 
@@ -268,11 +270,8 @@ impl<const W: usize> FixedGround<W> {
         tyres: &[Tyre; W],
         torques: &[f64; W],
     ) -> &[WheelLoad; W] {
-        for k in 0..W {
-            let (load, report) = self.wheels[k].load(law, &tyres[k], &states[k], torques[k]);
-            self.loads[k] = load;
-            self.reports[k] = report;
-        }
+        let wheels = (&self.wheels[..], &states[..], &tyres[..]);
+        wheel_loads(law, wheels, torques, &mut self.loads, &mut self.reports);
         &self.loads
     }
 
@@ -284,6 +283,44 @@ impl<const W: usize> FixedGround<W> {
     /// Each wheel's last contact.
     pub fn contacts(&self) -> [&Contact; W] {
         core::array::from_fn(|k| self.wheels[k].contact())
+    }
+}
+
+/// Finds the contact of every wheel (states, tyres and radii in the same
+/// order as `wheels`) on the ground `(search, terrain)`, and each wheel's
+/// total normal force into `normals`: the first phase of a right-hand
+/// side, for any number of wheels ([`FixedGround`], the runtime's ground).
+pub fn find_contacts<H: HeightField + ?Sized>(
+    (search, terrain): (&Search, &H),
+    wheels: &mut [WheelContact],
+    states: &[WheelState],
+    tyres: &[Tyre],
+    radii: &[f64],
+    normals: &mut [f64],
+) -> Result<(), WheelOffMap> {
+    let each = wheels.iter_mut().zip(states).zip(tyres.iter().zip(radii));
+    for (k, (((wheel, s), (tyre, &radius)), normal)) in each.zip(normals).enumerate() {
+        wheel
+            .find(search, terrain, s, radius)
+            .map_err(|off| WheelOffMap { wheel: k, off })?;
+        *normal = wheel.normal(tyre, s);
+    }
+    Ok(())
+}
+
+/// The load on every wheel of `(wheels, states, tyres)` from its last
+/// contact under the motor torques `torques` [N·m], with its report: the
+/// second phase of a right-hand side ([`find_contacts`]).
+pub fn wheel_loads<L: WheelLaw>(
+    law: &L,
+    (wheels, states, tyres): (&[WheelContact], &[WheelState], &[Tyre]),
+    torques: &[f64],
+    loads: &mut [WheelLoad],
+    reports: &mut [WheelReport],
+) {
+    let each = wheels.iter().zip(states).zip(tyres.iter().zip(torques));
+    for (((wheel, s), (tyre, &torque)), (load, report)) in each.zip(loads.iter_mut().zip(reports)) {
+        (*load, *report) = wheel.load(law, tyre, s, torque);
     }
 }
 

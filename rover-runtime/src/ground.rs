@@ -15,6 +15,7 @@ pub use rover_dynamics::wheel_ground::{
     ContactMethod, LoadDerivative, MIN_LEVER_FRACTION, Search, WheelContact, WheelOffMap,
     WheelReport, load_derivative, wheel_load,
 };
+use rover_dynamics::wheel_ground::{find_contacts, wheel_loads};
 
 /// Terrain, contact search and wheel law, with the per-wheel tracking state.
 #[derive(Clone, Debug)]
@@ -27,22 +28,6 @@ pub struct Ground<H> {
     wheels: Vec<WheelContact>,
     tyres: Vec<Tyre>,
     radii: Vec<f64>,
-}
-
-/// The tyre of each wheel of `model`, without rolling resistance.
-pub fn tyres(model: &Model) -> Vec<Tyre> {
-    model
-        .wheels
-        .iter()
-        .map(|w| Tyre {
-            stiffness: w.stiffness,
-            damping: w.damping,
-            mu_x: w.mu_x,
-            mu_y: w.mu_y,
-            cornering_stiffness: w.cornering_stiffness,
-            rolling_resistance: 0.0,
-        })
-        .collect()
 }
 
 impl<H: HeightField> Ground<H> {
@@ -60,7 +45,7 @@ impl<H: HeightField> Ground<H> {
             law,
             search,
             wheels: vec![WheelContact::new(&search); model.wheels.len()],
-            tyres: tyres(model),
+            tyres: model.wheels.iter().map(|w| w.tyre()).collect(),
             radii: model.wheels.iter().map(|w| w.radius).collect(),
         }
     }
@@ -99,14 +84,9 @@ impl<H: HeightField> Ground<H> {
         states: &[WheelState],
         normals: &mut [f64],
     ) -> Result<(), WheelOffMap> {
-        for (k, s) in states.iter().enumerate() {
-            let wheel = &mut self.wheels[k];
-            wheel
-                .find(&self.search, &self.terrain, s, self.radii[k])
-                .map_err(|off| WheelOffMap { wheel: k, off })?;
-            normals[k] = wheel.normal(&self.tyres[k], s);
-        }
-        Ok(())
+        let ground = (&self.search, &self.terrain);
+        let wheels = &mut self.wheels;
+        find_contacts(ground, wheels, states, &self.tyres, &self.radii, normals)
     }
 
     /// Loads on every wheel from the contacts of [`Ground::find_contacts`]
@@ -119,12 +99,8 @@ impl<H: HeightField> Ground<H> {
         loads: &mut [WheelLoad],
         reports: &mut [WheelReport],
     ) {
-        for k in 0..states.len() {
-            let (load, report) =
-                self.wheels[k].load(&self.law, &self.tyres[k], &states[k], torques[k]);
-            loads[k] = load;
-            reports[k] = report;
-        }
+        let wheels = (&self.wheels[..], states, &self.tyres[..]);
+        wheel_loads(&self.law, wheels, torques, loads, reports);
     }
 
     /// Each wheel's [`LoadDerivative`] at the contacts of the last
