@@ -1,8 +1,8 @@
-//! The few elementary functions the contact search calls, from `std` when
-//! the crate is built with its `std` feature (the runtime's build: the
-//! platform's functions, as before the search became `no_std`) and from
-//! `libm` without it (a firmware build). `sqrt`, `floor` and `ceil` are
-//! exact in both; the others may differ in the last bit between the two.
+//! The few elementary functions the contact search calls. The rounded
+//! ones come from `std` when the crate is built with its `std` feature
+//! (the runtime's build: the platform's functions) and from `libm` without
+//! it (a firmware build); they may differ in the last bit between the two.
+//! `sqrt`, `floor` and `ceil` are exact, so `libm`'s serve both.
 
 #[cfg(feature = "std")]
 mod imp {
@@ -21,18 +21,6 @@ mod imp {
     #[inline(always)]
     pub fn hypot(x: f64, y: f64) -> f64 {
         x.hypot(y)
-    }
-    #[inline(always)]
-    pub fn sqrt(x: f64) -> f64 {
-        x.sqrt()
-    }
-    #[inline(always)]
-    pub fn floor(x: f64) -> f64 {
-        x.floor()
-    }
-    #[inline(always)]
-    pub fn ceil(x: f64) -> f64 {
-        x.ceil()
     }
 }
 
@@ -54,18 +42,7 @@ mod imp {
     pub fn hypot(x: f64, y: f64) -> f64 {
         libm::hypot(x, y)
     }
-    #[inline(always)]
-    pub fn sqrt(x: f64) -> f64 {
-        libm::sqrt(x)
-    }
-    #[inline(always)]
-    pub fn floor(x: f64) -> f64 {
-        libm::floor(x)
-    }
-    #[inline(always)]
-    pub fn ceil(x: f64) -> f64 {
-        libm::ceil(x)
-    }
 }
 
 pub(crate) use imp::*;
+pub(crate) use libm::{ceil, floor, sqrt};
