@@ -234,7 +234,8 @@ fn the_drive_loop_allocates_nothing_per_step() {
     for (text, rate) in [("duration = 1.0\n", 1000.0), (rough.as_str(), 200.0)] {
         let scenario = rover_scenario::scenario::Scenario::parse(text, path).unwrap();
         let config = live::LoopConfig::new(rate, None, &scenario);
-        let columns = rover_scenario::output::header(spec.model.m(), spec.model.wheels.len()).len();
+        let columns =
+            rover_runtime::row::Columns::new(spec.model.m(), spec.model.wheels.len()).len();
         let count = |seconds: f64| {
             let plant = rover_models::Swing4::new();
             let dir = std::path::Path::new(".");

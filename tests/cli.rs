@@ -283,7 +283,7 @@ fn check_prints_the_rover_and_bad_files_exit_with_status_2() {
 }
 
 /// `rover codegen swing4 --out <out>`: the full model with its Jacobian.
-fn codegen_swing4(out: &Path) -> Result<String, rover::cli::CliError> {
+fn codegen_swing4(out: &Path) -> Result<String, rover::error::CliError> {
     rover::cli::codegen(&rover::cli::CodegenArgs {
         rover: "swing4".into(),
         out: Some(out.to_path_buf()),

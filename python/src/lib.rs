@@ -1,6 +1,7 @@
 //! The native half of the Python package `rover`: loading rovers, whole
-//! runs, step-wise runs and sweep tasks, all through the CLI's library so
-//! that Python gets the CLI's numbers and messages. The Python half
+//! runs, step-wise runs and sweep tasks, all through `rover-scenario`'s
+//! preparation of a run, as the command line runs them, so that Python
+//! gets the command line's numbers and messages. The Python half
 //! (python/rover/) turns what crosses here into numpy arrays, dicts and
 //! tables.
 //!
@@ -16,10 +17,10 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
-use rover::cli::{CliError, Prepared, build_plant, generated_plant};
-use rover_models::BuiltinPlant;
-use rover_runtime::GenericPlant;
+use rover_runtime::row::{Columns, RowInputs};
 use rover_scenario::Stepper;
+use rover_scenario::prepare::{PrepareError, Prepared, RunPlant, load_rover};
+use rover_scenario::sweep::{Plan, SweepError};
 
 create_exception!(
     _native,
@@ -34,8 +35,14 @@ create_exception!(
     "A step-wise run failed (the integrator gave up, the rover rolled over or left the map); reset() starts it again."
 );
 
-/// The CLI's error as the exception the Python side raises.
-fn py_err(e: CliError) -> PyErr {
+/// A run that cannot be prepared, as the exception the Python side raises
+/// (the command line's message).
+fn py_err(e: PrepareError) -> PyErr {
+    RoverError::new_err(e.user_message())
+}
+
+/// A sweep that cannot run, likewise.
+fn sweep_err(e: SweepError) -> PyErr {
     RoverError::new_err(e.user_message())
 }
 
@@ -106,7 +113,7 @@ fn load(source: &str) -> PyResult<Rover> {
     let spec = if source.contains('\n') {
         rover_spec::load_str(source, "<string>")
     } else {
-        rover::rover_source::load_rover(source, None)
+        load_rover(source, None)
     };
     let spec = spec.map_err(|e| py_err(e.into()))?;
     Ok(Rover {
@@ -122,21 +129,11 @@ fn prepare(
     text: &str,
     origin: &str,
     base: &str,
-) -> Result<Prepared, CliError> {
+) -> Result<Prepared, PrepareError> {
     let (origin, base) = (Path::new(origin), Path::new(base));
     match rover {
         None => Prepared::from_text(None, text, origin, base),
-        Some(r) => {
-            let scenario = rover_scenario::scenario::Scenario::parse(text, origin)?;
-            Ok(Prepared {
-                spec: r.spec.clone(),
-                rover: r.key.clone(),
-                scenario,
-                base: base.to_path_buf(),
-                origin: origin.to_path_buf(),
-                text: text.to_string(),
-            })
-        }
+        Some(r) => Prepared::with_rover(r.spec.clone(), &r.key, text, origin, base),
     }
 }
 
@@ -153,15 +150,14 @@ fn simulate<'py>(
     generic: bool,
 ) -> PyResult<(Vec<String>, Bound<'py, PyBytes>, usize, String)> {
     let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
-    let run = py.detach(|| -> Result<(Vec<u8>, String), CliError> {
+    let run = py.detach(|| -> Result<(Vec<u8>, _), PrepareError> {
         let mut csv = Vec::new();
         let never = AtomicBool::new(false);
         let summary = prepared.run(generic, &mut csv, &never, |_| {})?;
-        let json =
-            serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
-        Ok((csv, json))
+        Ok((csv, serde_json::to_string_pretty(&summary)))
     });
     let (csv, json) = run.map_err(py_err)?;
+    let json = json.map_err(|e| RoverError::new_err(format!("error: the summary: {e}")))?;
     let text = String::from_utf8_lossy(&csv);
     let mut lines = text.lines();
     let columns: Vec<String> = lines
@@ -186,24 +182,6 @@ fn simulate<'py>(
     Ok((columns, PyBytes::new(py, &data), rows, json))
 }
 
-/// A step-wise run of either kind of plant. One lives in each Simulation
-/// and is never moved, so the variants' sizes differing costs nothing.
-#[allow(clippy::large_enum_variant)]
-#[derive(Clone, Debug)]
-enum AnyStepper {
-    Generated(Stepper<BuiltinPlant>),
-    Generic(Stepper<GenericPlant>),
-}
-
-macro_rules! with_stepper {
-    ($s:expr, $v:ident => $e:expr) => {
-        match $s {
-            AnyStepper::Generated($v) => $e,
-            AnyStepper::Generic($v) => $e,
-        }
-    };
-}
-
 /// Steps of a run up to this many hold the interpreter: releasing and
 /// taking it back costs more than a few steps of a small rover.
 const HOLD_GIL_STEPS: u64 = 1;
@@ -214,10 +192,11 @@ const HOLD_GIL_STEPS: u64 = 1;
 /// value per wheel for commands), read or filled in place.
 #[pyclass(subclass, module = "rover._native")]
 struct Simulation {
-    inner: AnyStepper,
+    inner: Stepper<RunPlant>,
     dof: usize,
     wheels: usize,
-    columns: Vec<String>,
+    columns: Columns,
+    units: Vec<&'static str>,
 }
 
 /// The f64 buffer of a Python object (a C-contiguous float64 numpy array),
@@ -282,31 +261,21 @@ impl Simulation {
         generic: bool,
     ) -> PyResult<Self> {
         let p = prepare(rover, text, origin, base).map_err(py_err)?;
-        let level = p.scenario.fidelity.dynamic().unwrap_or_default();
+        let inner = p.stepper(generic).map_err(py_err)?;
         let model = &p.spec.model;
-        let inner = match generated_plant(&p.rover, level, generic) {
-            Some(plant) => {
-                Stepper::new(plant, model, &p.scenario, &p.base).map(AnyStepper::Generated)
-            }
-            None => {
-                let plant = build_plant(model, level).map_err(py_err)?;
-                Stepper::new(plant, model, &p.scenario, &p.base).map(AnyStepper::Generic)
-            }
-        }
-        .map_err(|e| py_err(p.locate(e)))?;
-        let k = model.wheels.len();
-        let columns = rover_scenario::output::header(model.m(), k);
+        let columns = Columns::new(model.m(), model.wheels.len());
         Ok(Self {
             inner,
             dof: model.dof(),
-            wheels: k,
+            wheels: model.wheels.len(),
+            units: columns.units(&p.spec.coordinate_linear),
             columns,
         })
     }
 
     /// Back to t = 0 with the scenario's commands and set-points.
     fn reset(&mut self) {
-        with_stepper!(&mut self.inner, s => s.reset());
+        self.inner.reset();
     }
 
     /// Advance `n` output intervals; the time reached. Raises RunFailed
@@ -315,12 +284,12 @@ impl Simulation {
     fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<f64> {
         let inner = &mut self.inner;
         let result = if n > HOLD_GIL_STEPS {
-            py.detach(|| with_stepper!(inner, s => s.step(n)))
+            py.detach(|| inner.step(n))
         } else {
-            with_stepper!(inner, s => s.step(n))
+            inner.step(n)
         };
         match result {
-            Ok(()) => Ok(with_stepper!(&self.inner, s => s.time())),
+            Ok(()) => Ok(self.inner.time()),
             Err(e) => Err(RunFailed::new_err(format!("error: {e}"))),
         }
     }
@@ -328,13 +297,13 @@ impl Simulation {
     /// Time \[s\].
     #[getter]
     fn time(&self) -> f64 {
-        with_stepper!(&self.inner, s => s.time())
+        self.inner.time()
     }
 
     /// One step: the output interval \[s\].
     #[getter]
     fn dt(&self) -> f64 {
-        with_stepper!(&self.inner, s => s.dt())
+        self.inner.dt()
     }
 
     /// Number of generalized coordinates N (the state has 2N values).
@@ -352,19 +321,26 @@ impl Simulation {
     /// The trajectory's column names (as in `run.csv`).
     #[getter]
     fn columns(&self) -> Vec<String> {
-        self.columns.clone()
+        self.columns.names().to_vec()
+    }
+
+    /// Each column's unit (`m`, `rad`, `N`, `N·m`, ...), in the columns'
+    /// order.
+    #[getter]
+    fn units(&self) -> Vec<&'static str> {
+        self.units.clone()
     }
 
     /// The failed run's message, or None.
     #[getter]
     fn error(&self) -> Option<String> {
-        with_stepper!(&self.inner, s => s.failure().map(|e| format!("error: {e}")))
+        self.inner.failure().map(|e| format!("error: {e}"))
     }
 
     /// Write the state [x; w] (2N values, the trajectory's columns after
     /// `t`) into `out`.
     fn state_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
-        let y = with_stepper!(&self.inner, s => s.state());
+        let y = self.inner.state();
         let n2 = 2 * self.dof;
         with_buffer(out, true, |o| {
             if o.len() != n2 {
@@ -379,32 +355,15 @@ impl Simulation {
     /// `out`.
     fn row_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
         let cols = self.columns.len();
-        let n2 = 2 * self.dof;
         with_buffer(out, true, |o| {
             if o.len() != cols {
                 return Err(length_err("row", cols, o.len()));
             }
-            with_stepper!(&self.inner, s => {
-                let sys = s.system();
-                let mut k = 0;
-                let mut put = |v: f64| {
-                    o[k] = v;
-                    k += 1;
-                };
-                put(s.time());
-                s.state()[..n2].iter().for_each(|&v| put(v));
-                for w in sys.wheel_states() {
-                    w.centre.iter().for_each(|&v| put(v));
-                }
-                for r in sys.reports() {
-                    r.point.iter().for_each(|&v| put(v));
-                    [r.normal, r.drawbar, r.lateral].iter().for_each(|&v| put(v));
-                }
-                sys.torques().iter().for_each(|&v| put(v));
-                sys.steering().iter().for_each(|&v| put(v));
-                sys.control.neutrals().iter().for_each(|&v| put(v));
-                put(sys.control.speed_setpoint(s.time()));
-            });
+            let s = &self.inner;
+            let sys = s.system();
+            let t = s.time();
+            let inputs = RowInputs::of_system(sys, t, s.state(), sys.control.speed_setpoint(t));
+            self.columns.fill(&inputs, o);
             Ok(())
         })
     }
@@ -423,14 +382,16 @@ impl Simulation {
 
     /// Hold the speed set-point at `speed` [m/s].
     fn set_speed(&mut self, speed: f64) -> PyResult<()> {
-        with_stepper!(&mut self.inner, s => s.set_speed(speed))
+        self.inner
+            .set_speed(speed)
             .map_err(|e| RoverError::new_err(format!("error: {e}")))
     }
 
     /// Hold the steering set-point at `value` (slip steering's Δτ [N·m],
     /// or Ackermann steering's radius [m] or front-left angle [°]).
     fn set_steering_setpoint(&mut self, value: f64) -> PyResult<()> {
-        with_stepper!(&mut self.inner, s => s.set_steering_setpoint(value))
+        self.inner
+            .set_steering_setpoint(value)
             .map_err(|e| RoverError::new_err(format!("error: {e}")))
     }
 }
@@ -438,17 +399,19 @@ impl Simulation {
 impl Simulation {
     fn command(&mut self, values: &Bound<'_, PyAny>, torques: bool) -> PyResult<()> {
         let what = if torques { "torques" } else { "steering" };
-        let inner = &mut self.inner;
+        let s = &mut self.inner;
         with_buffer(values, false, |v| {
-            with_stepper!(inner, s => {
-                let buf = s.command_buffer();
-                if v.len() != buf.len() {
-                    return Err(length_err(what, buf.len(), v.len()));
-                }
-                buf.copy_from_slice(v);
-                let applied = if torques { s.apply_torques() } else { s.apply_steering() };
-                applied.map_err(|e| RoverError::new_err(format!("error: {e}")))
-            })
+            let buf = s.command_buffer();
+            if v.len() != buf.len() {
+                return Err(length_err(what, buf.len(), v.len()));
+            }
+            buf.copy_from_slice(v);
+            let applied = if torques {
+                s.apply_torques()
+            } else {
+                s.apply_steering()
+            };
+            applied.map_err(|e| RoverError::new_err(format!("error: {e}")))
         })
     }
 }
@@ -463,8 +426,8 @@ fn plan_info(
     dir: &str,
     base_text: Option<&str>,
 ) -> PyResult<(usize, String, String)> {
-    let plan = rover::sweep::Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text)
-        .map_err(py_err)?;
+    let plan =
+        Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text).map_err(sweep_err)?;
     let base = std::fs::read_to_string(&plan.base_origin).unwrap_or_default();
     let base = base_text.map(str::to_string).unwrap_or(base);
     Ok((plan.tasks.len(), plan.out.display().to_string(), base))
@@ -482,8 +445,8 @@ fn plan_task(
     index: usize,
     base_text: Option<&str>,
 ) -> PyResult<String> {
-    let plan = rover::sweep::Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text)
-        .map_err(py_err)?;
+    let plan =
+        Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text).map_err(sweep_err)?;
     if index >= plan.tasks.len() {
         return Err(PyValueError::new_err(format!(
             "no task {index}: the plan has {}",

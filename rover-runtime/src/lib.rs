@@ -16,6 +16,7 @@ pub mod described;
 pub mod generic_plant;
 pub mod ground;
 pub mod quasi_static;
+pub mod row;
 pub mod sim;
 pub mod wheel_law;
 

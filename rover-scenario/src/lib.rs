@@ -59,10 +59,12 @@
 
 pub mod linearize;
 pub mod output;
+pub mod prepare;
 pub mod scenario;
 pub mod simulate;
 pub mod simulation;
 mod stepper;
+pub mod sweep;
 
 pub use simulation::Simulation;
 pub use stepper::Stepper;

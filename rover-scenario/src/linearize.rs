@@ -28,7 +28,6 @@ use nalgebra::{Complex, DMatrix, DVector};
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
-use crate::output::header;
 use crate::scenario::ContactConfig;
 use rover_integrate::OdeSystem;
 use rover_runtime::control::{ControlError, Controller, ControllerConfig};
@@ -206,7 +205,8 @@ pub fn linearize_at<P: Plant>(
     let (mut sys, mut y) = operating_system(model, plant, point)?;
     // The controller's integrals are states of the loop when they act (the
     // speed loop's only with a gain).
-    let mut names: Vec<String> = header(model.m(), 0)[1..=2 * n].to_vec();
+    let mut names: Vec<String> =
+        rover_runtime::row::Columns::new(model.m(), 0).names()[1..=2 * n].to_vec();
     let mut states: Vec<usize> = (0..2 * n).collect();
     for (k, (name, acts)) in sys.control.state_names().into_iter().enumerate() {
         if acts {

@@ -263,6 +263,12 @@ pub struct ScenarioError {
 impl Scenario {
     /// Parse and check a scenario file.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        Self::read(path).map(|(scenario, _)| scenario)
+    }
+
+    /// Parse and check a scenario file; the scenario and the file's text
+    /// (which locates a field that a later message names).
+    pub fn read(path: &Path) -> Result<(Self, String), ScenarioError> {
         let error = |line: Option<usize>, message: String| ScenarioError {
             file: path.to_path_buf(),
             line,
@@ -287,7 +293,8 @@ impl Scenario {
                 ),
             )
         })?;
-        Self::parse(&text, path)
+        let scenario = Self::parse(&text, path)?;
+        Ok((scenario, text))
     }
 
     /// Parse and check scenario text; `path` names it in messages.

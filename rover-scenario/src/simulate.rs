@@ -11,11 +11,12 @@ use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::plant::Plant;
 
-use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x, header};
+use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x};
 use crate::scenario::{FidelityLevel, Scenario};
 use rover_integrate::{Integrator, OdeSystem};
 use rover_runtime::control::Controller;
 use rover_runtime::ground::ContactMethod;
+use rover_runtime::row::{Columns, RowInputs};
 use rover_runtime::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use rover_terrain::Terrain;
 
@@ -52,6 +53,12 @@ pub enum SetupError {
     /// The plant and the model are of different rovers.
     #[error("{0}")]
     Mismatch(#[from] rover_runtime::described::Mismatch),
+    /// The rover is larger than the generic plant supports.
+    #[error("{0}")]
+    TooLarge(#[from] rover_runtime::generic_plant::TooLarge),
+    /// The quasi-static level found no equilibrium to start from.
+    #[error("{0}")]
+    QuasiStatic(#[from] rover_runtime::quasi_static::QuasiStaticError),
 }
 
 impl SetupError {
@@ -188,6 +195,16 @@ pub(crate) fn system_of<P: Plant>(
     Ok((sys, y))
 }
 
+/// The driver's options of a scenario: its duration, output interval and
+/// roll-over limit.
+pub(crate) fn run_options(scenario: &Scenario) -> RunOptions {
+    RunOptions {
+        duration: scenario.duration,
+        output_step: 1.0 / scenario.output_rate,
+        rollover_limit: scenario.rollover_limit_deg.to_radians(),
+    }
+}
+
 /// Run `scenario` with `plant` (whose model is `model`, named `name`),
 /// writing the CSV to `csv`. `progress(t)` is called at every output row.
 ///
@@ -221,37 +238,21 @@ pub fn simulate<P: Plant, W: Write>(
     let mut integ = scenario.integrator.build(sys.dim())?;
     let n = model.dof();
     let k = model.wheels.len();
-    let cols = header(model.m(), k);
-    let mut writer = CsvWriter::new(csv, &cols)?;
-    let opts = RunOptions {
-        duration: scenario.duration,
-        output_step: 1.0 / scenario.output_rate,
-        rollover_limit: scenario.rollover_limit_deg.to_radians(),
-    };
+    let mut writer = CsvWriter::new(csv, Columns::new(model.m(), k))?;
+    let opts = run_options(scenario);
     let rest_x: Vec<f64> = model.rest_wheel_centres().iter().map(|u| u[0]).collect();
     let mut log = RunLog::new(scenario.settle, model.dof(), k).with_axles(axles_by_rest_x(&rest_x));
     let started = Instant::now();
     let outcome = run(&mut sys, &mut integ, &mut y, &opts, interrupt, |row| {
         let s = row.system;
-        let v = writer.row();
-        v.push(row.t);
-        v.extend_from_slice(&row.y[..2 * n]);
-        for w in s.wheel_states() {
-            v.extend_from_slice(&w.centre);
-        }
-        for r in s.reports() {
-            v.extend_from_slice(&r.point);
-            v.extend_from_slice(&[r.normal, r.drawbar, r.lateral]);
-        }
-        v.extend_from_slice(s.torques());
-        v.extend_from_slice(s.steering());
-        v.extend_from_slice(s.control.neutrals());
-        v.push(s.control.speed_setpoint(row.t));
-        log.record(v, s.reports().iter().map(|r| r.deep));
+        let inputs = RowInputs::of_system(s, row.t, row.y, s.control.speed_setpoint(row.t));
+        let values = writer.write(&inputs)?;
+        log.record(values, s.reports().iter().map(|r| r.deep));
         progress(row.t);
-        writer.finish_row()
+        Ok(())
     });
     let wall = started.elapsed().as_secs_f64();
+    let columns = writer.columns().clone();
     writer.into_inner()?;
     let (status, error) = match &outcome.stop {
         Stop::Completed => (Status::Completed, None),
@@ -264,7 +265,7 @@ pub fn simulate<P: Plant, W: Write>(
     let stats = integ.stats();
     let path_deviation = path_deviation(&log, scenario);
     let mut summary = log.summary(
-        &cols,
+        columns.names(),
         n,
         RunEnd {
             rover: name.to_string(),
@@ -292,14 +293,15 @@ pub fn simulate<P: Plant, W: Write>(
 /// The error of a failed run, with a hint when the tracking contact search
 /// is the likely cause: it follows one patch per wheel, which jumps where a
 /// wheel meets the ground at two places (docs/TERRAIN.md), and step-size
-/// control cannot follow a jump.
+/// control cannot follow a jump. The default search, bounded, finds every
+/// patch.
 fn with_contact_hint(e: &RunError, scenario: &Scenario) -> String {
     let text = e.to_string();
     match e {
         RunError::Integration {
             step_control: true, ..
         } if scenario.contact.method == ContactMethod::Tracked => format!(
-            "{text}; the tracked contact search follows one patch per wheel and jumps where a wheel meets the ground at two places: the meridional search (`[contact] method = \"meridional\"`, the default) keeps the forces continuous there"
+            "{text}; the tracked contact search follows one patch per wheel and jumps where a wheel meets the ground at two places: the bounded search (`[contact] method = \"bounded\"`, the default) finds every patch and keeps the forces continuous there"
         ),
         _ => text,
     }
@@ -473,23 +475,22 @@ fn quasi_static_run<W: Write>(
         },
         q0,
     );
-    let cols = header(model.m(), k);
-    let mut writer = CsvWriter::new(csv, &cols)?;
+    let mut writer = CsvWriter::new(csv, Columns::new(model.m(), k))?;
     let started = Instant::now();
     let mut log = RunLog::imposed(scenario.settle, k);
     let mut stop = (Status::Completed, None, scenario.duration);
     let mut normals = vec![0.0; k];
     let mut wheels = vec![rover_dynamics::plant::WheelState::default(); k];
-    let mut plant = rover_runtime::GenericPlant::new(model.clone())
-        .map_err(|e| SetupError::Path(e.to_string()))?;
+    // The imposed motion's contact: normal forces only, at the contact points.
+    let mut reports = vec![rover_dynamics::wheel_ground::WheelReport::default(); k];
+    let mut plant = rover_runtime::GenericPlant::new(model.clone())?;
     let zeros = vec![0.0; n];
-    let no_steer = vec![0.0; k];
+    // No motion, so no torques and no steering.
+    let per_wheel_zeros = vec![0.0; k];
     // The first solve starts standing on the terrain's plane under the
     // wheels; later ones from the previous solution.
-    if let Some(&first) = poses.first()
-        && let Err(e) = solver.align(first)
-    {
-        return Err(SetupError::Path(e.to_string()));
+    if let Some(&first) = poses.first() {
+        solver.align(first)?;
     }
     for (&t, &pose) in times.iter().zip(&poses) {
         if interrupt.load(std::sync::atomic::Ordering::Relaxed) {
@@ -509,30 +510,35 @@ fn quasi_static_run<W: Write>(
         }
         let x = solver.coordinates(pose, &solver.q);
         use rover_dynamics::plant::Plant;
-        plant.wheels(&x, &zeros, &no_steer, &mut wheels);
-        let v = writer.row();
-        v.push(t);
-        v.extend_from_slice(&x);
-        v.extend_from_slice(&zeros);
-        for w in &wheels {
-            v.extend_from_slice(&w.centre);
+        plant.wheels(&x, &zeros, &per_wheel_zeros, &mut wheels);
+        for ((report, h), fz) in reports
+            .iter_mut()
+            .zip(solver.contact_points())
+            .zip(&normals)
+        {
+            report.point = *h;
+            report.normal = *fz;
         }
-        for (h, fz) in solver.contact_points().iter().zip(&normals) {
-            v.extend_from_slice(h);
-            v.extend_from_slice(&[*fz, 0.0, 0.0]);
-        }
-        v.extend(std::iter::repeat_n(0.0, 2 * k));
-        v.extend_from_slice(control.neutrals());
-        v.push(control.speed_setpoint(t));
-        log.record(v, std::iter::empty());
+        let inputs = RowInputs {
+            t,
+            x: &x,
+            w: &zeros,
+            wheels: &wheels,
+            reports: &reports,
+            torques: &per_wheel_zeros,
+            steering: &per_wheel_zeros,
+            neutrals: control.neutrals(),
+            speed_setpoint: control.speed_setpoint(t),
+        };
+        log.record(writer.write(&inputs)?, std::iter::empty());
         progress(t);
-        writer.finish_row()?;
     }
+    let writer_columns = writer.columns().clone();
     writer.into_inner()?;
     let wall = started.elapsed().as_secs_f64();
     let (status, error, t_end) = stop;
     Ok(log.summary(
-        &cols,
+        writer_columns.names(),
         n,
         RunEnd {
             rover: name.to_string(),
@@ -567,19 +573,19 @@ mod tests {
     }
 
     #[test]
-    fn a_tracked_run_that_step_control_gave_up_on_points_to_the_meridional_search() {
+    fn a_tracked_run_that_step_control_gave_up_on_points_to_the_default_search() {
         let path = Path::new("s.toml");
         let tracked =
             Scenario::parse("duration = 1.0\n[contact]\nmethod = \"tracked\"\n", path).unwrap();
-        let meridional = Scenario::parse("duration = 1.0\n", path).unwrap();
+        let default = Scenario::parse("duration = 1.0\n", path).unwrap();
         let hinted = with_contact_hint(&failure(true), &tracked);
         assert!(
             hinted.starts_with("the run stopped at t = 5.000000 s: step size")
-                && hinted.contains("method = \"meridional\""),
+                && hinted.contains("method = \"bounded\""),
             "{hinted}"
         );
         // Not for the default search, nor for failures of another kind.
-        for (e, s) in [(failure(true), &meridional), (failure(false), &tracked)] {
+        for (e, s) in [(failure(true), &default), (failure(false), &tracked)] {
             assert_eq!(with_contact_hint(&e, s), e.to_string());
         }
     }

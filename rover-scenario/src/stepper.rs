@@ -1,9 +1,9 @@
 //! A run advanced by the caller, one output interval at a time: what a
 //! step-wise caller (the Python package's `Simulation`, a learning agent's
 //! environment) drives. Between steps it may read the state and change the
-//! open-loop commands and the set-points. A step takes the same events, in
-//! the same order, as [`rover_runtime::sim::run`], so that a run stepped without
-//! changes gives the rows of the whole run bit for bit.
+//! open-loop commands and the set-points. A step advances through the same
+//! [`Driver`] as the whole run ([`rover_runtime::sim::run`]), so that a run
+//! stepped without changes gives the rows of the whole run bit for bit.
 
 use std::path::Path;
 
@@ -11,12 +11,12 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
 use crate::scenario::{FidelityLevel, Scenario};
-use crate::simulate::{SetupError, system_of};
+use crate::simulate::{SetupError, run_options, system_of};
 use rover_integrate::{AnyIntegrator, Integrator, OdeSystem};
 use rover_runtime::control::ControlError;
 use rover_terrain::Terrain;
 
-use rover_runtime::sim::{CommandError, RoverSystem, RunError};
+use rover_runtime::sim::{CommandError, Driver, RoverSystem, RunError, RunOptions};
 
 /// A run under the caller's control (see the module's documentation).
 #[derive(Clone, Debug)]
@@ -25,18 +25,12 @@ pub struct Stepper<P> {
     sys: RoverSystem<P, Terrain>,
     integ_start: AnyIntegrator,
     integ: AnyIntegrator,
+    driver: Driver,
     y0: Vec<f64>,
     y: Vec<f64>,
     scratch: Vec<f64>,
     commands: Vec<f64>,
     t: f64,
-    steps: u64,
-    dt: f64,
-    sample: Option<f64>,
-    k_sample: u64,
-    breaks: Vec<f64>,
-    next_break: usize,
-    rollover: f64,
     failed: Option<RunError>,
 }
 
@@ -58,30 +52,24 @@ impl<P: Plant + Clone> Stepper<P> {
         }
         let (sys, y) = system_of(plant, model, scenario, base_dir)?;
         let integ = scenario.integrator.build(sys.dim())?;
-        let mut breaks: Vec<f64> = sys
-            .control
-            .breakpoints()
-            .into_iter()
-            .filter(|&b| b > 0.0)
-            .collect();
-        breaks.sort_by(f64::total_cmp);
+        let driver = Driver::new(
+            &sys.control,
+            RunOptions {
+                duration: f64::INFINITY,
+                ..run_options(scenario)
+            },
+        );
         let mut s = Self {
-            sample: sys.control.sample_period(),
             start: sys.clone(),
             integ_start: integ.clone(),
             scratch: vec![0.0; y.len()],
             commands: vec![0.0; sys.plant.wheel_count()],
             sys,
             integ,
+            driver,
             y0: y.clone(),
             y,
             t: 0.0,
-            steps: 0,
-            dt: 1.0 / scenario.output_rate,
-            k_sample: 0,
-            breaks,
-            next_break: 0,
-            rollover: scenario.rollover_limit_deg.to_radians(),
             failed: None,
         };
         s.reset();
@@ -95,24 +83,26 @@ impl<P: Plant + Clone> Stepper<P> {
         self.integ.clone_from(&self.integ_start);
         self.y.copy_from_slice(&self.y0);
         self.t = 0.0;
-        self.steps = 0;
-        self.k_sample = 0;
-        self.next_break = 0;
-        self.failed = None;
-        self.events();
-        self.refresh();
+        self.driver.rewind();
+        self.driver
+            .start(&mut self.sys, &mut self.integ, self.t, &self.y);
+        self.failed = self.refresh().err();
     }
 
     /// Advance `n` output intervals. Allocates nothing. A run that fails
-    /// (the integrator gives up, the rover rolls over or leaves the map)
-    /// stays where it failed, and so does every later step, until
-    /// [`Stepper::reset`].
+    /// (the integrator gives up or diverges, the rover rolls over or
+    /// leaves the map) stays where it failed, and so does every later
+    /// step, until [`Stepper::reset`].
     pub fn step(&mut self, n: u64) -> Result<(), RunError> {
         if let Some(e) = &self.failed {
             return Err(e.clone());
         }
         for _ in 0..n {
-            if let Err(e) = self.one() {
+            let stepped = self
+                .driver
+                .advance(&mut self.sys, &mut self.integ, &mut self.t, &mut self.y)
+                .and_then(|()| self.refresh());
+            if let Err(e) = stepped {
                 self.failed = Some(e.clone());
                 return Err(e);
             }
@@ -120,86 +110,17 @@ impl<P: Plant + Clone> Stepper<P> {
         Ok(())
     }
 
-    /// Controller samples due at the current time.
-    fn events(&mut self) {
-        let n = self.sys.dof();
-        if let Some(dt) = self.sample
-            && (self.k_sample as f64 * dt - self.t).abs() <= 1e-12 * (1.0 + self.t)
-        {
-            let (x, rest) = self.y.split_at(n);
-            if self
-                .sys
-                .control
-                .sample(self.t, x, &rest[..n], &mut self.sys.plant)
-            {
-                self.integ.restart();
-            }
-            self.k_sample += 1;
-        }
-    }
-
     /// The wheel states, contact reports and torques at (t, y), as the
-    /// run driver evaluates them at an output instant.
-    fn refresh(&mut self) -> Option<RunError> {
+    /// whole run evaluates them at an output instant.
+    fn refresh(&mut self) -> Result<(), RunError> {
         let t = self.t;
         self.sys
             .rhs(t, &self.y, &mut self.scratch)
-            .err()
-            .map(|e| RunError::Integration {
+            .map_err(|e| RunError::Integration {
                 t,
                 message: e.to_string(),
                 step_control: false,
             })
-    }
-
-    /// One output interval, through every controller sample and command
-    /// breakpoint in it (the run driver's loop between two outputs).
-    fn one(&mut self) -> Result<(), RunError> {
-        let end = (self.steps + 1) as f64 * self.dt;
-        loop {
-            while self.next_break < self.breaks.len() && self.breaks[self.next_break] <= self.t {
-                self.next_break += 1;
-            }
-            let mut target = end;
-            if let Some(dt) = self.sample {
-                target = target.min(self.k_sample as f64 * dt);
-            }
-            let at_break = self.next_break < self.breaks.len()
-                && self.breaks[self.next_break] <= target + 1e-12 * (1.0 + target);
-            if at_break {
-                target = self.breaks[self.next_break];
-            }
-            self.sys.set_next_break(at_break.then_some(target));
-            let advanced = self
-                .integ
-                .advance(&mut self.sys, &mut self.t, &mut self.y, target);
-            self.sys.set_next_break(None);
-            if let Err(e) = advanced {
-                let te = e.time().unwrap_or(self.t);
-                return Err(RunError::Integration {
-                    t: te,
-                    message: e.to_string(),
-                    step_control: e.is_step_control(),
-                });
-            }
-            if at_break {
-                self.integ.restart();
-            }
-            let (roll, pitch) = (self.y[3], self.y[4]);
-            if roll.abs() > self.rollover || pitch.abs() > self.rollover {
-                return Err(RunError::RolledOver {
-                    t: self.t,
-                    roll_deg: roll.to_degrees(),
-                    pitch_deg: pitch.to_degrees(),
-                    limit_deg: self.rollover.to_degrees(),
-                });
-            }
-            self.events();
-            if (end - self.t).abs() <= 1e-12 * (1.0 + self.t) {
-                self.steps += 1;
-                return self.refresh().map_or(Ok(()), Err);
-            }
-        }
     }
 
     /// Time \[s\].
@@ -209,7 +130,7 @@ impl<P: Plant + Clone> Stepper<P> {
 
     /// The output interval, one step \[s\].
     pub fn dt(&self) -> f64 {
-        self.dt
+        self.driver.options().output_step
     }
 
     /// The full state `[x; w; ζ]`.
@@ -257,7 +178,7 @@ impl<P: Plant + Clone> Stepper<P> {
         Ok(())
     }
 
-    /// Hold the speed set-point at `speed` [m/s] ([`Controller::set_speed`]).
+    /// Hold the speed set-point at `speed` [m/s] ([`Controller::set_speed`](rover_runtime::control::Controller::set_speed)).
     pub fn set_speed(&mut self, speed: f64) -> Result<(), ControlError> {
         self.sys.control.set_speed(speed)?;
         self.integ.restart();
@@ -265,7 +186,7 @@ impl<P: Plant + Clone> Stepper<P> {
     }
 
     /// Hold the steering set-point at `value`
-    /// ([`Controller::set_steering_setpoint`]).
+    /// ([`Controller::set_steering_setpoint`](rover_runtime::control::Controller::set_steering_setpoint)).
     pub fn set_steering_setpoint(&mut self, value: f64) -> Result<(), ControlError> {
         self.sys.control.set_steering_setpoint(value)?;
         self.integ.restart();

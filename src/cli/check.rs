@@ -2,9 +2,9 @@
 
 use clap::Args;
 
-use crate::rover_source::load_rover;
+use rover_scenario::prepare::load_rover;
 
-use super::CliError;
+use crate::error::CliError;
 
 /// Arguments of `rover check`.
 #[derive(Debug, Args)]

@@ -7,8 +7,10 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use rover_dynamics::fidelity::Fidelity;
 
-use super::CliError;
-use crate::rover_source::load_rover;
+use rover_scenario::output::write_whole;
+use rover_scenario::prepare::{load_rover, reduced_level_reference};
+
+use crate::error::{CliError, print_stdout};
 
 /// The dynamic fidelity levels a plant can be generated at (MODEL.md §9).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -55,14 +57,13 @@ pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
         None => None,
         Some(fidelity) => Some(rover_codegen::trace::Level {
             fidelity,
-            y_ref: super::simulate::reduced_level_reference(&spec.model)
-                .map_err(|e| CliError::Other(format!("{}: {e}", args.rover)))?,
+            y_ref: reduced_level_reference(&spec.model)?,
         }),
     };
     if let Some(name) = &args.type_name
         && !is_type_name(name)
     {
-        return Err(CliError::Other(format!(
+        return Err(CliError::Usage(format!(
             "--type-name {name:?} is not a Rust type name: use letters, digits and \
              underscores, starting with an uppercase letter (e.g. MyRover)"
         )));
@@ -72,11 +73,10 @@ pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
         jacobian: !args.no_jacobian,
         level,
     };
-    let text = rover_codegen::generate_module_with(&spec, source, &options)
-        .map_err(|e| CliError::Other(e.to_string()))?;
+    let text = rover_codegen::generate_module_with(&spec, source, &options)?;
     match &args.out {
-        Some(p) => super::write_whole(p, &text)?,
-        None => super::print_stdout(&text)?,
+        Some(p) => write_whole(p, &text)?,
+        None => print_stdout(&text)?,
     }
     Ok(text)
 }

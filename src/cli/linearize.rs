@@ -8,10 +8,10 @@ use clap::Args;
 use rover_scenario::linearize::{Linearization, Mode, ModeKind, OperatingPoint, linearize_at};
 use rover_scenario::scenario::Scenario;
 
-use crate::rover_source::load_rover;
+use rover_scenario::output::write_whole;
+use rover_scenario::prepare::{RunPlant, load_rover};
 
-use super::CliError;
-use super::simulate::{build_plant, generated_plant};
+use crate::error::CliError;
 
 /// Arguments of `rover linearize`.
 #[derive(Debug, Args)]
@@ -53,32 +53,27 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
         point.contact = scenario.contact;
         point.control = scenario.control;
         level = scenario.fidelity.dynamic().ok_or_else(|| {
-            CliError::Other(format!(
+            CliError::Usage(format!(
                 "{}: fidelity = \"quasi_static\" has no dynamics to linearize; use full, simplified or linearized",
                 path.display()
             ))
         })?;
     }
-    let fail = |e: rover_scenario::linearize::LinearizeError| {
-        CliError::Other(format!("{}: cannot linearize: {e}", spec.name))
-    };
-    let generated = generated_plant(&args.rover, level, args.generic);
-    let (lin, backend) = match generated {
-        Some(p) => (
-            linearize_at(model, p, &point).map_err(fail)?,
-            format!("generated plant {}", p.name()),
-        ),
-        None => (
-            linearize_at(model, build_plant(model, level)?, &point).map_err(fail)?,
-            match level {
-                rover_dynamics::fidelity::Fidelity::Full => "generic plant".to_string(),
-                other => format!(
-                    "generic plant, {} level",
-                    format!("{other:?}").to_lowercase()
-                ),
-            },
+    let plant = RunPlant::new(&args.rover, model, level, args.generic)?;
+    let backend = match (&plant, level) {
+        (RunPlant::Generated(p), _) => format!("generated plant {}", p.name()),
+        (RunPlant::Generic(_), rover_dynamics::fidelity::Fidelity::Full) => {
+            "generic plant".to_string()
+        }
+        (RunPlant::Generic(_), other) => format!(
+            "generic plant, {} level",
+            format!("{other:?}").to_lowercase()
         ),
     };
+    let lin = linearize_at(model, plant, &point).map_err(|source| CliError::Linearize {
+        rover: spec.name.clone(),
+        source,
+    })?;
     if let Some(path) = &args.out {
         #[derive(serde::Serialize)]
         struct Output<'a> {
@@ -92,8 +87,8 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
             plant: &backend,
             linearization: &lin,
         })
-        .map_err(|e| CliError::Other(e.to_string()))?;
-        super::write_whole(path, &(json + "\n"))?;
+        .map_err(|e| CliError::io(path, "write the linearization as JSON", e.into()))?;
+        write_whole(path, &(json + "\n"))?;
     }
     Ok(report(&spec.name, &backend, &lin, &point))
 }

@@ -17,8 +17,10 @@ use clap::Args;
 use rayon::prelude::*;
 use rover_scenario::output::Summary;
 
-use super::CliError;
-use crate::rover_source::load_rover;
+use rover_scenario::output::write_whole;
+use rover_scenario::prepare::load_rover;
+
+use crate::error::CliError;
 use calibration::{
     CHOSEN, Claim, EXAMPLE1_DURATION, FIG6_ROUGHNESS, FIG7_ROUGHNESS, FIG7_SPEEDS, Outcome, Record,
     SEARCH_DELTA, SEEDS,
@@ -96,7 +98,7 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
 
     v.num("wall_time_s", started.elapsed().as_secs_f64(), 0);
     let out = args.docs.join("REPRODUCTION.md");
-    super::write_whole(&out, &template::render(TEMPLATE, &v)?)?;
+    write_whole(&out, &template::render(TEMPLATE, &v)?)?;
     check(&chosen, &stored, &search.outcomes)?;
     Ok(out)
 }
@@ -122,7 +124,7 @@ fn search(args: &ReproduceArgs, chosen: &Outcome) -> Result<Search, CliError> {
                 records.extend(runs.into_iter().map(|(r, _)| r));
             }
         }
-        super::write_whole(&path, &calibration::to_csv(&records))?;
+        write_whole(&path, &calibration::to_csv(&records))?;
         records
     } else {
         calibration::from_csv(&path)?

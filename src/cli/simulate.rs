@@ -8,13 +8,10 @@ use std::sync::{Arc, OnceLock};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rover_runtime::GenericPlant;
 use rover_scenario::output::{Status, Summary};
-use rover_scenario::scenario::Scenario;
+use rover_scenario::prepare::Prepared;
 
-use crate::rover_source::{builtin_names, load_rover};
-
-use super::CliError;
+use crate::error::CliError;
 
 /// Arguments of `rover simulate`.
 #[derive(Debug, Args)]
@@ -64,127 +61,6 @@ fn interrupt_flag() -> Arc<AtomicBool> {
     .clone()
 }
 
-/// An output that cannot be written: the path, what was being done, the
-/// system's reason.
-fn io_err(path: &Path, doing: &str, e: std::io::Error) -> CliError {
-    CliError::Other(format!("{}: cannot {doing}: {e}", path.display()))
-}
-
-/// A scenario read and its rover loaded: everything a run needs before it
-/// writes anything. The CLI and the Python package both start here, so a
-/// run from either gives the same numbers and the same messages.
-#[derive(Debug)]
-pub struct Prepared {
-    /// The rover's description.
-    pub spec: rover_spec::Spec,
-    /// The rover as named (built-in name or path), which picks the plant.
-    pub rover: String,
-    /// The scenario.
-    pub scenario: Scenario,
-    /// Where the scenario's relative paths start.
-    pub base: PathBuf,
-    /// The scenario's name in messages (its path, or a stand-in for text).
-    pub origin: PathBuf,
-    /// The scenario's text, to locate a field that a message names.
-    pub text: String,
-}
-
-impl Prepared {
-    /// Read the scenario file at `path` and load its rover (`rover`
-    /// overrides the scenario's).
-    pub fn from_file(rover: Option<&str>, path: &Path) -> Result<Self, CliError> {
-        let scenario = Scenario::load(path)?;
-        let text = std::fs::read_to_string(path).unwrap_or_default();
-        let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        Self::new(rover, scenario, text, path, &base)
-    }
-
-    /// A scenario given as TOML `text`, named `origin` in messages, its
-    /// relative paths taken from `base`.
-    pub fn from_text(
-        rover: Option<&str>,
-        text: &str,
-        origin: &Path,
-        base: &Path,
-    ) -> Result<Self, CliError> {
-        let scenario = Scenario::parse(text, origin)?;
-        Self::new(rover, scenario, text.to_string(), origin, base)
-    }
-
-    fn new(
-        rover: Option<&str>,
-        scenario: Scenario,
-        text: String,
-        origin: &Path,
-        base: &Path,
-    ) -> Result<Self, CliError> {
-        let rover = rover
-            .map(str::to_string)
-            .or_else(|| scenario.rover.clone())
-            .ok_or_else(|| {
-                CliError::Other(format!(
-                    "no rover: give one on the command line or as `rover = \"...\"` in {} (built-in: {})",
-                    origin.display(),
-                    builtin_names()
-                ))
-            })?;
-        let spec = load_rover(&rover, Some(base))?;
-        Ok(Self {
-            spec,
-            rover,
-            scenario,
-            base: base.to_path_buf(),
-            origin: origin.to_path_buf(),
-            text,
-        })
-    }
-
-    /// A run that could not start, located at the scenario's offending
-    /// field (`file:line: `) when the error names one.
-    pub fn locate(&self, source: rover_scenario::simulate::SetupError) -> CliError {
-        let line = source
-            .field_path()
-            .and_then(|f| rover_scenario::scenario::line_of_field(&self.text, &f));
-        let location = match line {
-            Some(l) => format!("{}:{l}: ", self.origin.display()),
-            None => format!("{}: ", self.origin.display()),
-        };
-        CliError::Setup { location, source }
-    }
-
-    /// Run the scenario, writing the CSV to `csv`; the summary names the
-    /// plant that ran. A run that could not start is an error located at
-    /// the scenario's offending field.
-    pub fn run<W: std::io::Write>(
-        &self,
-        generic: bool,
-        csv: W,
-        interrupt: &AtomicBool,
-        progress: impl FnMut(f64),
-    ) -> Result<Summary, CliError> {
-        let level = self.scenario.fidelity.dynamic().unwrap_or_default();
-        let run = Run {
-            spec: &self.spec,
-            scenario: &self.scenario,
-            base: &self.base,
-            flag: interrupt,
-        };
-        let (result, backend) = match generated_plant(&self.rover, level, generic) {
-            Some(p) => (
-                run.go(p, csv, progress),
-                format!("generated ({})", p.name()),
-            ),
-            None => (
-                run.go(build_plant(&self.spec.model, level)?, csv, progress),
-                "generic".to_string(),
-            ),
-        };
-        let mut summary = result.map_err(|source| self.locate(source))?;
-        summary.plant = backend;
-        Ok(summary)
-    }
-}
-
 /// Run the scenario and write `run.csv` and `summary.json` into `args.out`.
 ///
 /// A run that cannot start, for whatever reason, leaves a summary saying
@@ -207,13 +83,13 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     let prepared = Prepared::from_file(args.rover.as_deref(), &args.scenario)?;
     let (spec, scenario) = (&prepared.spec, &prepared.scenario);
     if args.out.exists() && !args.out.is_dir() {
-        return Err(CliError::Other(format!(
+        return Err(CliError::Usage(format!(
             "{}: is a file, not a folder; give `--out` a folder (it is created if missing)",
             args.out.display()
         )));
     }
     std::fs::create_dir_all(&args.out)
-        .map_err(|e| io_err(&args.out, "create the output folder", e))?;
+        .map_err(|e| CliError::io(&args.out, "create the output folder", e))?;
     let csv_path = args.out.join("run.csv");
     let summary_path = args.out.join("summary.json");
     // A summary saying "running" first: a run killed hard leaves no
@@ -222,9 +98,9 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         &summary_path,
         "{\"status\": \"running\", \"complete\": false}\n",
     )
-    .map_err(|e| io_err(&summary_path, "write the summary", e))?;
+    .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
     let csv = BufWriter::new(
-        File::create(&csv_path).map_err(|e| io_err(&csv_path, "create the CSV", e))?,
+        File::create(&csv_path).map_err(|e| CliError::io(&csv_path, "create the CSV", e))?,
     );
     let bar = if args.quiet {
         ProgressBar::hidden()
@@ -241,10 +117,10 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     let progress = |t: f64| bar.set_position((1000.0 * t / duration) as u64);
     let summary = prepared.run(args.generic, csv, &flag, progress)?;
     bar.finish_and_clear();
-    let json =
-        serde_json::to_string_pretty(&summary).map_err(|e| CliError::Other(e.to_string()))?;
+    let json = serde_json::to_string_pretty(&summary)
+        .map_err(|e| CliError::io(&summary_path, "write the summary", e.into()))?;
     std::fs::write(&summary_path, json + "\n")
-        .map_err(|e| io_err(&summary_path, "write the summary", e))?;
+        .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
     *summarized = true;
     let mut files = vec![csv_path.clone(), summary_path];
     if !args.no_plots {
@@ -335,7 +211,7 @@ fn plots(
         settle_time: settle,
         ..Default::default()
     };
-    rover_plot::plot_run(csv, out, &meta).map_err(|e| CliError::Other(e.to_string()))
+    Ok(rover_plot::plot_run(csv, out, &meta)?)
 }
 
 #[cfg(not(feature = "plots"))]
@@ -346,78 +222,4 @@ fn plots(
     _settle: f64,
 ) -> Result<Vec<PathBuf>, CliError> {
     Ok(Vec::new())
-}
-
-/// The generic plant at a fidelity level; reduced levels are frozen at the
-/// loaded static equilibrium on flat ground (docs/FIDELITY.md says why).
-/// The generated plant of a built-in rover at `level`, where one exists
-/// (and `generic` is not asked for): built-in rovers run it, others the
-/// generic plant.
-pub fn generated_plant(
-    rover: &str,
-    level: rover_dynamics::fidelity::Fidelity,
-    generic: bool,
-) -> Option<rover_models::BuiltinPlant> {
-    use rover_dynamics::fidelity::Fidelity;
-    match level {
-        _ if generic => None,
-        Fidelity::Full => rover_models::plant(rover),
-        Fidelity::Simplified => rover_models::plant_at(rover, "simplified"),
-        Fidelity::Linearized => rover_models::plant_at(rover, "linearized"),
-    }
-}
-
-/// The generic plant of `model` at `level` (reduced levels frozen where the
-/// CLI freezes them: the loaded flat-ground equilibrium).
-pub fn build_plant(
-    model: &rover_dynamics::Model,
-    level: rover_dynamics::fidelity::Fidelity,
-) -> Result<GenericPlant, CliError> {
-    let y_ref = match level {
-        rover_dynamics::fidelity::Fidelity::Full => model.rest(),
-        _ => reduced_level_reference(model)?,
-    };
-    GenericPlant::with_fidelity_at(model.clone(), level, &y_ref)
-        .map_err(|e| CliError::Other(e.to_string()))
-}
-
-/// Where the CLI freezes a reduced level (MODEL.md §9): the rover's loaded
-/// static equilibrium on flat ground, not y_c (docs/FIDELITY.md says why).
-/// `simulate` and `codegen` both freeze here, so a generated reduced plant
-/// is the generic one.
-pub fn reduced_level_reference(model: &rover_dynamics::Model) -> Result<Vec<f64>, CliError> {
-    rover_runtime::quasi_static::flat_ground_equilibrium(model).map_err(|e| {
-        CliError::Other(format!(
-            "cannot find the loaded equilibrium to freeze a reduced fidelity level at: {e}"
-        ))
-    })
-}
-
-/// What every run of `simulate` shares, whichever the plant.
-struct Run<'a> {
-    spec: &'a rover_spec::Spec,
-    scenario: &'a Scenario,
-    base: &'a Path,
-    flag: &'a AtomicBool,
-}
-
-impl Run<'_> {
-    fn go<P: rover_dynamics::plant::Plant, W: std::io::Write>(
-        &self,
-        plant: P,
-        csv: W,
-        progress: impl FnMut(f64),
-    ) -> Result<Summary, rover_scenario::simulate::SetupError> {
-        let s = self.spec;
-        rover_scenario::simulate::simulate(
-            plant,
-            &s.model,
-            &s.name,
-            self.scenario,
-            self.base,
-            csv,
-            self.flag,
-            progress,
-        )
-    }
 }

@@ -1,13 +1,15 @@
 //! `rover sweep plan.toml --index I --count N`: worker I of N runs its
-//! share of a sweep plan's tasks (see [`crate::sweep`]); `--gather`
+//! share of a sweep plan's tasks (see [`rover_scenario::sweep`]); `--gather`
 //! collects the records into `results.csv`.
 
 use std::path::PathBuf;
 
 use clap::Args;
 
-use super::{CliError, write_whole};
-use crate::sweep::{Plan, gather_csv, worker_tasks};
+use rover_scenario::output::write_whole;
+use rover_scenario::sweep::{Plan, gather_csv, worker_tasks};
+
+use crate::error::CliError;
 
 /// Arguments of `rover sweep`.
 #[derive(Debug, Args)]
@@ -43,14 +45,13 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         return Ok(());
     }
     if args.count == 0 || args.index >= args.count {
-        return Err(CliError::Other(format!(
+        return Err(CliError::Usage(format!(
             "--index {} --count {}: give 0 ≤ index < count",
             args.index, args.count
         )));
     }
     let dir = plan.out.join("tasks");
-    std::fs::create_dir_all(&dir)
-        .map_err(|e| CliError::Other(format!("{}: cannot create: {e}", dir.display())))?;
+    std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, "create", e))?;
     let (mut ran, mut skipped) = (0, 0);
     for i in worker_tasks(plan.tasks.len(), args.index, args.count) {
         let path = plan.task_path(i);

@@ -18,9 +18,11 @@ use rover_runtime::control::{
     Controller, ControllerConfig, Distribution, SpeedConfig, ackermann_angle, add_share,
     curvature_from_angle, heading_centre_x,
 };
-use rover_runtime::sim::RoverSystem;
+use rover_runtime::row::{Columns, RowInputs};
+use rover_runtime::sim::{CommandError, Driver, RoverSystem, RunError, RunOptions};
 use rover_runtime::terrain::Terrain;
 use rover_scenario::scenario::Scenario;
+use rover_scenario::simulate::SetupError;
 
 /// The fixed-step method of the loop.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -180,7 +182,7 @@ pub struct Inbox {
 pub struct Snapshot {
     /// Bumped at every publication.
     pub seq: u64,
-    /// The CSV's columns (`rover_scenario::output::header`), in its order.
+    /// The row's values ([`Sim::columns`]), in the CSV's order.
     pub values: Vec<f64>,
     /// Wall-clock seconds since the loop started, when the state was computed.
     pub wall_s: f64,
@@ -411,6 +413,10 @@ pub struct Timing {
 pub struct Sim<P> {
     sys: RoverSystem<P, Terrain>,
     integ: AnyIntegrator,
+    /// The run's events (the active suspension's samples), one step being
+    /// one output interval.
+    driver: Driver,
+    columns: Columns,
     y: Vec<f64>,
     y0: Vec<f64>,
     scratch: Vec<f64>,
@@ -424,7 +430,6 @@ pub struct Sim<P> {
     command: Command,
     torques: Vec<f64>,
     steering: Vec<f64>,
-    rollover_limit: f64,
     distribution: Distribution,
     /// The speed loop's weights per wheel: 1 (even), the static loads, or
     /// the loads of the last evaluation (measured), refreshed each step.
@@ -432,9 +437,6 @@ pub struct Sim<P> {
     /// The controller as built, for a reset (the active suspension's
     /// neutrals back at rest).
     control0: Controller,
-    /// The active suspension's period and its next sample \[s\].
-    sample: Option<f64>,
-    next_sample: f64,
     pacing: Pacing,
 }
 
@@ -447,35 +449,37 @@ impl<P: Plant> Sim<P> {
         scenario: &Scenario,
         base: &std::path::Path,
         config: &LoopConfig,
-    ) -> Result<Self, String> {
-        let terrain = scenario.terrain.build(base).map_err(|e| e.to_string())?;
-        let mut y = rover_scenario::simulate::initial_state(model, scenario, Some(&terrain))
-            .map_err(|e| e.to_string())?;
+    ) -> Result<Self, SetupError> {
+        let terrain = scenario.terrain.build(base)?;
+        let mut y = rover_scenario::simulate::initial_state(model, scenario, Some(&terrain))?;
         let ground = scenario.contact.ground(terrain, model);
-        let control = Controller::new_in(config.control.clone(), model, 0.0, base)
-            .map_err(|e| e.to_string())?;
+        let control = Controller::new_in(config.control.clone(), model, 0.0, base)?;
         let weights = match config.distribution {
-            Distribution::StaticLoad => rover_runtime::quasi_static::flat_ground_loads(model)
-                .map_err(|e| format!("control.speed.distribution: {e}"))?,
+            Distribution::StaticLoad => rover_runtime::quasi_static::flat_ground_loads(model)?,
             Distribution::Even | Distribution::MeasuredLoad => vec![1.0; model.wheels.len()],
         };
-        let sample = control.sample_period();
+        let h = 1.0 / config.rate_hz;
+        let driver = Driver::new(
+            &control,
+            RunOptions {
+                duration: f64::INFINITY,
+                output_step: h,
+                rollover_limit: config.rollover_limit,
+            },
+        );
         let sys = RoverSystem::new(plant, Some(ground), control.clone());
         y.resize(sys.dim(), 0.0);
-        let h = 1.0 / config.rate_hz;
-        let integ = config
-            .method
-            .config(h)
-            .build(sys.dim())
-            .map_err(|e| e.to_string())?;
+        let integ = config.method.config(h).build(sys.dim())?;
         let k = model.wheels.len();
-        Ok(Sim {
+        let mut sim = Sim {
             n: model.dof(),
+            columns: Columns::new(model.m(), k),
             scratch: vec![0.0; y.len()],
             y0: y.clone(),
             y,
             sys,
             integ,
+            driver,
             t: 0.0,
             h,
             info: RoverInfo::new(model),
@@ -485,14 +489,19 @@ impl<P: Plant> Sim<P> {
             command: Command::zero(k),
             torques: vec![0.0; k],
             steering: vec![0.0; k],
-            rollover_limit: config.rollover_limit,
             distribution: config.distribution,
             weights,
             control0: control,
-            sample,
-            next_sample: 0.0,
             pacing: config.pacing,
-        })
+        };
+        sim.driver
+            .start(&mut sim.sys, &mut sim.integ, sim.t, &sim.y);
+        Ok(sim)
+    }
+
+    /// The row's columns, as the CSV of a run names them.
+    pub fn columns(&self) -> &Columns {
+        &self.columns
     }
 
     /// The springs' neutrals y0 in force (moved by an active suspension).
@@ -524,17 +533,17 @@ impl<P: Plant> Sim<P> {
     pub fn reset(&mut self) {
         self.y.copy_from_slice(&self.y0);
         self.t = 0.0;
-        self.next_sample = 0.0;
-        if self.sample.is_some() {
-            // The neutrals back where they started (a reset is not a step:
-            // the copy may allocate).
-            self.sys.control = self.control0.clone();
-            for (i, &n) in self.control0.neutrals().iter().enumerate() {
-                self.sys.plant.set_spring_neutral(i, n);
-            }
+        // The neutrals back where they started (a reset is not a step:
+        // the copy may allocate).
+        self.sys.control = self.control0.clone();
+        for (i, &n) in self.control0.neutrals().iter().enumerate() {
+            self.sys.plant.set_spring_neutral(i, n);
         }
         self.integral = 0.0;
         self.integ.restart();
+        self.driver.rewind();
+        self.driver
+            .start(&mut self.sys, &mut self.integ, self.t, &self.y);
         self.command.stop();
         self.command.steer = 0.0;
         self.command.delta_tau = 0.0;
@@ -615,79 +624,36 @@ impl<P: Plant> Sim<P> {
         }
     }
 
-    /// One step of `h`: the command applied, then the integrator. On
-    /// failure (the integrator's error, a wheel off the terrain map, a
-    /// roll-over) the state is that of the last good step.
-    pub fn step(&mut self) -> Result<(), String> {
-        if let Some(dt) = self.sample
-            && self.t >= self.next_sample - 1e-9 * dt
-        {
-            // The sampled controllers (the active suspension) at their
-            // period, between steps as in a scenario run.
-            let (x, rest) = self.y.split_at(self.n);
-            let sys = &mut self.sys;
-            if sys
-                .control
-                .sample(self.t, x, &rest[..self.n], &mut sys.plant)
-            {
-                self.integ.restart();
-            }
-            self.next_sample += dt;
-        }
+    /// One step of `h`: the command applied, then the run's driver (the
+    /// active suspension's samples, the checks of a diverged integration
+    /// and a roll-over). On failure (the integrator's error, a wheel off
+    /// the terrain map, a divergence, a roll-over) the state is that of
+    /// the last good step.
+    pub fn step(&mut self) -> Result<(), RunError> {
         self.actuate();
         // Torques and steering were checked (finite, one per wheel, only
-        // steerable wheels steer) when the command came in.
-        self.sys
-            .set_torques(&self.torques)
-            .map_err(|e| e.to_string())?;
-        self.sys
-            .set_steering(&self.steering)
-            .map_err(|e| e.to_string())?;
-        let target = self.t + self.h;
-        self.integ
-            .advance(&mut self.sys, &mut self.t, &mut self.y, target)
-            .map_err(|e| e.to_string())?;
-        let (roll, pitch) = (self.y[3], self.y[4]);
-        if roll.abs() > self.rollover_limit || pitch.abs() > self.rollover_limit {
-            return Err(format!(
-                "rolled over at t = {:.3} s: roll {:.1}°, pitch {:.1}°",
-                self.t,
-                roll.to_degrees(),
-                pitch.to_degrees()
-            ));
-        }
-        Ok(())
+        // steerable wheels steer) when the command came in: the system
+        // takes them as they are.
+        let t = self.t;
+        let command = |e: CommandError| RunError::Integration {
+            t,
+            message: e.to_string(),
+            step_control: false,
+        };
+        self.sys.set_torques(&self.torques).map_err(command)?;
+        self.sys.set_steering(&self.steering).map_err(command)?;
+        self.driver
+            .advance(&mut self.sys, &mut self.integ, &mut self.t, &mut self.y)
     }
 
-    /// The CSV's row at the current state into `out` (one right-hand side
-    /// evaluates the contact reports there).
+    /// The row at the current state into `out`, the CSV's columns (one
+    /// right-hand side evaluates the contact reports there).
     pub fn row(&mut self, out: &mut [f64]) {
-        let n = self.n;
         // An evaluation error leaves the last evaluation's reports: the
         // step that follows reports the error itself.
         let _ = self.sys.rhs(self.t, &self.y, &mut self.scratch);
-        let mut i = 0;
-        let mut push = |v: f64| {
-            if let Some(o) = out.get_mut(i) {
-                *o = v;
-            }
-            i += 1;
-        };
-        push(self.t);
-        self.y[..2 * n].iter().for_each(|v| push(*v));
-        for w in self.sys.wheel_states() {
-            w.centre.iter().for_each(|v| push(*v));
-        }
-        for r in self.sys.reports() {
-            r.point.iter().for_each(|v| push(*v));
-            push(r.normal);
-            push(r.drawbar);
-            push(r.lateral);
-        }
-        self.sys.torques().iter().for_each(|v| push(*v));
-        self.sys.steering().iter().for_each(|v| push(*v));
-        self.sys.control.neutrals().iter().for_each(|v| push(*v));
-        push(self.speed_setpoint());
+        let inputs = RowInputs::of_system(&self.sys, self.t, &self.y, self.speed_setpoint());
+        self.columns.fill(&inputs, out);
     }
 }
 
@@ -837,7 +803,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
         let stepping = !paused && error.is_none();
         if stepping {
             if let Err(e) = sim.step() {
-                error = Some(e);
+                error = Some(e.to_string());
             }
             steps += 1;
             window_sim += sim.h;

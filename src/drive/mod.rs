@@ -18,15 +18,13 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 
 use clap::Args;
-use rover_dynamics::plant::Plant;
 use rover_runtime::terrain::{HeightField, Terrain};
-use rover_scenario::output::header;
+use rover_scenario::prepare::{Prepared, RunPlant, load_rover};
 use rover_scenario::scenario::Scenario;
 use rover_spec::sketch::Sketch;
 use serde_json::json;
 
-use crate::cli::{CliError, build_plant, generated_plant};
-use crate::rover_source::{builtin_names, load_rover};
+use crate::error::CliError;
 
 use live::{LoopConfig, Method, Pacing, RoverInfo, Shared, Sim, Timing};
 use server::{App, Content, Server};
@@ -159,8 +157,12 @@ impl Viewing {
 }
 
 fn other(e: impl std::fmt::Display) -> CliError {
-    CliError::Other(e.to_string())
+    CliError::Drive(e.to_string())
 }
+
+/// Where the built-in drive scenario's relative paths start, and its name
+/// in messages.
+const DEFAULT_ORIGIN: &str = "<built-in drive scenario>";
 
 /// The scenario and the folder its relative paths are read from.
 fn load_scenario(path: Option<&Path>) -> Result<(Scenario, PathBuf), CliError> {
@@ -170,15 +172,30 @@ fn load_scenario(path: Option<&Path>) -> Result<(Scenario, PathBuf), CliError> {
             p.parent().map(Path::to_path_buf).unwrap_or_default(),
         ),
         None => (
-            Scenario::parse(DEFAULT_SCENARIO, Path::new("<built-in drive scenario>"))?,
+            Scenario::parse(DEFAULT_SCENARIO, Path::new(DEFAULT_ORIGIN))?,
             PathBuf::from("."),
         ),
     })
 }
 
+/// The run `rover drive` serves: its scenario (or the built-in one) read
+/// once and its rover loaded.
+fn prepare(args: &DriveArgs) -> Result<Prepared, CliError> {
+    let rover = args.rover.as_deref();
+    Ok(match &args.scenario {
+        Some(p) => Prepared::from_file(rover, p)?,
+        None => Prepared::from_text(
+            rover,
+            DEFAULT_SCENARIO,
+            Path::new(DEFAULT_ORIGIN),
+            Path::new("."),
+        )?,
+    })
+}
+
 fn check_rate(rate: f64) -> Result<(), CliError> {
     if !(rate.is_finite() && (1.0..=20_000.0).contains(&rate)) {
-        return Err(CliError::Other(format!(
+        return Err(CliError::Usage(format!(
             "--rate {rate}: steps per second, between 1 and 20000 (1000 is the default)"
         )));
     }
@@ -302,7 +319,7 @@ pub fn terrain_json(terrain: &Terrain, centre: [f64; 2]) -> String {
 /// Bind 127.0.0.1:`port`, with the reason when that fails.
 fn bind(port: u16) -> Result<TcpListener, CliError> {
     TcpListener::bind(("127.0.0.1", port)).map_err(|e| {
-        CliError::Other(format!(
+        CliError::Drive(format!(
             "cannot listen on 127.0.0.1:{port}: {e}; give another `--port` (0 picks a free one)"
         ))
     })
@@ -311,42 +328,12 @@ fn bind(port: u16) -> Result<TcpListener, CliError> {
 /// Start `rover drive`: the loop on its own thread, the server on another.
 pub fn start(args: &DriveArgs) -> Result<Running, CliError> {
     check_rate(args.rate)?;
-    let (scenario, base) = load_scenario(args.scenario.as_deref())?;
-    let rover = args
-        .rover
-        .clone()
-        .or_else(|| scenario.rover.clone())
-        .ok_or_else(|| {
-            CliError::Other(format!(
-                "no rover: give one (built-in: {}) or a scenario naming one",
-                builtin_names()
-            ))
-        })?;
-    let spec = load_rover(&rover, Some(&base))?;
-    let level = rover_dynamics::fidelity::Fidelity::Full;
-    match generated_plant(&rover, level, args.generic) {
-        Some(p) => launch(p, &spec, &scenario, &base, args),
-        None => launch(
-            build_plant(&spec.model, level)?,
-            &spec,
-            &scenario,
-            &base,
-            args,
-        ),
-    }
-}
-
-fn launch<P: Plant + Send + 'static>(
-    plant: P,
-    spec: &rover_spec::Spec,
-    scenario: &Scenario,
-    base: &Path,
-    args: &DriveArgs,
-) -> Result<Running, CliError> {
+    let prepared = prepare(args)?;
+    let (spec, scenario, base) = (&prepared.spec, &prepared.scenario, &prepared.base);
     let model = &spec.model;
     let config = loop_config(args, scenario);
-    let mut sim = Sim::new(plant, model, scenario, base, &config).map_err(other)?;
-    let columns = Arc::new(header(model.m(), model.wheels.len()));
+    let mut sim = sim(&prepared, args.generic, &config)?;
+    let columns = Arc::new(sim.columns().names().to_vec());
     let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
     let info = sim.info().clone();
     let terrain = scenario.terrain.build(base).map_err(other)?;
@@ -384,10 +371,10 @@ fn launch<P: Plant + Send + 'static>(
 }
 
 /// `rover drive`: serve until Ctrl-C (or, with `--report`, measure and print).
-pub fn drive(args: &DriveArgs) -> Result<(), CliError> {
+/// With `--report`, the measurement's text to print, and nothing served.
+pub fn drive(args: &DriveArgs) -> Result<Option<String>, CliError> {
     if let Some(seconds) = args.report {
-        let text = report(args, seconds)?;
-        return crate::cli::print_stdout(&text);
+        return report(args, seconds).map(Some);
     }
     let running = start(args)?;
     eprintln!(
@@ -403,7 +390,7 @@ pub fn drive(args: &DriveArgs) -> Result<(), CliError> {
     let _ = rx.recv();
     let timing = running.stop();
     eprintln!("{}", timing_text(&timing, args.rate));
-    Ok(())
+    Ok(None)
 }
 
 /// The timing of a loop as a few lines of text.
@@ -449,53 +436,19 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
 /// `--report`: the loop without a server, driving straight ahead.
 pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
     if !(seconds.is_finite() && seconds > 0.0) {
-        return Err(CliError::Other(format!(
+        return Err(CliError::Usage(format!(
             "--report {seconds}: seconds of driving, > 0"
         )));
     }
     check_rate(args.rate)?;
-    let (scenario, base) = load_scenario(args.scenario.as_deref())?;
-    let rover = args
-        .rover
-        .clone()
-        .or_else(|| scenario.rover.clone())
-        .ok_or_else(|| CliError::Other("no rover".into()))?;
-    let spec = load_rover(&rover, Some(&base))?;
-    let level = rover_dynamics::fidelity::Fidelity::Full;
-    let timing = match generated_plant(&rover, level, args.generic) {
-        Some(p) => measure(p, &spec, &scenario, &base, args, seconds)?,
-        None => measure(
-            build_plant(&spec.model, level)?,
-            &spec,
-            &scenario,
-            &base,
-            args,
-            seconds,
-        )?,
-    };
-    let config = loop_config(args, &scenario);
-    Ok(format!(
-        "{} with {}, pacing {}:\n{}\n",
-        spec.name,
-        config.method.name(),
-        config.pacing.name(),
-        timing_text(&timing, args.rate)
-    ))
-}
-
-fn measure<P: Plant>(
-    plant: P,
-    spec: &rover_spec::Spec,
-    scenario: &Scenario,
-    base: &Path,
-    args: &DriveArgs,
-    seconds: f64,
-) -> Result<Timing, CliError> {
-    let model = &spec.model;
-    let config = loop_config(args, scenario);
-    let mut sim = Sim::new(plant, model, scenario, base, &config).map_err(other)?;
-    let columns = header(model.m(), model.wheels.len());
-    let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
+    let prepared = prepare(args)?;
+    let config = loop_config(args, &prepared.scenario);
+    let mut sim = sim(&prepared, args.generic, &config)?;
+    let shared = live::shared(
+        sim.columns().len(),
+        prepared.spec.model.wheels.len(),
+        args.rate,
+    );
     if let Ok(mut inbox) = shared.inbox.lock() {
         let r = protocol::Request {
             speed: Some(args.report_speed),
@@ -503,7 +456,22 @@ fn measure<P: Plant>(
         };
         protocol::apply(&r, &mut inbox);
     }
-    Ok(live::run(&mut sim, &shared, Some(seconds)))
+    let timing = live::run(&mut sim, &shared, Some(seconds));
+    Ok(format!(
+        "{} with {}, pacing {}:\n{}\n",
+        prepared.spec.name,
+        config.method.name(),
+        config.pacing.name(),
+        timing_text(&timing, args.rate)
+    ))
+}
+
+/// The live simulation of a prepared run, with the plant its fidelity
+/// level names (a generated one for a built-in rover, unless `generic`).
+fn sim(prepared: &Prepared, generic: bool, config: &LoopConfig) -> Result<Sim<RunPlant>, CliError> {
+    let plant = prepared.plant(generic)?;
+    let (spec, scenario, base) = (&prepared.spec, &prepared.scenario, &prepared.base);
+    Sim::new(plant, &spec.model, scenario, base, config).map_err(|e| prepared.locate(e).into())
 }
 
 /// `rover view`: serve the page animating `<out>/run.csv` until Ctrl-C.
@@ -526,8 +494,7 @@ pub fn view(args: &ViewArgs) -> Result<(), CliError> {
 /// Start `rover view`'s server.
 pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
     let csv = args.out.join("run.csv");
-    let text = std::fs::read_to_string(&csv)
-        .map_err(|e| CliError::Other(format!("{}: cannot read: {e}", csv.display())))?;
+    let text = std::fs::read_to_string(&csv).map_err(|e| CliError::io(&csv, "read", e))?;
     let columns: Vec<String> = text
         .lines()
         .next()
@@ -537,7 +504,7 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
         .collect();
     for c in ["t", "X", "Y", "Z", "phi", "theta", "psi", "W1X", "Fn1"] {
         if !columns.iter().any(|h| h == c) {
-            return Err(CliError::Other(format!(
+            return Err(CliError::Usage(format!(
                 "{}: no column `{c}`: not a run.csv of `rover simulate`",
                 csv.display()
             )));

@@ -71,7 +71,21 @@ pub enum RunError {
         /// The limit \[deg\].
         limit_deg: f64,
     },
-    /// The integrator stopped (divergence, failing right-hand side, step too small).
+    /// The attitude jumped past half a turn between two events: no
+    /// roll-over (a rover tips through the limit first) but a numerical
+    /// blow-up.
+    #[error(
+        "the run stopped at t = {t:.6} s: the attitude jumped to roll {roll_deg:.1}°, pitch {pitch_deg:.1}° since the previous event: the integration diverged; with a fixed-step method, shorten `step` (1e-4 s suits a rover), or use the adaptive `[integrator.bdf]`"
+    )]
+    Diverged {
+        /// Time \[s\].
+        t: f64,
+        /// Roll φ \[deg\].
+        roll_deg: f64,
+        /// Pitch θ \[deg\].
+        pitch_deg: f64,
+    },
+    /// The integrator stopped (a non-finite state, a failing right-hand side, a step too small).
     #[error("the run stopped at t = {t:.6} s: {message}")]
     Integration {
         /// Time \[s\].
@@ -97,6 +111,7 @@ impl RunError {
     pub fn time(&self) -> f64 {
         match self {
             RunError::RolledOver { t, .. }
+            | RunError::Diverged { t, .. }
             | RunError::Integration { t, .. }
             | RunError::Output { t, .. } => *t,
         }

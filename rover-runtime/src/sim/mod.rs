@@ -1,12 +1,15 @@
-//! The simulation: the rover as an ODE system, and the driver that advances
-//! it through output instants, controller samples and stop conditions.
+//! The simulation: the rover as an ODE system, the driver that advances
+//! it through output instants, controller samples and stop conditions, and
+//! the whole run built on the driver.
 
+mod driver;
 mod error;
 mod profile;
 mod run;
 mod system;
 
+pub use driver::{Driver, RunOptions};
 pub use error::{CommandError, RunError, SimError};
 pub use profile::{Profile, RhsProfile};
-pub use run::{OutputRow, RunOptions, RunOutcome, Stop, run};
+pub use run::{OutputRow, RunOutcome, Stop, run};
 pub use system::RoverSystem;

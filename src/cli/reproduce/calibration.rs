@@ -8,8 +8,8 @@ use std::path::Path;
 use rayon::prelude::*;
 use rover_scenario::output::Status;
 
-use super::super::CliError;
 use super::runs::{ACTIVE, Case, Field, ackermann, other, rough_ratio, run_case, slip};
+use crate::error::CliError;
 
 /// Seeds of every roughness figure.
 pub const SEEDS: [u64; 5] = [1, 2, 3, 4, 5];

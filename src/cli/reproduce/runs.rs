@@ -5,11 +5,9 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 use rover_scenario::output::{Circle, Status, Summary, fit_circle};
-use rover_scenario::scenario::Scenario;
+use rover_scenario::prepare::Prepared;
 
-use super::super::CliError;
-use super::super::simulate::build_plant;
-use crate::rover_source::load_rover;
+use crate::error::CliError;
 
 /// One run: its summary and its CSV.
 pub struct Case {
@@ -17,8 +15,9 @@ pub struct Case {
     pub csv: PathBuf,
 }
 
+/// A figure that cannot be made, or a claim that no longer holds.
 pub fn other(e: impl std::fmt::Display) -> CliError {
-    CliError::Other(e.to_string())
+    CliError::Reproduce(e.to_string())
 }
 
 /// Settling time of every run \[s\] (the paper's 6 s).
@@ -86,26 +85,15 @@ pub const ACTIVE: &str = "\n[control.active_suspension]\nsample_time = 0.1\nkp_p
 
 /// Run `rover` on the scenario text, CSV into `csv`.
 pub fn run_case(rover: &str, text: &str, csv: &Path) -> Result<Case, CliError> {
-    let scenario = Scenario::parse(text, csv)?;
-    let spec = load_rover(rover, None)?;
-    let level = scenario.fidelity.dynamic().unwrap_or_default();
-    let plant = build_plant(&spec.model, level)?;
-    if let Some(dir) = csv.parent() {
-        std::fs::create_dir_all(dir).map_err(other)?;
-    }
-    let file = std::io::BufWriter::new(std::fs::File::create(csv).map_err(other)?);
     let base = csv.parent().unwrap_or(Path::new("."));
-    let summary = rover_scenario::simulate::simulate(
-        plant,
-        &spec.model,
-        &spec.name,
-        &scenario,
-        base,
-        file,
-        &AtomicBool::new(false),
-        |_| {},
-    )
-    .map_err(other)?;
+    let prepared = Prepared::from_text(Some(rover), text, csv, base)?;
+    std::fs::create_dir_all(base).map_err(|e| CliError::io(base, "create the folder", e))?;
+    let file = std::io::BufWriter::new(
+        std::fs::File::create(csv).map_err(|e| CliError::io(csv, "create the CSV", e))?,
+    );
+    // The generic plant for every rover and level: the reproduction's
+    // figures do not depend on which rovers have a generated plant.
+    let summary = prepared.run(true, file, &AtomicBool::new(false), |_| {})?;
     Ok(Case {
         summary,
         csv: csv.to_path_buf(),

@@ -1,8 +1,8 @@
 //! The report's prose lives in `report.md`; the code fills its
 //! `{{placeholders}}` with numbers, tables and figure lists.
 
-use super::super::CliError;
 use super::runs::other;
+use crate::error::CliError;
 
 /// The values of a report's placeholders.
 #[derive(Default)]

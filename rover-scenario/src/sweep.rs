@@ -27,7 +27,54 @@ use std::sync::atomic::AtomicBool;
 
 use serde::Deserialize;
 
-use crate::cli::{CliError, Prepared};
+use crate::output::{WriteError, write_whole};
+use crate::prepare::{PrepareError, Prepared};
+
+/// Why a sweep plan, or one of its tasks, cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    /// The plan (or its base scenario) cannot be read or does not hold.
+    #[error("{}: {message}", file.display())]
+    Plan {
+        /// The file at fault.
+        file: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A task number beyond the plan's.
+    #[error("no task {index}: the plan has {tasks}")]
+    NoTask {
+        /// The task asked for.
+        index: usize,
+        /// The plan's number of tasks.
+        tasks: usize,
+    },
+    /// A task's field cannot be set in the base scenario.
+    #[error("task {index}: {message}")]
+    Task {
+        /// The task.
+        index: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A task's run could not be prepared or could not start.
+    #[error("{0}")]
+    Run(#[from] PrepareError),
+    /// A file could not be written.
+    #[error("{0}")]
+    Write(#[from] WriteError),
+}
+
+impl SweepError {
+    /// The message as the command line prints it (see
+    /// [`PrepareError::user_message`]).
+    pub fn user_message(&self) -> String {
+        match self {
+            SweepError::Run(e) => e.user_message(),
+            e => format!("error: {e}"),
+        }
+    }
+}
 
 /// A sweep plan as written (see the module's documentation).
 #[derive(Clone, Debug, Deserialize)]
@@ -81,20 +128,23 @@ pub struct Plan {
 }
 
 /// A plan that cannot be run.
-fn plan_err(origin: &Path, message: impl std::fmt::Display) -> CliError {
-    CliError::Other(format!("{}: {message}", origin.display()))
+fn plan_err(origin: &Path, message: impl std::fmt::Display) -> SweepError {
+    SweepError::Plan {
+        file: origin.to_path_buf(),
+        message: message.to_string(),
+    }
 }
 
 impl Plan {
     /// Read the plan file at `path`.
-    pub fn load(path: &Path) -> Result<Self, CliError> {
+    pub fn load(path: &Path) -> Result<Self, SweepError> {
         let text = std::fs::read_to_string(path).map_err(|e| plan_err(path, e))?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         Self::parse(&text, path, &dir)
     }
 
     /// A plan from its TOML `text`, named `origin`, paths from `dir`.
-    pub fn parse(text: &str, origin: &Path, dir: &Path) -> Result<Self, CliError> {
+    pub fn parse(text: &str, origin: &Path, dir: &Path) -> Result<Self, SweepError> {
         Self::parse_with(text, origin, dir, None)
     }
 
@@ -106,7 +156,7 @@ impl Plan {
         origin: &Path,
         dir: &Path,
         base_text: Option<&str>,
-    ) -> Result<Self, CliError> {
+    ) -> Result<Self, SweepError> {
         let file: PlanFile = toml::from_str(text).map_err(|e| plan_err(origin, e))?;
         let base_origin = dir.join(&file.scenario);
         let base_text = match base_text {
@@ -135,19 +185,20 @@ impl Plan {
 
     /// The scenario of task `index` as TOML text: the base with the task's
     /// fields replaced.
-    pub fn scenario_text(&self, index: usize) -> Result<String, CliError> {
-        let params = self.tasks.get(index).ok_or_else(|| {
-            CliError::Other(format!(
-                "no task {index}: the plan has {}",
-                self.tasks.len()
-            ))
+    pub fn scenario_text(&self, index: usize) -> Result<String, SweepError> {
+        let params = self.tasks.get(index).ok_or(SweepError::NoTask {
+            index,
+            tasks: self.tasks.len(),
         })?;
         let mut table = self.base.clone();
         for (path, value) in params {
             set_field(&mut table, path, value.clone())
-                .map_err(|m| CliError::Other(format!("task {index}: {m}")))?;
+                .map_err(|message| SweepError::Task { index, message })?;
         }
-        toml::to_string(&table).map_err(|e| CliError::Other(e.to_string()))
+        toml::to_string(&table).map_err(|e| SweepError::Task {
+            index,
+            message: e.to_string(),
+        })
     }
 
     /// Run task `index` and return its record (see [`record`]).
@@ -158,6 +209,7 @@ impl Plan {
             // whatever the plan's folder there.
             let origin = PathBuf::from(format!("task {index}"));
             run_text(self.file.rover.as_deref(), &text, &origin, &self.base_dir)
+                .map_err(SweepError::from)
         });
         record(index, &params, outcome)
     }
@@ -174,14 +226,15 @@ pub fn run_text(
     text: &str,
     origin: &Path,
     base_dir: &Path,
-) -> Result<serde_json::Value, CliError> {
+) -> Result<serde_json::Value, PrepareError> {
     let mut prepared = Prepared::from_text(rover, text, origin, base_dir)?;
     // A line of the generated text would point nowhere the user can see:
     // a run that cannot start names the field alone.
     prepared.text.clear();
     let never = AtomicBool::new(false);
     let summary = prepared.run(false, std::io::sink(), &never, |_| {})?;
-    serde_json::to_value(&summary).map_err(|e| CliError::Other(e.to_string()))
+    // A summary holds strings and finite numbers only: it always converts.
+    Ok(serde_json::to_value(&summary).unwrap_or_default())
 }
 
 /// The record of one task: its number, its parameters (`param.<field>`),
@@ -191,7 +244,7 @@ pub fn run_text(
 pub fn record(
     index: usize,
     params: &[(String, toml::Value)],
-    outcome: Result<serde_json::Value, CliError>,
+    outcome: Result<serde_json::Value, SweepError>,
 ) -> serde_json::Value {
     let mut r = serde_json::Map::new();
     r.insert("task".into(), index.into());
@@ -349,7 +402,7 @@ pub fn worker_tasks(total: usize, index: usize, count: usize) -> impl Iterator<I
 /// one row per task, the columns the union of the records' fields (the
 /// task number first, then the parameters, status and error, then the
 /// figures). A task with no record yet is a row with status `missing`.
-pub fn gather_csv(plan: &Plan) -> Result<PathBuf, CliError> {
+pub fn gather_csv(plan: &Plan) -> Result<PathBuf, SweepError> {
     let mut rows = Vec::new();
     for i in 0..plan.tasks.len() {
         let path = plan.task_path(i);
@@ -401,7 +454,7 @@ pub fn gather_csv(plan: &Plan) -> Result<PathBuf, CliError> {
         out.push('\n');
     }
     let path = plan.out.join("results.csv");
-    crate::cli::write_whole(&path, &out)?;
+    write_whole(&path, &out)?;
     Ok(path)
 }
 

@@ -1,0 +1,215 @@
+//! The one driver of a run's events: output instants, controller samples,
+//! command breakpoints, and the checks after every advance (a diverged
+//! integration, a roll-over). The whole run ([`run`](super::run())), the
+//! step-wise run (`rover_scenario::Stepper`) and the live loop of
+//! `rover drive` all advance through it, so the three take the same events
+//! in the same order and stop for the same reasons.
+
+use rover_dynamics::plant::Plant;
+use rover_integrate::Integrator;
+use rover_terrain::HeightField;
+
+use crate::control::Controller;
+
+use super::error::RunError;
+use super::system::RoverSystem;
+
+/// When a run's events fall, and when it has gone wrong.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RunOptions {
+    /// End time \[s\]; `f64::INFINITY` for a run without an end (a
+    /// step-wise or live run).
+    pub duration: f64,
+    /// Interval between output instants \[s\] (a live loop's step).
+    pub output_step: f64,
+    /// |φ| or |θ| beyond this is a roll-over \[rad\] (docs/MODEL.md §1: 80°).
+    pub rollover_limit: f64,
+}
+
+/// Two event times within this fraction of (1 + t) are one instant: a
+/// sample period and an output step that are multiples of each other
+/// meet to rounding, and the integrator must not take a step of 1e-17 s
+/// between them.
+const SAME_INSTANT: f64 = 1e-12;
+
+/// The schedule of one run: which output instant, controller sample and
+/// command breakpoint come next. It holds no state of the rover; the
+/// caller keeps `(t, y)`, the system and the integrator, and passes them
+/// to each call.
+#[derive(Clone, Debug)]
+pub struct Driver {
+    opts: RunOptions,
+    /// The controller's sample period (active suspension, waypoint legs).
+    sample: Option<f64>,
+    /// Times at which the commands jump, ascending, in (0, duration).
+    breaks: Vec<f64>,
+    /// The next output instant is `k_out · output_step`.
+    k_out: u64,
+    /// The next controller sample is at `k_sample · sample`.
+    k_sample: u64,
+    /// The first breakpoint not yet passed.
+    next_break: usize,
+}
+
+impl Driver {
+    /// The schedule of a run with `control` (its sample period and
+    /// breakpoints), at t = 0 before any event.
+    pub fn new(control: &Controller, opts: RunOptions) -> Self {
+        let mut breaks: Vec<f64> = control
+            .breakpoints()
+            .into_iter()
+            .filter(|&b| b > 0.0 && b < opts.duration)
+            .collect();
+        breaks.sort_by(f64::total_cmp);
+        Self {
+            opts,
+            sample: control.sample_period(),
+            breaks,
+            k_out: 0,
+            k_sample: 0,
+            next_break: 0,
+        }
+    }
+
+    /// The options the schedule was made with.
+    pub fn options(&self) -> &RunOptions {
+        &self.opts
+    }
+
+    /// Back to t = 0, before any event (the caller puts the state, the
+    /// system and the integrator back).
+    pub fn rewind(&mut self) {
+        self.k_out = 0;
+        self.k_sample = 0;
+        self.next_break = 0;
+    }
+
+    /// Output instants reached so far, t = 0 included.
+    pub fn outputs(&self) -> u64 {
+        self.k_out
+    }
+
+    /// Whether `t` is the run's end.
+    pub fn finished(&self, t: f64) -> bool {
+        t >= self.opts.duration
+    }
+
+    /// The events of t = 0: the controller's first sample; t = 0 is the
+    /// first output instant. Call once, after [`Driver::new`] or
+    /// [`Driver::rewind`].
+    pub fn start<P: Plant, H: HeightField, I: Integrator>(
+        &mut self,
+        sys: &mut RoverSystem<P, H>,
+        integ: &mut I,
+        t: f64,
+        y: &[f64],
+    ) {
+        self.sample_due(sys, integ, t, y);
+        self.k_out = 1;
+    }
+
+    /// Advance `(t, y)` to the next output instant, or to the run's end
+    /// when that comes first (the end is always an output instant, whether
+    /// the output step divides the duration or not), through every
+    /// controller sample and command breakpoint before it. The integrator
+    /// restarts after a breakpoint (the commands jump) and after a sample
+    /// that changed something; the samples due at the instant reached are
+    /// taken before this returns. After each advance the attitude is
+    /// checked: past half a turn is a diverged integration, past the limit
+    /// a roll-over.
+    ///
+    /// On failure, `(t, y)` are those of the last step the integrator
+    /// accepted (for a roll-over, the event at which it was seen), and the
+    /// error names the time. Allocates nothing.
+    pub fn advance<P: Plant, H: HeightField, I: Integrator>(
+        &mut self,
+        sys: &mut RoverSystem<P, H>,
+        integ: &mut I,
+        t: &mut f64,
+        y: &mut [f64],
+    ) -> Result<(), RunError> {
+        loop {
+            let t_out = self.k_out as f64 * self.opts.output_step;
+            while self.next_break < self.breaks.len() && self.breaks[self.next_break] <= *t {
+                self.next_break += 1;
+            }
+            let mut target = t_out.min(self.opts.duration);
+            if let Some(dt) = self.sample {
+                target = target.min(self.k_sample as f64 * dt);
+            }
+            // A breakpoint on (or within rounding of) the next event is
+            // one too: the integrator must restart there, not carry its
+            // history across the jump (BDF's step control stalls right
+            // before a jump it steps over).
+            let at_break = self.next_break < self.breaks.len()
+                && self.breaks[self.next_break] <= target + SAME_INSTANT * (1.0 + target);
+            if at_break {
+                target = self.breaks[self.next_break];
+            }
+            sys.set_next_break(at_break.then_some(target));
+            let advanced = integ.advance(sys, t, y, target);
+            sys.set_next_break(None);
+            if let Err(e) = advanced {
+                let at = e.time().unwrap_or(*t);
+                return Err(RunError::Integration {
+                    t: at,
+                    message: e.to_string(),
+                    step_control: e.is_step_control(),
+                });
+            }
+            if at_break {
+                integ.restart();
+            }
+            self.check_attitude(*t, y)?;
+            self.sample_due(sys, integ, *t, y);
+            if (t_out - *t).abs() <= SAME_INSTANT * (1.0 + *t) || self.finished(*t) {
+                self.k_out += 1;
+                return Ok(());
+            }
+        }
+    }
+
+    /// The controller's sample, when one is due at `t`.
+    fn sample_due<P: Plant, H: HeightField, I: Integrator>(
+        &mut self,
+        sys: &mut RoverSystem<P, H>,
+        integ: &mut I,
+        t: f64,
+        y: &[f64],
+    ) {
+        let Some(dt) = self.sample else { return };
+        if (self.k_sample as f64 * dt - t).abs() > SAME_INSTANT * (1.0 + t) {
+            return;
+        }
+        let n = sys.dof();
+        let (x, rest) = y.split_at(n);
+        if sys.control.sample(t, x, &rest[..n], &mut sys.plant) {
+            integ.restart();
+        }
+        self.k_sample += 1;
+    }
+
+    /// A diverged integration or a roll-over, from the attitude at `t`.
+    fn check_attitude(&self, t: f64, y: &[f64]) -> Result<(), RunError> {
+        let (roll, pitch) = (y[3], y[4]);
+        // Past half a turn between two events is no roll-over but a
+        // numerical blow-up: a rover tips through the limit first.
+        if roll.abs() > std::f64::consts::PI || pitch.abs() > std::f64::consts::PI {
+            return Err(RunError::Diverged {
+                t,
+                roll_deg: roll.to_degrees(),
+                pitch_deg: pitch.to_degrees(),
+            });
+        }
+        let limit = self.opts.rollover_limit;
+        if roll.abs() > limit || pitch.abs() > limit {
+            return Err(RunError::RolledOver {
+                t,
+                roll_deg: roll.to_degrees(),
+                pitch_deg: pitch.to_degrees(),
+                limit_deg: limit.to_degrees(),
+            });
+        }
+        Ok(())
+    }
+}
