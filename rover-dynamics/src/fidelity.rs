@@ -37,6 +37,17 @@ pub enum Fidelity {
     Linearized,
 }
 
+impl Fidelity {
+    /// The level's name as a scenario's `fidelity` writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Fidelity::Full => "full",
+            Fidelity::Simplified => "simplified",
+            Fidelity::Linearized => "linearized",
+        }
+    }
+}
+
 /// The frozen kinematics and the factored constant mass matrix.
 #[derive(Clone, Debug)]
 pub struct Frozen<S> {

@@ -69,6 +69,11 @@ impl GenericPlant {
         Self::with_fidelity_at(model, level, &rest)
     }
 
+    /// The fidelity level it computes.
+    pub fn level(&self) -> Fidelity {
+        self.level
+    }
+
     /// As [`GenericPlant::with_fidelity`], reduced levels frozen at `y_ref`.
     pub fn with_fidelity_at(
         model: Model,

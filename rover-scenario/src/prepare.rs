@@ -159,11 +159,15 @@ impl RunPlant {
         }
     }
 
-    /// What ran, for the summary: `generated (<type>)` or `generic`.
+    /// What ran, for the summary: `generated (<type>)`, `generic`, or
+    /// `generic (<level> level)` at a reduced level.
     pub fn backend(&self) -> String {
         match self {
             RunPlant::Generated(p) => format!("generated ({})", p.name()),
-            RunPlant::Generic(_) => "generic".to_string(),
+            RunPlant::Generic(p) => match p.level() {
+                Fidelity::Full => "generic".to_string(),
+                level => format!("generic ({} level)", level.name()),
+            },
         }
     }
 }

@@ -65,10 +65,7 @@ pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
         (RunPlant::Generic(_), rover_dynamics::fidelity::Fidelity::Full) => {
             "generic plant".to_string()
         }
-        (RunPlant::Generic(_), other) => format!(
-            "generic plant, {} level",
-            format!("{other:?}").to_lowercase()
-        ),
+        (RunPlant::Generic(_), other) => format!("generic plant, {} level", other.name()),
     };
     let lin = linearize_at(model, plant, &point).map_err(|source| CliError::Linearize {
         rover: spec.name.clone(),

@@ -3,9 +3,8 @@
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
-use rover_runtime::GenericPlant;
 use rover_scenario::output::Summary;
-use rover_scenario::scenario::Scenario;
+use rover_scenario::prepare::Prepared;
 
 /// A finished run: its summary and its CSV as columns by name.
 pub struct Run {
@@ -54,29 +53,21 @@ pub fn rover_of(scenario: &str) -> String {
         .unwrap_or_else(|| panic!("no `rover = …` line in\n{scenario}"))
 }
 
-/// Run the built-in `rover` on the scenario `toml` (generic plant).
+/// Run the built-in `rover` on the scenario `toml` with the generic plant
+/// at the scenario's fidelity level, as `rover simulate --generic` runs it.
 pub fn run(rover: &str, toml: &str) -> Run {
     run_in(rover, toml, Path::new("."))
 }
 
 /// [`run`] with the scenario's files (commands, terrain maps) found from `dir`.
 pub fn run_in(rover: &str, toml: &str, dir: &Path) -> Run {
-    let scenario = Scenario::parse(toml, &dir.join("test.toml")).unwrap_or_else(|e| panic!("{e}"));
-    let spec = rover_spec::load_str(rover_models::builtin(rover).unwrap(), rover).unwrap();
-    let plant = GenericPlant::new(spec.model.clone()).unwrap();
+    let prepared = Prepared::from_text(Some(rover), toml, &dir.join("test.toml"), dir)
+        .unwrap_or_else(|e| panic!("{e}"));
     let mut csv = Vec::new();
     let stop = AtomicBool::new(false);
-    let summary = rover_scenario::simulate::simulate(
-        plant,
-        &spec.model,
-        rover,
-        &scenario,
-        dir,
-        &mut csv,
-        &stop,
-        |_| {},
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let summary = prepared
+        .run(true, &mut csv, &stop, |_| {})
+        .unwrap_or_else(|e| panic!("{e}"));
     let text = String::from_utf8(csv).unwrap();
     let mut lines = text.lines();
     let header = lines.next().unwrap().split(',').map(String::from).collect();
