@@ -68,6 +68,11 @@ fn a_websocket_client_drives_the_rover_to_its_speed_set_point() {
     let hello = next_of(&mut ws, "hello");
     let columns = hello["meta"]["columns"].as_array().unwrap().clone();
     assert_eq!(hello["meta"]["steering"], "slip", "{hello}");
+    // Each column's unit, from the same row as run.csv's.
+    let units = hello["meta"]["units"].as_array().unwrap();
+    assert_eq!(units.len(), columns.len());
+    let unit = |c: &str| &units[columns.iter().position(|n| n == c).unwrap()];
+    assert_eq!([unit("X"), unit("y1"), unit("Fn1")], ["m", "rad", "N"]);
     ws.send(Message::text(r#"{"rate": 100, "speed": 0.1}"#))
         .unwrap();
     let first = next_of(&mut ws, "state");

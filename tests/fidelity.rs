@@ -152,7 +152,10 @@ fn the_four_levels_agree_closely_on_gentle_ground_quasi_static_least() {
             assert_eq!(r.summary.plant, format!("generic ({level} level)"));
         }
         let (apart, _) = deviation(&full, &r, "phi");
-        assert!(apart > 1e-9, "{level}: the full model's roll to {apart} rad");
+        assert!(
+            apart > 1e-9,
+            "{level}: the full model's roll to {apart} rad"
+        );
         // The path: within 5 % of the distance travelled.
         for c in ["X", "Y"] {
             let (max, _) = deviation(&full, &r, c);

@@ -70,12 +70,14 @@ def _scenario_source(scenario: ScenarioLike) -> tuple[str, str, str]:
 
 class Result:
     """A whole run: ``trajectory`` (numpy arrays by CSV column name),
+    ``units`` (each column's unit, by name: "m", "rad", "N", ...),
     ``summary`` (summary.json as a dict) and ``status`` ("completed",
     "failed" or "interrupted"; a run that stopped early keeps what it
     computed)."""
 
-    def __init__(self, columns: list[str], table: np.ndarray, summary: dict):
+    def __init__(self, columns: list[str], table: np.ndarray, summary: dict, units: list[str]):
         self.columns = columns
+        self.units = dict(zip(columns, units))
         self.table = table
         self.trajectory = {c: table[:, i] for i, c in enumerate(columns)}
         self.summary = summary
@@ -111,9 +113,9 @@ def simulate(
     if isinstance(rover, (str, os.PathLike)):
         rover = load(rover)
     text, origin, base = _scenario_source(scenario)
-    columns, data, rows, summary = _native.simulate(rover, text, origin, base, generic)
+    columns, data, rows, summary, units = _native.simulate(rover, text, origin, base, generic)
     table = np.frombuffer(data, dtype=np.float64).reshape(rows, len(columns))
-    return Result(list(columns), table, json.loads(summary))
+    return Result(list(columns), table, json.loads(summary), list(units))
 
 
 class Simulation(_native.Simulation):
@@ -121,7 +123,8 @@ class Simulation(_native.Simulation):
 
     ``step(n)`` advances n output intervals (``dt`` = 1 / output_rate);
     ``state`` is [x; w] as numpy (2N values: the trajectory's columns after
-    ``t``); ``set_torques``/``set_steering`` take a numpy float64 array, one
+    ``t``); ``columns`` and ``units`` name the row's values and their units;
+    ``set_torques``/``set_steering`` take a numpy float64 array, one
     value per wheel; ``set_speed``/``set_steering_setpoint`` move the
     built-in loops' set-points. Stepped without changes, the states are the
     whole run's rows bit for bit. Long ``step(n)`` calls release the GIL.

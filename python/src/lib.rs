@@ -138,7 +138,8 @@ fn prepare(
 }
 
 /// A whole run, as `rover simulate` runs it: (column names, the rows as
-/// native-endian f64 bytes, row count, the summary as JSON).
+/// native-endian f64 bytes, row count, the summary as JSON, the columns'
+/// units).
 #[pyfunction]
 #[pyo3(signature = (rover, text, origin, base, generic=false))]
 fn simulate<'py>(
@@ -148,7 +149,13 @@ fn simulate<'py>(
     origin: &str,
     base: &str,
     generic: bool,
-) -> PyResult<(Vec<String>, Bound<'py, PyBytes>, usize, String)> {
+) -> PyResult<(
+    Vec<String>,
+    Bound<'py, PyBytes>,
+    usize,
+    String,
+    Vec<&'static str>,
+)> {
     let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
     let run = py.detach(|| -> Result<(Vec<u8>, _), PrepareError> {
         let mut csv = Vec::new();
@@ -179,7 +186,9 @@ fn simulate<'py>(
         }
         rows += 1;
     }
-    Ok((columns, PyBytes::new(py, &data), rows, json))
+    let model = &prepared.spec.model;
+    let units = Columns::new(model.m(), model.wheels.len()).units(&prepared.spec.coordinate_linear);
+    Ok((columns, PyBytes::new(py, &data), rows, json, units))
 }
 
 /// Steps of a run up to this many hold the interpreter: releasing and

@@ -106,3 +106,15 @@ def test_a_bad_description_text_is_an_error_with_its_diagnostics():
     with pytest.raises(rover.RoverError) as e:
         rover.load('name = "x"\n[body]\nmass = -1.0\n')
     assert "error" in str(e.value) and "<string>" in str(e.value)
+
+
+def test_each_column_has_its_unit_from_the_rover_description(data):
+    r = rover.simulate(None, data / "slip_rough.toml")
+    sim = rover.Simulation(None, data / "slip_rough.toml")
+    assert sim.columns == r.columns
+    assert sim.units == [r.units[c] for c in r.columns]
+    assert (r.units["t"], r.units["X"], r.units["phi"]) == ("s", "m", "rad")
+    assert (r.units["vx"], r.units["Ox"]) == ("m/s", "rad/s")
+    assert (r.units["Fn1"], r.units["tau1"], r.units["V_set"]) == ("N", "N·m", "m/s")
+    # swing4's suspension coordinates are arm angles.
+    assert (r.units["y1"], r.units["dy1"], r.units["y0_1"]) == ("rad", "rad/s", "rad")

@@ -426,3 +426,117 @@ impl Columns {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unit as the column table of docs/CLI.md writes it.
+    fn doc_unit(u: Unit) -> &'static str {
+        match u {
+            Unit::Coordinate => "rad or m",
+            Unit::CoordinateRate => "rad/s or m/s",
+            u => u.symbol(false),
+        }
+    }
+
+    #[test]
+    fn the_header_is_state_wheels_contact_commands_neutrals_set_point() {
+        let c = Columns::new(2, 3);
+        let names = c.names().join(",");
+        assert_eq!(
+            names,
+            "t,X,Y,Z,phi,theta,psi,y1,y2,vx,vy,vz,Ox,Oy,Oz,dy1,dy2,\
+             W1X,W1Y,W1Z,W2X,W2Y,W2Z,W3X,W3Y,W3Z,\
+             H1X,H1Y,H1Z,Fn1,Fd1,Fc1,H2X,H2Y,H2Z,Fn2,Fd2,Fc2,H3X,H3Y,H3Z,Fn3,Fd3,Fc3,\
+             tau1,tau2,tau3,delta1,delta2,delta3,y0_1,y0_2,V_set"
+        );
+        assert_eq!(c.position("Fn2"), Some(35));
+        let units = c.units(&[false, true]);
+        let unit = |n: &str| units[c.position(n).unwrap()];
+        assert_eq!(
+            [
+                unit("y1"),
+                unit("y2"),
+                unit("dy1"),
+                unit("dy2"),
+                unit("y0_2")
+            ],
+            ["rad", "m", "rad/s", "m/s", "m"]
+        );
+        assert_eq!(
+            [unit("Fc3"), unit("tau1"), unit("V_set")],
+            ["N", "N·m", "m/s"]
+        );
+    }
+
+    #[test]
+    fn a_row_takes_each_value_from_its_input() {
+        let c = Columns::new(1, 2);
+        let x = [1.0, 2.0, 3.0, 0.1, 0.2, 0.3, 0.4];
+        let w = [5.0, 6.0, 7.0, 0.5, 0.6, 0.7, 0.8];
+        let wheels = [
+            WheelState {
+                centre: [10.0, 11.0, 12.0],
+                ..Default::default()
+            },
+            WheelState {
+                centre: [20.0, 21.0, 22.0],
+                ..Default::default()
+            },
+        ];
+        let reports = [
+            WheelReport::default(),
+            WheelReport {
+                point: [30.0, 31.0, 32.0],
+                normal: 33.0,
+                drawbar: 34.0,
+                lateral: 35.0,
+                ..Default::default()
+            },
+        ];
+        let inputs = RowInputs {
+            t: 9.0,
+            x: &x,
+            w: &w,
+            wheels: &wheels,
+            reports: &reports,
+            torques: &[1.5, 2.5],
+            steering: &[0.0, -0.25],
+            neutrals: &[0.45],
+            speed_setpoint: 0.125,
+        };
+        let mut row = vec![f64::NAN; c.len()];
+        c.fill(&inputs, &mut row);
+        let at = |n: &str| row[c.position(n).unwrap()];
+        assert_eq!(
+            [at("t"), at("Z"), at("psi"), at("y1")],
+            [9.0, 3.0, 0.3, 0.4]
+        );
+        assert_eq!([at("vx"), at("Oz"), at("dy1")], [5.0, 0.7, 0.8]);
+        assert_eq!([at("W2X"), at("W2Z"), at("W1Y")], [20.0, 22.0, 11.0]);
+        assert_eq!(
+            [at("H2Y"), at("Fn2"), at("Fd2"), at("Fc2"), at("Fn1")],
+            [31.0, 33.0, 34.0, 35.0, 0.0]
+        );
+        assert_eq!(
+            [at("tau2"), at("delta2"), at("y0_1"), at("V_set")],
+            [2.5, -0.25, 0.45, 0.125]
+        );
+    }
+
+    /// docs/CLI.md's table of the columns is this table: a column added
+    /// here and not there (or the reverse) fails.
+    #[test]
+    fn the_column_table_in_the_docs_lists_every_column() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/CLI.md");
+        let doc = std::fs::read_to_string(path).unwrap();
+        let documented: Vec<&str> = doc.lines().filter(|l| l.starts_with("| `")).collect();
+        let expected: Vec<String> = ROW
+            .iter()
+            .flat_map(|g| g.fields)
+            .map(|f| format!("| `{}` | {} | {} |", f.name, doc_unit(f.unit), f.meaning))
+            .collect();
+        assert_eq!(documented, expected, "docs/CLI.md, \"Output columns\"");
+    }
+}

@@ -18,6 +18,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 
 use clap::Args;
+use rover_runtime::row::Columns;
 use rover_runtime::terrain::{HeightField, Terrain};
 use rover_scenario::prepare::{Prepared, RunPlant, load_rover};
 use rover_scenario::scenario::Scenario;
@@ -244,6 +245,10 @@ fn meta(
     if let Some(spec) = spec {
         m["coordinates"] = json!(spec.coordinate_names);
         m["sketch"] = sketch_json(&spec.sketch);
+        let row = Columns::new(spec.model.m(), spec.model.wheels.len());
+        if row.names() == columns {
+            m["units"] = json!(row.units(&spec.coordinate_linear));
+        }
     }
     if let Some(info) = info {
         let xs = info.rest.iter().map(|p| p[0]);
