@@ -401,7 +401,7 @@ pub struct Timing {
     /// See `simulated_s`.
     pub wall_s: f64,
     /// Why the simulation stopped, if it did (it then waits for a reset).
-    pub error: Option<String>,
+    pub error: Option<RunError>,
     /// With [`Pacing::Spin`], how long before each tick the sleep ended at
     /// the end of the run (the spin's share of each period) \[s\].
     pub spin_margin_s: Option<f64>,
@@ -756,7 +756,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
     let mut seen_resets = 0u64;
     let mut paused = false;
     let mut tripped = false;
-    let mut error: Option<String> = None;
+    let mut error: Option<RunError> = None;
     let mut timing = Timing::default();
     let mut steps = 0u64;
     let mut last_step_s = 0.0;
@@ -803,7 +803,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
         let stepping = !paused && error.is_none();
         if stepping {
             if let Err(e) = sim.step() {
-                error = Some(e.to_string());
+                error = Some(e);
             }
             steps += 1;
             window_sim += sim.h;
@@ -826,7 +826,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
             s.watchdog_tripped = tripped;
             if s.error.is_none() && error.is_some() {
                 // Once per failure: a message for the clients.
-                s.error = error.clone();
+                s.error = error.as_ref().map(RunError::to_string);
             } else if error.is_none() {
                 s.error = None;
             }

@@ -106,34 +106,75 @@ impl Request {
     }
 }
 
-fn number(obj: &Map<String, Value>, key: &str) -> Result<Option<f64>, String> {
+/// Why a client's message was refused: its text goes back to the client,
+/// and the loop's command is left as it was.
+#[derive(Debug, thiserror::Error)]
+pub enum MessageError {
+    /// Not JSON at all.
+    #[error("not JSON: {0}")]
+    NotJson(serde_json::Error),
+    /// JSON, but not an object.
+    #[error("a message is a JSON object such as {{\"speed\": 0.1}}, got {0}")]
+    NotObject(Value),
+    /// A key the protocol does not have.
+    #[error("unknown key `{key}`; the keys are {}", KEYS.join(", "))]
+    UnknownKey {
+        /// The key.
+        key: String,
+    },
+    /// A key's value is of the wrong kind or out of its range.
+    #[error("{message}")]
+    Value {
+        /// The key.
+        key: &'static str,
+        /// What is wrong and what the key takes.
+        message: String,
+    },
+    /// Keys that do not fit this rover, or do not go together.
+    #[error("{0}")]
+    Combination(&'static str),
+}
+
+/// A bad value of `key`.
+fn bad(key: &'static str, message: String) -> MessageError {
+    MessageError::Value { key, message }
+}
+
+fn number(obj: &Map<String, Value>, key: &'static str) -> Result<Option<f64>, MessageError> {
     match obj.get(key) {
         None => Ok(None),
         Some(Value::Number(n)) => match n.as_f64() {
             Some(v) if v.is_finite() => Ok(Some(v)),
-            _ => Err(format!("`{key}` must be a finite number, got {n}")),
+            _ => Err(bad(
+                key,
+                format!("`{key}` must be a finite number, got {n}"),
+            )),
         },
-        Some(other) => Err(format!("`{key}` must be a number, got {other}")),
+        Some(other) => Err(bad(key, format!("`{key}` must be a number, got {other}"))),
     }
 }
 
 fn per_wheel(
     obj: &Map<String, Value>,
-    key: &str,
+    key: &'static str,
     wheels: usize,
-) -> Result<Option<Vec<f64>>, String> {
+) -> Result<Option<Vec<f64>>, MessageError> {
     let Some(v) = obj.get(key) else {
         return Ok(None);
     };
     let Value::Array(items) = v else {
-        return Err(format!(
-            "`{key}` must be an array of {wheels} numbers (one per wheel), got {v}"
+        return Err(bad(
+            key,
+            format!("`{key}` must be an array of {wheels} numbers (one per wheel), got {v}"),
         ));
     };
     if items.len() != wheels {
-        return Err(format!(
-            "`{key}` has {} values; the rover has {wheels} wheels",
-            items.len()
+        return Err(bad(
+            key,
+            format!(
+                "`{key}` has {} values; the rover has {wheels} wheels",
+                items.len()
+            ),
         ));
     }
     items
@@ -141,9 +182,12 @@ fn per_wheel(
         .enumerate()
         .map(|(k, x)| match x.as_f64() {
             Some(v) if v.is_finite() => Ok(v),
-            _ => Err(format!(
-                "`{key}`[{k}] (wheel {}) must be a finite number, got {x}",
-                k + 1
+            _ => Err(bad(
+                key,
+                format!(
+                    "`{key}`[{k}] (wheel {}) must be a finite number, got {x}",
+                    k + 1
+                ),
             )),
         })
         .collect::<Result<Vec<_>, _>>()
@@ -151,18 +195,13 @@ fn per_wheel(
 }
 
 /// Parse and check one message for a rover; `max_rate` is the loop's rate.
-pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, String> {
-    let value: Value = serde_json::from_str(text).map_err(|e| format!("not JSON: {e}"))?;
+pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, MessageError> {
+    let value: Value = serde_json::from_str(text).map_err(MessageError::NotJson)?;
     let Value::Object(obj) = value else {
-        return Err(format!(
-            "a message is a JSON object such as {{\"speed\": 0.1}}, got {value}"
-        ));
+        return Err(MessageError::NotObject(value));
     };
     if let Some(k) = obj.keys().find(|k| !KEYS.contains(&k.as_str())) {
-        return Err(format!(
-            "unknown key `{k}`; the keys are {}",
-            KEYS.join(", ")
-        ));
+        return Err(MessageError::UnknownKey { key: k.clone() });
     }
     let wheels = info.steerable.len();
     let mut r = Request {
@@ -178,67 +217,79 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Str
     match obj.get("pause") {
         None => {}
         Some(Value::Bool(b)) => r.pause = Some(*b),
-        Some(v) => return Err(format!("`pause` must be true or false, got {v}")),
+        Some(v) => {
+            return Err(bad(
+                "pause",
+                format!("`pause` must be true or false, got {v}"),
+            ));
+        }
     }
     match obj.get("subscribe") {
         None => {}
         Some(Value::String(f)) if f == "json" => r.subscribe = Some(Format::Json),
         Some(Value::String(f)) if f == "binary" => r.subscribe = Some(Format::Binary),
         Some(v) => {
-            return Err(format!(
-                "`subscribe` must be \"json\" or \"binary\" (the state's format), got {v}"
+            return Err(bad(
+                "subscribe",
+                format!("`subscribe` must be \"json\" or \"binary\" (the state's format), got {v}"),
             ));
         }
     }
     match obj.get("reset") {
         None | Some(Value::Bool(false)) => {}
         Some(Value::Bool(true)) => r.reset = true,
-        Some(v) => return Err(format!("`reset` must be true, got {v}")),
+        Some(v) => return Err(bad("reset", format!("`reset` must be true, got {v}"))),
     }
     if let Some(s) = r.steer {
         if !info.ackermann() {
-            return Err(
-                "this rover has no steerable wheel: it steers by slip, send `delta_tau` [N·m]"
-                    .into(),
-            );
+            return Err(MessageError::Combination(
+                "this rover has no steerable wheel: it steers by slip, send `delta_tau` [N·m]",
+            ));
         }
         if s.abs() > MAX_STEER {
-            return Err(format!("`steer` = {s} rad is beyond ±{MAX_STEER} rad"));
+            return Err(bad(
+                "steer",
+                format!("`steer` = {s} rad is beyond ±{MAX_STEER} rad"),
+            ));
         }
     }
     if r.delta_tau.is_some() && info.ackermann() {
-        return Err(
-            "this rover steers its wheels (Ackermann): send `steer` [rad], or raw `steering`"
-                .into(),
-        );
+        return Err(MessageError::Combination(
+            "this rover steers its wheels (Ackermann): send `steer` [rad], or raw `steering`",
+        ));
     }
     let loop_mode = r.speed.is_some() || r.steer.is_some() || r.delta_tau.is_some();
     let raw = r.torques.is_some() || r.steering.is_some();
     if loop_mode && raw {
-        return Err(
-            "`speed`/`steer`/`delta_tau` (the loop's speed controller) and raw `torques`/`steering` cannot be mixed in one message"
-                .into(),
-        );
+        return Err(MessageError::Combination(
+            "`speed`/`steer`/`delta_tau` (the loop's speed controller) and raw `torques`/`steering` cannot be mixed in one message",
+        ));
     }
     if let Some(angles) = &r.steering
         && let Some(k) = (0..wheels).find(|&k| !info.steerable[k] && angles[k] != 0.0)
     {
-        return Err(format!(
-            "`steering`[{k}]: wheel {} does not steer; give it 0",
-            k + 1
+        return Err(bad(
+            "steering",
+            format!("`steering`[{k}]: wheel {} does not steer; give it 0", k + 1),
         ));
     }
     if let Some(rate) = r.rate
         && !(rate > 0.0 && rate <= max_rate)
     {
-        return Err(format!(
-            "`rate` = {rate}: state messages per second, in (0, {max_rate}] (the loop's rate)"
+        return Err(bad(
+            "rate",
+            format!(
+                "`rate` = {rate}: state messages per second, in (0, {max_rate}] (the loop's rate)"
+            ),
         ));
     }
     if let Some(w) = r.watchdog
         && w < 0.0
     {
-        return Err(format!("`watchdog` = {w}: seconds, ≥ 0 (0 turns it off)"));
+        return Err(bad(
+            "watchdog",
+            format!("`watchdog` = {w}: seconds, ≥ 0 (0 turns it off)"),
+        ));
     }
     Ok(r)
 }

@@ -405,7 +405,7 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
                 }
                 Err(message) => {
                     if ws
-                        .send(Message::text(protocol::error_json(&message)))
+                        .send(Message::text(protocol::error_json(&message.to_string())))
                         .is_err()
                     {
                         break;

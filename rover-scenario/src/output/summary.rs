@@ -270,7 +270,7 @@ impl RunLog {
         }
     }
 
-    /// Record a CSV row (columns of [`super::header`], the speed setpoint
+    /// Record a row ([`rover_runtime::row::Columns`]: the columns of the CSV, the speed setpoint
     /// last) and which wheels had a deep penetration.
     pub fn record(&mut self, row: &[f64], deep: impl Iterator<Item = bool>) {
         self.last.clear();
