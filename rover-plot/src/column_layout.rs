@@ -142,29 +142,9 @@ impl ColumnLayout {
 mod tests {
     use super::*;
 
+    /// The header a run writes, for `m` coordinates and `n` wheels.
     fn header(m: usize, n: usize) -> Vec<String> {
-        let mut names: Vec<String> = ["t", "X", "Y", "Z", "phi", "theta", "psi"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-        names.extend((1..=m).map(|k| format!("y{k}")));
-        names.extend(
-            ["vx", "vy", "vz", "Ox", "Oy", "Oz"]
-                .iter()
-                .map(|s| s.to_string()),
-        );
-        names.extend((1..=m).map(|k| format!("dy{k}")));
-        for j in 1..=n {
-            names.extend(["X", "Y", "Z"].iter().map(|a| format!("W{j}{a}")));
-        }
-        for j in 1..=n {
-            names.extend(["X", "Y", "Z"].iter().map(|a| format!("H{j}{a}")));
-            names.extend(["Fn", "Fd", "Fc"].iter().map(|f| format!("{f}{j}")));
-        }
-        names.extend((1..=n).map(|j| format!("tau{j}")));
-        names.extend((1..=n).map(|j| format!("delta{j}")));
-        names.push("V_set".into());
-        names
+        rover_runtime::row::Columns::new(m, n).names().to_vec()
     }
 
     fn layout(names: &[String]) -> Result<ColumnLayout, PlotError> {

@@ -5,7 +5,10 @@ use std::collections::BTreeSet;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
+use rover_dynamics::plant::WheelState;
+use rover_dynamics::wheel_ground::WheelReport;
 use rover_plot::{Figure, PlotMeta, plot_run};
+use rover_runtime::row::{Columns, RowInputs};
 
 /// A fresh, empty directory for one test.
 fn test_dir(name: &str) -> PathBuf {
@@ -20,25 +23,9 @@ fn test_dir(name: &str) -> PathBuf {
 const M: usize = 4;
 const N: usize = 4;
 
-/// The header of the run CSV, in the order the runtime writes it.
+/// The header of the run CSV, as a run writes it.
 fn header() -> Vec<String> {
-    let mut names: Vec<String> = ["t", "X", "Y", "Z", "phi", "theta", "psi"]
-        .map(String::from)
-        .to_vec();
-    names.extend((1..=M).map(|k| format!("y{k}")));
-    names.extend(["vx", "vy", "vz", "Ox", "Oy", "Oz"].map(String::from));
-    names.extend((1..=M).map(|k| format!("dy{k}")));
-    for j in 1..=N {
-        names.extend(["X", "Y", "Z"].map(|a| format!("W{j}{a}")));
-    }
-    for j in 1..=N {
-        names.extend(["X", "Y", "Z"].map(|a| format!("H{j}{a}")));
-        names.extend(["Fn", "Fd", "Fc"].map(|f| format!("{f}{j}")));
-    }
-    names.extend((1..=N).map(|j| format!("tau{j}")));
-    names.extend((1..=N).map(|j| format!("delta{j}")));
-    names.push("V_set".into());
-    names
+    Columns::new(M, N).names().to_vec()
 }
 
 /// One row at time `t`: still until 2 s, then a circle of radius 2 m at
@@ -57,45 +44,64 @@ fn row(t: f64) -> Vec<f64> {
     } else {
         speed + 0.005 * (3.0 * t).sin()
     };
-    let mut r = vec![t, x, y, z, phi, theta, psi];
-    r.extend(&ys);
-    r.extend([
+    let mut x_state = vec![x, y, z, phi, theta, psi];
+    x_state.extend(&ys);
+    let mut w = vec![
         vx,
         0.0,
         0.0,
         0.0,
         0.0,
         if t < settle { 0.0 } else { speed / radius },
-    ]);
-    r.extend(ys.iter().map(|_| 0.0));
+    ];
+    w.extend(ys.iter().map(|_| 0.0));
     let offsets = [(0.5, 0.4), (0.5, -0.4), (-0.5, 0.4), (-0.5, -0.4)];
-    let centres: Vec<[f64; 3]> = offsets
+    let wheels: Vec<WheelState> = offsets
         .iter()
         .enumerate()
-        .map(|(j, &(bx, by))| {
-            [
+        .map(|(j, &(bx, by))| WheelState {
+            centre: [
                 x + bx * psi.cos() - by * psi.sin(),
                 y + bx * psi.sin() + by * psi.cos(),
                 0.15 + 0.02 * ys[j],
-            ]
+            ],
+            ..Default::default()
         })
         .collect();
-    for c in &centres {
-        r.extend(c);
-    }
-    for (j, c) in centres.iter().enumerate() {
-        r.extend([c[0], c[1], 0.0]);
-        r.extend([60.0 + 5.0 * (t + j as f64).sin(), 0.5, 0.1]);
-    }
-    r.extend((0..N).map(|j| {
-        if t < settle {
-            0.0
-        } else {
-            0.8 + 0.1 * (t + j as f64).cos()
-        }
-    }));
-    r.extend((0..N).map(|_| 0.0));
-    r.push(if t < settle { 0.0 } else { speed });
+    let reports: Vec<WheelReport> = wheels
+        .iter()
+        .enumerate()
+        .map(|(j, w)| WheelReport {
+            point: [w.centre[0], w.centre[1], 0.0],
+            normal: 60.0 + 5.0 * (t + j as f64).sin(),
+            drawbar: 0.5,
+            lateral: 0.1,
+            ..Default::default()
+        })
+        .collect();
+    let torques: Vec<f64> = (0..N)
+        .map(|j| {
+            if t < settle {
+                0.0
+            } else {
+                0.8 + 0.1 * (t + j as f64).cos()
+            }
+        })
+        .collect();
+    let columns = Columns::new(M, N);
+    let mut r = vec![0.0; columns.len()];
+    let inputs = RowInputs {
+        t,
+        x: &x_state,
+        w: &w,
+        wheels: &wheels,
+        reports: &reports,
+        torques: &torques,
+        steering: &[0.0; N],
+        neutrals: &[0.0; M],
+        speed_setpoint: if t < settle { 0.0 } else { speed },
+    };
+    columns.fill(&inputs, &mut r);
     r
 }
 
