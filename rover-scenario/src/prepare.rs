@@ -3,6 +3,22 @@
 //! once, and the plant that runs it. The command line, the Python package,
 //! the sweep and the live loop all start here, so that a run from any of
 //! them gives the same numbers and the same messages.
+//!
+//! ```
+//! use std::path::Path;
+//! use std::sync::atomic::AtomicBool;
+//! use rover_scenario::prepare::Prepared;
+//!
+//! let text = "rover = \"swing4\"\nduration = 1.0\n[control.speed]\nspeed = 0.1\n";
+//! let run = Prepared::from_text(None, text, Path::new("<example>"), Path::new("."))?;
+//! let mut csv = Vec::new();
+//! let summary = run.run(false, &mut csv, &AtomicBool::new(false), |_t| {})?; // `rover simulate`
+//! assert!(summary.complete && summary.plant == "generated (rover_models::Swing4)");
+//! let mut stepped = run.stepper(false)?; // Python's `Simulation`
+//! stepped.step(10)?;
+//! assert_eq!(stepped.time(), 10.0 * stepped.dt());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
