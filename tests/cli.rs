@@ -398,7 +398,7 @@ fn reduced_levels_of_example_2_run_their_generated_plant_and_match_the_generic_o
         generated.plant,
         "generated (rover_models::Swing4Simplified)"
     );
-    assert_eq!(generic.plant, "generic");
+    assert_eq!(generic.plant, "generic (simplified level)");
     let state = |s: &rover_scenario::output::Summary| {
         s.final_state.iter().map(|(_, v)| *v).collect::<Vec<f64>>()
     };
