@@ -139,13 +139,14 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
             visibility: quote!(#vis).to_string(),
             level,
         },
-    );
-    let items: TokenStream = source.code.parse().map_err(|e| {
+    )
+    .map_err(|e| {
         syn::Error::new(
             Span::call_site(),
             format!("internal error of rover-codegen: generated code does not parse ({e})"),
         )
     })?;
+    let items = source.code;
     let doc = format!("A [`{plant}`] with the description's spring neutrals.");
     let described = described(name, &plant, &spec.name, &description, fidelity, &y_ref);
     Ok(quote! {

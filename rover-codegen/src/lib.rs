@@ -36,6 +36,7 @@ pub mod diff;
 pub mod emit;
 pub mod error;
 pub mod graph;
+pub mod items;
 pub mod lanes;
 #[cfg(feature = "module")]
 pub mod module;
@@ -49,6 +50,7 @@ pub mod trace;
 pub use derive::{expand_derive, expand_derive_in};
 pub use error::CodegenError;
 pub use graph::{Graph, Id, Node};
+pub use items::Item;
 #[cfg(feature = "module")]
 pub use module::{ModuleOptions, generate_module, generate_module_with};
 pub use plant_source::{Options, PlantSource, plant_source};

@@ -88,9 +88,10 @@ pub fn generate_module_with(
             visibility: "pub".into(),
             level: options.level.clone(),
         },
-    );
+    )
+    .map_err(|e| CodegenError::Internal(e.to_string()))?;
     let file: syn::File =
-        syn::parse_str(&source.code).map_err(|e| CodegenError::Internal(e.to_string()))?;
+        syn::parse2(source.code).map_err(|e| CodegenError::Internal(e.to_string()))?;
     let body = prettyplease::unparse(&file);
     let mut out = String::new();
     let hash = fingerprint(&format!("{:?}", spec.model));
