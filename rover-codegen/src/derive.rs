@@ -31,6 +31,8 @@ use crate::plant_source::{Options, plant_source};
 use crate::tokens::{Entry, Value, parse_entries, span_at, to_toml};
 use crate::trace::Level;
 
+mod stub;
+
 /// Expand `#[derive(Rover)]` on `input`, reading files relative to the
 /// `CARGO_MANIFEST_DIR` of the crate being compiled.
 pub fn expand_derive(input: &syn::DeriveInput) -> TokenStream {
@@ -46,7 +48,7 @@ pub fn expand_derive_in(input: &syn::DeriveInput, base: &Path) -> TokenStream {
         Ok(tokens) => tokens,
         Err(e) => {
             let mut out = e.to_compile_error();
-            out.extend(stub(input));
+            out.extend(stub::stub(input));
             out
         }
     }
@@ -147,18 +149,27 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
         )
     })?;
     let items = source.code;
-    let doc = format!("A [`{plant}`] with the description's spring neutrals.");
+    let companion = companion(name, &plant);
     let described = described(name, &plant, &spec.name, &description, fidelity, &y_ref);
     Ok(quote! {
         #items
+        #companion
+        #described
+    })
+}
+
+/// `<Name>::plant()`: the plant of the struct the derive is on, which a
+/// derive cannot give fields.
+fn companion(name: &syn::Ident, plant: &syn::Ident) -> TokenStream {
+    let doc = format!("A [`{plant}`] with the description's spring neutrals.");
+    quote! {
         impl #name {
             #[doc = #doc]
             pub const fn plant() -> #plant {
                 #plant::new()
             }
         }
-        #described
-    })
+    }
 }
 
 /// The description as the generated code carries it: its TOML text (a
@@ -425,150 +436,6 @@ fn inline_errors(
         first.combine(more);
     }
     first
-}
-
-/// The companion type with every item a generated one has, next to the
-/// errors, so that a bad description is its own error only: code using
-/// `MyRover::plant()`, `MyRoverPlant::DOF`, the array and nalgebra methods,
-/// the traits or `MyRover::report()` still resolves (it never runs: the
-/// crate does not compile). The sizes are unknown, so the methods that
-/// take arrays are generic over them; the nalgebra ones are inherent too,
-/// so that a call infers its sizes from its arguments.
-fn stub(input: &syn::DeriveInput) -> TokenStream {
-    let name = &input.ident;
-    let plant = format_ident!("{}Plant", name);
-    let vis = &input.vis;
-    let rover = name.to_string();
-    let pl = quote!(::rover_dynamics::plant);
-    let na = quote!(::rover_dynamics::nalgebra);
-    let result = quote!(::core::result::Result<(), #pl::PlantError>);
-    let described = described(
-        name,
-        &plant,
-        &rover,
-        &Source {
-            text: quote!(""),
-            origin: quote!(""),
-        },
-        "full",
-        &[],
-    );
-    quote! {
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #vis struct #plant;
-        #[allow(clippy::all, unused_variables, dead_code)]
-        impl #plant {
-            /// Stub.
-            pub const NAME: &'static str = #rover;
-            /// Stub.
-            pub const DOF: usize = 0;
-            /// Stub.
-            pub const WHEELS: usize = 0;
-            /// Stub.
-            pub const COORDINATES: [&'static str; 0] = [];
-            /// Stub.
-            pub const WHEEL_NAMES: [&'static str; 0] = [];
-            /// Stub.
-            pub const SPRING_NEUTRALS: [f64; 0] = [];
-            /// Stub.
-            pub const MIN_COS_ROLL: f64 = ::rover_dynamics::plant::MIN_COS_ROLL;
-            /// Stub.
-            pub const fn new() -> Self { #plant }
-            /// Stub.
-            pub fn spring_neutrals(&self) -> &[f64; 0] { &[] }
-            /// Stub.
-            pub fn derivatives_array<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
-                xdot: &mut [f64; N], wdot: &mut [f64; N],
-            ) -> #result { Ok(()) }
-            /// Stub.
-            pub fn derivatives_portable<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
-                xdot: &mut [f64; N], wdot: &mut [f64; N],
-            ) -> #result { Ok(()) }
-            /// Stub.
-            pub fn mass_matrix_array<const N: usize>(&self, x: &[f64; N]) -> [[f64; N]; N] {
-                [[0.0; N]; N]
-            }
-            /// Stub.
-            pub fn wheels_array<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], steer: &[f64; W],
-            ) -> [#pl::WheelState; W] {
-                [#pl::WheelState { centre: [0.0; 3], velocity: [0.0; 3], spin_axis: [0.0; 3] }; W]
-            }
-            /// Stub.
-            pub fn jacobian_array<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
-            ) -> ::rover_dynamics::described::StubMatrix {
-                ::rover_dynamics::described::StubMatrix
-            }
-            /// Stub.
-            pub fn jacobian_fixed<const N: usize, const W: usize>(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                loads: &[#pl::WheelLoad; W],
-            ) -> ::rover_dynamics::described::StubMatrix {
-                ::rover_dynamics::described::StubMatrix
-            }
-            /// Stub.
-            pub fn derivatives_fixed<const N: usize, const W: usize>(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                loads: &[#pl::WheelLoad; W], xdot: &mut #na::SVector<f64, N>,
-                wdot: &mut #na::SVector<f64, N>,
-            ) -> #result { Ok(()) }
-            /// Stub.
-            pub fn mass_matrix_fixed<const N: usize>(
-                &self, x: &#na::SVector<f64, N>,
-            ) -> #na::SMatrix<f64, N, N> {
-                #na::SMatrix::<f64, N, N>::from_array_storage(#na::ArrayStorage([[0.0; N]; N]))
-            }
-            /// Stub.
-            pub fn wheels_fixed<const N: usize, const W: usize>(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                steer: &#na::SVector<f64, W>,
-            ) -> [#pl::WheelState; W] {
-                [#pl::WheelState { centre: [0.0; 3], velocity: [0.0; 3], spin_axis: [0.0; 3] }; W]
-            }
-        }
-        impl #name {
-            /// Stub.
-            pub const fn plant() -> #plant { #plant }
-        }
-        impl #pl::Plant for #plant {
-            fn dof(&self) -> usize { 0 }
-            fn wheel_count(&self) -> usize { 0 }
-            fn wheels(&mut self, _: &[f64], _: &[f64], _: &[f64], _: &mut [#pl::WheelState]) {}
-            fn derivatives(
-                &mut self,
-                _: &[f64],
-                _: &[f64],
-                _: &[#pl::WheelLoad],
-                _: &mut [f64],
-                _: &mut [f64],
-            ) -> #result {
-                Ok(())
-            }
-            fn mass_matrix(&mut self, _: &[f64], _: &mut [f64]) {}
-            fn set_spring_neutral(&mut self, _: usize, _: f64) {}
-        }
-        #[allow(unused_variables)]
-        impl<const N: usize, const W: usize> #pl::FixedPlant<N, W> for #plant {
-            fn derivatives_fixed(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                loads: &[#pl::WheelLoad; W], xdot: &mut #na::SVector<f64, N>,
-                wdot: &mut #na::SVector<f64, N>,
-            ) -> #result { Ok(()) }
-            fn mass_matrix_fixed(&self, x: &#na::SVector<f64, N>) -> #na::SMatrix<f64, N, N> {
-                #plant::mass_matrix_fixed(self, x)
-            }
-            fn wheels_fixed(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                steer: &#na::SVector<f64, W>,
-            ) -> [#pl::WheelState; W] {
-                #plant::wheels_fixed(self, x, w, steer)
-            }
-        }
-        #described
-    }
 }
 
 #[cfg(test)]

@@ -420,16 +420,16 @@ fn tyre(t: &rover_dynamics::wheel_law::Tyre) -> Result<TokenStream, LexError> {
 }
 
 /// `rover_dynamics::plant` in generated code.
-fn plant_path() -> TokenStream {
+pub(crate) fn plant_path() -> TokenStream {
     quote!(::rover_dynamics::plant)
 }
 
 /// nalgebra as rover-dynamics re-exports it (one version for every user).
-fn nalgebra_path() -> TokenStream {
+pub(crate) fn nalgebra_path() -> TokenStream {
     quote!(::rover_dynamics::nalgebra)
 }
 
 /// `rover_dynamics::wheel_ground` in generated code.
-fn ground_path() -> TokenStream {
+pub(crate) fn ground_path() -> TokenStream {
     quote!(::rover_dynamics::wheel_ground)
 }
