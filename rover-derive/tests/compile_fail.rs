@@ -38,3 +38,30 @@ fn each_mistake_is_exactly_one_error() {
     }
     assert!(cases >= 13, "{cases} cases");
 }
+
+/// `uses/use_all.rs` uses every item a generated plant has
+/// (`rover_codegen::Item::ALL`): a constant as `$plant::NAME`, a method as
+/// `.name(` or `$plant::name(`, a trait impl as a bound `P: Trait`. With
+/// it, the cases above hold the stub and a real plant to every item.
+#[test]
+fn use_all_uses_every_listed_item() {
+    use rover_codegen::items::{Item, Kind};
+    let uses = std::fs::read_to_string("tests/uses/use_all.rs").unwrap();
+    let missing: Vec<&str> = Item::ALL
+        .iter()
+        .filter(|item| {
+            let name = item.name();
+            let forms = match item.kind() {
+                Kind::Const => vec![format!("$plant::{name}")],
+                Kind::Method => vec![format!(".{name}("), format!("$plant::{name}(")],
+                Kind::Impl => vec![format!("P: {name}")],
+            };
+            !forms.iter().any(|form| uses.contains(form.as_str()))
+        })
+        .map(|item| item.name())
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "not used in uses/use_all.rs: {missing:?}"
+    );
+}
