@@ -62,93 +62,24 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
     let jacobian = take_bool(&mut entries, "jacobian")?.unwrap_or(false);
     let fidelity = take_fidelity(&mut entries)?;
     let y_ref = take_numbers(&mut entries, "y_ref")?;
-    let file = entries.iter().position(|e| e.key == "file");
-    let (spec, description) = match file {
-        Some(k) => {
-            let entry = entries.remove(k);
-            if let Some(other) = entries.first() {
-                return Err(syn::Error::new(
-                    other.key_span,
-                    format!(
-                        "`{}` cannot be combined with `file`: write it in the file",
-                        other.key
-                    ),
-                ));
-            }
-            let Value::Str(rel, span) = entry.value else {
-                return Err(syn::Error::new(
-                    entry.value.span(),
-                    "`file` takes a string: the path of the TOML description, relative to the crate's Cargo.toml",
-                ));
-            };
-            let path = base.join(&rel);
-            let text = std::fs::read_to_string(&path).map_err(|e| {
-                syn::Error::new(span, format!("cannot read `{}`: {e}", path.display()))
-            })?;
-            let spec = rover_spec::load_str(&text, &rel)
-                .map_err(|e| file_errors(&e, &rel, &text, span))?;
-            // `include_str!` makes the file an input of the crate: editing
-            // it rebuilds, and the text carried is the text validated.
-            let abs = path.display().to_string();
-            (
-                spec,
-                Source {
-                    text: quote! { include_str!(#abs) },
-                    origin: quote! { #rel },
-                },
-            )
+    let (spec, description) = match entries.iter().position(|e| e.key == "file") {
+        Some(k) => file_description(&mut entries, k, base)?,
+        None if entries.is_empty() => {
+            return Err(syn::Error::new(
+                list.delimiter.span().join(),
+                "empty description: write `#[rover(file = \"….toml\")]` or the description's fields",
+            ));
         }
-        None => {
-            if entries.is_empty() {
-                return Err(syn::Error::new(
-                    list.delimiter.span().join(),
-                    "empty description: write `#[rover(file = \"….toml\")]` or the description's fields",
-                ));
-            }
-            let (text, spans) = to_toml(&entries);
-            let spec = rover_spec::load_str(&text, "<inline>")
-                .map_err(|e| inline_errors(&e, &spans, attr_span(attr)))?;
-            (
-                spec,
-                Source {
-                    text: quote! { #text },
-                    origin: quote! { ::core::concat!(::core::file!(), ":", ::core::line!()) },
-                },
-            )
-        }
+        None => inline_description(&entries, attr_span(attr))?,
     };
     let level = level(fidelity, y_ref, &spec)?;
     let (fidelity, y_ref) = match &level {
         None => ("full", Vec::new()),
-        Some(l) => (
-            match l.fidelity {
-                Fidelity::Full => "full",
-                Fidelity::Simplified => "simplified",
-                Fidelity::Linearized => "linearized",
-            },
-            l.y_ref.clone(),
-        ),
+        Some(l) => (fidelity_name(l.fidelity), l.y_ref.clone()),
     };
     let name = &input.ident;
     let plant = format_ident!("{}Plant", name);
-    let vis = &input.vis;
-    let source = plant_source(
-        &spec,
-        &Options {
-            type_name: plant.to_string(),
-            jacobian,
-            comments: false,
-            visibility: quote!(#vis).to_string(),
-            level,
-        },
-    )
-    .map_err(|e| {
-        syn::Error::new(
-            Span::call_site(),
-            format!("internal error of rover-codegen: generated code does not parse ({e})"),
-        )
-    })?;
-    let items = source.code;
+    let items = plant_items(&spec, &plant, &input.vis, jacobian, level)?;
     let companion = companion(name, &plant);
     let described = described(name, &plant, &spec.name, &description, fidelity, &y_ref);
     Ok(quote! {
@@ -156,6 +87,91 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
         #companion
         #described
     })
+}
+
+/// The description of `file = "…"`, entry `k` of `entries`, the only one:
+/// the other fields are written in the file.
+fn file_description(
+    entries: &mut Vec<Entry>,
+    k: usize,
+    base: &Path,
+) -> syn::Result<(rover_spec::Spec, Source)> {
+    let entry = entries.remove(k);
+    if let Some(other) = entries.first() {
+        return Err(syn::Error::new(
+            other.key_span,
+            format!(
+                "`{}` cannot be combined with `file`: write it in the file",
+                other.key
+            ),
+        ));
+    }
+    let Value::Str(rel, span) = entry.value else {
+        return Err(syn::Error::new(
+            entry.value.span(),
+            "`file` takes a string: the path of the TOML description, relative to the crate's Cargo.toml",
+        ));
+    };
+    let path = base.join(&rel);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| syn::Error::new(span, format!("cannot read `{}`: {e}", path.display())))?;
+    let spec = rover_spec::load_str(&text, &rel).map_err(|e| file_errors(&e, &rel, &text, span))?;
+    // `include_str!` makes the file an input of the crate: editing
+    // it rebuilds, and the text carried is the text validated.
+    let abs = path.display().to_string();
+    let source = Source {
+        text: quote! { include_str!(#abs) },
+        origin: quote! { #rel },
+    };
+    Ok((spec, source))
+}
+
+/// The description written in the attribute's fields, its errors at the
+/// tokens that wrote them (`whole`, the attribute, for the others).
+fn inline_description(entries: &[Entry], whole: Span) -> syn::Result<(rover_spec::Spec, Source)> {
+    let (text, spans) = to_toml(entries);
+    let spec =
+        rover_spec::load_str(&text, "<inline>").map_err(|e| inline_errors(&e, &spans, whole))?;
+    let source = Source {
+        text: quote! { #text },
+        origin: quote! { ::core::concat!(::core::file!(), ":", ::core::line!()) },
+    };
+    Ok((spec, source))
+}
+
+/// A fidelity level as the attribute writes it.
+fn fidelity_name(fidelity: Fidelity) -> &'static str {
+    match fidelity {
+        Fidelity::Full => "full",
+        Fidelity::Simplified => "simplified",
+        Fidelity::Linearized => "linearized",
+    }
+}
+
+/// The generated plant `plant` of `spec`, with the struct's visibility
+/// `vis`; the derive's code is compiled, never read, so it goes without
+/// the block headings.
+fn plant_items(
+    spec: &rover_spec::Spec,
+    plant: &syn::Ident,
+    vis: &syn::Visibility,
+    jacobian: bool,
+    level: Option<Level>,
+) -> syn::Result<TokenStream> {
+    let options = Options {
+        type_name: plant.to_string(),
+        jacobian,
+        comments: false,
+        visibility: quote!(#vis).to_string(),
+        level,
+    };
+    let source = plant_source(spec, &options).map_err(|e| {
+        syn::Error::new(
+            Span::call_site(),
+            format!("internal error of rover-codegen: generated code does not parse ({e})"),
+        )
+    })?;
+    Ok(source.code)
 }
 
 /// `<Name>::plant()`: the plant of the struct the derive is on, which a
