@@ -1,6 +1,6 @@
 //! `#[derive(Rover)]`: everything the proc-macro crate does, as an ordinary
-//! function (STYLE.md §2): parse the `#[rover(…)]` attribute, load and
-//! validate the description, emit the plant, or errors at the culprit.
+//! function that tests can call: parse the `#[rover(…)]` attribute, load
+//! and validate the description, emit the plant, or errors at the culprit.
 //!
 //! ```text
 //! #[derive(Rover)]

@@ -1,6 +1,7 @@
 //! The code generator of `rover`: a rover description becomes a
-//! specialized, allocation-free, `no_std` plant type (DESIGN.md, "one
-//! description, two back ends"; docs/CODEGEN.md is the long form).
+//! specialized, allocation-free, `no_std` plant type, the second back end
+//! of one description next to the generic plant, which runs the same
+//! equations with `f64` (docs/CODEGEN.md is the long form).
 //!
 //! How: the equations of `rover-dynamics` are written once, generic over
 //! [`rover_dynamics::Scalar`]. [`Sym`] implements that trait by recording a
@@ -12,7 +13,8 @@
 //! [`rover_dynamics::Plant`]; [`diff`] differentiates the graph for the
 //! exact Jacobian.
 //!
-//! Three doors, one core (STYLE.md §2):
+//! Three doors, one core, so that each door is a thin shell and the work
+//! is ordinary functions that the tests call:
 //! - the derive, `#[derive(Rover)]` in `rover-derive`, calls [`expand_derive`];
 //! - `rover codegen <file>` calls [`generate_module`];
 //! - a build script or a golden test calls [`generate_module`] too.

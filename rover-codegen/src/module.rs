@@ -1,6 +1,7 @@
 //! The standalone module (`rover codegen`, the checked-in models): the
 //! plant type, formatted by prettyplease, under a header a reviewer can act
-//! on (STYLE.md §4).
+//! on: what generated it from which description (and its fingerprint), how
+//! to regenerate it, its operation counts and what it needs to compile.
 
 use std::fmt::Write;
 

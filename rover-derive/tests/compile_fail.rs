@@ -1,6 +1,8 @@
 //! Bad descriptions are compile errors with our messages, one mistake per
-//! file (STYLE.md §6). `TRYBUILD=overwrite cargo test -p rover-derive`
-//! rewrites the `.stderr` files; review and commit them on their own.
+//! file, each message checked in as a `.stderr` file so that a change shows
+//! up as a reviewed diff (CONTRIBUTING.md, "Golden files and snapshots").
+//! `TRYBUILD=overwrite cargo test -p rover-derive` rewrites the `.stderr`
+//! files; review and commit them on their own.
 //!
 //! trybuild compiles each file in its own project under
 //! `target/tests/trybuild/rover-derive/`, which is then the
