@@ -1,6 +1,6 @@
 //! `#[derive(Rover)]`: everything the proc-macro crate does, as an ordinary
-//! function (STYLE.md §2): parse the `#[rover(…)]` attribute, load and
-//! validate the description, emit the plant, or errors at the culprit.
+//! function that tests can call: parse the `#[rover(…)]` attribute, load
+//! and validate the description, emit the plant, or errors at the culprit.
 //!
 //! ```text
 //! #[derive(Rover)]
@@ -31,6 +31,8 @@ use crate::plant_source::{Options, plant_source};
 use crate::tokens::{Entry, Value, parse_entries, span_at, to_toml};
 use crate::trace::Level;
 
+mod stub;
+
 /// Expand `#[derive(Rover)]` on `input`, reading files relative to the
 /// `CARGO_MANIFEST_DIR` of the crate being compiled.
 pub fn expand_derive(input: &syn::DeriveInput) -> TokenStream {
@@ -46,7 +48,7 @@ pub fn expand_derive_in(input: &syn::DeriveInput, base: &Path) -> TokenStream {
         Ok(tokens) => tokens,
         Err(e) => {
             let mut out = e.to_compile_error();
-            out.extend(stub(input));
+            out.extend(stub::stub(input));
             out
         }
     }
@@ -60,104 +62,130 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
     let jacobian = take_bool(&mut entries, "jacobian")?.unwrap_or(false);
     let fidelity = take_fidelity(&mut entries)?;
     let y_ref = take_numbers(&mut entries, "y_ref")?;
-    let file = entries.iter().position(|e| e.key == "file");
-    let (spec, description) = match file {
-        Some(k) => {
-            let entry = entries.remove(k);
-            if let Some(other) = entries.first() {
-                return Err(syn::Error::new(
-                    other.key_span,
-                    format!(
-                        "`{}` cannot be combined with `file`: write it in the file",
-                        other.key
-                    ),
-                ));
-            }
-            let Value::Str(rel, span) = entry.value else {
-                return Err(syn::Error::new(
-                    entry.value.span(),
-                    "`file` takes a string: the path of the TOML description, relative to the crate's Cargo.toml",
-                ));
-            };
-            let path = base.join(&rel);
-            let text = std::fs::read_to_string(&path).map_err(|e| {
-                syn::Error::new(span, format!("cannot read `{}`: {e}", path.display()))
-            })?;
-            let spec = rover_spec::load_str(&text, &rel)
-                .map_err(|e| file_errors(&e, &rel, &text, span))?;
-            // `include_str!` makes the file an input of the crate: editing
-            // it rebuilds, and the text carried is the text validated.
-            let abs = path.display().to_string();
-            (
-                spec,
-                Source {
-                    text: quote! { include_str!(#abs) },
-                    origin: quote! { #rel },
-                },
-            )
+    let (spec, description) = match entries.iter().position(|e| e.key == "file") {
+        Some(k) => file_description(&mut entries, k, base)?,
+        None if entries.is_empty() => {
+            return Err(syn::Error::new(
+                list.delimiter.span().join(),
+                "empty description: write `#[rover(file = \"….toml\")]` or the description's fields",
+            ));
         }
-        None => {
-            if entries.is_empty() {
-                return Err(syn::Error::new(
-                    list.delimiter.span().join(),
-                    "empty description: write `#[rover(file = \"….toml\")]` or the description's fields",
-                ));
-            }
-            let (text, spans) = to_toml(&entries);
-            let spec = rover_spec::load_str(&text, "<inline>")
-                .map_err(|e| inline_errors(&e, &spans, attr_span(attr)))?;
-            (
-                spec,
-                Source {
-                    text: quote! { #text },
-                    origin: quote! { ::core::concat!(::core::file!(), ":", ::core::line!()) },
-                },
-            )
-        }
+        None => inline_description(&entries, attr_span(attr))?,
     };
     let level = level(fidelity, y_ref, &spec)?;
     let (fidelity, y_ref) = match &level {
         None => ("full", Vec::new()),
-        Some(l) => (
-            match l.fidelity {
-                Fidelity::Full => "full",
-                Fidelity::Simplified => "simplified",
-                Fidelity::Linearized => "linearized",
-            },
-            l.y_ref.clone(),
-        ),
+        Some(l) => (fidelity_name(l.fidelity), l.y_ref.clone()),
     };
     let name = &input.ident;
     let plant = format_ident!("{}Plant", name);
-    let vis = &input.vis;
-    let source = plant_source(
-        &spec,
-        &Options {
-            type_name: plant.to_string(),
-            jacobian,
-            comments: false,
-            visibility: quote!(#vis).to_string(),
-            level,
-        },
-    );
-    let items: TokenStream = source.code.parse().map_err(|e| {
+    let items = plant_items(&spec, &plant, &input.vis, jacobian, level)?;
+    let companion = companion(name, &plant);
+    let described = described(name, &plant, &spec.name, &description, fidelity, &y_ref);
+    Ok(quote! {
+        #items
+        #companion
+        #described
+    })
+}
+
+/// The description of `file = "…"`, entry `k` of `entries`, the only one:
+/// the other fields are written in the file.
+fn file_description(
+    entries: &mut Vec<Entry>,
+    k: usize,
+    base: &Path,
+) -> syn::Result<(rover_spec::Spec, Source)> {
+    let entry = entries.remove(k);
+    if let Some(other) = entries.first() {
+        return Err(syn::Error::new(
+            other.key_span,
+            format!(
+                "`{}` cannot be combined with `file`: write it in the file",
+                other.key
+            ),
+        ));
+    }
+    let Value::Str(rel, span) = entry.value else {
+        return Err(syn::Error::new(
+            entry.value.span(),
+            "`file` takes a string: the path of the TOML description, relative to the crate's Cargo.toml",
+        ));
+    };
+    let path = base.join(&rel);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| syn::Error::new(span, format!("cannot read `{}`: {e}", path.display())))?;
+    let spec = rover_spec::load_str(&text, &rel).map_err(|e| file_errors(&e, &rel, &text, span))?;
+    // `include_str!` makes the file an input of the crate: editing
+    // it rebuilds, and the text carried is the text validated.
+    let abs = path.display().to_string();
+    let source = Source {
+        text: quote! { include_str!(#abs) },
+        origin: quote! { #rel },
+    };
+    Ok((spec, source))
+}
+
+/// The description written in the attribute's fields, its errors at the
+/// tokens that wrote them (`whole`, the attribute, for the others).
+fn inline_description(entries: &[Entry], whole: Span) -> syn::Result<(rover_spec::Spec, Source)> {
+    let (text, spans) = to_toml(entries);
+    let spec =
+        rover_spec::load_str(&text, "<inline>").map_err(|e| inline_errors(&e, &spans, whole))?;
+    let source = Source {
+        text: quote! { #text },
+        origin: quote! { ::core::concat!(::core::file!(), ":", ::core::line!()) },
+    };
+    Ok((spec, source))
+}
+
+/// A fidelity level as the attribute writes it.
+fn fidelity_name(fidelity: Fidelity) -> &'static str {
+    match fidelity {
+        Fidelity::Full => "full",
+        Fidelity::Simplified => "simplified",
+        Fidelity::Linearized => "linearized",
+    }
+}
+
+/// The generated plant `plant` of `spec`, with the struct's visibility
+/// `vis`; the derive's code is compiled, never read, so it goes without
+/// the block headings.
+fn plant_items(
+    spec: &rover_spec::Spec,
+    plant: &syn::Ident,
+    vis: &syn::Visibility,
+    jacobian: bool,
+    level: Option<Level>,
+) -> syn::Result<TokenStream> {
+    let options = Options {
+        type_name: plant.to_string(),
+        jacobian,
+        comments: false,
+        visibility: quote!(#vis).to_string(),
+        level,
+    };
+    let source = plant_source(spec, &options).map_err(|e| {
         syn::Error::new(
             Span::call_site(),
             format!("internal error of rover-codegen: generated code does not parse ({e})"),
         )
     })?;
+    Ok(source.code)
+}
+
+/// `<Name>::plant()`: the plant of the struct the derive is on, which a
+/// derive cannot give fields.
+fn companion(name: &syn::Ident, plant: &syn::Ident) -> TokenStream {
     let doc = format!("A [`{plant}`] with the description's spring neutrals.");
-    let described = described(name, &plant, &spec.name, &description, fidelity, &y_ref);
-    Ok(quote! {
-        #items
+    quote! {
         impl #name {
             #[doc = #doc]
             pub const fn plant() -> #plant {
                 #plant::new()
             }
         }
-        #described
-    })
+    }
 }
 
 /// The description as the generated code carries it: its TOML text (a
@@ -424,150 +452,6 @@ fn inline_errors(
         first.combine(more);
     }
     first
-}
-
-/// The companion type with every item a generated one has, next to the
-/// errors, so that a bad description is its own error only: code using
-/// `MyRover::plant()`, `MyRoverPlant::DOF`, the array and nalgebra methods,
-/// the traits or `MyRover::report()` still resolves (it never runs: the
-/// crate does not compile). The sizes are unknown, so the methods that
-/// take arrays are generic over them; the nalgebra ones are inherent too,
-/// so that a call infers its sizes from its arguments.
-fn stub(input: &syn::DeriveInput) -> TokenStream {
-    let name = &input.ident;
-    let plant = format_ident!("{}Plant", name);
-    let vis = &input.vis;
-    let rover = name.to_string();
-    let pl = quote!(::rover_dynamics::plant);
-    let na = quote!(::rover_dynamics::nalgebra);
-    let result = quote!(::core::result::Result<(), #pl::PlantError>);
-    let described = described(
-        name,
-        &plant,
-        &rover,
-        &Source {
-            text: quote!(""),
-            origin: quote!(""),
-        },
-        "full",
-        &[],
-    );
-    quote! {
-        #[derive(Clone, Copy, Debug, Default, PartialEq)]
-        #vis struct #plant;
-        #[allow(clippy::all, unused_variables, dead_code)]
-        impl #plant {
-            /// Stub.
-            pub const NAME: &'static str = #rover;
-            /// Stub.
-            pub const DOF: usize = 0;
-            /// Stub.
-            pub const WHEELS: usize = 0;
-            /// Stub.
-            pub const COORDINATES: [&'static str; 0] = [];
-            /// Stub.
-            pub const WHEEL_NAMES: [&'static str; 0] = [];
-            /// Stub.
-            pub const SPRING_NEUTRALS: [f64; 0] = [];
-            /// Stub.
-            pub const MIN_COS_ROLL: f64 = ::rover_dynamics::plant::MIN_COS_ROLL;
-            /// Stub.
-            pub const fn new() -> Self { #plant }
-            /// Stub.
-            pub fn spring_neutrals(&self) -> &[f64; 0] { &[] }
-            /// Stub.
-            pub fn derivatives_array<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
-                xdot: &mut [f64; N], wdot: &mut [f64; N],
-            ) -> #result { Ok(()) }
-            /// Stub.
-            pub fn derivatives_portable<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
-                xdot: &mut [f64; N], wdot: &mut [f64; N],
-            ) -> #result { Ok(()) }
-            /// Stub.
-            pub fn mass_matrix_array<const N: usize>(&self, x: &[f64; N]) -> [[f64; N]; N] {
-                [[0.0; N]; N]
-            }
-            /// Stub.
-            pub fn wheels_array<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], steer: &[f64; W],
-            ) -> [#pl::WheelState; W] {
-                [#pl::WheelState { centre: [0.0; 3], velocity: [0.0; 3], spin_axis: [0.0; 3] }; W]
-            }
-            /// Stub.
-            pub fn jacobian_array<const N: usize, const W: usize>(
-                &self, x: &[f64; N], w: &[f64; N], loads: &[#pl::WheelLoad; W],
-            ) -> ::rover_dynamics::described::StubMatrix {
-                ::rover_dynamics::described::StubMatrix
-            }
-            /// Stub.
-            pub fn jacobian_fixed<const N: usize, const W: usize>(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                loads: &[#pl::WheelLoad; W],
-            ) -> ::rover_dynamics::described::StubMatrix {
-                ::rover_dynamics::described::StubMatrix
-            }
-            /// Stub.
-            pub fn derivatives_fixed<const N: usize, const W: usize>(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                loads: &[#pl::WheelLoad; W], xdot: &mut #na::SVector<f64, N>,
-                wdot: &mut #na::SVector<f64, N>,
-            ) -> #result { Ok(()) }
-            /// Stub.
-            pub fn mass_matrix_fixed<const N: usize>(
-                &self, x: &#na::SVector<f64, N>,
-            ) -> #na::SMatrix<f64, N, N> {
-                #na::SMatrix::<f64, N, N>::from_array_storage(#na::ArrayStorage([[0.0; N]; N]))
-            }
-            /// Stub.
-            pub fn wheels_fixed<const N: usize, const W: usize>(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                steer: &#na::SVector<f64, W>,
-            ) -> [#pl::WheelState; W] {
-                [#pl::WheelState { centre: [0.0; 3], velocity: [0.0; 3], spin_axis: [0.0; 3] }; W]
-            }
-        }
-        impl #name {
-            /// Stub.
-            pub const fn plant() -> #plant { #plant }
-        }
-        impl #pl::Plant for #plant {
-            fn dof(&self) -> usize { 0 }
-            fn wheel_count(&self) -> usize { 0 }
-            fn wheels(&mut self, _: &[f64], _: &[f64], _: &[f64], _: &mut [#pl::WheelState]) {}
-            fn derivatives(
-                &mut self,
-                _: &[f64],
-                _: &[f64],
-                _: &[#pl::WheelLoad],
-                _: &mut [f64],
-                _: &mut [f64],
-            ) -> #result {
-                Ok(())
-            }
-            fn mass_matrix(&mut self, _: &[f64], _: &mut [f64]) {}
-            fn set_spring_neutral(&mut self, _: usize, _: f64) {}
-        }
-        #[allow(unused_variables)]
-        impl<const N: usize, const W: usize> #pl::FixedPlant<N, W> for #plant {
-            fn derivatives_fixed(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                loads: &[#pl::WheelLoad; W], xdot: &mut #na::SVector<f64, N>,
-                wdot: &mut #na::SVector<f64, N>,
-            ) -> #result { Ok(()) }
-            fn mass_matrix_fixed(&self, x: &#na::SVector<f64, N>) -> #na::SMatrix<f64, N, N> {
-                #plant::mass_matrix_fixed(self, x)
-            }
-            fn wheels_fixed(
-                &self, x: &#na::SVector<f64, N>, w: &#na::SVector<f64, N>,
-                steer: &#na::SVector<f64, W>,
-            ) -> [#pl::WheelState; W] {
-                #plant::wheels_fixed(self, x, w, steer)
-            }
-        }
-        #described
-    }
 }
 
 #[cfg(test)]

@@ -9,8 +9,6 @@
 //! left-associative parsing would group them differently from the graph,
 //! so the printed code evaluates exactly the traced operations.
 
-use std::fmt::Write;
-
 use crate::graph::{Graph, Id, Node};
 use crate::trace::Function;
 
@@ -216,31 +214,89 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
         .map(|o| o.id.0 as usize + 1)
         .max()
         .unwrap_or(0);
-    // Uses (parents and outputs) of every reachable node.
-    let mut uses = vec![0usize; top];
-    let mut reach = vec![false; top];
-    let mut owner = vec![Owner::None; top];
-    for o in &f.outputs {
-        uses[o.id.0 as usize] += 1;
-        reach[o.id.0 as usize] = true;
-        owner[o.id.0 as usize] = owner[o.id.0 as usize].join(Owner::One(o.group));
-    }
-    for k in (0..top).rev() {
-        if !reach[k] {
-            continue;
+    let usage = Usage::new(f, top);
+    let mut ops = count(g, &usage.reach);
+    ops.depth = depth(f, top);
+    let bound = bindings(g, &usage);
+    let names = names(f, &usage, &bound);
+    let partner = sincos_partners(g, &usage.owner, &bound);
+    let statements = Statements {
+        f,
+        printer: Printer {
+            graph: g,
+            names,
+            path: libm,
+        },
+        rank: use_order(g, f, top),
+        partner,
+        usage,
+        bound,
+    };
+    (statements.blocks(), ops)
+}
+
+/// How the outputs use the nodes below them, by node index.
+struct Usage {
+    /// Uses of the node (by parents and outputs).
+    uses: Vec<usize>,
+    /// Whether an output needs the node.
+    reach: Vec<bool>,
+    /// Which groups need it.
+    owner: Vec<Owner>,
+}
+
+impl Usage {
+    /// The uses of the nodes below `top` (one past the highest output),
+    /// from the outputs down.
+    fn new(f: &Function, top: usize) -> Usage {
+        let mut uses = vec![0usize; top];
+        let mut reach = vec![false; top];
+        let mut owner = vec![Owner::None; top];
+        for o in &f.outputs {
+            let k = o.id.0 as usize;
+            uses[k] += 1;
+            reach[k] = true;
+            owner[k] = owner[k].join(Owner::One(o.group));
         }
-        for c in g.node(Id(k as u32)).children() {
-            let c = c.0 as usize;
-            uses[c] += 1;
-            reach[c] = true;
-            owner[c] = owner[c].join(owner[k]);
+        for k in (0..top).rev() {
+            if !reach[k] {
+                continue;
+            }
+            for c in f.graph.node(Id(k as u32)).children() {
+                let c = c.0 as usize;
+                uses[c] += 1;
+                reach[c] = true;
+                owner[c] = owner[c].join(owner[k]);
+            }
         }
+        Usage { uses, reach, owner }
     }
-    let mut names: Vec<Option<String>> = vec![None; top];
+}
+
+/// The operations of the reachable nodes, by kind (no depth).
+fn count(g: &Graph, reach: &[bool]) -> OpCount {
     let mut ops = OpCount::default();
+    for (k, _) in reach.iter().enumerate().filter(|(_, r)| **r) {
+        match g.node(Id(k as u32)) {
+            Node::Const(_) | Node::Input(_) => {}
+            Node::Add(..) => ops.add += 1,
+            Node::Mul(..) => ops.mul += 1,
+            Node::Div(..) => ops.div += 1,
+            Node::Neg(..) => ops.neg += 1,
+            Node::Sin(..) | Node::Cos(..) => ops.trig += 1,
+            Node::Sqrt(..) => ops.sqrt += 1,
+            _ => ops.other += 1,
+        }
+    }
+    ops
+}
+
+/// The longest chain of dependent operations from an input to an output,
+/// negations not counted (they fold into their users).
+fn depth(f: &Function, top: usize) -> usize {
     let mut depth = vec![0usize; top];
     for k in 0..top {
-        let node = g.node(Id(k as u32));
+        let node = f.graph.node(Id(k as u32));
         let below = node
             .children()
             .map(|c| depth[c.0 as usize])
@@ -252,42 +308,31 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
             _ => below + 1,
         };
     }
-    ops.depth = f
-        .outputs
+    f.outputs
         .iter()
         .map(|o| depth[o.id.0 as usize])
         .max()
-        .unwrap_or(0);
-    let mut bound = vec![false; top];
-    for k in 0..top {
-        if !reach[k] {
+        .unwrap_or(0)
+}
+
+/// Which nodes get a `let`: the inputs, the calls and whatever is used
+/// more than once; a node used once is written inline into its user.
+fn bindings(g: &Graph, usage: &Usage) -> Vec<bool> {
+    let mut bound = vec![false; usage.reach.len()];
+    for (k, b) in bound.iter_mut().enumerate() {
+        if !usage.reach[k] {
             continue;
         }
-        let node = g.node(Id(k as u32));
-        match node {
-            Node::Const(_) => continue,
-            Node::Input(i) => {
-                names[k] = f.inputs.get(i as usize).map(|v| v.name.clone());
-                bound[k] = true;
-                continue;
-            }
-            Node::Add(..) => ops.add += 1,
-            Node::Mul(..) => ops.mul += 1,
-            Node::Div(..) => ops.div += 1,
-            Node::Neg(..) => ops.neg += 1,
-            Node::Sin(..) | Node::Cos(..) => ops.trig += 1,
-            Node::Sqrt(..) => ops.sqrt += 1,
-            _ => ops.other += 1,
-        }
-        let call = !matches!(
-            node,
-            Node::Add(..) | Node::Mul(..) | Node::Div(..) | Node::Neg(..)
-        );
-        bound[k] = uses[k] > 1 || call;
+        *b = match g.node(Id(k as u32)) {
+            Node::Const(_) => false,
+            Node::Input(_) => true,
+            Node::Add(..) | Node::Mul(..) | Node::Div(..) | Node::Neg(..) => usage.uses[k] > 1,
+            _ => true,
+        };
     }
     // A negation is never a temporary: `-t6` costs nothing where it is
     // used; its operand is named instead when the negation is shared.
-    for k in 0..top {
+    for k in 0..bound.len() {
         if let Node::Neg(a) = g.node(Id(k as u32))
             && bound[k]
         {
@@ -297,24 +342,31 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
             }
         }
     }
-    // Name the temporaries in emission order: shared terms, then each group.
-    let owner_ref = &owner;
-    let order: Vec<usize> = (0..top)
-        .filter(|&k| owner[k] == Owner::Many)
-        .chain(
-            (0..f.groups.len())
-                .flat_map(|grp| (0..top).filter(move |&k| owner_ref[k] == Owner::One(grp))),
-        )
+    bound
+}
+
+/// The names of the bound nodes: an input's own, `s_phi` and `c_phi` for
+/// sin and cos of an input, `tN` for the other temporaries, numbered in
+/// emission order (shared terms, then each group).
+fn names(f: &Function, usage: &Usage, bound: &[bool]) -> Vec<Option<String>> {
+    let g = &f.graph;
+    let input_name = |a: Id| match g.node(a) {
+        Node::Input(i) => f.inputs.get(i as usize).map(|v| v.name.clone()),
+        _ => None,
+    };
+    let mut names: Vec<Option<String>> = (0..bound.len())
+        .map(|k| usage.reach[k].then(|| input_name(Id(k as u32))).flatten())
         .collect();
+    let owner = &usage.owner;
+    let order = (0..bound.len()).filter(|&k| owner[k] == Owner::Many).chain(
+        (0..f.groups.len())
+            .flat_map(|grp| (0..bound.len()).filter(move |&k| owner[k] == Owner::One(grp))),
+    );
     let mut counter = 0;
-    for &k in &order {
+    for k in order {
         if !bound[k] || names[k].is_some() {
             continue;
         }
-        let input_name = |a: Id| match g.node(a) {
-            Node::Input(i) => f.inputs.get(i as usize).map(|v| v.name.clone()),
-            _ => None,
-        };
         names[k] = match g.node(Id(k as u32)) {
             Node::Sin(a) => input_name(a).map(|n| format!("s_{n}")),
             Node::Cos(a) => input_name(a).map(|n| format!("c_{n}")),
@@ -325,13 +377,13 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
             Some(format!("t{counter}"))
         });
     }
-    let printer = Printer {
-        graph: g,
-        names,
-        path: libm,
-    };
-    let rank = use_order(g, f, top);
-    // sin and cos of one angle in the same block: one `sincos` call.
+    names
+}
+
+/// sin and cos of one angle, both bound in the same block: the other of
+/// each, so that one `sincos` call computes both.
+fn sincos_partners(g: &Graph, owner: &[Owner], bound: &[bool]) -> Vec<Option<usize>> {
+    let top = bound.len();
     let mut partner: Vec<Option<usize>> = vec![None; top];
     for k in 0..top {
         if let Node::Sin(a) = g.node(Id(k as u32))
@@ -345,14 +397,98 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
             partner[c] = Some(k);
         }
     }
-    let let_line = |k: usize| -> Option<String> {
+    partner
+}
+
+/// What the statements of `f` are printed from.
+struct Statements<'a> {
+    f: &'a Function,
+    printer: Printer<'a>,
+    /// Each node's position in [`use_order`].
+    rank: Vec<usize>,
+    /// Each node's `sincos` partner, see [`sincos_partners`].
+    partner: Vec<Option<usize>>,
+    usage: Usage,
+    bound: Vec<bool>,
+}
+
+impl Statements<'_> {
+    /// The blocks: with groups, the inputs, the terms shared by the
+    /// groups, then each group's block; without, one block in use order.
+    fn blocks(&self) -> Vec<Block> {
+        let grouped = self.f.groups.len() > 1;
+        let owner = &self.usage.owner;
+        // Ungrouped code is one block in use order: inputs are read where
+        // they are first needed, which keeps fewer values live.
+        let inputs = self.lets(|k| self.usage.reach[k] && self.is_input(k) && grouped);
+        let shared = self.lets(|k| {
+            owner[k] == Owner::Many
+                && self.bound[k]
+                && (!self.is_input(k) || !grouped)
+                && self.usage.reach[k]
+        });
+        let mut blocks = Vec::new();
+        let mut head = inputs;
+        if grouped {
+            blocks.push(Block {
+                title: Some("inputs".into()),
+                lines: head,
+            });
+            head = Vec::new();
+            if !shared.is_empty() {
+                blocks.push(Block {
+                    title: Some("terms shared by the wheels".into()),
+                    lines: shared,
+                });
+            }
+        } else {
+            head.extend(shared);
+        }
+        for (grp, title) in self.f.groups.iter().enumerate() {
+            let mut lines = std::mem::take(&mut head);
+            lines.extend(self.group_lines(grp, grouped));
+            blocks.push(Block {
+                title: Some(title.clone()),
+                lines,
+            });
+        }
+        blocks
+    }
+
+    /// Group `grp`'s own terms and its outputs.
+    fn group_lines(&self, grp: usize, grouped: bool) -> Vec<String> {
+        let owner = &self.usage.owner;
+        let mut lines = self.lets(|k| {
+            owner[k] == Owner::One(grp) && self.bound[k] && (!self.is_input(k) || !grouped)
+        });
+        for o in self.f.outputs.iter().filter(|o| o.group == grp) {
+            lines.push(format!("{} {};", o.place, self.printer.expr(o.id).0));
+        }
+        lines
+    }
+
+    fn is_input(&self, k: usize) -> bool {
+        matches!(self.f.graph.node(Id(k as u32)), Node::Input(_))
+    }
+
+    /// The `let`s of the nodes that `pick` selects, in use order.
+    fn lets(&self, pick: impl Fn(usize) -> bool) -> Vec<String> {
+        let mut ks: Vec<usize> = (0..self.bound.len()).filter(|&k| pick(k)).collect();
+        ks.sort_by_key(|&k| self.rank[k]);
+        ks.into_iter().filter_map(|k| self.let_line(k)).collect()
+    }
+
+    /// The `let` of node `k`: an input read from its place, a `sincos`
+    /// for the first of a pair (none for the second), its expression.
+    fn let_line(&self, k: usize) -> Option<String> {
+        let g = &self.f.graph;
         let node = g.node(Id(k as u32));
-        let name = printer.names[k].as_ref()?;
-        if let Some(other) = partner[k] {
-            if rank[other] < rank[k] {
+        let name = self.printer.names[k].as_ref()?;
+        if let Some(other) = self.partner[k] {
+            if self.rank[other] < self.rank[k] {
                 return None;
             }
-            let other_name = printer.names[other].as_ref()?;
+            let other_name = self.printer.names[other].as_ref()?;
             let (Node::Sin(a) | Node::Cos(a)) = node else {
                 return None;
             };
@@ -361,84 +497,24 @@ pub fn emit(f: &Function, libm: &str) -> (Vec<Block>, OpCount) {
             } else {
                 (other_name, name)
             };
+            let libm = self.printer.path;
             return Some(format!(
                 "let ({s}, {c}) = {libm}::sincos({});",
-                printer.expr(a).0
+                self.printer.expr(a).0
             ));
         }
         match node {
             Node::Const(_) => None,
-            Node::Input(i) => Some(format!("let {name} = {};", f.inputs[i as usize].access)),
-            _ => Some(format!("let {name} = {};", printer.body(Id(k as u32)).0)),
+            Node::Input(i) => Some(format!(
+                "let {name} = {};",
+                self.f.inputs[i as usize].access
+            )),
+            _ => Some(format!(
+                "let {name} = {};",
+                self.printer.body(Id(k as u32)).0
+            )),
         }
-    };
-    let mut blocks = Vec::new();
-    let by_rank = |mut ks: Vec<usize>| {
-        ks.sort_by_key(|&k| rank[k]);
-        ks
-    };
-    let grouped = f.groups.len() > 1;
-    let is_input = |k: usize| matches!(g.node(Id(k as u32)), Node::Input(_));
-    // Ungrouped code is one block in use order: inputs are read where
-    // they are first needed, which keeps fewer values live.
-    let inputs: Vec<String> = by_rank(
-        (0..top)
-            .filter(|&k| reach[k] && is_input(k) && grouped)
-            .collect(),
-    )
-    .into_iter()
-    .filter_map(let_line)
-    .collect();
-    let shared: Vec<String> = by_rank(
-        (0..top)
-            .filter(|&k| {
-                owner[k] == Owner::Many && bound[k] && (!is_input(k) || !grouped) && reach[k]
-            })
-            .collect(),
-    )
-    .into_iter()
-    .filter_map(let_line)
-    .collect();
-    let mut head = inputs;
-    if grouped {
-        blocks.push(Block {
-            title: Some("inputs".into()),
-            lines: head,
-        });
-        head = Vec::new();
-        if !shared.is_empty() {
-            blocks.push(Block {
-                title: Some("terms shared by the wheels".into()),
-                lines: shared,
-            });
-        }
-    } else {
-        head.extend(shared);
     }
-    for (grp, title) in f.groups.iter().enumerate() {
-        let mut lines = std::mem::take(&mut head);
-        lines.extend(
-            by_rank(
-                (0..top)
-                    .filter(|&k| {
-                        owner[k] == Owner::One(grp) && bound[k] && (!is_input(k) || !grouped)
-                    })
-                    .collect(),
-            )
-            .into_iter()
-            .filter_map(let_line),
-        );
-        for o in f.outputs.iter().filter(|o| o.group == grp) {
-            let mut s = String::new();
-            let _ = write!(s, "{} {};", o.place, printer.expr(o.id).0);
-            lines.push(s);
-        }
-        blocks.push(Block {
-            title: Some(title.clone()),
-            lines,
-        });
-    }
-    (blocks, ops)
 }
 
 /// Every reachable node's position in a depth-first post-order from the

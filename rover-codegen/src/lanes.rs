@@ -29,6 +29,9 @@ use crate::trace::Function;
 /// Number of lanes (one 256-bit vector of `f64`).
 pub const LANES: usize = 4;
 
+/// A node's pack and lane, if it is packed.
+type Slot = Option<(usize, usize)>;
+
 /// The packing of one function.
 #[derive(Clone, Debug)]
 pub struct Plan {
@@ -37,7 +40,7 @@ pub struct Plan {
     /// The first `inputs` packs are input packs (read, not computed).
     inputs: usize,
     /// Pack and lane of every node, if packed.
-    pack_of: Vec<Option<(usize, usize)>>,
+    pack_of: Vec<Slot>,
     /// Nodes that no input of a lane reaches.
     shared: Vec<bool>,
     /// Statements in an order that respects every dependency.
@@ -106,7 +109,7 @@ enum Form {
 }
 
 /// The form of operand `c` (one node per lane) of a pack.
-fn form(g: &Graph, pack_of: &[Option<(usize, usize)>], c: [Id; LANES]) -> Form {
+fn form(g: &Graph, pack_of: &[Slot], c: [Id; LANES]) -> Form {
     if c.iter().all(|x| g.value(*x).is_some()) {
         return Form::Consts;
     }
@@ -137,7 +140,7 @@ fn form(g: &Graph, pack_of: &[Option<(usize, usize)>], c: [Id; LANES]) -> Form {
 /// compared them (commutative operands sorted by kind).
 fn operand_lanes(
     g: &Graph,
-    pack_of: &[Option<(usize, usize)>],
+    pack_of: &[Slot],
     shared: &[bool],
     members: [Id; LANES],
     i: usize,
@@ -184,26 +187,71 @@ pub fn seeds(
 /// The packing of `f` from its input packs, or `None` when nothing packs.
 pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
     let g = &f.graph;
-    let top = g.len();
-    let mut reach = vec![false; top];
+    let reach = reach(f);
+    let (mut packs, mut pack_of) = input_packs(g, seeds);
+    let inputs = packs.len();
+    let shared = shared(g, &pack_of);
+    grow(g, &reach, &shared, &mut packs, &mut pack_of);
+    if packs.len() == inputs {
+        return None;
+    }
+    let arith = |k: usize| {
+        reach[k]
+            && matches!(
+                g.node(Id(k as u32)),
+                Node::Add(..) | Node::Mul(..) | Node::Div(..)
+            )
+    };
+    let total_ops = (0..g.len()).filter(|&k| arith(k)).count();
+    let packed_ops = (0..g.len())
+        .filter(|&k| arith(k) && pack_of[k].is_some())
+        .count();
+    let (sums, absorbed) = lane_sums(f, &reach, &pack_of);
+    let order = statement_order(f, &packs, &pack_of)?;
+    let mut plan = Plan {
+        extracted: vec![false; packs.len()],
+        packs,
+        inputs,
+        pack_of,
+        shared,
+        order,
+        sums,
+        absorbed,
+        packed_ops,
+        total_ops,
+    };
+    plan.extracted = extracted(f, &plan);
+    Some(plan)
+}
+
+/// Whether an output of `f` needs each node of its graph.
+fn reach(f: &Function) -> Vec<bool> {
+    let g = &f.graph;
+    let mut reach = vec![false; g.len()];
     for o in &f.outputs {
         reach[o.id.0 as usize] = true;
     }
-    for k in (0..top).rev() {
+    for k in (0..g.len()).rev() {
         if reach[k] {
             for c in g.node(Id(k as u32)).children() {
                 reach[c.0 as usize] = true;
             }
         }
     }
-    let input_node: HashMap<u32, Id> = (0..top)
+    reach
+}
+
+/// The input packs of `seeds` (each a group of four inputs, one per
+/// lane) whose inputs are all in the graph, and each node's pack and lane.
+fn input_packs(g: &Graph, seeds: &[[u32; LANES]]) -> (Vec<[Id; LANES]>, Vec<Slot>) {
+    let input_node: HashMap<u32, Id> = (0..g.len())
         .filter_map(|k| match g.node(Id(k as u32)) {
             Node::Input(i) => Some((i, Id(k as u32))),
             _ => None,
         })
         .collect();
     let mut packs: Vec<[Id; LANES]> = Vec::new();
-    let mut pack_of: Vec<Option<(usize, usize)>> = vec![None; top];
+    let mut pack_of: Vec<Slot> = vec![None; g.len()];
     for s in seeds {
         let ids: Option<Vec<Id>> = s.iter().map(|k| input_node.get(k).copied()).collect();
         let Some(ids) = ids else { continue };
@@ -213,50 +261,34 @@ pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
         }
         packs.push([ids[0], ids[1], ids[2], ids[3]]);
     }
-    let inputs = packs.len();
-    let mut shared = vec![true; top];
-    for k in 0..top {
+    (packs, pack_of)
+}
+
+/// The nodes that no input of a lane reaches.
+fn shared(g: &Graph, pack_of: &[Slot]) -> Vec<bool> {
+    let mut shared = vec![true; g.len()];
+    for k in 0..g.len() {
         shared[k] = match g.node(Id(k as u32)) {
             Node::Input(_) => pack_of[k].is_none(),
             node => node.children().all(|c| shared[c.0 as usize]),
         };
     }
-    // Bottom-up to a fixed point: a node joins a pack when the nodes of the
-    // other lanes with the same shape exist; the k-th candidate of each
-    // lane are matched (the trace runs the same code for every wheel, so
-    // their order of appearance agrees).
+    shared
+}
+
+/// Bottom-up to a fixed point: a node joins a pack when the nodes of the
+/// other lanes with the same shape exist; the k-th candidate of each lane
+/// are matched (the trace runs the same code for every wheel, so their
+/// order of appearance agrees).
+fn grow(
+    g: &Graph,
+    reach: &[bool],
+    shared: &[bool],
+    packs: &mut Vec<[Id; LANES]>,
+    pack_of: &mut [Slot],
+) {
     loop {
-        let mut buckets: HashMap<(u8, Vec<Kind>), [Vec<Id>; LANES]> = HashMap::new();
-        for k in 0..top {
-            if !reach[k] || pack_of[k].is_some() {
-                continue;
-            }
-            let node = g.node(Id(k as u32));
-            let op = match node {
-                Node::Add(..) => 0u8,
-                Node::Mul(..) => 1,
-                Node::Div(..) => 2,
-                _ => continue,
-            };
-            let mut kinds = Vec::new();
-            let mut lane = None;
-            let mut agree = true;
-            for c in node.children() {
-                let (kind, l) = kind_of(g, &pack_of, &shared, c);
-                if let Some(l) = l {
-                    agree &= lane.is_none_or(|x| x == l);
-                    lane = Some(l);
-                }
-                kinds.push(kind);
-            }
-            let (Some(lane), true) = (lane, agree) else {
-                continue;
-            };
-            if op != 2 {
-                kinds.sort();
-            }
-            buckets.entry((op, kinds)).or_default()[lane].push(Id(k as u32));
-        }
+        let buckets = candidates(g, reach, shared, pack_of);
         let mut keys: Vec<_> = buckets.keys().cloned().collect();
         keys.sort();
         let before = packs.len();
@@ -276,106 +308,173 @@ pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
             break;
         }
     }
-    if packs.len() == inputs {
-        return None;
-    }
-    let arith = |k: usize| {
-        matches!(
-            g.node(Id(k as u32)),
-            Node::Add(..) | Node::Mul(..) | Node::Div(..)
-        )
-    };
-    let total_ops = (0..top).filter(|&k| reach[k] && arith(k)).count();
-    let packed_ops = (0..top)
-        .filter(|&k| reach[k] && arith(k) && pack_of[k].is_some())
-        .count();
-    // Sums: maximal trees of unpacked additions and negations whose inner
-    // nodes have one user, an unpacked addition or negation.
-    let mut uses = vec![0usize; top];
-    let mut linear_users = vec![true; top];
-    for k in 0..top {
-        if !reach[k] {
+}
+
+/// The unpacked arithmetic nodes whose operands are packed in one lane, by
+/// shape (operation and operand kinds) and lane, in graph order.
+fn candidates(
+    g: &Graph,
+    reach: &[bool],
+    shared: &[bool],
+    pack_of: &[Slot],
+) -> HashMap<(u8, Vec<Kind>), [Vec<Id>; LANES]> {
+    let mut buckets: HashMap<(u8, Vec<Kind>), [Vec<Id>; LANES]> = HashMap::new();
+    for k in 0..g.len() {
+        if !reach[k] || pack_of[k].is_some() {
             continue;
         }
         let node = g.node(Id(k as u32));
-        let linear = pack_of[k].is_none() && matches!(node, Node::Add(..) | Node::Neg(_));
+        let op = match node {
+            Node::Add(..) => 0u8,
+            Node::Mul(..) => 1,
+            Node::Div(..) => 2,
+            _ => continue,
+        };
+        let mut kinds = Vec::new();
+        let mut lane = None;
+        let mut agree = true;
         for c in node.children() {
+            let (kind, l) = kind_of(g, pack_of, shared, c);
+            if let Some(l) = l {
+                agree &= lane.is_none_or(|x| x == l);
+                lane = Some(l);
+            }
+            kinds.push(kind);
+        }
+        let (Some(lane), true) = (lane, agree) else {
+            continue;
+        };
+        if op != 2 {
+            kinds.sort();
+        }
+        buckets.entry((op, kinds)).or_default()[lane].push(Id(k as u32));
+    }
+    buckets
+}
+
+/// Sums: maximal trees of unpacked additions and negations whose inner
+/// nodes have one user, an unpacked addition or negation. Those that add
+/// all four lanes of some packs (each lane once), by root, and the inner
+/// nodes of those trees, absorbed.
+fn lane_sums(
+    f: &Function,
+    reach: &[bool],
+    pack_of: &[Slot],
+) -> (HashMap<usize, LaneSum>, Vec<bool>) {
+    let g = &f.graph;
+    let inner = sum_inner(f, reach, pack_of);
+    let mut sums = HashMap::new();
+    let mut absorbed = vec![false; g.len()];
+    for k in 0..g.len() {
+        if !reach[k]
+            || pack_of[k].is_some()
+            || inner[k]
+            || !matches!(g.node(Id(k as u32)), Node::Add(..))
+        {
+            continue;
+        }
+        let (leaves, inside) = sum_terms(g, k, &inner);
+        let Some(sum) = lane_sum(leaves, pack_of) else {
+            continue;
+        };
+        for i in inside {
+            absorbed[i] = true;
+        }
+        sums.insert(k, sum);
+    }
+    (sums, absorbed)
+}
+
+/// The nodes inside a sum: unpacked additions and negations used once, by
+/// an unpacked addition or negation (an output is not inside).
+fn sum_inner(f: &Function, reach: &[bool], pack_of: &[Slot]) -> Vec<bool> {
+    let g = &f.graph;
+    let linear = |k: usize| {
+        pack_of[k].is_none() && matches!(g.node(Id(k as u32)), Node::Add(..) | Node::Neg(_))
+    };
+    let mut uses = vec![0usize; g.len()];
+    let mut linear_users = vec![true; g.len()];
+    for k in 0..g.len() {
+        if !reach[k] {
+            continue;
+        }
+        for c in g.node(Id(k as u32)).children() {
             uses[c.0 as usize] += 1;
-            linear_users[c.0 as usize] &= linear;
+            linear_users[c.0 as usize] &= linear(k);
         }
     }
     for o in &f.outputs {
         uses[o.id.0 as usize] += 2;
     }
-    let inner = |k: usize| {
-        pack_of[k].is_none()
-            && matches!(g.node(Id(k as u32)), Node::Add(..) | Node::Neg(_))
-            && uses[k] == 1
-            && linear_users[k]
-    };
-    let mut sums = HashMap::new();
-    let mut absorbed = vec![false; top];
-    for k in 0..top {
-        if !reach[k]
-            || pack_of[k].is_some()
-            || inner(k)
-            || !matches!(g.node(Id(k as u32)), Node::Add(..))
-        {
-            continue;
-        }
-        let mut leaves: Vec<(Id, bool)> = Vec::new();
-        let mut inside: Vec<usize> = Vec::new();
-        let mut stack = vec![(Id(k as u32), false)];
-        while let Some((x, neg)) = stack.pop() {
-            let xi = x.0 as usize;
-            let expand = xi == k || inner(xi);
-            match g.node(x) {
-                Node::Add(a, b) if expand => {
-                    stack.push((b, neg));
-                    stack.push((a, neg));
-                }
-                Node::Neg(a) if expand => stack.push((a, !neg)),
-                _ => {
-                    leaves.push((x, neg));
-                    continue;
-                }
+    (0..g.len())
+        .map(|k| linear(k) && uses[k] == 1 && linear_users[k])
+        .collect()
+}
+
+/// The terms of the sum rooted at `root`, with their signs, and the nodes
+/// inside it.
+fn sum_terms(g: &Graph, root: usize, inner: &[bool]) -> (Vec<(Id, bool)>, Vec<usize>) {
+    let mut leaves: Vec<(Id, bool)> = Vec::new();
+    let mut inside: Vec<usize> = Vec::new();
+    let mut stack = vec![(Id(root as u32), false)];
+    while let Some((x, neg)) = stack.pop() {
+        let xi = x.0 as usize;
+        let expand = xi == root || inner[xi];
+        match g.node(x) {
+            Node::Add(a, b) if expand => {
+                stack.push((b, neg));
+                stack.push((a, neg));
             }
-            if xi != k {
-                inside.push(xi);
+            Node::Neg(a) if expand => stack.push((a, !neg)),
+            _ => {
+                leaves.push((x, neg));
+                continue;
             }
         }
-        let mut lanes_of: HashMap<usize, [Option<bool>; LANES]> = HashMap::new();
-        let mut twice = false;
-        for &(x, neg) in &leaves {
-            if let Some((p, l)) = pack_of[x.0 as usize] {
-                let e = lanes_of.entry(p).or_insert([None; LANES]);
-                twice |= e[l].is_some();
-                e[l] = Some(neg);
-            }
+        if xi != root {
+            inside.push(xi);
         }
-        let mut full: Vec<(usize, [bool; LANES])> = lanes_of
-            .iter()
-            .filter_map(|(p, e)| {
-                let s: Option<Vec<bool>> = e.iter().copied().collect();
-                s.map(|s| (*p, [s[0], s[1], s[2], s[3]]))
-            })
-            .collect();
-        if twice || full.is_empty() {
-            continue;
-        }
-        full.sort_by_key(|(p, _)| *p);
-        let rest = leaves
-            .into_iter()
-            .filter(|(x, _)| {
-                !pack_of[x.0 as usize].is_some_and(|(p, _)| full.iter().any(|(q, _)| *q == p))
-            })
-            .collect();
-        for i in inside {
-            absorbed[i] = true;
-        }
-        sums.insert(k, LaneSum { packs: full, rest });
     }
-    // Statement order: depth-first from the outputs, packs as one item.
+    (leaves, inside)
+}
+
+/// The sum of `leaves` regrouped lane-wise: the packs all four of whose
+/// lanes it adds, and the other terms; `None` when no pack is whole or a
+/// lane is added twice.
+fn lane_sum(leaves: Vec<(Id, bool)>, pack_of: &[Slot]) -> Option<LaneSum> {
+    let mut lanes_of: HashMap<usize, [Option<bool>; LANES]> = HashMap::new();
+    let mut twice = false;
+    for &(x, neg) in &leaves {
+        if let Some((p, l)) = pack_of[x.0 as usize] {
+            let e = lanes_of.entry(p).or_insert([None; LANES]);
+            twice |= e[l].is_some();
+            e[l] = Some(neg);
+        }
+    }
+    let mut full: Vec<(usize, [bool; LANES])> = lanes_of
+        .iter()
+        .filter_map(|(p, e)| {
+            let s: Option<Vec<bool>> = e.iter().copied().collect();
+            s.map(|s| (*p, [s[0], s[1], s[2], s[3]]))
+        })
+        .collect();
+    if twice || full.is_empty() {
+        return None;
+    }
+    full.sort_by_key(|(p, _)| *p);
+    let rest = leaves
+        .into_iter()
+        .filter(|(x, _)| {
+            !pack_of[x.0 as usize].is_some_and(|(p, _)| full.iter().any(|(q, _)| *q == p))
+        })
+        .collect();
+    Some(LaneSum { packs: full, rest })
+}
+
+/// Statement order: depth-first from the outputs, packs as one item;
+/// `None` when a pack's lanes depend on each other.
+fn statement_order(f: &Function, packs: &[[Id; LANES]], pack_of: &[Slot]) -> Option<Vec<Item>> {
+    let g = &f.graph;
     let item_of = |id: Id| match pack_of[id.0 as usize] {
         Some((p, _)) => Item::Pack(p),
         None => Item::Scalar(id.0 as usize),
@@ -407,66 +506,49 @@ pub fn plan(f: &Function, seeds: &[[u32; LANES]]) -> Option<Plan> {
             for d in deps(it).into_iter().rev() {
                 match state.get(&d) {
                     Some(true) => {}
-                    // A pack whose lanes depend on each other: give up.
                     Some(false) => return None,
                     None => stack.push((d, false)),
                 }
             }
         }
     }
-    let mut extracted = vec![false; packs.len()];
-    for it in &order {
-        let Item::Scalar(k) = *it else { continue };
-        let used: Vec<Id> = match sums.get(&k) {
-            Some(s) => s.rest.iter().map(|(x, _)| *x).collect(),
-            None if absorbed[k] => Vec::new(),
-            None => g.node(Id(k as u32)).children().collect(),
-        };
-        for c in used {
-            if let Some((p, _)) = pack_of[c.0 as usize] {
-                extracted[p] = true;
-            }
-        }
-    }
-    for o in &f.outputs {
-        if let Some((p, _)) = pack_of[o.id.0 as usize] {
+    Some(order)
+}
+
+/// The packs whose lanes are read one by one: by scalar statements, by
+/// outputs, and by packs that gather their operands lane by lane.
+fn extracted(f: &Function, plan: &Plan) -> Vec<bool> {
+    let g = &f.graph;
+    let pack_of = &plan.pack_of;
+    let mut extracted = vec![false; plan.packs.len()];
+    let mut mark = |id: Id| {
+        if let Some((p, _)) = pack_of[id.0 as usize] {
             extracted[p] = true;
         }
+    };
+    for it in &plan.order {
+        let Item::Scalar(k) = *it else { continue };
+        match plan.sums.get(&k) {
+            Some(s) => s.rest.iter().for_each(|(x, _)| mark(*x)),
+            None if plan.absorbed[k] => {}
+            None => g.node(Id(k as u32)).children().for_each(&mut mark),
+        }
     }
-    for members in &packs[inputs..] {
+    f.outputs.iter().for_each(|o| mark(o.id));
+    for members in &plan.packs[plan.inputs..] {
         for i in 0..2 {
-            let c = operand_lanes(g, &pack_of, &shared, *members, i);
-            if form(g, &pack_of, c) == Form::Gather {
-                for x in c {
-                    if let Some((q, _)) = pack_of[x.0 as usize] {
-                        extracted[q] = true;
-                    }
-                }
+            let c = operand_lanes(g, pack_of, &plan.shared, *members, i);
+            if form(g, pack_of, c) == Form::Gather {
+                c.into_iter().for_each(&mut mark);
             }
         }
     }
-    Some(Plan {
-        packs,
-        inputs,
-        pack_of,
-        shared,
-        order,
-        sums,
-        absorbed,
-        extracted,
-        packed_ops,
-        total_ops,
-    })
+    extracted
 }
 
 /// The operand kind of child `c` and its lane, if packed (a negation of a
 /// packed node is that pack, negated in its lane).
-fn kind_of(
-    g: &Graph,
-    pack_of: &[Option<(usize, usize)>],
-    shared: &[bool],
-    c: Id,
-) -> (Kind, Option<usize>) {
+fn kind_of(g: &Graph, pack_of: &[Slot], shared: &[bool], c: Id) -> (Kind, Option<usize>) {
     if g.value(c).is_some() {
         return (Kind::Const, None);
     }
@@ -519,30 +601,67 @@ fn prelude(avx: bool) -> &'static str {
 /// The statements of `plan` for `f`: with AVX intrinsics (`avx`, for the
 /// x86-64-v4 copy) or with `[f64; 4]` arrays. `libm` is the path of libm.
 pub fn emit(f: &Function, plan: &Plan, avx: bool, libm: &str) -> String {
-    let g = &f.graph;
-    let p = plan;
-    let mut out = String::from(prelude(avx));
-    let input_name = |k: usize| match g.node(Id(k as u32)) {
-        Node::Input(i) => Some(f.inputs[i as usize].name.clone()),
-        _ => None,
+    let mut w = Writer {
+        f,
+        plan,
+        libm,
+        paired: vec![false; f.graph.len()],
+        out: String::from(prelude(avx)),
     };
-    let scalar = |id: Id| -> String {
+    for it in &plan.order {
+        match *it {
+            Item::Scalar(k) => w.scalar_statement(k),
+            Item::Pack(q) => w.pack_statement(q),
+        }
+    }
+    for o in &f.outputs {
+        let value = w.scalar(o.id);
+        let _ = writeln!(w.out, "{} {value};", o.place);
+    }
+    w.out
+}
+
+/// The statements of a plan, as they are written.
+struct Writer<'a> {
+    f: &'a Function,
+    plan: &'a Plan,
+    libm: &'a str,
+    /// The sines and cosines already computed by a `sincos`.
+    paired: Vec<bool>,
+    out: String,
+}
+
+impl Writer<'_> {
+    /// Node `id` as a scalar: a literal, a lane of its pack (`l3[1]`), an
+    /// input's name, `s_`/`c_` and the input's name for sin and cos of an
+    /// input (as [`crate::emit`] names them), or `t` and its index.
+    fn scalar(&self, id: Id) -> String {
+        let g = &self.f.graph;
         if let Some(v) = g.value(id) {
             return literal(v);
         }
-        if let Some((q, l)) = p.pack_of[id.0 as usize] {
+        if let Some((q, l)) = self.plan.pack_of[id.0 as usize] {
             return format!("l{q}[{l}]");
         }
-        // sin and cos of an input are named after it, as in `emit`.
         let trig = match g.node(id) {
-            Node::Sin(a) => input_name(a.0 as usize).map(|n| format!("s_{n}")),
-            Node::Cos(a) => input_name(a.0 as usize).map(|n| format!("c_{n}")),
+            Node::Sin(a) => self.input_name(a).map(|n| format!("s_{n}")),
+            Node::Cos(a) => self.input_name(a).map(|n| format!("c_{n}")),
             _ => None,
         };
-        trig.or_else(|| input_name(id.0 as usize))
+        trig.or_else(|| self.input_name(id))
             .unwrap_or_else(|| format!("t{}", id.0))
-    };
-    let signed = |q: usize, signs: &[bool; LANES]| -> String {
+    }
+
+    fn input_name(&self, id: Id) -> Option<String> {
+        match self.f.graph.node(id) {
+            Node::Input(i) => Some(self.f.inputs[i as usize].name.clone()),
+            _ => None,
+        }
+    }
+
+    /// Pack `q` as a vector, negated in the lanes marked in `signs` (a
+    /// product with ±1, exact).
+    fn signed(&self, q: usize, signs: &[bool; LANES]) -> String {
         if signs.iter().all(|s| !s) {
             return format!("v{q}");
         }
@@ -551,110 +670,133 @@ pub fn emit(f: &Function, plan: &Plan, avx: bool, libm: &str) -> String {
             .map(|s| if *s { "-1.0" } else { "1.0" })
             .collect();
         format!("lanes_mul!(v{q}, lanes!({}))", s.join(", "))
-    };
-    let operand = |c: [Id; LANES]| -> String {
-        match form(g, &p.pack_of, c) {
-            Form::Splat(x) => format!("lanes_splat!({})", scalar(x)),
-            Form::Pack(q, signs) => signed(q, &signs),
+    }
+
+    /// An operand of a pack, from its four lanes' nodes `c`.
+    fn operand(&self, c: [Id; LANES]) -> String {
+        match form(&self.f.graph, &self.plan.pack_of, c) {
+            Form::Splat(x) => format!("lanes_splat!({})", self.scalar(x)),
+            Form::Pack(q, signs) => self.signed(q, &signs),
             Form::Consts | Form::Gather => {
-                let v: Vec<String> = c.iter().map(|x| scalar(*x)).collect();
+                let v: Vec<String> = c.iter().map(|x| self.scalar(*x)).collect();
                 format!("lanes!({})", v.join(", "))
             }
         }
-    };
-    let mut paired = vec![false; g.len()];
-    for it in &p.order {
-        match *it {
-            Item::Scalar(k) => {
-                if p.absorbed[k] {
-                    continue;
-                }
-                let id = Id(k as u32);
-                let name = scalar(id);
-                if let Some(s) = p.sums.get(&k) {
-                    let mut v = String::new();
-                    for (i, (q, signs)) in s.packs.iter().enumerate() {
-                        let term = signed(*q, signs);
-                        v = if i == 0 {
-                            term
-                        } else {
-                            format!("lanes_add!({v}, {term})")
-                        };
-                    }
-                    let mut line = format!("let {name} = lanes_sum!({v})");
-                    for (x, neg) in &s.rest {
-                        let _ = write!(line, " {} {}", if *neg { "-" } else { "+" }, scalar(*x));
-                    }
-                    let _ = writeln!(out, "{line};");
-                    continue;
-                }
-                let rhs = match g.node(id) {
-                    Node::Const(_) => continue,
-                    Node::Input(i) => f.inputs[i as usize].access.clone(),
-                    Node::Add(a, b) => match g.node(b) {
-                        Node::Neg(y) => format!("{} - {}", scalar(a), scalar(y)),
-                        _ => format!("{} + {}", scalar(a), scalar(b)),
-                    },
-                    Node::Mul(a, b) => format!("{} * {}", scalar(a), scalar(b)),
-                    Node::Div(a, b) => format!("{} / {}", scalar(a), scalar(b)),
-                    Node::Neg(a) => format!("-{}", scalar(a)),
-                    Node::Sin(a) | Node::Cos(a) => {
-                        if paired[k] {
-                            continue;
-                        }
-                        let (s, c) = (g.find(Node::Sin(a)), g.find(Node::Cos(a)));
-                        if let (Some(s), Some(c)) = (s, c)
-                            && p.order.contains(&Item::Scalar(s.0 as usize))
-                            && p.order.contains(&Item::Scalar(c.0 as usize))
-                        {
-                            paired[s.0 as usize] = true;
-                            paired[c.0 as usize] = true;
-                            let _ = writeln!(
-                                out,
-                                "let ({}, {}) = {libm}::sincos({});",
-                                scalar(s),
-                                scalar(c),
-                                scalar(a)
-                            );
-                            continue;
-                        }
-                        function(g.node(id), scalar, libm).unwrap_or_default()
-                    }
-                    node => function(node, scalar, libm).unwrap_or_default(),
-                };
-                let _ = writeln!(out, "let {name} = {rhs};");
-            }
-            Item::Pack(q) => {
-                let m = p.packs[q];
-                if q < p.inputs {
-                    let v: Vec<String> = m
-                        .iter()
-                        .map(|x| match g.node(*x) {
-                            Node::Input(i) => f.inputs[i as usize].access.clone(),
-                            _ => scalar(*x),
-                        })
-                        .collect();
-                    let _ = writeln!(out, "let v{q} = lanes!({});", v.join(", "));
-                } else {
-                    let a = operand(operand_lanes(g, &p.pack_of, &p.shared, m, 0));
-                    let b = operand(operand_lanes(g, &p.pack_of, &p.shared, m, 1));
-                    let op = match g.node(m[0]) {
-                        Node::Add(..) => "lanes_add",
-                        Node::Mul(..) => "lanes_mul",
-                        _ => "lanes_div",
-                    };
-                    let _ = writeln!(out, "let v{q} = {op}!({a}, {b});");
-                }
-                if p.extracted[q] {
-                    let _ = writeln!(out, "let l{q} = lanes_array!(v{q});");
-                }
-            }
+    }
+
+    /// The `let` of scalar node `k`: a sum over the lanes, a `sincos`, or
+    /// the node's operation on scalars; nothing for a node inside a sum.
+    fn scalar_statement(&mut self, k: usize) {
+        if self.plan.absorbed[k] {
+            return;
+        }
+        if let Some(s) = self.plan.sums.get(&k) {
+            self.sum_statement(k, s);
+            return;
+        }
+        let f = self.f;
+        let g = &f.graph;
+        let id = Id(k as u32);
+        if let Node::Sin(a) | Node::Cos(a) = g.node(id)
+            && (self.paired[k] || self.sincos_statement(a))
+        {
+            return;
+        }
+        let scalar = |x: Id| self.scalar(x);
+        let rhs = match g.node(id) {
+            Node::Const(_) => return,
+            Node::Input(i) => f.inputs[i as usize].access.clone(),
+            Node::Add(a, b) => match g.node(b) {
+                Node::Neg(y) => format!("{} - {}", scalar(a), scalar(y)),
+                _ => format!("{} + {}", scalar(a), scalar(b)),
+            },
+            Node::Mul(a, b) => format!("{} * {}", scalar(a), scalar(b)),
+            Node::Div(a, b) => format!("{} / {}", scalar(a), scalar(b)),
+            Node::Neg(a) => format!("-{}", scalar(a)),
+            node => function(node, scalar, self.libm).unwrap_or_default(),
+        };
+        let name = self.scalar(id);
+        let _ = writeln!(self.out, "let {name} = {rhs};");
+    }
+
+    /// The sum rooted at node `k`, regrouped lane-wise: its packs added
+    /// as vectors, their lanes summed once, then its other terms.
+    fn sum_statement(&mut self, k: usize, s: &LaneSum) {
+        let mut v = String::new();
+        for (i, (q, signs)) in s.packs.iter().enumerate() {
+            let term = self.signed(*q, signs);
+            v = if i == 0 {
+                term
+            } else {
+                format!("lanes_add!({v}, {term})")
+            };
+        }
+        let name = self.scalar(Id(k as u32));
+        let mut line = format!("let {name} = lanes_sum!({v})");
+        for (x, neg) in &s.rest {
+            let _ = write!(
+                line,
+                " {} {}",
+                if *neg { "-" } else { "+" },
+                self.scalar(*x)
+            );
+        }
+        let _ = writeln!(self.out, "{line};");
+    }
+
+    /// One `sincos` for sin and cos of `a` when both are statements;
+    /// whether it was written.
+    fn sincos_statement(&mut self, a: Id) -> bool {
+        let g = &self.f.graph;
+        let order = &self.plan.order;
+        let (Some(s), Some(c)) = (g.find(Node::Sin(a)), g.find(Node::Cos(a))) else {
+            return false;
+        };
+        if !order.contains(&Item::Scalar(s.0 as usize))
+            || !order.contains(&Item::Scalar(c.0 as usize))
+        {
+            return false;
+        }
+        self.paired[s.0 as usize] = true;
+        self.paired[c.0 as usize] = true;
+        let (sin, cos, angle) = (self.scalar(s), self.scalar(c), self.scalar(a));
+        let _ = writeln!(
+            self.out,
+            "let ({sin}, {cos}) = {}::sincos({angle});",
+            self.libm
+        );
+        true
+    }
+
+    /// The `let` of pack `q`: its four inputs read, or its operation on its
+    /// operands; then its lanes as an array if they are read one by one.
+    fn pack_statement(&mut self, q: usize) {
+        let (g, p) = (&self.f.graph, self.plan);
+        let m = p.packs[q];
+        let value = if q < p.inputs {
+            let v: Vec<String> = m
+                .iter()
+                .map(|x| match g.node(*x) {
+                    Node::Input(i) => self.f.inputs[i as usize].access.clone(),
+                    _ => self.scalar(*x),
+                })
+                .collect();
+            format!("lanes!({})", v.join(", "))
+        } else {
+            let a = self.operand(operand_lanes(g, &p.pack_of, &p.shared, m, 0));
+            let b = self.operand(operand_lanes(g, &p.pack_of, &p.shared, m, 1));
+            let op = match g.node(m[0]) {
+                Node::Add(..) => "lanes_add",
+                Node::Mul(..) => "lanes_mul",
+                _ => "lanes_div",
+            };
+            format!("{op}!({a}, {b})")
+        };
+        let _ = writeln!(self.out, "let v{q} = {value};");
+        if p.extracted[q] {
+            let _ = writeln!(self.out, "let l{q} = lanes_array!(v{q});");
         }
     }
-    for o in &f.outputs {
-        let _ = writeln!(out, "{} {};", o.place, scalar(o.id));
-    }
-    out
 }
 
 #[cfg(test)]

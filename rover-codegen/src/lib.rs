@@ -1,6 +1,7 @@
 //! The code generator of `rover`: a rover description becomes a
-//! specialized, allocation-free, `no_std` plant type (DESIGN.md, "one
-//! description, two back ends"; docs/CODEGEN.md is the long form).
+//! specialized, allocation-free, `no_std` plant type, the second back end
+//! of one description next to the generic plant, which runs the same
+//! equations with `f64` (docs/CODEGEN.md is the long form).
 //!
 //! How: the equations of `rover-dynamics` are written once, generic over
 //! [`rover_dynamics::Scalar`]. [`Sym`] implements that trait by recording a
@@ -12,7 +13,8 @@
 //! [`rover_dynamics::Plant`]; [`diff`] differentiates the graph for the
 //! exact Jacobian.
 //!
-//! Three doors, one core (STYLE.md §2):
+//! Three doors, one core, so that each door is a thin shell and the work
+//! is ordinary functions that the tests call:
 //! - the derive, `#[derive(Rover)]` in `rover-derive`, calls [`expand_derive`];
 //! - `rover codegen <file>` calls [`generate_module`];
 //! - a build script or a golden test calls [`generate_module`] too.
@@ -36,6 +38,7 @@ pub mod diff;
 pub mod emit;
 pub mod error;
 pub mod graph;
+pub mod items;
 pub mod lanes;
 #[cfg(feature = "module")]
 pub mod module;
@@ -49,6 +52,7 @@ pub mod trace;
 pub use derive::{expand_derive, expand_derive_in};
 pub use error::CodegenError;
 pub use graph::{Graph, Id, Node};
+pub use items::Item;
 #[cfg(feature = "module")]
 pub use module::{ModuleOptions, generate_module, generate_module_with};
 pub use plant_source::{Options, PlantSource, plant_source};

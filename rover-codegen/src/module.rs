@@ -1,6 +1,7 @@
 //! The standalone module (`rover codegen`, the checked-in models): the
 //! plant type, formatted by prettyplease, under a header a reviewer can act
-//! on (STYLE.md §4).
+//! on: what generated it from which description (and its fingerprint), how
+//! to regenerate it, its operation counts and what it needs to compile.
 
 use std::fmt::Write;
 
@@ -88,9 +89,10 @@ pub fn generate_module_with(
             visibility: "pub".into(),
             level: options.level.clone(),
         },
-    );
+    )
+    .map_err(|e| CodegenError::Internal(e.to_string()))?;
     let file: syn::File =
-        syn::parse_str(&source.code).map_err(|e| CodegenError::Internal(e.to_string()))?;
+        syn::parse2(source.code).map_err(|e| CodegenError::Internal(e.to_string()))?;
     let body = prettyplease::unparse(&file);
     let mut out = String::new();
     let hash = fingerprint(&format!("{:?}", spec.model));

@@ -1,6 +1,8 @@
 //! The checked-in generated plants of models/ are what the generator
-//! writes today (STYLE.md §6, golden files). `ROVER_BLESS=1 cargo test -p
-//! rover-codegen --test golden` rewrites them; commit that on its own.
+//! writes today, so that a change of the generator shows up as a reviewed
+//! diff of them (CONTRIBUTING.md, "Golden files and snapshots").
+//! `ROVER_BLESS=1 cargo test -p rover-codegen --test golden` rewrites
+//! them; commit that on its own.
 
 use std::path::PathBuf;
 

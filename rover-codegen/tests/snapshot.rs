@@ -1,5 +1,6 @@
-//! Snapshot of the generated code of a 2-wheel toy rover (STYLE.md §6):
-//! any change of the emitter shows up as a reviewed diff.
+//! Snapshot of the generated code of a 2-wheel toy rover: any change of
+//! the emitter shows up as a reviewed diff (CONTRIBUTING.md, "Golden files
+//! and snapshots").
 //! `INSTA_UPDATE=always cargo test -p rover-codegen --test snapshot` accepts one.
 
 #[test]

@@ -1,7 +1,7 @@
 //! `#[derive(Rover)]`: a rover description becomes a specialized plant type
 //! at compile time, carrying the description it came from. A thin shell
-//! over `rover_codegen::expand_derive` (STYLE.md §2); docs/CODEGEN.md is
-//! the manual.
+//! over `rover_codegen::expand_derive`, an ordinary function that tests can
+//! call; docs/CODEGEN.md is the manual.
 //!
 //! The description is written inline, as Rust tokens with the fields of the
 //! TOML format (docs/DESCRIPTION.md; `[[suspension]]` tables become

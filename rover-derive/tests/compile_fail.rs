@@ -1,6 +1,8 @@
 //! Bad descriptions are compile errors with our messages, one mistake per
-//! file (STYLE.md §6). `TRYBUILD=overwrite cargo test -p rover-derive`
-//! rewrites the `.stderr` files; review and commit them on their own.
+//! file, each message checked in as a `.stderr` file so that a change shows
+//! up as a reviewed diff (CONTRIBUTING.md, "Golden files and snapshots").
+//! `TRYBUILD=overwrite cargo test -p rover-derive` rewrites the `.stderr`
+//! files; review and commit them on their own.
 //!
 //! trybuild compiles each file in its own project under
 //! `target/tests/trybuild/rover-derive/`, which is then the
@@ -37,4 +39,31 @@ fn each_mistake_is_exactly_one_error() {
         }
     }
     assert!(cases >= 13, "{cases} cases");
+}
+
+/// `uses/use_all.rs` uses every item a generated plant has
+/// (`rover_codegen::Item::ALL`): a constant as `$plant::NAME`, a method as
+/// `.name(` or `$plant::name(`, a trait impl as a bound `P: Trait`. With
+/// it, the cases above hold the stub and a real plant to every item.
+#[test]
+fn use_all_uses_every_listed_item() {
+    use rover_codegen::items::{Item, Kind};
+    let uses = std::fs::read_to_string("tests/uses/use_all.rs").unwrap();
+    let missing: Vec<&str> = Item::ALL
+        .iter()
+        .filter(|item| {
+            let name = item.name();
+            let forms = match item.kind() {
+                Kind::Const => vec![format!("$plant::{name}")],
+                Kind::Method => vec![format!(".{name}("), format!("$plant::{name}(")],
+                Kind::Impl => vec![format!("P: {name}")],
+            };
+            !forms.iter().any(|form| uses.contains(form.as_str()))
+        })
+        .map(|item| item.name())
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "not used in uses/use_all.rs: {missing:?}"
+    );
 }

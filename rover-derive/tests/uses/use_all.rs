@@ -2,13 +2,17 @@
 // included by the cases in `ui/` (where the description is wrong and the
 // derive emits its stub) and in `pass/` (where it is right), so that the
 // stub is held to offer what a real plant offers, and a bad description
-// to give its own error and nothing more.
+// to give its own error and nothing more. Every item of
+// `rover_codegen::Item::ALL` is used here (`compile_fail.rs` checks it).
 macro_rules! use_all {
     ($rover:ident, $plant:ident, $n:literal, $w:literal) => {{
         use rover_dynamics::described::Described;
         use rover_dynamics::nalgebra::SVector;
         use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
+        use rover_dynamics::wheel_ground::Search;
         use rover_runtime::RoverDescription;
+        use rover_runtime::terrain::Flat;
+        use rover_runtime::wheel_law::WheelLawConfig;
         use rover_scenario::Simulation;
 
         let mut plant: $plant = $rover::plant();
@@ -36,9 +40,30 @@ macro_rules! use_all {
         let _ = plant.mass_matrix_fixed(&xs)[(0, 0)];
         let _ = plant.jacobian_fixed(&xs, &xs, &loads)[(0, $n)];
         let _ = plant.wheels_fixed(&xs, &xs, &SVector::<f64, $w>::zeros());
+        let _ = plant.derivatives_portable(&x, &x, &loads, &mut xd, &mut wd);
+        let _ = ($plant::TYRES, $plant::RADII);
+        let mut ground = $plant::ground(Search::default());
+        let _ = plant.derivatives_on_ground(
+            &mut ground,
+            &Flat::default(),
+            &WheelLawConfig::default(),
+            &$plant::TYRES,
+            &x,
+            &x,
+            &[0.0; $w],
+            |normals: &[f64; $w]| *normals,
+            &mut xd,
+            &mut wd,
+        );
         let _ = plant.derivatives(&x, &x, &loads, &mut xd, &mut wd);
+        fn slices<P: Plant>(_: &P) {}
+        slices(&plant);
         fn fixed<P: FixedPlant<$n, $w>>(_: &P) {}
         fixed(&plant);
+        fn default<P: Default>() -> P {
+            P::default()
+        }
+        let _: $plant = default();
         let _ = ($rover::DESCRIPTION, <$plant as Described>::ORIGIN, $rover::FIDELITY);
         let _ = ($rover::report(), $rover::model(), $plant::spec());
         let _ = Simulation::new($rover::plant()).speed(0.1).run(0.0);
