@@ -3344,7 +3344,7 @@ impl Exomars {
             rolling_resistance: 0.0,
         },
     ];
-    /// Each wheel's radius R_w [m], in the description's order.
+    /// Each wheel's radius R_w \[m\], in the description's order.
     pub const RADII: [f64; 6] = [0.09, 0.09, 0.09, 0.09, 0.09, 0.09];
     /// The ground under this rover's wheels, searched by `search`, for
     /// [`Self::derivatives_on_ground`]; it keeps what each wheel's search

@@ -317,7 +317,7 @@ impl Plant {
     pub(super) fn radii_const(&self) -> TokenStream {
         let (k, radii) = (&self.k, &self.radii);
         quote! {
-            /// Each wheel's radius R_w [m], in the description's order.
+            /// Each wheel's radius R_w \[m\], in the description's order.
             pub const RADII: [f64; #k] = [#(#radii),*];
         }
     }
