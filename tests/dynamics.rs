@@ -13,7 +13,7 @@ use rover_dynamics::plant::{Plant, WheelLoad};
 use rover_dynamics::workspace::Workspace;
 use rover_runtime::GenericPlant;
 
-use crate::support::hand_models::{exomars, swing4, swing4_rich};
+use rover_test_support::hand_models::{exomars, swing4, swing4_rich};
 use crate::support::lagrange;
 use crate::support::rng::Rng;
 

@@ -11,7 +11,7 @@ use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use rover_runtime::wheel_law::WheelLawConfig;
 
-use crate::support::hand_models::{exomars, swing4};
+use rover_test_support::hand_models::{exomars, swing4};
 
 /// Drop `model` on flat ground at Z = 0 and let it settle for `seconds`.
 fn settle(model: &Model, seconds: f64) -> (RoverSystem<GenericPlant, Terrain>, Vec<f64>) {

@@ -5,7 +5,7 @@
 use rover_dynamics::plant::{Plant, WheelLoad};
 use rover_runtime::GenericPlant;
 
-use crate::support::hand_models::{exomars, swing4};
+use rover_test_support::hand_models::{exomars, swing4};
 use crate::support::rng::Rng;
 
 #[test]
