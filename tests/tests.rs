@@ -6,11 +6,9 @@ mod breakpoints;
 mod cli;
 mod codegen;
 mod commands;
-mod contact_accuracy;
 mod control;
 #[cfg(feature = "drive")]
 mod drive;
-mod dynamics;
 mod failures;
 mod fidelity;
 mod fixed_step;

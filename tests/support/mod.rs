@@ -1,7 +1,6 @@
 //! Shared helpers of the integration tests: running scenarios ([`run`]),
 //! and the helpers the crates' tests share (`rover-test-support`).
 
-pub mod lagrange;
 pub mod run;
 
 pub use rover_test_support::{rel, rng};
