@@ -1,4 +1,6 @@
-//! The workspace's integration tests, one binary (STYLE.md §6).
+//! The workspace's integration tests, one binary (one link for the whole
+//! suite): whole runs from scenarios, the CLI, the generated plants against
+//! the generic one, no_std. Each crate's own tests are in its `tests/`.
 
 mod support;
 
@@ -12,12 +14,8 @@ mod drive;
 mod failures;
 mod fidelity;
 mod fixed_step;
-mod free_flight;
-mod generated_ground;
 mod ground;
-mod hand_built_models;
 mod hostile;
-mod jacobian;
 mod linearize;
 mod no_std;
 mod paper_accuracy;

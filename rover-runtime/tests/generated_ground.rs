@@ -20,9 +20,8 @@ use rover_runtime::ground::{Ground, touchdown_heights};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::{Bounds, Grid, RandomField};
 use rover_runtime::wheel_law::WheelLawConfig;
-
-use crate::support::rel;
-use crate::support::rng::Rng;
+use rover_test_support::rel;
+use rover_test_support::rng::Rng;
 
 const TOL: f64 = 1e-12;
 
