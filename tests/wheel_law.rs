@@ -54,7 +54,7 @@ fn rolling_resistance_decelerates_at_c_rr_g_and_holds_on_a_slope() {
     };
     let held = parked(0.3);
     let s = 10f64.to_radians().tan() / 0.3;
-    let creep = rover_runtime::wheel_law::ROLLING_V_EPS * s / (1.0 - s * s).sqrt();
+    let creep = rover_dynamics::wheel_law::ROLLING_V_EPS * s / (1.0 - s * s).sqrt();
     for v in held.after("vx", 10.0) {
         assert!(
             (v + creep).abs() < 0.02 * creep,

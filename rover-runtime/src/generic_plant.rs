@@ -8,10 +8,8 @@ use rover_dynamics::fidelity::{Fidelity, Frozen, linear_wheel_kinematics, reduce
 use rover_dynamics::forces::Load;
 use rover_dynamics::kinematics::{body_kinematics, wheel_kinematics};
 use rover_dynamics::mass::{MAX_DOF, mass_matrix};
-use rover_dynamics::plant::{Plant, PlantError, WheelLoad, WheelState};
+use rover_dynamics::plant::{MIN_COS_ROLL, Plant, PlantError, WheelLoad, WheelState};
 use rover_dynamics::workspace::Workspace;
-
-pub use rover_dynamics::plant::MIN_COS_ROLL;
 
 /// A plant that interprets a [`Model`]: any rover, no recompilation. Sized
 /// once in [`GenericPlant::new`]; no call allocates.

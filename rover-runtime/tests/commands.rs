@@ -4,9 +4,9 @@
 
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::control::{Controller, ControllerConfig};
-use rover_runtime::ground::ContactMethod;
 use rover_runtime::sim::{CommandError, RoverSystem};
 use rover_runtime::terrain::Terrain;
 

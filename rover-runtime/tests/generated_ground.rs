@@ -10,11 +10,11 @@
 
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
+use rover_dynamics::contact::RimSampling;
 use rover_dynamics::wheel_ground::{ContactMethod, FixedGround, Search};
 use rover_dynamics::wheel_law::Tyre;
 use rover_integrate::OdeSystem;
 use rover_runtime::GenericPlant;
-use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::{Ground, touchdown_heights};
 use rover_runtime::sim::RoverSystem;

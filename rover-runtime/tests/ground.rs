@@ -2,11 +2,12 @@
 //! contact geometry over a bump, the two contact methods against each other.
 
 use rover_dynamics::Model;
+use rover_dynamics::contact::RimSampling;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{BdfConfig, Integrator, IntegratorConfig, OdeSystem};
 use rover_runtime::GenericPlant;
-use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
-use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::ground::Ground;
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use rover_runtime::wheel_law::WheelLawConfig;
@@ -128,8 +129,8 @@ fn paper_rovers_settle_to_static_equilibrium_on_flat_ground() {
 
 #[test]
 fn contact_follows_a_bump_and_both_methods_agree() {
+    use rover_dynamics::contact::{MeridionalContact, TrackedContact};
     use rover_dynamics::plant::WheelState;
-    use rover_runtime::contact::{MeridionalContact, TrackedContact};
     use rover_runtime::terrain::{HeightField, TerrainConfig};
     // A raised-cosine ridge across X, 5 cm high and 0.6 m wide, at X = 1 m.
     let config: TerrainConfig =
@@ -352,7 +353,7 @@ fn bounded_terrains() -> Vec<(&'static str, Terrain)> {
 
 #[test]
 fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
-    use rover_runtime::contact::MeridionalContact;
+    use rover_dynamics::contact::MeridionalContact;
     use rover_runtime::terrain::HeightField;
     let mut rng = rover_test_support::rng::Rng::new(2026);
     let search = MeridionalContact::default();
@@ -403,7 +404,7 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
 /// split, whose scale depends on the depth of each run.
 #[test]
 fn skipping_samples_keeps_split_patches_bit_for_bit() {
-    use rover_runtime::contact::MeridionalContact;
+    use rover_dynamics::contact::MeridionalContact;
     use rover_runtime::terrain::HeightField;
     let mut rng = rover_test_support::rng::Rng::new(2027);
     let search = MeridionalContact::default();
@@ -440,7 +441,7 @@ fn skipping_samples_keeps_split_patches_bit_for_bit() {
 
 #[test]
 fn a_contact_found_in_place_forgets_the_previous_one() {
-    use rover_runtime::contact::{Contact, MeridionalContact};
+    use rover_dynamics::contact::{Contact, MeridionalContact};
     let search = MeridionalContact::default();
     // 5 cm high, 0.6 m wide, centred at X = 0.3 m.
     let (_, bump) = bounded_terrains()
@@ -463,7 +464,7 @@ fn a_contact_found_in_place_forgets_the_previous_one() {
 
 #[test]
 fn a_wheel_on_flat_ground_samples_only_the_rim_near_the_ground() {
-    use rover_runtime::contact::MeridionalContact;
+    use rover_dynamics::contact::MeridionalContact;
     let flat = Terrain::default();
     let search = MeridionalContact::default();
     // 2 mm into the ground, as a rover at rest: the rim within 2.2 mm of the
@@ -574,7 +575,7 @@ fn lowered(
     dz: f64,
     steps: usize,
 ) -> (Vec<usize>, f64) {
-    let search = rover_runtime::contact::MeridionalContact::default();
+    let search = rover_dynamics::contact::MeridionalContact::default();
     let (mut counts, mut worst, mut prev) = (Vec::new(), 0.0_f64, None::<f64>);
     for k in 0..=steps {
         let z = top - k as f64 * dz;
@@ -644,10 +645,11 @@ fn patches_born_beside_a_patch_over_shallow_troughs_appear_continuously() {
 
 #[test]
 fn a_wheel_buried_to_its_centre_pulls_continuously_in_its_drive_torque() {
+    use rover_dynamics::contact::{Contact, Patch};
     use rover_dynamics::plant::WheelState;
-    use rover_runtime::contact::{Contact, Patch};
-    use rover_runtime::ground::wheel_load;
-    use rover_runtime::wheel_law::{ChenGenta, Tyre};
+    use rover_dynamics::wheel_ground::wheel_load;
+    use rover_dynamics::wheel_law::Tyre;
+    use rover_runtime::wheel_law::ChenGenta;
     // The chord of a wheel buried to its centre passes through G_j: eq. 38's
     // F_d = τ/|G_jH| would saturate at ±μx·F_n for any torque, flipping
     // sign with it. With the lever floored at R/2 the pull is 2τ/R.
@@ -692,7 +694,7 @@ fn a_wheel_buried_to_its_centre_pulls_continuously_in_its_drive_torque() {
 
 #[test]
 fn a_plane_cuts_the_rim_in_closed_form_where_the_sampled_search_finds_it() {
-    use rover_runtime::contact::{MeridionalContact, TrackedContact};
+    use rover_dynamics::contact::{MeridionalContact, TrackedContact};
     use rover_runtime::terrain::{HeightField, TerrainConfig};
     let config = |text: &str| -> Terrain {
         let c: TerrainConfig = toml::from_str(text).unwrap();

@@ -4,11 +4,12 @@
 //! implicit integrators.
 
 use rover_dynamics::Model;
+use rover_dynamics::contact::RimSampling;
 use rover_dynamics::plant::Plant;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{BdfConfig, Integrator, IntegratorConfig, JacobianSource, OdeSystem};
-use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
-use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::ground::Ground;
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::{Bounds, RandomField, Terrain};
 use rover_runtime::wheel_law::WheelLawConfig;

@@ -1,6 +1,7 @@
 //! The wheel force laws (MODEL.md §7) on closed-form cases.
 
-use rover_runtime::wheel_law::{ChenGenta, MagicFormula, PatchMotion, Tyre, WheelLaw};
+use rover_dynamics::wheel_law::{PatchMotion, Tyre, WheelLaw};
+use rover_runtime::wheel_law::{ChenGenta, MagicFormula};
 
 const TYRE: Tyre = Tyre {
     stiffness: 4000.0,

@@ -13,9 +13,9 @@ use rover_dynamics::plant::Plant;
 
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x, header};
 use crate::scenario::{FidelityLevel, Scenario};
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{Integrator, OdeSystem};
 use rover_runtime::control::Controller;
-use rover_runtime::ground::ContactMethod;
 use rover_runtime::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use rover_terrain::Terrain;
 
@@ -468,7 +468,7 @@ fn quasi_static_run<W: Write>(
     let mut solver = rover_runtime::quasi_static::QuasiStatic::new(
         model,
         &terrain,
-        rover_runtime::contact::MeridionalContact {
+        rover_dynamics::contact::MeridionalContact {
             sampling: scenario.contact.sampling(),
         },
         q0,

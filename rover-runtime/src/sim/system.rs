@@ -4,9 +4,10 @@
 
 use rover_dynamics::kinematics::position_rates;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
+use rover_dynamics::wheel_ground::WheelReport;
 
 use crate::control::Controller;
-use crate::ground::{Ground, WheelReport};
+use crate::ground::Ground;
 use rover_integrate::OdeSystem;
 use rover_terrain::HeightField;
 
