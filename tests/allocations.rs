@@ -272,8 +272,9 @@ fn the_drive_loop_allocates_nothing_per_step() {
 /// terrain, 5,000 explicit Euler steps under constant torques.
 #[test]
 fn the_generated_force_path_allocates_nothing_from_its_first_call() {
+    use rover_dynamics::height_field::Bounds;
     use rover_dynamics::wheel_ground::Search;
-    use rover_runtime::terrain::{Bounds, RandomField};
+    use rover_runtime::terrain::RandomField;
     type Swing4 = rover_models::Swing4;
     let model = swing4_model();
     let terrain = RandomField {

@@ -6,7 +6,8 @@
 //! the same reference, shows what it misses.
 
 use rover_dynamics::contact::{BoundedContact, Contact, MeridionalContact, RimSampling};
-use rover_terrain::{Bounds, HeightField, OffMap, Plane, Terrain, TerrainConfig};
+use rover_dynamics::height_field::{Bounds, HeightField, OffMap, Plane};
+use rover_terrain::{Terrain, TerrainConfig};
 use rover_test_support::rng::Rng;
 
 /// A terrain seen through a probe that counts queries and can hide the

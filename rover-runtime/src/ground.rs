@@ -6,13 +6,13 @@
 
 use rover_dynamics::Model;
 use rover_dynamics::contact::{Contact, RimSampling};
+use rover_dynamics::height_field::{HeightField, OffMap};
 use rover_dynamics::plant::{WheelLoad, WheelState};
 use rover_dynamics::wheel_ground::{
     ContactMethod, LoadDerivative, Search, WheelContact, WheelOffMap, WheelReport, find_contacts,
     wheel_loads,
 };
 use rover_dynamics::wheel_law::Tyre;
-use rover_terrain::{HeightField, OffMap};
 
 use crate::wheel_law::WheelLawConfig;
 

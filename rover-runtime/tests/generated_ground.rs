@@ -11,6 +11,7 @@
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::contact::RimSampling;
+use rover_dynamics::height_field::Bounds;
 use rover_dynamics::wheel_ground::{ContactMethod, FixedGround, Search};
 use rover_dynamics::wheel_law::Tyre;
 use rover_integrate::OdeSystem;
@@ -18,7 +19,7 @@ use rover_runtime::GenericPlant;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::{Ground, touchdown_heights};
 use rover_runtime::sim::RoverSystem;
-use rover_runtime::terrain::{Bounds, Grid, RandomField};
+use rover_runtime::terrain::{Grid, RandomField};
 use rover_runtime::wheel_law::WheelLawConfig;
 use rover_test_support::rel;
 use rover_test_support::rng::Rng;

@@ -129,9 +129,10 @@ fn paper_rovers_settle_to_static_equilibrium_on_flat_ground() {
 
 #[test]
 fn contact_follows_a_bump_and_both_methods_agree() {
+    use rover_dynamics::HeightField;
     use rover_dynamics::contact::{MeridionalContact, TrackedContact};
     use rover_dynamics::plant::WheelState;
-    use rover_runtime::terrain::{HeightField, TerrainConfig};
+    use rover_runtime::terrain::TerrainConfig;
     // A raised-cosine ridge across X, 5 cm high and 0.6 m wide, at X = 1 m.
     let config: TerrainConfig =
         toml::from_str("kind = \"bump\"\nheight = 0.05\nwidth = 0.6\ncenter = [1.0, 0.0]").unwrap();
@@ -262,8 +263,8 @@ impl<'a> Probe<'a> {
     }
 }
 
-impl rover_runtime::terrain::HeightField for Probe<'_> {
-    fn height(&self, x: f64, y: f64) -> Result<f64, rover_runtime::terrain::OffMap> {
+impl rover_dynamics::HeightField for Probe<'_> {
+    fn height(&self, x: f64, y: f64) -> Result<f64, rover_dynamics::height_field::OffMap> {
         self.queries.set(self.queries.get() + 1);
         self.terrain.height(x, y)
     }
@@ -271,14 +272,14 @@ impl rover_runtime::terrain::HeightField for Probe<'_> {
         &self,
         x: f64,
         y: f64,
-    ) -> Result<(f64, [f64; 2]), rover_runtime::terrain::OffMap> {
+    ) -> Result<(f64, [f64; 2]), rover_dynamics::height_field::OffMap> {
         self.queries.set(self.queries.get() + 1);
         self.terrain.height_gradient(x, y)
     }
-    fn max_height_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {
+    fn max_height_in(&self, area: &rover_dynamics::height_field::Bounds) -> Option<f64> {
         self.terrain.max_height_in(area).filter(|_| self.bounded)
     }
-    fn max_slope_in(&self, area: &rover_runtime::terrain::Bounds) -> Option<f64> {
+    fn max_slope_in(&self, area: &rover_dynamics::height_field::Bounds) -> Option<f64> {
         self.terrain.max_slope_in(area).filter(|_| self.sloped)
     }
 }
@@ -353,8 +354,8 @@ fn bounded_terrains() -> Vec<(&'static str, Terrain)> {
 
 #[test]
 fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
+    use rover_dynamics::HeightField;
     use rover_dynamics::contact::MeridionalContact;
-    use rover_runtime::terrain::HeightField;
     let mut rng = rover_test_support::rng::Rng::new(2026);
     let search = MeridionalContact::default();
     for (name, terrain) in bounded_terrains() {
@@ -404,8 +405,8 @@ fn the_bounded_contact_search_is_the_full_search_bit_for_bit() {
 /// split, whose scale depends on the depth of each run.
 #[test]
 fn skipping_samples_keeps_split_patches_bit_for_bit() {
+    use rover_dynamics::HeightField;
     use rover_dynamics::contact::MeridionalContact;
-    use rover_runtime::terrain::HeightField;
     let mut rng = rover_test_support::rng::Rng::new(2027);
     let search = MeridionalContact::default();
     let (_, terrain) = bounded_terrains()
@@ -487,10 +488,10 @@ fn a_wheel_on_flat_ground_samples_only_the_rim_near_the_ground() {
 }
 
 /// A rectangle of up to 0.8 m × 0.8 m around the trials' area.
-fn random_area(rng: &mut rover_test_support::rng::Rng) -> rover_runtime::terrain::Bounds {
+fn random_area(rng: &mut rover_test_support::rng::Rng) -> rover_dynamics::height_field::Bounds {
     let (x, y) = (rng.uniform(-1.8, 1.6), rng.uniform(-1.8, 1.6));
     let (w, h) = (rng.uniform(0.0, 0.8), rng.uniform(0.0, 0.8));
-    rover_runtime::terrain::Bounds {
+    rover_dynamics::height_field::Bounds {
         x_min: x,
         x_max: x + w,
         y_min: y,
@@ -503,7 +504,7 @@ fn random_area(rng: &mut rover_test_support::rng::Rng) -> rover_runtime::terrain
 /// step's ramp), and is `None` for a non-finite rectangle.
 #[test]
 fn terrain_slope_bounds_hold() {
-    use rover_runtime::terrain::{Bounds, HeightField};
+    use rover_dynamics::height_field::{Bounds, HeightField};
     let mut rng = rover_test_support::rng::Rng::new(78);
     for (name, terrain) in bounded_terrains() {
         let mut bounded = 0;
@@ -537,7 +538,7 @@ fn terrain_slope_bounds_hold() {
 
 #[test]
 fn terrain_height_bounds_hold() {
-    use rover_runtime::terrain::{Bounds, HeightField};
+    use rover_dynamics::height_field::{Bounds, HeightField};
     let mut rng = rover_test_support::rng::Rng::new(77);
     for (name, terrain) in bounded_terrains() {
         for _ in 0..300 {
@@ -694,8 +695,9 @@ fn a_wheel_buried_to_its_centre_pulls_continuously_in_its_drive_torque() {
 
 #[test]
 fn a_plane_cuts_the_rim_in_closed_form_where_the_sampled_search_finds_it() {
+    use rover_dynamics::HeightField;
     use rover_dynamics::contact::{MeridionalContact, TrackedContact};
-    use rover_runtime::terrain::{HeightField, TerrainConfig};
+    use rover_runtime::terrain::TerrainConfig;
     let config = |text: &str| -> Terrain {
         let c: TerrainConfig = toml::from_str(text).unwrap();
         c.build(std::path::Path::new(".")).unwrap()

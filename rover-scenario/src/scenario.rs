@@ -227,7 +227,7 @@ impl ContactConfig {
 
     /// The ground of this table on `terrain`: search, sampling, law and
     /// rolling resistance.
-    pub fn ground<H: rover_terrain::HeightField>(
+    pub fn ground<H: rover_dynamics::HeightField>(
         &self,
         terrain: H,
         model: &rover_dynamics::Model,

@@ -42,7 +42,7 @@ pub enum SetupError {
     },
     /// The rover starts off the terrain map.
     #[error("the rover starts off the terrain: {0}")]
-    OffMap(rover_terrain::OffMap),
+    OffMap(rover_dynamics::height_field::OffMap),
     /// The CSV could not be started.
     #[error("cannot write the CSV: {0}")]
     Io(#[from] std::io::Error),

@@ -27,13 +27,13 @@
 //! 2N + dim plant-sized calls and a few µs of per-wheel algebra, against `dim`
 //! right-hand sides for differences.
 
+use rover_dynamics::HeightField;
 use rover_dynamics::kinematics::position_rates;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
 use rover_dynamics::wheel_ground::LoadDerivative;
 
 use crate::sim::SimError;
 use rover_integrate::Lu;
-use rover_terrain::HeightField;
 
 use super::RoverSystem;
 
