@@ -1,5 +1,7 @@
 //! The generic back end: the equations of `rover-dynamics` run with `f64` on
-//! a model read at run time (DESIGN.md, "one description, two back ends").
+//! a model read at run time, so that any rover runs without a build. The
+//! other back end, a plant generated from the same description
+//! (`rover-codegen`), is faster; the tests hold the two equal.
 
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
