@@ -252,3 +252,37 @@ fn heading_hold_integrals_integrate_and_stop_winding_up() {
     assert_eq!(rates(2.0, (0.0, 0.1), wound)[1], 0.0, "e < 0 at −cap");
     assert!(rates(2.0, (0.0, -0.1), wound)[1] > 0.0, "unwinds");
 }
+
+/// A set-point that cannot be used is refused with the field, the point
+/// and what is wrong.
+#[test]
+fn bad_set_points_are_refused_with_the_point() {
+    let m = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")
+        .unwrap()
+        .model;
+    let error = |speed: &str| {
+        let config: rover_runtime::control::ControllerConfig =
+            toml::from_str(&format!("[speed]\nspeed = {speed}\n")).unwrap();
+        rover_runtime::control::Controller::new(config, &m, 0.0)
+            .unwrap_err()
+            .to_string()
+    };
+    let cases = [
+        ("nan", "value NaN is not a finite number"),
+        (
+            "{ points = [] }",
+            "the table has no points; give at least one [t, value]",
+        ),
+        (
+            "{ points = [[0.0, 0.1], [1.0, nan]] }",
+            "point 2 = [1, NaN] is not finite",
+        ),
+        (
+            "{ points = [[0.0, 0.1], [2.0, 0.2], [1.5, 0.3]] }",
+            "times must increase: point 3 has t = 1.5 s after t = 2 s",
+        ),
+    ];
+    for (speed, want) in cases {
+        assert_eq!(error(speed), format!("control.speed.speed: {want}"));
+    }
+}
