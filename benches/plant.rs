@@ -18,9 +18,9 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rover_dynamics::Model;
 use rover_dynamics::nalgebra::SVector;
 use rover_dynamics::plant::{FixedPlant, Plant, WheelLoad};
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::GenericPlant;
-use rover_runtime::ground::ContactMethod;
 use rover_runtime::terrain::Terrain;
 use support::{model, system, system_on};
 

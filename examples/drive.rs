@@ -4,10 +4,11 @@
 
 use std::sync::atomic::AtomicBool;
 
+use rover_dynamics::contact::RimSampling;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{BdfConfig, IntegratorConfig};
-use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
-use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::ground::Ground;
 use rover_runtime::sim::{RoverSystem, RunOptions, Stop, run};
 use rover_runtime::terrain::TerrainConfig;
 use rover_runtime::wheel_law::WheelLawConfig;

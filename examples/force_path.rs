@@ -8,8 +8,9 @@
 //! `valgrind --tool=callgrind` it profiles the force path).
 
 use rover_dynamics::attitude::Attitude;
+use rover_dynamics::height_field::Bounds;
 use rover_dynamics::wheel_ground::Search;
-use rover_runtime::terrain::{Bounds, RandomField};
+use rover_runtime::terrain::RandomField;
 use rover_runtime::wheel_law::WheelLawConfig;
 
 type Swing4 = rover_models::Swing4;

@@ -8,11 +8,12 @@
 //! own force path on rough ground, from its first call. Its own test
 //! binary: it installs a counting global allocator.
 
+use rover_dynamics::contact::RimSampling;
 use rover_dynamics::plant::Plant;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
-use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
-use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::ground::Ground;
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use rover_runtime::wheel_law::WheelLawConfig;
@@ -272,8 +273,9 @@ fn the_drive_loop_allocates_nothing_per_step() {
 /// terrain, 5,000 explicit Euler steps under constant torques.
 #[test]
 fn the_generated_force_path_allocates_nothing_from_its_first_call() {
+    use rover_dynamics::height_field::Bounds;
     use rover_dynamics::wheel_ground::Search;
-    use rover_runtime::terrain::{Bounds, RandomField};
+    use rover_runtime::terrain::RandomField;
     type Swing4 = rover_models::Swing4;
     let model = swing4_model();
     let terrain = RandomField {

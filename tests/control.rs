@@ -155,90 +155,6 @@ fn integrators_agree_on_a_smooth_run() {
     }
 }
 
-#[test]
-fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
-    use rover_runtime::control::{Controller, ControllerConfig};
-    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
-    let model = spec.model;
-    let loads = rover_runtime::quasi_static::flat_ground_loads(&model).unwrap();
-    let weight = model.total_mass() * model.gravity;
-    assert!(
-        (loads.iter().sum::<f64>() - weight).abs() < 1e-6 * weight,
-        "the static loads carry the weight: {loads:?}"
-    );
-    let config: ControllerConfig =
-        toml::from_str("[speed]\nspeed = 0.1\nkp = 2.0\ndistribution = \"static_load\"").unwrap();
-    let control = Controller::new(config, &model, 0.0).unwrap();
-    let n = model.dof();
-    let w = vec![0.0; n];
-    let mut tau = vec![0.0; 4];
-    // Measured loads are ignored: the static ones decide.
-    control.torques(
-        1.0,
-        &vec![0.0; n],
-        &w,
-        &[0.0],
-        &[1.0, 0.0, 0.0, 0.0],
-        &[0.0; 4],
-        &mut tau,
-    );
-    let tau0 = 2.0 * 0.1;
-    let total: f64 = loads.iter().sum();
-    for (t, l) in tau.iter().zip(&loads) {
-        assert!(
-            (t - tau0 * 4.0 * l / total).abs() < 1e-12,
-            "τ {tau:?} against loads {loads:?}"
-        );
-    }
-    assert!(
-        (loads[0] - loads[2]).abs() > 0.01 * weight,
-        "front and rear loads differ on Example 2: {loads:?}"
-    );
-}
-
-/// The heading law itself: the error is wrapped (170° commanded from −170°
-/// is 20° to the right, not 340° to the left), the rate term damps, and a
-/// rover left of its line is sent back to the right.
-#[test]
-fn heading_hold_wraps_the_error_and_steers_back_to_its_line() {
-    use rover_runtime::control::HeadingHold;
-    let law = |cross_track: f64| HeadingHold {
-        via: rover_runtime::control::HeadingActuator::Slip,
-        heading_deg: rover_runtime::control::Profile::Constant(170.0),
-        kp: Some(2.0),
-        kd: Some(0.5),
-        ki: None,
-        lookahead: None,
-        cross_track,
-        cross_track_integral: 0.0,
-        line_origin: [0.0, 0.0],
-        waypoints: Vec::new(),
-    };
-    let dt = law(0.0).delta_tau(
-        law(0.0).line(0.0, 0),
-        [0.0, 0.0],
-        (-170.0f64).to_radians(),
-        0.1,
-        Default::default(),
-    );
-    let want = 2.0 * (-20.0f64).to_radians() - 0.5 * 0.1;
-    assert!((dt - want).abs() < 1e-12, "Δτ {dt} vs {want}");
-    // Heading 0 along +X: a rover at Y = +1 m (left of the line) turns right.
-    let mut along_x = law(1.0);
-    along_x.heading_deg = rover_runtime::control::Profile::Constant(0.0);
-    let left_of_line = along_x.delta_tau(
-        along_x.line(0.0, 0),
-        [5.0, 1.0],
-        0.0,
-        0.0,
-        Default::default(),
-    );
-    assert!(
-        (left_of_line - 2.0 * -(1.0f64.atan())).abs() < 1e-12,
-        "Δτ {left_of_line}"
-    );
-}
-
 /// Closed loop: swing4 commanded from heading 0 to 20° on flat ground
 /// reaches it without overshoot; on a 10° side slope, where gravity yaws the
 /// open-loop rover downhill (3.5° in 38 s, and growing), the heading hold
@@ -343,53 +259,6 @@ cross_track_integral = 0.2
     );
 }
 
-/// Bad heading-hold settings are refused with the field and the fix.
-#[test]
-fn heading_hold_settings_are_validated() {
-    let m = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")
-        .unwrap()
-        .model;
-    let error = |text: &str| {
-        let config: rover_runtime::control::ControllerConfig = toml::from_str(text).unwrap();
-        rover_runtime::control::Controller::new(config, &m, 0.0)
-            .unwrap_err()
-            .to_string()
-    };
-    let kp = error("[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\nkp = 0.0\n");
-    assert!(
-        kp.contains("control.steering.kp") && kp.contains("> 0"),
-        "{kp}"
-    );
-    let no_speed = error("[steering]\nkind = \"heading\"\nkp = 1.0\n");
-    assert!(no_speed.contains("[control.speed]"), "{no_speed}");
-    let cross = error(
-        "[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\nkp = 1.0\ncross_track = -1.0\n",
-    );
-    assert!(cross.contains("control.steering.cross_track"), "{cross}");
-    let hold = "[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\nkp = 1.0\n";
-    let ki = error(&format!("{hold}ki = -0.5\n"));
-    assert!(
-        ki.contains("control.steering.ki") && ki.contains("≥ 0"),
-        "{ki}"
-    );
-    let alone = error(&format!("{hold}cross_track_integral = 0.2\n"));
-    assert!(
-        alone.contains("control.steering.cross_track_integral")
-            && alone.contains("cross_track > 0"),
-        "{alone}"
-    );
-    let negative = error(&format!(
-        "{hold}cross_track = 1.0\ncross_track_integral = -1.0\n"
-    ));
-    assert!(
-        negative.contains("control.steering.cross_track_integral"),
-        "{negative}"
-    );
-    let unknown: Result<rover_runtime::control::ControllerConfig, _> =
-        toml::from_str("[steering]\nkind = \"heading\"\nkp = 1.0\nkq = 2.0\n");
-    assert!(unknown.is_err_and(|e| e.to_string().contains("kq")));
-}
-
 /// The reason for line following: on rough ground (z_r = 0.3) at 0.5 m/s the
 /// open-loop swing4 is yawed off its course by the terrain (`rover
 /// simulate`, generated plant: 1.6 m off its line after 20 s, 5.6 m after
@@ -467,66 +336,6 @@ fn heading_hold_via_ackermann_turns_and_follows_a_line() {
     assert!(worst < 0.04, "line following via Ackermann: {worst} m off");
 }
 
-/// Each actuator takes its own settings, and says which are missing.
-#[test]
-fn heading_hold_actuators_take_their_own_settings() {
-    let error = |rover: &str, text: &str| {
-        let m = rover_spec::load_str(rover_models::builtin(rover).unwrap(), rover)
-            .unwrap()
-            .model;
-        let config: rover_runtime::control::ControllerConfig = toml::from_str(text).unwrap();
-        rover_runtime::control::Controller::new(config, &m, 0.0)
-            .unwrap_err()
-            .to_string()
-    };
-    let speed = "[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\n";
-    let no_kp = error("swing4", speed);
-    assert!(no_kp.contains("control.steering.kp: missing"), "{no_kp}");
-    let no_wheels = error(
-        "swing4",
-        &format!("{speed}via = \"ackermann\"\nlookahead = 2.0\n"),
-    );
-    assert!(no_wheels.contains("steerable"), "{no_wheels}");
-    let no_lookahead = error("lrv", &format!("{speed}via = \"ackermann\"\n"));
-    assert!(
-        no_lookahead.contains("control.steering.lookahead: missing"),
-        "{no_lookahead}"
-    );
-    let gains = error(
-        "lrv",
-        &format!("{speed}via = \"ackermann\"\nlookahead = 2.0\nkp = 1.0\n"),
-    );
-    assert!(gains.contains("slip law"), "{gains}");
-    let integral = error(
-        "lrv",
-        &format!("{speed}via = \"ackermann\"\nlookahead = 2.0\nki = 1.0\n"),
-    );
-    assert!(integral.contains("slip law"), "{integral}");
-    let lookahead = error("lrv", &format!("{speed}kp = 1.0\nlookahead = 2.0\n"));
-    assert!(
-        lookahead.contains("control.steering.lookahead"),
-        "{lookahead}"
-    );
-    let one = error(
-        "swing4",
-        &format!("{speed}kp = 1.0\nwaypoints = [[0.0, 0.0]]\n"),
-    );
-    assert!(
-        one.contains("control.steering.waypoints") && one.contains("two"),
-        "{one}"
-    );
-    let same = error(
-        "swing4",
-        &format!("{speed}kp = 1.0\nwaypoints = [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0]]\n"),
-    );
-    assert!(same.contains("waypoints 2 and 3 coincide"), "{same}");
-    let both = error(
-        "swing4",
-        &format!("{speed}kp = 1.0\nheading_deg = 10.0\nwaypoints = [[0.0, 0.0], [1.0, 0.0]]\n"),
-    );
-    assert!(both.contains("replace"), "{both}");
-}
-
 /// A path of waypoints: swing4 drives three legs of a 6 m square at 0.3 m/s,
 /// each followed as a line until G passes the perpendicular through its
 /// end; it passes within centimetres of both corners (it reaches each on
@@ -575,66 +384,6 @@ fn heading_hold_follows_a_path_of_waypoints() {
         dev.final_m < 0.05 && dev.max_m > 0.3 && dev.rms_m < dev.max_m,
         "{dev:?}"
     );
-}
-
-/// The integral states' rates are their integrands (speed error, heading
-/// error, line offset), zero while settling, and frozen by anti-windup
-/// once their own term saturates in the direction the error pushes.
-#[test]
-fn heading_hold_integrals_integrate_and_stop_winding_up() {
-    use rover_runtime::control::{Controller, ControllerConfig, LINE_INTEGRAL_CAP};
-    let m = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")
-        .unwrap()
-        .model;
-    let n = m.dof();
-    let config: ControllerConfig = toml::from_str(
-        "[speed]\nspeed = 0.1\n[steering]\nkind = \"heading\"\nkp = 5.0\nki = 2.0\n\
-         cross_track = 1.0\ncross_track_integral = 0.5\n",
-    )
-    .unwrap();
-    let control = Controller::new(config, &m, 1.0).unwrap();
-    assert_eq!(control.states(), 3);
-    let w = vec![0.0; n];
-    // G `y` m left of the line Y = 0 at heading ψ.
-    let rates = |t: f64, (y, psi): (f64, f64), z: [f64; 3]| {
-        let mut x = vec![0.0; n];
-        (x[1], x[5]) = (y, psi);
-        let mut out = [f64::NAN; 3];
-        control.integral_rates(t, &x, &w, &z, &mut out);
-        out
-    };
-    let settled = rates(2.0, (0.3, 0.1), [0.0; 3]);
-    let e = -(0.3f64).atan() - 0.1;
-    assert!(
-        (settled[0] - 0.1).abs() < 1e-15,
-        "speed error {}",
-        settled[0]
-    );
-    assert!(
-        (settled[1] - e).abs() < 1e-15,
-        "heading error {}",
-        settled[1]
-    );
-    assert!(
-        (settled[2] - 0.3).abs() < 1e-15,
-        "line offset {}",
-        settled[2]
-    );
-    assert_eq!(
-        rates(0.5, (0.3, 0.1), [0.0; 3])[1..],
-        [0.0, 0.0],
-        "settling"
-    );
-    // The line integral at its cap: it stops growing with e_y > 0 …
-    let cap = LINE_INTEGRAL_CAP / 0.5;
-    assert_eq!(rates(2.0, (0.3, 0.1), [0.0, 0.0, cap])[2], 0.0);
-    // … and unwinds when e_y turns negative.
-    assert!((rates(2.0, (-0.3, 0.1), [0.0, 0.0, cap])[2] + 0.3).abs() < 1e-15);
-    // The heading integral at the largest motor torque likewise.
-    let tau = m.wheels.iter().map(|w| w.max_torque).fold(0.0, f64::max);
-    let wound = [0.0, -tau / 2.0, 0.0];
-    assert_eq!(rates(2.0, (0.0, 0.1), wound)[1], 0.0, "e < 0 at −cap");
-    assert!(rates(2.0, (0.0, -0.1), wound)[1] > 0.0, "unwinds");
 }
 
 /// A command that jumps (here the end of settling, on an output instant)

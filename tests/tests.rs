@@ -1,4 +1,6 @@
-//! The workspace's integration tests, one binary (STYLE.md §6).
+//! The workspace's integration tests, one binary (one link for the whole
+//! suite): whole runs from scenarios, the CLI, the generated plants against
+//! the generic one, no_std. Each crate's own tests are in its `tests/`.
 
 mod support;
 
@@ -6,20 +8,14 @@ mod breakpoints;
 mod cli;
 mod codegen;
 mod commands;
-mod contact_accuracy;
 mod control;
 #[cfg(feature = "drive")]
 mod drive;
-mod dynamics;
 mod failures;
 mod fidelity;
 mod fixed_step;
-mod free_flight;
-mod generated_ground;
 mod ground;
-mod hand_built_models;
 mod hostile;
-mod jacobian;
 mod linearize;
 mod no_std;
 mod paper_accuracy;

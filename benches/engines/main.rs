@@ -34,13 +34,13 @@ use std::path::{Path, PathBuf};
 use criterion::{BenchmarkId, Criterion};
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{
     FixedStepConfig, Integrator, IntegratorConfig, OdeSystem, Rk4, Ros2, Ros2Config,
     SemiImplicitEuler,
 };
 use rover_runtime::GenericPlant;
 use rover_runtime::control::SpeedConfig;
-use rover_runtime::ground::ContactMethod;
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::{Grid, Terrain};
 use rover_spec::Spec;

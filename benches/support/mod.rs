@@ -4,12 +4,14 @@
 #![allow(dead_code)]
 
 use rover_dynamics::Model;
+use rover_dynamics::contact::RimSampling;
+use rover_dynamics::height_field::Bounds;
 use rover_dynamics::plant::Plant;
-use rover_runtime::contact::RimSampling;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
-use rover_runtime::ground::{ContactMethod, Ground};
+use rover_runtime::ground::Ground;
 use rover_runtime::sim::RoverSystem;
-use rover_runtime::terrain::{Bounds, Grid, RandomField, Terrain};
+use rover_runtime::terrain::{Grid, RandomField, Terrain};
 use rover_runtime::wheel_law::WheelLawConfig;
 
 /// The speed every bench drives at [m/s].

@@ -1,6 +1,6 @@
 //! The equations of motion of a wheeled rover in pseudo-coordinates
-//! (F. Chen and G. Genta, Acta Astronautica 81 (2012) 288–305; the project's
-//! `spec/MODEL.md` fixes every convention).
+//! (F. Chen and G. Genta, Acta Astronautica 81 (2012) 288–305; the
+//! repository's `docs/MODEL.md` fixes every convention).
 //!
 //! ```text
 //! M(y)·ẇ = −Ṁ·w − f1 + f2 + Q        (eq. 25)

@@ -6,7 +6,8 @@
 //! run it with dual numbers for exact derivatives. So the trait holds only what
 //! the physics needs, and nothing that branches on a value: a traced program
 //! cannot follow a data-dependent `if`, so singular points are handled with
-//! `max`, `min` and `copysign` instead (STYLE.md §4, "branchless").
+//! `max`, `min` and `copysign` instead, and the traced code stays one
+//! straight line.
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};

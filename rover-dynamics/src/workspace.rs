@@ -1,5 +1,6 @@
-//! Scratch storage of the equations, sized once per model (STYLE.md §5, "size
-//! once, reuse"): nothing in a right-hand-side evaluation allocates.
+//! Scratch storage of the equations, sized once per model and reused, so
+//! that nothing in a right-hand-side evaluation allocates: a real-time loop
+//! never waits on the allocator.
 
 use alloc::vec;
 use alloc::vec::Vec;

@@ -17,15 +17,14 @@
 //! p. 169, PI control in Hairer & Wanner, *Solving ODEs II*, §IV.2). Bdf — Shampine & Reichelt
 //! (1997), "The MATLAB ODE Suite", SIAM J. Sci. Comput. 18(1); HW II, §III.1, §IV.8.
 //!
-//! **Why our own adaptive methods.** The `differential-equations` crate recommended in
-//! CRATES.md has DOPRI5 and BDF, but its `State` trait requires `Copy` (scalars, `SMatrix`,
-//! `[f64; N]`): the dimension must be a compile-time constant, while a rover's `2n` is read
-//! from its description at run time; its right-hand side cannot fail with an error of ours
-//! either. Dispatching over every possible `N` would multiply compile time for one feature.
+//! **Why our own adaptive methods.** The `differential-equations` crate has DOPRI5 and BDF,
+//! but its `State` trait requires `Copy` (scalars, `SMatrix`, `[f64; N]`): the dimension
+//! must be a compile-time constant, while a rover's `2n` is read from its description at run
+//! time; its right-hand side cannot fail with an error of ours either. Dispatching over every possible `N` would multiply compile time for one feature.
 //! The methods here work on slices of any length, propagate the system's error with the time
 //! of the failing evaluation, keep their step size across calls, land exactly on each target,
-//! and allocate their workspace once, in `new` (the `integrate_alloc` test proves 0 allocations
-//! per step for all four).
+//! and allocate their workspace once, in `new` (`tests/allocations.rs` counts 0 allocations
+//! per step for RK4, semi-implicit Euler, Dopri5 and BDF).
 //!
 //! **Using them.** Build one from an [`IntegratorConfig`] (a scenario file's
 //! `[integrator.<method>]` table) with [`IntegratorConfig::build`], then call

@@ -1,5 +1,7 @@
 //! The generic back end: the equations of `rover-dynamics` run with `f64` on
-//! a model read at run time (DESIGN.md, "one description, two back ends").
+//! a model read at run time, so that any rover runs without a build. The
+//! other back end, a plant generated from the same description
+//! (`rover-codegen`), is faster; the tests hold the two equal.
 
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
@@ -8,10 +10,8 @@ use rover_dynamics::fidelity::{Fidelity, Frozen, linear_wheel_kinematics, reduce
 use rover_dynamics::forces::Load;
 use rover_dynamics::kinematics::{body_kinematics, wheel_kinematics};
 use rover_dynamics::mass::{MAX_DOF, mass_matrix};
-use rover_dynamics::plant::{Plant, PlantError, WheelLoad, WheelState};
+use rover_dynamics::plant::{MIN_COS_ROLL, Plant, PlantError, WheelLoad, WheelState};
 use rover_dynamics::workspace::Workspace;
-
-pub use rover_dynamics::plant::MIN_COS_ROLL;
 
 /// A plant that interprets a [`Model`]: any rover, no recompilation. Sized
 /// once in [`GenericPlant::new`]; no call allocates.

@@ -5,17 +5,16 @@
 //! force path runs.
 
 use rover_dynamics::Model;
+use rover_dynamics::contact::{Contact, RimSampling};
+use rover_dynamics::height_field::{HeightField, OffMap};
 use rover_dynamics::plant::{WheelLoad, WheelState};
-
-use crate::contact::{Contact, RimSampling};
-use crate::wheel_law::{Tyre, WheelLawConfig};
-use rover_terrain::{HeightField, OffMap};
-
-pub use rover_dynamics::wheel_ground::{
-    ContactMethod, LoadDerivative, MIN_LEVER_FRACTION, Search, WheelContact, WheelOffMap,
-    WheelReport, load_derivative, wheel_load,
+use rover_dynamics::wheel_ground::{
+    ContactMethod, LoadDerivative, Search, WheelContact, WheelOffMap, WheelReport, find_contacts,
+    wheel_loads,
 };
-use rover_dynamics::wheel_ground::{find_contacts, wheel_loads};
+use rover_dynamics::wheel_law::Tyre;
+
+use crate::wheel_law::WheelLawConfig;
 
 /// Terrain, contact search and wheel law, with the per-wheel tracking state.
 #[derive(Clone, Debug)]
@@ -51,7 +50,7 @@ impl<H: HeightField> Ground<H> {
     }
 
     /// The same ground with rolling-resistance coefficient `c_rr` on every
-    /// wheel ([`crate::wheel_law::rolling_resistance`]; 0 by default).
+    /// wheel ([`rover_dynamics::wheel_law::rolling_resistance`]; 0 by default).
     pub fn with_rolling_resistance(mut self, c_rr: f64) -> Self {
         for t in &mut self.tyres {
             t.rolling_resistance = c_rr;

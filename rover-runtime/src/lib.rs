@@ -28,6 +28,3 @@ pub use rover_terrain as terrain;
 
 pub use described::RoverDescription;
 pub use generic_plant::GenericPlant;
-/// The contact search (no_std, in `rover-dynamics`), re-exported where it
-/// has always been found.
-pub use rover_dynamics::contact;

@@ -13,12 +13,11 @@
 
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
+use rover_dynamics::contact::MeridionalContact;
 use rover_dynamics::forces::{Load, add_gravity, add_suspension, add_wheel_loads};
+use rover_dynamics::height_field::{HeightField, OffMap};
 use rover_dynamics::kinematics::{body_kinematics, wheel_kinematics};
 use rover_dynamics::workspace::Workspace;
-
-use crate::contact::MeridionalContact;
-use rover_terrain::{HeightField, OffMap};
 
 /// Why an equilibrium could not be found.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

@@ -9,8 +9,8 @@
 //! motor torques, the steering angles, the springs' neutrals and the speed
 //! set-point.
 
+use rover_dynamics::HeightField;
 use rover_dynamics::plant::{Plant, WheelState};
-use rover_terrain::HeightField;
 
 use crate::sim::RoverSystem;
 use rover_dynamics::wheel_ground::WheelReport;

@@ -25,15 +25,15 @@
 //! the scenario's contact has a rolling resistance).
 
 use nalgebra::{Complex, DMatrix, DVector};
-use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
+use rover_dynamics::{HeightField, Model};
 
 use crate::scenario::ContactConfig;
 use rover_integrate::OdeSystem;
 use rover_runtime::control::{ControlError, Controller, ControllerConfig};
 use rover_runtime::quasi_static::{QuasiStaticError, flat_ground_pose};
 use rover_runtime::sim::{RoverSystem, SimError};
-use rover_terrain::{HeightField, Terrain};
+use rover_terrain::Terrain;
 
 /// Largest forward speed linearized about \[m/s\] (in either direction):
 /// far beyond any planetary rover.

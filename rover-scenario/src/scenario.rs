@@ -29,10 +29,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use rover_dynamics::contact::RimSampling;
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{BdfConfig, IntegratorConfig};
-use rover_runtime::contact::RimSampling;
 use rover_runtime::control::ControllerConfig;
-use rover_runtime::ground::ContactMethod;
 use rover_runtime::wheel_law::WheelLawConfig;
 use rover_terrain::TerrainConfig;
 
@@ -196,7 +196,7 @@ pub struct ContactConfig {
     pub law: WheelLawConfig,
     /// Rolling-resistance coefficient C_rr (ours, not the paper's): a force
     /// `C_rr·F_n` against each patch's rolling, on top of either law;
-    /// default 0, the paper's law (see [`rover_runtime::wheel_law::rolling_resistance`]).
+    /// default 0, the paper's law (see [`rover_dynamics::wheel_law::rolling_resistance`]).
     #[serde(default)]
     pub rolling_resistance: f64,
 }
@@ -227,7 +227,7 @@ impl ContactConfig {
 
     /// The ground of this table on `terrain`: search, sampling, law and
     /// rolling resistance.
-    pub fn ground<H: rover_terrain::HeightField>(
+    pub fn ground<H: rover_dynamics::HeightField>(
         &self,
         terrain: H,
         model: &rover_dynamics::Model,

@@ -13,9 +13,9 @@ use rover_dynamics::plant::Plant;
 
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x};
 use crate::scenario::{FidelityLevel, Scenario};
+use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{Integrator, OdeSystem};
 use rover_runtime::control::Controller;
-use rover_runtime::ground::ContactMethod;
 use rover_runtime::row::{Columns, RowInputs};
 use rover_runtime::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use rover_terrain::Terrain;
@@ -43,7 +43,7 @@ pub enum SetupError {
     },
     /// The rover starts off the terrain map.
     #[error("the rover starts off the terrain: {0}")]
-    OffMap(rover_terrain::OffMap),
+    OffMap(rover_dynamics::height_field::OffMap),
     /// The CSV could not be started.
     #[error("cannot write the CSV: {0}")]
     Io(#[from] std::io::Error),
@@ -470,7 +470,7 @@ fn quasi_static_run<W: Write>(
     let mut solver = rover_runtime::quasi_static::QuasiStatic::new(
         model,
         &terrain,
-        rover_runtime::contact::MeridionalContact {
+        rover_dynamics::contact::MeridionalContact {
             sampling: scenario.contact.sampling(),
         },
         q0,

@@ -1,5 +1,7 @@
 //! One located message, for parser errors and semantic errors alike, and
-//! its rustc-style rendering (STYLE.md §3).
+//! its rendering in rustc's style (the file, line and column, the source
+//! line with the offending span underlined, then the fix), the form in
+//! which a Rust user already reads errors.
 
 use std::ops::Range;
 

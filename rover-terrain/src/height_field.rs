@@ -1,8 +1,9 @@
-//! The height-field interface the contact code queries and the off-map
-//! error, from `rover-dynamics` (no_std, so that generated code can name
-//! them), and the finiteness check of the unbounded terrains.
+//! The height-field interface the terrains implement, for the modules of
+//! this crate (it is defined, and named by users, in `rover-dynamics`:
+//! no_std, so that generated code can name it), and the finiteness check
+//! of the unbounded terrains.
 
-pub use rover_dynamics::height_field::{Bounds, HeightField, OffMap, Plane};
+pub(crate) use rover_dynamics::height_field::{Bounds, HeightField, OffMap, Plane};
 
 /// Checks that a query point is finite, for the unbounded analytic terrains.
 #[inline]

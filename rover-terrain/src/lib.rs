@@ -1,8 +1,11 @@
 //! Terrain height fields for rover contact: the ground height `Z_G(X, Y)`
 //! the wheels touch (docs/MODEL.md §6, §11).
 //!
-//! - [`HeightField`] is what the contact code queries: height and gradient at
-//!   a point, or an [`OffMap`] error, with no allocation.
+//! - Every terrain implements [`rover_dynamics::HeightField`], what the
+//!   contact code queries: height and gradient at a point, or an
+//!   [`OffMap`](rover_dynamics::height_field::OffMap) error, with no
+//!   allocation. The interface is `rover-dynamics`'s (no_std, so that
+//!   generated code can name it): users name it from there.
 //! - [`Terrain`] is any terrain: the analytic library ([`Flat`], [`Slope`],
 //!   [`Bump`], [`Ditch`], [`Step`], [`Sinusoid`], exact and unbounded) or a
 //!   [`Grid`] of heights with a C1 Catmull–Rom bicubic (default) or bilinear
@@ -69,7 +72,6 @@ pub use georeference::Georeference;
 #[cfg(feature = "geotiff")]
 pub use geotiff::{read_geotiff, write_geotiff};
 pub use grid::{EdgePolicy, Grid, Interpolation, MAX_FILE_NODES};
-pub use height_field::{Bounds, HeightField, OffMap, Plane};
 #[cfg(feature = "png")]
 pub use png_map::{SampleScale, read_png, write_png};
 pub use profile::Footprint;

@@ -18,8 +18,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 
 use clap::Args;
+use rover_dynamics::HeightField;
 use rover_runtime::row::Columns;
-use rover_runtime::terrain::{HeightField, Terrain};
+use rover_runtime::terrain::Terrain;
 use rover_scenario::prepare::{Prepared, RunPlant, load_rover};
 use rover_scenario::scenario::Scenario;
 use rover_spec::sketch::Sketch;

@@ -58,33 +58,146 @@ pub struct CommandSchedule {
     values: Vec<f64>,
 }
 
-/// A command file that cannot be used: `path:line: problem`, and the fix,
-/// in the terrain files' format (line 0: the file as a whole).
-fn located(path: &Path, line: usize, problem: impl std::fmt::Display, help: &str) -> String {
-    FileError {
-        path: path.to_path_buf(),
-        place: if line > 0 {
-            Place::Line(line)
-        } else {
-            Place::Whole
-        },
-        problem: problem.to_string(),
-        help: help.to_string(),
+/// A command file that cannot be used: the file, the line and what is
+/// wrong there. Shown as `path:line: problem`, then `= help:` and the fix,
+/// in the terrain files' format.
+#[derive(Debug, thiserror::Error)]
+#[error("{}", self.as_file_error())]
+pub struct CommandFileError {
+    /// The file.
+    pub path: PathBuf,
+    /// The line, from 1; `None` for the file as a whole.
+    pub line: Option<usize>,
+    /// What is wrong.
+    pub problem: CommandFileProblem,
+}
+
+impl CommandFileError {
+    fn new(path: &Path, line: Option<usize>, problem: CommandFileProblem) -> Self {
+        Self {
+            path: path.to_path_buf(),
+            line,
+            problem,
+        }
     }
-    .to_string()
+
+    /// The error in the terrain files' format, with the fix.
+    fn as_file_error(&self) -> FileError {
+        FileError {
+            path: self.path.clone(),
+            place: self.line.map_or(Place::Whole, Place::Line),
+            problem: self.problem.to_string(),
+            help: self.problem.help().to_string(),
+        }
+    }
+}
+
+/// What is wrong with a command file.
+#[derive(Debug, thiserror::Error)]
+pub enum CommandFileProblem {
+    /// The file cannot be read.
+    #[error("cannot read the command file: {source}")]
+    Unreadable {
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// No header: the file is empty, or only comments.
+    #[error("the command file is empty")]
+    Empty,
+    /// The header does not start with `t`.
+    #[error("the header must start with `t`, got `{header}`")]
+    NoTime {
+        /// The header line.
+        header: String,
+    },
+    /// A column that is neither `tauJ` nor `deltaJ`.
+    #[error("unknown column `{name}`")]
+    UnknownColumn {
+        /// The column's name.
+        name: String,
+    },
+    /// A column of a wheel the rover does not have.
+    #[error("column `{name}`: the rover has wheels 1 to {wheels}")]
+    NoSuchWheel {
+        /// The column's name.
+        name: String,
+        /// The rover's number of wheels.
+        wheels: usize,
+    },
+    /// A steering column of a wheel that does not steer.
+    #[error("column `{name}`: wheel {wheel} is not steerable")]
+    NotSteerable {
+        /// The column's name.
+        name: String,
+        /// The wheel, from 1.
+        wheel: usize,
+    },
+    /// A column given twice.
+    #[error("column `{name}` appears twice")]
+    Duplicate {
+        /// The column's name.
+        name: String,
+    },
+    /// A row whose number of values is not the header's.
+    #[error("{given} values, the header names {columns}")]
+    RowLength {
+        /// The values on the row.
+        given: usize,
+        /// The columns of the header, `t` included.
+        columns: usize,
+    },
+    /// A value that is not a finite number.
+    #[error("`{value}` is not a finite number")]
+    NotFinite {
+        /// The value as written.
+        value: String,
+    },
+    /// A row whose time does not come after the previous row's.
+    #[error("t = {t} s does not come after t = {previous} s")]
+    NotIncreasing {
+        /// The row's time \[s\].
+        t: f64,
+        /// The previous row's time \[s\].
+        previous: f64,
+    },
+    /// A header and no rows.
+    #[error("the command file has a header but no rows")]
+    NoRows,
+}
+
+impl CommandFileProblem {
+    /// How to fix it.
+    pub fn help(&self) -> &'static str {
+        match self {
+            Self::Unreadable { .. } => "give `file` relative to the scenario file",
+            Self::Empty => "start with a header `t,tau1,…` and one row per instant",
+            Self::NoTime { .. } => "a header like `t,tau1,tau2,delta1` names the columns",
+            Self::UnknownColumn { .. } => {
+                "columns after `t` are `tauJ` (N·m) or `deltaJ` (rad), J the wheel from 1"
+            }
+            Self::NoSuchWheel { .. } => "number the wheels from 1 in the description's order",
+            Self::NotSteerable { .. } => {
+                "steer only wheels with `steerable = true` in the description"
+            }
+            Self::Duplicate { .. } => "give each command once",
+            Self::RowLength { .. } => "give t and one value per column on every row",
+            Self::NotFinite { .. } => "values are plain decimal numbers (SI units: s, N·m, rad)",
+            Self::NotIncreasing { .. } => "rows are in order of strictly increasing time",
+            Self::NoRows => "add one row per instant after the header",
+        }
+    }
 }
 
 impl CommandSchedule {
     /// Read and check `config.file` (relative to `base_dir`) for `model`.
-    pub fn load(config: &CommandsConfig, base_dir: &Path, model: &Model) -> Result<Self, String> {
+    pub fn load(
+        config: &CommandsConfig,
+        base_dir: &Path,
+        model: &Model,
+    ) -> Result<Self, CommandFileError> {
         let path = base_dir.join(&config.file);
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            located(
-                &path,
-                0,
-                format!("cannot read the command file: {e}"),
-                "give `file` relative to the scenario file",
-            )
+        let text = std::fs::read_to_string(&path).map_err(|source| {
+            CommandFileError::new(&path, None, CommandFileProblem::Unreadable { source })
         })?;
         Self::parse(&text, &path, model, config.interpolation)
     }
@@ -95,7 +208,9 @@ impl CommandSchedule {
         path: &Path,
         model: &Model,
         interpolation: Interpolation,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, CommandFileError> {
+        use CommandFileProblem as P;
+        let error = |line: usize, problem: P| CommandFileError::new(path, Some(line), problem);
         let wheels = model.wheels.len();
         let mut lines = text
             .lines()
@@ -103,21 +218,12 @@ impl CommandSchedule {
             .map(|(k, l)| (k + 1, l.trim()))
             .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
         let Some((header_line, header)) = lines.next() else {
-            return Err(located(
-                path,
-                0,
-                "the command file is empty",
-                "start with a header `t,tau1,…` and one row per instant",
-            ));
+            return Err(CommandFileError::new(path, None, P::Empty));
         };
         let mut names = header.split(',').map(str::trim);
         if names.next() != Some("t") {
-            return Err(located(
-                path,
-                header_line,
-                format!("the header must start with `t`, got `{header}`"),
-                "a header like `t,tau1,tau2,delta1` names the columns",
-            ));
+            let header = header.to_string();
+            return Err(error(header_line, P::NoTime { header }));
         }
         let mut columns = Vec::new();
         for name in names {
@@ -126,39 +232,24 @@ impl CommandSchedule {
             } else if let Some(n) = name.strip_prefix("delta") {
                 (Channel::Steering, n)
             } else {
-                return Err(located(
-                    path,
-                    header_line,
-                    format!("unknown column `{name}`"),
-                    "columns after `t` are `tauJ` (N·m) or `deltaJ` (rad), J the wheel from 1",
-                ));
+                let name = name.to_string();
+                return Err(error(header_line, P::UnknownColumn { name }));
             };
             let wheel = match number.parse::<usize>() {
                 Ok(j) if (1..=wheels).contains(&j) => j - 1,
                 _ => {
-                    return Err(located(
-                        path,
-                        header_line,
-                        format!("column `{name}`: the rover has wheels 1 to {wheels}"),
-                        "number the wheels from 1 in the description's order",
-                    ));
+                    let name = name.to_string();
+                    return Err(error(header_line, P::NoSuchWheel { name, wheels }));
                 }
             };
             if channel == Channel::Steering && !model.wheels[wheel].steerable {
-                return Err(located(
-                    path,
-                    header_line,
-                    format!("column `{name}`: wheel {} is not steerable", wheel + 1),
-                    "steer only wheels with `steerable = true` in the description",
-                ));
+                let name = name.to_string();
+                let wheel = wheel + 1;
+                return Err(error(header_line, P::NotSteerable { name, wheel }));
             }
             if columns.contains(&(channel, wheel)) {
-                return Err(located(
-                    path,
-                    header_line,
-                    format!("column `{name}` appears twice"),
-                    "give each command once",
-                ));
+                let name = name.to_string();
+                return Err(error(header_line, P::Duplicate { name }));
             }
             columns.push((channel, wheel));
         }
@@ -166,51 +257,30 @@ impl CommandSchedule {
         for (number, line) in lines {
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
             if fields.len() != columns.len() + 1 {
-                return Err(located(
-                    path,
-                    number,
-                    format!(
-                        "{} values, the header names {}",
-                        fields.len(),
-                        columns.len() + 1
-                    ),
-                    "give t and one value per column on every row",
-                ));
+                let (given, columns) = (fields.len(), columns.len() + 1);
+                return Err(error(number, P::RowLength { given, columns }));
             }
             let mut row = Vec::with_capacity(fields.len());
             for field in &fields {
                 match field.parse::<f64>() {
                     Ok(v) if v.is_finite() => row.push(v),
                     _ => {
-                        return Err(located(
-                            path,
-                            number,
-                            format!("`{field}` is not a finite number"),
-                            "values are plain decimal numbers (SI units: s, N·m, rad)",
-                        ));
+                        let value = field.to_string();
+                        return Err(error(number, P::NotFinite { value }));
                     }
                 }
             }
-            if let Some(&last) = times.last()
-                && row[0] <= last
+            if let Some(&previous) = times.last()
+                && row[0] <= previous
             {
-                return Err(located(
-                    path,
-                    number,
-                    format!("t = {} s does not come after t = {last} s", row[0]),
-                    "rows are in order of strictly increasing time",
-                ));
+                let t = row[0];
+                return Err(error(number, P::NotIncreasing { t, previous }));
             }
             times.push(row[0]);
             values.extend_from_slice(&row[1..]);
         }
         if times.is_empty() {
-            return Err(located(
-                path,
-                header_line,
-                "the command file has a header but no rows",
-                "add one row per instant after the header",
-            ));
+            return Err(error(header_line, P::NoRows));
         }
         Ok(Self {
             interpolation,

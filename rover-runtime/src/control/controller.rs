@@ -5,6 +5,8 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 use serde::{Deserialize, Serialize};
 
+use crate::quasi_static::flat_ground_loads;
+
 use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
 use super::commands::{CommandSchedule, CommandsConfig};
 use super::law::{CurvatureCommand, SpeedLaw, SteeringLaw};
@@ -43,10 +45,10 @@ pub struct ControlError {
     pub message: String,
 }
 
-fn err(field: &str, message: impl Into<String>) -> ControlError {
+fn err(field: &str, message: impl std::fmt::Display) -> ControlError {
     ControlError {
         field: field.into(),
-        message: message.into(),
+        message: message.to_string(),
     }
 }
 
@@ -545,10 +547,14 @@ fn speed_law(s: SpeedConfig, model: &Model) -> Result<SpeedLaw, ControlError> {
         ));
     }
     SpeedLaw::new(s.speed, s.kp, s.ki, s.distribution, || {
-        crate::quasi_static::flat_ground_loads(model)
-            .map_err(|e| format!("cannot find the static loads: {e}"))
+        flat_ground_loads(model)
     })
-    .map_err(|m| err("speed.distribution", m))
+    .map_err(|e| {
+        err(
+            "speed.distribution",
+            format!("cannot find the static loads: {e}"),
+        )
+    })
 }
 
 /// The steering, checked and settled: degrees become radians, an Ackermann

@@ -30,14 +30,14 @@ pub(crate) enum Shares {
 
 impl SpeedLaw {
     /// The settled loop of `distribution`, with the static loads when it
-    /// needs them.
-    pub(crate) fn new(
+    /// needs them (`static_loads`' error when they cannot be found).
+    pub(crate) fn new<E>(
         speed: Profile,
         kp: f64,
         ki: f64,
         distribution: Distribution,
-        static_loads: impl FnOnce() -> Result<Vec<f64>, String>,
-    ) -> Result<Self, String> {
+        static_loads: impl FnOnce() -> Result<Vec<f64>, E>,
+    ) -> Result<Self, E> {
         let shares = match distribution {
             Distribution::Even => Shares::Even,
             Distribution::MeasuredLoad => Shares::MeasuredLoad,

@@ -14,13 +14,13 @@ mod speed;
 mod steering;
 
 pub use active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
-pub use commands::{CommandSchedule, CommandsConfig};
+pub use commands::{CommandFileError, CommandFileProblem, CommandSchedule, CommandsConfig};
 pub use controller::{
     ControlError, Controller, ControllerConfig, HEADING_INTEGRAL, LINE_INTEGRAL, SPEED_INTEGRAL,
     heading_centre_x,
 };
 pub use distribution::{Distribution, add_share};
-pub use profile::Profile;
+pub use profile::{Profile, ProfileError};
 pub use speed::SpeedConfig;
 pub use steering::{
     Ackermann, HeadingActuator, HeadingHold, HeadingIntegrals, LEG_CHECK_PERIOD, LINE_INTEGRAL_CAP,

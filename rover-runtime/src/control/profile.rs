@@ -34,6 +34,37 @@ pub enum Interpolation {
     Linear,
 }
 
+/// A set-point that cannot be used: what is wrong, with its numbers.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum ProfileError {
+    /// A constant that is not a finite number.
+    #[error("value {0} is not a finite number")]
+    NotFinite(f64),
+    /// A table without points.
+    #[error("the table has no points; give at least one [t, value]")]
+    Empty,
+    /// A point whose time or value is not finite.
+    #[error("point {point} = [{t}, {value}] is not finite")]
+    PointNotFinite {
+        /// The point, from 1.
+        point: usize,
+        /// Its time \[s\].
+        t: f64,
+        /// Its value.
+        value: f64,
+    },
+    /// A point whose time does not come after the previous point's.
+    #[error("times must increase: point {point} has t = {t} s after t = {previous} s")]
+    NotIncreasing {
+        /// The point, from 1.
+        point: usize,
+        /// Its time \[s\].
+        t: f64,
+        /// The previous point's time \[s\].
+        previous: f64,
+    },
+}
+
 impl Default for Profile {
     fn default() -> Self {
         Profile::Constant(0.0)
@@ -97,34 +128,30 @@ impl Profile {
         }
     }
 
-    /// Check the table: finite numbers, times strictly increasing. Returns a
-    /// message saying what to fix.
-    pub fn validate(&self) -> Result<(), String> {
+    /// Check the table: finite numbers, times strictly increasing. The
+    /// error says what to fix.
+    pub fn validate(&self) -> Result<(), ProfileError> {
         match self {
-            Profile::Constant(v) if !v.is_finite() => {
-                Err(format!("value {v} is not a finite number"))
-            }
+            Profile::Constant(v) if !v.is_finite() => Err(ProfileError::NotFinite(*v)),
             Profile::Constant(_) => Ok(()),
             Profile::Table { points, .. } => {
                 if points.is_empty() {
-                    return Err("the table has no points; give at least one [t, value]".into());
+                    return Err(ProfileError::Empty);
                 }
                 for (i, p) in points.iter().enumerate() {
                     if !p[0].is_finite() || !p[1].is_finite() {
-                        return Err(format!(
-                            "point {} = [{}, {}] is not finite",
-                            i + 1,
-                            p[0],
-                            p[1]
-                        ));
+                        return Err(ProfileError::PointNotFinite {
+                            point: i + 1,
+                            t: p[0],
+                            value: p[1],
+                        });
                     }
                     if i > 0 && p[0] <= points[i - 1][0] {
-                        return Err(format!(
-                            "times must increase: point {} has t = {} s after t = {} s",
-                            i + 1,
-                            p[0],
-                            points[i - 1][0]
-                        ));
+                        return Err(ProfileError::NotIncreasing {
+                            point: i + 1,
+                            t: p[0],
+                            previous: points[i - 1][0],
+                        });
                     }
                 }
                 Ok(())

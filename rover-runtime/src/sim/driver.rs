@@ -5,9 +5,9 @@
 //! `rover drive` all advance through it, so the three take the same events
 //! in the same order and stop for the same reasons.
 
+use rover_dynamics::HeightField;
 use rover_dynamics::plant::Plant;
 use rover_integrate::Integrator;
-use rover_terrain::HeightField;
 
 use crate::control::Controller;
 

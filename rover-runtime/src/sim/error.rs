@@ -1,8 +1,7 @@
 //! Why a right-hand side or a run failed.
 
 use rover_dynamics::plant::PlantError;
-
-use crate::ground::WheelOffMap;
+use rover_dynamics::wheel_ground::WheelOffMap;
 
 /// A right-hand-side evaluation failed.
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]

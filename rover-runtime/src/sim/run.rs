@@ -3,10 +3,10 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use rover_dynamics::HeightField;
 use rover_dynamics::plant::Plant;
 
 use rover_integrate::{Integrator, OdeSystem};
-use rover_terrain::HeightField;
 
 use super::driver::{Driver, RunOptions};
 use super::error::RunError;

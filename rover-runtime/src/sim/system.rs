@@ -2,13 +2,14 @@
 //! (ζ: the controller's integral states, [`Controller::states`]: the speed
 //! loop's, then a heading hold's when it integrates).
 
+use rover_dynamics::HeightField;
 use rover_dynamics::kinematics::position_rates;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
+use rover_dynamics::wheel_ground::WheelReport;
 
 use crate::control::Controller;
-use crate::ground::{Ground, WheelReport};
+use crate::ground::Ground;
 use rover_integrate::OdeSystem;
-use rover_terrain::HeightField;
 
 use super::error::{CommandError, SimError};
 use super::profile::{Lap, RhsProfile};

@@ -1,9 +1,7 @@
 //! The paper's wheel law (MODEL.md §7, eq. 36–41).
 
-use rover_dynamics::wheel_law::Lateral;
+use rover_dynamics::wheel_law::{Lateral, WheelLaw};
 use serde::{Deserialize, Serialize};
-
-use super::law::WheelLaw;
 
 /// Chen & Genta's law: spring–damper normal force, torque-limited drawbar
 /// pull, exponential cornering force, elliptic combined slip

@@ -3,10 +3,8 @@
 //! over the scalar, so that a run evaluates them and an implicit integrator
 //! differentiates them from one copy.
 
-use rover_dynamics::wheel_law::Lateral;
+use rover_dynamics::wheel_law::{Lateral, WheelLaw};
 use serde::{Deserialize, Serialize};
-
-pub use rover_dynamics::wheel_law::{PatchForces, PatchMotion, Tyre, WheelLaw};
 
 use super::{ChenGenta, MagicFormula};
 

@@ -1,9 +1,7 @@
 //! Pacejka's magic formula for the lateral force, as a second law (MODEL.md §7).
 
-use rover_dynamics::wheel_law::Lateral;
+use rover_dynamics::wheel_law::{Lateral, WheelLaw};
 use serde::{Deserialize, Serialize};
-
-use super::law::WheelLaw;
 
 /// Normal and drive forces as in the paper; the lateral force by
 /// ```text

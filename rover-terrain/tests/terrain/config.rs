@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use rover_dynamics::height_field::*;
 use rover_terrain::*;
 
 use super::support::*;

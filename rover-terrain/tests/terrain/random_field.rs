@@ -1,5 +1,6 @@
 //! The seeded random field and its statistics.
 
+use rover_dynamics::height_field::*;
 use rover_terrain::*;
 
 use super::support::*;

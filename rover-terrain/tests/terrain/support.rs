@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rover_dynamics::height_field::*;
 use rover_terrain::*;
 
 /// A scratch file path under Cargo's per-target temporary directory.

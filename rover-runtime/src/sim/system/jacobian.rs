@@ -8,8 +8,8 @@
 //!   Jacobian ([`Plant::jacobian`]);
 //! - `∂L_j/∂(G_j, V_j, τ_j)`, each wheel's load against its centre, velocity
 //!   and torque: dual numbers through the run's own wheel law
-//!   ([`crate::ground::load_derivative`]), with the contact patches' frames
-//!   held;
+//!   ([`rover_dynamics::wheel_ground::load_derivative`]), with the contact
+//!   patches' frames held;
 //! - `∂V_j/∂w = J_j(x)`: exact, the wheel velocities being linear in `w`
 //!   (the plant's kinematics at unit `w`); `∂G_j/∂x = J_j·B⁻¹`, since
 //!   `Ġ_j = J_j·w` and `ẋ = B·w`;
@@ -27,13 +27,13 @@
 //! 2N + dim plant-sized calls and a few µs of per-wheel algebra, against `dim`
 //! right-hand sides for differences.
 
+use rover_dynamics::HeightField;
 use rover_dynamics::kinematics::position_rates;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
+use rover_dynamics::wheel_ground::LoadDerivative;
 
-use crate::ground::LoadDerivative;
 use crate::sim::SimError;
 use rover_integrate::Lu;
-use rover_terrain::HeightField;
 
 use super::RoverSystem;
 

@@ -11,8 +11,7 @@ use rover_runtime::GenericPlant;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
-
-use crate::support::hand_models::{exomars, swing4, swing4_rich};
+use rover_test_support::hand_models::{exomars, swing4, swing4_rich};
 
 struct Invariants {
     energy: f64,

@@ -10,19 +10,19 @@
 
 use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
+use rover_dynamics::contact::RimSampling;
+use rover_dynamics::height_field::Bounds;
 use rover_dynamics::wheel_ground::{ContactMethod, FixedGround, Search};
 use rover_dynamics::wheel_law::Tyre;
 use rover_integrate::OdeSystem;
 use rover_runtime::GenericPlant;
-use rover_runtime::contact::RimSampling;
 use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::ground::{Ground, touchdown_heights};
 use rover_runtime::sim::RoverSystem;
-use rover_runtime::terrain::{Bounds, Grid, RandomField};
+use rover_runtime::terrain::{Grid, RandomField};
 use rover_runtime::wheel_law::WheelLawConfig;
-
-use crate::support::rel;
-use crate::support::rng::Rng;
+use rover_test_support::rel;
+use rover_test_support::rng::Rng;
 
 const TOL: f64 = 1e-12;
 

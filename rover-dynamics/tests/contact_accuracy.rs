@@ -5,10 +5,10 @@
 //! forces to 1e-4 of the wheel's load; the 181-sample search, held against
 //! the same reference, shows what it misses.
 
-use rover_runtime::contact::{BoundedContact, Contact, MeridionalContact, RimSampling};
-use rover_runtime::terrain::{Bounds, HeightField, OffMap, Plane, Terrain, TerrainConfig};
-
-use crate::support::rng::Rng;
+use rover_dynamics::contact::{BoundedContact, Contact, MeridionalContact, RimSampling};
+use rover_dynamics::height_field::{Bounds, HeightField, OffMap, Plane};
+use rover_terrain::{Terrain, TerrainConfig};
+use rover_test_support::rng::Rng;
 
 /// A terrain seen through a probe that counts queries and can hide the
 /// plane (so that the reference samples a slope instead of cutting it in
@@ -211,7 +211,7 @@ fn the_bounded_search_finds_the_dense_reference_patches() {
 /// search finds, to the crossings' rounding, with fewer terrain queries.
 #[test]
 fn a_search_that_remembers_finds_what_a_fresh_search_finds() {
-    use rover_runtime::contact::SearchMemory;
+    use rover_dynamics::contact::SearchMemory;
     let search = BoundedContact::default();
     let mut rng = Rng::new(0x0de7_0c47);
     for (name, t, area) in terrains() {

@@ -1,12 +1,11 @@
 //! The model files against the paper, through an independent route: the
 //! parsed `exomars` and `swing4` give the same dynamics as the hand-built
-//! models of MODEL.md §10 (tests/support/hand_models.rs).
+//! models of MODEL.md §10 (`rover_test_support::hand_models`).
 
 use rover_dynamics::plant::{Plant, WheelLoad};
 use rover_runtime::GenericPlant;
-
-use crate::support::hand_models::{exomars, swing4};
-use crate::support::rng::Rng;
+use rover_test_support::hand_models::{exomars, swing4};
+use rover_test_support::rng::Rng;
 
 #[test]
 fn parsed_paper_rovers_have_the_hand_built_dynamics() {

@@ -12,10 +12,10 @@ use rover_dynamics::mass::{mass_matrix, mass_matrix_derivative};
 use rover_dynamics::plant::{Plant, WheelLoad};
 use rover_dynamics::workspace::Workspace;
 use rover_runtime::GenericPlant;
+use rover_test_support::hand_models::{exomars, swing4, swing4_rich};
+use rover_test_support::rng::Rng;
 
-use crate::support::hand_models::{exomars, swing4, swing4_rich};
-use crate::support::lagrange;
-use crate::support::rng::Rng;
+use crate::lagrange;
 
 fn models() -> Vec<(&'static str, Model)> {
     vec![
