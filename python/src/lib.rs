@@ -137,9 +137,18 @@ fn prepare(
     }
 }
 
-/// A whole run, as `rover simulate` runs it: (column names, the rows as
+/// A whole run as it crosses to Python: (column names, the rows as
 /// native-endian f64 bytes, row count, the summary as JSON, the columns'
 /// units).
+type WholeRun<'py> = (
+    Vec<String>,
+    Bound<'py, PyBytes>,
+    usize,
+    String,
+    Vec<&'static str>,
+);
+
+/// A whole run, as `rover simulate` runs it ([`WholeRun`]).
 #[pyfunction]
 #[pyo3(signature = (rover, text, origin, base, generic=false))]
 fn simulate<'py>(
@@ -149,13 +158,7 @@ fn simulate<'py>(
     origin: &str,
     base: &str,
     generic: bool,
-) -> PyResult<(
-    Vec<String>,
-    Bound<'py, PyBytes>,
-    usize,
-    String,
-    Vec<&'static str>,
-)> {
+) -> PyResult<WholeRun<'py>> {
     let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
     let run = py.detach(|| -> Result<(Vec<u8>, _), PrepareError> {
         let mut csv = Vec::new();
