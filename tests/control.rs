@@ -389,9 +389,9 @@ fn heading_hold_follows_a_path_of_waypoints() {
 /// A command that jumps (here the end of settling, on an output instant)
 /// under tight BDF tolerances: the step that ends on the jump takes the
 /// commands' left limit and the integrator restarts there, so the run goes
-/// through. It used to stop at t = 1 s with the step below its minimum
-/// (the implicit step evaluated the post-jump command at its end, an error
-/// estimate of jump × step that only a 1e-11 s step could pass).
+/// through. An implicit step that evaluated the post-jump command at its
+/// end would carry an error estimate of jump × step that only a 1e-11 s
+/// step could pass, and stop at t = 1 s with the step below its minimum.
 #[test]
 fn a_command_jump_at_tight_tolerances_does_not_stall_the_integrator() {
     let r = run(

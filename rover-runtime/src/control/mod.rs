@@ -20,7 +20,7 @@ pub use controller::{
     heading_centre_x,
 };
 pub use distribution::{Distribution, add_share};
-pub use profile::{Profile, ProfileError};
+pub use profile::{Interpolation, Profile, ProfileError};
 pub use speed::SpeedConfig;
 pub use steering::{
     Ackermann, HeadingActuator, HeadingHold, HeadingIntegrals, LEG_CHECK_PERIOD, LINE_INTEGRAL_CAP,
