@@ -15,8 +15,6 @@
 
 mod generated;
 
-use rover_dynamics::plant::{Plant, PlantError, WheelLoad, WheelState};
-
 pub use generated::exomars::Exomars;
 pub use generated::lrv::Lrv;
 pub use generated::mer::Mer;
@@ -95,55 +93,14 @@ impl BuiltinPlant {
     }
 }
 
-macro_rules! dispatch {
-    ($self:ident, $p:ident => $e:expr) => {
-        match $self {
-            BuiltinPlant::Exomars($p) => $e,
-            BuiltinPlant::Swing4($p) => $e,
-            BuiltinPlant::Mer($p) => $e,
-            BuiltinPlant::Lrv($p) => $e,
-            BuiltinPlant::Swing4Simplified($p) => $e,
-            BuiltinPlant::Swing4Linearized($p) => $e,
-        }
-    };
-}
-
-impl Plant for BuiltinPlant {
-    fn dof(&self) -> usize {
-        dispatch!(self, p => p.dof())
-    }
-    fn wheel_count(&self) -> usize {
-        dispatch!(self, p => p.wheel_count())
-    }
-    fn wheels(&mut self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]) {
-        dispatch!(self, p => p.wheels(x, w, steer, out))
-    }
-    fn derivatives(
-        &mut self,
-        x: &[f64],
-        w: &[f64],
-        loads: &[WheelLoad],
-        xdot: &mut [f64],
-        wdot: &mut [f64],
-    ) -> Result<(), PlantError> {
-        dispatch!(self, p => p.derivatives(x, w, loads, xdot, wdot))
-    }
-    fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {
-        dispatch!(self, p => p.mass_matrix(x, out))
-    }
-    fn set_spring_neutral(&mut self, coord: usize, neutral: f64) {
-        dispatch!(self, p => p.set_spring_neutral(coord, neutral))
-    }
-    fn jacobian(
-        &mut self,
-        x: &[f64],
-        w: &[f64],
-        loads: &[WheelLoad],
-        jac: &mut [f64],
-    ) -> Option<()> {
-        dispatch!(self, p => p.jacobian(x, w, loads, jac))
-    }
-}
+rover_dynamics::forward_plant!(BuiltinPlant {
+    Exomars,
+    Swing4,
+    Mer,
+    Lrv,
+    Swing4Simplified,
+    Swing4Linearized,
+});
 
 /// The path of a built-in rover's file, relative to the workspace root
 /// (for messages).

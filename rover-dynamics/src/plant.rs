@@ -109,6 +109,62 @@ pub trait Plant {
     }
 }
 
+/// Implements [`Plant`] for an enum each of whose variants holds one plant:
+/// every call is forwarded to the plant in hand with a `match` (no
+/// allocation, no virtual call). The built-in rovers' `BuiltinPlant` and a
+/// run's `RunPlant` (generated or generic) are such enums.
+///
+/// ```ignore
+/// rover_dynamics::forward_plant!(MyPlants { A, B });
+/// ```
+#[macro_export]
+macro_rules! forward_plant {
+    ($ty:ty { $($variant:ident),+ $(,)? }) => {
+        impl $crate::plant::Plant for $ty {
+            fn dof(&self) -> usize {
+                match self { $(Self::$variant(p) => p.dof()),+ }
+            }
+            fn wheel_count(&self) -> usize {
+                match self { $(Self::$variant(p) => p.wheel_count()),+ }
+            }
+            fn wheels(
+                &mut self,
+                x: &[f64],
+                w: &[f64],
+                steer: &[f64],
+                out: &mut [$crate::plant::WheelState],
+            ) {
+                match self { $(Self::$variant(p) => p.wheels(x, w, steer, out)),+ }
+            }
+            fn derivatives(
+                &mut self,
+                x: &[f64],
+                w: &[f64],
+                loads: &[$crate::plant::WheelLoad],
+                xdot: &mut [f64],
+                wdot: &mut [f64],
+            ) -> Result<(), $crate::plant::PlantError> {
+                match self { $(Self::$variant(p) => p.derivatives(x, w, loads, xdot, wdot)),+ }
+            }
+            fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {
+                match self { $(Self::$variant(p) => p.mass_matrix(x, out)),+ }
+            }
+            fn set_spring_neutral(&mut self, coord: usize, neutral: f64) {
+                match self { $(Self::$variant(p) => p.set_spring_neutral(coord, neutral)),+ }
+            }
+            fn jacobian(
+                &mut self,
+                x: &[f64],
+                w: &[f64],
+                loads: &[$crate::plant::WheelLoad],
+                jac: &mut [f64],
+            ) -> Option<()> {
+                match self { $(Self::$variant(p) => p.jacobian(x, w, loads, jac)),+ }
+            }
+        }
+    };
+}
+
 /// A plant whose sizes are known at compile time: `N` generalized
 /// coordinates (6 + m) and `W` wheels. Generated plants implement it on
 /// nalgebra's fixed-size types, so a caller gets stack-allocated vectors

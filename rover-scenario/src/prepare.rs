@@ -26,7 +26,6 @@ use std::sync::atomic::AtomicBool;
 
 use rover_dynamics::Model;
 use rover_dynamics::fidelity::Fidelity;
-use rover_dynamics::plant::{Plant, PlantError, WheelLoad, WheelState};
 use rover_models::BuiltinPlant;
 use rover_runtime::GenericPlant;
 use rover_runtime::generic_plant::TooLarge;
@@ -188,51 +187,7 @@ impl RunPlant {
     }
 }
 
-macro_rules! dispatch {
-    ($self:ident, $p:ident => $e:expr) => {
-        match $self {
-            RunPlant::Generated($p) => $e,
-            RunPlant::Generic($p) => $e,
-        }
-    };
-}
-
-impl Plant for RunPlant {
-    fn dof(&self) -> usize {
-        dispatch!(self, p => p.dof())
-    }
-    fn wheel_count(&self) -> usize {
-        dispatch!(self, p => p.wheel_count())
-    }
-    fn wheels(&mut self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]) {
-        dispatch!(self, p => p.wheels(x, w, steer, out))
-    }
-    fn derivatives(
-        &mut self,
-        x: &[f64],
-        w: &[f64],
-        loads: &[WheelLoad],
-        xdot: &mut [f64],
-        wdot: &mut [f64],
-    ) -> Result<(), PlantError> {
-        dispatch!(self, p => p.derivatives(x, w, loads, xdot, wdot))
-    }
-    fn mass_matrix(&mut self, x: &[f64], out: &mut [f64]) {
-        dispatch!(self, p => p.mass_matrix(x, out))
-    }
-    fn set_spring_neutral(&mut self, coord: usize, neutral: f64) {
-        dispatch!(self, p => p.set_spring_neutral(coord, neutral))
-    }
-    fn jacobian(
-        &mut self,
-        x: &[f64],
-        w: &[f64],
-        loads: &[WheelLoad],
-        jac: &mut [f64],
-    ) -> Option<()> {
-        dispatch!(self, p => p.jacobian(x, w, loads, jac))
-    }
-}
+rover_dynamics::forward_plant!(RunPlant { Generated, Generic });
 
 /// A scenario read and its rover loaded: everything a run needs before it
 /// writes anything.
