@@ -63,6 +63,7 @@ pub fn derivative(graph: &mut Graph, outputs: &[Id], wrt: Id) -> Vec<Id> {
                 graph.div(dd(a), den)
             }
             Node::Exp(a) => graph.mul(id, dd(a)),
+            Node::Ln(a) => graph.div(dd(a), a),
             Node::Abs(a) => {
                 let s = graph.copysign(one, a);
                 graph.mul(s, dd(a))
@@ -121,5 +122,22 @@ mod tests {
         assert!((v[1] - xv.sin() / xv).abs() < 1e-15);
         // q = 1.17 < y: max picks y, whose x-derivative is 0.
         assert_eq!(v[2], 0.0);
+    }
+
+    #[test]
+    fn derivative_of_a_power_through_its_logarithm() {
+        // x^n as exp(n·ln x), the form a soil's pressure–sinkage law takes.
+        let mut g = Graph::new();
+        let x = g.input(0);
+        let l = g.ln(x);
+        let n = g.cst(0.79);
+        let nl = g.mul(n, l);
+        let p = g.exp(nl);
+        let dx = derivative(&mut g, &[p], x);
+        let xv = 0.37f64;
+        let v = g.eval(&[xv], &[p, dx[0]]);
+        assert!((v[0] - xv.powf(0.79)).abs() < 1e-15, "{}", v[0]);
+        let expect = 0.79 * xv.powf(-0.21);
+        assert!((v[1] - expect).abs() < 1e-14, "{} vs {expect}", v[1]);
     }
 }

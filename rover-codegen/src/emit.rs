@@ -177,6 +177,7 @@ pub fn function(node: Node, arg: impl Fn(Id) -> String, libm: &str) -> Option<St
         Node::Cos(a) => libm_call("cos", &[a]),
         Node::Sqrt(a) => libm_call("sqrt", &[a]),
         Node::Exp(a) => libm_call("exp", &[a]),
+        Node::Ln(a) => libm_call("log", &[a]),
         Node::Atan2(a, b) => libm_call("atan2", &[a, b]),
         Node::Abs(a) => core_call("abs", &[a]),
         Node::Max(a, b) => core_call("max", &[a, b]),

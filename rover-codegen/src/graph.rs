@@ -41,6 +41,8 @@ pub enum Node {
     Atan2(Id, Id),
     /// exp a.
     Exp(Id),
+    /// ln a.
+    Ln(Id),
     /// |a|.
     Abs(Id),
     /// max(a, b).
@@ -63,6 +65,7 @@ impl Node {
             | Node::Cos(a)
             | Node::Sqrt(a)
             | Node::Exp(a)
+            | Node::Ln(a)
             | Node::Abs(a) => (Some(a), None),
             Node::Add(a, b)
             | Node::Mul(a, b)
@@ -284,6 +287,10 @@ impl Graph {
     pub fn exp(&mut self, a: Id) -> Id {
         self.unary(a, libm::exp, Node::Exp)
     }
+    /// ln a.
+    pub fn ln(&mut self, a: Id) -> Id {
+        self.unary(a, libm::log, Node::Ln)
+    }
     /// |a|.
     pub fn abs(&mut self, a: Id) -> Id {
         self.unary(a, libm::fabs, Node::Abs)
@@ -333,6 +340,7 @@ impl Graph {
                 Node::Cos(a) => libm::cos(g(a)),
                 Node::Sqrt(a) => libm::sqrt(g(a)),
                 Node::Exp(a) => libm::exp(g(a)),
+                Node::Ln(a) => libm::log(g(a)),
                 Node::Abs(a) => libm::fabs(g(a)),
                 Node::Atan2(a, b) => libm::atan2(g(a), g(b)),
                 Node::Max(a, b) => libm::fmax(g(a), g(b)),

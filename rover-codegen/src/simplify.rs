@@ -134,6 +134,7 @@ impl Rebuild<'_> {
                 Node::Cos(_) => g.cos(a()),
                 Node::Sqrt(_) => g.sqrt(a()),
                 Node::Exp(_) => g.exp(a()),
+                Node::Ln(_) => g.ln(a()),
                 Node::Abs(_) => g.abs(a()),
                 Node::Atan2(..) => g.atan2(a(), b()),
                 Node::Max(..) => g.max(a(), b()),

@@ -108,6 +108,9 @@ impl Scalar for Sym {
     fn exp(self) -> Self {
         Sym(with(|g| g.exp(self.0)))
     }
+    fn ln(self) -> Self {
+        Sym(with(|g| g.ln(self.0)))
+    }
     fn abs(self) -> Self {
         Sym(with(|g| g.abs(self.0)))
     }

@@ -152,6 +152,12 @@ impl<T: Scalar + PartialOrd> Scalar for Dual<T> {
             eps: self.eps * e,
         }
     }
+    fn ln(self) -> Self {
+        Self {
+            re: self.re.ln(),
+            eps: self.eps / self.re,
+        }
+    }
     fn abs(self) -> Self {
         pick(self.re >= T::zero(), self, -self)
     }

@@ -45,6 +45,8 @@ pub trait Scalar:
     fn atan2(self, x: Self) -> Self;
     /// Exponential.
     fn exp(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
     /// Absolute value.
     fn abs(self) -> Self;
     /// Larger of two values.
@@ -65,6 +67,12 @@ pub trait Scalar:
     /// (f64's avoids overflow and rounds once).
     fn hypot(self, other: Self) -> Self {
         (self * self + other * other).sqrt()
+    }
+    /// `self` to the power `e`, a constant, as `exp(e·ln self)` for
+    /// `self > 0` (a soil's pressure–sinkage exponent): one form that the
+    /// generator traces and differentiates like the rest.
+    fn powf(self, e: f64) -> Self {
+        (Self::cst(e) * self.ln()).exp()
     }
 }
 
@@ -92,6 +100,10 @@ impl Scalar for f64 {
     #[inline(always)]
     fn exp(self) -> Self {
         libm::exp(self)
+    }
+    #[inline(always)]
+    fn ln(self) -> Self {
+        libm::log(self)
     }
     #[inline(always)]
     fn abs(self) -> Self {
