@@ -46,6 +46,7 @@ pub mod linalg;
 #[cfg(feature = "plant")]
 pub mod plant;
 pub mod scalar;
+pub mod soil;
 #[cfg(feature = "plant")]
 pub mod wheel_ground;
 pub mod wheel_law;

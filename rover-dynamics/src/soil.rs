@@ -1,0 +1,576 @@
+//! A rigid wheel on deformable soil (terramechanics), written once, generic
+//! over the scalar, like the rigid-ground law: runs evaluate it with `f64`,
+//! the generator traces it, dual numbers differentiate it.
+//!
+//! The stresses along the contact arc, from the entry angle θ1 (where the
+//! wheel meets undisturbed soil, the sinkage being `z = r·(1 − cos θ1)`) back
+//! to the exit angle θ2 = −c_r·θ1 (docs/MODEL.md, "Soft soil"):
+//!
+//! - normal stress (Bekker's pressure–sinkage law with the Wong–Reece
+//!   distribution, its maximum at θm = (a0 + a1·s)·θ1):
+//!   `σ(θ) = (k_c/b + k_φ)·rⁿ·(cos θ* − cos θ1)ⁿ`, with θ* = θ in front of
+//!   θm and `θ* = θ1 − (θ − θ2)/(θm − θ2)·(θ1 − θm)` behind it;
+//! - shear stress (Mohr–Coulomb with Janosi–Hanamoto's shear
+//!   displacement): `τ = (c + σ·tan φ)·(1 − exp(−|j|/K))` with the sign of
+//!   `j(θ) = r·[(θ1 − θ) − ρ·(sin θ1 − sin θ)]`, ρ = v/(r·ω);
+//! - lateral shear under a slip angle β (Ishigami et al., J. Field Robotics
+//!   24(3), 2007): `τ_y = (c + σ·tan φ)·(1 − exp(−|j_y|/K_y))` with the
+//!   sign of `j_y = r·ρ·(θ1 − θ)·tan β`;
+//!
+//! and their resultants on a wheel of radius r and width b: the vertical
+//! load `W = r·b·∫(σ cos θ + τ sin θ)dθ`, the drawbar pull
+//! `DP = r·b·∫(τ cos θ − σ sin θ)dθ`, the driving torque `T = r²·b·∫τ dθ`
+//! and the lateral force `F_y = r·b·∫τ_y dθ`.
+//!
+//! Slip is `s = 1 − v/(r·ω)` when driving (r·ω ≥ v, s in [0, 1)) and
+//! `s = r·ω/v − 1` when braking (s in (−1, 0]); so ρ = 1 − s driving and
+//! 1/(1 + s) braking, one expression here: `ρ = (1 − max(s, 0))/(1 + min(s, 0))`.
+//!
+//! The integrals are taken by Gauss–Legendre quadrature on the arc's two
+//! pieces, [θ2, θm] and [θm, θ1], whose ends are where the stresses have a
+//! kink or a power-law edge: the nodes never sit on either, so `ln` never
+//! sees zero.
+
+use crate::scalar::Scalar;
+
+/// A soil's terramechanics parameters, SI units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Soil {
+    /// Pressure–sinkage exponent n.
+    pub n: f64,
+    /// Cohesive modulus k_c [N/m^(n+1)].
+    pub k_c: f64,
+    /// Frictional modulus k_φ [N/m^(n+2)].
+    pub k_phi: f64,
+    /// Cohesion c \[Pa\].
+    pub cohesion: f64,
+    /// Internal friction angle φ \[rad\].
+    pub friction_angle: f64,
+    /// Janosi–Hanamoto shear modulus K \[m\].
+    pub shear_modulus: f64,
+    /// Lateral shear modulus K_y \[m\].
+    pub lateral_shear_modulus: f64,
+    /// Wong–Reece a0: θm = (a0 + a1·s)·θ1.
+    pub a0: f64,
+    /// Wong–Reece a1.
+    pub a1: f64,
+    /// Rear ratio c_r: the exit angle is θ2 = −c_r·θ1 (0: the soil does
+    /// not rebound behind the wheel).
+    pub rear_ratio: f64,
+}
+
+/// Gauss–Legendre quadrature of `Q` points on [−1, 1]: nodes and weights,
+/// computed once (Newton's iteration on the Legendre polynomial), without
+/// allocation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GaussLegendre<const Q: usize> {
+    /// Nodes, ascending, in (−1, 1).
+    pub nodes: [f64; Q],
+    /// Weights, summing to 2.
+    pub weights: [f64; Q],
+}
+
+impl<const Q: usize> Default for GaussLegendre<Q> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const Q: usize> GaussLegendre<Q> {
+    /// The rule, exact for polynomials of degree 2Q − 1.
+    pub fn new() -> Self {
+        let mut nodes = [0.0; Q];
+        let mut weights = [0.0; Q];
+        for i in 0..Q {
+            // Tricomi's initial guess for the i-th root, from the right.
+            let k = (i + 1) as f64;
+            let q = Q as f64;
+            let mut x = libm::cos(core::f64::consts::PI * (k - 0.25) / (q + 0.5));
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                let (p, d) = legendre(Q, x);
+                dp = d;
+                let dx = p / d;
+                x -= dx;
+                if dx.abs() < 1e-16 {
+                    break;
+                }
+            }
+            let (_, d) = legendre(Q, x);
+            dp = if d != 0.0 { d } else { dp };
+            nodes[Q - 1 - i] = x;
+            weights[Q - 1 - i] = 2.0 / ((1.0 - x * x) * dp * dp);
+        }
+        Self { nodes, weights }
+    }
+}
+
+/// P_q(x) and its derivative, by the three-term recurrence.
+fn legendre(q: usize, x: f64) -> (f64, f64) {
+    let (mut p0, mut p1) = (1.0, x);
+    for k in 2..=q {
+        let k = k as f64;
+        let p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+    }
+    if q == 0 {
+        return (1.0, 0.0);
+    }
+    let d = q as f64 * (x * p1 - p0) / (x * x - 1.0);
+    (p1, d)
+}
+
+/// A rigid wheel's state in the soil.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SoilContact<S = f64> {
+    /// Entry angle θ1 \[rad\], in [0, π/2]: the sinkage is r·(1 − cos θ1).
+    pub entry_angle: S,
+    /// Slip s, in (−1, 1): positive driving, negative braking.
+    pub slip: S,
+    /// Slip angle β \[rad\] between the wheel's heading and its velocity.
+    pub slip_angle: S,
+}
+
+/// The soil's forces on the wheel, in the wheel's frame: vertical (up),
+/// along its heading, across it, and the torque resisting its spin.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SoilForces<S = f64> {
+    /// Vertical load carried, W \[N\].
+    pub vertical: S,
+    /// Drawbar pull DP along the heading \[N\].
+    pub drawbar: S,
+    /// Torque the soil's shear takes from the wheel, T [N·m].
+    pub torque: S,
+    /// Lateral force F_y, along the wheel's axle (positive towards the
+    /// side the slip angle points to) \[N\].
+    pub lateral: S,
+}
+
+/// The forces of `soil` on a rigid wheel of `radius` and `width` in the
+/// state `contact`, by the quadrature `rule` on each piece of the arc.
+/// Allocates nothing; generic over the scalar (the generator traces it).
+pub fn soil_forces<S: Scalar, const Q: usize>(
+    soil: &Soil,
+    radius: f64,
+    width: f64,
+    contact: SoilContact<S>,
+    rule: &GaussLegendre<Q>,
+) -> SoilForces<S> {
+    let r = S::cst(radius);
+    let theta1 = contact.entry_angle;
+    let s = contact.slip;
+    let zero = S::zero();
+    let one = S::one();
+    let theta2 = S::cst(-soil.rear_ratio) * theta1;
+    // θm between the ends.
+    let theta_m = (S::cst(soil.a0) + S::cst(soil.a1) * s) * theta1;
+    let theta_m = theta_m.min(theta1).max(theta2);
+    // The rear piece's map divides by its length, which may be zero (θm at
+    // θ2: Bekker's distribution, the stress peaking at the exit).
+    let rear = (theta_m - theta2).max(S::cst(1e-300));
+    let rho = (one - s.max(zero)) / (one + s.min(zero));
+    let k = S::cst((soil.k_c / width + soil.k_phi) * libm::pow(radius, soil.n));
+    let tan_phi = S::cst(libm::tan(soil.friction_angle));
+    let cohesion = S::cst(soil.cohesion);
+    let inv_k = S::cst(1.0 / soil.shear_modulus);
+    let inv_ky = S::cst(1.0 / soil.lateral_shear_modulus);
+    let (sin1, cos1) = (theta1.sin(), theta1.cos());
+    let tan_beta = contact.slip_angle.sin() / contact.slip_angle.cos();
+    // A power of zero (no contact) is taken of a tiny positive number.
+    let tiny = S::cst(1e-300);
+    let mut out = SoilForces {
+        vertical: zero,
+        drawbar: zero,
+        torque: zero,
+        lateral: zero,
+    };
+    // The front piece [θm, θ1] (θ* = θ), then the rear one [θ2, θm].
+    for front in [true, false] {
+        let (lo, hi) = if front {
+            (theta_m, theta1)
+        } else {
+            (theta2, theta_m)
+        };
+        let half = S::cst(0.5) * (hi - lo);
+        let mid = S::cst(0.5) * (hi + lo);
+        for (x, w) in rule.nodes.iter().zip(&rule.weights) {
+            let theta = mid + half * S::cst(*x);
+            let theta_star = if front {
+                theta
+            } else {
+                theta1 - (theta - theta2) / rear * (theta1 - theta_m)
+            };
+            let base = (theta_star.cos() - cos1).max(tiny);
+            let sigma = k * base.powf(soil.n);
+            let (sin, cos) = (theta.sin(), theta.cos());
+            let strength = cohesion + sigma * tan_phi;
+            let j = r * ((theta1 - theta) - rho * (sin1 - sin));
+            let tau = (strength * (one - (-(j.abs() * inv_k)).exp())).copysign(j);
+            let jy = r * rho * (theta1 - theta) * tan_beta;
+            let tau_y = (strength * (one - (-(jy.abs() * inv_ky)).exp())).copysign(jy);
+            let wq = S::cst(*w) * half;
+            out.vertical += wq * (sigma * cos + tau * sin);
+            out.drawbar += wq * (tau * cos - sigma * sin);
+            out.torque += wq * tau;
+            out.lateral += wq * tau_y;
+        }
+    }
+    let rb = r * S::cst(width);
+    out.vertical *= rb;
+    out.drawbar *= rb;
+    out.torque *= rb * r;
+    out.lateral *= rb;
+    out
+}
+
+/// A load that the soil cannot carry under the wheel: even sunk to its
+/// axle (θ1 = π/2, sinkage = r), the soil's vertical force is smaller.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SinksPastAxle {
+    /// The load asked for \[N\].
+    pub load: f64,
+    /// The most the soil carries under this wheel at this slip \[N\].
+    pub most: f64,
+}
+
+impl core::fmt::Display for SinksPastAxle {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "the soil carries at most {:.4} N under this wheel (sunk to its axle), less than the load {} N: give a smaller load, or a wider or larger wheel",
+            self.most, self.load
+        )
+    }
+}
+
+impl core::error::Error for SinksPastAxle {}
+
+/// The steady state of a rigid wheel carrying `load` at `slip` and
+/// `slip_angle` (a single-wheel testbed's run): the entry angle at which
+/// the soil's vertical force equals the load (bisection to rounding: the
+/// vertical force grows with the entry angle), and the forces there.
+pub fn steady_state<const Q: usize>(
+    soil: &Soil,
+    radius: f64,
+    width: f64,
+    load: f64,
+    slip: f64,
+    slip_angle: f64,
+    rule: &GaussLegendre<Q>,
+) -> Result<(f64, SoilForces), SinksPastAxle> {
+    let forces = |entry_angle: f64| {
+        let contact = SoilContact {
+            entry_angle,
+            slip,
+            slip_angle,
+        };
+        soil_forces(soil, radius, width, contact, rule)
+    };
+    let (mut lo, mut hi) = (0.0, core::f64::consts::FRAC_PI_2);
+    let most = forces(hi).vertical;
+    if !(most >= load) {
+        return Err(SinksPastAxle { load, most });
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if forces(mid).vertical < load {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok((hi, forces(hi)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_legendre_integrates_polynomials_to_its_degree() {
+        let rule = GaussLegendre::<8>::new();
+        assert!((rule.weights.iter().sum::<f64>() - 2.0).abs() < 1e-14);
+        for p in 0..16 {
+            let got: f64 = rule
+                .nodes
+                .iter()
+                .zip(&rule.weights)
+                .map(|(x, w)| w * libm::pow(*x, p as f64))
+                .sum();
+            let exact = if p % 2 == 1 {
+                0.0
+            } else {
+                2.0 / (p as f64 + 1.0)
+            };
+            assert!((got - exact).abs() < 1e-14, "x^{p}: {got} vs {exact}");
+        }
+        assert!(rule.nodes.windows(2).all(|w| w[0] < w[1]));
+    }
+
+    /// LETE sand (Wong, Theory of Ground Vehicles, 4th ed., 2008), K = 1 cm.
+    fn lete() -> Soil {
+        Soil {
+            n: 0.79,
+            k_c: 102e3,
+            k_phi: 5301e3,
+            cohesion: 1.3e3,
+            friction_angle: 31.1f64.to_radians(),
+            shear_modulus: 0.01,
+            lateral_shear_modulus: 0.01,
+            a0: 0.4,
+            a1: 0.15,
+            rear_ratio: 0.0,
+        }
+    }
+
+    /// ∫_lo^hi cos(pθ + q) dθ and ∫ sin(pθ + q) dθ.
+    fn int_cos(p: f64, q: f64, lo: f64, hi: f64) -> f64 {
+        if p == 0.0 {
+            q.cos() * (hi - lo)
+        } else {
+            ((p * hi + q).sin() - (p * lo + q).sin()) / p
+        }
+    }
+    fn int_sin(p: f64, q: f64, lo: f64, hi: f64) -> f64 {
+        if p == 0.0 {
+            q.sin() * (hi - lo)
+        } else {
+            -((p * hi + q).cos() - (p * lo + q).cos()) / p
+        }
+    }
+
+    /// With n = 1 the normal stress on a piece is k·(cos(pθ + q) − cos θ1),
+    /// and with c = 0 and K → 0 the shear is σ·tan φ: W, DP and T are sums
+    /// of integrals of cosines and sines. (W, DP, T) / (r·b·k) on [lo, hi].
+    fn closed_piece(p: f64, q: f64, c1: f64, t: f64, lo: f64, hi: f64) -> [f64; 3] {
+        // ∫σ/k·cos θ, ∫σ/k·sin θ, ∫σ/k, by product-to-sum.
+        let s_cos = 0.5 * (int_cos(p - 1.0, q, lo, hi) + int_cos(p + 1.0, q, lo, hi))
+            - c1 * int_cos(1.0, 0.0, lo, hi);
+        let s_sin = 0.5 * (int_sin(p + 1.0, q, lo, hi) - int_sin(p - 1.0, q, lo, hi))
+            - c1 * int_sin(1.0, 0.0, lo, hi);
+        let s_one = int_cos(p, q, lo, hi) - c1 * (hi - lo);
+        [s_cos + t * s_sin, t * s_cos - s_sin, t * s_one]
+    }
+
+    #[test]
+    fn with_n_1_and_no_cohesion_the_forces_are_the_closed_forms() {
+        let soil = Soil {
+            n: 1.0,
+            cohesion: 0.0,
+            shear_modulus: 1e-12,
+            rear_ratio: 0.3,
+            ..lete()
+        };
+        let (r, b) = (0.25, 0.16);
+        let rule = GaussLegendre::<24>::new();
+        for (theta1, slip) in [(0.3, 0.2), (0.5, 0.6), (0.15, 0.05)] {
+            let got = soil_forces(
+                &soil,
+                r,
+                b,
+                SoilContact {
+                    entry_angle: theta1,
+                    slip,
+                    slip_angle: 0.0,
+                },
+                &rule,
+            );
+            let k = (soil.k_c / b + soil.k_phi) * r;
+            let t = soil.friction_angle.tan();
+            let theta2 = -soil.rear_ratio * theta1;
+            let theta_m = (soil.a0 + soil.a1 * slip) * theta1;
+            let c1 = theta1.cos();
+            // Front: θ* = θ; rear: θ* = θ1 − α(θ − θ2).
+            let alpha = (theta1 - theta_m) / (theta_m - theta2);
+            let front = closed_piece(1.0, 0.0, c1, t, theta_m, theta1);
+            let rear = closed_piece(-alpha, theta1 + alpha * theta2, c1, t, theta2, theta_m);
+            let scale = [r * b * k, r * b * k, r * r * b * k];
+            let want: [f64; 3] = core::array::from_fn(|i| scale[i] * (front[i] + rear[i]));
+            let got = [got.vertical, got.drawbar, got.torque];
+            for i in 0..3 {
+                assert!(
+                    (got[i] - want[i]).abs() < 1e-6 * want[0].abs(),
+                    "θ1 {theta1}, s {slip}: {i}: {} vs {}",
+                    got[i],
+                    want[i]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_drawbar_pull_rises_with_slip_and_the_sinkage_with_load() {
+        let (soil, r, b) = (lete(), 0.25, 0.16);
+        let rule = GaussLegendre::<32>::new();
+        let mut last = f64::NEG_INFINITY;
+        for k in 0..=18 {
+            let slip = -0.45 + 0.075 * k as f64;
+            let (_, f) = steady_state(&soil, r, b, 150.0, slip, 0.0, &rule).unwrap();
+            assert!((f.vertical - 150.0).abs() < 1e-9);
+            assert!(
+                f.drawbar > last,
+                "slip {slip}: DP {} after {last}",
+                f.drawbar
+            );
+            last = f.drawbar;
+        }
+        let mut last = 0.0;
+        for load in [20.0, 50.0, 100.0, 200.0, 400.0] {
+            let (theta1, _) = steady_state(&soil, r, b, load, 0.2, 0.0, &rule).unwrap();
+            let sinkage = r * (1.0 - theta1.cos());
+            assert!(sinkage > last, "{load} N: sinkage {sinkage} after {last}");
+            last = sinkage;
+        }
+    }
+
+    #[test]
+    fn a_wheel_at_rest_sinks_as_bekkers_formula_says() {
+        // Bekker's rigid wheel: the pressure k·zⁿ under each point, projected
+        // vertically, no shear (φ → 0, c = 0), the stress peaking at the
+        // exit (θm = θ2 = 0). For a shallow sinkage z0 the rim is a parabola
+        // and W = b·k·√(2r)·z0^(n+½)·G(n), G(n) = √π·Γ(n + 1)/(2·Γ(n + 3/2));
+        // Bekker's closed form takes G ≈ (3 − n)/3, exact at n = 1 (and 2.9 %
+        // off in z at n = 0.79). The rim's departure from the parabola is
+        // of order z/r.
+        let (r, b) = (0.25, 0.16);
+        let rule = GaussLegendre::<64>::new();
+        for n in [0.79, 1.0, 1.1] {
+            let soil = Soil {
+                n,
+                cohesion: 0.0,
+                friction_angle: 1e-9,
+                a0: 0.0,
+                a1: 0.0,
+                ..lete()
+            };
+            let k = soil.k_c / b + soil.k_phi;
+            let g = libm::sqrt(core::f64::consts::PI) * libm::tgamma(n + 1.0)
+                / (2.0 * libm::tgamma(n + 1.5));
+            for load in [2.0, 20.0, 80.0] {
+                let (theta1, _) = steady_state(&soil, r, b, load, 0.0, 0.0, &rule).unwrap();
+                let z = r * (1.0 - theta1.cos());
+                let shallow = libm::pow(load / (b * k * libm::sqrt(2.0 * r) * g), 1.0 / (n + 0.5));
+                let rel = (z - shallow).abs() / shallow;
+                assert!(
+                    rel < z / r + 1e-4,
+                    "n {n}, {load} N: {z} m, shallow {shallow} m"
+                );
+                if n == 1.0 {
+                    let bekker = libm::pow(
+                        3.0 * load / ((3.0 - n) * k * b * libm::sqrt(2.0 * r)),
+                        2.0 / (2.0 * n + 1.0),
+                    );
+                    assert!((bekker - shallow).abs() < 1e-12 * shallow);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_load_past_the_axle_is_refused_with_what_the_soil_carries() {
+        let rule = GaussLegendre::<16>::new();
+        let e = steady_state(&lete(), 0.1, 0.05, 1e6, 0.2, 0.0, &rule).unwrap_err();
+        assert!(e.most > 0.0 && e.most < 1e6 && e.load == 1e6, "{e:?}");
+    }
+
+    #[test]
+    fn a_slip_angle_pushes_the_wheel_sideways_by_the_lateral_shear() {
+        let rule = GaussLegendre::<16>::new();
+        let force = |beta: f64| {
+            steady_state(&lete(), 0.25, 0.16, 150.0, 0.2, beta, &rule)
+                .unwrap()
+                .1
+                .lateral
+        };
+        assert_eq!(force(0.0), 0.0);
+        let (a, b) = (force(5f64.to_radians()), force(15f64.to_radians()));
+        assert!(a > 0.0 && b > a, "{a} {b}");
+        assert_eq!(force(-5f64.to_radians()), -a);
+    }
+
+    #[test]
+    fn dual_numbers_give_the_forces_exact_derivatives() {
+        use crate::dual::Dual;
+        let (soil, r, b) = (lete(), 0.25, 0.16);
+        let rule = GaussLegendre::<16>::new();
+        let at = |theta1: f64, slip: f64| {
+            let c = SoilContact {
+                entry_angle: theta1,
+                slip,
+                slip_angle: 0.1,
+            };
+            soil_forces(&soil, r, b, c, &rule)
+        };
+        for (theta1, slip) in [(0.3, 0.25), (0.2, -0.3)] {
+            let d_theta = soil_forces(
+                &soil,
+                r,
+                b,
+                SoilContact {
+                    entry_angle: Dual::var(theta1),
+                    slip: Dual::lift(slip),
+                    slip_angle: Dual::lift(0.1),
+                },
+                &rule,
+            );
+            let d_slip = soil_forces(
+                &soil,
+                r,
+                b,
+                SoilContact {
+                    entry_angle: Dual::lift(theta1),
+                    slip: Dual::var(slip),
+                    slip_angle: Dual::lift(0.1),
+                },
+                &rule,
+            );
+            let h = 1e-6;
+            let fd = |f: fn(&SoilForces) -> f64, dt: f64, ds: f64| {
+                (f(&at(theta1 + dt, slip + ds)) - f(&at(theta1 - dt, slip - ds))) / (2.0 * h)
+            };
+            let parts: [(fn(&SoilForces) -> f64, Dual<f64>, Dual<f64>); 4] = [
+                (|f| f.vertical, d_theta.vertical, d_slip.vertical),
+                (|f| f.drawbar, d_theta.drawbar, d_slip.drawbar),
+                (|f| f.torque, d_theta.torque, d_slip.torque),
+                (|f| f.lateral, d_theta.lateral, d_slip.lateral),
+            ];
+            for (k, (f, dt, ds)) in parts.into_iter().enumerate() {
+                let (a, b) = (fd(f, h, 0.0), fd(f, 0.0, h));
+                assert!(
+                    (dt.eps - a).abs() < 1e-5 * (1.0 + a.abs()),
+                    "{k}: ∂θ1 {} vs {a}",
+                    dt.eps
+                );
+                assert!(
+                    (ds.eps - b).abs() < 1e-5 * (1.0 + b.abs()),
+                    "{k}: ∂s {} vs {b}",
+                    ds.eps
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_quadrature_converges_on_a_fractional_exponent() {
+        let (soil, r, b) = (lete(), 0.25, 0.16);
+        let contact = SoilContact {
+            entry_angle: 0.35,
+            slip: 0.3,
+            slip_angle: 0.0,
+        };
+        let fine = soil_forces(&soil, r, b, contact, &GaussLegendre::<256>::new());
+        let coarse = soil_forces(&soil, r, b, contact, &GaussLegendre::<16>::new());
+        for (c, f) in [
+            (coarse.vertical, fine.vertical),
+            (coarse.drawbar, fine.drawbar),
+            (coarse.torque, fine.torque),
+        ] {
+            assert!((c - f).abs() < 1e-3 * fine.vertical.abs(), "{c} vs {f}");
+        }
+    }
+}
