@@ -270,7 +270,8 @@ pub fn steady_state<const Q: usize>(
     };
     let (mut lo, mut hi) = (0.0, core::f64::consts::FRAC_PI_2);
     let most = forces(hi).vertical;
-    if !(most >= load) {
+    // NaN (a soil or wheel outside physics) is refused too.
+    if most.partial_cmp(&load).is_none_or(|o| o.is_lt()) {
         return Err(SinksPastAxle { load, most });
     }
     for _ in 0..200 {
