@@ -534,7 +534,8 @@ mod tests {
             let fd = |f: fn(&SoilForces) -> f64, dt: f64, ds: f64| {
                 (f(&at(theta1 + dt, slip + ds)) - f(&at(theta1 - dt, slip - ds))) / (2.0 * h)
             };
-            let parts: [(fn(&SoilForces) -> f64, Dual<f64>, Dual<f64>); 4] = [
+            type Part = (fn(&SoilForces) -> f64, Dual<f64>, Dual<f64>);
+            let parts: [Part; 4] = [
                 (|f| f.vertical, d_theta.vertical, d_slip.vertical),
                 (|f| f.drawbar, d_theta.drawbar, d_slip.drawbar),
                 (|f| f.torque, d_theta.torque, d_slip.torque),
