@@ -593,3 +593,64 @@ fn codegen_into_a_missing_folder_names_the_file_and_leaves_nothing() {
         .collect();
     assert_eq!(names, [std::ffi::OsString::from("plant.rs")]);
 }
+
+/// `rover wheel-test`: the single-wheel testbed's CSV (its first four
+/// columns fixed), the pull rising with slip, and bad input refused with
+/// the flag named.
+#[test]
+fn wheel_test_prints_the_testbed_csv_and_refuses_bad_input() {
+    let rover = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_rover"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let base = [
+        "wheel-test",
+        "--radius",
+        "0.4",
+        "--width",
+        "0.23",
+        "--load",
+        "250",
+    ];
+    let ok = rover(
+        &[
+            &base[..],
+            &["--soil", "lunar_nominal", "--slip", "0,0.1,0.3,0.6"],
+        ]
+        .concat(),
+    );
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let text = String::from_utf8(ok.stdout).unwrap();
+    let mut lines = text.lines();
+    assert!(
+        lines
+            .next()
+            .unwrap()
+            .starts_with("slip,sinkage,drawbar_pull,torque,")
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 4);
+    assert!(rows.windows(2).all(|w| w[1][2] > w[0][2]), "{text}");
+    assert!(rows.iter().all(|r| r[1] > 0.0 && r[1] < 0.4), "{text}");
+    for (extra, expect) in [
+        (
+            &["--soil", "lunar_nominal", "--slip", "1.2"][..],
+            "--slip 1.2",
+        ),
+        (&["--slip", "0.2", "--soil", "mud"][..], "--soil mud"),
+    ] {
+        let bad = rover(&[&base[..], extra].concat());
+        let err = String::from_utf8_lossy(&bad.stderr);
+        assert_eq!(bad.status.code(), Some(2), "{err}");
+        assert!(err.starts_with(&format!("error: {expect}")), "{err}");
+    }
+}

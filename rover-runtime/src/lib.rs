@@ -18,6 +18,7 @@ pub mod ground;
 pub mod quasi_static;
 pub mod row;
 pub mod sim;
+pub mod soil;
 pub mod wheel_law;
 
 /// The integrators (crate `rover-integrate`), re-exported so that one

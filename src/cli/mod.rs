@@ -8,6 +8,7 @@ mod linearize;
 mod reproduce;
 mod simulate;
 mod sweep;
+mod wheel_test;
 
 use std::process::ExitCode;
 
@@ -23,6 +24,7 @@ pub use linearize::{LinearizeArgs, linearize_cmd};
 pub use reproduce::{ReproduceArgs, calibrated, reproduce};
 pub use simulate::{SimulateArgs, SimulateReport, simulate};
 pub use sweep::{SweepArgs, sweep};
+pub use wheel_test::{WheelTestArgs, wheel_test_cmd};
 
 /// Simulate wheeled planetary rovers on rough terrain (Chen & Genta 2012).
 #[derive(Debug, Parser)]
@@ -47,6 +49,8 @@ pub enum Command {
     Codegen(CodegenArgs),
     /// Run tasks of a sweep plan (one worker of a job array), or gather their records into one table.
     Sweep(SweepArgs),
+    /// A rigid wheel on soft soil at a load and a list of slips: sinkage, drawbar pull and torque as CSV (the single-wheel testbed).
+    WheelTest(WheelTestArgs),
     /// Rerun the paper's figures and write docs/REPRODUCTION.md.
     #[cfg(feature = "reproduce")]
     Reproduce(ReproduceArgs),
@@ -84,6 +88,10 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
         }
         Command::Sweep(a) => {
             sweep(&a)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::WheelTest(a) => {
+            wheel_test::run(&a)?;
             Ok(ExitCode::SUCCESS)
         }
         #[cfg(feature = "drive")]
