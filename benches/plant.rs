@@ -643,8 +643,79 @@ fn force_path(c: &mut Criterion) {
     one!("lrv", rover_models::Lrv);
 }
 
+/// One wheel's soil forces at a typical state (lunar nominal soil, a
+/// 0.4 m wheel 0.23 m wide sunk at θ1 = 0.3 rad, 20 % slip, 3° slip angle),
+/// by the quadrature a run would use and by the testbed's, with the rigid
+/// ground's patch law beside them for scale; and the testbed's steady
+/// state (a bisection on the entry angle).
+fn soil(c: &mut Criterion) {
+    use rover_dynamics::soil::{GaussLegendre, Soil, SoilContact, soil_forces, steady_state};
+    use rover_dynamics::wheel_law::{Lateral, PatchMotion, Tyre, patch_forces};
+    let soil = Soil {
+        n: 1.0,
+        k_c: 1400.0,
+        k_phi: 820e3,
+        cohesion: 170.0,
+        friction_angle: 35f64.to_radians(),
+        shear_modulus: 0.018,
+        lateral_shear_modulus: 0.018,
+        a0: 0.4,
+        a1: 0.15,
+        rear_ratio: 0.0,
+    };
+    let contact = SoilContact {
+        entry_angle: 0.3,
+        slip: 0.2,
+        slip_angle: 3f64.to_radians(),
+    };
+    let mut group = c.benchmark_group("soil_one_wheel");
+    macro_rules! rule {
+        ($q:literal) => {
+            let rule = GaussLegendre::<$q>::new();
+            group.bench_function(concat!("forces_q", $q), |b| {
+                b.iter(|| soil_forces(&soil, 0.4, 0.23, std::hint::black_box(contact), &rule))
+            });
+        };
+    }
+    rule!(4);
+    rule!(8);
+    rule!(16);
+    rule!(64);
+    let tyre = Tyre {
+        stiffness: 4000.0,
+        damping: 300.0,
+        mu_x: 0.5,
+        mu_y: 0.5,
+        cornering_stiffness: 50.0,
+        rolling_resistance: 0.0,
+    };
+    let motion = PatchMotion {
+        deflection: 0.01,
+        deflection_rate: 0.001,
+        v_t: 0.1,
+        v_c: 0.005,
+        lever: 0.39,
+        torque: 1.0,
+    };
+    group.bench_function("rigid_patch_law", |b| {
+        b.iter(|| {
+            patch_forces(
+                &Lateral::Exponential { v_eps: 1e-3 },
+                &tyre,
+                &std::hint::black_box(motion),
+            )
+        })
+    });
+    let rule = GaussLegendre::<64>::new();
+    group.bench_function("testbed_steady_state_q64", |b| {
+        b.iter(|| steady_state(&soil, 0.4, 0.23, std::hint::black_box(250.0), 0.2, 0.0, &rule))
+    });
+    group.finish();
+}
+
 criterion_group!(
     benches,
+    soil,
     force_path,
     per_model,
     whole_runs,
