@@ -1,6 +1,6 @@
 //! Soils as users give them: a `[soil]` table (SI units, degrees where the
 //! key says so) or a built-in soil by name, checked, then turned into the
-//! law's [`Soil`](rover_dynamics::soil::Soil); and the single-wheel
+//! law's [`Soil`]; and the single-wheel
 //! testbed's sweep over slip (docs/SOIL.md).
 
 use std::path::Path;

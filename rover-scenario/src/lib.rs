@@ -62,9 +62,9 @@ pub mod output;
 pub mod prepare;
 pub mod scenario;
 pub mod simulate;
-pub mod simulation;
+mod simulation;
 mod stepper;
 pub mod sweep;
 
-pub use simulation::Simulation;
+pub use simulation::{Simulation, SimulationError};
 pub use stepper::Stepper;

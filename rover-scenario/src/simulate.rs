@@ -1,6 +1,6 @@
 //! A whole run from a scenario: build the pieces, place the rover, run,
 //! write the CSV, summarize (the CLI adds plots and the progress bar;
-//! [`crate::simulation::Simulation`] assembles the same run in Rust).
+//! [`crate::Simulation`] assembles the same run in Rust).
 
 use std::io::Write;
 use std::path::Path;

@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use rover_derive::Rover;
-//! use rover_scenario::simulation::Simulation;
+//! use rover_scenario::Simulation;
 //! use rover_runtime::terrain::TerrainConfig;
 //!
 //! #[derive(Rover)]
@@ -43,7 +43,7 @@
 //!     .speed(0.1)
 //!     .run(2.0)?;
 //! assert!(summary.complete);
-//! # Ok::<(), rover_scenario::simulation::SimulationError>(())
+//! # Ok::<(), rover_scenario::SimulationError>(())
 //! ```
 
 use std::io::Write;

@@ -14,7 +14,7 @@ use rover_runtime::control::Steering;
 use rover_runtime::terrain::TerrainConfig;
 use rover_scenario::scenario::Scenario;
 use rover_scenario::simulate::{SetupError, simulate};
-use rover_scenario::simulation::{Simulation, SimulationError};
+use rover_scenario::{Simulation, SimulationError};
 
 /// Two swing arms a side, the paper's Example 2 geometry, on the Moon.
 #[derive(Rover)]
