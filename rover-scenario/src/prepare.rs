@@ -302,17 +302,19 @@ impl Prepared {
     ) -> Result<Summary, PrepareError> {
         let plant = self.plant(generic)?;
         let backend = plant.backend();
-        let mut summary = simulate(
-            plant,
-            &self.spec.model,
-            &self.spec.name,
-            &self.scenario,
-            &self.base,
-            csv,
-            interrupt,
-            progress,
-        )
-        .map_err(|e| self.locate(e))?;
+        let (model, name) = (&self.spec.model, &self.spec.name);
+        let (scenario, base) = (&self.scenario, &self.base);
+        // Each kind of plant runs its own instance of the run: the right-hand
+        // side calls the generated plant without a second dispatch.
+        let run = match plant {
+            RunPlant::Generated(p) => {
+                simulate(p, model, name, scenario, base, csv, interrupt, progress)
+            }
+            RunPlant::Generic(p) => {
+                simulate(p, model, name, scenario, base, csv, interrupt, progress)
+            }
+        };
+        let mut summary = run.map_err(|e| self.locate(e))?;
         summary.plant = backend;
         Ok(summary)
     }

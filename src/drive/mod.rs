@@ -19,6 +19,7 @@ use std::thread::JoinHandle;
 
 use clap::Args;
 use rover_dynamics::HeightField;
+use rover_dynamics::plant::Plant;
 use rover_runtime::row::Columns;
 use rover_runtime::terrain::Terrain;
 use rover_scenario::prepare::{Prepared, RunPlant, load_rover};
@@ -335,10 +336,23 @@ fn bind(port: u16) -> Result<TcpListener, CliError> {
 pub fn start(args: &DriveArgs) -> Result<Running, CliError> {
     check_rate(args.rate)?;
     let prepared = prepare(args)?;
+    // Each kind of plant runs its own instance of the loop: a step calls
+    // the generated plant without a second dispatch.
+    match prepared.plant(args.generic)? {
+        RunPlant::Generated(p) => launch(p, &prepared, args),
+        RunPlant::Generic(p) => launch(p, &prepared, args),
+    }
+}
+
+fn launch<P: Plant + Send + 'static>(
+    plant: P,
+    prepared: &Prepared,
+    args: &DriveArgs,
+) -> Result<Running, CliError> {
     let (spec, scenario, base) = (&prepared.spec, &prepared.scenario, &prepared.base);
     let model = &spec.model;
     let config = loop_config(args, scenario);
-    let mut sim = sim(&prepared, args.generic, &config)?;
+    let mut sim = sim(plant, prepared, &config)?;
     let columns = Arc::new(sim.columns().names().to_vec());
     let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
     let info = sim.info().clone();
@@ -449,7 +463,28 @@ pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
     check_rate(args.rate)?;
     let prepared = prepare(args)?;
     let config = loop_config(args, &prepared.scenario);
-    let mut sim = sim(&prepared, args.generic, &config)?;
+    let timing = match prepared.plant(args.generic)? {
+        RunPlant::Generated(p) => measure(p, &prepared, &config, args, seconds)?,
+        RunPlant::Generic(p) => measure(p, &prepared, &config, args, seconds)?,
+    };
+    Ok(format!(
+        "{} with {}, pacing {}:\n{}\n",
+        prepared.spec.name,
+        config.method.name(),
+        config.pacing.name(),
+        timing_text(&timing, args.rate)
+    ))
+}
+
+/// The loop of `--report` for `seconds` of wall-clock time.
+fn measure<P: Plant>(
+    plant: P,
+    prepared: &Prepared,
+    config: &LoopConfig,
+    args: &DriveArgs,
+    seconds: f64,
+) -> Result<Timing, CliError> {
+    let mut sim = sim(plant, prepared, config)?;
     let shared = live::shared(
         sim.columns().len(),
         prepared.spec.model.wheels.len(),
@@ -462,20 +497,12 @@ pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
         };
         protocol::apply(&r, &mut inbox);
     }
-    let timing = live::run(&mut sim, &shared, Some(seconds));
-    Ok(format!(
-        "{} with {}, pacing {}:\n{}\n",
-        prepared.spec.name,
-        config.method.name(),
-        config.pacing.name(),
-        timing_text(&timing, args.rate)
-    ))
+    Ok(live::run(&mut sim, &shared, Some(seconds)))
 }
 
-/// The live simulation of a prepared run, with the plant its fidelity
-/// level names (a generated one for a built-in rover, unless `generic`).
-fn sim(prepared: &Prepared, generic: bool, config: &LoopConfig) -> Result<Sim<RunPlant>, CliError> {
-    let plant = prepared.plant(generic)?;
+/// The live simulation of a prepared run with `plant`, the one its
+/// fidelity level names.
+fn sim<P: Plant>(plant: P, prepared: &Prepared, config: &LoopConfig) -> Result<Sim<P>, CliError> {
     let (spec, scenario, base) = (&prepared.spec, &prepared.scenario, &prepared.base);
     Sim::new(plant, &spec.model, scenario, base, config).map_err(|e| prepared.locate(e).into())
 }
