@@ -17,7 +17,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
-use rover_runtime::row::{Columns, RowInputs};
+use rover_runtime::row::Columns;
 use rover_scenario::Stepper;
 use rover_scenario::prepare::{PrepareError, Prepared, RunPlant, load_rover};
 use rover_scenario::sweep::{Plan, SweepError};
@@ -207,7 +207,6 @@ struct Simulation {
     inner: Stepper<RunPlant>,
     dof: usize,
     wheels: usize,
-    columns: Columns,
     units: Vec<&'static str>,
 }
 
@@ -275,13 +274,11 @@ impl Simulation {
         let p = prepare(rover, text, origin, base).map_err(py_err)?;
         let inner = p.stepper(generic).map_err(py_err)?;
         let model = &p.spec.model;
-        let columns = Columns::new(model.m(), model.wheels.len());
         Ok(Self {
+            units: inner.columns().units(&p.spec.coordinate_linear),
             inner,
             dof: model.dof(),
             wheels: model.wheels.len(),
-            units: columns.units(&p.spec.coordinate_linear),
-            columns,
         })
     }
 
@@ -333,7 +330,7 @@ impl Simulation {
     /// The trajectory's column names (as in `run.csv`).
     #[getter]
     fn columns(&self) -> Vec<String> {
-        self.columns.names().to_vec()
+        self.inner.columns().names().to_vec()
     }
 
     /// Each column's unit (`m`, `rad`, `N`, `N·m`, ...), in the columns'
@@ -366,16 +363,12 @@ impl Simulation {
     /// Write the current trajectory row (every column of `run.csv`) into
     /// `out`.
     fn row_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
-        let cols = self.columns.len();
+        let cols = self.inner.columns().len();
         with_buffer(out, true, |o| {
             if o.len() != cols {
                 return Err(length_err("row", cols, o.len()));
             }
-            let s = &self.inner;
-            let sys = s.system();
-            let t = s.time();
-            let inputs = RowInputs::of_system(sys, t, s.state(), sys.control.speed_setpoint(t));
-            self.columns.fill(&inputs, o);
+            self.inner.row_into(o);
             Ok(())
         })
     }

@@ -304,18 +304,13 @@ pub const ROW: &[Group] = &[
     },
 ];
 
-/// One column of a rover's row.
-#[derive(Clone, Debug)]
-pub struct Column {
-    /// Its name (`Fn2`, `y0_1`).
-    pub name: String,
-    /// Its unit.
-    pub unit: Unit,
-    /// The coordinate or wheel it is of (0-based), for a column of
-    /// [`Over::Coordinate`] or [`Over::Wheel`].
-    pub index: Option<usize>,
-    /// Its definition in [`ROW`].
-    pub field: &'static Field,
+/// One column of a rover's row: its definition in [`ROW`] and the
+/// coordinate or wheel it is of (0-based; `None` for a column of
+/// [`Over::Once`]).
+#[derive(Clone, Copy, Debug)]
+struct Column {
+    field: &'static Field,
+    index: Option<usize>,
 }
 
 /// The columns of one rover's row (m suspension coordinates, k wheels), in
@@ -333,7 +328,7 @@ impl Columns {
     /// The columns of a rover with `m` suspension coordinates and `wheels`
     /// wheels.
     pub fn new(m: usize, wheels: usize) -> Self {
-        let mut columns = Vec::new();
+        let (mut columns, mut names) = (Vec::new(), Vec::new());
         for group in ROW {
             let count = match group.over {
                 Over::Once => 1,
@@ -347,16 +342,14 @@ impl Columns {
                         Over::Coordinate => field.name.replace("{i}", &(index + 1).to_string()),
                         Over::Wheel => field.name.replace("{j}", &(index + 1).to_string()),
                     };
+                    names.push(name);
                     columns.push(Column {
-                        name,
-                        unit: field.unit,
-                        index: (group.over != Over::Once).then_some(index),
                         field,
+                        index: (group.over != Over::Once).then_some(index),
                     });
                 }
             }
         }
-        let names = columns.iter().map(|c| c.name.clone()).collect();
         Columns {
             columns,
             names,
@@ -375,11 +368,6 @@ impl Columns {
         self.columns.is_empty()
     }
 
-    /// The columns, in order.
-    pub fn columns(&self) -> &[Column] {
-        &self.columns
-    }
-
     /// The column names, in order: the CSV's header.
     pub fn names(&self) -> &[String] {
         &self.names
@@ -396,12 +384,12 @@ impl Columns {
         self.columns
             .iter()
             .map(|c| {
-                let linear = matches!(c.unit, Unit::Coordinate | Unit::CoordinateRate)
+                let linear = matches!(c.field.unit, Unit::Coordinate | Unit::CoordinateRate)
                     && c.index
                         .and_then(|i| coordinate_linear.get(i))
                         .copied()
                         .unwrap_or(false);
-                c.unit.symbol(linear)
+                c.field.unit.symbol(linear)
             })
             .collect()
     }

@@ -238,7 +238,8 @@ pub fn simulate<P: Plant, W: Write>(
     let mut integ = scenario.integrator.build(sys.dim())?;
     let n = model.dof();
     let k = model.wheels.len();
-    let mut writer = CsvWriter::new(csv, Columns::new(model.m(), k))?;
+    let columns = Columns::new(model.m(), k);
+    let mut writer = CsvWriter::new(csv, &columns)?;
     let opts = run_options(scenario);
     let rest_x: Vec<f64> = model.rest_wheel_centres().iter().map(|u| u[0]).collect();
     let mut log = RunLog::new(scenario.settle, model.dof(), k).with_axles(axles_by_rest_x(&rest_x));
@@ -252,7 +253,6 @@ pub fn simulate<P: Plant, W: Write>(
         Ok(())
     });
     let wall = started.elapsed().as_secs_f64();
-    let columns = writer.columns().clone();
     writer.into_inner()?;
     let (status, error) = match &outcome.stop {
         Stop::Completed => (Status::Completed, None),
@@ -475,7 +475,8 @@ fn quasi_static_run<W: Write>(
         },
         q0,
     );
-    let mut writer = CsvWriter::new(csv, Columns::new(model.m(), k))?;
+    let columns = Columns::new(model.m(), k);
+    let mut writer = CsvWriter::new(csv, &columns)?;
     let started = Instant::now();
     let mut log = RunLog::imposed(scenario.settle, k);
     let mut stop = (Status::Completed, None, scenario.duration);
@@ -533,12 +534,11 @@ fn quasi_static_run<W: Write>(
         log.record(writer.write(&inputs)?, std::iter::empty());
         progress(t);
     }
-    let writer_columns = writer.columns().clone();
     writer.into_inner()?;
     let wall = started.elapsed().as_secs_f64();
     let (status, error, t_end) = stop;
     Ok(log.summary(
-        writer_columns.names(),
+        columns.names(),
         n,
         RunEnd {
             rover: name.to_string(),

@@ -16,6 +16,7 @@ use rover_integrate::{AnyIntegrator, Integrator, OdeSystem};
 use rover_runtime::control::ControlError;
 use rover_terrain::Terrain;
 
+use rover_runtime::row::{Columns, RowInputs};
 use rover_runtime::sim::{CommandError, Driver, RoverSystem, RunError, RunOptions};
 
 /// A run under the caller's control (see the module's documentation).
@@ -26,6 +27,7 @@ pub struct Stepper<P> {
     integ_start: AnyIntegrator,
     integ: AnyIntegrator,
     driver: Driver,
+    columns: Columns,
     y0: Vec<f64>,
     y: Vec<f64>,
     scratch: Vec<f64>,
@@ -67,6 +69,7 @@ impl<P: Plant + Clone> Stepper<P> {
             sys,
             integ,
             driver,
+            columns: Columns::new(model.m(), model.wheels.len()),
             y0: y.clone(),
             y,
             t: 0.0,
@@ -113,14 +116,7 @@ impl<P: Plant + Clone> Stepper<P> {
     /// The wheel states, contact reports and torques at (t, y), as the
     /// whole run evaluates them at an output instant.
     fn refresh(&mut self) -> Result<(), RunError> {
-        let t = self.t;
-        self.sys
-            .rhs(t, &self.y, &mut self.scratch)
-            .map_err(|e| RunError::Integration {
-                t,
-                message: e.to_string(),
-                step_control: false,
-            })
+        self.sys.evaluate_at(self.t, &self.y, &mut self.scratch)
     }
 
     /// Time \[s\].
@@ -131,6 +127,19 @@ impl<P: Plant + Clone> Stepper<P> {
     /// The output interval, one step \[s\].
     pub fn dt(&self) -> f64 {
         self.driver.options().output_step
+    }
+
+    /// The row's columns, as the whole run's CSV names them.
+    pub fn columns(&self) -> &Columns {
+        &self.columns
+    }
+
+    /// The row at the current time into `out` (one value per column), the
+    /// whole run's row at this output instant. Allocates nothing.
+    pub fn row_into(&self, out: &mut [f64]) {
+        let (sys, t) = (&self.sys, self.t);
+        let inputs = RowInputs::of_system(sys, t, &self.y, sys.control.speed_setpoint(t));
+        self.columns.fill(&inputs, out);
     }
 
     /// The full state `[x; w; ζ]`.

@@ -7,7 +7,6 @@
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
-use rover_runtime::row::RowInputs;
 use rover_runtime::sim::RunError;
 use rover_scenario::prepare::{PrepareError, Prepared};
 
@@ -55,12 +54,8 @@ fn whole_rows(p: &Prepared, generic: bool) -> Vec<Vec<f64>> {
 
 /// The step-wise run's row now.
 fn stepped_row(s: &rover_scenario::Stepper<rover_scenario::prepare::RunPlant>) -> Vec<f64> {
-    let sys = s.system();
-    let columns = rover_runtime::row::Columns::new(sys.dof() - 6, sys.wheel_states().len());
-    let mut row = vec![0.0; columns.len()];
-    let t = s.time();
-    let inputs = RowInputs::of_system(sys, t, s.state(), sys.control.speed_setpoint(t));
-    columns.fill(&inputs, &mut row);
+    let mut row = vec![0.0; s.columns().len()];
+    s.row_into(&mut row);
     row
 }
 

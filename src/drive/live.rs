@@ -421,7 +421,6 @@ pub struct Sim<P> {
     y0: Vec<f64>,
     scratch: Vec<f64>,
     t: f64,
-    h: f64,
     n: usize,
     info: RoverInfo,
     kp: f64,
@@ -481,7 +480,6 @@ impl<P: Plant> Sim<P> {
             integ,
             driver,
             t: 0.0,
-            h,
             info: RoverInfo::new(model),
             kp: config.kp,
             ki: config.ki,
@@ -497,6 +495,11 @@ impl<P: Plant> Sim<P> {
         sim.driver
             .start(&mut sim.sys, &mut sim.integ, sim.t, &sim.y);
         Ok(sim)
+    }
+
+    /// The step \[s\]: one output interval of the driver.
+    fn h(&self) -> f64 {
+        self.driver.options().output_step
     }
 
     /// The row's columns, as the CSV of a run names them.
@@ -582,7 +585,7 @@ impl<P: Plant> Sim<P> {
                 // alone saturates the motors in the same direction.
                 let held = self.ki * self.integral;
                 if !((held >= cap && e > 0.0) || (held <= -cap && e < 0.0)) {
-                    self.integral += e * self.h;
+                    self.integral += e * self.h();
                 }
                 let tau0 = self.kp * e + self.ki * self.integral;
                 let dt = if info.ackermann() {
@@ -651,7 +654,7 @@ impl<P: Plant> Sim<P> {
     pub fn row(&mut self, out: &mut [f64]) {
         // An evaluation error leaves the last evaluation's reports: the
         // step that follows reports the error itself.
-        let _ = self.sys.rhs(self.t, &self.y, &mut self.scratch);
+        let _ = self.sys.evaluate_at(self.t, &self.y, &mut self.scratch);
         let inputs = RowInputs::of_system(&self.sys, self.t, &self.y, self.speed_setpoint());
         self.columns.fill(&inputs, out);
     }
@@ -748,7 +751,7 @@ fn timer_slack_1ns() {}
 /// of steps that would overrun in turn; simulated time then lags the
 /// wall clock by the dropped steps, which the real-time factor shows.
 pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>) -> Timing {
-    let period = Duration::from_secs_f64(sim.h);
+    let period = Duration::from_secs_f64(sim.h());
     let columns = shared.state.lock().map(|s| s.values.len()).unwrap_or(0);
     let mut row = vec![0.0; columns];
     let mut command = Command::zero(sim.info.rest.len());
@@ -806,7 +809,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
                 error = Some(e);
             }
             steps += 1;
-            window_sim += sim.h;
+            window_sim += sim.h();
         }
         let publish_every = shared.publish_every.load(Ordering::Relaxed).max(1);
         if tick >= published_at + publish_every

@@ -84,11 +84,6 @@ impl Driver {
         self.next_break = 0;
     }
 
-    /// Output instants reached so far, t = 0 included.
-    pub fn outputs(&self) -> u64 {
-        self.k_out
-    }
-
     /// Whether `t` is the run's end.
     pub fn finished(&self, t: f64) -> bool {
         t >= self.opts.duration

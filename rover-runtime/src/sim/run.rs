@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use rover_dynamics::HeightField;
 use rover_dynamics::plant::Plant;
 
-use rover_integrate::{Integrator, OdeSystem};
+use rover_integrate::Integrator;
 
 use super::driver::{Driver, RunOptions};
 use super::error::RunError;
@@ -114,11 +114,7 @@ where
     H: HeightField,
     F: FnMut(&OutputRow<'_, P, H>) -> std::io::Result<()>,
 {
-    sys.rhs(t, y, scratch).map_err(|e| RunError::Integration {
-        t,
-        message: e.to_string(),
-        step_control: false,
-    })?;
+    sys.evaluate_at(t, y, scratch)?;
     output(&OutputRow { t, y, system: sys }).map_err(|e| RunError::Output {
         t,
         message: e.to_string(),

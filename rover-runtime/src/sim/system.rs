@@ -11,7 +11,7 @@ use crate::control::Controller;
 use crate::ground::Ground;
 use rover_integrate::OdeSystem;
 
-use super::error::{CommandError, SimError};
+use super::error::{CommandError, RunError, SimError};
 use super::profile::{Lap, RhsProfile};
 
 mod jacobian;
@@ -129,6 +129,17 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// \[rad\] per wheel.
     pub fn commands(&self) -> (&[f64], &[f64]) {
         (&self.torque_commands, &self.steer_commands)
+    }
+
+    /// Evaluate the system at (t, y), as a run does at each output
+    /// instant: the wheel states, contact reports and torques that a row
+    /// reads are then those of (t, y). `scratch` takes ẏ.
+    pub fn evaluate_at(&mut self, t: f64, y: &[f64], scratch: &mut [f64]) -> Result<(), RunError> {
+        self.rhs(t, y, scratch).map_err(|e| RunError::Integration {
+            t,
+            message: e.to_string(),
+            step_control: false,
+        })
     }
 
     /// Number of generalized coordinates N.

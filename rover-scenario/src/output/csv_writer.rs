@@ -7,26 +7,21 @@ use rover_runtime::row::{Columns, RowInputs};
 
 /// Writes rows of numbers, refusing non-finite values: a NaN never reaches
 /// the file as if it were a result.
-pub struct CsvWriter<W: Write> {
+pub struct CsvWriter<'c, W: Write> {
     out: W,
-    columns: Columns,
+    columns: &'c Columns,
     row: Vec<f64>,
 }
 
-impl<W: Write> CsvWriter<W> {
+impl<'c, W: Write> CsvWriter<'c, W> {
     /// Start a file of `columns` with its header.
-    pub fn new(mut out: W, columns: Columns) -> std::io::Result<Self> {
+    pub fn new(mut out: W, columns: &'c Columns) -> std::io::Result<Self> {
         writeln!(out, "{}", columns.names().join(","))?;
         Ok(Self {
             out,
             row: vec![0.0; columns.len()],
             columns,
         })
-    }
-
-    /// The columns written.
-    pub fn columns(&self) -> &Columns {
-        &self.columns
     }
 
     /// Compute the row of `inputs` and write it; the row's values.
