@@ -650,7 +650,9 @@ fn force_path(c: &mut Criterion) {
 /// ground's patch law beside them for scale; and the testbed's steady
 /// state (a bisection on the entry angle).
 fn soil(c: &mut Criterion) {
-    use rover_dynamics::soil::{GaussLegendre, Soil, SoilContact, soil_forces, steady_state};
+    use rover_dynamics::soil::{
+        GaussLegendre, Soil, SoilContact, SoilWheel, soil_forces, steady_state,
+    };
     use rover_dynamics::wheel_law::{Lateral, PatchMotion, Tyre, patch_forces};
     let soil = Soil {
         n: 1.0,
@@ -669,12 +671,13 @@ fn soil(c: &mut Criterion) {
         slip: 0.2,
         slip_angle: 3f64.to_radians(),
     };
+    let wheel = SoilWheel::new(&soil, 0.4, 0.23);
     let mut group = c.benchmark_group("soil_one_wheel");
     macro_rules! rule {
         ($q:literal) => {
             let rule = GaussLegendre::<$q>::new();
             group.bench_function(concat!("forces_q", $q), |b| {
-                b.iter(|| soil_forces(&soil, 0.4, 0.23, std::hint::black_box(contact), &rule))
+                b.iter(|| soil_forces(&wheel, std::hint::black_box(contact), &rule))
             });
         };
     }
@@ -709,17 +712,7 @@ fn soil(c: &mut Criterion) {
     });
     let rule = GaussLegendre::<16>::new();
     group.bench_function("testbed_steady_state_q16", |b| {
-        b.iter(|| {
-            steady_state(
-                &soil,
-                0.4,
-                0.23,
-                std::hint::black_box(250.0),
-                0.2,
-                0.0,
-                &rule,
-            )
-        })
+        b.iter(|| steady_state(&wheel, std::hint::black_box(250.0), 0.2, 0.0, &rule))
     });
     group.finish();
 }

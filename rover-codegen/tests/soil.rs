@@ -6,7 +6,7 @@ use rover_codegen::Sym;
 use rover_codegen::diff::derivative;
 use rover_codegen::sym::trace;
 use rover_dynamics::dual::Dual;
-use rover_dynamics::soil::{GaussLegendre, Soil, SoilContact, SoilForces, soil_forces};
+use rover_dynamics::soil::{GaussLegendre, Soil, SoilContact, SoilForces, SoilWheel, soil_forces};
 
 fn lunar() -> Soil {
     Soil {
@@ -37,7 +37,7 @@ fn the_traced_soil_law_is_the_f64_law_and_its_derivatives_the_duals() {
             slip: Sym::input(1),
             slip_angle: Sym::input(2),
         };
-        parts(&soil_forces(&soil, r, b, c, &rule))
+        parts(&soil_forces(&SoilWheel::new(&soil, r, b), c, &rule))
     });
     let outputs: Vec<_> = forces.iter().map(|s| s.0).collect();
     let inputs: Vec<_> = (0..3).map(|k| graph.input(k)).collect();
@@ -46,9 +46,7 @@ fn the_traced_soil_law_is_the_f64_law_and_its_derivatives_the_duals() {
     for (theta1, slip, beta) in [(0.3, 0.25, 0.05), (0.5, -0.4, -0.1), (0.12, 0.7, 0.0)] {
         let values = graph.eval(&[theta1, slip, beta], &outputs);
         let exact = parts(&soil_forces(
-            &soil,
-            r,
-            b,
+            &SoilWheel::new(&soil, r, b),
             SoilContact {
                 entry_angle: theta1,
                 slip,
@@ -72,7 +70,7 @@ fn the_traced_soil_law_is_the_f64_law_and_its_derivatives_the_duals() {
                 slip: dual(1)(slip),
                 slip_angle: Dual::lift(beta),
             };
-            let want = parts(&soil_forces(&soil, r, b, c, &rule));
+            let want = parts(&soil_forces(&SoilWheel::new(&soil, r, b), c, &rule));
             let got = graph.eval(&[theta1, slip, beta], ids);
             for k in 0..4 {
                 let w = want[k].eps;

@@ -61,6 +61,41 @@ pub struct Soil {
     pub rear_ratio: f64,
 }
 
+/// A rigid wheel (radius and width) in a soil, with the constants of the
+/// stress integrals derived once: a run evaluates the forces many times
+/// for one wheel and soil.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SoilWheel {
+    /// The soil.
+    pub soil: Soil,
+    /// Radius r \[m\].
+    pub radius: f64,
+    /// Width b \[m\].
+    pub width: f64,
+    /// (k_c/b + k_φ)·rⁿ: the normal stress over (cos θ* − cos θ1)ⁿ \[Pa\].
+    pressure: f64,
+    /// tan φ.
+    tan_phi: f64,
+    /// 1/K and 1/K_y \[1/m\].
+    inv_k: f64,
+    inv_ky: f64,
+}
+
+impl SoilWheel {
+    /// A wheel of `radius` and `width` in `soil`.
+    pub fn new(soil: &Soil, radius: f64, width: f64) -> Self {
+        Self {
+            soil: *soil,
+            radius,
+            width,
+            pressure: (soil.k_c / width + soil.k_phi) * libm::pow(radius, soil.n),
+            tan_phi: libm::tan(soil.friction_angle),
+            inv_k: 1.0 / soil.shear_modulus,
+            inv_ky: 1.0 / soil.lateral_shear_modulus,
+        }
+    }
+}
+
 /// Gauss–Legendre quadrature of `Q` points on [−1, 1]: nodes and weights,
 /// computed once (Newton's iteration on the Legendre polynomial), without
 /// allocation.
@@ -149,17 +184,16 @@ pub struct SoilForces<S = f64> {
     pub lateral: S,
 }
 
-/// The forces of `soil` on a rigid wheel of `radius` and `width` in the
-/// state `contact`, by the quadrature `rule` on each piece of the arc.
+/// The soil's forces on `wheel` in the state `contact`, by the quadrature
+/// `rule` on each piece of the arc.
 /// Allocates nothing; generic over the scalar (the generator traces it).
 pub fn soil_forces<S: Scalar, const Q: usize>(
-    soil: &Soil,
-    radius: f64,
-    width: f64,
+    wheel: &SoilWheel,
     contact: SoilContact<S>,
     rule: &GaussLegendre<Q>,
 ) -> SoilForces<S> {
-    let r = S::cst(radius);
+    let soil = &wheel.soil;
+    let r = S::cst(wheel.radius);
     let theta1 = contact.entry_angle;
     let s = contact.slip;
     let zero = S::zero();
@@ -172,11 +206,11 @@ pub fn soil_forces<S: Scalar, const Q: usize>(
     // θ2: Bekker's distribution, the stress peaking at the exit).
     let rear = (theta_m - theta2).max(S::cst(1e-300));
     let rho = (one - s.max(zero)) / (one + s.min(zero));
-    let k = S::cst((soil.k_c / width + soil.k_phi) * libm::pow(radius, soil.n));
-    let tan_phi = S::cst(libm::tan(soil.friction_angle));
+    let k = S::cst(wheel.pressure);
+    let tan_phi = S::cst(wheel.tan_phi);
     let cohesion = S::cst(soil.cohesion);
-    let inv_k = S::cst(1.0 / soil.shear_modulus);
-    let inv_ky = S::cst(1.0 / soil.lateral_shear_modulus);
+    let inv_k = S::cst(wheel.inv_k);
+    let inv_ky = S::cst(wheel.inv_ky);
     let (sin1, cos1) = (theta1.sin(), theta1.cos());
     let tan_beta = contact.slip_angle.sin() / contact.slip_angle.cos();
     // A power of zero (no contact) is taken of a tiny positive number.
@@ -209,14 +243,15 @@ pub fn soil_forces<S: Scalar, const Q: usize>(
             } else {
                 (theta2 + len * S::cst(u * u), len * S::cst(w * u))
             };
-            let theta_star = if front {
-                theta
-            } else {
-                theta1 - (theta - theta2) / rear * (theta1 - theta_m)
-            };
-            let base = (theta_star.cos() - cos1).max(tiny);
-            let sigma = k * base.powf(soil.n);
             let (sin, cos) = (theta.sin(), theta.cos());
+            // cos θ*: θ itself in front, its map behind.
+            let cos_star = if front {
+                cos
+            } else {
+                (theta1 - (theta - theta2) / rear * (theta1 - theta_m)).cos()
+            };
+            let base = (cos_star - cos1).max(tiny);
+            let sigma = k * base.powf(soil.n);
             let strength = cohesion + sigma * tan_phi;
             let j = r * ((theta1 - theta) - rho * (sin1 - sin));
             let tau = (strength * (one - (-(j.abs() * inv_k)).exp())).copysign(j);
@@ -228,7 +263,7 @@ pub fn soil_forces<S: Scalar, const Q: usize>(
             out.lateral += wq * tau_y;
         }
     }
-    let rb = r * S::cst(width);
+    let rb = r * S::cst(wheel.width);
     out.vertical *= rb;
     out.drawbar *= rb;
     out.torque *= rb * r;
@@ -258,14 +293,12 @@ impl core::fmt::Display for SinksPastAxle {
 
 impl core::error::Error for SinksPastAxle {}
 
-/// The steady state of a rigid wheel carrying `load` at `slip` and
+/// The steady state of `wheel` carrying `load` at `slip` and
 /// `slip_angle` (a single-wheel testbed's run): the entry angle at which
 /// the soil's vertical force equals the load (bisection to rounding: the
 /// vertical force grows with the entry angle), and the forces there.
 pub fn steady_state<const Q: usize>(
-    soil: &Soil,
-    radius: f64,
-    width: f64,
+    wheel: &SoilWheel,
     load: f64,
     slip: f64,
     slip_angle: f64,
@@ -277,7 +310,7 @@ pub fn steady_state<const Q: usize>(
             slip,
             slip_angle,
         };
-        soil_forces(soil, radius, width, contact, rule)
+        soil_forces(wheel, contact, rule)
     };
     let (mut lo, mut hi) = (0.0, core::f64::consts::FRAC_PI_2);
     let most = forces(hi).vertical;
@@ -382,9 +415,7 @@ mod tests {
         let rule = GaussLegendre::<24>::new();
         for (theta1, slip) in [(0.3, 0.2), (0.5, 0.6), (0.15, 0.05)] {
             let got = soil_forces(
-                &soil,
-                r,
-                b,
+                &SoilWheel::new(&soil, r, b),
                 SoilContact {
                     entry_angle: theta1,
                     slip,
@@ -422,7 +453,8 @@ mod tests {
         let mut last = f64::NEG_INFINITY;
         for k in 0..=18 {
             let slip = -0.45 + 0.075 * k as f64;
-            let (_, f) = steady_state(&soil, r, b, 150.0, slip, 0.0, &rule).unwrap();
+            let (_, f) =
+                steady_state(&SoilWheel::new(&soil, r, b), 150.0, slip, 0.0, &rule).unwrap();
             assert!((f.vertical - 150.0).abs() < 1e-9);
             assert!(
                 f.drawbar > last,
@@ -433,7 +465,8 @@ mod tests {
         }
         let mut last = 0.0;
         for load in [20.0, 50.0, 100.0, 200.0, 400.0] {
-            let (theta1, _) = steady_state(&soil, r, b, load, 0.2, 0.0, &rule).unwrap();
+            let (theta1, _) =
+                steady_state(&SoilWheel::new(&soil, r, b), load, 0.2, 0.0, &rule).unwrap();
             let sinkage = r * (1.0 - theta1.cos());
             assert!(sinkage > last, "{load} N: sinkage {sinkage} after {last}");
             last = sinkage;
@@ -464,7 +497,8 @@ mod tests {
             let g = libm::sqrt(core::f64::consts::PI) * libm::tgamma(n + 1.0)
                 / (2.0 * libm::tgamma(n + 1.5));
             for load in [2.0, 20.0, 80.0] {
-                let (theta1, _) = steady_state(&soil, r, b, load, 0.0, 0.0, &rule).unwrap();
+                let (theta1, _) =
+                    steady_state(&SoilWheel::new(&soil, r, b), load, 0.0, 0.0, &rule).unwrap();
                 let z = r * (1.0 - theta1.cos());
                 let shallow = libm::pow(load / (b * k * libm::sqrt(2.0 * r) * g), 1.0 / (n + 0.5));
                 let rel = (z - shallow).abs() / shallow;
@@ -486,7 +520,8 @@ mod tests {
     #[test]
     fn a_load_past_the_axle_is_refused_with_what_the_soil_carries() {
         let rule = GaussLegendre::<16>::new();
-        let e = steady_state(&lete(), 0.1, 0.05, 1e6, 0.2, 0.0, &rule).unwrap_err();
+        let e =
+            steady_state(&SoilWheel::new(&lete(), 0.1, 0.05), 1e6, 0.2, 0.0, &rule).unwrap_err();
         assert!(e.most > 0.0 && e.most < 1e6 && e.load == 1e6, "{e:?}");
     }
 
@@ -494,10 +529,16 @@ mod tests {
     fn a_slip_angle_pushes_the_wheel_sideways_by_the_lateral_shear() {
         let rule = GaussLegendre::<16>::new();
         let force = |beta: f64| {
-            steady_state(&lete(), 0.25, 0.16, 150.0, 0.2, beta, &rule)
-                .unwrap()
-                .1
-                .lateral
+            steady_state(
+                &SoilWheel::new(&lete(), 0.25, 0.16),
+                150.0,
+                0.2,
+                beta,
+                &rule,
+            )
+            .unwrap()
+            .1
+            .lateral
         };
         assert_eq!(force(0.0), 0.0);
         let (a, b) = (force(5f64.to_radians()), force(15f64.to_radians()));
@@ -516,13 +557,11 @@ mod tests {
                 slip,
                 slip_angle: 0.1,
             };
-            soil_forces(&soil, r, b, c, &rule)
+            soil_forces(&SoilWheel::new(&soil, r, b), c, &rule)
         };
         for (theta1, slip) in [(0.3, 0.25), (0.2, -0.3)] {
             let d_theta = soil_forces(
-                &soil,
-                r,
-                b,
+                &SoilWheel::new(&soil, r, b),
                 SoilContact {
                     entry_angle: Dual::var(theta1),
                     slip: Dual::lift(slip),
@@ -531,9 +570,7 @@ mod tests {
                 &rule,
             );
             let d_slip = soil_forces(
-                &soil,
-                r,
-                b,
+                &SoilWheel::new(&soil, r, b),
                 SoilContact {
                     entry_angle: Dual::lift(theta1),
                     slip: Dual::var(slip),
@@ -588,8 +625,16 @@ mod tests {
                     slip,
                     slip_angle: 0.05,
                 };
-                let fine = soil_forces(&soil, 0.25, 0.16, c, &GaussLegendre::<512>::new());
-                let four = soil_forces(&soil, 0.25, 0.16, c, &GaussLegendre::<4>::new());
+                let fine = soil_forces(
+                    &SoilWheel::new(&soil, 0.25, 0.16),
+                    c,
+                    &GaussLegendre::<512>::new(),
+                );
+                let four = soil_forces(
+                    &SoilWheel::new(&soil, 0.25, 0.16),
+                    c,
+                    &GaussLegendre::<4>::new(),
+                );
                 for (a, b) in [
                     (four.vertical, fine.vertical),
                     (four.drawbar, fine.drawbar),

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use rover_dynamics::soil::{GaussLegendre, SinksPastAxle, Soil, steady_state};
+use rover_dynamics::soil::{GaussLegendre, SinksPastAxle, Soil, SoilWheel, steady_state};
 use serde::Deserialize;
 
 /// A soil as a `[soil]` table writes it (docs/SOIL.md).
@@ -301,10 +301,11 @@ pub fn wheel_test(
         )?;
     }
     let rule = GaussLegendre::<TESTBED_POINTS>::new();
+    let wheel = SoilWheel::new(soil, radius, width);
     slips
         .iter()
         .map(|&slip| {
-            let (entry_angle, f) = steady_state(soil, radius, width, load, slip, slip_angle, &rule)
+            let (entry_angle, f) = steady_state(&wheel, load, slip, slip_angle, &rule)
                 .map_err(|source| WheelTestError::Sinks { slip, source })?;
             Ok(WheelTestPoint {
                 slip,
