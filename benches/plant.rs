@@ -487,7 +487,7 @@ fn rhs_parts(c: &mut Criterion) {
                     .wheels(black_box(&y[..n]), &y[n..2 * n], &steer, &mut wheels);
                 let ground = sys.ground.as_mut().unwrap();
                 ground.find_contacts(&wheels, &mut normals).unwrap();
-                ground.loads(&wheels, &torques, &mut loads, &mut reports);
+                ground.loads(&wheels, &torques, &[], &mut loads, &mut reports);
                 black_box(&loads);
             })
         });

@@ -190,7 +190,9 @@ fn simulate<'py>(
         rows += 1;
     }
     let model = &prepared.spec.model;
-    let units = Columns::new(model.m(), model.wheels.len()).units(&prepared.spec.coordinate_linear);
+    let soil = prepared.scenario.soft();
+    let units = Columns::on_ground(model.m(), model.wheels.len(), soil)
+        .units(&prepared.spec.coordinate_linear);
     Ok((columns, PyBytes::new(py, &data), rows, json, units))
 }
 

@@ -50,6 +50,8 @@ pub mod soil;
 #[cfg(feature = "plant")]
 pub mod wheel_ground;
 pub mod wheel_law;
+#[cfg(feature = "plant")]
+pub mod wheel_soil;
 
 #[cfg(feature = "alloc")]
 pub mod model;

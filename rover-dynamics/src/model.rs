@@ -128,6 +128,12 @@ pub struct Wheel {
     pub body: usize,
     /// Radius R_w \[m\], > 0.
     pub radius: f64,
+    /// Width b \[m\], > 0, when the description gives one: the soil law
+    /// needs it (docs/MODEL.md, "Soft soil"); rigid ground does not.
+    pub width: Option<f64>,
+    /// Moment of inertia about the axle [kg·m²], ≥ 0: the inertia of the
+    /// wheel's spin, a state on a soil.
+    pub spin_inertia: f64,
     /// Radial stiffness k_w [N/m], > 0 (eq. 36).
     pub stiffness: f64,
     /// Radial damping c_w [N·s/m], ≥ 0 (eq. 37).

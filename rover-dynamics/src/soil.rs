@@ -12,19 +12,24 @@
 //!   θm and `θ* = θ1 − (θ − θ2)/(θm − θ2)·(θ1 − θm)` behind it;
 //! - shear stress (Mohr–Coulomb with Janosi–Hanamoto's shear
 //!   displacement): `τ = (c + σ·tan φ)·(1 − exp(−|j|/K))` with the sign of
-//!   `j(θ) = r·[(θ1 − θ) − ρ·(sin θ1 − sin θ)]`, ρ = v/(r·ω);
+//!   `j(θ) = r·[a·(θ1 − θ) − b·(sin θ1 − sin θ)]`;
 //! - lateral shear under a slip angle β (Ishigami et al., J. Field Robotics
 //!   24(3), 2007): `τ_y = (c + σ·tan φ)·(1 − exp(−|j_y|/K_y))` with the
-//!   sign of `j_y = r·ρ·(θ1 − θ)·tan β`;
+//!   sign of `j_y = r·b·(θ1 − θ)·tan β`;
 //!
 //! and their resultants on a wheel of radius r and width b: the vertical
 //! load `W = r·b·∫(σ cos θ + τ sin θ)dθ`, the drawbar pull
 //! `DP = r·b·∫(τ cos θ − σ sin θ)dθ`, the driving torque `T = r²·b·∫τ dθ`
 //! and the lateral force `F_y = r·b·∫τ_y dθ`.
 //!
-//! Slip is `s = 1 − v/(r·ω)` when driving (r·ω ≥ v, s in [0, 1)) and
-//! `s = r·ω/v − 1` when braking (s in (−1, 0]); so ρ = 1 − s driving and
-//! 1/(1 + s) braking, one expression here: `ρ = (1 − max(s, 0))/(1 + min(s, 0))`.
+//! With u = r·ω the rim's speed and v the centre's, a = u/D and b = v/D,
+//! D = max(|u|, v) ([`Shear`]): the shear displacement is the slip
+//! velocity `u − v·cos θ` integrated over the time a soil element has been
+//! under the wheel, timed by the rim's rotation when driving and by the
+//! wheel's travel when braking. Slip is `s = 1 − v/(r·ω)` driving (a = 1,
+//! b = 1 − s: Wong and Reece's j) and `s = r·ω/v − 1` braking (a = 1 + s,
+//! b = 1: Wong's braked wheel), in [−1, 1] both; a locked wheel (s = −1)
+//! shears the soil by the distance it slid, `r·(sin θ1 − sin θ)`.
 //!
 //! The integrals are taken by Gauss–Legendre quadrature on the arc's two
 //! pieces, [θ2, θm] and [θm, θ1], whose ends are where the stresses have a
@@ -184,12 +189,45 @@ pub struct SoilForces<S = f64> {
     pub lateral: S,
 }
 
+/// The shear displacement's two rates, `j = r·[a·(θ1 − θ) − b·(sin θ1 −
+/// sin θ)]`: the rim's speed a and the centre's b, each over the larger of
+/// the two (the module's doc).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shear<S = f64> {
+    /// a = r·ω / max(|r·ω|, v), in [−1, 1].
+    pub rim: S,
+    /// b = v / max(|r·ω|, v), in [0, 1].
+    pub travel: S,
+}
+
+impl<S: Scalar> Shear<S> {
+    /// The rates at slip `s` in [−1, 1]: a = 1 + min(s, 0), b = 1 − max(s, 0).
+    pub fn of_slip(s: S) -> Self {
+        Self {
+            rim: S::one() + s.min(S::zero()),
+            travel: S::one() - s.max(S::zero()),
+        }
+    }
+}
+
 /// The soil's forces on `wheel` in the state `contact`, by the quadrature
 /// `rule` on each piece of the arc.
 /// Allocates nothing; generic over the scalar (the generator traces it).
 pub fn soil_forces<S: Scalar, const Q: usize>(
     wheel: &SoilWheel,
     contact: SoilContact<S>,
+    rule: &GaussLegendre<Q>,
+) -> SoilForces<S> {
+    soil_forces_sheared(wheel, contact, Shear::of_slip(contact.slip), rule)
+}
+
+/// [`soil_forces`] with the shear's rates given ([`Shear`]): a wheel whose
+/// rim turns against its travel (a < 0) too. The slip of `contact` places
+/// the stress's maximum only.
+pub fn soil_forces_sheared<S: Scalar, const Q: usize>(
+    wheel: &SoilWheel,
+    contact: SoilContact<S>,
+    shear: Shear<S>,
     rule: &GaussLegendre<Q>,
 ) -> SoilForces<S> {
     let soil = &wheel.soil;
@@ -205,7 +243,7 @@ pub fn soil_forces<S: Scalar, const Q: usize>(
     // The rear piece's map divides by its length, which may be zero (θm at
     // θ2: Bekker's distribution, the stress peaking at the exit).
     let rear = (theta_m - theta2).max(S::cst(1e-300));
-    let rho = (one - s.max(zero)) / (one + s.min(zero));
+    let (rim, travel) = (shear.rim, shear.travel);
     let k = S::cst(wheel.pressure);
     let tan_phi = S::cst(wheel.tan_phi);
     let cohesion = S::cst(soil.cohesion);
@@ -253,9 +291,9 @@ pub fn soil_forces<S: Scalar, const Q: usize>(
             let base = (cos_star - cos1).max(tiny);
             let sigma = k * base.powf(soil.n);
             let strength = cohesion + sigma * tan_phi;
-            let j = r * ((theta1 - theta) - rho * (sin1 - sin));
+            let j = r * (rim * (theta1 - theta) - travel * (sin1 - sin));
             let tau = (strength * (one - (-(j.abs() * inv_k)).exp())).copysign(j);
-            let jy = r * rho * (theta1 - theta) * tan_beta;
+            let jy = r * travel * (theta1 - theta) * tan_beta;
             let tau_y = (strength * (one - (-(jy.abs() * inv_ky)).exp())).copysign(jy);
             out.vertical += wq * (sigma * cos + tau * sin);
             out.drawbar += wq * (tau * cos - sigma * sin);

@@ -16,6 +16,7 @@ use crate::scalar::Scalar;
 use crate::wheel_law::{
     PatchForces, PatchMotion, Tyre, WheelLaw, normal_force, rolling_resistance,
 };
+use crate::wheel_soil::{RunRule, SoilTyre, soil_wheel_loads, spin_rates};
 
 /// Which contact search a run uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -50,8 +51,19 @@ pub struct WheelReport {
     pub drawbar: f64,
     /// Sum of the lateral forces \[N\].
     pub lateral: f64,
-    /// Torque the ground took from the motor, Σ |G_jH|·F_d [N·m].
+    /// Torque the ground took from the wheel: Σ |G_jH|·F_d on rigid
+    /// ground (the motor's, the wheel's rotation being massless), the
+    /// soil's torque against the spin Σ T on a soil [N·m].
     pub torque: f64,
+    /// Slip in the direction of travel, on a soil (0 on rigid ground, whose
+    /// law has none): positive driving, negative braking.
+    pub slip: f64,
+    /// Slip angle between the heading and the centre's velocity on a soil
+    /// \[rad\] (0 on rigid ground).
+    pub slip_angle: f64,
+    /// Sinkage: the rim's depth below the surface on a soil \[m\] (0 on
+    /// rigid ground).
+    pub sinkage: f64,
     /// Number of patches.
     pub patches: usize,
     /// The whole lower half of the wheel was below ground.
@@ -219,6 +231,10 @@ impl WheelContact {
 pub struct FixedGround<const W: usize> {
     /// The contact search.
     pub search: Search,
+    /// The soil under each wheel, if the ground is soft ([`FixedGround::on_soil`]).
+    soil: Option<[SoilTyre; W]>,
+    rule: RunRule,
+    spins: [f64; W],
     wheels: [WheelContact; W],
     normals: [f64; W],
     loads: [WheelLoad; W],
@@ -230,11 +246,42 @@ impl<const W: usize> FixedGround<W> {
     pub fn new(search: Search) -> Self {
         Self {
             search,
+            soil: None,
+            rule: RunRule::new(),
+            spins: [0.0; W],
             wheels: [WheelContact::new(&search); W],
             normals: [0.0; W],
             loads: [WheelLoad::default(); W],
             reports: [WheelReport::default(); W],
         }
+    }
+
+    /// A ground searched by `search` whose surface is the soil `soil`
+    /// under each wheel: [`FixedGround::loads`] then takes the soil law
+    /// (its `law` and the tyres' friction unused), each wheel spinning at
+    /// the rate last given to [`FixedGround::set_spins`], and each report's
+    /// `torque` is the soil's against the spin, from which
+    /// [`FixedGround::spin_rates`] gives the spins' accelerations.
+    pub fn on_soil(search: Search, soil: [SoilTyre; W]) -> Self {
+        Self {
+            soil: Some(soil),
+            ..Self::new(search)
+        }
+    }
+
+    /// Each wheel's spin rate ω \[rad/s\] for the next [`FixedGround::loads`]
+    /// on a soil (positive rolling forward; unused on rigid ground).
+    pub fn set_spins(&mut self, spins: &[f64; W]) {
+        self.spins = *spins;
+    }
+
+    /// Each wheel's spin acceleration `(τ − T)/I_w` \[rad/s²\] after
+    /// [`FixedGround::loads`] under the motor torques `torques` [N·m], for
+    /// the spin inertias `inertias` [kg·m²] (on a soil).
+    pub fn spin_rates(&self, torques: &[f64; W], inertias: &[f64; W]) -> [f64; W] {
+        let mut out = [0.0; W];
+        spin_rates(torques, &self.reports, inertias, &mut out);
+        out
     }
 
     /// Finds every wheel's contact (the first phase of a right-hand side)
@@ -270,8 +317,21 @@ impl<const W: usize> FixedGround<W> {
         tyres: &[Tyre; W],
         torques: &[f64; W],
     ) -> &[WheelLoad; W] {
-        let wheels = (&self.wheels[..], &states[..], &tyres[..]);
-        wheel_loads(law, wheels, torques, &mut self.loads, &mut self.reports);
+        match &self.soil {
+            Some(soil) => soil_wheel_loads(
+                soil,
+                &self.rule,
+                (&self.wheels[..], &states[..]),
+                torques,
+                &self.spins,
+                &mut self.loads,
+                &mut self.reports,
+            ),
+            None => {
+                let wheels = (&self.wheels[..], &states[..], &tyres[..]);
+                wheel_loads(law, wheels, torques, &mut self.loads, &mut self.reports);
+            }
+        }
         &self.loads
     }
 
@@ -337,7 +397,11 @@ pub fn wheel_loads<L: WheelLaw>(
 /// the plane through its contact point says). An end the ground cannot be
 /// queried at, or where the rim runs along the ground, counts as on a plane
 /// through H.
-fn lever_gradient<H: HeightField + ?Sized>(terrain: &H, s: &WheelState, p: &Patch) -> [f64; 3] {
+pub(crate) fn lever_gradient<H: HeightField + ?Sized>(
+    terrain: &H,
+    s: &WheelState,
+    p: &Patch,
+) -> [f64; 3] {
     let radius = p.lever + p.deflection;
     let half = Scalar::sqrt((radius * radius - p.lever * p.lever).max(0.0));
     let ends = [-1.0, 1.0].map(|side| {
@@ -519,11 +583,13 @@ fn torque_share(torque: f64, normals: &[f64; MAX_PATCHES], total: f64, i: usize)
     }
 }
 
-/// How a wheel's load changes with its centre, velocity and drive torque:
-/// `∂L/∂(G_j, V_j, τ)`, rows the load's force, moment and stator torque
-/// (3 each, as in [`WheelLoad`]), columns the centre's displacement (3), its
-/// velocity (3) and the torque (1).
-pub type LoadDerivative = [[f64; 7]; 9];
+/// How a wheel's load changes with its centre, velocity, drive torque and
+/// spin: `∂(L, T)/∂(G_j, V_j, τ, ω)`, rows the load's force, moment and
+/// stator torque (3 each, as in [`WheelLoad`]) and the soil's torque
+/// against the spin (1), columns the centre's displacement (3), its
+/// velocity (3), the torque (1) and the spin (1). On rigid ground the last
+/// row and column are 0 (the wheel's rotation is massless there).
+pub type LoadDerivative = [[f64; 8]; 10];
 
 /// [`LoadDerivative`] of one wheel at the patches of its last contact, by
 /// dual numbers through the very `patch_load` the run evaluates, each
@@ -542,7 +608,7 @@ pub fn load_derivative<L: WheelLaw, H: HeightField + ?Sized>(
     contact: &Contact,
     torque: f64,
 ) -> LoadDerivative {
-    let mut d = [[0.0; 7]; 9];
+    let mut d = [[0.0; 8]; 10];
     let patches = contact.patches();
     let (normals, total) = patch_normals(tyre, s, patches);
     for (i, p) in patches.iter().enumerate() {

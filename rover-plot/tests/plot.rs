@@ -96,6 +96,7 @@ fn row(t: f64) -> Vec<f64> {
         w: &w,
         wheels: &wheels,
         reports: &reports,
+        spins: &[],
         torques: &torques,
         steering: &[0.0; N],
         neutrals: &[0.0; M],

@@ -8,13 +8,61 @@ use rover_dynamics::Model;
 use rover_dynamics::contact::{Contact, RimSampling};
 use rover_dynamics::height_field::{HeightField, OffMap};
 use rover_dynamics::plant::{WheelLoad, WheelState};
+use rover_dynamics::soil::{Soil, SoilWheel};
 use rover_dynamics::wheel_ground::{
     ContactMethod, LoadDerivative, Search, WheelContact, WheelOffMap, WheelReport, find_contacts,
     wheel_loads,
 };
 use rover_dynamics::wheel_law::Tyre;
+use rover_dynamics::wheel_soil::{
+    RunRule, SoilTyre, soil_load_derivative, soil_wheel_loads, spin_rates,
+};
 
 use crate::wheel_law::WheelLawConfig;
+
+/// A soil under the wheels: each wheel's constants in it, the quadrature
+/// and the wheels' spin inertias (their spins are states of the run).
+#[derive(Clone, Debug)]
+struct SoilGround {
+    soil: Soil,
+    tyres: Vec<SoilTyre>,
+    rule: RunRule,
+    inertias: Vec<f64>,
+}
+
+/// A wheel the soil law cannot take.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SoilWheelError {
+    /// The description gives the wheel no width.
+    #[error("wheel {} has no width: the soil law presses on the wheel's width", .wheel + 1)]
+    NoWidth {
+        /// Wheel index (0-based).
+        wheel: usize,
+    },
+    /// The wheel's spin has no inertia (a massless wheel without `spin_inertia`).
+    #[error("wheel {} has no spin inertia (a massless wheel): on a soil the wheel's spin is a state", .wheel + 1)]
+    NoSpinInertia {
+        /// Wheel index (0-based).
+        wheel: usize,
+    },
+}
+
+impl SoilWheelError {
+    /// The description field to add.
+    pub fn field(&self) -> &'static str {
+        match self {
+            SoilWheelError::NoWidth { .. } => "width",
+            SoilWheelError::NoSpinInertia { .. } => "spin_inertia",
+        }
+    }
+
+    /// The wheel (0-based).
+    pub fn wheel(&self) -> usize {
+        match self {
+            SoilWheelError::NoWidth { wheel } | SoilWheelError::NoSpinInertia { wheel } => *wheel,
+        }
+    }
+}
 
 /// Terrain, contact search and wheel law, with the per-wheel tracking state.
 #[derive(Clone, Debug)]
@@ -27,6 +75,7 @@ pub struct Ground<H> {
     wheels: Vec<WheelContact>,
     tyres: Vec<Tyre>,
     radii: Vec<f64>,
+    soil: Option<SoilGround>,
 }
 
 impl<H: HeightField> Ground<H> {
@@ -46,7 +95,57 @@ impl<H: HeightField> Ground<H> {
             wheels: vec![WheelContact::new(&search); model.wheels.len()],
             tyres: model.wheels.iter().map(|w| w.tyre()).collect(),
             radii: model.wheels.iter().map(|w| w.radius).collect(),
+            soil: None,
         }
+    }
+
+    /// The same ground covered by `soil`: each wheel of `model` (which
+    /// needs a width and a spin inertia) then follows the soil law
+    /// (docs/MODEL.md, "Soft soil") in place of `law`, and spins at its own
+    /// rate, a state of the run.
+    pub fn with_soil(mut self, soil: &Soil, model: &Model) -> Result<Self, SoilWheelError> {
+        let mut tyres = Vec::with_capacity(model.wheels.len());
+        for (wheel, w) in model.wheels.iter().enumerate() {
+            let width = w.width.ok_or(SoilWheelError::NoWidth { wheel })?;
+            if !(w.spin_inertia > 0.0) {
+                return Err(SoilWheelError::NoSpinInertia { wheel });
+            }
+            tyres.push(SoilTyre {
+                wheel: SoilWheel::new(soil, w.radius, width),
+                damping: w.damping,
+            });
+        }
+        self.soil = Some(SoilGround {
+            soil: *soil,
+            tyres,
+            rule: RunRule::new(),
+            inertias: model.wheels.iter().map(|w| w.spin_inertia).collect(),
+        });
+        Ok(self)
+    }
+
+    /// The soil, if the ground is soft.
+    pub fn soil(&self) -> Option<&Soil> {
+        self.soil.as_ref().map(|s| &s.soil)
+    }
+
+    /// How many spin states the ground adds to a run: one per wheel on a
+    /// soil, none on rigid ground (the wheels' rotation is massless there).
+    pub fn spin_states(&self) -> usize {
+        self.soil.as_ref().map_or(0, |s| s.tyres.len())
+    }
+
+    /// Each wheel's spin acceleration \[rad/s²\] (on a soil) from the
+    /// motor torques and the reports of the last [`Ground::loads`].
+    pub fn spin_rates(&self, torques: &[f64], reports: &[WheelReport], out: &mut [f64]) {
+        if let Some(soil) = &self.soil {
+            spin_rates(torques, reports, &soil.inertias, out);
+        }
+    }
+
+    /// Each wheel's spin inertia [kg·m²], on a soil.
+    pub fn spin_inertias(&self) -> &[f64] {
+        self.soil.as_ref().map_or(&[], |s| &s.inertias)
     }
 
     /// The same ground with rolling-resistance coefficient `c_rr` on every
@@ -56,6 +155,11 @@ impl<H: HeightField> Ground<H> {
             t.rolling_resistance = c_rr;
         }
         self
+    }
+
+    /// Each wheel's radius \[m\].
+    pub fn radii(&self) -> &[f64] {
+        &self.radii
     }
 
     /// Each wheel's tyre.
@@ -91,33 +195,64 @@ impl<H: HeightField> Ground<H> {
     /// Loads on every wheel from the contacts of [`Ground::find_contacts`]
     /// and the motor torques (N·m, positive drives forward), with reports
     /// (phase 2).
+    /// On a soil, each wheel spins at `spins` \[rad/s\] (ignored on rigid
+    /// ground) and its report's `torque` is the soil's against the spin.
     pub fn loads(
         &self,
         states: &[WheelState],
         torques: &[f64],
+        spins: &[f64],
         loads: &mut [WheelLoad],
         reports: &mut [WheelReport],
     ) {
-        let wheels = (&self.wheels[..], states, &self.tyres[..]);
-        wheel_loads(&self.law, wheels, torques, loads, reports);
+        match &self.soil {
+            Some(soil) => {
+                let wheels = (&self.wheels[..], states);
+                soil_wheel_loads(
+                    &soil.tyres,
+                    &soil.rule,
+                    wheels,
+                    torques,
+                    spins,
+                    loads,
+                    reports,
+                );
+            }
+            None => {
+                let wheels = (&self.wheels[..], states, &self.tyres[..]);
+                wheel_loads(&self.law, wheels, torques, loads, reports);
+            }
+        }
     }
 
     /// Each wheel's [`LoadDerivative`] at the contacts of the last
-    /// [`Ground::find_contacts`] and the motor torques `torques`.
+    /// [`Ground::find_contacts`], the motor torques `torques` and (on a
+    /// soil) the spins `spins`.
     pub fn load_derivatives(
         &self,
         states: &[WheelState],
         torques: &[f64],
+        spins: &[f64],
         out: &mut [LoadDerivative],
     ) {
         for (k, d) in out.iter_mut().enumerate() {
-            *d = self.wheels[k].load_derivative(
-                &self.law,
-                &self.tyres[k],
-                &self.terrain,
-                &states[k],
-                torques[k],
-            );
+            *d = match &self.soil {
+                Some(soil) => soil_load_derivative(
+                    &soil.tyres[k],
+                    &soil.rule,
+                    &self.terrain,
+                    &states[k],
+                    self.wheels[k].contact(),
+                    spins[k],
+                ),
+                None => self.wheels[k].load_derivative(
+                    &self.law,
+                    &self.tyres[k],
+                    &self.terrain,
+                    &states[k],
+                    torques[k],
+                ),
+            };
         }
     }
 }

@@ -5,8 +5,8 @@
 //! cannot disagree, and a new column is one entry of the table below.
 //!
 //! The order (docs/CLI.md, "Output"): time, the coordinates x, the
-//! pseudo-velocities w, the wheel centres, the contact of each wheel, the
-//! motor torques, the steering angles, the springs' neutrals and the speed
+//! pseudo-velocities w, the wheel centres, the contact of each wheel, on a
+//! soil each wheel's spin, slip and sinkage, the motor torques, the steering angles, the springs' neutrals and the speed
 //! set-point.
 
 use rover_dynamics::HeightField;
@@ -29,6 +29,8 @@ pub struct RowInputs<'a> {
     pub wheels: &'a [WheelState],
     /// What the contact did on each wheel.
     pub reports: &'a [WheelReport],
+    /// Each wheel's spin rate on a soil \[rad/s\] (empty on rigid ground).
+    pub spins: &'a [f64],
     /// Motor torques per wheel [N·m].
     pub torques: &'a [f64],
     /// Steering angles per wheel \[rad\].
@@ -55,6 +57,7 @@ impl<'a> RowInputs<'a> {
             w: &y[n..2 * n],
             wheels: sys.wheel_states(),
             reports: sys.reports(),
+            spins: &y[sys.spin_range()],
             torques: sys.torques(),
             steering: sys.steering(),
             neutrals: sys.control.neutrals(),
@@ -81,6 +84,8 @@ pub enum Unit {
     Newton,
     /// N·m
     NewtonMetre,
+    /// A ratio, without unit.
+    Ratio,
     /// rad or m: the coordinate's own.
     Coordinate,
     /// rad/s or m/s: the coordinate's own, per second.
@@ -98,6 +103,7 @@ impl Unit {
             Unit::RadianPerSecond => "rad/s",
             Unit::Newton => "N",
             Unit::NewtonMetre => "N·m",
+            Unit::Ratio => "1",
             Unit::Coordinate if linear => "m",
             Unit::Coordinate => "rad",
             Unit::CoordinateRate if linear => "m/s",
@@ -115,6 +121,9 @@ pub enum Over {
     Coordinate,
     /// One per wheel, `{j}` in the name (1-based, the description's order).
     Wheel,
+    /// One per wheel on a soil only (a rigid ground's law has no spin,
+    /// slip or sinkage), `{j}` in the name.
+    SoilWheel,
 }
 
 /// How a column is computed: from the inputs and its index (0-based).
@@ -270,6 +279,41 @@ pub const ROW: &[Group] = &[
         ],
     },
     Group {
+        over: Over::SoilWheel,
+        fields: &[
+            field(
+                "spin{j}",
+                Unit::RadianPerSecond,
+                "on a soil: the wheel's spin rate about its axle (positive rolling forward)",
+                |r, j| r.spins[j],
+            ),
+            field(
+                "slip{j}",
+                Unit::Ratio,
+                "on a soil: slip in the direction of travel, 1 − v/(r·ω) driving, r·ω/v − 1 braking",
+                |r, j| r.reports[j].slip,
+            ),
+            field(
+                "slip_angle{j}",
+                Unit::Radian,
+                "on a soil: angle between the wheel's heading and its centre's velocity",
+                |r, j| r.reports[j].slip_angle,
+            ),
+            field(
+                "sinkage{j}",
+                Unit::Metre,
+                "on a soil: the rim's depth below the surface",
+                |r, j| r.reports[j].sinkage,
+            ),
+            field(
+                "T{j}",
+                Unit::NewtonMetre,
+                "on a soil: the soil's torque against the wheel's spin",
+                |r, j| r.reports[j].torque,
+            ),
+        ],
+    },
+    Group {
         over: Over::Wheel,
         fields: &[field(
             "tau{j}",
@@ -326,21 +370,31 @@ pub struct Columns {
 
 impl Columns {
     /// The columns of a rover with `m` suspension coordinates and `wheels`
-    /// wheels.
+    /// wheels on rigid ground.
     pub fn new(m: usize, wheels: usize) -> Self {
+        Self::on_ground(m, wheels, false)
+    }
+
+    /// The columns of a rover with `m` suspension coordinates and `wheels`
+    /// wheels, on a soil when `soil` (its columns then included).
+    pub fn on_ground(m: usize, wheels: usize, soil: bool) -> Self {
         let (mut columns, mut names) = (Vec::new(), Vec::new());
         for group in ROW {
             let count = match group.over {
                 Over::Once => 1,
                 Over::Coordinate => m,
                 Over::Wheel => wheels,
+                Over::SoilWheel if soil => wheels,
+                Over::SoilWheel => 0,
             };
             for index in 0..count {
                 for field in group.fields {
                     let name = match group.over {
                         Over::Once => field.name.to_string(),
                         Over::Coordinate => field.name.replace("{i}", &(index + 1).to_string()),
-                        Over::Wheel => field.name.replace("{j}", &(index + 1).to_string()),
+                        Over::Wheel | Over::SoilWheel => {
+                            field.name.replace("{j}", &(index + 1).to_string())
+                        }
                     };
                     names.push(name);
                     columns.push(Column {
@@ -489,6 +543,7 @@ mod tests {
             w: &w,
             wheels: &wheels,
             reports: &reports,
+            spins: &[],
             torques: &[1.5, 2.5],
             steering: &[0.0, -0.25],
             neutrals: &[0.45],

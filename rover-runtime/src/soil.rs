@@ -6,10 +6,10 @@
 use std::path::Path;
 
 use rover_dynamics::soil::{GaussLegendre, SinksPastAxle, Soil, SoilWheel, steady_state};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// A soil as a `[soil]` table writes it (docs/SOIL.md).
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SoilConfig {
     /// Pressure–sinkage exponent n (> 0).

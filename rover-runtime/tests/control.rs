@@ -22,9 +22,7 @@ fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
     // Measured loads are ignored: the static ones decide.
     control.torques(
         1.0,
-        &vec![0.0; n],
-        &w,
-        &[0.0],
+        (&vec![0.0; n], &w, &[0.0], &[]),
         &[1.0, 0.0, 0.0, 0.0],
         &[0.0; 4],
         &mut tau,
@@ -216,7 +214,7 @@ fn heading_hold_integrals_integrate_and_stop_winding_up() {
         let mut x = vec![0.0; n];
         (x[1], x[5]) = (y, psi);
         let mut out = [f64::NAN; 3];
-        control.integral_rates(t, &x, &w, &z, &mut out);
+        control.integral_rates(t, (&x, &w, &z, &[]), &mut out);
         out
     };
     let settled = rates(2.0, (0.3, 0.1), [0.0; 3]);

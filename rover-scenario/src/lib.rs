@@ -57,6 +57,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod ground;
 pub mod linearize;
 pub mod output;
 pub mod prepare;

@@ -10,6 +10,7 @@
 //! [terrain]                  # see docs/TERRAIN.md; default flat
 //! kind = "random"
 //! z_r = 0.2
+//! soil = "lunar_nominal"     # optional: soft ground (docs/SOIL.md)
 //!
 //! [control.speed]
 //! speed = 0.05               # [m/s], or { points = [[0, 0.05], [20, 0.1]] }
@@ -29,12 +30,12 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use crate::ground::GroundConfig;
 use rover_dynamics::contact::RimSampling;
 use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{BdfConfig, IntegratorConfig};
 use rover_runtime::control::ControllerConfig;
 use rover_runtime::wheel_law::WheelLawConfig;
-use rover_terrain::TerrainConfig;
 
 /// A whole scenario.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -56,9 +57,9 @@ pub struct Scenario {
     /// No ground at all (free flight): the terrain is ignored.
     #[serde(default)]
     pub free_flight: bool,
-    /// The ground.
+    /// The ground: its shape, and its soil if it is soft.
     #[serde(default)]
-    pub terrain: TerrainConfig,
+    pub terrain: GroundConfig,
     /// The initial state.
     #[serde(default)]
     pub initial: InitialState,
@@ -323,7 +324,7 @@ impl Scenario {
             settle: 0.0,
             output_rate: default_rate(),
             free_flight: false,
-            terrain: TerrainConfig::default(),
+            terrain: GroundConfig::default(),
             initial: InitialState::default(),
             integrator: default_integrator(),
             control: ControllerConfig::default(),
@@ -333,6 +334,13 @@ impl Scenario {
             path_from: None,
             profile: false,
         }
+    }
+
+    /// Whether the rover drives on a soil (a `[terrain]` soil, and ground
+    /// under it): its wheels then spin as states, and its rows carry their
+    /// spin, slip and sinkage.
+    pub fn soft(&self) -> bool {
+        self.terrain.soil.is_some() && !self.free_flight
     }
 
     /// The checks that need no rover, which a scenario file gets when it

@@ -16,6 +16,7 @@ use crate::scenario::{FidelityLevel, Scenario};
 use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{Integrator, OdeSystem};
 use rover_runtime::control::Controller;
+use rover_runtime::ground::Ground;
 use rover_runtime::row::{Columns, RowInputs};
 use rover_runtime::sim::{RoverSystem, RunError, RunOptions, Stop, run};
 use rover_terrain::Terrain;
@@ -41,6 +42,12 @@ pub enum SetupError {
         /// What is wrong and how to fix it.
         message: String,
     },
+    /// The soil cannot be read or is outside physics.
+    #[error("terrain.{0}")]
+    Soil(#[from] rover_runtime::soil::SoilError),
+    /// A wheel the soil law cannot take.
+    #[error("{0}\n  = help: give the rover description's wheels (or its [wheel_defaults]) `{field}`: {help}", field = .0.field(), help = soil_wheel_help(.0))]
+    SoilWheel(#[from] rover_runtime::ground::SoilWheelError),
     /// The rover starts off the terrain map.
     #[error("the rover starts off the terrain: {0}")]
     OffMap(rover_dynamics::height_field::OffMap),
@@ -68,10 +75,22 @@ impl SetupError {
             SetupError::Terrain(rover_terrain::TerrainError::Parameter { name, .. }) => {
                 Some(format!("terrain.{name}"))
             }
+            SetupError::Soil(_) => Some("terrain.soil".into()),
             SetupError::Control(e) => Some(format!("control.{}", e.field)),
             SetupError::Integrator(e) => Some(format!("integrator.{}.{}", e.method, e.field)),
             SetupError::Initial { field, .. } => Some(format!("initial.{field}")),
             _ => None,
+        }
+    }
+}
+
+fn soil_wheel_help(e: &rover_runtime::ground::SoilWheelError) -> &'static str {
+    match e {
+        rover_runtime::ground::SoilWheelError::NoWidth { .. } => {
+            "the tyre's width in metres, e.g. width = 0.16"
+        }
+        rover_runtime::ground::SoilWheelError::NoSpinInertia { .. } => {
+            "the wheel's moment of inertia about its axle in kg·m² (with its drive train), or a wheel mass"
         }
     }
 }
@@ -172,6 +191,22 @@ fn wheel_touching_heights(
         .map_err(|e| SetupError::OffMap(e.off))
 }
 
+/// The ground of `scenario` on `terrain` for `model`: its contact search
+/// and wheel law, and its soil if `[terrain]` has one (files relative to
+/// `base_dir`).
+pub fn ground_of(
+    scenario: &Scenario,
+    terrain: Terrain,
+    model: &Model,
+    base_dir: &Path,
+) -> Result<Ground<Terrain>, SetupError> {
+    let ground = scenario.contact.ground(terrain, model);
+    Ok(match scenario.terrain.soil(base_dir)? {
+        Some(soil) => ground.with_soil(&soil, model)?,
+        None => ground,
+    })
+}
+
 /// The rover of `scenario` as an ODE system — its terrain (none in free
 /// flight), ground, controller and `plant` — and its initial state, the
 /// integral states beyond the speed loop's at 0: what a whole run and a
@@ -188,10 +223,14 @@ pub(crate) fn system_of<P: Plant>(
         Some(scenario.terrain.build(base_dir)?)
     };
     let mut y = initial_state(model, scenario, terrain.as_ref())?;
-    let ground = terrain.map(|t| scenario.contact.ground(t, model));
+    let ground = match terrain {
+        None => None,
+        Some(t) => Some(ground_of(scenario, t, model, base_dir)?),
+    };
     let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
-    let sys = RoverSystem::new(plant, ground, control);
+    let mut sys = RoverSystem::new(plant, ground, control);
     y.resize(sys.dim(), 0.0);
+    sys.roll_spins(0.0, &mut y);
     Ok((sys, y))
 }
 
@@ -238,7 +277,7 @@ pub fn simulate<P: Plant, W: Write>(
     let mut integ = scenario.integrator.build(sys.dim())?;
     let n = model.dof();
     let k = model.wheels.len();
-    let columns = Columns::new(model.m(), k);
+    let columns = Columns::on_ground(model.m(), k, !sys.spin_range().is_empty());
     let mut writer = CsvWriter::new(csv, &columns)?;
     let opts = run_options(scenario);
     let rest_x: Vec<f64> = model.rest_wheel_centres().iter().map(|u| u[0]).collect();
@@ -526,6 +565,7 @@ fn quasi_static_run<W: Write>(
             w: &zeros,
             wheels: &wheels,
             reports: &reports,
+            spins: &[],
             torques: &per_wheel_zeros,
             steering: &per_wheel_zeros,
             neutrals: control.neutrals(),

@@ -153,7 +153,7 @@ impl<P: Plant> Simulation<P> {
 
     /// The ground (`[terrain]`; default flat at Z = 0).
     pub fn terrain(mut self, terrain: TerrainConfig) -> Self {
-        self.scenario.terrain = terrain;
+        self.scenario.terrain.shape = terrain;
         self
     }
 

@@ -69,7 +69,7 @@ impl<P: Plant + Clone> Stepper<P> {
             sys,
             integ,
             driver,
-            columns: Columns::new(model.m(), model.wheels.len()),
+            columns: Columns::on_ground(model.m(), model.wheels.len(), scenario.soft()),
             y0: y.clone(),
             y,
             t: 0.0,

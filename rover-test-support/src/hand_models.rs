@@ -75,6 +75,8 @@ fn wheel(body: usize, steerable: bool) -> Wheel {
     Wheel {
         body,
         radius: 0.090,
+        width: None,
+        spin_inertia: 0.5 * 0.6 * 0.090 * 0.090,
         stiffness: 4000.0,
         damping: 300.0,
         mu_x: 0.5,

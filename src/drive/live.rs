@@ -451,7 +451,7 @@ impl<P: Plant> Sim<P> {
     ) -> Result<Self, SetupError> {
         let terrain = scenario.terrain.build(base)?;
         let mut y = rover_scenario::simulate::initial_state(model, scenario, Some(&terrain))?;
-        let ground = scenario.contact.ground(terrain, model);
+        let ground = rover_scenario::simulate::ground_of(scenario, terrain, model, base)?;
         let control = Controller::new_in(config.control.clone(), model, 0.0, base)?;
         let weights = match config.distribution {
             Distribution::StaticLoad => rover_runtime::quasi_static::flat_ground_loads(model)?,
@@ -466,13 +466,14 @@ impl<P: Plant> Sim<P> {
                 rollover_limit: config.rollover_limit,
             },
         );
-        let sys = RoverSystem::new(plant, Some(ground), control.clone());
+        let mut sys = RoverSystem::new(plant, Some(ground), control.clone());
         y.resize(sys.dim(), 0.0);
+        sys.roll_spins(0.0, &mut y);
         let integ = config.method.config(h).build(sys.dim())?;
         let k = model.wheels.len();
         let mut sim = Sim {
             n: model.dof(),
-            columns: Columns::new(model.m(), k),
+            columns: Columns::on_ground(model.m(), k, !sys.spin_range().is_empty()),
             scratch: vec![0.0; y.len()],
             y0: y.clone(),
             y,

@@ -247,8 +247,12 @@ fn meta(
     if let Some(spec) = spec {
         m["coordinates"] = json!(spec.coordinate_names);
         m["sketch"] = sketch_json(&spec.sketch);
-        let row = Columns::new(spec.model.m(), spec.model.wheels.len());
-        if row.names() == columns {
+        let (m_, k) = (spec.model.m(), spec.model.wheels.len());
+        let row = [false, true]
+            .map(|soil| Columns::on_ground(m_, k, soil))
+            .into_iter()
+            .find(|row| row.names() == columns);
+        if let Some(row) = row {
             m["units"] = json!(row.units(&spec.coordinate_linear));
         }
     }

@@ -63,6 +63,9 @@ pub struct Controller {
     rest_xy: Vec<(f64, f64)>,
     steerable: Vec<bool>,
     max_torque: Vec<f64>,
+    /// Each wheel's radius \[m\]: on a soil the speed loop reads the
+    /// wheels' rim speeds.
+    radii: Vec<f64>,
     /// The largest motor limit [N·m]: where the integrals stop (anti-windup).
     torque_cap: f64,
     active: Option<ActiveSuspension>,
@@ -143,6 +146,7 @@ impl Controller {
             rest_xy,
             steerable,
             max_torque: model.wheels.iter().map(|w| w.max_torque).collect(),
+            radii: model.wheels.iter().map(|w| w.radius).collect(),
             torque_cap: model
                 .wheels
                 .iter()
@@ -253,16 +257,36 @@ impl Controller {
         }
     }
 
+    /// The speed the speed loop holds: the body's forward speed v_x on
+    /// rigid ground (the paper's loop); on a soil (wheel spins `spins`
+    /// given), the wheels' mean rim speed r·ω, as a rover's own drive holds
+    /// its wheels' rates: a wheel spinning in soft soil then does not run
+    /// away, and a rover that cannot climb stalls with its wheels turning
+    /// at the set-point (slip 1), as Spirit did.
+    pub fn measured_speed(&self, w: &[f64], spins: &[f64]) -> f64 {
+        if spins.is_empty() {
+            return w[0];
+        }
+        let sum: f64 = spins.iter().zip(&self.radii).map(|(o, r)| o * r).sum();
+        sum / spins.len() as f64
+    }
+
     /// Rates of the integral states `z` into `out` (both [`Controller::states`]
-    /// long), for coordinates `x` and pseudo-velocities `w`:
-    /// - the speed loop's, `V − v_x`;
+    /// long), for coordinates `x`, pseudo-velocities `w` and (on a soil)
+    /// the wheels' spins:
+    /// - the speed loop's, `V − v` ([`Controller::measured_speed`]);
     /// - the heading error's, e (0 while settling);
     /// - the line offset's, e_y (0 while settling).
     ///
     /// Each is frozen while its term alone saturates what it drives in the
     /// same direction (anti-windup): the largest motor torque for the speed
     /// loop and the torque difference, [`LINE_INTEGRAL_CAP`] for the line.
-    pub fn integral_rates(&self, t: f64, x: &[f64], w: &[f64], z: &[f64], out: &mut [f64]) {
+    pub fn integral_rates(
+        &self,
+        t: f64,
+        (x, w, z, spins): (&[f64], &[f64], &[f64], &[f64]),
+        out: &mut [f64],
+    ) {
         out.iter_mut().for_each(|o| *o = 0.0);
         let cap = self.torque_cap;
         let hold = |e: f64, held: f64, cap: f64| {
@@ -273,7 +297,11 @@ impl Controller {
             }
         };
         if let Some(s) = &self.speed {
-            out[0] = hold(self.speed_setpoint(t) - w[0], s.ki * z[0], cap);
+            out[0] = hold(
+                self.speed_setpoint(t) - self.measured_speed(w, spins),
+                s.ki * z[0],
+                cap,
+            );
         }
         let SteeringLaw::Heading {
             hold: h, heading, ..
@@ -298,7 +326,9 @@ impl Controller {
         }
     }
 
-    /// Motor torques per wheel [N·m] from the forward speed `w[0]`, the
+    /// Motor torques per wheel [N·m] from the speed the loop holds
+    /// ([`Controller::measured_speed`]: `w[0]`, or on a soil the rim
+    /// speeds of the wheels spinning at `spins`), the
     /// integral states `z` (ζ) and the wheels' normal loads `normals` (this
     /// evaluation), plus the open-loop commands `commanded` (an external
     /// controller's, one per wheel), all within each motor's limit; heading
@@ -308,15 +338,14 @@ impl Controller {
     pub fn torques(
         &self,
         t: f64,
-        x: &[f64],
-        w: &[f64],
-        z: &[f64],
+        (x, w, z, spins): (&[f64], &[f64], &[f64], &[f64]),
         normals: &[f64],
         commanded: &[f64],
         out: &mut [f64],
     ) {
         out.copy_from_slice(commanded);
-        self.add_torques(t, x, w, z, normals, out);
+        let speed = self.measured_speed(w, spins);
+        self.add_torques(t, x, w, z, speed, normals, out);
         if let Some(s) = &self.schedule
             && t >= self.settle
         {
@@ -328,19 +357,21 @@ impl Controller {
     }
 
     /// The built-in loops' torques, added to `out`.
+    #[allow(clippy::too_many_arguments)]
     fn add_torques(
         &self,
         t: f64,
         x: &[f64],
         w: &[f64],
         z: &[f64],
+        speed: f64,
         normals: &[f64],
         out: &mut [f64],
     ) {
         let Some(s) = &self.speed else {
             return;
         };
-        let tau0 = s.kp * (self.speed_setpoint(t) - w[0]) + s.ki * z[0];
+        let tau0 = s.kp * (self.speed_setpoint(t) - speed) + s.ki * z[0];
         s.add_shares(tau0, normals, out);
         let settled = t >= self.settle;
         let dt = match &self.steering {

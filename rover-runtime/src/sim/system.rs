@@ -1,6 +1,7 @@
-//! The rover as a first-order ODE system `ẏ = f(t, y)`, `y = [x; w; ζ]`
+//! The rover as a first-order ODE system `ẏ = f(t, y)`, `y = [x; w; ζ; ω]`
 //! (ζ: the controller's integral states, [`Controller::states`]: the speed
-//! loop's, then a heading hold's when it integrates).
+//! loop's, then a heading hold's when it integrates; ω: each wheel's spin
+//! rate on a soil, none on rigid ground, [`Ground::spin_states`]).
 
 use rover_dynamics::HeightField;
 use rover_dynamics::kinematics::position_rates;
@@ -29,6 +30,8 @@ pub struct RoverSystem<P, H> {
     /// The controller.
     pub control: Controller,
     n: usize,
+    /// Spin states (one per wheel on a soil, else none).
+    spins: usize,
     wheels: Vec<WheelState>,
     loads: Vec<WheelLoad>,
     reports: Vec<WheelReport>,
@@ -49,12 +52,14 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     pub fn new(mut plant: P, ground: Option<Ground<H>>, control: Controller) -> Self {
         let n = plant.dof();
         let k = plant.wheel_count();
-        let dim = 2 * n + control.states();
+        let spins = ground.as_ref().map_or(0, Ground::spin_states);
+        let dim = 2 * n + control.states() + spins;
         Self {
             jacobian_work: JacobianWork::new(&mut plant, n, k, dim),
             plant,
             ground,
             n,
+            spins,
             wheels: vec![WheelState::default(); k],
             loads: vec![WheelLoad::default(); k],
             reports: vec![WheelReport::default(); k],
@@ -147,6 +152,44 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         self.n
     }
 
+    /// Where the wheels' spins start in the state, and how many there are
+    /// (one per wheel on a soil, none on rigid ground).
+    pub fn spin_range(&self) -> core::ops::Range<usize> {
+        let start = 2 * self.n + self.control.states();
+        start..start + self.spins
+    }
+
+    /// Sets the wheels' spins in `y` to rolling without slip at the wheel
+    /// centres' velocities of `y` (r·ω = V·heading, the heading
+    /// `a_w × e_Z`): where a run on a soil starts. Nothing on rigid ground.
+    pub fn roll_spins(&mut self, t: f64, y: &mut [f64]) {
+        let range = self.spin_range();
+        if range.is_empty() {
+            return;
+        }
+        let n = self.n;
+        let t = self.command_time(t);
+        let (x, rest) = y.split_at(n);
+        let (w, z) = rest.split_at(n);
+        self.control.steer(t, x, z, &mut self.steer);
+        for (s, c) in self.steer.iter_mut().zip(&self.steer_commands) {
+            *s += c;
+        }
+        self.plant.wheels(x, w, &self.steer, &mut self.wheels);
+        let radii = self.ground.as_ref().map_or(&[][..], |g| g.radii());
+        for ((spin, s), r) in y[range].iter_mut().zip(&self.wheels).zip(radii) {
+            let a = s.spin_axis;
+            // a_w × e_Z, horizontal.
+            let heading = [a[1], -a[0], 0.0];
+            let norm = heading[0].hypot(heading[1]);
+            *spin = if norm > 0.0 {
+                (s.velocity[0] * heading[0] + s.velocity[1] * heading[1]) / (norm * r)
+            } else {
+                0.0
+            };
+        }
+    }
+
     /// Wheel states of the last evaluation.
     pub fn wheel_states(&self) -> &[WheelState] {
         &self.wheels
@@ -210,7 +253,8 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let n = self.n;
         let t = self.command_time(t);
         let (x, rest) = y.split_at(n);
-        let (w, z) = rest.split_at(n);
+        let (w, rest) = rest.split_at(n);
+        let (z, spins) = rest.split_at(rest.len() - self.spins);
         self.control.steer(t, x, z, &mut self.steer);
         for (s, c) in self.steer.iter_mut().zip(&self.steer_commands) {
             *s += c;
@@ -224,9 +268,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 mark(1);
                 self.control.torques(
                     t,
-                    x,
-                    w,
-                    z,
+                    (x, w, z, spins),
                     &self.normals,
                     &self.torque_commands,
                     &mut self.torques,
@@ -234,6 +276,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 g.loads(
                     &self.wheels,
                     &self.torques,
+                    spins,
                     &mut self.loads,
                     &mut self.reports,
                 );
@@ -242,9 +285,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 self.normals.iter_mut().for_each(|v| *v = 0.0);
                 self.control.torques(
                     t,
-                    x,
-                    w,
-                    z,
+                    (x, w, z, spins),
                     &self.normals,
                     &self.torque_commands,
                     &mut self.torques,
@@ -262,11 +303,15 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         }
         mark(2);
         let (xd, rest) = dy.split_at_mut(n);
-        let (wd, zd) = rest.split_at_mut(n);
+        let (wd, rest) = rest.split_at_mut(n);
+        let (zd, spin_rates) = rest.split_at_mut(rest.len() - self.spins);
         self.plant
             .derivatives(x, w, &self.loads, xd, wd)
             .map_err(SimError::Plant)?;
-        self.control.integral_rates(t, x, w, z, zd);
+        self.control.integral_rates(t, (x, w, z, spins), zd);
+        if let Some(g) = &self.ground {
+            g.spin_rates(&self.torques, &self.reports, spin_rates);
+        }
         mark(3);
         Ok(())
     }
@@ -276,7 +321,7 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
     type Error = SimError;
 
     fn dim(&self) -> usize {
-        2 * self.n + self.control.states()
+        2 * self.n + self.control.states() + self.spins
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {

@@ -36,6 +36,15 @@ pub struct WheelDesc {
     /// Radius R_w \[m\], > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<f64>,
+    /// Width b \[m\], > 0 and narrower than the rover's track: what the
+    /// soil law presses on (required on a soil, unused on rigid ground).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// Moment of inertia about the axle [kg·m²], > 0: the wheel's and
+    /// the drive train's, reflected to the wheel (on a soil the wheel's spin
+    /// is a state; default ½·mass·radius², a uniform disc).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin_inertia: Option<f64>,
     /// Radial stiffness k_w [N/m], > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,
@@ -76,6 +85,12 @@ pub struct WheelFields {
     /// Radius \[m\].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<f64>,
+    /// Width \[m\].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// Moment of inertia about the axle [kg·m²].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin_inertia: Option<f64>,
     /// Radial stiffness [N/m].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,

@@ -135,6 +135,30 @@ pub fn model(
             }
         }
     }
+    // A wheel as wide as the track would overlap its neighbour across.
+    let (lo, hi) = rest_wheel_centres
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+            (lo.min(c[1]), hi.max(c[1]))
+        });
+    let track = hi - lo;
+    for (j, w) in model.wheels.iter().enumerate() {
+        if let Some(b) = w.width
+            && track > 0.0
+            && b >= track
+        {
+            ctx.error(
+                format!("wheel[{j}].width"),
+                format!(
+                    "wheel {} is {} m wide, as wide as the rover's track ({} m between its outermost wheel centres)",
+                    j + 1,
+                    num(b),
+                    num(track)
+                ),
+                "give the tyre's width in metres (a rover's wheels are a fraction of its track)",
+            );
+        }
+    }
     // The tyres must carry the rover: static deflection below the radius.
     let total_mass = model.body.mass + model.bodies.iter().map(|b| b.mass).sum::<f64>();
     let k_sum: f64 = model.wheels.iter().map(|w| w.stiffness).sum();

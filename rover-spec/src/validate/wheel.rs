@@ -131,17 +131,39 @@ pub fn check_wheel(
         Some((i, path)) => Some((check_inertia(ctx, &path, &i)?, path)),
         None => None,
     };
+    // Optional, positive when given.
+    let mut optional = |field: &str, own: Option<f64>, def: Option<f64>, help: &str| match pick(
+        index, field, own, def,
+    ) {
+        Some((v, path)) => ctx.positive(&path, v, help).map(Some),
+        None => Some(None),
+    };
+    let width = optional(
+        "width",
+        w.width,
+        d.width,
+        "the wheel's width is in metres and positive (what the soil law presses on)",
+    )?;
+    let spin_inertia = optional(
+        "spin_inertia",
+        w.spin_inertia,
+        d.spin_inertia,
+        "the moment of inertia about the axle is in kg·m² and positive (leave it out for ½·mass·radius²)",
+    )?;
     let motor = match pick(index, "motor", w.motor, d.motor).map(|p| p.0) {
         Some(MotorMountDesc::Hub) => MotorMount::Hub,
         Some(MotorMountDesc::Body) | None => MotorMount::Body,
     };
     let steerable = pick(index, "steerable", w.steerable, d.steerable).is_some_and(|p| p.0);
+    let (mass, radius) = (mass?, radius?);
     Some(CheckedWheel {
-        mass: mass?,
+        mass,
         inertia,
         wheel: Wheel {
             body: 0,
-            radius: radius?,
+            radius,
+            width,
+            spin_inertia: spin_inertia.unwrap_or(0.5 * mass * radius * radius),
             stiffness: stiffness?,
             damping: damping?,
             mu_x: mu_x?,

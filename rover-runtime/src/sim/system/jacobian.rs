@@ -16,7 +16,10 @@
 //! - `∂f/∂L`: exact, `ẇ` being linear in the loads (one plant evaluation per
 //!   column, no difference quotient);
 //! - `∂τ/∂y` and the controller's integral rates `∂ζ̇/∂y`: differences of the
-//!   controller alone (no contact search, no plant).
+//!   controller alone (no contact search, no plant);
+//! - on a soil, the spins' rows `∂ω̇_j/∂y = (∂τ_j/∂y − ∂T_j/∂y)/I_w`, the
+//!   soil's torque T_j differentiated with the load (its last row), and the
+//!   loads' dependence on the spins (their last column).
 //!
 //! Left out are the terms that turn with the geometry — the patch frames,
 //! `∂V_j/∂x` at fixed `w`, the steering's dependence on the state — of order
@@ -114,7 +117,7 @@ impl JacobianWork {
             centre: vec![[0.0; 3]; k * n],
             b_t: Lu::new(n),
             column: vec![0.0; n],
-            loads: vec![[[0.0; 7]; 9]; k],
+            loads: vec![[[0.0; 8]; 10]; k],
             torque: vec![0.0; k * dim],
             tau: vec![0.0; k],
             y: vec![0.0; dim],
@@ -132,22 +135,27 @@ fn step(v: f64) -> f64 {
     perturbed - v
 }
 
-/// Calls `f(j, h, x, w, z)` at `y + h·e_j` for every state j, `h` the
+/// The controller's view of a state: `(x, w, z, ω)`, z its integral
+/// states and ω the wheels' spins (the last `spins` states).
+type Parts<'a> = (&'a [f64], &'a [f64], &'a [f64], &'a [f64]);
+
+/// Calls `f(j, h, parts)` at `y + h·e_j` for every state j, `h` the
 /// difference step: forward differences of what is cheap to evaluate (the
 /// controller), `scratch` holding the perturbed state.
 fn each_perturbed(
     y: &[f64],
-    n: usize,
+    (n, spins): (usize, usize),
     scratch: &mut [f64],
-    mut f: impl FnMut(usize, f64, &[f64], &[f64], &[f64]),
+    mut f: impl FnMut(usize, f64, Parts<'_>),
 ) {
     scratch.copy_from_slice(y);
     for j in 0..y.len() {
         let h = step(y[j]);
         scratch[j] = y[j] + h;
         let (x, rest) = scratch.split_at(n);
-        let (w, z) = rest.split_at(n);
-        f(j, h, x, w, z);
+        let (w, rest) = rest.split_at(n);
+        let (z, spin) = rest.split_at(rest.len() - spins);
+        f(j, h, (x, w, z, spin));
         scratch[j] = y[j];
     }
 }
@@ -232,14 +240,16 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let (control, normals, commands) = (&self.control, &self.normals, &self.torque_commands);
         let torques = &self.torques;
         let (tau, torque) = (&mut work.tau, &mut work.torque);
-        each_perturbed(y, n, &mut work.y, |j, h, xp, wp, zp| {
-            control.torques(tc, xp, wp, zp, normals, commands, tau);
+        let spins = self.spin_range();
+        each_perturbed(y, (n, spins.len()), &mut work.y, |j, h, parts| {
+            control.torques(tc, parts, normals, commands, tau);
             for wheel in 0..k {
                 torque[wheel * dim + j] = (tau[wheel] - torques[wheel]) / h;
             }
         });
 
-        ground.load_derivatives(&self.wheels, &self.torques, &mut work.loads);
+        let spin = &y[spins.clone()];
+        ground.load_derivatives(&self.wheels, &self.torques, spin, &mut work.loads);
 
         // Each column through the loads: ẇ is linear in them, so one plant
         // evaluation at L + s·ΔL gives ∂ẇ/∂L·ΔL exactly (s only keeps the
@@ -252,16 +262,25 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         for j in 0..dim {
             let mut largest = 0.0f64;
             for wheel in 0..k {
-                let mut input = [0.0; 7];
+                let mut input = [0.0; 8];
                 if j < n {
                     input[..3].copy_from_slice(&work.centre[wheel * n + j]);
                 } else if j < two_n {
                     input[3..6].copy_from_slice(&work.velocity[wheel * n + j - n]);
                 }
                 input[6] = work.torque[wheel * dim + j];
+                if !spins.is_empty() && j == spins.start + wheel {
+                    input[7] = 1.0;
+                }
                 let d = &work.loads[wheel];
-                let delta: [f64; 9] =
-                    core::array::from_fn(|r| (0..7).map(|c| d[r][c] * input[c]).sum());
+                let delta: [f64; 10] =
+                    core::array::from_fn(|r| (0..8).map(|c| d[r][c] * input[c]).sum());
+                // The spin's row: ω̇ = (τ − T)/I_w.
+                if !spins.is_empty() {
+                    let inertia = ground.spin_inertias()[wheel];
+                    jac[(spins.start + wheel) * dim + j] = (input[6] - delta[9]) / inertia;
+                }
+                let delta: [f64; 9] = core::array::from_fn(|r| delta[r]);
                 largest = delta.iter().fold(largest, |m, v| m.max(v.abs()));
                 let p = &mut work.perturbed[wheel];
                 p.force.copy_from_slice(&delta[..3]);
@@ -295,15 +314,15 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
 
     /// The rows of the controller's integral states, `∂ζ̇/∂y`, differenced.
     fn controller_rows(&self, t: f64, y: &[f64], jac: &mut [f64], work: &mut JacobianWork) {
-        let (n, dim) = (self.n, y.len());
-        let states = dim - 2 * n;
+        let (n, dim, spins) = (self.n, y.len(), self.spins);
+        let states = dim - 2 * n - spins;
         if states == 0 {
             return;
         }
         let tc = self.command_time(t);
-        let (zd, f0) = (&mut work.zd, &work.f0);
-        each_perturbed(y, n, &mut work.y, |j, h, xp, wp, zp| {
-            self.control.integral_rates(tc, xp, wp, zp, zd);
+        let (zd, f0) = (&mut work.zd[..states], &work.f0);
+        each_perturbed(y, (n, spins), &mut work.y, |j, h, parts| {
+            self.control.integral_rates(tc, parts, zd);
             for i in 0..states {
                 jac[(2 * n + i) * dim + j] = (zd[i] - f0[2 * n + i]) / h;
             }
