@@ -6,7 +6,8 @@
 
 The runs are the command line's (`rover simulate`): the same numbers bit
 for bit, the same messages in the exceptions (`RoverError`). Units are SI
-(m, s, rad, N, N·m), as in the CSV columns.
+(m, s, rad, N, N·m), as in the CSV columns. `wheel_test` is the
+single-wheel testbed (`rover wheel-test`) on soft soil.
 """
 
 from __future__ import annotations
@@ -33,9 +34,11 @@ __all__ = [
     "simulate",
     "sweep",
     "sweep_plan",
+    "wheel_test",
 ]
 
 ScenarioLike = Union[str, os.PathLike, Mapping[str, Any]]
+SoilLike = Union[str, os.PathLike, Mapping[str, Any]]
 
 
 def builtins() -> list[str]:
@@ -154,6 +157,49 @@ class Simulation(_native.Simulation):
         """The current trajectory row, by column name."""
         self.row_into(self._row)
         return dict(zip(self.columns, self._row.tolist()))
+
+
+def wheel_test(
+    soil: SoilLike,
+    radius: float,
+    width: float,
+    load: float,
+    slips: Any,
+    slip_angle_deg: float = 0.0,
+) -> dict[str, np.ndarray]:
+    """The single-wheel testbed, as ``rover wheel-test`` runs it: the
+    steady state of a rigid wheel (``radius``, ``width`` [m]) carrying
+    ``load`` [N] on ``soil`` at each of ``slips`` (each in (-1, 1):
+    positive driving, negative braking), under ``slip_angle_deg`` [°].
+
+    ``soil`` is a built-in soil's name (``"lete_sand"``, ``"dry_sand"``,
+    ``"lunar_nominal"``, ``"lunar_simulant"``, ``"mars_simulant"``), a TOML
+    file with a ``[soil]`` table, or a dict of that table's keys (``n``,
+    ``k_c``, ``k_phi``, ``cohesion``, ``friction_angle_deg``,
+    ``shear_modulus``; optional ``lateral_shear_modulus``, ``a0``, ``a1``,
+    ``rear_ratio``), checked as the file is.
+
+    Returns numpy float64 arrays, one value per slip, by the command line's
+    CSV column: ``slip``, ``sinkage`` [m], ``drawbar_pull`` [N], ``torque``
+    [N·m], ``lateral_force`` [N], ``entry_angle`` [rad],
+    ``drawbar_pull_over_load`` (DP/W) and ``torque_over_load_radius``
+    (T/(W·r)); the same numbers bit for bit. Input the command line
+    refuses (an unknown soil, a soil key or value outside physics, a slip
+    outside (-1, 1), a load the soil cannot carry under the wheel) raises
+    ValueError with its message, naming the flag or the ``[soil]`` key."""
+    if isinstance(soil, Mapping):
+        label, text = "<dict>", _toml_dumps({"soil": soil})
+    elif isinstance(soil, (str, os.PathLike)):
+        label, text = os.fspath(soil), None
+    else:
+        raise TypeError(f"a soil is a name, a path or a dict, not {type(soil).__name__}")
+    s = np.asarray(slips, dtype=np.float64)
+    if s.ndim > 1:
+        raise ValueError(f"slips: expected one slip or a 1-D sequence of them, got shape {s.shape}")
+    s = np.atleast_1d(s)
+    columns, data = _native.wheel_test(label, text, radius, width, load, s.tolist(), slip_angle_deg)
+    table = np.frombuffer(data, dtype=np.float64).reshape(len(columns), len(s)).copy()
+    return dict(zip(columns, table))
 
 
 from .sweep import sweep, sweep_plan  # noqa: E402

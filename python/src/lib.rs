@@ -1,7 +1,8 @@
 //! The native half of the Python package `rover`: loading rovers, whole
 //! runs, step-wise runs and sweep tasks, all through `rover-scenario`'s
-//! preparation of a run, as the command line runs them, so that Python
-//! gets the command line's numbers and messages. The Python half
+//! preparation of a run, and the single-wheel testbed through
+//! `rover-runtime`'s, as the command line runs them, so that Python gets
+//! the command line's numbers and messages. The Python half
 //! (python/rover/) turns what crosses here into numpy arrays, dicts and
 //! tables.
 //!
@@ -463,6 +464,56 @@ fn plan_task(
     Ok(py.detach(|| plan.run_task(index).to_string()))
 }
 
+/// The single-wheel testbed, as `rover wheel-test` runs it: the soil a
+/// built-in name or a soil file (`soil`), or a soil file's TOML text
+/// (`soil_text`, `soil` then naming it in messages). The columns' names
+/// and their values column after column, as native-endian f64 bytes.
+/// Input the command line refuses raises ValueError with its message.
+#[pyfunction]
+#[pyo3(signature = (soil, soil_text, radius, width, load, slips, slip_angle_deg))]
+fn wheel_test<'py>(
+    py: Python<'py>,
+    soil: &str,
+    soil_text: Option<&str>,
+    radius: f64,
+    width: f64,
+    load: f64,
+    slips: Vec<f64>,
+    slip_angle_deg: f64,
+) -> PyResult<(Vec<&'static str>, Bound<'py, PyBytes>)> {
+    use rover_runtime::soil::{SoilConfig, WheelTestPoint};
+    let config = match soil_text {
+        Some(text) => SoilConfig::from_toml(text),
+        None => SoilConfig::named_or_file(soil),
+    };
+    let soil = config.and_then(|c| c.soil()).map_err(|e| {
+        // A TOML error ends in a line break; the command line's
+        // eprintln adds another.
+        let message = format!("error: --soil {soil}: {e}");
+        PyValueError::new_err(message.trim_end().to_string())
+    })?;
+    let points = py
+        .detach(|| {
+            rover_runtime::soil::wheel_test(
+                &soil,
+                radius,
+                width,
+                load,
+                &slips,
+                slip_angle_deg.to_radians(),
+            )
+        })
+        .map_err(|e| PyValueError::new_err(format!("error: {e}")))?;
+    let rows: Vec<[f64; 8]> = points.iter().map(|p| p.row(load, radius)).collect();
+    let mut data = Vec::with_capacity(rows.len() * 8 * 8);
+    for column in 0..WheelTestPoint::COLUMNS.len() {
+        for row in &rows {
+            data.extend_from_slice(&row[column].to_ne_bytes());
+        }
+    }
+    Ok((WheelTestPoint::COLUMNS.to_vec(), PyBytes::new(py, &data)))
+}
+
 /// The built-in rovers' names.
 #[pyfunction]
 fn builtins() -> Vec<&'static str> {
@@ -476,6 +527,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(plan_info, m)?)?;
     m.add_function(wrap_pyfunction!(plan_task, m)?)?;
     m.add_function(wrap_pyfunction!(builtins, m)?)?;
+    m.add_function(wrap_pyfunction!(wheel_test, m)?)?;
     m.add_class::<Rover>()?;
     m.add_class::<Simulation>()?;
     m.add("RoverError", m.py().get_type::<RoverError>())?;

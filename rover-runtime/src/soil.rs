@@ -195,14 +195,20 @@ impl SoilConfig {
         }
         let text = std::fs::read_to_string(path)
             .map_err(|e| SoilError::Source(format!("{source}: cannot read: {e}")))?;
+        Self::from_toml(&text).map_err(|e| SoilError::Source(format!("{source}: {e}")))
+    }
+
+    /// A soil file's text: a `[soil]` table and nothing else (checked for
+    /// its keys and types here, for physics by [`soil`](Self::soil)).
+    pub fn from_toml(text: &str) -> Result<Self, SoilError> {
         #[derive(Deserialize)]
         #[serde(deny_unknown_fields)]
         struct File {
             soil: SoilConfig,
         }
-        toml::from_str::<File>(&text)
+        toml::from_str::<File>(text)
             .map(|f| f.soil)
-            .map_err(|e| SoilError::Source(format!("{source}: {e}")))
+            .map_err(|e| SoilError::Source(e.to_string()))
     }
 }
 
@@ -231,6 +237,45 @@ pub struct WheelTestPoint {
     pub torque: f64,
     /// Lateral force F_y under the slip angle \[N\].
     pub lateral_force: f64,
+}
+
+impl WheelTestPoint {
+    /// The testbed's columns (`rover wheel-test`'s CSV header), in
+    /// [`row`](Self::row)'s order.
+    pub const COLUMNS: [&'static str; 8] = [
+        "slip",
+        "sinkage",
+        "drawbar_pull",
+        "torque",
+        "lateral_force",
+        "entry_angle",
+        "drawbar_pull_over_load",
+        "torque_over_load_radius",
+    ];
+
+    /// DP/W under the test's `load` \[N\].
+    pub fn drawbar_pull_over_load(&self, load: f64) -> f64 {
+        self.drawbar_pull / load
+    }
+
+    /// T/(W·r) under the test's `load` \[N\] on a wheel of `radius` \[m\].
+    pub fn torque_over_load_radius(&self, load: f64, radius: f64) -> f64 {
+        self.torque / (load * radius)
+    }
+
+    /// The point's values in [`COLUMNS`](Self::COLUMNS)' order.
+    pub fn row(&self, load: f64, radius: f64) -> [f64; 8] {
+        [
+            self.slip,
+            self.sinkage,
+            self.drawbar_pull,
+            self.torque,
+            self.lateral_force,
+            self.entry_angle,
+            self.drawbar_pull_over_load(load),
+            self.torque_over_load_radius(load, radius),
+        ]
+    }
 }
 
 /// Quadrature points on each piece of the contact arc for the testbed:

@@ -66,25 +66,14 @@ pub fn wheel_test_cmd(args: &WheelTestArgs) -> Result<String, CliError> {
     Ok(csv(&points, args.load, args.radius))
 }
 
-/// `slip,sinkage,drawbar_pull,torque`, then the lateral force, the entry
-/// angle and the two ratios.
+/// [`WheelTestPoint::COLUMNS`], then each point's
+/// [`row`](WheelTestPoint::row).
 fn csv(points: &[WheelTestPoint], load: f64, radius: f64) -> String {
-    let mut out = String::from(
-        "slip,sinkage,drawbar_pull,torque,lateral_force,entry_angle,drawbar_pull_over_load,torque_over_load_radius\n",
-    );
+    let mut out = WheelTestPoint::COLUMNS.join(",");
+    out.push('\n');
     for p in points {
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{},{},{},{}",
-            p.slip,
-            p.sinkage,
-            p.drawbar_pull,
-            p.torque,
-            p.lateral_force,
-            p.entry_angle,
-            p.drawbar_pull / load,
-            p.torque / (load * radius)
-        );
+        let row = p.row(load, radius).map(|v| v.to_string());
+        let _ = writeln!(out, "{}", row.join(","));
     }
     out
 }
@@ -102,7 +91,7 @@ fn plot(
             name: "DP/W".into(),
             points: points
                 .iter()
-                .map(|p| (p.slip, p.drawbar_pull / load))
+                .map(|p| (p.slip, p.drawbar_pull_over_load(load)))
                 .collect(),
             markers: false,
         },
@@ -110,7 +99,7 @@ fn plot(
             name: "T/(W·r)".into(),
             points: points
                 .iter()
-                .map(|p| (p.slip, p.torque / (load * radius)))
+                .map(|p| (p.slip, p.torque_over_load_radius(load, radius)))
                 .collect(),
             markers: false,
         },
