@@ -260,9 +260,10 @@ impl Controller {
     /// The speed the speed loop holds: the body's forward speed v_x on
     /// rigid ground (the paper's loop); on a soil (wheel spins `spins`
     /// given), the wheels' mean rim speed r·ω, as a rover's own drive holds
-    /// its wheels' rates: a wheel spinning in soft soil then does not run
-    /// away, and a rover that cannot climb stalls with its wheels turning
-    /// at the set-point (slip 1), as Spirit did.
+    /// its wheels' rates (each wheel's torque then also gets
+    /// `K_p·(v̄ − r·ω_j)`, so that each holds the mean): a wheel in soft
+    /// soil does not run away, and a rover that cannot climb stalls with its
+    /// wheels turning at the set-point (slip 1), as Spirit did.
     pub fn measured_speed(&self, w: &[f64], spins: &[f64]) -> f64 {
         if spins.is_empty() {
             return w[0];
@@ -346,6 +347,13 @@ impl Controller {
         out.copy_from_slice(commanded);
         let speed = self.measured_speed(w, spins);
         self.add_torques(t, x, w, z, speed, normals, out);
+        // On a soil each wheel's own rate is held too, about the mean: a
+        // lightly loaded wheel does not spin out while the others stall.
+        if let Some(s) = &self.speed {
+            for ((o, spin), r) in out.iter_mut().zip(spins).zip(&self.radii) {
+                *o += s.kp * (speed - r * spin);
+            }
+        }
         if let Some(s) = &self.schedule
             && t >= self.settle
         {
