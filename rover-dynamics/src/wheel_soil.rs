@@ -80,6 +80,18 @@ struct SoilPatchLoad<S> {
     sinkage: S,
 }
 
+/// The slip a wheel reports, rim speed `u` and travel speed `v`:
+/// `(u − v)·sgn(u + v)/max(|u|, |v|, v_ε)` in [−1, 1], positive when the
+/// rim outruns the travel in the direction the wheel turns (driving, 1
+/// spinning in place), negative when it lags behind the travel (braking,
+/// −1 locked), whichever way the wheel goes.
+fn reported_slip<S: Scalar + PartialOrd>(u: S, v: S) -> S {
+    let scale = u.abs().max(v.abs()).max(S::cst(SOIL_V_EPS));
+    ((u - v) * S::one().copysign(u + v) / scale)
+        .max(-S::one())
+        .min(S::one())
+}
+
 /// The weight of the forward frame: 1 for v ≥ v_ε, 0 for v ≤ −v_ε, a
 /// smooth step (C¹) between.
 fn forward_weight<S: Scalar + PartialOrd>(v: S) -> S {
@@ -150,19 +162,19 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
         torque: S::zero(),
         lateral: S::zero(),
     };
-    let (mut slip, mut slip_angle) = (S::zero(), S::zero());
+    let mut slip_angle = S::zero();
     for (sign, weight) in [(1.0, forward), (-1.0, S::one() - forward)] {
         if weight <= S::zero() {
             continue;
         }
-        let (f, s_frame, beta) = in_frame(tyre, rule, entry_angle, sign, speeds);
+        let (f, _, beta) = in_frame(tyre, rule, entry_angle, sign, speeds);
         sum.vertical += weight * f.vertical;
         sum.drawbar += weight * S::cst(sign) * f.drawbar;
         sum.torque += weight * S::cst(sign) * f.torque;
         sum.lateral += weight * f.lateral;
-        slip += weight * s_frame;
         slip_angle += weight * beta;
     }
+    let slip = reported_slip(speeds[0], speeds[1]);
     // The soil's pressure, and the damper ramped in over its first 0.1 mm.
     let ramp = (sinkage / S::cst(DAMPING_RAMP)).min(S::one());
     let rate = -dot(velocity, n);

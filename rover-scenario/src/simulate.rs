@@ -281,7 +281,9 @@ pub fn simulate<P: Plant, W: Write>(
     let mut writer = CsvWriter::new(csv, &columns)?;
     let opts = run_options(scenario);
     let rest_x: Vec<f64> = model.rest_wheel_centres().iter().map(|u| u[0]).collect();
-    let mut log = RunLog::new(scenario.settle, model.dof(), k).with_axles(axles_by_rest_x(&rest_x));
+    let mut log = RunLog::new(scenario.settle, model.dof(), k)
+        .with_axles(axles_by_rest_x(&rest_x))
+        .with_soil(columns.names(), k);
     let started = Instant::now();
     let outcome = run(&mut sys, &mut integ, &mut y, &opts, interrupt, |row| {
         let s = row.system;
@@ -299,6 +301,7 @@ pub fn simulate<P: Plant, W: Write>(
             Status::Interrupted,
             Some(format!("interrupted by the user at t = {t:.3} s")),
         ),
+        Stop::Failed(e @ RunError::Embedded { .. }) => (Status::Embedded, Some(e.to_string())),
         Stop::Failed(e) => (Status::Failed, Some(with_contact_hint(e, scenario))),
     };
     let stats = integ.stats();

@@ -11,7 +11,7 @@ use rover_integrate::Integrator;
 
 use crate::control::Controller;
 
-use super::error::RunError;
+use super::error::{EMBEDDED_SINKAGE, EMBEDDED_SLIP, EMBEDDED_TIME, RunError};
 use super::system::RoverSystem;
 
 /// When a run's events fall, and when it has gone wrong.
@@ -49,6 +49,9 @@ pub struct Driver {
     k_sample: u64,
     /// The first breakpoint not yet passed.
     next_break: usize,
+    /// On a soil, since when every wheel on the ground has slipped above
+    /// [`EMBEDDED_SLIP`].
+    slipping_since: Option<f64>,
 }
 
 impl Driver {
@@ -68,6 +71,7 @@ impl Driver {
             k_out: 0,
             k_sample: 0,
             next_break: 0,
+            slipping_since: None,
         }
     }
 
@@ -82,6 +86,7 @@ impl Driver {
         self.k_out = 0;
         self.k_sample = 0;
         self.next_break = 0;
+        self.slipping_since = None;
     }
 
     /// Whether `t` is the run's end.
@@ -156,6 +161,7 @@ impl Driver {
                 integ.restart();
             }
             self.check_attitude(*t, y)?;
+            self.check_soil(sys, *t, y)?;
             self.sample_due(sys, integ, *t, y);
             if (t_out - *t).abs() <= SAME_INSTANT * (1.0 + *t) || self.finished(*t) {
                 self.k_out += 1;
@@ -182,6 +188,68 @@ impl Driver {
             integ.restart();
         }
         self.k_sample += 1;
+    }
+
+    /// On a soil, a rover that cannot advance, from the contact reports of
+    /// the last evaluation (at or just before `t`): every wheel on the
+    /// ground slipping above [`EMBEDDED_SLIP`] for [`EMBEDDED_TIME`], or a
+    /// wheel sunk past [`EMBEDDED_SINKAGE`] of its radius.
+    fn check_soil<P: Plant, H: HeightField>(
+        &mut self,
+        sys: &RoverSystem<P, H>,
+        t: f64,
+        y: &[f64],
+    ) -> Result<(), RunError> {
+        let Some(ground) = sys.ground.as_ref().filter(|g| g.soil().is_some()) else {
+            return Ok(());
+        };
+        let embedded = |why: String| RunError::Embedded {
+            t,
+            x: y[0],
+            y: y[1],
+            why,
+        };
+        let reports = sys.reports();
+        let radii = ground.radii();
+        let sunk = || {
+            reports
+                .iter()
+                .zip(radii)
+                .enumerate()
+                .filter(|(_, (r, radius))| r.sinkage > EMBEDDED_SINKAGE * **radius)
+        };
+        if sunk().next().is_some() {
+            let wheels: Vec<String> = sunk()
+                .map(|(j, (r, radius))| {
+                    format!(
+                        "wheel {} sank {:.3} m, past half its radius ({radius} m)",
+                        j + 1,
+                        r.sinkage
+                    )
+                })
+                .collect();
+            return Err(embedded(wheels.join("; ")));
+        }
+        let on_ground = || reports.iter().filter(|r| r.patches > 0);
+        let all_slipping = on_ground().count() > 0 && on_ground().all(|r| r.slip > EMBEDDED_SLIP);
+        if !all_slipping {
+            self.slipping_since = None;
+            return Ok(());
+        }
+        let since = *self.slipping_since.get_or_insert(t);
+        if t - since < EMBEDDED_TIME {
+            return Ok(());
+        }
+        let wheels: Vec<String> = reports
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.patches > 0)
+            .map(|(j, r)| format!("wheel {} {:.3}", j + 1, r.slip))
+            .collect();
+        Err(embedded(format!(
+            "every wheel on the ground has slipped above {EMBEDDED_SLIP} since t = {since:.3} s (slip now: {})",
+            wheels.join(", ")
+        )))
     }
 
     /// A diverged integration or a roll-over, from the attitude at `t`.

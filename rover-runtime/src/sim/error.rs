@@ -53,6 +53,14 @@ pub enum CommandError {
     },
 }
 
+/// Slip above which a wheel on a soil does not advance.
+pub const EMBEDDED_SLIP: f64 = 0.95;
+/// Time every wheel on the ground must slip above [`EMBEDDED_SLIP`] for the
+/// rover to be embedded \[s\].
+pub const EMBEDDED_TIME: f64 = 5.0;
+/// Sinkage, as a fraction of the wheel's radius, past which a wheel is embedded.
+pub const EMBEDDED_SINKAGE: f64 = 0.5;
+
 /// Why a run stopped before its end time. Every variant names the time.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RunError {
@@ -95,6 +103,22 @@ pub enum RunError {
         /// [`IntegrateError::is_step_control`](rover_integrate::IntegrateError::is_step_control)).
         step_control: bool,
     },
+    /// On a soil, the rover could not advance: every wheel on the ground
+    /// slipped above [`EMBEDDED_SLIP`] for [`EMBEDDED_TIME`], or a wheel sank
+    /// past half its radius.
+    #[error(
+        "the rover is embedded at t = {t:.3} s, at X = {x:.3} m, Y = {y:.3} m: {why}\n  = help: a gentler slope, a lighter rover, wider or larger wheels, or a firmer soil; summary.json has each wheel's slip and sinkage"
+    )]
+    Embedded {
+        /// Time \[s\].
+        t: f64,
+        /// G's position X \[m\].
+        x: f64,
+        /// G's position Y \[m\].
+        y: f64,
+        /// Which wheels, and how.
+        why: String,
+    },
     /// The output sink failed (disk full, closed pipe).
     #[error("writing the output failed at t = {t:.3} s: {message}")]
     Output {
@@ -110,6 +134,7 @@ impl RunError {
     pub fn time(&self) -> f64 {
         match self {
             RunError::RolledOver { t, .. }
+            | RunError::Embedded { t, .. }
             | RunError::Diverged { t, .. }
             | RunError::Integration { t, .. }
             | RunError::Output { t, .. } => *t,

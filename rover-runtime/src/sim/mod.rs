@@ -9,7 +9,7 @@ mod run;
 mod system;
 
 pub use driver::{Driver, RunOptions};
-pub use error::{CommandError, RunError, SimError};
+pub use error::{CommandError, EMBEDDED_SINKAGE, EMBEDDED_SLIP, EMBEDDED_TIME, RunError, SimError};
 pub use profile::{Profile, RhsProfile};
 pub use run::{OutputRow, RunOutcome, Stop, run};
 pub use system::RoverSystem;

@@ -16,6 +16,11 @@ pub enum Status {
     /// Stopped by an error (roll-over, divergence, off the map): the CSV
     /// holds the rows up to the failure (incomplete).
     Failed,
+    /// Stopped on a soil because the rover could not advance (its wheels
+    /// slipping above 0.95 for 5 s, or one sunk past half its radius): the
+    /// CSV holds the rows up to then (incomplete), the error says when,
+    /// where and which wheels.
+    Embedded,
 }
 
 /// Everything a rover engineer wants to know about a run at a glance.
@@ -58,6 +63,9 @@ pub struct Summary {
     /// asked for at the end of the run (see [`Stall`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stalled: Option<Stall>,
+    /// On a soil, each wheel's slip and sinkage after settling.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub soil: Option<Vec<WheelSoil>>,
     /// Sideways slides after settling: the yaw-rate excursion, each axle's
     /// sideways speed and the first sudden slide (dynamic runs).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -90,6 +98,21 @@ pub struct Summary {
     /// Where the wall time went, when the scenario asked (`profile = true`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub profile: Option<rover_runtime::sim::Profile>,
+}
+
+/// One wheel on a soil, over the output instants after settling.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct WheelSoil {
+    /// The wheel (1-based, the description's order).
+    pub wheel: usize,
+    /// Mean slip.
+    pub mean_slip: f64,
+    /// Largest slip.
+    pub peak_slip: f64,
+    /// Mean sinkage \[m\].
+    pub mean_sinkage_m: f64,
+    /// Largest sinkage \[m\].
+    pub peak_sinkage_m: f64,
 }
 
 /// G's distance from a heading hold's path at output instants after
@@ -204,6 +227,21 @@ pub struct RunLog {
     /// Per axle, its wheel centres' horizontal midpoint in every row after
     /// settling.
     axle_paths: Vec<Vec<[f64; 2]>>,
+    /// On a soil, each wheel's slip and sinkage columns, and their sums,
+    /// peaks and count after settling.
+    soil: Vec<SoilTally>,
+}
+
+/// One wheel's slip and sinkage over the rows after settling.
+#[derive(Clone, Copy, Debug, Default)]
+struct SoilTally {
+    slip_column: usize,
+    sinkage_column: usize,
+    rows: usize,
+    slip_sum: f64,
+    slip_peak: f64,
+    sinkage_sum: f64,
+    sinkage_peak: f64,
 }
 
 /// The parts of a summary the log does not know.
@@ -261,6 +299,24 @@ impl RunLog {
         }
     }
 
+    /// Tally each wheel's slip and sinkage on a soil, from the columns
+    /// named `slip{j}` and `sinkage{j}` of `header` (none on rigid ground).
+    pub fn with_soil(mut self, header: &[String], wheels: usize) -> Self {
+        let at = |name: String| header.iter().position(|h| *h == name);
+        self.soil = (1..=wheels)
+            .map_while(|j| {
+                Some(SoilTally {
+                    slip_column: at(format!("slip{j}"))?,
+                    sinkage_column: at(format!("sinkage{j}"))?,
+                    slip_peak: f64::NEG_INFINITY,
+                    sinkage_peak: f64::NEG_INFINITY,
+                    ..SoilTally::default()
+                })
+            })
+            .collect();
+        self
+    }
+
     /// A log for a run that imposes the rover's motion (the quasi-static
     /// level): it cannot stall, and its rows carry no velocities.
     pub fn imposed(settle: f64, wheels: usize) -> Self {
@@ -281,6 +337,14 @@ impl RunLog {
             *d |= now;
         }
         if row[0] >= self.settle {
+            for w in &mut self.soil {
+                let (slip, sinkage) = (row[w.slip_column], row[w.sinkage_column]);
+                w.rows += 1;
+                w.slip_sum += slip;
+                w.slip_peak = w.slip_peak.max(slip);
+                w.sinkage_sum += sinkage;
+                w.sinkage_peak = w.sinkage_peak.max(sinkage);
+            }
             self.path.push([row[1], row[2]]);
             self.times.push(row[0]);
             self.setpoints.push(row.last().copied().unwrap_or(0.0));
@@ -353,6 +417,20 @@ impl RunLog {
                         .map(|(_, v)| *v)
                         .collect(),
                 )
+            }),
+            soil: (!self.soil.is_empty()).then(|| {
+                self.soil
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, w)| w.rows > 0)
+                    .map(|(j, w)| WheelSoil {
+                        wheel: j + 1,
+                        mean_slip: w.slip_sum / w.rows as f64,
+                        peak_slip: w.slip_peak,
+                        mean_sinkage_m: w.sinkage_sum / w.rows as f64,
+                        peak_sinkage_m: w.sinkage_peak,
+                    })
+                    .collect()
             }),
             slide: if self.axles.is_empty() {
                 None
