@@ -238,9 +238,11 @@ pub fn run_text(
 }
 
 /// The record of one task: its number, its parameters (`param.<field>`),
-/// its status (`completed`, `failed`, `interrupted`, or `error` for a run
+/// its status (`completed`, `failed`, `embedded`, `interrupted`, or `error` for a run
 /// that could not start), the error, and the summary's figures: every
-/// number at its top level and the final state as `final.<coordinate>`.
+/// number at its top level, the final state as `final.<coordinate>`, and
+/// on a soil each wheel's slip and sinkage as `soil.mean_slip<j>` and the
+/// like.
 pub fn record(
     index: usize,
     params: &[(String, toml::Value)],
@@ -269,6 +271,19 @@ pub fn record(
                 if let Some(fin) = map.get("final_state").and_then(|v| v.as_object()) {
                     for (k, v) in fin {
                         r.insert(format!("final.{k}"), v.clone());
+                    }
+                }
+                // On a soil, each wheel's slip and sinkage as `soil.<field><j>`.
+                for wheel in map
+                    .get("soil")
+                    .and_then(|v| v.as_array())
+                    .into_iter()
+                    .flatten()
+                {
+                    let Some(w) = wheel.as_object() else { continue };
+                    let j = w.get("wheel").cloned().unwrap_or_default();
+                    for (k, v) in w.iter().filter(|(k, v)| *k != "wheel" && v.is_number()) {
+                        r.insert(format!("soil.{k}{j}"), v.clone());
                     }
                 }
             }

@@ -52,6 +52,8 @@ pub struct Driver {
     /// On a soil, since when every wheel on the ground has slipped above
     /// [`EMBEDDED_SLIP`].
     slipping_since: Option<f64>,
+    /// The end of settling: a rover landing on its wheels is not embedded.
+    settle: f64,
 }
 
 impl Driver {
@@ -72,6 +74,7 @@ impl Driver {
             k_sample: 0,
             next_break: 0,
             slipping_since: None,
+            settle: control.settle_time(),
         }
     }
 
@@ -193,7 +196,8 @@ impl Driver {
     /// On a soil, a rover that cannot advance, from the contact reports of
     /// the last evaluation (at or just before `t`): every wheel on the
     /// ground slipping above [`EMBEDDED_SLIP`] for [`EMBEDDED_TIME`], or a
-    /// wheel sunk past [`EMBEDDED_SINKAGE`] of its radius.
+    /// wheel sunk past [`EMBEDDED_SINKAGE`] of its radius. Judged after
+    /// settling: a rover landing on soft ground sinks deeper for a moment.
     fn check_soil<P: Plant, H: HeightField>(
         &mut self,
         sys: &RoverSystem<P, H>,
@@ -203,6 +207,9 @@ impl Driver {
         let Some(ground) = sys.ground.as_ref().filter(|g| g.soil().is_some()) else {
             return Ok(());
         };
+        if t < self.settle {
+            return Ok(());
+        }
         let embedded = |why: String| RunError::Embedded {
             t,
             x: y[0],
