@@ -87,7 +87,7 @@ fn real_time_path_with_the_generic_plant_allocates_nothing_per_step() {
     ] {
         let model = swing4_model();
         let plant = rover_runtime::GenericPlant::new(model.clone()).unwrap();
-        drive_without_allocating(plant, &model, method, contact);
+        drive_without_allocating(plant, &model, method, contact, false);
     }
 }
 
@@ -101,7 +101,25 @@ fn ros2_with_the_assembled_jacobian_allocates_nothing_per_step() {
         &model,
         "ros2",
         ContactMethod::Bounded,
+        false,
     );
+}
+
+/// On a soil (the wheels' spins as states, the soil law on every patch, its
+/// dual-number derivatives in the assembled Jacobian): ROS2 and RK4 steps
+/// allocate nothing either.
+#[test]
+fn a_rover_on_soil_allocates_nothing_per_step() {
+    let model = swing4_model();
+    for method in ["ros2", "rk4"] {
+        drive_without_allocating(
+            rover_models::Swing4::new(),
+            &model,
+            method,
+            ContactMethod::Bounded,
+            true,
+        );
+    }
 }
 
 fn swing4_model() -> rover_dynamics::Model {
@@ -110,13 +128,15 @@ fn swing4_model() -> rover_dynamics::Model {
         .model
 }
 
-/// 10 000 steps of `method` at 0.1 ms on random ground, under a speed loop,
-/// a heading hold and external torques, without one allocation.
+/// 10 000 steps of `method` at 0.1 ms on random ground (covered with dry
+/// sand when `soil`), under a speed loop, a heading hold and external
+/// torques, without one allocation.
 fn drive_without_allocating<P: rover_dynamics::Plant>(
     plant: P,
     model: &rover_dynamics::Model,
     method: &str,
     contact: ContactMethod,
+    soil: bool,
 ) {
     let terrain: rover_runtime::terrain::TerrainConfig =
         toml::from_str("kind = \"random\"\nz_r = 0.1\nextent = [-3.0, 3.0, -3.0, 3.0]").unwrap();
@@ -133,11 +153,19 @@ fn drive_without_allocating<P: rover_dynamics::Plant>(
         RimSampling::default(),
         WheelLawConfig::default(),
     );
+    let ground = if soil {
+        let sand = rover_runtime::soil::SoilConfig::builtin("dry_sand").unwrap();
+        ground.with_soil(&sand.soil().unwrap(), model).unwrap()
+    } else {
+        ground
+    };
     let controller = Controller::new(control, model, 0.0).unwrap();
     let mut sys = RoverSystem::new(plant, Some(ground), controller);
     let n = model.dof();
-    // The speed loop's integral and the heading hold's two.
-    assert_eq!(sys.dim(), 2 * n + 3);
+    // The speed loop's integral and the heading hold's two, and on a soil
+    // the wheels' spins.
+    let spins = if soil { model.wheels.len() } else { 0 };
+    assert_eq!(sys.dim(), 2 * n + 3 + spins);
     let mut y = vec![0.0; sys.dim()];
     y[2] = 0.27;
     y[6..n].copy_from_slice(&model.rest());
@@ -167,7 +195,7 @@ fn drive_without_allocating<P: rover_dynamics::Plant>(
     });
     assert_eq!(
         counted.count_total, 0,
-        "{method}, {contact:?}: {} allocations over 10 000 steps",
+        "{method}, {contact:?}, soil {soil}: {} allocations over 10 000 steps",
         counted.count_total
     );
     assert!((t - 1.0001).abs() < 1e-12 && y.iter().all(|v| v.is_finite()));

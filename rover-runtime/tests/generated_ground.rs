@@ -4,7 +4,8 @@
 //! `rover_dynamics::wheel_ground`) against `RoverSystem` with the generic
 //! plant, on the paper's rough terrain, under open-loop torques and
 //! steering: the same ẋ and ẇ to 1e-12 (norm-wise relative, as the
-//! plants alone are held to) and the same patches, at seeded random poses
+//! plants alone are held to) and the same patches — on rigid ground and on
+//! a soil, where the wheels' spin rates must agree too — at seeded random poses
 //! and along a path 1 ms a step, where the bounded search reuses what it
 //! proved.
 
@@ -12,8 +13,10 @@ use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::contact::RimSampling;
 use rover_dynamics::height_field::Bounds;
+use rover_dynamics::soil::{Soil, SoilWheel};
 use rover_dynamics::wheel_ground::{ContactMethod, FixedGround, Search};
 use rover_dynamics::wheel_law::Tyre;
+use rover_dynamics::wheel_soil::SoilTyre;
 use rover_integrate::OdeSystem;
 use rover_runtime::GenericPlant;
 use rover_runtime::control::{Controller, ControllerConfig};
@@ -70,6 +73,7 @@ fn pose(model: &Model, terrain: &Grid, rng: &mut Rng, depth: f64) -> (Vec<f64>, 
 fn compare<const N: usize, const W: usize>(
     name: &str,
     seed: u64,
+    soil: Option<&Soil>,
     tyres: &[Tyre; W],
     rhs: impl Fn(
         &mut FixedGround<W>,
@@ -95,14 +99,31 @@ fn compare<const N: usize, const W: usize>(
         law,
     );
     assert_eq!(ground.tyres(), tyres, "{name}: the generated tyres");
+    let ground = match soil {
+        Some(soil) => ground.with_soil(soil, &model).unwrap(),
+        None => ground,
+    };
     let control = Controller::new(ControllerConfig::default(), &model, 0.0).unwrap();
     let mut sys = RoverSystem::new(
         GenericPlant::new(model.clone()).unwrap(),
         Some(ground),
         control,
     );
-    let mut fixed =
-        FixedGround::<W>::new(Search::new(ContactMethod::Bounded, RimSampling::default()));
+    let search = Search::new(ContactMethod::Bounded, RimSampling::default());
+    let mut fixed = match soil {
+        Some(soil) => FixedGround::<W>::on_soil(
+            search,
+            core::array::from_fn(|k| {
+                let w = &model.wheels[k];
+                SoilTyre {
+                    wheel: SoilWheel::new(soil, w.radius, w.width.unwrap()),
+                    damping: w.damping,
+                }
+            }),
+        ),
+        None => FixedGround::<W>::new(search),
+    };
+    let inertias: [f64; W] = core::array::from_fn(|k| model.wheels[k].spin_inertia);
     let mut rng = Rng::new(seed);
     let (mut worst, mut patches) = (0.0f64, 0);
     for trial in 0..40 {
@@ -119,6 +140,10 @@ fn compare<const N: usize, const W: usize>(
         });
         sys.set_torques(&torques).unwrap();
         sys.set_steering(&steer).unwrap();
+        // On a soil, each wheel spins near rolling, some skidding, some spinning.
+        let spins: [f64; W] = core::array::from_fn(|k| {
+            rng.uniform(-0.5, 0.5) / model.wheels[k].radius * if soil.is_some() { 1.0 } else { 0.0 }
+        });
         // Along a path from the pose: 30 states 1 ms apart.
         for step in 0..30 {
             for i in 0..N {
@@ -126,8 +151,12 @@ fn compare<const N: usize, const W: usize>(
             }
             let mut y = x.clone();
             y.extend_from_slice(&w);
-            let mut dy = vec![0.0; 2 * N];
+            if soil.is_some() {
+                y.extend_from_slice(&spins);
+            }
+            let mut dy = vec![0.0; y.len()];
             sys.rhs(0.0, &y, &mut dy).unwrap();
+            fixed.set_spins(&spins);
             let (xs, ws): (&[f64; N], &[f64; N]) = (
                 x.as_slice().try_into().unwrap(),
                 w.as_slice().try_into().unwrap(),
@@ -144,7 +173,11 @@ fn compare<const N: usize, const W: usize>(
                 );
                 patches += a.patches;
             }
-            let e = rel(&xd, &dy[..N]).max(rel(&wd, &dy[N..]));
+            let mut e = rel(&xd, &dy[..N]).max(rel(&wd, &dy[N..2 * N]));
+            if soil.is_some() {
+                let rates = fixed.spin_rates(&torques, &inertias);
+                e = e.max(rel(&rates, &dy[2 * N..]));
+            }
             worst = worst.max(e);
             assert!(
                 e <= TOL,
@@ -164,12 +197,17 @@ fn compare<const N: usize, const W: usize>(
 
 macro_rules! generated_on_ground {
     ($test:ident, $name:literal, $plant:ty, $seed:literal) => {
+        generated_on_ground!($test, $name, $plant, $seed, None);
+    };
+    ($test:ident, $name:literal, $plant:ty, $seed:literal, $soil:expr) => {
         #[test]
         fn $test() {
             let plant = <$plant>::new();
+            let soil: Option<Soil> = $soil;
             compare(
                 $name,
                 $seed,
+                soil.as_ref(),
                 &<$plant>::TYRES,
                 |g, t, l, x, w, s, tau, xd, wd| {
                     plant
@@ -204,4 +242,29 @@ generated_on_ground!(
     "lrv",
     rover_models::Lrv,
     74
+);
+
+/// The soil of the soft cases.
+fn dry_sand() -> Option<Soil> {
+    Some(
+        rover_runtime::soil::SoilConfig::builtin("dry_sand")
+            .unwrap()
+            .soil()
+            .unwrap(),
+    )
+}
+
+generated_on_ground!(
+    generated_exomars_on_rough_soil_equals_generic,
+    "exomars",
+    rover_models::Exomars,
+    81,
+    dry_sand()
+);
+generated_on_ground!(
+    generated_mer_on_rough_soil_equals_generic,
+    "mer",
+    rover_models::Mer,
+    82,
+    dry_sand()
 );
