@@ -22,5 +22,6 @@ mod paper_accuracy;
 mod profile;
 #[cfg(feature = "reproduce")]
 mod reproduction;
+mod soil;
 mod sweep;
 mod wheel_law;

@@ -325,3 +325,194 @@ pub fn spin_rates(torques: &[f64], reports: &[WheelReport], inertias: &[f64], ou
         *o = (tau - r.torque) / i;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::height_field::OffMap;
+    use crate::soil::{Soil, SoilContact, soil_forces};
+
+    const R: f64 = 0.13;
+    const B: f64 = 0.16;
+
+    /// LLL dry sand (Wong), K = 2.5 cm.
+    fn tyre() -> SoilTyre {
+        let soil = Soil {
+            n: 1.1,
+            k_c: 0.99e3,
+            k_phi: 1528.43e3,
+            cohesion: 1.04e3,
+            friction_angle: 28f64.to_radians(),
+            shear_modulus: 0.025,
+            lateral_shear_modulus: 0.025,
+            a0: 0.4,
+            a1: 0.15,
+            rear_ratio: 0.0,
+        };
+        SoilTyre {
+            wheel: SoilWheel::new(&soil, R, B),
+            damping: 300.0,
+        }
+    }
+
+    /// A wheel sunk `z` into flat ground at Z = 0, its centre moving at
+    /// `v` along X.
+    fn wheel(z: f64, v: f64) -> (WheelState, Contact) {
+        let s = WheelState {
+            centre: [0.0, 0.0, R - z],
+            velocity: [v, 0.0, 0.0],
+            spin_axis: [0.0, 1.0, 0.0],
+        };
+        let mut contact = Contact::default();
+        contact.patches[0] = Patch {
+            point: [0.0, 0.0, 0.0],
+            normal: [0.0, 0.0, 1.0],
+            tangent: [1.0, 0.0, 0.0],
+            lateral: [0.0, 1.0, 0.0],
+            deflection: z,
+            lever: R - z,
+            angle: 0.0,
+        };
+        contact.count = 1;
+        (s, contact)
+    }
+
+    fn load(z: f64, v: f64, spin: f64) -> (WheelLoad, WheelReport) {
+        let (s, contact) = wheel(z, v);
+        soil_wheel_load(&tyre(), &RunRule::new(), &s, &contact, 0.0, spin)
+    }
+
+    /// Driving forward at slip s (r·ω = v/(1 − s)), the wheel carries the
+    /// law's forces at its depth: vertical, pull along its heading, the
+    /// soil's torque against the spin.
+    #[test]
+    fn a_driven_wheel_carries_the_laws_forces() {
+        let (z, v) = (0.01, 0.05);
+        let theta1 = libm::acos(1.0 - z / R);
+        for slip in [0.05, 0.3, 0.8] {
+            let spin = v / (1.0 - slip) / R;
+            let (l, report) = load(z, v, spin);
+            let want = soil_forces(
+                &tyre().wheel,
+                SoilContact {
+                    entry_angle: theta1,
+                    slip,
+                    slip_angle: 0.0,
+                },
+                &RunRule::new(),
+            );
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+            assert!(close(l.force[2], want.vertical), "{slip}: vertical");
+            assert!(close(l.force[0], want.drawbar), "{slip}: pull");
+            assert!(close(report.torque, want.torque), "{slip}: torque");
+            assert!(close(report.slip, slip), "{slip}: reported slip");
+            assert!((report.sinkage - z).abs() < 1e-15);
+        }
+    }
+
+    /// Driving backwards is the forward law in a mirror: the same vertical
+    /// load and slip, the pull and the torque reversed.
+    #[test]
+    fn reversing_mirrors_the_law() {
+        let (z, v, spin) = (0.012, 0.08, 0.9);
+        let (f, rf) = load(z, v, spin);
+        let (b, rb) = load(z, -v, -spin);
+        assert!((f.force[2] - b.force[2]).abs() < 1e-12 * f.force[2]);
+        assert!((f.force[0] + b.force[0]).abs() < 1e-12 * f.force[0].abs());
+        assert!((rf.torque + rb.torque).abs() < 1e-12 * rf.torque.abs());
+        assert!((rf.slip - rb.slip).abs() < 1e-15 && rf.slip > 0.0);
+    }
+
+    /// A parked wheel (no travel, no spin) is pressed straight up: no
+    /// pull, no torque, its slip 0.
+    #[test]
+    fn a_parked_wheel_carries_no_pull() {
+        let (l, r) = load(0.01, 0.0, 0.0);
+        assert!(l.force[2] > 0.0);
+        assert!(l.force[0].abs() < 1e-12 * l.force[2], "{}", l.force[0]);
+        assert!(r.torque.abs() < 1e-12 * l.force[2] * R);
+        assert_eq!(r.slip, 0.0);
+    }
+
+    /// Through standstill the forces are continuous: the forward and
+    /// mirrored laws blend over ±v_ε, even for a wheel spinning in place.
+    #[test]
+    fn the_forces_are_continuous_through_a_stop() {
+        for spin in [0.0, 0.3, -0.3] {
+            let mut last: Option<(f64, f64)> = None;
+            for k in -400..=400 {
+                let v = k as f64 * 1e-5;
+                let (l, r) = load(0.01, v, spin);
+                if let Some((pull, torque)) = last {
+                    assert!((l.force[0] - pull).abs() < 0.5, "{spin}, {v}: pull jumps");
+                    assert!(
+                        (r.torque - torque).abs() < 0.05,
+                        "{spin}, {v}: torque jumps"
+                    );
+                }
+                last = Some((l.force[0], r.torque));
+            }
+        }
+    }
+
+    /// The derivative a Jacobian takes is the load's own: central
+    /// differences of the load in the centre's height, its velocity and the
+    /// spin.
+    #[test]
+    fn the_load_derivative_is_the_loads_own() {
+        struct Flat;
+        impl HeightField for Flat {
+            fn height(&self, _: f64, _: f64) -> Result<f64, OffMap> {
+                Ok(0.0)
+            }
+            fn height_gradient(&self, _: f64, _: f64) -> Result<(f64, [f64; 2]), OffMap> {
+                Ok((0.0, [0.0; 2]))
+            }
+        }
+        let flat = Flat;
+        let (z, v, spin) = (0.011, 0.05, 0.6);
+        let (s, contact) = wheel(z, v);
+        let d = soil_load_derivative(&tyre(), &RunRule::new(), &flat, &s, &contact, spin);
+        let parts = |l: &WheelLoad, r: &WheelReport| {
+            let mut p = [0.0; 10];
+            p[..3].copy_from_slice(&l.force);
+            p[3..6].copy_from_slice(&l.moment);
+            p[9] = r.torque;
+            p
+        };
+        let h = 1e-7;
+        // The centre down by h sinks the wheel by h.
+        let column = |col: usize, plus: (f64, f64, f64), minus: (f64, f64, f64)| {
+            let (lp, rp) = load(plus.0, plus.1, plus.2);
+            let (lm, rm) = load(minus.0, minus.1, minus.2);
+            let (p, m) = (parts(&lp, &rp), parts(&lm, &rm));
+            for row in [0, 2, 4, 9] {
+                let fd = (p[row] - m[row]) / (2.0 * h);
+                let scale = 1.0 + fd.abs();
+                assert!(
+                    (d[row][col] - fd).abs() < 1e-5 * scale,
+                    "row {row}, column {col}: {} vs {fd}",
+                    d[row][col]
+                );
+            }
+        };
+        let mut down = [[0.0; 8]; 10];
+        for row in 0..10 {
+            down[row][2] = -d[row][2];
+        }
+        column(3, (z, v + h, spin), (z, v - h, spin));
+        column(7, (z, v, spin + h), (z, v, spin - h));
+        // ∂/∂(centre Z) is −∂/∂(sinkage).
+        let (lp, rp) = load(z + h, v, spin);
+        let (lm, rm) = load(z - h, v, spin);
+        let (p, m) = (parts(&lp, &rp), parts(&lm, &rm));
+        for row in [0, 2, 9] {
+            let fd = (p[row] - m[row]) / (2.0 * h);
+            assert!(
+                (down[row][2] - fd).abs() < 1e-5 * (1.0 + fd.abs()),
+                "row {row}, sinkage: {} vs {fd}",
+                down[row][2]
+            );
+        }
+    }
+}

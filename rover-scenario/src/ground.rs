@@ -64,7 +64,19 @@ impl GroundConfig {
                 Some(c) => c,
                 None => {
                     let path = base_dir.join(name);
-                    SoilConfig::named_or_file(&path.to_string_lossy())?
+                    if !path.is_file() {
+                        return Err(SoilError::Source(format!(
+                            "soil = \"{name}\": no built-in soil of that name ({}) and no file {}; give a built-in soil's name, or a TOML file with a [soil] table (relative to the scenario)",
+                            rover_runtime::soil::SOIL_NAMES.join(", "),
+                            path.display()
+                        )));
+                    }
+                    SoilConfig::named_or_file(&path.to_string_lossy()).map_err(|e| match e {
+                        SoilError::Source(m) => {
+                            SoilError::Source(format!("soil = \"{name}\": {m}"))
+                        }
+                        e => e,
+                    })?
                 }
             },
         };
