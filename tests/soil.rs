@@ -254,3 +254,11 @@ fn wheel_widths_outside_the_rover_are_refused() {
         assert!(e.contains(field), "{width}: {e}");
     }
 }
+
+/// The quasi-static level has no wheel spin: a soil there is refused,
+/// naming the field.
+#[test]
+fn the_quasi_static_level_refuses_a_soil() {
+    let e = try_run(&PARKED.replace("[terrain]", "fidelity = \"quasi_static\"\n[terrain]"));
+    assert!(e.contains("fidelity") && e.contains("soil"), "{e}");
+}

@@ -75,8 +75,8 @@ class Result:
     """A whole run: ``trajectory`` (numpy arrays by CSV column name),
     ``units`` (each column's unit, by name: "m", "rad", "N", ...),
     ``summary`` (summary.json as a dict) and ``status`` ("completed",
-    "failed" or "interrupted"; a run that stopped early keeps what it
-    computed)."""
+    "failed", "embedded" on a soil, or "interrupted"; a run that stopped
+    early keeps what it computed)."""
 
     def __init__(self, columns: list[str], table: np.ndarray, summary: dict, units: list[str]):
         self.columns = columns

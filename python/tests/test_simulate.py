@@ -118,3 +118,46 @@ def test_each_column_has_its_unit_from_the_rover_description(data):
     assert (r.units["Fn1"], r.units["tau1"], r.units["V_set"]) == ("N", "N·m", "m/s")
     # swing4's suspension coordinates are arm angles.
     assert (r.units["y1"], r.units["dy1"], r.units["y0_1"]) == ("rad", "rad/s", "rad")
+
+
+SOIL_CLIMB = """
+rover = "mer"
+duration = 8.0
+settle = 2.0
+output_rate = 10.0
+
+[terrain]
+kind = "slope"
+angle_deg = 5.0
+soil = "dry_sand"
+
+[control.speed]
+speed = 0.05
+kp = 500.0
+ki = 1000.0
+"""
+
+
+def test_a_rover_on_soil_slips_and_sinks_from_python():
+    r = rover.simulate(None, SOIL_CLIMB)
+    assert r.status == "completed"
+    for c in ("spin1", "slip1", "slip_angle1", "sinkage6", "T3"):
+        assert c in r.columns
+    assert (r.units["slip1"], r.units["sinkage6"], r.units["spin1"]) == ("1", "m", "rad/s")
+    after = r.trajectory["t"] > 3.0
+    slip = r.trajectory["slip1"][after]
+    assert (slip > 0.05).all() and (slip < 0.5).all()
+    assert (r.trajectory["sinkage1"][after] > 0.01).all()
+    soil = r.summary["soil"]
+    assert [w["wheel"] for w in soil] == [1, 2, 3, 4, 5, 6]
+    # The step-wise run carries the same columns, with their units.
+    sim = rover.Simulation(None, SOIL_CLIMB)
+    assert sim.columns == r.columns
+    assert sim.units == [r.units[c] for c in r.columns]
+
+
+def test_a_rover_that_cannot_climb_the_soil_is_embedded():
+    steep = SOIL_CLIMB.replace("angle_deg = 5.0", "angle_deg = 20.0")
+    r = rover.simulate(None, steep.replace("duration = 8.0", "duration = 12.0"))
+    assert r.status == "embedded"
+    assert "embedded at t = " in r.summary["error"]

@@ -591,6 +591,22 @@ fn torque_share(torque: f64, normals: &[f64; MAX_PATCHES], total: f64, i: usize)
 /// row and column are 0 (the wheel's rotation is massless there).
 pub type LoadDerivative = [[f64; 8]; 10];
 
+/// The centre's shift (0) and velocity as dual numbers, seeded for column
+/// `col` of a [`LoadDerivative`] (0–2 the shift, 3–5 the velocity; any
+/// other column leaves both constant).
+pub(crate) fn seeded(col: usize, s: &WheelState) -> ([Dual<f64>; 3], [Dual<f64>; 3]) {
+    let seed = |j: usize| if col == j { 1.0 } else { 0.0 };
+    let shift = [0, 1, 2].map(|k| Dual {
+        re: 0.0,
+        eps: seed(k),
+    });
+    let velocity = [0, 1, 2].map(|k| Dual {
+        re: s.velocity[k],
+        eps: seed(3 + k),
+    });
+    (shift, velocity)
+}
+
 /// [`LoadDerivative`] of one wheel at the patches of its last contact, by
 /// dual numbers through the very `patch_load` the run evaluates, each
 /// patch's lever moving with the centre as `lever_gradient` says. The
@@ -620,18 +636,10 @@ pub fn load_derivative<L: WheelLaw, H: HeightField + ?Sized>(
         };
         let gradient = lever_gradient(terrain, s, p);
         for col in 0..7 {
-            let seed = |j: usize| if col == j { 1.0 } else { 0.0 };
-            let shift = [0, 1, 2].map(|k| Dual {
-                re: 0.0,
-                eps: seed(k),
-            });
-            let velocity = [0, 1, 2].map(|k| Dual {
-                re: s.velocity[k],
-                eps: seed(3 + k),
-            });
+            let (shift, velocity) = seeded(col, s);
             let torque = Dual {
                 re: share,
-                eps: seed(6) * share_rate,
+                eps: if col == 6 { share_rate } else { 0.0 },
             };
             let pl = patch_load(law, tyre, s, p, gradient, shift, velocity, torque);
             for k in 0..3 {

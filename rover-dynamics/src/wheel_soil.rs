@@ -30,7 +30,7 @@ use crate::linalg::{cross, dot, v3};
 use crate::plant::{WheelLoad, WheelState};
 use crate::scalar::Scalar;
 use crate::soil::{GaussLegendre, Shear, SoilContact, SoilForces, SoilWheel, soil_forces_sheared};
-use crate::wheel_ground::{LoadDerivative, WheelReport, lever_gradient};
+use crate::wheel_ground::{LoadDerivative, WheelReport, lever_gradient, seeded};
 use crate::wheel_law::DAMPING_RAMP;
 
 /// Quadrature points on each piece of the contact arc in a run: the forces
@@ -271,18 +271,10 @@ pub fn soil_load_derivative<H: HeightField + ?Sized>(
     for p in contact.patches() {
         let gradient = lever_gradient(terrain, s, p);
         for col in [0, 1, 2, 3, 4, 5, 7] {
-            let seed = |j: usize| if col == j { 1.0 } else { 0.0 };
-            let shift = [0, 1, 2].map(|k| Dual {
-                re: 0.0,
-                eps: seed(k),
-            });
-            let velocity = [0, 1, 2].map(|k| Dual {
-                re: s.velocity[k],
-                eps: seed(3 + k),
-            });
+            let (shift, velocity) = seeded(col, s);
             let spin = Dual {
                 re: spin,
-                eps: seed(7),
+                eps: if col == 7 { 1.0 } else { 0.0 },
             };
             let pl = soil_patch_load(tyre, rule, s, p, gradient, shift, velocity, spin);
             for k in 0..3 {

@@ -290,7 +290,7 @@ pub const ROW: &[Group] = &[
             field(
                 "slip{j}",
                 Unit::Ratio,
-                "on a soil: slip in the direction of travel, 1 − v/(r·ω) driving, r·ω/v − 1 braking",
+                "on a soil: slip, 1 − v/(r·ω) driving (1 spinning in place), r·ω/v − 1 braking (−1 locked)",
                 |r, j| r.reports[j].slip,
             ),
             field(

@@ -212,6 +212,7 @@ fn on_soil_the_assembled_jacobian_is_the_stiff_part_of_the_whole_one() {
     }
     check("exomars", rover_models::Exomars::new());
     check("mer", rover_models::Mer::new());
+    check("lrv", rover_models::Lrv::new());
 }
 
 fn loads_at<P: Plant>(

@@ -48,6 +48,14 @@ pub enum SetupError {
     /// A wheel the soil law cannot take.
     #[error("{0}\n  = help: give the rover description's wheels (or its [wheel_defaults]) `{field}`: {help}", field = .0.field(), help = soil_wheel_help(.0))]
     SoilWheel(#[from] rover_runtime::ground::SoilWheelError),
+    /// Two settings of the scenario that do not go together.
+    #[error("{field}: {message}")]
+    Unsupported {
+        /// The field.
+        field: &'static str,
+        /// What is wrong and how to fix it.
+        message: String,
+    },
     /// The rover starts off the terrain map.
     #[error("the rover starts off the terrain: {0}")]
     OffMap(rover_dynamics::height_field::OffMap),
@@ -79,6 +87,7 @@ impl SetupError {
             SetupError::Control(e) => Some(format!("control.{}", e.field)),
             SetupError::Integrator(e) => Some(format!("integrator.{}.{}", e.method, e.field)),
             SetupError::Initial { field, .. } => Some(format!("initial.{field}")),
+            SetupError::Unsupported { field, .. } => Some((*field).into()),
             _ => None,
         }
     }
@@ -207,6 +216,29 @@ pub fn ground_of(
     })
 }
 
+/// On a soil, a start whose height the scenario leaves to the ground
+/// (no `initial.z`) is lowered by the wheels' mean sinkage at rest under
+/// their static loads on flat ground: the rover starts sunk into the soil
+/// instead of dropping into it (a landing whose impact the soil's damper
+/// takes in a few milliseconds). Nothing on rigid ground.
+pub fn settle_into_soil(
+    ground: &Ground<Terrain>,
+    model: &Model,
+    scenario: &Scenario,
+    y: &mut [f64],
+) {
+    if ground.soil().is_none() || scenario.initial.z.is_some() {
+        return;
+    }
+    let Ok(loads) = rover_runtime::quasi_static::flat_ground_loads(model) else {
+        return;
+    };
+    let sinkages = ground.rest_sinkages(&loads);
+    if !sinkages.is_empty() {
+        y[2] -= sinkages.iter().sum::<f64>() / sinkages.len() as f64;
+    }
+}
+
 /// The rover of `scenario` as an ODE system — its terrain (none in free
 /// flight), ground, controller and `plant` — and its initial state, the
 /// integral states beyond the speed loop's at 0: what a whole run and a
@@ -227,6 +259,9 @@ pub(crate) fn system_of<P: Plant>(
         None => None,
         Some(t) => Some(ground_of(scenario, t, model, base_dir)?),
     };
+    if let Some(g) = &ground {
+        settle_into_soil(g, model, scenario, &mut y);
+    }
     let control = Controller::new_in(scenario.control.clone(), model, scenario.settle, base_dir)?;
     let mut sys = RoverSystem::new(plant, ground, control);
     y.resize(sys.dim(), 0.0);
@@ -493,6 +528,12 @@ fn quasi_static_run<W: Write>(
     interrupt: &AtomicBool,
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
+    if scenario.soft() {
+        return Err(SetupError::Unsupported {
+            field: "fidelity",
+            message: "the quasi-static level stands the rover on rigid ground: it has no wheel spin for a soil's slip\n  = help: run a soil at the \"full\", \"simplified\" or \"linearized\" level, or remove `soil` from [terrain]".into(),
+        });
+    }
     let terrain = scenario.terrain.build(base_dir)?;
     let y0 = initial_state(model, scenario, Some(&terrain))?;
     let n = model.dof();

@@ -452,6 +452,7 @@ impl<P: Plant> Sim<P> {
         let terrain = scenario.terrain.build(base)?;
         let mut y = rover_scenario::simulate::initial_state(model, scenario, Some(&terrain))?;
         let ground = rover_scenario::simulate::ground_of(scenario, terrain, model, base)?;
+        rover_scenario::simulate::settle_into_soil(&ground, model, scenario, &mut y);
         let control = Controller::new_in(config.control.clone(), model, 0.0, base)?;
         let weights = match config.distribution {
             Distribution::StaticLoad => rover_runtime::quasi_static::flat_ground_loads(model)?,
