@@ -107,7 +107,7 @@ impl<H: HeightField> Ground<H> {
         let mut tyres = Vec::with_capacity(model.wheels.len());
         for (wheel, w) in model.wheels.iter().enumerate() {
             let width = w.width.ok_or(SoilWheelError::NoWidth { wheel })?;
-            if !(w.spin_inertia > 0.0) {
+            if w.spin_inertia.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return Err(SoilWheelError::NoSpinInertia { wheel });
             }
             tyres.push(SoilTyre {
