@@ -29,7 +29,7 @@ use crate::height_field::HeightField;
 use crate::linalg::{cross, dot, v3};
 use crate::plant::{WheelLoad, WheelState};
 use crate::scalar::Scalar;
-use crate::soil::{GaussLegendre, Shear, SoilContact, SoilForces, SoilWheel, soil_forces_sheared};
+use crate::soil::{EntryAngle, GaussLegendre, Shear, SoilForces, SoilWheel, forces_on_arc};
 use crate::wheel_ground::{LoadDerivative, WheelReport, lever_gradient};
 use crate::wheel_law::DAMPING_RAMP;
 
@@ -105,7 +105,7 @@ fn forward_weight<S: Scalar + PartialOrd>(v: S) -> S {
 fn in_frame<S: Scalar + PartialOrd>(
     tyre: &SoilTyre,
     rule: &RunRule,
-    entry_angle: S,
+    entry: EntryAngle<S>,
     sign: f64,
     [u, v, v_c]: [S; 3],
 ) -> (SoilForces<S>, S, S) {
@@ -117,13 +117,11 @@ fn in_frame<S: Scalar + PartialOrd>(
         travel: v / scale,
     };
     let slip = (shear.rim - shear.travel).max(-S::one()).min(S::one());
-    let slip_angle = v_c.atan2(v.max(eps));
-    let contact = SoilContact {
-        entry_angle,
-        slip,
-        slip_angle,
-    };
-    let forces = soil_forces_sheared(&tyre.wheel, contact, shear, rule);
+    let forward = v.max(eps);
+    let slip_angle = v_c.atan2(forward);
+    // tan β of β = atan2(v_c, forward), forward > 0.
+    let tan_beta = v_c / forward;
+    let forces = forces_on_arc(&tyre.wheel, entry, slip, tan_beta, shear, rule);
     (forces, slip, slip_angle)
 }
 
@@ -150,10 +148,14 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
         .max(S::cst(1e-12 * radius))
         .min(S::cst(radius));
     let r = S::cst(radius);
-    // θ1 = acos(1 − z/r), by atan2 (defined to the axle).
-    let entry_angle = (sinkage * (S::cst(2.0) * r - sinkage))
-        .sqrt()
-        .atan2(r - sinkage);
+    // θ1 = acos(1 − z/r), by atan2 (defined to the axle); its sine and
+    // cosine are the rim's chord and height over r.
+    let (chord, height) = ((sinkage * (S::cst(2.0) * r - sinkage)).sqrt(), r - sinkage);
+    let entry = EntryAngle {
+        angle: chord.atan2(height),
+        sin: chord / r,
+        cos: height / r,
+    };
     let speeds = [r * spin, dot(velocity, t), dot(velocity, c)];
     let forward = forward_weight(speeds[1]);
     let mut sum = SoilForces {
@@ -167,7 +169,7 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
         if weight <= S::zero() {
             continue;
         }
-        let (f, _, beta) = in_frame(tyre, rule, entry_angle, sign, speeds);
+        let (f, _, beta) = in_frame(tyre, rule, entry, sign, speeds);
         sum.vertical += weight * f.vertical;
         sum.drawbar += weight * S::cst(sign) * f.drawbar;
         sum.torque += weight * S::cst(sign) * f.torque;
