@@ -6,8 +6,10 @@
 //! and on the paper's rough terrain (the sampled and the bounded search, at
 //! one state and along a path of states), and the mass matrix alone; whole
 //! 40 s runs of swing4 on flat ground with RK4; and where swing4's
-//! right-hand side on rough ground spends its time. Same seeded states for
-//! both back ends, setup outside the timing.
+//! right-hand side on rough ground spends its time; one wheel's soil
+//! forces; and MER's whole right-hand side and assembled Jacobian on the
+//! rough terrain, rigid and under a soil (`rhs_soil`). Same seeded states
+//! for both back ends, setup outside the timing.
 //! `cargo bench --bench plant -- --warm-up-time 1 --measurement-time 3`.
 
 mod support;
@@ -717,6 +719,76 @@ fn soil(c: &mut Criterion) {
     group.finish();
 }
 
+/// A six-wheel rover's (MER's, generated plant) whole right-hand side on
+/// the paper's rough terrain, rigid and under a soil (dry sand), at the
+/// same state: the rover after driving 5 s on the rigid ground (settled on
+/// its wheels at its speed), its wheels' spins (the soil's extra states)
+/// rolling without slip; and along the states 1 ms apart of
+/// `rhs_contact_rough_path`. The contact search is the default (bounded)
+/// one, the same patches both ways; on the soil the soil law replaces the
+/// tyre law on each of them. And the assembled Jacobian
+/// (`OdeSystem::jacobian`) at the same state, both ways.
+fn rhs_soil(c: &mut Criterion) {
+    use rover_runtime::soil::SoilConfig;
+    let model = model("mer");
+    let soil = SoilConfig::builtin("dry_sand").unwrap().soil().unwrap();
+    let rough = Terrain::Grid(support::rough_field());
+    let generic = GenericPlant::new(model.clone()).unwrap();
+    let state = driven(&rough, &model, generic.clone(), 5.0);
+    let path = path_from(&rough, &model, generic, &state, 200);
+    let method = ContactMethod::Bounded;
+    let plant = rover_models::Mer::new();
+    let (mut rigid, _) = system_on(rough.clone(), &model, plant, method);
+    let (mut soft, _) = support::soil_system_on(rough, &model, plant, method, &soil);
+    // The soft system's state: the rigid one, then the spins.
+    let with_spins = |sys: &mut rover_runtime::sim::RoverSystem<_, _>, y: &[f64]| {
+        let mut z = vec![0.0; sys.dim()];
+        z[..y.len()].copy_from_slice(y);
+        sys.roll_spins(0.0, &mut z);
+        z
+    };
+    let y_rigid = state.clone();
+    let y_soft = with_spins(&mut soft, &state);
+    assert_eq!(soft.spin_range().len(), model.wheels.len());
+    assert_eq!(soft.spin_range().end, y_soft.len());
+    let path_soft: Vec<Vec<f64>> = path.iter().map(|y| with_spins(&mut soft, y)).collect();
+    let mut group = c.benchmark_group("rhs_soil");
+    for (id, sys, y, path) in [
+        ("rigid", &mut rigid, &y_rigid, &path),
+        ("soil", &mut soft, &y_soft, &path_soft),
+    ] {
+        let dim = y.len();
+        let mut dy = vec![0.0; dim];
+        sys.rhs(0.0, y, &mut dy).unwrap();
+        let patches: usize = sys.reports().iter().map(|r| r.patches).sum();
+        assert!(patches >= model.wheels.len(), "{id}: {patches} patches");
+        group.bench_function(BenchmarkId::new("rhs", id), |b| {
+            b.iter(|| {
+                sys.rhs(0.0, black_box(y), &mut dy).unwrap();
+                black_box(&dy);
+            })
+        });
+        let mut k = 0;
+        group.bench_function(BenchmarkId::new("rhs_path", id), |b| {
+            b.iter(|| {
+                sys.rhs(0.0, black_box(&path[k % path.len()]), &mut dy)
+                    .unwrap();
+                k += 1;
+                black_box(&dy);
+            })
+        });
+        let mut jac = vec![0.0; dim * dim];
+        sys.jacobian(0.0, y, &mut jac).unwrap().unwrap();
+        group.bench_function(BenchmarkId::new("jacobian", id), |b| {
+            b.iter(|| {
+                sys.jacobian(0.0, black_box(y), &mut jac).unwrap().unwrap();
+                black_box(&jac);
+            })
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
     soil,
@@ -725,6 +797,7 @@ criterion_group!(
     whole_runs,
     fidelity_levels,
     rhs_parts,
-    jacobians
+    jacobians,
+    rhs_soil
 );
 criterion_main!(benches);

@@ -7,7 +7,9 @@ use rover_dynamics::Model;
 use rover_dynamics::contact::RimSampling;
 use rover_dynamics::height_field::Bounds;
 use rover_dynamics::plant::Plant;
+use rover_dynamics::soil::Soil;
 use rover_dynamics::wheel_ground::ContactMethod;
+use rover_integrate::OdeSystem;
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
 use rover_runtime::ground::Ground;
 use rover_runtime::sim::RoverSystem;
@@ -41,7 +43,6 @@ pub fn system_on<P: Plant>(
     plant: P,
     method: ContactMethod,
 ) -> (RoverSystem<P, Terrain>, Vec<f64>) {
-    let n = model.dof();
     let ground = Ground::new(
         terrain,
         model,
@@ -49,6 +50,39 @@ pub fn system_on<P: Plant>(
         RimSampling::default(),
         WheelLawConfig::default(),
     );
+    system_with(ground, model, plant)
+}
+
+/// [`system_on`] with `terrain` covered by `soil`: the state gains each
+/// wheel's spin at its end (`RoverSystem::spin_range`), zero here (a
+/// bench sets them, e.g. by `RoverSystem::roll_spins`).
+pub fn soil_system_on<P: Plant>(
+    terrain: Terrain,
+    model: &Model,
+    plant: P,
+    method: ContactMethod,
+    soil: &Soil,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+    let ground = Ground::new(
+        terrain,
+        model,
+        method,
+        RimSampling::default(),
+        WheelLawConfig::default(),
+    )
+    .with_soil(soil, model)
+    .unwrap();
+    system_with(ground, model, plant)
+}
+
+/// The rover on `ground`, driving at [`SPEED`], at rest with the
+/// suspension at its rest angles and G at [`start_height`].
+fn system_with<P: Plant>(
+    ground: Ground<Terrain>,
+    model: &Model,
+    plant: P,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+    let n = model.dof();
     let config = ControllerConfig {
         speed: Some(SpeedConfig {
             speed: Profile::Constant(SPEED),
@@ -58,7 +92,7 @@ pub fn system_on<P: Plant>(
     };
     let control = Controller::new(config, model, 0.0).unwrap();
     let sys = RoverSystem::new(plant, Some(ground), control);
-    let mut y = vec![0.0; 2 * n + 1];
+    let mut y = vec![0.0; sys.dim()];
     let rest = model.rest();
     y[6..n].copy_from_slice(&rest);
     y[2] = start_height(model);

@@ -230,27 +230,65 @@ pub fn soil_forces_sheared<S: Scalar, const Q: usize>(
     shear: Shear<S>,
     rule: &GaussLegendre<Q>,
 ) -> SoilForces<S> {
+    let theta1 = contact.entry_angle;
+    let beta = contact.slip_angle;
+    let arc = EntryAngle {
+        angle: theta1,
+        sin: theta1.sin(),
+        cos: theta1.cos(),
+    };
+    forces_on_arc(
+        wheel,
+        arc,
+        contact.slip,
+        beta.sin() / beta.cos(),
+        shear,
+        rule,
+    )
+}
+
+/// The entry angle θ1 with its sine and cosine, as a caller that knows
+/// them from the geometry gives them ([`crate::wheel_soil`]: the sinkage).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EntryAngle<S> {
+    /// θ1 \[rad\].
+    pub(crate) angle: S,
+    /// sin θ1.
+    pub(crate) sin: S,
+    /// cos θ1.
+    pub(crate) cos: S,
+}
+
+/// [`soil_forces_sheared`] at the entry angle `entry`, slip `s` (which
+/// places the stress's maximum) and the tangent of the slip angle,
+/// `tan_beta`.
+pub(crate) fn forces_on_arc<S: Scalar, const Q: usize>(
+    wheel: &SoilWheel,
+    entry: EntryAngle<S>,
+    s: S,
+    tan_beta: S,
+    shear: Shear<S>,
+    rule: &GaussLegendre<Q>,
+) -> SoilForces<S> {
     let soil = &wheel.soil;
     let r = S::cst(wheel.radius);
-    let theta1 = contact.entry_angle;
-    let s = contact.slip;
+    let EntryAngle {
+        angle: theta1,
+        sin: sin1,
+        cos: cos1,
+    } = entry;
     let zero = S::zero();
     let one = S::one();
     let theta2 = S::cst(-soil.rear_ratio) * theta1;
     // θm between the ends.
     let theta_m = (S::cst(soil.a0) + S::cst(soil.a1) * s) * theta1;
     let theta_m = theta_m.min(theta1).max(theta2);
-    // The rear piece's map divides by its length, which may be zero (θm at
-    // θ2: Bekker's distribution, the stress peaking at the exit).
-    let rear = (theta_m - theta2).max(S::cst(1e-300));
     let (rim, travel) = (shear.rim, shear.travel);
     let k = S::cst(wheel.pressure);
     let tan_phi = S::cst(wheel.tan_phi);
     let cohesion = S::cst(soil.cohesion);
     let inv_k = S::cst(wheel.inv_k);
     let inv_ky = S::cst(wheel.inv_ky);
-    let (sin1, cos1) = (theta1.sin(), theta1.cos());
-    let tan_beta = contact.slip_angle.sin() / contact.slip_angle.cos();
     // A power of zero (no contact) is taken of a tiny positive number.
     let tiny = S::cst(1e-300);
     let mut out = SoilForces {
@@ -259,38 +297,33 @@ pub fn soil_forces_sheared<S: Scalar, const Q: usize>(
         torque: zero,
         lateral: zero,
     };
-    // The front piece [θm, θ1] (θ* = θ), then the rear one [θ2, θm]. Each
+    // The front piece [θm, θ1] (θ* = θ) and the rear one [θ2, θm]. Each
     // piece's nodes are squeezed quadratically towards the end where the
     // normal stress vanishes like a power (θ1 in front, θ2 behind):
     // θ = θ1 − L·(1 − u)² and θ = θ2 + L·u², u in (0, 1), turn an edge
     // (θ1 − θ)ⁿ into (1 − u)^(2n+1), which Gauss–Legendre integrates to
-    // 1e-4 with 4 points a piece (to 1e-9 with 16).
-    for front in [true, false] {
-        let len = if front {
-            theta1 - theta_m
-        } else {
-            theta_m - theta2
-        };
-        for (x, w) in rule.nodes.iter().zip(&rule.weights) {
-            let u = 0.5 * (x + 1.0);
-            let (theta, wq) = if front {
-                (
-                    theta1 - len * S::cst((1.0 - u) * (1.0 - u)),
-                    len * S::cst(w * (1.0 - u)),
-                )
-            } else {
-                (theta2 + len * S::cst(u * u), len * S::cst(w * u))
-            };
-            let (sin, cos) = (theta.sin(), theta.cos());
-            // cos θ*: θ itself in front, its map behind.
-            let cos_star = if front {
-                cos
-            } else {
-                (theta1 - (theta - theta2) / rear * (theta1 - theta_m)).cos()
-            };
-            let base = (cos_star - cos1).max(tiny);
-            let sigma = k * base.powf(soil.n);
-            let strength = cohesion + sigma * tan_phi;
+    // 1e-4 with 4 points a piece (to 1e-9 with 16). The rule is symmetric
+    // (nodes ±x, equal weights), so the front piece is taken at the
+    // mirrored nodes, θ = θ1 − L_f·u², weight L_f·w·u: the rear piece's
+    // θ* at a node, θ1 − (θ − θ2)/L_r·(θ1 − θm) = θ1 − L_f·u², is then the
+    // front piece's θ at the same node, and the normal stress there is
+    // evaluated once for both.
+    let front_len = theta1 - theta_m;
+    let rear_len = theta_m - theta2;
+    for (x, w) in rule.nodes.iter().zip(&rule.weights) {
+        let u = 0.5 * (x + 1.0);
+        let (squeeze, weight) = (S::cst(u * u), S::cst(w * u));
+        let front = theta1 - front_len * squeeze;
+        let rear = theta2 + rear_len * squeeze;
+        let (sin_front, cos_front) = (front.sin(), front.cos());
+        // σ at θ* = `front` (cos θ* − cos θ1 ≥ 0).
+        let base = (cos_front - cos1).max(tiny);
+        let sigma = k * base.powf(soil.n);
+        let strength = cohesion + sigma * tan_phi;
+        for (theta, sin, cos, wq) in [
+            (front, sin_front, cos_front, front_len * weight),
+            (rear, rear.sin(), rear.cos(), rear_len * weight),
+        ] {
             let j = r * (rim * (theta1 - theta) - travel * (sin1 - sin));
             let tau = (strength * (one - (-(j.abs() * inv_k)).exp())).copysign(j);
             let jy = r * travel * (theta1 - theta) * tan_beta;

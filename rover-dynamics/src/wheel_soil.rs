@@ -24,13 +24,14 @@
 //! rover with rolling resistance does).
 
 use crate::contact::{Contact, Patch};
+#[cfg(doc)]
 use crate::dual::Dual;
 use crate::height_field::HeightField;
 use crate::linalg::{cross, dot, v3};
 use crate::plant::{WheelLoad, WheelState};
 use crate::scalar::Scalar;
-use crate::soil::{GaussLegendre, Shear, SoilContact, SoilForces, SoilWheel, soil_forces_sheared};
-use crate::wheel_ground::{LoadDerivative, WheelReport, lever_gradient, seeded};
+use crate::soil::{EntryAngle, GaussLegendre, Shear, SoilForces, SoilWheel, forces_on_arc};
+use crate::wheel_ground::{LoadDerivative, WheelReport, lever_gradient};
 use crate::wheel_law::DAMPING_RAMP;
 
 /// Quadrature points on each piece of the contact arc in a run: the forces
@@ -105,7 +106,7 @@ fn forward_weight<S: Scalar + PartialOrd>(v: S) -> S {
 fn in_frame<S: Scalar + PartialOrd>(
     tyre: &SoilTyre,
     rule: &RunRule,
-    entry_angle: S,
+    entry: EntryAngle<S>,
     sign: f64,
     [u, v, v_c]: [S; 3],
 ) -> (SoilForces<S>, S, S) {
@@ -117,13 +118,11 @@ fn in_frame<S: Scalar + PartialOrd>(
         travel: v / scale,
     };
     let slip = (shear.rim - shear.travel).max(-S::one()).min(S::one());
-    let slip_angle = v_c.atan2(v.max(eps));
-    let contact = SoilContact {
-        entry_angle,
-        slip,
-        slip_angle,
-    };
-    let forces = soil_forces_sheared(&tyre.wheel, contact, shear, rule);
+    let forward = v.max(eps);
+    let slip_angle = v_c.atan2(forward);
+    // tan β of β = atan2(v_c, forward), forward > 0.
+    let tan_beta = v_c / forward;
+    let forces = forces_on_arc(&tyre.wheel, entry, slip, tan_beta, shear, rule);
     (forces, slip, slip_angle)
 }
 
@@ -150,10 +149,14 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
         .max(S::cst(1e-12 * radius))
         .min(S::cst(radius));
     let r = S::cst(radius);
-    // θ1 = acos(1 − z/r), by atan2 (defined to the axle).
-    let entry_angle = (sinkage * (S::cst(2.0) * r - sinkage))
-        .sqrt()
-        .atan2(r - sinkage);
+    // θ1 = acos(1 − z/r), by atan2 (defined to the axle); its sine and
+    // cosine are the rim's chord and height over r.
+    let (chord, height) = ((sinkage * (S::cst(2.0) * r - sinkage)).sqrt(), r - sinkage);
+    let entry = EntryAngle {
+        angle: chord.atan2(height),
+        sin: chord / r,
+        cos: height / r,
+    };
     let speeds = [r * spin, dot(velocity, t), dot(velocity, c)];
     let forward = forward_weight(speeds[1]);
     let mut sum = SoilForces {
@@ -167,7 +170,7 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
         if weight <= S::zero() {
             continue;
         }
-        let (f, _, beta) = in_frame(tyre, rule, entry_angle, sign, speeds);
+        let (f, _, beta) = in_frame(tyre, rule, entry, sign, speeds);
         sum.vertical += weight * f.vertical;
         sum.drawbar += weight * S::cst(sign) * f.drawbar;
         sum.torque += weight * S::cst(sign) * f.torque;
@@ -250,11 +253,12 @@ pub fn soil_wheel_load(
 }
 
 /// [`LoadDerivative`] of a wheel on the soil at the patches of its last
-/// contact: dual numbers through the very `soil_patch_load` a run
+/// contact: forward derivatives through the very `soil_patch_load` a run
 /// evaluates, each patch's depth moving with the centre as
 /// `lever_gradient` says, the patch frames held (as the rigid law's
 /// derivative holds them). Row 9 is the soil's torque against the spin;
-/// column 7 the spin.
+/// column 7 the spin. One pass a patch carries the seven directions
+/// together ([`Jet`]), each as a [`Dual`] pass would.
 pub fn soil_load_derivative<H: HeightField + ?Sized>(
     tyre: &SoilTyre,
     rule: &RunRule,
@@ -268,23 +272,211 @@ pub fn soil_load_derivative<H: HeightField + ?Sized>(
     for k in 0..3 {
         d[6 + k][6] = -s.spin_axis[k];
     }
+    // The directions: the centre's shift (3), its velocity (3), the spin;
+    // the torque's column (6) is the stator's alone.
+    const COLUMNS: [usize; DIRECTIONS] = [0, 1, 2, 3, 4, 5, 7];
+    let shift = core::array::from_fn(|k| Jet::var(0.0, k));
+    let velocity = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
+    let spin = Jet::var(spin, 6);
     for p in contact.patches() {
         let gradient = lever_gradient(terrain, s, p);
-        for col in [0, 1, 2, 3, 4, 5, 7] {
-            let (shift, velocity) = seeded(col, s);
-            let spin = Dual {
-                re: spin,
-                eps: if col == 7 { 1.0 } else { 0.0 },
-            };
-            let pl = soil_patch_load(tyre, rule, s, p, gradient, shift, velocity, spin);
+        let pl = soil_patch_load(tyre, rule, s, p, gradient, shift, velocity, spin);
+        for (i, &col) in COLUMNS.iter().enumerate() {
             for k in 0..3 {
-                d[k][col] += pl.force[k].eps;
-                d[3 + k][col] += pl.moment[k].eps;
+                d[k][col] += pl.force[k].eps[i];
+                d[3 + k][col] += pl.moment[k].eps[i];
             }
-            d[9][col] += pl.torque.eps;
+            d[9][col] += pl.torque.eps[i];
         }
     }
     d
+}
+
+/// The directions a [`Jet`] carries: a wheel's centre (3), velocity (3)
+/// and spin (1).
+const DIRECTIONS: usize = 7;
+
+/// A value and its derivatives along [`DIRECTIONS`] directions at once:
+/// component by component the arithmetic of a [`Dual`] (the same
+/// formulas in the same order, so each derivative is the one a `Dual`
+/// pass along its direction gives), with the value and its functions
+/// (`exp`, `sin`, …) evaluated once for all directions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Jet {
+    re: f64,
+    eps: [f64; DIRECTIONS],
+}
+
+impl Jet {
+    /// The variable of direction `k`, at `re`.
+    fn var(re: f64, k: usize) -> Self {
+        let mut eps = [0.0; DIRECTIONS];
+        eps[k] = 1.0;
+        Self { re, eps }
+    }
+
+    /// `re` with derivatives `f(eps_i)`.
+    #[inline(always)]
+    fn with(re: f64, eps: [f64; DIRECTIONS], f: impl Fn(f64) -> f64) -> Self {
+        Self {
+            re,
+            eps: eps.map(f),
+        }
+    }
+
+    /// `re` with derivatives `f(a_i, b_i)`.
+    #[inline(always)]
+    fn zip(re: f64, a: &Self, b: &Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        Self {
+            re,
+            eps: core::array::from_fn(|i| f(a.eps[i], b.eps[i])),
+        }
+    }
+}
+
+impl core::ops::Add for Jet {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Self::zip(self.re + o.re, &self, &o, |a, b| a + b)
+    }
+}
+impl core::ops::Sub for Jet {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Self::zip(self.re - o.re, &self, &o, |a, b| a - b)
+    }
+}
+impl core::ops::Mul for Jet {
+    type Output = Self;
+    // The product rule.
+    #[allow(clippy::suspicious_arithmetic_impl)]
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        let (x, y) = (self.re, o.re);
+        Self::zip(x * y, &self, &o, |a, b| x * b + a * y)
+    }
+}
+impl core::ops::Div for Jet {
+    type Output = Self;
+    // The quotient rule.
+    #[allow(clippy::suspicious_arithmetic_impl)]
+    #[inline(always)]
+    fn div(self, o: Self) -> Self {
+        let inv = 1.0 / o.re;
+        let x = self.re;
+        Self::zip(x * inv, &self, &o, |a, b| (a - x * inv * b) * inv)
+    }
+}
+impl core::ops::Neg for Jet {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Self::with(-self.re, self.eps, |a| -a)
+    }
+}
+impl core::ops::AddAssign for Jet {
+    #[inline(always)]
+    fn add_assign(&mut self, o: Self) {
+        *self = *self + o;
+    }
+}
+impl core::ops::SubAssign for Jet {
+    #[inline(always)]
+    fn sub_assign(&mut self, o: Self) {
+        *self = *self - o;
+    }
+}
+impl core::ops::MulAssign for Jet {
+    #[inline(always)]
+    fn mul_assign(&mut self, o: Self) {
+        *self = *self * o;
+    }
+}
+
+/// Ordered by value only, as [`Dual`] is (`max`, `min` and `abs` pick a
+/// branch by it).
+impl PartialOrd for Jet {
+    fn partial_cmp(&self, other: &Self) -> Option<core::cmp::Ordering> {
+        self.re.partial_cmp(&other.re)
+    }
+}
+
+/// The larger by value, as [`Dual`]'s `pick`.
+#[inline(always)]
+fn pick(take_a: bool, a: Jet, b: Jet) -> Jet {
+    if take_a { a } else { b }
+}
+
+impl Scalar for Jet {
+    #[inline(always)]
+    fn cst(value: f64) -> Self {
+        Self {
+            re: value,
+            eps: [0.0; DIRECTIONS],
+        }
+    }
+    #[inline(always)]
+    fn sin(self) -> Self {
+        let c = Scalar::cos(self.re);
+        Self::with(Scalar::sin(self.re), self.eps, |a| a * c)
+    }
+    #[inline(always)]
+    fn cos(self) -> Self {
+        let s = Scalar::sin(self.re);
+        Self::with(Scalar::cos(self.re), self.eps, |a| -(a * s))
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        let r = Scalar::sqrt(self.re);
+        // As `Dual`: 0 along a direction that does not move the argument.
+        Self::with(r, self.eps, |a| if a == 0.0 { 0.0 } else { a / (r + r) })
+    }
+    #[inline(always)]
+    fn atan2(self, x: Self) -> Self {
+        let (y, xr) = (self.re, x.re);
+        let d = xr * xr + y * y;
+        Self::zip(Scalar::atan2(y, xr), &self, &x, |a, b| (xr * a - y * b) / d)
+    }
+    #[inline(always)]
+    fn atan(self) -> Self {
+        let x = self.re;
+        Self::with(Scalar::atan(x), self.eps, |a| a / (1.0 + x * x))
+    }
+    #[inline(always)]
+    fn hypot(self, other: Self) -> Self {
+        let (x, y) = (self.re, other.re);
+        let h = Scalar::hypot(x, y);
+        Self::zip(h, &self, &other, |a, b| (x * a + y * b) / h)
+    }
+    #[inline(always)]
+    fn exp(self) -> Self {
+        let e = Scalar::exp(self.re);
+        Self::with(e, self.eps, |a| a * e)
+    }
+    #[inline(always)]
+    fn ln(self) -> Self {
+        let x = self.re;
+        Self::with(Scalar::ln(x), self.eps, |a| a / x)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        pick(self.re >= 0.0, self, -self)
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        pick(self.re >= other.re, self, other)
+    }
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        pick(self.re <= other.re, self, other)
+    }
+    #[inline(always)]
+    fn copysign(self, sign: Self) -> Self {
+        let a = self.abs();
+        pick(sign.re >= 0.0, a, -a)
+    }
 }
 
 /// The load on every wheel on the soil (`tyres`, `states`, `spins` and
@@ -327,7 +519,7 @@ mod tests {
     const R: f64 = 0.13;
     const B: f64 = 0.16;
 
-    /// LLL dry sand (Wong), K = 2.5 cm.
+    /// LLL dry sand (Wong), K = 2.5 cm, a wheel of radius R and width B.
     fn tyre() -> SoilTyre {
         let soil = Soil {
             n: 1.1,
@@ -505,6 +697,171 @@ mod tests {
                 "row {row}, sinkage: {} vs {fd}",
                 down[row][2]
             );
+        }
+    }
+
+    mod jets {
+        use super::super::*;
+        use crate::soil::Soil;
+
+        /// Wong's LLL dry sand (docs/SOIL.md), a 0.125 m wheel 0.16 m wide.
+        fn tyre() -> SoilTyre {
+            let soil = Soil {
+                n: 1.1,
+                k_c: 0.99e3,
+                k_phi: 1528.43e3,
+                cohesion: 1.04e3,
+                friction_angle: 28f64.to_radians(),
+                shear_modulus: 0.01,
+                lateral_shear_modulus: 0.01,
+                a0: 0.4,
+                a1: 0.15,
+                rear_ratio: 0.0,
+            };
+            SoilTyre {
+                wheel: SoilWheel::new(&soil, 0.125, 0.16),
+                damping: 300.0,
+            }
+        }
+
+        /// A wheel on a 10° slope rising along X, sunk 15 mm, moving at
+        /// `velocity` and spinning at `spin`; its patch, lever gradient
+        /// (the slope's normal) and state.
+        fn wheel(velocity: [f64; 3], spin: f64) -> (WheelState, Patch, f64) {
+            let (s, c) = 10f64.to_radians().sin_cos();
+            let normal = [-s, 0.0, c];
+            let tangent = [c, 0.0, s];
+            let lateral = [0.0, 1.0, 0.0];
+            let (radius, sinkage) = (0.125, 0.015);
+            let lever = radius - sinkage;
+            let state = WheelState {
+                centre: [0.0; 3],
+                velocity,
+                spin_axis: [0.0, 1.0, 0.0],
+            };
+            let patch = Patch {
+                point: normal.map(|v| -lever * v),
+                normal,
+                tangent,
+                lateral,
+                deflection: sinkage,
+                lever,
+                angle: 0.0,
+            };
+            (state, patch, spin)
+        }
+
+        /// Driving, braking, near standstill (both frames blended), reversing,
+        /// sliding sideways.
+        fn motions() -> [([f64; 3], f64); 6] {
+            let (s, c) = 10f64.to_radians().sin_cos();
+            [
+                ([0.05 * c, 0.0, 0.05 * s], 0.6),
+                ([0.05 * c, 0.003, 0.05 * s], 0.2),
+                ([0.0004 * c, 0.0, 0.0004 * s - 0.001], 0.01),
+                ([-0.0002 * c, 0.0001, -0.0002 * s], -0.002),
+                ([-0.04 * c, 0.0, -0.04 * s], -0.5),
+                ([0.01 * c, 0.02, 0.01 * s], 0.1),
+            ]
+        }
+
+        /// The seven directions of one [`Jet`] pass are, bit for bit, the
+        /// seven [`Dual`] passes they replace.
+        #[test]
+        fn one_jet_pass_is_the_dual_passes() {
+            use crate::dual::Dual;
+            let (tyre, rule) = (tyre(), RunRule::new());
+            for (velocity, spin) in motions() {
+                let (s, p, spin) = wheel(velocity, spin);
+                let gradient = [0.1, -0.05, 1.0];
+                let shift = core::array::from_fn(|k| Jet::var(0.0, k));
+                let v = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
+                let jet =
+                    soil_patch_load(&tyre, &rule, &s, &p, gradient, shift, v, Jet::var(spin, 6));
+                for i in 0..DIRECTIONS {
+                    let seed = |j: usize| if i == j { 1.0 } else { 0.0 };
+                    let shift = core::array::from_fn(|k| Dual {
+                        re: 0.0,
+                        eps: seed(k),
+                    });
+                    let v = core::array::from_fn(|k| Dual {
+                        re: s.velocity[k],
+                        eps: seed(3 + k),
+                    });
+                    let w = Dual {
+                        re: spin,
+                        eps: seed(6),
+                    };
+                    let dual = soil_patch_load(&tyre, &rule, &s, &p, gradient, shift, v, w);
+                    for k in 0..3 {
+                        assert_eq!(jet.force[k].re.to_bits(), dual.force[k].re.to_bits());
+                        assert_eq!(jet.force[k].eps[i].to_bits(), dual.force[k].eps.to_bits());
+                        assert_eq!(jet.moment[k].eps[i].to_bits(), dual.moment[k].eps.to_bits());
+                    }
+                    assert_eq!(jet.torque.eps[i].to_bits(), dual.torque.eps.to_bits());
+                }
+            }
+        }
+
+        /// The patch load's derivatives against central differences of the
+        /// `f64` law, in every direction and every motion (the blend of the
+        /// forward and mirrored frames near standstill included).
+        #[test]
+        fn the_jet_derivatives_are_the_differences_of_the_law() {
+            let (tyre, rule) = (tyre(), RunRule::new());
+            for (velocity, spin) in motions() {
+                let (s, p, spin) = wheel(velocity, spin);
+                let gradient = [0.1, -0.05, 1.0];
+                let shift = core::array::from_fn(|k| Jet::var(0.0, k));
+                let v = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
+                let jet =
+                    soil_patch_load(&tyre, &rule, &s, &p, gradient, shift, v, Jet::var(spin, 6));
+                let at = |i: usize, h: f64| {
+                    let mut x = [0.0, 0.0, 0.0, velocity[0], velocity[1], velocity[2], spin];
+                    x[i] += h;
+                    let l = soil_patch_load(
+                        &tyre,
+                        &rule,
+                        &s,
+                        &p,
+                        gradient,
+                        [x[0], x[1], x[2]],
+                        [x[3], x[4], x[5]],
+                        x[6],
+                    );
+                    [
+                        l.force[0],
+                        l.force[1],
+                        l.force[2],
+                        l.moment[0],
+                        l.moment[1],
+                        l.moment[2],
+                        l.torque,
+                    ]
+                };
+                for i in 0..DIRECTIONS {
+                    // Small against the blend's 1 mm/s and the sinkage.
+                    let h = 1e-8;
+                    let (plus, minus) = (at(i, h), at(i, -h));
+                    let got = [
+                        jet.force[0],
+                        jet.force[1],
+                        jet.force[2],
+                        jet.moment[0],
+                        jet.moment[1],
+                        jet.moment[2],
+                        jet.torque,
+                    ];
+                    for k in 0..7 {
+                        let fd = (plus[k] - minus[k]) / (2.0 * h);
+                        let d = got[k].eps[i];
+                        assert!(
+                            (d - fd).abs() <= 1e-4 * (1.0 + fd.abs()),
+                            "v {velocity:?}, ω {spin}: ∂{k}/∂{i}: {d} vs {fd}"
+                        );
+                    }
+                }
+            }
         }
     }
 }
