@@ -667,6 +667,7 @@ fn soil(c: &mut Criterion) {
         a0: 0.4,
         a1: 0.15,
         rear_ratio: 0.0,
+        unit_weight: 0.0,
     };
     let contact = SoilContact {
         entry_angle: 0.3,

@@ -20,6 +20,7 @@ fn lunar() -> Soil {
         a0: 0.4,
         a1: 0.15,
         rear_ratio: 0.2,
+        unit_weight: 15_000.0,
     }
 }
 

@@ -17,6 +17,12 @@
 //!   24(3), 2007): `τ_y = (c + σ·tan φ)·(1 − exp(−|j_y|/K_y))` with the
 //!   sign of `j_y = r·b·(θ1 − θ)·tan β`;
 //!
+//! - with the soil's unit weight γ given, the bulldozing resistance on the
+//!   wheel's side face under a slip angle (Ishigami et al. 2007):
+//!   `F_b = ∫ D1·(c·h + D2·γ·h²/2)·(r − h·cos θ) dθ`, h = r·(cos θ − cos θ1),
+//!   D1 = cot X_c + tan(X_c + φ), D2 = cot X_c + cot² X_c/cot φ,
+//!   X_c = 45° − φ/2, added to the lateral force with the sign of β;
+//!
 //! and their resultants on a wheel of radius r and width b: the vertical
 //! load `W = r·b·∫(σ cos θ + τ sin θ)dθ`, the drawbar pull
 //! `DP = r·b·∫(τ cos θ − σ sin θ)dθ`, the driving torque `T = r²·b·∫τ dθ`
@@ -64,6 +70,10 @@ pub struct Soil {
     /// Rear ratio c_r: the exit angle is θ2 = −c_r·θ1 (0: the soil does
     /// not rebound behind the wheel).
     pub rear_ratio: f64,
+    /// Unit weight γ = ρ·g [N/m³] for the bulldozing resistance on the
+    /// wheel's side under a slip angle (Ishigami et al. 2007); 0 leaves it
+    /// out.
+    pub unit_weight: f64,
 }
 
 /// A rigid wheel (radius and width) in a soil, with the constants of the
@@ -84,6 +94,9 @@ pub struct SoilWheel {
     /// 1/K and 1/K_y \[1/m\].
     inv_k: f64,
     inv_ky: f64,
+    /// The side's bulldozing factors D1 and D2·γ/2 \[N/m³\] (Ishigami et
+    /// al. 2007), when the soil has a unit weight.
+    bulldozing: Option<(f64, f64)>,
 }
 
 impl SoilWheel {
@@ -97,6 +110,15 @@ impl SoilWheel {
             tan_phi: libm::tan(soil.friction_angle),
             inv_k: 1.0 / soil.shear_modulus,
             inv_ky: 1.0 / soil.lateral_shear_modulus,
+            bulldozing: (soil.unit_weight > 0.0).then(|| {
+                // The failure wedge's angle X_c = 45° − φ/2 (Terzaghi).
+                let phi = soil.friction_angle;
+                let x_c = core::f64::consts::FRAC_PI_4 - 0.5 * phi;
+                let cot = |a: f64| 1.0 / libm::tan(a);
+                let d1 = cot(x_c) + libm::tan(x_c + phi);
+                let d2 = cot(x_c) + cot(x_c) * cot(x_c) / cot(phi);
+                (d1, 0.5 * d2 * soil.unit_weight)
+            }),
         }
     }
 }
@@ -297,6 +319,7 @@ pub(crate) fn forces_on_arc<S: Scalar, const Q: usize>(
         torque: zero,
         lateral: zero,
     };
+    let mut bulldozing = zero;
     // The front piece [θm, θ1] (θ* = θ) and the rear one [θ2, θm]. Each
     // piece's nodes are squeezed quadratically towards the end where the
     // normal stress vanishes like a power (θ1 in front, θ2 behind):
@@ -332,6 +355,14 @@ pub(crate) fn forces_on_arc<S: Scalar, const Q: usize>(
             out.drawbar += wq * (tau * cos - sigma * sin);
             out.torque += wq * tau;
             out.lateral += wq * tau_y;
+            if let Some((d1, d2_gamma)) = wheel.bulldozing {
+                // The side face's depth below the surface at θ, and the
+                // soil it pushes: R_b = D1·(c·h + D2·γ·h²/2) per unit of
+                // the face, at the lever r − h·cos θ.
+                let h = (r * (cos - cos1)).max(zero);
+                let resistance = S::cst(d1) * (cohesion * h + S::cst(d2_gamma) * h * h);
+                bulldozing += wq * resistance * (r - h * cos);
+            }
         }
     }
     let rb = r * S::cst(wheel.width);
@@ -339,6 +370,8 @@ pub(crate) fn forces_on_arc<S: Scalar, const Q: usize>(
     out.drawbar *= rb;
     out.torque *= rb * r;
     out.lateral *= rb;
+    // Against the side slip, its sign made continuous over 1e-3 of tan β.
+    out.lateral += bulldozing * tan_beta / tan_beta.hypot(S::cst(1e-3));
     out
 }
 
@@ -441,6 +474,7 @@ mod tests {
             a0: 0.4,
             a1: 0.15,
             rear_ratio: 0.0,
+            unit_weight: 0.0,
         }
     }
 
@@ -480,6 +514,7 @@ mod tests {
             cohesion: 0.0,
             shear_modulus: 1e-12,
             rear_ratio: 0.3,
+            unit_weight: 0.0,
             ..lete()
         };
         let (r, b) = (0.25, 0.16);
@@ -686,6 +721,7 @@ mod tests {
             Soil {
                 n: 0.5,
                 rear_ratio: 0.5,
+                unit_weight: 0.0,
                 ..lete()
             },
         ];
@@ -720,5 +756,60 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The side's bulldozing resistance (a soil with a unit weight) adds
+    /// to the lateral force its integral, `∫ D1·(c·h + D2·γ·h²/2)·(r −
+    /// h·cos θ) dθ` over the arc (here by a fine midpoint sum), with the
+    /// slip angle's sign (continuous over 1e-3 of tan β), and nothing at
+    /// zero slip angle.
+    #[test]
+    fn the_side_bulldozing_is_its_integral_against_the_side_slip() {
+        let (r, b, theta1) = (0.2, 0.15, 0.45);
+        let plain = Soil {
+            rear_ratio: 0.4,
+            ..lete()
+        };
+        let heavy = Soil {
+            unit_weight: 16_000.0,
+            ..plain
+        };
+        let rule = GaussLegendre::<16>::new();
+        let lateral = |soil: &Soil, beta: f64| {
+            let contact = SoilContact {
+                entry_angle: theta1,
+                slip: 0.2,
+                slip_angle: beta,
+            };
+            soil_forces(&SoilWheel::new(soil, r, b), contact, &rule).lateral
+        };
+        let phi = heavy.friction_angle;
+        let x_c = core::f64::consts::FRAC_PI_4 - phi / 2.0;
+        let cot = |a: f64| 1.0 / libm::tan(a);
+        let d1 = cot(x_c) + libm::tan(x_c + phi);
+        let d2 = cot(x_c) + cot(x_c) * cot(x_c) / cot(phi);
+        let theta2 = -heavy.rear_ratio * theta1;
+        let steps = 200_000;
+        let dtheta = (theta1 - theta2) / steps as f64;
+        let expected: f64 = (0..steps)
+            .map(|i| {
+                let theta = theta2 + (i as f64 + 0.5) * dtheta;
+                let h = r * (libm::cos(theta) - libm::cos(theta1));
+                let rb = d1 * (heavy.cohesion * h + d2 * heavy.unit_weight * h * h / 2.0);
+                rb * (r - h * libm::cos(theta)) * dtheta
+            })
+            .sum();
+        assert!(expected > 1.0, "{expected}");
+        for beta in [0.1, -0.3] {
+            let added = lateral(&heavy, beta) - lateral(&plain, beta);
+            // The sign of tan β, made continuous over 1e-3.
+            let tan = libm::tan(beta);
+            let want = expected * tan / tan.hypot(1e-3);
+            assert!(
+                (added - want).abs() < 1e-6 * expected,
+                "β = {beta}: {added} N against {want} N"
+            );
+        }
+        assert_eq!(lateral(&heavy, 0.0), 0.0);
     }
 }

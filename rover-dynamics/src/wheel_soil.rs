@@ -532,6 +532,7 @@ mod tests {
             a0: 0.4,
             a1: 0.15,
             rear_ratio: 0.0,
+            unit_weight: 0.0,
         };
         SoilTyre {
             wheel: SoilWheel::new(&soil, R, B),
@@ -717,6 +718,7 @@ mod tests {
                 a0: 0.4,
                 a1: 0.15,
                 rear_ratio: 0.0,
+                unit_weight: 0.0,
             };
             SoilTyre {
                 wheel: SoilWheel::new(&soil, 0.125, 0.16),

@@ -36,6 +36,11 @@ pub struct SoilConfig {
     /// Rear ratio c_r in [0, 1] (default 0).
     #[serde(default)]
     pub rear_ratio: f64,
+    /// Unit weight γ = ρ·g [N/m³] (> 0): given, the bulldozing resistance
+    /// on the wheel's side under a slip angle is included (Ishigami et al.
+    /// 2007); left out by default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unit_weight: Option<f64>,
 }
 
 fn default_a0() -> f64 {
@@ -68,7 +73,8 @@ impl SoilConfig {
     /// The law's soil, once every field is within physics.
     pub fn soil(&self) -> Result<Soil, SoilError> {
         let lateral = self.lateral_shear_modulus.unwrap_or(self.shear_modulus);
-        let checks: [(&'static str, f64, bool, &'static str); 10] = [
+        let unit_weight = self.unit_weight.unwrap_or(0.0);
+        let checks: [(&'static str, f64, bool, &'static str); 11] = [
             (
                 "n",
                 self.n,
@@ -129,6 +135,12 @@ impl SoilConfig {
                 (0.0..=1.0).contains(&self.rear_ratio),
                 "in [0, 1]",
             ),
+            (
+                "unit_weight",
+                unit_weight,
+                self.unit_weight.is_none() || unit_weight > 0.0,
+                "the soil's weight per volume in N/m³, > 0 (ρ·g: 1600 kg/m³ on the Moon is 2592 N/m³); leave it out to leave out the side's bulldozing",
+            ),
         ];
         for (field, value, ok, help) in checks {
             if !(ok && value.is_finite()) {
@@ -153,6 +165,7 @@ impl SoilConfig {
             a0: self.a0,
             a1: self.a1,
             rear_ratio: self.rear_ratio,
+            unit_weight,
         })
     }
 
@@ -170,6 +183,7 @@ impl SoilConfig {
             a0: 0.4,
             a1: 0.15,
             rear_ratio: 0.0,
+            unit_weight: None,
         };
         Some(match name {
             "lete_sand" => soil(0.79, 102.0, 5301.0, 1.3, 31.1, 0.01, None),
