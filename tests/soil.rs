@@ -99,6 +99,7 @@ fn climb(angle: f64) -> Run {
     )
     .unwrap()
     .replace("angle_deg = 10.0", &format!("angle_deg = {angle}"))
+    .replace("[0.0, -10.0, 0.0]", &format!("[0.0, {}, 0.0]", -angle))
     .replace("duration = 40.0", "duration = 15.0");
     run("mer", &scenario)
 }

@@ -41,7 +41,7 @@ pub struct Driver {
     opts: RunOptions,
     /// The controller's sample period (active suspension, waypoint legs).
     sample: Option<f64>,
-    /// Times at which the commands jump, ascending, in (0, duration).
+    /// Times at which the commands jump, ascending, in (0, duration].
     breaks: Vec<f64>,
     /// The next output instant is `k_out · output_step`.
     k_out: u64,
@@ -63,7 +63,9 @@ impl Driver {
         let mut breaks: Vec<f64> = control
             .breakpoints()
             .into_iter()
-            .filter(|&b| b > 0.0 && b < opts.duration)
+            // One at the end too: the last step must not see the commands
+            // switch on at its end (a run that ends as settling does).
+            .filter(|&b| b > 0.0 && b <= opts.duration)
             .collect();
         breaks.sort_by(f64::total_cmp);
         Self {
