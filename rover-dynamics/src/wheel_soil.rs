@@ -35,7 +35,7 @@ use crate::wheel_ground::{LoadDerivative, WheelReport, lever_gradient};
 use crate::wheel_law::DAMPING_RAMP;
 
 /// Quadrature points on each piece of the contact arc in a run: the forces
-/// to 1e-4 of their converged values (docs/SOIL.md) for 0.46 µs a wheel.
+/// to 1e-4 of their converged values (docs/SOIL.md) for 0.36 µs a wheel.
 pub const RUN_POINTS: usize = 4;
 
 /// The quadrature a run takes.
