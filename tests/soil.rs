@@ -263,3 +263,17 @@ fn the_quasi_static_level_refuses_a_soil() {
     let e = try_run(&PARKED.replace("[terrain]", "fidelity = \"quasi_static\"\n[terrain]"));
     assert!(e.contains("fidelity") && e.contains("soil"), "{e}");
 }
+
+/// A run that ends as settling does (its last step reaching the instant
+/// the speed command switches on) completes: the end is a breakpoint too.
+#[test]
+fn a_run_that_ends_as_settling_does_completes() {
+    let scenario = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/soil_slope.toml"),
+    )
+    .unwrap()
+    .replace("duration = 40.0", "duration = 3.0");
+    let r = run("mer", &scenario);
+    assert_eq!(r.summary.status, Status::Completed, "{:?}", r.summary.error);
+    assert_eq!(*r.col("t").last().unwrap(), 3.0);
+}
