@@ -258,7 +258,7 @@ pub fn soil_wheel_load(
 /// `lever_gradient` says, the patch frames held (as the rigid law's
 /// derivative holds them). Row 9 is the soil's torque against the spin;
 /// column 7 the spin. One pass a patch carries the seven directions
-/// together ([`Jet`]), each as a [`Dual`] pass would.
+/// together (a jet of dual numbers), each as a [`Dual`] pass would.
 pub fn soil_load_derivative<H: HeightField + ?Sized>(
     tyre: &SoilTyre,
     rule: &RunRule,
