@@ -24,12 +24,7 @@
 //! Left out are the terms that turn with the geometry — the patch frames,
 //! `∂V_j/∂x` at fixed `w`, the steering's dependence on the state — of order
 //! F/R and V·C against the tyre's k_w and the cornering law's lateral damping,
-//! which make the system stiff. On a soil `∂V_j/∂x` at fixed `w` is kept
-//! (the kinematics differenced, `n` calls): the soil law answers a wheel's
-//! speed along the ground at 1/v_ε near standstill, so that a wheel moving
-//! along the ground's normal (landing, bouncing) has its pull and torque
-//! swung by the slightest turn of its velocity (the term is then as large
-//! as the ones kept). Neither method needs more: BDF's Newton
+//! which make the system stiff. Neither method needs more: BDF's Newton
 //! iteration converges to the same solution with any good approximation of
 //! `J`, and ROS2 keeps its order with any `W`. The cost is one right-hand side,
 //! 2N + dim plant-sized calls and a few µs of per-wheel algebra, against `dim`
@@ -59,10 +54,6 @@ pub(super) struct JacobianWork {
     velocity: Vec<[f64; 3]>,
     /// `∂G_k/∂x_j` at `[k·n + j]`.
     centre: Vec<[f64; 3]>,
-    /// On a soil, `∂V_k/∂x_j` at fixed `w`, at `[k·n + j]`.
-    turning: Vec<[f64; 3]>,
-    /// A perturbed `x`.
-    x: Vec<f64>,
     /// `Bᵀ`, factored.
     b_t: Lu,
     column: Vec<f64>,
@@ -88,8 +79,6 @@ impl Default for JacobianWork {
             kinematics: Vec::new(),
             velocity: Vec::new(),
             centre: Vec::new(),
-            turning: Vec::new(),
-            x: Vec::new(),
             b_t: Lu::new(0),
             column: Vec::new(),
             loads: Vec::new(),
@@ -126,8 +115,6 @@ impl JacobianWork {
             kinematics: vec![WheelState::default(); k],
             velocity: vec![[0.0; 3]; k * n],
             centre: vec![[0.0; 3]; k * n],
-            turning: vec![[0.0; 3]; k * n],
-            x: vec![0.0; n],
             b_t: Lu::new(n),
             column: vec![0.0; n],
             loads: vec![[[0.0; 8]; 10]; k],
@@ -248,32 +235,12 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             }
         }
 
-        let spins = self.spin_range();
-        // On a soil, the wheels' velocities turning with the attitude and
-        // the suspension at fixed w, differenced: the soil law's pull and
-        // torque answer a wheel's speed along the ground at 1/v_ε near
-        // standstill, and a wheel moving along the ground's normal (landing,
-        // bouncing) swings its speed along the ground by |V| per radian.
-        if !spins.is_empty() {
-            work.x.copy_from_slice(x);
-            for j in 0..n {
-                let h = step(x[j]);
-                work.x[j] = x[j] + h;
-                self.plant
-                    .wheels(&work.x, w, &self.steer, &mut work.kinematics);
-                work.x[j] = x[j];
-                for (wheel, (s, at)) in work.kinematics.iter().zip(&self.wheels).enumerate() {
-                    work.turning[wheel * n + j] =
-                        core::array::from_fn(|a| (s.velocity[a] - at.velocity[a]) / h);
-                }
-            }
-        }
-
         // The controller's torques, differenced.
         let tc = self.command_time(t);
         let (control, normals, commands) = (&self.control, &self.normals, &self.torque_commands);
         let torques = &self.torques;
         let (tau, torque) = (&mut work.tau, &mut work.torque);
+        let spins = self.spin_range();
         each_perturbed(y, (n, spins.len()), &mut work.y, |j, h, parts| {
             control.torques(tc, parts, normals, commands, tau);
             for wheel in 0..k {
@@ -298,9 +265,6 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 let mut input = [0.0; 8];
                 if j < n {
                     input[..3].copy_from_slice(&work.centre[wheel * n + j]);
-                    if !spins.is_empty() {
-                        input[3..6].copy_from_slice(&work.turning[wheel * n + j]);
-                    }
                 } else if j < two_n {
                     input[3..6].copy_from_slice(&work.velocity[wheel * n + j - n]);
                 }
@@ -363,80 +327,5 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 jac[(2 * n + i) * dim + j] = (zd[i] - f0[2 * n + i]) / h;
             }
         });
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use rover_dynamics::contact::RimSampling;
-    use rover_dynamics::wheel_ground::ContactMethod;
-    use rover_integrate::OdeSystem;
-
-    use crate::control::{Controller, ControllerConfig};
-    use crate::ground::Ground;
-    use crate::sim::RoverSystem;
-    use crate::soil::SoilConfig;
-    use crate::terrain::Terrain;
-    use crate::wheel_law::WheelLawConfig;
-
-    /// MER landing on dry sand: 2 mm deep on flat ground, falling at
-    /// 0.2 m/s, its wheels rolling at 0.3 mm/s. Each wheel moves along the
-    /// ground's normal, its speed along the ground within the soil law's
-    /// standstill band, where the law answers that speed at 1/v_ε: the
-    /// velocities turning with the attitude and the suspension (∂V/∂x at
-    /// fixed w) then swing the soil's torques as much as anything kept.
-    /// The spins' rows against central differences of the whole
-    /// right-hand side.
-    #[test]
-    fn on_a_soil_the_spins_rows_are_the_differenced_ones_on_landing() {
-        let model = rover_spec::load_str(rover_models::builtin("mer").unwrap(), "mer")
-            .unwrap()
-            .model;
-        let soil = SoilConfig::builtin("dry_sand").unwrap().soil().unwrap();
-        let ground = Ground::new(
-            Terrain::default(),
-            &model,
-            ContactMethod::Bounded,
-            RimSampling::default(),
-            WheelLawConfig::default(),
-        )
-        .with_soil(&soil, &model)
-        .unwrap();
-        let control: ControllerConfig = toml::from_str("[speed]\nspeed = 0.05\n").unwrap();
-        let control = Controller::new(control, &model, 1.0).unwrap();
-        let mut sys = RoverSystem::new(rover_models::Mer::new(), Some(ground), control);
-        let n = model.dof();
-        let dim = sys.dim();
-        let mut y = vec![0.0; dim];
-        y[6..n].copy_from_slice(&model.rest());
-        y[2] = model.touchdown_height() - 2e-3;
-        // Falling, creeping forward at 0.3 mm/s, the wheels rolling.
-        y[n] = 3e-4;
-        y[n + 2] = -0.2;
-        sys.roll_spins(0.0, &mut y);
-        let mut assembled = vec![0.0; dim * dim];
-        sys.jacobian(0.0, &y, &mut assembled).unwrap().unwrap();
-        let (mut plus, mut minus) = (vec![0.0; dim], vec![0.0; dim]);
-        let mut yp = y.clone();
-        let spins = sys.spin_range();
-        let (mut error, mut size) = (0.0f64, 0.0f64);
-        for j in 0..dim {
-            let h = 1e-7 * y[j].abs().max(1.0);
-            yp[j] = y[j] + h;
-            sys.rhs(0.0, &yp, &mut plus).unwrap();
-            yp[j] = y[j] - h;
-            sys.rhs(0.0, &yp, &mut minus).unwrap();
-            yp[j] = y[j];
-            for i in spins.clone() {
-                let central = (plus[i] - minus[i]) / (2.0 * h);
-                error += (assembled[i * dim + j] - central).powi(2);
-                size += central.powi(2);
-            }
-        }
-        let relative = (error / size).sqrt();
-        assert!(
-            relative < 1e-6,
-            "the spins' rows are {relative:.2e} off the differenced ones"
-        );
     }
 }
