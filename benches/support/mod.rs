@@ -43,14 +43,19 @@ pub fn system_on<P: Plant>(
     plant: P,
     method: ContactMethod,
 ) -> (RoverSystem<P, Terrain>, Vec<f64>) {
-    let ground = Ground::new(
+    system_with(ground(terrain, model, method), model, plant)
+}
+
+/// The ground of `terrain` for `model`'s wheels, searched by `method`,
+/// under the paper's wheel law.
+fn ground(terrain: Terrain, model: &Model, method: ContactMethod) -> Ground<Terrain> {
+    Ground::new(
         terrain,
         model,
         method,
         RimSampling::default(),
         WheelLawConfig::default(),
-    );
-    system_with(ground, model, plant)
+    )
 }
 
 /// [`system_on`] with `terrain` covered by `soil`: the state gains each
@@ -63,15 +68,9 @@ pub fn soil_system_on<P: Plant>(
     method: ContactMethod,
     soil: &Soil,
 ) -> (RoverSystem<P, Terrain>, Vec<f64>) {
-    let ground = Ground::new(
-        terrain,
-        model,
-        method,
-        RimSampling::default(),
-        WheelLawConfig::default(),
-    )
-    .with_soil(soil, model)
-    .unwrap();
+    let ground = ground(terrain, model, method)
+        .with_soil(soil, model)
+        .unwrap();
     system_with(ground, model, plant)
 }
 

@@ -399,8 +399,7 @@ impl core::error::Error for SinksPastAxle {}
 
 /// The steady state of `wheel` carrying `load` at `slip` and
 /// `slip_angle` (a single-wheel testbed's run): the entry angle at which
-/// the soil's vertical force equals the load (bisection to rounding: the
-/// vertical force grows with the entry angle), and the forces there.
+/// the soil's vertical force equals the load, and the forces there.
 pub fn steady_state<const Q: usize>(
     wheel: &SoilWheel,
     load: f64,
@@ -408,14 +407,44 @@ pub fn steady_state<const Q: usize>(
     slip_angle: f64,
     rule: &GaussLegendre<Q>,
 ) -> Result<(f64, SoilForces), SinksPastAxle> {
-    let forces = |entry_angle: f64| {
+    carrying(load, |entry_angle| {
         let contact = SoilContact {
             entry_angle,
             slip,
             slip_angle,
         };
         soil_forces(wheel, contact, rule)
+    })
+}
+
+/// The state of `wheel` at rest carrying `load` (no travel, no spin: no
+/// shear), as [`steady_state`] finds it: where a run on a soil starts.
+pub fn rest_state<const Q: usize>(
+    wheel: &SoilWheel,
+    load: f64,
+    rule: &GaussLegendre<Q>,
+) -> Result<(f64, SoilForces), SinksPastAxle> {
+    let still = Shear {
+        rim: 0.0,
+        travel: 0.0,
     };
+    carrying(load, |entry_angle| {
+        let contact = SoilContact {
+            entry_angle,
+            slip: 0.0,
+            slip_angle: 0.0,
+        };
+        soil_forces_sheared(wheel, contact, still, rule)
+    })
+}
+
+/// The entry angle in [0, π/2] at which `forces`' vertical force equals
+/// `load` (bisection to rounding: the vertical force grows with the entry
+/// angle), and the forces there.
+fn carrying(
+    load: f64,
+    forces: impl Fn(f64) -> SoilForces,
+) -> Result<(f64, SoilForces), SinksPastAxle> {
     let (mut lo, mut hi) = (0.0, core::f64::consts::FRAC_PI_2);
     let most = forces(hi).vertical;
     // NaN (a soil or wheel outside physics) is refused too.

@@ -100,8 +100,8 @@ fn forward_weight<S: Scalar + PartialOrd>(v: S) -> S {
     S::cst(0.5) + x * (S::cst(0.75) - S::cst(0.25) * x * x)
 }
 
-/// The soil's forces and the slip and slip angle in the frame whose travel
-/// is `sign` (±1) times the heading t, for rim speed `u`, travel speed `v`
+/// The soil's forces and the slip angle in the frame whose travel is
+/// `sign` (±1) times the heading t, for rim speed `u`, travel speed `v`
 /// and lateral speed `v_c` (all along the heading's frame).
 fn in_frame<S: Scalar + PartialOrd>(
     tyre: &SoilTyre,
@@ -109,7 +109,7 @@ fn in_frame<S: Scalar + PartialOrd>(
     entry: EntryAngle<S>,
     sign: f64,
     [u, v, v_c]: [S; 3],
-) -> (SoilForces<S>, S, S) {
+) -> (SoilForces<S>, S) {
     let (u, v) = (u * S::cst(sign), v * S::cst(sign));
     let eps = S::cst(SOIL_V_EPS);
     let scale = u.abs().max(v).max(eps);
@@ -123,7 +123,7 @@ fn in_frame<S: Scalar + PartialOrd>(
     // tan β of β = atan2(v_c, forward), forward > 0.
     let tan_beta = v_c / forward;
     let forces = forces_on_arc(&tyre.wheel, entry, slip, tan_beta, shear, rule);
-    (forces, slip, slip_angle)
+    (forces, slip_angle)
 }
 
 /// [`SoilPatchLoad`] of patch `p` of a wheel spinning at `spin` \[rad/s\],
@@ -170,7 +170,7 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
         if weight <= S::zero() {
             continue;
         }
-        let (f, _, beta) = in_frame(tyre, rule, entry, sign, speeds);
+        let (f, beta) = in_frame(tyre, rule, entry, sign, speeds);
         sum.vertical += weight * f.vertical;
         sum.drawbar += weight * S::cst(sign) * f.drawbar;
         sum.torque += weight * S::cst(sign) * f.torque;

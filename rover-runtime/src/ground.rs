@@ -145,44 +145,20 @@ impl<H: HeightField> Ground<H> {
 
     /// On a soil, each wheel's sinkage \[m\] at rest under `loads` \[N\]
     /// (one per wheel): the depth at which the soil's pressure, without
-    /// shear, carries the load (bisection on the entry angle). Empty on
-    /// rigid ground; a load the soil cannot carry gives the wheel's radius.
+    /// shear, carries the load ([`rover_dynamics::soil::rest_state`]).
+    /// Empty on rigid ground; a load the soil cannot carry gives the
+    /// wheel's radius.
     pub fn rest_sinkages(&self, loads: &[f64]) -> Vec<f64> {
         let Some(soil) = &self.soil else {
             return Vec::new();
-        };
-        let still = rover_dynamics::soil::Shear {
-            rim: 0.0,
-            travel: 0.0,
         };
         soil.tyres
             .iter()
             .zip(loads)
             .map(|(tyre, &load)| {
-                let vertical = |entry_angle: f64| {
-                    let contact = rover_dynamics::soil::SoilContact {
-                        entry_angle,
-                        slip: 0.0,
-                        slip_angle: 0.0,
-                    };
-                    rover_dynamics::soil::soil_forces_sheared(
-                        &tyre.wheel,
-                        contact,
-                        still,
-                        &soil.rule,
-                    )
-                    .vertical
-                };
-                let (mut lo, mut hi) = (0.0, std::f64::consts::FRAC_PI_2);
-                for _ in 0..60 {
-                    let mid = 0.5 * (lo + hi);
-                    if vertical(mid) < load {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                tyre.wheel.radius * (1.0 - hi.cos())
+                let r = tyre.wheel.radius;
+                rover_dynamics::soil::rest_state(&tyre.wheel, load, &soil.rule)
+                    .map_or(r, |(entry_angle, _)| r * (1.0 - entry_angle.cos()))
             })
             .collect()
     }

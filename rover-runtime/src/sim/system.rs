@@ -167,15 +167,9 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         if range.is_empty() {
             return;
         }
-        let n = self.n;
         let t = self.command_time(t);
-        let (x, rest) = y.split_at(n);
-        let (w, z) = rest.split_at(n);
-        self.control.steer(t, x, z, &mut self.steer);
-        for (s, c) in self.steer.iter_mut().zip(&self.steer_commands) {
-            *s += c;
-        }
-        self.plant.wheels(x, w, &self.steer, &mut self.wheels);
+        let (x, w, z, _) = self.parts(y);
+        self.place_wheels(t, x, w, z);
         let radii = self.ground.as_ref().map_or(&[][..], |g| g.radii());
         for ((spin, s), r) in y[range].iter_mut().zip(&self.wheels).zip(radii) {
             let a = s.spin_axis;
@@ -221,6 +215,25 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         }
     }
 
+    /// A state's parts `(x, w, ζ, ω)`: coordinates, pseudo-velocities,
+    /// the controller's integral states and the wheels' spins.
+    fn parts<'y>(&self, y: &'y [f64]) -> (&'y [f64], &'y [f64], &'y [f64], &'y [f64]) {
+        let (x, rest) = y.split_at(self.n);
+        let (w, rest) = rest.split_at(self.n);
+        let (z, spins) = rest.split_at(rest.len() - self.spins);
+        (x, w, z, spins)
+    }
+
+    /// The steering angles (the controller's and the open-loop commands')
+    /// and the wheels' kinematics at `(x, w)`, the commands' time `t`.
+    fn place_wheels(&mut self, t: f64, x: &[f64], w: &[f64], z: &[f64]) {
+        self.control.steer(t, x, z, &mut self.steer);
+        for (s, c) in self.steer.iter_mut().zip(&self.steer_commands) {
+            *s += c;
+        }
+        self.plant.wheels(x, w, &self.steer, &mut self.wheels);
+    }
+
     /// The full evaluation: wheels, contacts, control, loads, accelerations.
     fn evaluate(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {
         let mut lap = self.profile.is_some().then(Lap::start);
@@ -252,14 +265,8 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     ) -> Result<(), SimError> {
         let n = self.n;
         let t = self.command_time(t);
-        let (x, rest) = y.split_at(n);
-        let (w, rest) = rest.split_at(n);
-        let (z, spins) = rest.split_at(rest.len() - self.spins);
-        self.control.steer(t, x, z, &mut self.steer);
-        for (s, c) in self.steer.iter_mut().zip(&self.steer_commands) {
-            *s += c;
-        }
-        self.plant.wheels(x, w, &self.steer, &mut self.wheels);
+        let (x, w, z, spins) = self.parts(y);
+        self.place_wheels(t, x, w, z);
         mark(0);
         match &mut self.ground {
             Some(g) => {
