@@ -1,7 +1,7 @@
 //! What a subcommand reports when it cannot do its work; printed once by
 //! `main`, with the exit code that says which kind it was.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use rover_scenario::output::WriteError;
 use rover_scenario::prepare::PrepareError;
@@ -91,6 +91,37 @@ impl CliError {
             path: path.into(),
             doing,
             source,
+        }
+    }
+
+    /// Refuse an output file `out` (given by `flag`) that is one of the
+    /// command's `inputs` (which writing it would destroy) or that is not a
+    /// place for a file (a folder, a device, a FIFO, a link), before any
+    /// work is done.
+    pub fn check_output_file(flag: &str, out: &Path, inputs: &[&Path]) -> Result<(), CliError> {
+        if let Some(input) = inputs.iter().find(|i| rover_files::same_file(out, i)) {
+            return Err(CliError::Usage(format!(
+                "{flag} {}: is the input {}, which writing would destroy; give another path",
+                out.display(),
+                input.display()
+            )));
+        }
+        match std::fs::symlink_metadata(out) {
+            Ok(meta) if !meta.is_file() => {
+                let what = if meta.is_dir() {
+                    "a folder"
+                } else if meta.file_type().is_symlink() {
+                    "a symbolic link"
+                } else {
+                    "a device, FIFO or socket"
+                };
+                Err(CliError::Usage(format!(
+                    "{flag} {}: is {what}; give the path of a file to write (rover writes only \
+                     regular files, never through a link)",
+                    out.display()
+                )))
+            }
+            _ => Ok(()),
         }
     }
 

@@ -113,7 +113,7 @@ fn file_description(
         ));
     };
     let path = base.join(&rel);
-    let text = std::fs::read_to_string(&path)
+    let text = rover_files::read_text(&path, rover_files::Limit::Text)
         .map_err(|e| syn::Error::new(span, format!("cannot read `{}`: {e}", path.display())))?;
     let spec = rover_spec::load_str(&text, &rel).map_err(|e| file_errors(&e, &rel, &text, span))?;
     // `include_str!` makes the file an input of the crate: editing

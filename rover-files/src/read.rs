@@ -158,7 +158,7 @@ pub(crate) fn not_regular(meta: &Metadata) -> io::Error {
 pub(crate) fn kind_of(meta: &Metadata) -> &'static str {
     let t = meta.file_type();
     if t.is_dir() {
-        return "a folder";
+        return "a directory";
     }
     if t.is_symlink() {
         return "a symbolic link";

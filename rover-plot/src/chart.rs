@@ -132,7 +132,7 @@ pub fn line_chart(
     let svg_path = stem.with_extension("svg");
     let png_path = stem.with_extension("png");
     let write = |p: &Path, bytes: &[u8]| {
-        std::fs::write(p, bytes).map_err(|source| PlotError::Write {
+        rover_files::write_whole(p, bytes).map_err(|source| PlotError::Write {
             path: p.to_path_buf(),
             source,
         })

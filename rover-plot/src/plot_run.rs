@@ -37,13 +37,13 @@ pub fn plot_run(csv: &Path, out_dir: &Path, meta: &PlotMeta) -> Result<Vec<PathB
         ));
     }
 
-    std::fs::create_dir_all(out_dir).map_err(|source| PlotError::Write {
+    rover_files::OutputDir::create(out_dir).map_err(|source| PlotError::Write {
         path: out_dir.to_path_buf(),
         source,
     })?;
     let mut written = Vec::with_capacity(files.len());
     for (path, bytes) in files {
-        std::fs::write(&path, bytes).map_err(|source| PlotError::Write {
+        rover_files::write_whole(&path, &bytes).map_err(|source| PlotError::Write {
             path: path.clone(),
             source,
         })?;

@@ -45,14 +45,16 @@ impl RunData {
     /// Only the columns the plots use are parsed; others may hold anything.
     /// Errors name the file, the line and column, and what to do.
     pub(crate) fn from_csv(path: &Path) -> Result<Self, PlotError> {
-        let file = std::fs::File::open(path).map_err(|source| PlotError::Read {
-            path: path.to_path_buf(),
-            source,
+        let bytes = rover_files::read(path, rover_files::Limit::Data).map_err(|source| {
+            PlotError::Read {
+                path: path.to_path_buf(),
+                source,
+            }
         })?;
         let mut reader = csv::ReaderBuilder::new()
             .has_headers(true)
             .flexible(true)
-            .from_reader(std::io::BufReader::new(file));
+            .from_reader(bytes.as_slice());
         let malformed = |e: csv::Error| {
             let line = e.position().map_or(1, csv::Position::line);
             let message = e.to_string();

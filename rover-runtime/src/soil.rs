@@ -201,28 +201,38 @@ impl SoilConfig {
             return Ok(s);
         }
         let path = Path::new(source);
-        if !path.is_file() {
+        if !path.exists() {
             return Err(SoilError::Source(format!(
                 "{source}: no built-in soil of that name ({}) and no such file; give a name or a TOML file with a [soil] table",
                 SOIL_NAMES.join(", ")
             )));
         }
-        let text = std::fs::read_to_string(path)
+        let text = rover_files::read_text(path, rover_files::Limit::Text)
             .map_err(|e| SoilError::Source(format!("{source}: cannot read: {e}")))?;
-        Self::from_toml(&text).map_err(|e| SoilError::Source(format!("{source}: {e}")))
+        // Located, never quoted: a scenario may name any file as its soil.
+        Self::parse_toml(&text).map_err(|e| {
+            let place = e.span().map_or(String::new(), |s| {
+                let (line, column) = rover_files::line_column(text.as_bytes(), s.start);
+                format!(":{line}:{column}")
+            });
+            SoilError::Source(format!("{source}{place}: {}", e.message().trim_end()))
+        })
     }
 
     /// A soil file's text: a `[soil]` table and nothing else (checked for
     /// its keys and types here, for physics by [`soil`](Self::soil)).
     pub fn from_toml(text: &str) -> Result<Self, SoilError> {
+        Self::parse_toml(text).map_err(|e| SoilError::Source(e.to_string()))
+    }
+
+    /// The `[soil]` table of a soil file's text.
+    fn parse_toml(text: &str) -> Result<Self, toml::de::Error> {
         #[derive(Deserialize)]
         #[serde(deny_unknown_fields)]
         struct File {
             soil: SoilConfig,
         }
-        toml::from_str::<File>(text)
-            .map(|f| f.soil)
-            .map_err(|e| SoilError::Source(e.to_string()))
+        toml::from_str::<File>(text).map(|f| f.soil)
     }
 }
 

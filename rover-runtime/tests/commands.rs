@@ -178,7 +178,7 @@ fn bad_command_files_are_refused_with_the_line() {
         ("", "empty"),
         (
             "time,tau1\n0,1\n",
-            "bad.csv:1: the header must start with `t`",
+            "bad.csv:1: the first line is not a header starting with the column `t`",
         ),
         ("t,torque1\n0,1\n", "bad.csv:1: unknown column `torque1`"),
         ("t,tau5\n0,1\n", "wheels 1 to 4"),

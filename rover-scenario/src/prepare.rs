@@ -106,7 +106,14 @@ pub fn load_rover(name_or_path: &str, base: Option<&Path>) -> Result<Spec, SpecE
         Some(b) if direct.is_relative() && !direct.exists() => b.join(direct),
         _ => direct.to_path_buf(),
     };
-    rover_spec::load_file(&path)
+    let spec = rover_spec::load_file(&path);
+    // A file that a scenario names may be any file: its errors locate, but
+    // never quote it.
+    if base.is_some() {
+        spec.map_err(SpecError::unquoted)
+    } else {
+        spec
+    }
 }
 
 /// The names of the built-in rovers, for messages.

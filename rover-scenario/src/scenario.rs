@@ -275,22 +275,11 @@ impl Scenario {
             line,
             message,
         };
-        if path.is_dir() {
-            return Err(error(
-                None,
-                "is a directory, not a scenario file\n  = help: give the path of a scenario file (.toml)".into(),
-            ));
-        }
-        let bytes = std::fs::read(path)
-            .map_err(|e| error(None, format!("cannot read the scenario file: {e}")))?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            let at = e.utf8_error().valid_up_to();
-            let (line, column) = rover_spec::line_column(e.as_bytes(), at);
+        let text = rover_files::read_text(path, rover_files::Limit::Text).map_err(|e| {
             error(
-                Some(line),
+                None,
                 format!(
-                    "column {column}: byte {} is not valid UTF-8\n  = help: save the scenario as UTF-8 text (TOML is UTF-8)",
-                    at + 1
+                    "cannot read the scenario file: {e}\n  = help: give the path of a scenario file (.toml)"
                 ),
             )
         })?;

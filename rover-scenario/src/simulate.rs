@@ -415,15 +415,10 @@ fn imposed_path(
 ) -> Result<Vec<[f64; 3]>, SetupError> {
     if let Some(file) = &scenario.path_from {
         let path = base_dir.join(file);
-        let bytes = std::fs::read(&path)
-            .map_err(|e| SetupError::Path(format!("{}: {e}", path.display())))?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            let at = e.utf8_error().valid_up_to();
-            let (line, column) = rover_spec::line_column(e.as_bytes(), at);
+        let text = rover_files::read_text(&path, rover_files::Limit::Data).map_err(|e| {
             SetupError::Path(format!(
-                "{}:{line}:{column}: byte {} is not valid UTF-8: give the CSV of a run (`run.csv`)",
-                path.display(),
-                at + 1
+                "{}: cannot read it: {e}; give the CSV of a run (`run.csv`)",
+                path.display()
             ))
         })?;
         let mut lines = text.lines();

@@ -77,6 +77,29 @@ impl Diagnostic {
     }
 }
 
+impl Diagnostic {
+    /// Render it as `error: origin:line:col: path: message` and `= help: …`,
+    /// quoting nothing of `source` (which only locates the span).
+    pub fn render_unquoted(&self, origin: &str, source: Option<&str>) -> String {
+        let place = match (source, &self.span) {
+            (Some(text), Some(span)) => {
+                let (line, column) = rover_files::line_column(text.as_bytes(), span.start);
+                format!("{origin}:{line}:{column}")
+            }
+            _ => origin.to_string(),
+        };
+        let title = if self.path.is_empty() {
+            self.message.clone()
+        } else {
+            format!("{}: {}", self.path, self.message)
+        };
+        let report = &[Level::ERROR
+            .primary_title(format!("{place}: {title}"))
+            .element(Level::HELP.message(&self.help))];
+        Renderer::plain().render(report).to_string()
+    }
+}
+
 /// Keep a span inside the text and on char boundaries; point at the first
 /// line of a multi-line span (a table), so the caret sits on its header.
 fn clamp(text: &str, span: Range<usize>) -> Range<usize> {

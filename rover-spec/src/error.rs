@@ -13,6 +13,8 @@ pub struct SpecError {
     pub source_text: Option<String>,
     /// The problems, sorted by position in the source.
     pub diagnostics: Vec<Diagnostic>,
+    /// Whether messages quote the source's lines (see [`unquoted`](Self::unquoted)).
+    pub quote_source: bool,
 }
 
 impl SpecError {
@@ -33,14 +35,29 @@ impl SpecError {
             origin: origin.to_string(),
             source_text: source.map(str::to_string),
             diagnostics,
+            quote_source: true,
         }
+    }
+
+    /// The same error, located by line and column but quoting none of the
+    /// file's text: for a file that a scenario names, which may be any file
+    /// on the machine (a scenario naming `/etc/passwd` as its rover must not
+    /// print the password file's lines).
+    pub fn unquoted(mut self) -> Self {
+        self.quote_source = false;
+        self
     }
 }
 
 impl fmt::Display for SpecError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         for d in &self.diagnostics {
-            writeln!(f, "{}", d.render(&self.origin, self.source_text.as_deref()))?;
+            let text = if self.quote_source {
+                d.render(&self.origin, self.source_text.as_deref())
+            } else {
+                d.render_unquoted(&self.origin, self.source_text.as_deref())
+            };
+            writeln!(f, "{text}")?;
             writeln!(f)?;
         }
         let n = self.diagnostics.len();

@@ -14,46 +14,17 @@ pub fn load_file(path: &Path) -> Result<Spec, SpecError> {
     let problem = |message: String, help: &str| {
         SpecError::new(&origin, None, vec![Diagnostic::at("", message, help)])
     };
-    if path.is_dir() {
-        return Err(problem(
-            "is a directory, not a rover description".into(),
-            "give the path of a description file (.toml), or a built-in rover's name",
-        ));
-    }
-    match std::fs::read(path).map(String::from_utf8) {
-        Ok(Ok(text)) => load_str(&text, &origin),
-        Ok(Err(e)) => {
-            let (line, column) = line_column(e.as_bytes(), e.utf8_error().valid_up_to());
-            Err(problem(
-                format!(
-                    "is not UTF-8 text: byte {} (line {line}, column {column}) is not valid UTF-8",
-                    e.utf8_error().valid_up_to() + 1
-                ),
-                "save the description as UTF-8 text (TOML is UTF-8)",
-            ))
-        }
-        Err(e) => Err(SpecError::new(
-            &origin,
-            None,
-            vec![Diagnostic::at(
-                "",
-                format!("cannot read the file: {e}"),
-                "check the path (or give a built-in rover's name)",
-            )],
+    match rover_files::read_text(path, rover_files::Limit::Text) {
+        Ok(text) => load_str(&text, &origin),
+        Err(e) if e.kind() == std::io::ErrorKind::InvalidData => Err(problem(
+            e.to_string(),
+            "save the description as UTF-8 text (TOML is UTF-8)",
+        )),
+        Err(e) => Err(problem(
+            format!("cannot read the file: {e}"),
+            "check the path (or give a built-in rover's name)",
         )),
     }
-}
-
-/// 1-based line and column (in characters) of byte `at` of `bytes`.
-pub fn line_column(bytes: &[u8], at: usize) -> (usize, usize) {
-    let before = &bytes[..at.min(bytes.len())];
-    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-    let start = before
-        .iter()
-        .rposition(|&b| b == b'\n')
-        .map_or(0, |p| p + 1);
-    let column = String::from_utf8_lossy(&before[start..]).chars().count() + 1;
-    (line, column)
 }
 
 /// Load and validate a description held in memory; `origin` names it in

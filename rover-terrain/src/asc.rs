@@ -122,7 +122,7 @@ pub fn parse_asc(text: &str, path: &Path) -> Result<Grid, TerrainError> {
         let (Some(value), None) = (words.next(), words.next()) else {
             return Err(err(
                 number,
-                format!("header line `{line}` must be a key and one value"),
+                format!("the header line of `{key}` must be a key and one value"),
                 "write one `key value` pair per header line, e.g. `cellsize 0.05`",
             ));
         };

@@ -6,7 +6,7 @@ use super::error::{FileError, Place, TerrainError};
 
 /// The bytes of a terrain file.
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>, TerrainError> {
-    std::fs::read(path).map_err(|source| TerrainError::Read {
+    rover_files::read(path, rover_files::Limit::Data).map_err(|source| TerrainError::Read {
         path: path.to_path_buf(),
         source,
     })
@@ -30,7 +30,7 @@ pub(crate) fn read_text(path: &Path) -> Result<String, TerrainError> {
 
 /// Writes a terrain file.
 pub(crate) fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), TerrainError> {
-    std::fs::write(path, bytes).map_err(|source| TerrainError::Write {
+    rover_files::write_whole(path, bytes).map_err(|source| TerrainError::Write {
         path: path.to_path_buf(),
         source,
     })

@@ -2,7 +2,7 @@
 //! [--type-name <Name>] [--no-jacobian]`: the generated plant of a rover as
 //! a formatted, standalone Rust module (docs/CODEGEN.md).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use rover_dynamics::fidelity::Fidelity;
@@ -46,6 +46,9 @@ pub struct CodegenArgs {
 
 /// Generate the module and write it to `--out` or standard output.
 pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
+    if let Some(out) = &args.out {
+        CliError::check_output_file("--out", out, &[Path::new(&args.rover)])?;
+    }
     let spec = load_rover(&args.rover, None)?;
     let source = rover_models::builtin_path(&args.rover).unwrap_or(&args.rover);
     let fidelity = match args.fidelity {

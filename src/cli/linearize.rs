@@ -2,7 +2,7 @@
 //! rover's small motions about its static equilibrium on flat ground.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
 use rover_scenario::linearize::{Linearization, Mode, ModeKind, OperatingPoint, linearize_at};
@@ -41,6 +41,11 @@ pub struct LinearizeArgs {
 /// Linearize the rover, write the JSON if asked, and return the report
 /// `rover linearize` prints.
 pub fn linearize_cmd(args: &LinearizeArgs) -> Result<String, CliError> {
+    if let Some(out) = &args.out {
+        let mut inputs = vec![Path::new(&args.rover)];
+        inputs.extend(args.scenario.as_deref());
+        CliError::check_output_file("--out", out, &inputs)?;
+    }
     let spec = load_rover(&args.rover, None)?;
     let model = &spec.model;
     let mut point = OperatingPoint {

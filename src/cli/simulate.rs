@@ -1,6 +1,5 @@
 //! `rover simulate <rover> --scenario <file> --out <dir>`.
 
-use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -10,6 +9,8 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rover_scenario::output::{Status, Summary};
 use rover_scenario::prepare::Prepared;
+
+use rover_files::{OutputDir, same_file};
 
 use crate::error::CliError;
 
@@ -82,26 +83,35 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
 fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateReport, CliError> {
     let prepared = Prepared::from_file(args.rover.as_deref(), &args.scenario)?;
     let (spec, scenario) = (&prepared.spec, &prepared.scenario);
-    if args.out.exists() && !args.out.is_dir() {
-        return Err(CliError::Usage(format!(
-            "{}: is a file, not a folder; give `--out` a folder (it is created if missing)",
-            args.out.display()
-        )));
+    let out = OutputDir::create(&args.out).map_err(|e| {
+        CliError::Usage(format!("--out {}: {e}", args.out.display()))
+    })?;
+    let csv_path = out.join("run.csv");
+    let summary_path = out.join("summary.json");
+    let inputs = [Some(args.scenario.as_path()), args.rover.as_deref().map(Path::new)];
+    for input in inputs.into_iter().flatten() {
+        for output in [&csv_path, &summary_path] {
+            if same_file(input, output) {
+                return Err(CliError::Usage(format!(
+                    "--out {}: its {} is the input {}, which the run would overwrite; give another folder",
+                    args.out.display(),
+                    output.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+                    input.display()
+                )));
+            }
+        }
     }
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| CliError::io(&args.out, "create the output folder", e))?;
-    let csv_path = args.out.join("run.csv");
-    let summary_path = args.out.join("summary.json");
     // A summary saying "running" first: a run killed hard leaves no
     // summary that claims completion.
-    std::fs::write(
-        &summary_path,
-        "{\"status\": \"running\", \"complete\": false}\n",
+    out.write_whole(
+        "summary.json",
+        b"{\"status\": \"running\", \"complete\": false}\n",
     )
     .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
-    let csv = BufWriter::new(
-        File::create(&csv_path).map_err(|e| CliError::io(&csv_path, "create the CSV", e))?,
-    );
+    let (_, csv) = out
+        .create_fresh("run.csv")
+        .map_err(|e| CliError::io(&csv_path, "create the CSV", e))?;
+    let csv = BufWriter::new(csv);
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -119,7 +129,7 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     bar.finish_and_clear();
     let json = serde_json::to_string_pretty(&summary)
         .map_err(|e| CliError::io(&summary_path, "write the summary", e.into()))?;
-    std::fs::write(&summary_path, json + "\n")
+    out.write_whole("summary.json", (json + "\n").as_bytes())
         .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
     *summarized = true;
     let mut files = vec![csv_path.clone(), summary_path];
@@ -186,13 +196,17 @@ fn stalled_warning(spec: &rover_spec::Spec, summary: &Summary) {
 /// a failed one carrying the error. Best effort: the error itself is what
 /// the caller reports.
 fn fail_outputs(csv: &Path, summary: &Path, e: &CliError) {
-    let _ = std::fs::remove_file(csv);
+    // Only a regular file is removed: a link named `run.csv` stays (and
+    // nothing it points to is touched).
+    if std::fs::symlink_metadata(csv).is_ok_and(|m| m.is_file()) {
+        let _ = std::fs::remove_file(csv);
+    }
     let json = serde_json::json!({
         "status": "failed",
         "complete": false,
         "error": e.to_string(),
     });
-    let _ = std::fs::write(summary, format!("{json:#}\n"));
+    let _ = rover_files::write_whole(summary, format!("{json:#}\n").as_bytes());
 }
 
 /// The run's plots (PNG and SVG), when built with the `plots` feature.

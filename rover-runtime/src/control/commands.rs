@@ -104,12 +104,10 @@ pub enum CommandFileProblem {
     /// No header: the file is empty, or only comments.
     #[error("the command file is empty")]
     Empty,
-    /// The header does not start with `t`.
-    #[error("the header must start with `t`, got `{header}`")]
-    NoTime {
-        /// The header line.
-        header: String,
-    },
+    /// The first line is not a header starting with `t` (not quoted: a
+    /// file that fails at its first line may be any file on the machine).
+    #[error("the first line is not a header starting with the column `t`")]
+    NoTime,
     /// A column that is neither `tauJ` nor `deltaJ`.
     #[error("unknown column `{name}`")]
     UnknownColumn {
@@ -171,7 +169,7 @@ impl CommandFileProblem {
         match self {
             Self::Unreadable { .. } => "give `file` relative to the scenario file",
             Self::Empty => "start with a header `t,tau1,…` and one row per instant",
-            Self::NoTime { .. } => "a header like `t,tau1,tau2,delta1` names the columns",
+            Self::NoTime => "a header like `t,tau1,tau2,delta1` names the columns",
             Self::UnknownColumn { .. } => {
                 "columns after `t` are `tauJ` (N·m) or `deltaJ` (rad), J the wheel from 1"
             }
@@ -196,7 +194,7 @@ impl CommandSchedule {
         model: &Model,
     ) -> Result<Self, CommandFileError> {
         let path = base_dir.join(&config.file);
-        let text = std::fs::read_to_string(&path).map_err(|source| {
+        let text = rover_files::read_text(&path, rover_files::Limit::Data).map_err(|source| {
             CommandFileError::new(&path, None, CommandFileProblem::Unreadable { source })
         })?;
         Self::parse(&text, &path, model, config.interpolation)
@@ -222,8 +220,7 @@ impl CommandSchedule {
         };
         let mut names = header.split(',').map(str::trim);
         if names.next() != Some("t") {
-            let header = header.to_string();
-            return Err(error(header_line, P::NoTime { header }));
+            return Err(error(header_line, P::NoTime));
         }
         let mut columns = Vec::new();
         for name in names {

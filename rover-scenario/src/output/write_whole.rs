@@ -12,19 +12,11 @@ pub struct WriteError {
     pub source: std::io::Error,
 }
 
-/// Write `text` to `path` whole or not at all: into a sibling temporary
-/// file first, renamed over `path` only once complete, so that a full disk
-/// or an interrupted run never leaves a truncated file that looks finished.
+/// Write `text` to `path` whole or not at all, as a regular file and never
+/// through a link ([`rover_files::write_whole`]).
 pub fn write_whole(path: &Path, text: &str) -> Result<(), WriteError> {
-    let mut partial = path.as_os_str().to_owned();
-    partial.push(format!(".partial-{}", std::process::id()));
-    let partial = PathBuf::from(partial);
-    let written = std::fs::write(&partial, text).and_then(|()| std::fs::rename(&partial, path));
-    written.map_err(|source| {
-        let _ = std::fs::remove_file(&partial);
-        WriteError {
-            path: path.to_path_buf(),
-            source,
-        }
+    rover_files::write_whole(path, text.as_bytes()).map_err(|source| WriteError {
+        path: path.to_path_buf(),
+        source,
     })
 }

@@ -185,7 +185,7 @@ fn asc_corrupt_files_each_say_what_and_where() {
         "no_value.asc",
         "ncols\nnrows 2\n",
         1,
-        "header line `ncols` must be a key and one value\n  = help: write one `key value` pair \
+        "the header line of `ncols` must be a key and one value\n  = help: write one `key value` pair \
          per header line, e.g. `cellsize 0.05`",
     );
     bad_asc(

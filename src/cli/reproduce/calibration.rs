@@ -472,7 +472,7 @@ pub fn to_csv(records: &[Record]) -> String {
 
 /// Records from the search's CSV.
 pub fn from_csv(path: &Path) -> Result<Vec<Record>, CliError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = rover_files::read_text(path, rover_files::Limit::Data).map_err(|e| {
         other(format!(
             "{}: {e} (run `rover reproduce --search` to make it)",
             path.display()

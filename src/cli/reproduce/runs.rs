@@ -87,9 +87,10 @@ pub const ACTIVE: &str = "\n[control.active_suspension]\nsample_time = 0.1\nkp_p
 pub fn run_case(rover: &str, text: &str, csv: &Path) -> Result<Case, CliError> {
     let base = csv.parent().unwrap_or(Path::new("."));
     let prepared = Prepared::from_text(Some(rover), text, csv, base)?;
-    std::fs::create_dir_all(base).map_err(|e| CliError::io(base, "create the folder", e))?;
+    rover_files::OutputDir::create(base)
+        .map_err(|e| CliError::io(base, "create the folder", e))?;
     let file = std::io::BufWriter::new(
-        std::fs::File::create(csv).map_err(|e| CliError::io(csv, "create the CSV", e))?,
+        rover_files::create_fresh(csv).map_err(|e| CliError::io(csv, "create the CSV", e))?,
     );
     // The generic plant for every rover and level: the reproduction's
     // figures do not depend on which rovers have a generated plant.
@@ -103,7 +104,8 @@ pub fn run_case(rover: &str, text: &str, csv: &Path) -> Result<Case, CliError> {
 /// The named columns of a run's CSV (a cell that is not a number is
 /// skipped with its row).
 pub fn columns(csv: &Path, names: &[&str]) -> Result<Vec<Vec<f64>>, CliError> {
-    let text = std::fs::read_to_string(csv).map_err(other)?;
+    let text = rover_files::read_text(csv, rover_files::Limit::Data)
+        .map_err(|e| other(format!("{}: {e}", csv.display())))?;
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
     let idx: Vec<usize> = names
