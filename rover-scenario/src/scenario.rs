@@ -294,6 +294,15 @@ impl Scenario {
             line: None,
             message: locate(text, &e),
         })?;
+        if let Some((field, v)) = non_finite(&s) {
+            return Err(ScenarioError {
+                file: path.to_path_buf(),
+                line: line_of_field(text, &field),
+                message: format!(
+                    "{field} = {v}: every number of a scenario must be finite\n  = help: give a finite number in SI units (`max_step = inf` is the one infinity allowed: no limit)"
+                ),
+            });
+        }
         s.check().map_err(|(field, message)| ScenarioError {
             file: path.to_path_buf(),
             // Too many rows at the default rate: the duration's line.
@@ -419,6 +428,20 @@ impl Scenario {
             I::Dopri5(c) => ("integrator.dopri5.max_step", c.max_step, "max_step"),
             I::Bdf(c) => ("integrator.bdf.max_step", c.max_step, "max_step"),
         };
+        // Each update of the active suspension is a breakpoint of the
+        // integration: as many steps at least.
+        if let Some(a) = &self.control.active_suspension {
+            let updates = self.duration / a.sample_time;
+            if a.sample_time > 0.0 && updates > MAX_STEPS as f64 {
+                return Err((
+                    "control.active_suspension.sample_time",
+                    format!(
+                        "control.active_suspension.sample_time = {:e} s makes {updates:.3e} updates over duration = {} s; at most {MAX_STEPS} are allowed\n  = help: an active suspension updates every 1e-3 to 0.1 s",
+                        a.sample_time, self.duration
+                    ),
+                ));
+            }
+        }
         // Non-positive or NaN values are the integrator's own check.
         if step.is_nan() || step <= 0.0 {
             return Ok(());
@@ -484,6 +507,28 @@ impl Scenario {
         }
         Ok(())
     }
+}
+
+/// The first number of `scenario` (its dotted field path and value) that
+/// is NaN or infinite: such a gain or set-point would reach the run and
+/// its outputs as NaN. An infinite `max_step` (no limit) is allowed.
+fn non_finite(scenario: &Scenario) -> Option<(String, f64)> {
+    fn walk(v: &toml::Value, path: &str) -> Option<(String, f64)> {
+        match v {
+            toml::Value::Float(x)
+                if !x.is_finite() && !(path.ends_with("max_step") && *x == f64::INFINITY) =>
+            {
+                Some((path.to_string(), *x))
+            }
+            toml::Value::Array(items) => items.iter().find_map(|i| walk(i, path)),
+            toml::Value::Table(t) => t.iter().find_map(|(k, v)| {
+                let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                walk(v, &p)
+            }),
+            _ => None,
+        }
+    }
+    walk(&toml::Value::try_from(scenario).ok()?, "")
 }
 
 /// Longest source line echoed in an error (characters).

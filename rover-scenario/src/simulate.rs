@@ -178,6 +178,20 @@ pub fn initial_state(
                     });
                 }
             }
+            // A start so high that the rover falls for the whole run is no
+            // drive (it would be reported as a stall, not as the mistake).
+            let lowest = touching.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let drop = z - lowest;
+            let fall = (2.0 * drop / model.gravity).sqrt();
+            if drop > 0.0 && model.gravity > 0.0 && fall >= scenario.duration {
+                return Err(SetupError::Initial {
+                    field: "z",
+                    message: format!(
+                        "z = {z} m starts the lowest wheel {drop:.4e} m above the ground: it would fall for {fall:.3e} s, the whole run (duration = {} s); give z ≤ {lowest:.4} m plus the drop you mean, or leave z out to start with the lowest wheel touching",
+                        scenario.duration
+                    ),
+                });
+            }
             z
         }
         (None, None) => 0.0,

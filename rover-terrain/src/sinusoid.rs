@@ -4,6 +4,11 @@ use super::error::TerrainError;
 use super::height_field::{Bounds, HeightField, OffMap, finite_point};
 use super::param::{finite, positive, unit_vector};
 
+/// Shortest wavelength of a corrugation \[m\].
+pub const MIN_WAVELENGTH: f64 = 1e-3;
+/// Steepest slope of a corrugation, `2π·A/λ` (tan 80°).
+pub const MAX_SLOPE: f64 = 5.671_281_819_617_709;
+
 /// Straight sinusoidal waves along `direction_deg` (MODEL.md §6, the
 /// terrain library):
 /// ```text
@@ -28,9 +33,36 @@ impl Sinusoid {
         direction_deg: f64,
         phase_deg: f64,
     ) -> Result<Sinusoid, TerrainError> {
+        let amplitude = finite("amplitude", amplitude, "m")?;
+        let wavelength = positive("wavelength", wavelength, "m")?;
+        // Shorter waves are a texture, not ground a wheel rolls over: the
+        // contact search and the integrator's steps shrink with them
+        // without bound.
+        if wavelength < MIN_WAVELENGTH {
+            return Err(TerrainError::parameter(
+                "wavelength",
+                format!("{wavelength} m is shorter than {MIN_WAVELENGTH} m"),
+                "corrugations are waves of centimetres to metres; a texture finer than a millimetre is not ground that the rigid wheel model resolves",
+            ));
+        }
+        let slope = 2.0 * core::f64::consts::PI * amplitude.abs() / wavelength;
+        if slope > MAX_SLOPE {
+            return Err(TerrainError::parameter(
+                "amplitude",
+                format!(
+                    "amplitude {amplitude} m on a wavelength of {wavelength} m gives slopes of {:.1}°, steeper than {:.0}°",
+                    slope.atan().to_degrees(),
+                    MAX_SLOPE.atan().to_degrees()
+                ),
+                format!(
+                    "keep 2π·amplitude/wavelength ≤ {MAX_SLOPE:.2}: amplitude ≤ {:.4} m at this wavelength",
+                    MAX_SLOPE * wavelength / (2.0 * core::f64::consts::PI)
+                ),
+            ));
+        }
         Ok(Sinusoid {
-            amplitude: finite("amplitude", amplitude, "m")?,
-            wavenumber: 2.0 * core::f64::consts::PI / positive("wavelength", wavelength, "m")?,
+            amplitude,
+            wavenumber: 2.0 * core::f64::consts::PI / wavelength,
             phase: finite("phase_deg", phase_deg, "degrees")?.to_radians(),
             along: unit_vector("direction_deg", direction_deg)?,
         })

@@ -15,6 +15,9 @@ use crate::error::CliError;
 
 /// Arguments of `rover linearize`.
 #[derive(Debug, Args)]
+// A negative number is a value (`--load -5` is then refused as a load, not
+// taken for an unknown flag).
+#[command(allow_negative_numbers = true)]
 pub struct LinearizeArgs {
     /// A built-in rover (exomars, swing4, mer, lrv) or a description file.
     pub rover: String,

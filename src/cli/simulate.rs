@@ -3,7 +3,7 @@
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -48,6 +48,11 @@ pub struct SimulateReport {
     pub files: Vec<PathBuf>,
 }
 
+/// The output folder of a run that is still being prepared (its terrain
+/// generated or decoded, its rover loaded): nothing is written yet, so
+/// Ctrl-C ends the process at once instead of waiting for the first step.
+static PREPARING: Mutex<Option<PathBuf>> = Mutex::new(None);
+
 /// The Ctrl-C flag, installed once per process.
 fn interrupt_flag() -> Arc<AtomicBool> {
     static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
@@ -56,10 +61,41 @@ fn interrupt_flag() -> Arc<AtomicBool> {
         let f = flag.clone();
         // A second handler cannot be installed (tests call this repeatedly
         // in one process); the first one serves them all.
-        let _ = ctrlc::set_handler(move || f.store(true, Ordering::Relaxed));
+        let _ = ctrlc::set_handler(move || {
+            let preparing = PREPARING.lock().map(|mut p| p.take());
+            if let Ok(Some(out)) = preparing {
+                let e = CliError::Usage("interrupted while preparing the run".into());
+                if out.is_dir() {
+                    fail_outputs(&out.join("run.csv"), &out.join("summary.json"), &e);
+                }
+                eprintln!("error: {e}: nothing was run");
+                std::process::exit(1);
+            }
+            f.store(true, Ordering::Relaxed);
+        });
         flag
     })
     .clone()
+}
+
+/// Marks the run as being prepared until dropped.
+struct Preparing;
+
+impl Preparing {
+    fn start(out: &Path) -> Self {
+        if let Ok(mut p) = PREPARING.lock() {
+            *p = Some(out.to_path_buf());
+        }
+        Preparing
+    }
+}
+
+impl Drop for Preparing {
+    fn drop(&mut self) {
+        if let Ok(mut p) = PREPARING.lock() {
+            *p = None;
+        }
+    }
 }
 
 /// Run the scenario and write `run.csv` and `summary.json` into `args.out`.
@@ -81,7 +117,10 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
 /// The run; `summarized` turns true once its summary is written (later
 /// errors, of the plots, leave the run's outputs as they are).
 fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateReport, CliError> {
+    let flag = interrupt_flag();
+    let preparing = Preparing::start(&args.out);
     let prepared = Prepared::from_file(args.rover.as_deref(), &args.scenario)?;
+    drop(preparing);
     let (spec, scenario) = (&prepared.spec, &prepared.scenario);
     let out = OutputDir::create(&args.out).map_err(|e| {
         CliError::Usage(format!("--out {}: {e}", args.out.display()))
@@ -123,7 +162,6 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     );
     bar.set_message(format!("{} t = 0 s", spec.name));
     let duration = scenario.duration;
-    let flag = interrupt_flag();
     let progress = |t: f64| bar.set_position((1000.0 * t / duration) as u64);
     let summary = prepared.run(args.generic, csv, &flag, progress)?;
     bar.finish_and_clear();

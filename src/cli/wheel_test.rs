@@ -11,6 +11,9 @@ use crate::error::{CliError, print_stdout};
 
 /// Arguments of `rover wheel-test`.
 #[derive(Debug, Args)]
+// A negative number is a value (`--load -5` is then refused as a load, not
+// taken for an unknown flag).
+#[command(allow_negative_numbers = true)]
 pub struct WheelTestArgs {
     /// A built-in soil (lete_sand, dry_sand, lunar_nominal, lunar_simulant,
     /// mars_simulant) or a TOML file with a `[soil]` table.
