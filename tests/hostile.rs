@@ -12,7 +12,7 @@ const TIME_LIMIT: Duration = Duration::from_secs(60);
 /// Address space any case may use (kB, `ulimit -v`): a memory bomb aborts.
 const MEMORY_LIMIT_KB: u64 = 4_000_000;
 
-fn scratch(name: &str) -> PathBuf {
+pub(crate) fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join("hostile")
         .join(name);
@@ -22,7 +22,7 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 /// Run `rover args…` in `dir` under the time and memory limits.
-fn rover(dir: &Path, args: &[&str]) -> Output {
+pub(crate) fn rover(dir: &Path, args: &[&str]) -> Output {
     let mut script = format!("ulimit -v {MEMORY_LIMIT_KB}; exec \"$0\"");
     for i in 1..=args.len() {
         script.push_str(&format!(" \"${i}\""));
@@ -53,7 +53,7 @@ fn rover(dir: &Path, args: &[&str]) -> Output {
 
 /// `rover args…` exits with `code`, without a panic, its standard error
 /// holding every one of `parts`.
-fn expect(dir: &Path, args: &[&str], code: i32, parts: &[&str]) -> String {
+pub(crate) fn expect(dir: &Path, args: &[&str], code: i32, parts: &[&str]) -> String {
     let out = rover(dir, args);
     let err = String::from_utf8_lossy(&out.stderr).to_string();
     assert!(!err.contains("panicked"), "rover {args:?} panicked: {err}");
@@ -85,7 +85,7 @@ fn many_wheels(n: usize) -> String {
     s
 }
 
-fn write(dir: &Path, name: &str, text: impl AsRef<[u8]>) {
+pub(crate) fn write(dir: &Path, name: &str, text: impl AsRef<[u8]>) {
     std::fs::write(dir.join(name), text).unwrap();
 }
 

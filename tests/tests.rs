@@ -24,4 +24,6 @@ mod profile;
 mod reproduction;
 mod soil;
 mod sweep;
+#[cfg(unix)]
+mod untrusted_files;
 mod wheel_law;

@@ -64,7 +64,7 @@ impl GroundConfig {
                 Some(c) => c,
                 None => {
                     let path = base_dir.join(name);
-                    if !path.is_file() {
+                    if !path.exists() {
                         return Err(SoilError::Source(format!(
                             "soil = \"{name}\": no built-in soil of that name ({}) and no file {}; give a built-in soil's name, or a TOML file with a [soil] table (relative to the scenario)",
                             rover_runtime::soil::SOIL_NAMES.join(", "),

@@ -522,7 +522,11 @@ fn non_finite(scenario: &Scenario) -> Option<(String, f64)> {
             }
             toml::Value::Array(items) => items.iter().find_map(|i| walk(i, path)),
             toml::Value::Table(t) => t.iter().find_map(|(k, v)| {
-                let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                let p = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
                 walk(v, &p)
             }),
             _ => None,

@@ -78,7 +78,8 @@ const SEED: u64 = 1;
 pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
     let started = Instant::now();
     let figs = args.docs.join("reproduction");
-    rover_files::OutputDir::create(&figs).map_err(|e| CliError::io(&figs, "create the folder", e))?;
+    rover_files::OutputDir::create(&figs)
+        .map_err(|e| CliError::io(&figs, "create the folder", e))?;
     let work = &args.work;
     let mut v = Values::default();
 

@@ -64,11 +64,11 @@ fn interrupt_flag() -> Arc<AtomicBool> {
         let _ = ctrlc::set_handler(move || {
             let preparing = PREPARING.lock().map(|mut p| p.take());
             if let Ok(Some(out)) = preparing {
-                let e = CliError::Usage("interrupted while preparing the run".into());
+                let why = "interrupted while preparing the run: nothing was computed";
                 if out.is_dir() {
-                    fail_outputs(&out.join("run.csv"), &out.join("summary.json"), &e);
+                    interrupted_outputs(&out, why);
                 }
-                eprintln!("error: {e}: nothing was run");
+                eprintln!("error: {why}");
                 std::process::exit(1);
             }
             f.store(true, Ordering::Relaxed);
@@ -78,7 +78,19 @@ fn interrupt_flag() -> Arc<AtomicBool> {
     .clone()
 }
 
-/// Marks the run as being prepared until dropped.
+/// The outputs of a run interrupted before its first step: no CSV, and a
+/// summary that says so.
+fn interrupted_outputs(out: &Path, why: &str) {
+    let csv = out.join("run.csv");
+    if std::fs::symlink_metadata(&csv).is_ok_and(|m| m.is_file()) {
+        let _ = std::fs::remove_file(&csv);
+    }
+    let json = serde_json::json!({ "status": "interrupted", "complete": false, "error": why });
+    let _ = rover_files::write_whole(&out.join("summary.json"), format!("{json:#}\n").as_bytes());
+}
+
+/// Marks the run as being prepared (its rover loaded, its terrain built or
+/// decoded, no row computed) until dropped.
 struct Preparing;
 
 impl Preparing {
@@ -118,23 +130,27 @@ pub fn simulate(args: &SimulateArgs) -> Result<SimulateReport, CliError> {
 /// errors, of the plots, leave the run's outputs as they are).
 fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateReport, CliError> {
     let flag = interrupt_flag();
-    let preparing = Preparing::start(&args.out);
+    // Until the first row: the terrain is built when the run starts.
+    let mut preparing = Some(Preparing::start(&args.out));
     let prepared = Prepared::from_file(args.rover.as_deref(), &args.scenario)?;
-    drop(preparing);
     let (spec, scenario) = (&prepared.spec, &prepared.scenario);
-    let out = OutputDir::create(&args.out).map_err(|e| {
-        CliError::Usage(format!("--out {}: {e}", args.out.display()))
-    })?;
+    let out = OutputDir::create(&args.out)
+        .map_err(|e| CliError::Usage(format!("--out {}: {e}", args.out.display())))?;
     let csv_path = out.join("run.csv");
     let summary_path = out.join("summary.json");
-    let inputs = [Some(args.scenario.as_path()), args.rover.as_deref().map(Path::new)];
+    let inputs = [
+        Some(args.scenario.as_path()),
+        args.rover.as_deref().map(Path::new),
+    ];
     for input in inputs.into_iter().flatten() {
         for output in [&csv_path, &summary_path] {
             if same_file(input, output) {
                 return Err(CliError::Usage(format!(
                     "--out {}: its {} is the input {}, which the run would overwrite; give another folder",
                     args.out.display(),
-                    output.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+                    output
+                        .file_name()
+                        .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
                     input.display()
                 )));
             }
@@ -162,7 +178,10 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     );
     bar.set_message(format!("{} t = 0 s", spec.name));
     let duration = scenario.duration;
-    let progress = |t: f64| bar.set_position((1000.0 * t / duration) as u64);
+    let progress = |t: f64| {
+        preparing.take();
+        bar.set_position((1000.0 * t / duration) as u64);
+    };
     let summary = prepared.run(args.generic, csv, &flag, progress)?;
     bar.finish_and_clear();
     let json = serde_json::to_string_pretty(&summary)

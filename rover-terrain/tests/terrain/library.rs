@@ -379,9 +379,10 @@ fn library_rejects_bad_parameters() {
         "terrain.wavelength: must be > 0 m, got 0\n  = help: give a positive value in m"
     );
     // A micrometre texture, and spikes: no ground a wheel rolls over.
-    assert!(message(Sinusoid::new(0.01, 1e-6, 0.0, 0.0)).starts_with(
-        "terrain.wavelength: 0.000001 m is shorter than 0.001 m"
-    ));
+    assert!(
+        message(Sinusoid::new(0.01, 1e-6, 0.0, 0.0))
+            .starts_with("terrain.wavelength: 0.000001 m is shorter than 0.001 m")
+    );
     let steep = message(Sinusoid::new(0.01, 0.01, 0.0, 0.0));
     assert!(
         steep.starts_with("terrain.amplitude: amplitude 0.01 m on a wavelength of 0.01 m gives slopes of 81.0°, steeper than 80°")

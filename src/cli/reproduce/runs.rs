@@ -87,8 +87,7 @@ pub const ACTIVE: &str = "\n[control.active_suspension]\nsample_time = 0.1\nkp_p
 pub fn run_case(rover: &str, text: &str, csv: &Path) -> Result<Case, CliError> {
     let base = csv.parent().unwrap_or(Path::new("."));
     let prepared = Prepared::from_text(Some(rover), text, csv, base)?;
-    rover_files::OutputDir::create(base)
-        .map_err(|e| CliError::io(base, "create the folder", e))?;
+    rover_files::OutputDir::create(base).map_err(|e| CliError::io(base, "create the folder", e))?;
     let file = std::io::BufWriter::new(
         rover_files::create_fresh(csv).map_err(|e| CliError::io(csv, "create the CSV", e))?,
     );
