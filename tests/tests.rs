@@ -14,6 +14,7 @@ mod drive;
 mod failures;
 mod fidelity;
 mod fixed_step;
+mod fuzz_loaders;
 mod ground;
 mod hostile;
 mod linearize;

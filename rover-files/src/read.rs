@@ -181,3 +181,21 @@ pub(crate) fn kind_of(meta: &Metadata) -> &'static str {
     }
     "a special file"
 }
+
+/// At most `max` characters of `text` (a token of a file being reported),
+/// control characters escaped: enough to find it in one's own file, never a
+/// whole line of someone else's, nor an escape sequence for the terminal.
+pub fn excerpt(text: &str, max: usize) -> String {
+    let mut out = String::new();
+    for c in text.chars().take(max) {
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    if text.chars().nth(max).is_some() {
+        out.push('…');
+    }
+    out
+}

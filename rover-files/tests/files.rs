@@ -169,3 +169,13 @@ fn the_same_file_is_recognized_through_links_and_spellings() {
     assert!(same_file(&a, &dir.join(".").join("a.toml")));
     assert!(!same_file(&a, &dir.join("missing.toml")));
 }
+
+#[test]
+fn an_excerpt_is_short_and_harmless() {
+    assert_eq!(rover_files::excerpt("1.5x", 24), "1.5x");
+    assert_eq!(
+        rover_files::excerpt("root:x:0:0:root:/root:/bin/bash", 8),
+        "root:x:0…"
+    );
+    assert_eq!(rover_files::excerpt("\u{1b}[2J", 8), "\\u{1b}[2J");
+}

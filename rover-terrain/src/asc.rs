@@ -244,7 +244,10 @@ pub fn parse_asc(text: &str, path: &Path) -> Result<Grid, TerrainError> {
             let Ok(z) = word.parse::<f64>() else {
                 return Err(err(
                     number,
-                    format!("row {r}, column {c}: `{word}` is not a number"),
+                    format!(
+                        "row {r}, column {c}: `{}` is not a number",
+                        rover_files::excerpt(word, 24)
+                    ),
                     "heights are decimal numbers in metres",
                 ));
             };

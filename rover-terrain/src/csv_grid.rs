@@ -200,7 +200,10 @@ pub fn parse_csv(
             let Ok(z) = word.parse::<f64>() else {
                 return Err(err(
                     number,
-                    format!("row {nrows}, column {c}: `{word}` is not a number"),
+                    format!(
+                        "row {nrows}, column {c}: `{}` is not a number",
+                        rover_files::excerpt(word, 24)
+                    ),
                     "heights are decimal numbers in metres, separated by commas",
                 ));
             };

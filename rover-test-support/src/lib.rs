@@ -1,9 +1,11 @@
 //! Helpers shared by the tests of `rover-dynamics`, `rover-runtime` and the
 //! workspace: a seeded generator ([`rng::Rng`]), the paper's two rovers
 //! built by hand ([`hand_models`]), a norm-wise relative difference
-//! ([`rel`]) and scratch files ([`scratch_file`]). Only tests depend on it.
+//! ([`rel`]), scratch files ([`scratch_file`]) and mutations of valid
+//! inputs for fuzzing ([`mutate`]). Only tests depend on it.
 
 pub mod hand_models;
+pub mod mutate;
 pub mod rng;
 
 /// Largest |a − b| over the largest |a|, |b| (0 when both are 0): a

@@ -229,23 +229,23 @@ impl CommandSchedule {
             } else if let Some(n) = name.strip_prefix("delta") {
                 (Channel::Steering, n)
             } else {
-                let name = name.to_string();
+                let name = rover_files::excerpt(name, 24);
                 return Err(error(header_line, P::UnknownColumn { name }));
             };
             let wheel = match number.parse::<usize>() {
                 Ok(j) if (1..=wheels).contains(&j) => j - 1,
                 _ => {
-                    let name = name.to_string();
+                    let name = rover_files::excerpt(name, 24);
                     return Err(error(header_line, P::NoSuchWheel { name, wheels }));
                 }
             };
             if channel == Channel::Steering && !model.wheels[wheel].steerable {
-                let name = name.to_string();
+                let name = rover_files::excerpt(name, 24);
                 let wheel = wheel + 1;
                 return Err(error(header_line, P::NotSteerable { name, wheel }));
             }
             if columns.contains(&(channel, wheel)) {
-                let name = name.to_string();
+                let name = rover_files::excerpt(name, 24);
                 return Err(error(header_line, P::Duplicate { name }));
             }
             columns.push((channel, wheel));
@@ -262,7 +262,7 @@ impl CommandSchedule {
                 match field.parse::<f64>() {
                     Ok(v) if v.is_finite() => row.push(v),
                     _ => {
-                        let value = field.to_string();
+                        let value = rover_files::excerpt(field, 24);
                         return Err(error(number, P::NotFinite { value }));
                     }
                 }
