@@ -190,7 +190,9 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
     *summarized = true;
     let mut files = vec![csv_path.clone(), summary_path];
-    if !args.no_plots {
+    // A user who stopped the run wants it to stop: no plots, which take
+    // seconds for a long run.
+    if !args.no_plots && summary.status != Status::Interrupted {
         files.extend(plots(&csv_path, &args.out, spec, scenario.settle)?);
     }
     bar.suspend(|| {
