@@ -608,3 +608,44 @@ pub fn line_of_field(text: &str, path: &str) -> Option<usize> {
     }
     best.map(|b| b.1)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The check for non-finite numbers sees every table: each shipped
+    /// scenario converts to a TOML value whole, and a NaN put into any of
+    /// its numbers is found there by its dotted path.
+    #[test]
+    fn every_number_of_every_shipped_scenario_is_checked_for_finiteness() {
+        let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios"));
+        let mut checked = 0;
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_none_or(|e| e != "toml") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            let scenario = Scenario::parse(&text, &path).unwrap();
+            assert!(
+                toml::Value::try_from(&scenario).is_ok(),
+                "{}",
+                path.display()
+            );
+            assert_eq!(non_finite(&scenario), None);
+            checked += 1;
+        }
+        assert!(checked >= 10);
+        let mut s = Scenario::with_duration(1.0);
+        s.initial.velocity[1] = f64::NAN;
+        let (field, v) = non_finite(&s).unwrap();
+        assert_eq!(field, "initial.velocity");
+        assert!(v.is_nan());
+        s.initial.velocity[1] = 0.0;
+        s.control.speed = Some(rover_runtime::control::SpeedConfig {
+            kp: f64::INFINITY,
+            ..toml::from_str("speed = 0.1").unwrap()
+        });
+        assert_eq!(non_finite(&s).unwrap().0, "control.speed.kp");
+    }
+}
