@@ -515,10 +515,9 @@ impl Scenario {
 fn non_finite(scenario: &Scenario) -> Option<(String, f64)> {
     fn walk(v: &toml::Value, path: &str) -> Option<(String, f64)> {
         match v {
-            toml::Value::Float(x)
-                if !x.is_finite() && !(path.ends_with("max_step") && *x == f64::INFINITY) =>
-            {
-                Some((path.to_string(), *x))
+            toml::Value::Float(x) => {
+                let no_limit = path.ends_with("max_step") && *x == f64::INFINITY;
+                (!x.is_finite() && !no_limit).then(|| (path.to_string(), *x))
             }
             toml::Value::Array(items) => items.iter().find_map(|i| walk(i, path)),
             toml::Value::Table(t) => t.iter().find_map(|(k, v)| {
