@@ -126,36 +126,20 @@ fn outputs_never_escape_their_folder_nor_replace_anything_but_a_regular_file() {
     write(&dir, "s.toml", "rover = \"swing4\"\nduration = 0.2\n");
     write(&dir, "precious", "keep");
     let precious = || std::fs::read_to_string(dir.join("precious")).unwrap();
-    std::fs::create_dir_all(dir.join("linked")).unwrap();
-    symlink(dir.join("precious"), &dir.join("linked/run.csv"));
-    expect(
-        &dir,
-        &[
+    // Each output, a link to a file outside the folder.
+    for (folder, name) in [("linked", "run.csv"), ("summary", "summary.json")] {
+        std::fs::create_dir_all(dir.join(folder)).unwrap();
+        symlink(dir.join("precious"), &dir.join(folder).join(name));
+        let args = [
             "simulate",
             "--scenario",
             "s.toml",
             "--out",
-            "linked",
+            folder,
             "--no-plots",
-        ],
-        2,
-        &["run.csv", "symbolic link"],
-    );
-    std::fs::create_dir_all(dir.join("summary")).unwrap();
-    symlink(dir.join("precious"), &dir.join("summary/summary.json"));
-    expect(
-        &dir,
-        &[
-            "simulate",
-            "--scenario",
-            "s.toml",
-            "--out",
-            "summary",
-            "--no-plots",
-        ],
-        2,
-        &["summary.json", "symbolic link"],
-    );
+        ];
+        expect(&dir, &args, 2, &[name, "symbolic link"]);
+    }
     assert_eq!(precious(), "keep");
     // `--out` that is a file, a device or an input.
     expect(
