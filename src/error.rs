@@ -139,12 +139,29 @@ impl CliError {
     /// The message as the command line prints it: rendered diagnostics as
     /// they are, anything else headed `error: `.
     pub fn user_message(&self) -> String {
-        if self.is_rendered() {
+        let text = if self.is_rendered() {
             self.to_string()
         } else {
             format!("error: {self}")
+        };
+        printable(&text)
+    }
+}
+
+/// `text` with every control character but the line break and the tab
+/// escaped (`\u{1b}`): an error quotes names and tokens from files that
+/// may not be the user's own, and an escape sequence in one must reach the
+/// terminal as text, not as a command to it.
+pub fn printable(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() && c != '\n' && c != '\t' {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
         }
     }
+    out
 }
 
 /// Print a command's text on standard output. A reader that has gone

@@ -330,3 +330,20 @@ fn ctrl_c_while_a_run_is_prepared_ends_it_within_a_second() {
         "{summary}"
     );
 }
+
+#[test]
+fn escape_sequences_in_a_file_reach_the_terminal_as_text() {
+    let dir = scratch("escapes");
+    write(
+        &dir,
+        "esc.toml",
+        "rover = \"ab\u{1b}[2J\u{1b}[31mred\"\nduration = 1.0\n",
+    );
+    let err = expect(
+        &dir,
+        &["simulate", "--scenario", "esc.toml", "--out", "o"],
+        2,
+        &["esc.toml", "\\u{1b}[2J"],
+    );
+    assert!(!err.contains('\u{1b}'), "{err:?}");
+}
