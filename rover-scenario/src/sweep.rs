@@ -339,19 +339,19 @@ impl Plan {
 
     /// The error of a task whose scenario is refused, naming what is at
     /// fault: the base scenario when it is refused alike on its own, else
-    /// the first of the task's fields that is refused on its own, else
-    /// the task's fields together.
+    /// the first of the task's fields that, set alone in the base, is
+    /// refused alike, else the task's fields together.
     fn blame(&self, index: usize, message: &str) -> String {
         let params = &self.tasks[index];
-        if scenario_check(&self.base).err().as_deref() == Some(message) {
+        let refused_alike = |t: &toml::Table| scenario_check(t).err().as_deref() == Some(message);
+        if refused_alike(&self.base) {
             return format!(
                 "the base scenario {} is refused: {message}",
                 self.base_origin.display()
             );
         }
         let alone = params.iter().find(|p| {
-            with_fields(&self.base, std::slice::from_ref(*p))
-                .is_ok_and(|t| scenario_check(&t).is_err())
+            with_fields(&self.base, std::slice::from_ref(*p)).is_ok_and(|t| refused_alike(&t))
         });
         let at_fault = match alone {
             Some((path, _)) => self.source_of(path, params),
@@ -1038,6 +1038,16 @@ mod tests {
             "{e}"
         );
         assert!(e.contains("invalid type: floating point"), "{e}");
+        // Refused only together: both fields named.
+        let e = checked(
+            "scenario = \"b.toml\"\n[grid]\nduration = [0.5]\nsettle = [0.8]\n",
+            BASE,
+        )
+        .unwrap_err();
+        assert!(
+            e.starts_with("plan.toml: grid.\"duration\" = 0.5 with grid.\"settle\" = 0.8: task 0's scenario is refused: settle must lie in [0, duration]"),
+            "{e}"
+        );
         // A base the scenario check refuses on its own is named as such.
         let e = checked(
             "scenario = \"b.toml\"\n[grid]\n\"control.speed.kp\" = [1.0]\n",
