@@ -85,19 +85,22 @@ def sweep(
     from . import _noted, _scenario_source
 
     out = Path(out).resolve()
-    (out / "tasks").mkdir(parents=True, exist_ok=True)
     text, origin, base, note = _scenario_source(base_scenario)
-    if origin in ("<dict>", "<string>"):
-        scenario_file = "base.toml"
-        _write_whole(out / scenario_file, text)
-    else:
-        scenario_file = str(Path(origin).resolve())
+    written = origin in ("<dict>", "<string>")
+    scenario_file = "base.toml" if written else str(Path(origin).resolve())
     plan_text = _plan_text(scenario_file, rover, seeds, samples, sample_seed, grid, ranges)
     plan_path = out / "plan.toml"
     if plan_path.exists() and plan_path.read_text() != plan_text:
         raise _native.RoverError(
             f"error: {plan_path}: another sweep's plan is there; give this sweep another `out` folder"
         )
+    # The plan is checked before anything is written for it: a plan refused
+    # leaves nothing in `out` that would stand in the way of the next.
+    with _noted(note):
+        _native.plan_info(plan_text, str(plan_path), str(out), text)
+    (out / "tasks").mkdir(parents=True, exist_ok=True)
+    if written:
+        _write_whole(out / scenario_file, text)
     _write_whole(plan_path, plan_text)
     with _noted(note):
         return sweep_plan(plan_path, address=address, table=table)
