@@ -238,4 +238,9 @@ fn a_plan_whose_tasks_cannot_run_is_refused_before_any_runs() {
         "scenario = \"base.toml\"\nout = \"out\"\nsamples = 1000000000000\n[ranges]\n\"control.speed.speed\" = [0.1, 0.2]\n",
     );
     assert!(e.contains("1000000000000 (samples)"), "{e}");
+    let e = refuse("scenario = \"base.toml\"\nout = \"out\"\nsamples = 1e18\n");
+    assert!(
+        e.ends_with("invalid type: floating point `1000000000000000000.0`, expected usize"),
+        "{e}"
+    );
 }

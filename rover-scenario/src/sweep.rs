@@ -225,7 +225,9 @@ impl Plan {
         dir: &Path,
         base_text: Option<&str>,
     ) -> Result<Self, SweepError> {
-        let file: PlanFile = toml::from_str(text).map_err(|e| plan_err(origin, e))?;
+        // toml's rendering ends in a line break; the message's printer adds one.
+        let file: PlanFile =
+            toml::from_str(text).map_err(|e| plan_err(origin, e.to_string().trim_end()))?;
         let base_origin = dir.join(&file.scenario);
         let base_text = match base_text {
             Some(t) => t.to_string(),
@@ -233,8 +235,12 @@ impl Plan {
                 plan_err(origin, format!("scenario {}: {e}", base_origin.display()))
             })?,
         };
-        let base: toml::Table = toml::from_str(&base_text)
-            .map_err(|e| plan_err(&base_origin, format!("not a TOML table: {e}")))?;
+        let base: toml::Table = toml::from_str(&base_text).map_err(|e| {
+            plan_err(
+                &base_origin,
+                format!("not a TOML table: {}", e.to_string().trim_end()),
+            )
+        })?;
         let base_dir = base_origin
             .parent()
             .map(Path::to_path_buf)
