@@ -10,8 +10,8 @@
 //! protocol (read or written in place, no copy held), whole trajectories go
 //! out as bytes that numpy views. Long work runs with the interpreter
 //! released, so other Python threads (and Ray's) go on meanwhile; it takes
-//! the interpreter back every [`SIGNAL_POLL`] to run Python's signal
-//! handlers, so that Ctrl-C stops it (see [`Signals`]).
+//! the interpreter back every 50 ms (`SIGNAL_POLL`) to run Python's signal
+//! handlers, so that Ctrl-C stops it (see `Signals`).
 
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
