@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import os
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Mapping, Optional, Union
 
@@ -48,27 +49,69 @@ def builtins() -> list[str]:
 
 def load(source: Union[str, os.PathLike]) -> Rover:
     """A rover: a built-in name (``"swing4"``), a description file, or a
-    description's TOML text."""
-    return _native.load(os.fspath(source))
+    description's TOML text. A ``pathlib.Path`` (any ``os.PathLike``) is
+    always a file; a ``str`` is a file when one of that name exists, else
+    TOML text when it holds a line break, else a name or a path."""
+    if isinstance(source, os.PathLike):
+        return _native.load(os.fspath(source), False)
+    if isinstance(source, str):
+        return _native.load(source, False if os.path.isfile(source) else None)
+    raise TypeError(f"a rover is a name, a path or TOML text, not {type(source).__name__}")
 
 
-def _scenario_source(scenario: ScenarioLike) -> tuple[str, str, str]:
-    """(TOML text, name in messages, folder of relative paths) of a scenario
-    given as a path, TOML text or a dict."""
+def _scenario_source(scenario: ScenarioLike) -> tuple[str, str, str, Optional[str]]:
+    """(TOML text, name in messages, folder of relative paths, how a str
+    was taken when that can be doubted) of a scenario given as a path, TOML
+    text or a dict.
+
+    A ``pathlib.Path`` (any ``os.PathLike``) is always a file. A ``str`` is
+    a file when a file of that name exists; else TOML text when it holds a
+    line break, or an ``=`` and does not end in ``.toml``; else a path."""
     if isinstance(scenario, Mapping):
-        return _toml_dumps(scenario), "<dict>", os.getcwd()
-    if isinstance(scenario, os.PathLike) or (
-        isinstance(scenario, str) and "\n" not in scenario and "=" not in scenario
-    ):
-        path = Path(scenario)
-        try:
-            text = path.read_text()
-        except OSError as e:
-            raise RoverError(f"error: {path}: cannot read the scenario: {e.strerror}") from None
-        return text, str(path), str(path.parent)
-    if isinstance(scenario, str):
-        return scenario, "<string>", os.getcwd()
-    raise TypeError(f"a scenario is a path, TOML text or a dict, not {type(scenario).__name__}")
+        return _toml_dumps(scenario), "<dict>", os.getcwd(), None
+    if isinstance(scenario, os.PathLike):
+        return (*_read_scenario(Path(scenario), None), None)
+    if not isinstance(scenario, str):
+        raise TypeError(f"a scenario is a path, TOML text or a dict, not {type(scenario).__name__}")
+    if os.path.isfile(scenario):
+        return (*_read_scenario(Path(scenario), None), None)
+    if "\n" in scenario:
+        return scenario, "<string>", os.getcwd(), None
+    if "=" in scenario and not scenario.rstrip().endswith(".toml"):
+        why = (
+            "the scenario string was taken as TOML text: it holds `=` and no file of that name exists"
+            " (for a file, give its path as pathlib.Path)"
+        )
+        return scenario, "<string>", os.getcwd(), why
+    why = (
+        "the scenario string was taken as a path: it holds no line break"
+        + (" and ends in .toml" if "=" in scenario else " and no `=`, as TOML text would")
+    )
+    return (*_read_scenario(Path(scenario), why), None)
+
+
+def _read_scenario(path: Path, why: Optional[str]) -> tuple[str, str, str]:
+    """A scenario file's text, name and folder; `why` says, in an error,
+    why a str was taken as a path."""
+    try:
+        text = path.read_text()
+    except (OSError, UnicodeDecodeError) as e:
+        reason = e.strerror if isinstance(e, OSError) and e.strerror else str(e)
+        note = f"\n  = note: {why}" if why else ""
+        raise RoverError(f"error: {path}: cannot read the scenario file: {reason}{note}") from None
+    return text, str(path), str(path.parent)
+
+
+@contextmanager
+def _noted(note: Optional[str]):
+    """A RoverError raised within, with `note` (how the scenario was
+    taken) added to its message."""
+    try:
+        yield
+    except RoverError as e:
+        if note is None:
+            raise
+        raise type(e)(f"{e}\n  = note: {note}") from None
 
 
 class Result:
@@ -110,15 +153,26 @@ def simulate(
     """Run ``scenario`` (a path, TOML text or a dict) with ``rover`` (a
     loaded rover or a name; None: the scenario's own), as ``rover simulate``
     does. ``generic`` runs the interpreted plant even for a built-in rover.
-    Raises RoverError for a scenario that cannot run."""
+    Raises RoverError for a scenario that cannot run.
+
+    Ctrl-C (SIGINT, or any signal whose Python handler raises) stops the
+    run within one output interval and 50 ms: the handler's exception
+    (KeyboardInterrupt) is raised with what was computed attached as its
+    ``result`` attribute, a Result of status "interrupted" holding the rows
+    up to the stop."""
     if scenario is None:
         raise TypeError("simulate() needs a scenario")
     if isinstance(rover, (str, os.PathLike)):
         rover = load(rover)
-    text, origin, base = _scenario_source(scenario)
-    columns, data, rows, summary, units = _native.simulate(rover, text, origin, base, generic)
+    text, origin, base, note = _scenario_source(scenario)
+    with _noted(note):
+        columns, data, rows, summary, units, raised = _native.simulate(rover, text, origin, base, generic)
     table = np.frombuffer(data, dtype=np.float64).reshape(rows, len(columns))
-    return Result(list(columns), table, json.loads(summary), list(units))
+    result = Result(list(columns), table, json.loads(summary), list(units))
+    if raised is not None:
+        raised.result = result
+        raise raised
+    return result
 
 
 class Simulation(_native.Simulation):
@@ -131,6 +185,11 @@ class Simulation(_native.Simulation):
     value per wheel; ``set_speed``/``set_steering_setpoint`` move the
     built-in loops' set-points. Stepped without changes, the states are the
     whole run's rows bit for bit. Long ``step(n)`` calls release the GIL.
+
+    Ctrl-C stops a long ``step(n)`` after the step in progress (checked
+    every 50 ms): KeyboardInterrupt is raised, and the simulation stays at
+    the last step completed (``time``, ``state`` and ``row`` agree), ready
+    to step on.
     """
 
     def __new__(cls, rover=None, scenario=None, *, generic: bool = False):
@@ -138,8 +197,9 @@ class Simulation(_native.Simulation):
             raise TypeError("Simulation() needs a scenario")
         if isinstance(rover, (str, os.PathLike)):
             rover = load(rover)
-        text, origin, base = _scenario_source(scenario)
-        return super().__new__(cls, rover, text, origin, base, generic)
+        text, origin, base, note = _scenario_source(scenario)
+        with _noted(note):
+            return super().__new__(cls, rover, text, origin, base, generic)
 
     def __init__(self, rover=None, scenario=None, *, generic: bool = False):
         self._state = np.empty(2 * self.dof)

@@ -82,24 +82,28 @@ def sweep(
     row with its status and error. ``address`` is a Ray cluster's (None: a
     running Ray, or a local one). Returns the table as a pandas DataFrame.
     """
-    from . import _scenario_source
+    from . import _noted, _scenario_source
 
     out = Path(out).resolve()
-    (out / "tasks").mkdir(parents=True, exist_ok=True)
-    text, origin, base = _scenario_source(base_scenario)
-    if origin in ("<dict>", "<string>"):
-        scenario_file = "base.toml"
-        _write_whole(out / scenario_file, text)
-    else:
-        scenario_file = str(Path(origin).resolve())
+    text, origin, base, note = _scenario_source(base_scenario)
+    written = origin in ("<dict>", "<string>")
+    scenario_file = "base.toml" if written else str(Path(origin).resolve())
     plan_text = _plan_text(scenario_file, rover, seeds, samples, sample_seed, grid, ranges)
     plan_path = out / "plan.toml"
     if plan_path.exists() and plan_path.read_text() != plan_text:
         raise _native.RoverError(
             f"error: {plan_path}: another sweep's plan is there; give this sweep another `out` folder"
         )
+    # The plan is checked before anything is written for it: a plan refused
+    # leaves nothing in `out` that would stand in the way of the next.
+    with _noted(note):
+        _native.plan_info(plan_text, str(plan_path), str(out), text)
+    (out / "tasks").mkdir(parents=True, exist_ok=True)
+    if written:
+        _write_whole(out / scenario_file, text)
     _write_whole(plan_path, plan_text)
-    return sweep_plan(plan_path, address=address, table=table)
+    with _noted(note):
+        return sweep_plan(plan_path, address=address, table=table)
 
 
 def sweep_plan(plan: Union[str, os.PathLike], *, address: Optional[str] = None, table: str = "parquet"):
@@ -136,14 +140,38 @@ def sweep_plan(plan: Union[str, os.PathLike], *, address: Optional[str] = None, 
 
 def gather(out: Union[str, os.PathLike], count: int, *, table: str = "parquet"):
     """Every task's record under ``out`` as one table (task, param.*,
-    status, error, figures), written as results.parquet or results.csv."""
+    status, error, figures), written as results.parquet or results.csv.
+
+    A task without a record is a row with status ``missing``; a record that
+    cannot be read or is not a task record (a JSON object), a row with
+    status ``unreadable`` and the reason as its ``error``. The table is
+    written either way; then, if any task lacks its result, RoverError is
+    raised naming them, the table attached as its ``table`` attribute."""
     import pandas as pd
 
+    if table not in ("parquet", "csv"):
+        raise ValueError(f"table: 'parquet' or 'csv', not {table!r}")
     out = Path(out)
-    rows = []
+    rows, missing, unreadable = [], [], []
     for i in range(count):
         path = out / "tasks" / f"{i:06}.json"
-        rows.append(json.loads(path.read_text()) if path.exists() else {"task": i, "status": "missing"})
+        try:
+            record = json.loads(path.read_text())
+            if not isinstance(record, dict):
+                raise ValueError("not a task record (a JSON object)")
+        except FileNotFoundError:
+            missing.append(i)
+            record = {"task": i, "status": "missing"}
+        except (OSError, UnicodeDecodeError, ValueError) as e:
+            reason = e.strerror if isinstance(e, OSError) and e.strerror else str(e)
+            if isinstance(e, json.JSONDecodeError):
+                reason = f"not JSON: {e}"
+            elif isinstance(e, OSError):
+                reason = f"cannot read it: {reason}"
+            why = f"{path}: {reason}"
+            unreadable.append(why)
+            record = {"task": i, "status": "unreadable", "error": why}
+        rows.append(record)
     df = pd.DataFrame(rows)
 
     def rank(c: str) -> int:
@@ -158,10 +186,25 @@ def gather(out: Union[str, os.PathLike], count: int, *, table: str = "parquet"):
         return 4
 
     df = df[sorted(df.columns, key=rank)]
+    written = out / f"results.{table}"
     if table == "parquet":
-        df.to_parquet(out / "results.parquet", index=False)
-    elif table == "csv":
-        df.to_csv(out / "results.csv", index=False)
+        df.to_parquet(written, index=False)
     else:
-        raise ValueError(f"table: 'parquet' or 'csv', not {table!r}")
+        df.to_csv(written, index=False)
+    if missing or unreadable:
+        parts = []
+        if missing:
+            shown = ", ".join(map(str, missing[:10])) + (f" and {len(missing) - 10} more" if len(missing) > 10 else "")
+            parts.append(f"{len(missing)} missing (task{'s' if len(missing) > 1 else ''} {shown})")
+        if unreadable:
+            shown = "; ".join(unreadable[:10]) + (f"; and {len(unreadable) - 10} more" if len(unreadable) > 10 else "")
+            parts.append(f"{len(unreadable)} unreadable ({shown})")
+        e = _native.RoverError(
+            f"error: {written}: written, but {len(missing) + len(unreadable)} of {count} tasks have no result: "
+            + ", ".join(parts)
+            + "\n  = help: run the sweep again: it runs every task without a record; delete an unreadable record"
+            " to run its task again"
+        )
+        e.table = df
+        raise e
     return df

@@ -9,13 +9,17 @@
 //! Arrays cross as buffers: numpy arrays come in through the buffer
 //! protocol (read or written in place, no copy held), whole trajectories go
 //! out as bytes that numpy views. Long work runs with the interpreter
-//! released, so other Python threads (and Ray's) go on meanwhile.
+//! released, so other Python threads (and Ray's) go on meanwhile; it takes
+//! the interpreter back every 50 ms (`SIGNAL_POLL`) to run Python's signal
+//! handlers, so that Ctrl-C stops it (see `Signals`).
 
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use pyo3::create_exception;
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::PyBaseException;
+use pyo3::exceptions::{PyException, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use rover_runtime::row::Columns;
@@ -45,6 +49,39 @@ fn py_err(e: PrepareError) -> PyErr {
 /// A sweep that cannot run, likewise.
 fn sweep_err(e: SweepError) -> PyErr {
     RoverError::new_err(e.user_message())
+}
+
+/// How often long work, run with the interpreter released, takes it back
+/// to run Python's signal handlers.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Python's signal handlers, run from work that released the interpreter:
+/// [`Signals::poll`] takes the interpreter back at most every
+/// [`SIGNAL_POLL`] and runs them (`Python::check_signals`; handlers run on
+/// the main thread only, elsewhere this does nothing). The exception a
+/// handler raises (KeyboardInterrupt for Ctrl-C) is kept for the caller to
+/// raise once the work has stopped where it stands.
+struct Signals {
+    last: Instant,
+    raised: Option<PyErr>,
+}
+
+impl Signals {
+    fn new() -> Self {
+        Self {
+            last: Instant::now(),
+            raised: None,
+        }
+    }
+
+    /// Whether a handler raised (now or before): the work should stop.
+    fn poll(&mut self) -> bool {
+        if self.raised.is_none() && self.last.elapsed() >= SIGNAL_POLL {
+            self.last = Instant::now();
+            self.raised = Python::attach(|py| py.check_signals()).err();
+        }
+        self.raised.is_some()
+    }
 }
 
 /// A loaded rover: its description, and the name or path it came from
@@ -108,10 +145,12 @@ impl Rover {
 }
 
 /// Load a rover: a built-in name, a description file, or a description's
-/// TOML text (told apart by a line break, which no name or path has).
+/// TOML text; `text` says which of text (true) or a name or path (false)
+/// `source` is, else a line break (which no name has) tells them apart.
 #[pyfunction]
-fn load(source: &str) -> PyResult<Rover> {
-    let spec = if source.contains('\n') {
+#[pyo3(signature = (source, text=None))]
+fn load(source: &str, text: Option<bool>) -> PyResult<Rover> {
+    let spec = if text.unwrap_or_else(|| source.contains('\n')) {
         rover_spec::load_str(source, "<string>")
     } else {
         load_rover(source, None)
@@ -140,16 +179,20 @@ fn prepare(
 
 /// A whole run as it crosses to Python: (column names, the rows as
 /// native-endian f64 bytes, row count, the summary as JSON, the columns'
-/// units).
+/// units, and the exception a signal handler raised, which stopped the run
+/// where it stood: the rows are those computed, the summary's status
+/// `interrupted`; the Python side raises it with the result attached).
 type WholeRun<'py> = (
     Vec<String>,
     Bound<'py, PyBytes>,
     usize,
     String,
     Vec<&'static str>,
+    Option<Py<PyBaseException>>,
 );
 
-/// A whole run, as `rover simulate` runs it ([`WholeRun`]).
+/// A whole run, as `rover simulate` runs it ([`WholeRun`]); Ctrl-C stops
+/// it as it stops the command line's.
 #[pyfunction]
 #[pyo3(signature = (rover, text, origin, base, generic=false))]
 fn simulate<'py>(
@@ -161,13 +204,20 @@ fn simulate<'py>(
     generic: bool,
 ) -> PyResult<WholeRun<'py>> {
     let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
-    let run = py.detach(|| -> Result<(Vec<u8>, _), PrepareError> {
+    let run = py.detach(|| -> Result<(Vec<u8>, _, _), PrepareError> {
         let mut csv = Vec::new();
-        let never = AtomicBool::new(false);
-        let summary = prepared.run(generic, &mut csv, &never, |_| {})?;
-        Ok((csv, serde_json::to_string_pretty(&summary)))
+        let stop = AtomicBool::new(false);
+        let mut signals = Signals::new();
+        // Polled at each output row, as the run polls `stop`.
+        let summary = prepared.run(generic, &mut csv, &stop, |_| {
+            if signals.poll() {
+                stop.store(true, Ordering::Relaxed);
+            }
+        })?;
+        let json = serde_json::to_string_pretty(&summary);
+        Ok((csv, json, signals.raised))
     });
-    let (csv, json) = run.map_err(py_err)?;
+    let (csv, json, raised) = run.map_err(py_err)?;
     let json = json.map_err(|e| RoverError::new_err(format!("error: the summary: {e}")))?;
     let text = String::from_utf8_lossy(&csv);
     let mut lines = text.lines();
@@ -194,7 +244,8 @@ fn simulate<'py>(
     let soil = prepared.scenario.soft();
     let units = Columns::on_ground(model.m(), model.wheels.len(), soil)
         .units(&prepared.spec.coordinate_linear);
-    Ok((columns, PyBytes::new(py, &data), rows, json, units))
+    let raised = raised.map(|e| e.into_value(py));
+    Ok((columns, PyBytes::new(py, &data), rows, json, units, raised))
 }
 
 /// Steps of a run up to this many hold the interpreter: releasing and
@@ -213,12 +264,15 @@ struct Simulation {
     units: Vec<&'static str>,
 }
 
-/// The f64 buffer of a Python object (a C-contiguous float64 numpy array),
-/// lent to `f` without a copy or an allocation; `writable` asks for write
-/// access.
+/// The f64 buffer of a Python object (a C-contiguous, 1-D float64 numpy
+/// array of `len` values), lent to `f` without a copy or an allocation;
+/// `writable` asks for write access. Anything else is a ValueError naming
+/// the argument (`what`), what it was given and what it takes.
 fn with_buffer<R>(
     obj: &Bound<'_, PyAny>,
     writable: bool,
+    what: &str,
+    len: usize,
     f: impl FnOnce(&mut [f64]) -> PyResult<R>,
 ) -> PyResult<R> {
     use pyo3::ffi;
@@ -226,25 +280,57 @@ fn with_buffer<R>(
     if writable {
         flags |= ffi::PyBUF_WRITABLE;
     }
+    let expected = format!("a 1-D float64 array of {len} values (shape ({len},))");
     let mut view = std::mem::MaybeUninit::<ffi::Py_buffer>::zeroed();
     // SAFETY: `view` is filled by the interpreter on success and released
-    // below on every path; the slice lives only during `f`, while the
+    // below on every path; `shape` holds `ndim` lengths (asked for by
+    // PyBUF_C_CONTIGUOUS); the slice lives only during `f`, while the
     // buffer is held.
     unsafe {
         if ffi::PyObject_GetBuffer(obj.as_ptr(), view.as_mut_ptr(), flags) != 0 {
-            return Err(PyErr::fetch(obj.py()));
+            let cause = PyErr::fetch(obj.py());
+            let given = obj
+                .get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default();
+            let message = format!("{what}: expected {expected}, got {given} ({cause})");
+            // No buffer at all (a list) is the wrong type; a buffer that
+            // cannot be lent so (not contiguous, read-only) a wrong value.
+            let err = if ffi::PyObject_CheckBuffer(obj.as_ptr()) == 0 {
+                PyTypeError::new_err(message)
+            } else {
+                PyValueError::new_err(message)
+            };
+            err.set_cause(obj.py(), Some(cause));
+            return Err(err);
         }
         let mut view = view.assume_init();
-        let format_ok = !view.format.is_null() && {
-            let fmt = std::ffi::CStr::from_ptr(view.format).to_bytes();
-            fmt == b"d" || fmt == b"<d" || fmt == b"=d" || fmt == b"@d"
-        };
-        let result = if !format_ok || view.itemsize != 8 {
-            Err(PyValueError::new_err(
-                "expected a float64 array (numpy.float64)",
-            ))
+        let format = if view.format.is_null() {
+            "B".to_string()
         } else {
-            let len = (view.len / 8) as usize;
+            String::from_utf8_lossy(std::ffi::CStr::from_ptr(view.format).to_bytes()).into_owned()
+        };
+        let format_ok = matches!(format.as_str(), "d" | "<d" | "=d" | "@d") && view.itemsize == 8;
+        let shape: Vec<isize> = if view.shape.is_null() || view.ndim <= 0 {
+            Vec::new()
+        } else {
+            std::slice::from_raw_parts(view.shape, view.ndim as usize).to_vec()
+        };
+        let result = if !format_ok {
+            Err(PyValueError::new_err(format!(
+                "{what}: expected {expected}, got items of format '{format}' (convert with numpy.asarray(..., dtype=numpy.float64))"
+            )))
+        } else if view.ndim != 1 || shape.first() != Some(&(len as isize)) {
+            let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
+            let given = match dims.len() {
+                1 => format!("({},)", dims[0]),
+                _ => format!("({})", dims.join(", ")),
+            };
+            Err(PyValueError::new_err(format!(
+                "{what}: expected {expected}, got shape {given}"
+            )))
+        } else {
             let slice = if len == 0 {
                 &mut [][..]
             } else {
@@ -255,10 +341,6 @@ fn with_buffer<R>(
         ffi::PyBuffer_Release(&mut view);
         result
     }
-}
-
-fn length_err(what: &str, want: usize, got: usize) -> PyErr {
-    PyValueError::new_err(format!("{what}: expected {want} values, got {got}"))
 }
 
 #[pymethods]
@@ -291,17 +373,30 @@ impl Simulation {
     }
 
     /// Advance `n` output intervals; the time reached. Raises RunFailed
-    /// when the run fails (it then stays failed until reset()).
+    /// when the run fails (it then stays failed until reset()). Ctrl-C (a
+    /// signal handler that raises) stops a long call after the step in
+    /// progress: the exception is raised and the simulation stays at the
+    /// last step completed, ready to step on.
     #[pyo3(signature = (n=1))]
     fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<f64> {
         let inner = &mut self.inner;
         let result = if n > HOLD_GIL_STEPS {
-            py.detach(|| inner.step(n))
+            py.detach(|| {
+                let mut signals = Signals::new();
+                for _ in 0..n {
+                    inner.step(1)?;
+                    if signals.poll() {
+                        break;
+                    }
+                }
+                Ok(signals.raised)
+            })
         } else {
-            inner.step(n)
+            inner.step(n).map(|()| None)
         };
         match result {
-            Ok(()) => Ok(self.inner.time()),
+            Ok(None) => Ok(self.inner.time()),
+            Ok(Some(raised)) => Err(raised),
             Err(e) => Err(RunFailed::new_err(format!("error: {e}"))),
         }
     }
@@ -354,10 +449,7 @@ impl Simulation {
     fn state_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
         let y = self.inner.state();
         let n2 = 2 * self.dof;
-        with_buffer(out, true, |o| {
-            if o.len() != n2 {
-                return Err(length_err("state", n2, o.len()));
-            }
+        with_buffer(out, true, "state", n2, |o| {
             o.copy_from_slice(&y[..n2]);
             Ok(())
         })
@@ -367,10 +459,7 @@ impl Simulation {
     /// `out`.
     fn row_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
         let cols = self.inner.columns().len();
-        with_buffer(out, true, |o| {
-            if o.len() != cols {
-                return Err(length_err("row", cols, o.len()));
-            }
+        with_buffer(out, true, "row", cols, |o| {
             self.inner.row_into(o);
             Ok(())
         })
@@ -408,12 +497,9 @@ impl Simulation {
     fn command(&mut self, values: &Bound<'_, PyAny>, torques: bool) -> PyResult<()> {
         let what = if torques { "torques" } else { "steering" };
         let s = &mut self.inner;
-        with_buffer(values, false, |v| {
-            let buf = s.command_buffer();
-            if v.len() != buf.len() {
-                return Err(length_err(what, buf.len(), v.len()));
-            }
-            buf.copy_from_slice(v);
+        let wheels = s.command_buffer().len();
+        with_buffer(values, false, what, wheels, |v| {
+            s.command_buffer().copy_from_slice(v);
             let applied = if torques {
                 s.apply_torques()
             } else {
@@ -424,11 +510,14 @@ impl Simulation {
     }
 }
 
-/// A sweep plan's task count and results folder (the plan as TOML text,
-/// named `origin`, its paths from `dir`).
+/// A sweep plan's task count, results folder and base scenario's text
+/// (the plan as TOML text, named `origin`, its paths from `dir`), once
+/// every task is checked ([`Plan::check`]): a plan whose tasks cannot run
+/// is refused before any runs.
 #[pyfunction]
 #[pyo3(signature = (text, origin, dir, base_text=None))]
 fn plan_info(
+    py: Python<'_>,
     text: &str,
     origin: &str,
     dir: &str,
@@ -436,6 +525,7 @@ fn plan_info(
 ) -> PyResult<(usize, String, String)> {
     let plan =
         Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text).map_err(sweep_err)?;
+    py.detach(|| plan.check()).map_err(sweep_err)?;
     let base = std::fs::read_to_string(&plan.base_origin).unwrap_or_default();
     let base = base_text.map(str::to_string).unwrap_or(base);
     Ok((plan.tasks.len(), plan.out.display().to_string(), base))

@@ -2,7 +2,10 @@
 
 import os
 import shutil
+import signal
 import subprocess
+import threading
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -40,3 +43,28 @@ def cli():
 @pytest.fixture
 def data():
     return DATA
+
+
+#: A run far longer than the tests wait: RK4 at 10 µs computes each
+#: simulated second for about half a second (an output interval, 25 ms),
+#: whatever the ground does.
+LONG = {
+    "rover": "swing4",
+    "duration": 200.0,
+    "output_rate": 20.0,
+    "control": {"speed": {"speed": 0.1}},
+    "integrator": {"rk4": {"step": 1e-5}},
+}
+
+
+@contextmanager
+def interrupt_after(seconds):
+    """SIGINT to this process in `seconds`, as Ctrl-C sends it; never
+    after the block."""
+    timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        timer.join()

@@ -1,12 +1,14 @@
 """Whole runs from Python against the command line's."""
 
 import json
+import time
 import tomllib
 
 import numpy as np
 import pytest
 
 import rover
+from conftest import LONG, interrupt_after
 
 TIMING = {"wall_time_s", "real_time_factor"}
 
@@ -161,3 +163,73 @@ def test_a_rover_that_cannot_climb_the_soil_is_embedded():
     r = rover.simulate(None, steep.replace("duration = 8.0", "duration = 12.0"))
     assert r.status == "embedded"
     assert "embedded at t = " in r.summary["error"]
+
+
+def test_ctrl_c_stops_a_whole_run_and_keeps_what_it_computed():
+    started = time.monotonic()
+    with interrupt_after(0.3), pytest.raises(KeyboardInterrupt) as e:
+        rover.simulate(None, LONG)
+    waited = time.monotonic() - started
+    assert 0.3 <= waited < 1.3
+    r = e.value.result
+    assert r.status == "interrupted"
+    assert r.error.startswith("interrupted by the user at t = ")
+    t = r.trajectory["t"]
+    assert len(t) > 1 and np.all(np.diff(t) > 0)
+    assert t[-1] < LONG["duration"]
+    assert r.summary["t_end"] == pytest.approx(t[-1], abs=1e-3)
+    # The rows are the run's: the same as a run stepped as far.
+    sim = rover.Simulation(None, LONG)
+    sim.step(len(t) - 1)
+    assert np.array_equal(sim.state, r.table[-1, 1 : 1 + 2 * sim.dof])
+
+
+def test_a_path_holding_an_equals_sign_is_read_as_the_file(data, tmp_path):
+    folder = tmp_path / "kp=10"
+    folder.mkdir()
+    path = folder / "speed=0.1.toml"
+    path.write_text((data / "slip_rough.toml").read_text())
+    by_str = rover.simulate(None, str(path))
+    by_path = rover.simulate(None, path)
+    assert by_str.status == "completed"
+    assert np.array_equal(by_str.table, by_path.table)
+    assert rover.Simulation(None, str(path)).columns == by_str.columns
+
+
+def test_a_str_naming_a_file_is_the_file_even_when_it_reads_as_toml(data, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "duration = 0.5").write_text((data / "slip_rough.toml").read_text())
+    r = rover.simulate(None, "duration = 0.5")
+    assert r.summary["t_end"] == 3.0
+    # A pathlib.Path is always a file, whatever its name reads as.
+    with pytest.raises(rover.RoverError) as e:
+        rover.simulate(None, tmp_path / "duration = 1.0")
+    assert str(e.value).startswith(f"error: {tmp_path / 'duration = 1.0'}: cannot read the scenario file: No such file")
+    assert "note" not in str(e.value)
+
+
+def test_a_scenario_string_that_fails_says_how_it_was_taken(tmp_path):
+    with pytest.raises(rover.RoverError) as e:
+        rover.simulate(None, 'duration = "long"')
+    m = str(e.value)
+    assert m.startswith("error: <string>")
+    assert m.endswith("= note: the scenario string was taken as TOML text: it holds `=` and no file of that name exists (for a file, give its path as pathlib.Path)")
+    missing = str(tmp_path / "kp=10.toml")
+    with pytest.raises(rover.RoverError) as e:
+        rover.simulate(None, missing)
+    assert str(e.value) == (
+        f"error: {missing}: cannot read the scenario file: No such file or directory\n"
+        "  = note: the scenario string was taken as a path: it holds no line break and ends in .toml"
+    )
+    with pytest.raises(rover.RoverError) as e:
+        rover.Simulation(None, str(tmp_path / "none"))
+    assert str(e.value).endswith("= note: the scenario string was taken as a path: it holds no line break and no `=`, as TOML text would")
+
+
+def test_a_rover_path_holding_a_line_break_or_equals_sign_is_read_as_the_file(tmp_path):
+    from conftest import REPO
+
+    path = tmp_path / "a=b\nc.toml"
+    path.write_text((REPO / "models" / "swing4.toml").read_text())
+    for source in (path, str(path)):
+        assert rover.load(source).name == "swing4"

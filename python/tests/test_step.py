@@ -8,11 +8,14 @@ import numpy as np
 import pytest
 
 import rover
+from conftest import DATA, LONG, interrupt_after
 
 
 @pytest.fixture
 def sim(data):
     return rover.Simulation(None, data / "slip_rough.toml")
+
+
 
 
 def test_stepping_without_changes_gives_the_whole_runs_rows_bit_for_bit(data, sim):
@@ -62,16 +65,43 @@ def test_open_loop_torques_and_set_points_change_the_motion(data):
 
 
 def test_commands_of_the_wrong_length_or_type_are_errors(sim):
-    with pytest.raises(ValueError, match="torques: expected 4 values, got 3"):
+    with pytest.raises(ValueError, match=r"torques: expected a 1-D float64 array of 4 values \(shape \(4,\)\), got shape \(3,\)$"):
         sim.set_torques(np.zeros(3))
-    with pytest.raises(ValueError, match="float64"):
+    with pytest.raises(ValueError, match="torques: expected a 1-D float64 array of 4 values .*, got items of format 'f'"):
         sim.set_torques(np.zeros(4, dtype=np.float32))
     with pytest.raises(rover.RoverError, match="finite"):
         sim.set_torques(np.array([0.0, np.nan, 0.0, 0.0]))
     with pytest.raises(rover.RoverError, match="not steerable|steer"):
         sim.set_steering(np.full(4, 0.1))
-    with pytest.raises(ValueError, match="state: expected 20 values"):
+    with pytest.raises(ValueError, match=r"state: expected a 1-D float64 array of 20 values \(shape \(20,\)\), got shape \(3,\)$"):
         sim.state_into(np.empty(3))
+
+
+def test_per_wheel_arrays_of_another_shape_are_refused_naming_the_shapes(sim):
+    cases = [
+        (np.full((2, 2), 5.0), "(2, 2)"),
+        (np.full((1, 4), 5.0), "(1, 4)"),
+        (np.full((4, 1), 5.0), "(4, 1)"),
+        (np.array(5.0), "()"),
+    ]
+    for torques, shape in cases:
+        with pytest.raises(ValueError) as e:
+            sim.set_torques(torques)
+        assert str(e.value) == f"torques: expected a 1-D float64 array of 4 values (shape (4,)), got shape {shape}"
+        with pytest.raises(ValueError, match=r"^steering: .* got shape "):
+            sim.set_steering(torques)
+    with pytest.raises(ValueError, match=r"^row: expected a 1-D float64 array of \d+ values"):
+        sim.row_into(np.empty((1, len(sim.columns))))
+    # A strided view and a list: no contiguous float64 buffer to lend.
+    with pytest.raises(ValueError, match=r"^torques: expected a 1-D float64 array of 4 values .*, got ndarray \(.*contiguous"):
+        sim.set_torques(np.zeros(8)[::2])
+    with pytest.raises(TypeError, match=r"^torques: expected a 1-D float64 array of 4 values .*, got list"):
+        sim.set_torques([0.0, 0.0, 0.0, 0.0])
+    # Nothing refused was applied: the run goes on as before.
+    sim.step(5)
+    ref = rover.Simulation(None, DATA / "slip_rough.toml")
+    ref.step(5)
+    assert np.array_equal(sim.state, ref.state)
 
 
 def test_a_steering_set_point_needs_a_steering_loop(data):
@@ -131,3 +161,22 @@ def test_long_steps_let_other_threads_run(data):
         worker.join()
         sys.setswitchinterval(old)
     assert during > 1000, during
+
+
+def test_ctrl_c_stops_a_long_step_at_the_last_step_completed():
+    sim = rover.Simulation(None, LONG)
+    started = time.monotonic()
+    with interrupt_after(0.3), pytest.raises(KeyboardInterrupt):
+        sim.step(10**9)
+    waited = time.monotonic() - started
+    assert 0.3 <= waited < 1.3
+    k = round(sim.time / sim.dt)
+    assert k > 0 and sim.time < LONG["duration"]
+    assert sim.error is None and sim.row["t"] == sim.time
+    # The state is the run's at that step, and the run steps on from it.
+    ref = rover.Simulation(None, LONG)
+    ref.step(k)
+    assert ref.time == sim.time
+    assert np.array_equal(ref.state, sim.state)
+    assert sim.step(2) == ref.step(2)
+    assert np.array_equal(ref.state, sim.state)

@@ -113,3 +113,50 @@ def test_the_command_lines_workers_write_the_same_records(local_ray, tmp_path, c
     table = pd.read_csv(cli_dir / "results.csv")
     assert list(table["status"]) == list(df["status"])
     assert list(table.columns) == list(df.columns)
+
+
+def test_a_plan_whose_tasks_cannot_run_is_refused_before_any_is_submitted(local_ray, tmp_path):
+    out = tmp_path / "sweep"
+    with pytest.raises(rover.RoverError) as e:
+        rover.sweep(BASE, grid={"control.speed.kpp": [1.0, 2.0]}, out=out)
+    m = str(e.value)
+    assert m.startswith(f"error: {out / 'plan.toml'}: grid.\"control.speed.kpp\" = 1.0: task 0's scenario is refused: unknown field `kpp`")
+    assert "`kp`" in m
+    flat = {k: v for k, v in BASE.items() if k != "terrain"}
+    with pytest.raises(rover.RoverError, match="seeds: each task sets terrain.seed, which only a random terrain has"):
+        rover.sweep(flat, seeds=[1, 2], out=tmp_path / "flat")
+    with pytest.raises(rover.RoverError, match=r"ranges.\"control.speed.speed\": \[-1e308, 1e308\] is wider"):
+        rover.sweep(BASE, samples=2, ranges={"control.speed.speed": [-1e308, 1e308]}, out=tmp_path / "wide")
+    with pytest.raises(rover.RoverError, match=r"1000000000000 \(samples\).* at most 1000000"):
+        rover.sweep(BASE, samples=10**12, ranges={"control.speed.speed": [0.1, 0.2]}, out=tmp_path / "many")
+    # Nothing written: the same folder takes the plan once corrected.
+    for folder in ("sweep", "flat", "wide", "many"):
+        assert not (tmp_path / folder).exists()
+    df = rover.sweep(BASE, grid={"control.speed.kp": [1.0, 2.0]}, out=out)
+    assert list(df["status"]) == ["completed", "completed"]
+
+
+def test_gathering_names_the_missing_and_unreadable_records_and_keeps_the_table(tmp_path):
+    from rover.sweep import gather
+
+    tasks = tmp_path / "tasks"
+    tasks.mkdir()
+    (tasks / "000000.json").write_text('{"task": 0, "status": "completed", "t_end": 1.0}\n')
+    (tasks / "000001.json").write_text('{"task": 1, "sta')
+    (tasks / "000002.json").mkdir()
+    with pytest.raises(rover.RoverError) as e:
+        gather(tmp_path, 4, table="csv")
+    m = str(e.value)
+    assert m.startswith(
+        f"error: {tmp_path / 'results.csv'}: written, but 3 of 4 tasks have no result: 1 missing (task 3), "
+        f"2 unreadable ({tasks / '000001.json'}: not JSON: "
+    )
+    assert f"; {tasks / '000002.json'}: cannot read it: Is a directory)" in m
+    df = e.value.table
+    assert list(df["status"]) == ["completed", "unreadable", "unreadable", "missing"]
+    on_disk = pd.read_csv(tmp_path / "results.csv")
+    assert list(on_disk["status"]) == list(df["status"])
+    (tasks / "000002.json").rmdir()
+    for i in (1, 2, 3):
+        (tasks / f"{i:06}.json").write_text(json.dumps({"task": i, "status": "completed"}))
+    assert list(gather(tmp_path, 4, table="csv")["status"]) == ["completed"] * 4

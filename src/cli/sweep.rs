@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use rover_scenario::output::write_whole;
-use rover_scenario::sweep::{Plan, gather_csv, worker_tasks};
+use rover_scenario::sweep::{Plan, SweepError, gather_csv, worker_tasks};
 
 use crate::error::CliError;
 
@@ -23,32 +23,38 @@ pub struct SweepArgs {
     /// How many workers share the plan; worker I runs tasks I, I + N, I + 2N, ...
     #[arg(long, default_value_t = 1)]
     pub count: usize,
-    /// Instead of running, gather every task's record into `results.csv`.
+    /// Instead of running, gather every task's record into `results.csv`
+    /// (an error, after writing it, when a record is missing or unreadable).
     #[arg(long)]
     pub gather: bool,
-    /// Print the number of tasks and stop.
+    /// Check the plan's every task and print their number.
     #[arg(long)]
     pub list: bool,
 }
 
 /// Run this worker's tasks whose records do not exist yet, each record
-/// written whole as soon as its run ends; or gather.
+/// written whole as soon as its run ends; or gather. The plan is checked
+/// whole ([`Plan::check`]) before a task runs or the tasks are counted.
 pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     let plan = Plan::load(&args.plan)?;
-    if args.list {
-        println!("{}", plan.tasks.len());
-        return Ok(());
-    }
     if args.gather {
-        let path = gather_csv(&plan)?;
-        eprintln!("wrote {}", path.display());
+        let gathered = gather_csv(&plan)?;
+        if !gathered.complete() {
+            return Err(SweepError::Incomplete(gathered).into());
+        }
+        eprintln!("wrote {}", gathered.table.display());
         return Ok(());
     }
-    if args.count == 0 || args.index >= args.count {
+    if !args.list && (args.count == 0 || args.index >= args.count) {
         return Err(CliError::Usage(format!(
             "--index {} --count {}: give 0 ≤ index < count",
             args.index, args.count
         )));
+    }
+    plan.check()?;
+    if args.list {
+        println!("{}", plan.tasks.len());
+        return Ok(());
     }
     let dir = plan.out.join("tasks");
     std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, "create", e))?;
