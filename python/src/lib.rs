@@ -526,7 +526,8 @@ fn plan_info(
     let plan =
         Plan::parse_with(text, Path::new(origin), Path::new(dir), base_text).map_err(sweep_err)?;
     py.detach(|| plan.check()).map_err(sweep_err)?;
-    let base = std::fs::read_to_string(&plan.base_origin).unwrap_or_default();
+    let base =
+        rover_files::read_text(&plan.base_origin, rover_files::Limit::Text).unwrap_or_default();
     let base = base_text.map(str::to_string).unwrap_or(base);
     Ok((plan.tasks.len(), plan.out.display().to_string(), base))
 }

@@ -206,7 +206,8 @@ fn plan_err(origin: &Path, message: impl std::fmt::Display) -> SweepError {
 impl Plan {
     /// Read the plan file at `path`.
     pub fn load(path: &Path) -> Result<Self, SweepError> {
-        let text = std::fs::read_to_string(path).map_err(|e| plan_err(path, e))?;
+        let text = rover_files::read_text(path, rover_files::Limit::Text)
+            .map_err(|e| plan_err(path, format!("cannot read the plan: {e}")))?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         Self::parse(&text, path, &dir)
     }
@@ -231,9 +232,11 @@ impl Plan {
         let base_origin = dir.join(&file.scenario);
         let base_text = match base_text {
             Some(t) => t.to_string(),
-            None => std::fs::read_to_string(&base_origin).map_err(|e| {
-                plan_err(origin, format!("scenario {}: {e}", base_origin.display()))
-            })?,
+            None => {
+                rover_files::read_text(&base_origin, rover_files::Limit::Text).map_err(|e| {
+                    plan_err(origin, format!("scenario {}: {e}", base_origin.display()))
+                })?
+            }
         };
         let base: toml::Table = toml::from_str(&base_text).map_err(|e| {
             plan_err(
@@ -765,7 +768,7 @@ pub fn gather_csv(plan: &Plan) -> Result<Gathered, SweepError> {
     let mut unreadable = Vec::new();
     for i in 0..plan.tasks.len() {
         let path = plan.task_path(i);
-        let read = match std::fs::read_to_string(&path) {
+        let read = match rover_files::read_text(&path, rover_files::Limit::Data) {
             Ok(text) => match serde_json::from_str::<serde_json::Value>(&text) {
                 Ok(v) if v.is_object() => Ok(v),
                 Ok(_) => Err("not a task record (a JSON object)".to_string()),

@@ -57,7 +57,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         return Ok(());
     }
     let dir = plan.out.join("tasks");
-    std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, "create", e))?;
+    rover_files::OutputDir::create(&dir).map_err(|e| CliError::io(&dir, "create", e))?;
     let (mut ran, mut skipped) = (0, 0);
     for i in worker_tasks(plan.tasks.len(), args.index, args.count) {
         let path = plan.task_path(i);
