@@ -478,7 +478,7 @@ impl<P: Plant> Sim<P> {
             return Err(SetupError::Unsupported {
                 field: "--rate",
                 message: format!(
-                    "{} steps per second: the loop runs from {} to {} Hz",
+                    "{:?} steps per second: the loop runs from {} to {} Hz",
                     config.rate_hz,
                     RATE_RANGE.start(),
                     RATE_RANGE.end()
@@ -789,6 +789,7 @@ fn timer_slack_1ns() {}
 /// of steps that would overrun in turn; simulated time then lags the
 /// wall clock by the dropped steps, which the real-time factor shows.
 pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>) -> Timing {
+    // `Sim::new` took a rate within RATE_RANGE: the step is a Duration.
     let period = Duration::from_secs_f64(sim.h());
     let columns = shared.state.lock().map(|s| s.values.len()).unwrap_or(0);
     let mut row = vec![0.0; columns];

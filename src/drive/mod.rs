@@ -216,7 +216,7 @@ fn prepare(args: &DriveArgs) -> Result<Prepared, CliError> {
 fn check_rate(rate: f64) -> Result<(), CliError> {
     if !RATE_RANGE.contains(&rate) {
         return Err(CliError::Usage(format!(
-            "--rate {rate}: steps per second, between {} and {} (1000 is the default)",
+            "--rate {rate:?}: steps per second, between {} and {} (1000 is the default)",
             RATE_RANGE.start(),
             RATE_RANGE.end()
         )));
@@ -252,7 +252,7 @@ fn check_report_speed(speed: f64, info: &RoverInfo) -> Result<(), CliError> {
     let max = info.max_speed();
     if !(-max..=max).contains(&speed) {
         return Err(CliError::Usage(format!(
-            "--report-speed {speed}: m/s, within ±{max} m/s for this rover ({} wheel radii a second; 0.1 is the default)",
+            "--report-speed {speed:?}: m/s, within ±{max} m/s for this rover ({} wheel radii a second; 0.1 is the default)",
             live::MAX_SPEED_RADII
         )));
     }
@@ -537,7 +537,7 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
 pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
     if !(seconds.is_finite() && seconds > 0.0) {
         return Err(CliError::Usage(format!(
-            "--report {seconds}: seconds of driving, > 0"
+            "--report {seconds:?}: seconds of driving, > 0"
         )));
     }
     check_rate(args.rate)?;

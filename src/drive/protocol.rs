@@ -259,7 +259,7 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
             return Err(bad(
                 "speed",
                 format!(
-                    "`speed` = {v} m/s is beyond ±{max} m/s, what this rover's wheels plausibly reach ({} wheel radii a second)",
+                    "`speed` = {v:?} m/s is beyond ±{max} m/s, what this rover's wheels plausibly reach ({} wheel radii a second)",
                     super::live::MAX_SPEED_RADII
                 ),
             ));
@@ -274,7 +274,7 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
         if s.abs() > MAX_STEER {
             return Err(bad(
                 "steer",
-                format!("`steer` = {s} rad is beyond ±{MAX_STEER} rad"),
+                format!("`steer` = {s:?} rad is beyond ±{MAX_STEER} rad"),
             ));
         }
     }
@@ -289,7 +289,7 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
             return Err(bad(
                 "delta_tau",
                 format!(
-                    "`delta_tau` = {dt} N·m is beyond ±{max} N·m (twice the rover's largest motor torque: beyond it each side's wheels are held at their motor limits whatever it is)"
+                    "`delta_tau` = {dt:?} N·m is beyond ±{max} N·m (twice the rover's largest motor torque: beyond it each side's wheels are held at their motor limits whatever it is)"
                 ),
             ));
         }
@@ -315,7 +315,7 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
         return Err(bad(
             "steering",
             format!(
-                "`steering`[{k}] (wheel {}) = {} rad is beyond ±π rad",
+                "`steering`[{k}] (wheel {}) = {:?} rad is beyond ±π rad",
                 k + 1,
                 angles[k]
             ),
@@ -327,7 +327,7 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
         return Err(bad(
             "rate",
             format!(
-                "`rate` = {rate}: state messages per second, from {MIN_RATE} to {max_rate} (the loop's rate)"
+                "`rate` = {rate:?}: state messages per second, from {MIN_RATE} to {max_rate} (the loop's rate)"
             ),
         ));
     }
@@ -336,7 +336,7 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
     {
         return Err(bad(
             "watchdog",
-            format!("`watchdog` = {w}: seconds, from 0 (off) to {MAX_WATCHDOG}"),
+            format!("`watchdog` = {w:?}: seconds, from 0 (off) to {MAX_WATCHDOG}"),
         ));
     }
     Ok(r)
