@@ -48,7 +48,7 @@ pub const WRITE_TIMEOUT: Duration = Duration::from_secs(5);
 /// command is tens of bytes. A larger one closes the connection with
 /// code 1009 (message too big) before its payload is read.
 pub const MAX_MESSAGE: usize = 64 * 1024;
-/// The most a WebSocket session buffers for a client that reads slowly
+/// The most a WebSocket connection buffers for a client that reads slowly
 /// \[bytes\]: several state messages; a send beyond it fails and the
 /// connection ends.
 pub const MAX_WRITE_BUFFER: usize = 1024 * 1024;
