@@ -19,6 +19,8 @@ fn args(rover: &str, scenario: &str) -> DriveArgs {
         rover: Some(rover.into()),
         scenario: Some(scenario.into()),
         port: 0,
+        allow_origin: Vec::new(),
+        token: None,
         rate: 1000.0,
         method: None,
         generic: false,
@@ -49,11 +51,33 @@ fn next_of(ws: &mut Client, kind: &str) -> Value {
 }
 
 fn get(port: u16, path: &str) -> String {
+    request(
+        port,
+        &format!("GET {path} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n"),
+    )
+}
+
+/// Send `head` as it is and read the answer until the server closes (what
+/// came before a reset counts: a refused client may be reset once answered).
+fn request(port: u16, head: &str) -> String {
     let mut s = TcpStream::connect(("127.0.0.1", port)).unwrap();
-    write!(s, "GET {path} HTTP/1.1\r\nHost: localhost\r\n\r\n").unwrap();
-    let mut out = String::new();
-    s.read_to_string(&mut out).unwrap();
-    out
+    s.set_read_timeout(Some(Duration::from_secs(30))).unwrap();
+    let _ = s.write_all(head.as_bytes());
+    let mut out = Vec::new();
+    let mut chunk = [0u8; 4096];
+    while let Ok(n) = s.read(&mut chunk) {
+        if n == 0 {
+            break;
+        }
+        out.extend_from_slice(&chunk[..n]);
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// A WebSocket client as a rig connects: no Origin, the server's token.
+fn connect(running: &rover::drive::Running) -> Client {
+    let url = format!("ws://127.0.0.1:{}/ws?token={}", running.port, running.token);
+    tungstenite::connect(url).unwrap().0
 }
 
 /// A client asks for 0.1 m/s on flat ground: within a few simulated
@@ -64,7 +88,7 @@ fn get(port: u16, path: &str) -> String {
 fn a_websocket_client_drives_the_rover_to_its_speed_set_point() {
     let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
     let running = start(&args("swing4", &scenario)).unwrap();
-    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    let mut ws = connect(&running);
     let hello = next_of(&mut ws, "hello");
     let columns = hello["meta"]["columns"].as_array().unwrap().clone();
     assert_eq!(hello["meta"]["steering"], "slip", "{hello}");
@@ -119,7 +143,7 @@ fn a_websocket_client_drives_the_rover_to_its_speed_set_point() {
 fn bad_commands_are_answered_with_errors_and_change_nothing() {
     let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
     let running = start(&args("swing4", &scenario)).unwrap();
-    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    let mut ws = connect(&running);
     next_of(&mut ws, "hello");
     ws.send(Message::text(r#"{"speed": 0.05}"#)).unwrap();
     for (bad, says) in [
@@ -137,6 +161,12 @@ fn bad_commands_are_answered_with_errors_and_change_nothing() {
         (r#"{"rate": 0}"#, "`rate`"),
         (r#"{"rate": 1e9}"#, "`rate`"),
         (r#"{"speed": 1e999}"#, "not JSON"),
+        (r#"{"rate": 1e-300}"#, "`rate` = "),
+        (r#"{"rate": 5e-324}"#, "`rate` = "),
+        (r#"{"speed": 1e308}"#, "`speed` = 1"),
+        (r#"{"speed": -5}"#, "beyond ±4.5 m/s"),
+        (r#"{"delta_tau": -1e308}"#, "`delta_tau` = "),
+        (r#"{"watchdog": 1e308}"#, "`watchdog` = "),
     ] {
         ws.send(Message::text(bad)).unwrap();
         let e = next_of(&mut ws, "error");
@@ -167,7 +197,8 @@ fn the_page_and_its_data_are_served() {
     let t: Value = serde_json::from_str(body).unwrap();
     assert_eq!(t["z"].as_array().unwrap().len(), 256 * 256);
     assert!(get(port, "/nothing").starts_with("HTTP/1.1 404"));
-    assert!(get(port, "/ws").starts_with("HTTP/1.1 400"));
+    let plain = get(port, &format!("/ws?token={}", running.token));
+    assert!(plain.starts_with("HTTP/1.1 400"), "{plain}");
     running.stop();
 }
 
@@ -211,6 +242,7 @@ fn view_serves_a_finished_run() {
         rover: None,
         scenario: Some(scenario.into()),
         port: 0,
+        allow_origin: Vec::new(),
     })
     .unwrap();
     let port = viewing.port;
@@ -225,6 +257,25 @@ fn view_serves_a_finished_run() {
         "{meta}"
     );
     assert!(get(port, "/ws").starts_with("HTTP/1.1 404"));
+    // The Host and Origin policy holds for the view too.
+    let rebound = request(
+        port,
+        &format!("GET /run.csv HTTP/1.1\r\nHost: rebound.example:{port}\r\n\r\n"),
+    );
+    assert!(
+        rebound.starts_with("HTTP/1.1 421") && !rebound.contains("t,X,Y,Z"),
+        "{rebound}"
+    );
+    let foreign = request(
+        port,
+        &format!(
+            "GET /run.csv HTTP/1.1\r\nHost: localhost:{port}\r\nOrigin: http://evil.example\r\n\r\n"
+        ),
+    );
+    assert!(
+        foreign.starts_with("HTTP/1.1 403") && !foreign.contains("t,X,Y,Z"),
+        "{foreign}"
+    );
     viewing.stop();
     let empty = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("drive-view/empty");
     std::fs::create_dir_all(&empty).unwrap();
@@ -233,6 +284,7 @@ fn view_serves_a_finished_run() {
         rover: None,
         scenario: None,
         port: 0,
+        allow_origin: Vec::new(),
     })
     .expect_err("no run there")
     .to_string();
@@ -246,7 +298,7 @@ fn view_serves_a_finished_run() {
 fn the_watchdog_zeroes_the_command_of_a_silent_client() {
     let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
     let running = start(&args("swing4", &scenario)).unwrap();
-    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    let mut ws = connect(&running);
     next_of(&mut ws, "hello");
     ws.send(Message::text(r#"{"watchdog": 0.3, "speed": 0.05}"#))
         .unwrap();
@@ -364,7 +416,7 @@ fn the_sketch_in_the_hello_draws_the_members_at_the_live_coordinates() {
     let mut a = args("mer", "");
     a.scenario = None;
     let running = start(&a).unwrap();
-    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    let mut ws = connect(&running);
     let hello = next_of(&mut ws, "hello");
     let sketch = &hello["meta"]["sketch"];
     let joints = sketch["joints"].as_array().unwrap();
@@ -433,7 +485,7 @@ fn stopping_ends_the_server_threads_and_frees_the_port() {
     let running = start(&args("swing4", &scenario)).unwrap();
     let port = running.port;
     let threads = running.server_threads();
-    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{port}/ws")).unwrap();
+    let mut ws = connect(&running);
     next_of(&mut ws, "hello");
     next_of(&mut ws, "state");
     let mut idle = TcpStream::connect(("127.0.0.1", port)).unwrap();
@@ -493,6 +545,7 @@ fn stopping_the_view_frees_its_port() {
         rover: None,
         scenario: None,
         port: 0,
+        allow_origin: Vec::new(),
     })
     .unwrap();
     let port = viewing.port;
@@ -525,7 +578,7 @@ fn next_binary(ws: &mut Client) -> Vec<f64> {
 fn a_rig_subscribes_to_binary_state_frames() {
     let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
     let running = start(&args("swing4", &scenario)).unwrap();
-    let (mut ws, _) = tungstenite::connect(format!("ws://127.0.0.1:{}/ws", running.port)).unwrap();
+    let mut ws = connect(&running);
     let hello = next_of(&mut ws, "hello");
     let layout: Vec<String> = hello["meta"]["binary_layout"]
         .as_array()
@@ -620,4 +673,690 @@ fn a_scenarios_active_suspension_runs_in_the_loop() {
     assert_eq!(after_reset, at_rest);
     let (passive, _) = run(rough);
     assert_eq!(passive, at_rest);
+}
+
+/// The status line of a WebSocket handshake to `url` with `headers`: 101
+/// when accepted, the refusal's status otherwise, and the refusal's text.
+fn handshake(url: &str, headers: &[(&str, &str)]) -> (u16, String) {
+    use tungstenite::client::IntoClientRequest;
+    let mut req = url.into_client_request().unwrap();
+    for (name, value) in headers {
+        req.headers_mut().insert(
+            tungstenite::http::HeaderName::from_bytes(name.as_bytes()).unwrap(),
+            value.parse().unwrap(),
+        );
+    }
+    match tungstenite::connect(req) {
+        Ok((mut ws, response)) => {
+            let hello = next_of(&mut ws, "hello");
+            assert_eq!(hello["meta"]["mode"], "drive");
+            (response.status().as_u16(), String::new())
+        }
+        Err(tungstenite::Error::Http(response)) => (
+            response.status().as_u16(),
+            String::from_utf8_lossy(response.body().as_deref().unwrap_or_default()).into_owned(),
+        ),
+        Err(e) => panic!("{url}: {e}"),
+    }
+}
+
+/// Only this server's own names are served: a request whose Host is any
+/// other name (a page on a rebound domain) is refused, on the files and
+/// the WebSocket alike, and so is a request without a Host.
+#[test]
+fn a_foreign_host_is_refused() {
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let running = start(&args("swing4", &scenario)).unwrap();
+    let port = running.port;
+    for host in [
+        format!("127.0.0.1:{port}"),
+        format!("localhost:{port}"),
+        format!("[::1]:{port}"),
+    ] {
+        let ok = request(
+            port,
+            &format!("GET /meta.json HTTP/1.1\r\nHost: {host}\r\n\r\n"),
+        );
+        assert!(ok.starts_with("HTTP/1.1 200"), "{host}: {ok}");
+    }
+    for path in ["/", "/meta.json", "/terrain.json", "/app.js"] {
+        let rebound = request(
+            port,
+            &format!("GET {path} HTTP/1.1\r\nHost: rebound.example:{port}\r\n\r\n"),
+        );
+        assert!(
+            rebound.starts_with("HTTP/1.1 421") && rebound.contains("rebound.example"),
+            "{rebound}"
+        );
+        assert!(!rebound.contains("\"rover\""), "{rebound}");
+    }
+    let other_port = request(
+        port,
+        &format!("GET / HTTP/1.1\r\nHost: 127.0.0.1:{}\r\n\r\n", port ^ 1),
+    );
+    assert!(other_port.starts_with("HTTP/1.1 421"), "{other_port}");
+    let none = request(port, "GET / HTTP/1.1\r\n\r\n");
+    assert!(
+        none.starts_with("HTTP/1.1 400") && none.contains("Host"),
+        "{none}"
+    );
+    let twice = request(
+        port,
+        &format!("GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nHost: rebound.example\r\n\r\n"),
+    );
+    assert!(twice.starts_with("HTTP/1.1 400"), "{twice}");
+    let url = format!("ws://127.0.0.1:{port}/ws?token={}", running.token);
+    let (status, text) = handshake(&url, &[("Host", "rebound.example")]);
+    assert_eq!(status, 421, "{text}");
+    running.stop();
+}
+
+/// The WebSocket: a page of a foreign origin is refused even with the
+/// token; the server's own page and an allowed origin connect without
+/// one; a client without an Origin (a program) needs the token, in the
+/// query or as a bearer header, and a wrong one is refused.
+#[test]
+fn who_may_open_the_websocket() {
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let mut a = args("swing4", &scenario);
+    a.allow_origin = vec!["http://localhost:3000/".into()];
+    let running = start(&a).unwrap();
+    let port = running.port;
+    let token = running.token.clone();
+    assert_eq!(token.len(), 32, "{token}");
+    let bare = format!("ws://127.0.0.1:{port}/ws");
+    let with_token = format!("{bare}?token={token}");
+    for (url, headers, want) in [
+        (
+            &bare,
+            vec![("Origin", format!("http://127.0.0.1:{port}"))],
+            101,
+        ),
+        (
+            &bare,
+            vec![("Origin", format!("http://localhost:{port}"))],
+            101,
+        ),
+        (
+            &bare,
+            vec![("Origin", "http://localhost:3000".to_string())],
+            101,
+        ),
+        (&with_token, vec![], 101),
+        (
+            &bare,
+            vec![("Authorization", format!("Bearer {token}"))],
+            101,
+        ),
+        (
+            &bare,
+            vec![("Origin", "http://evil.example".to_string())],
+            403,
+        ),
+        (
+            &with_token,
+            vec![("Origin", "http://evil.example".to_string())],
+            403,
+        ),
+        (&with_token, vec![("Origin", "null".to_string())], 403),
+        (
+            &bare,
+            vec![("Origin", "http://localhost:3001".to_string())],
+            403,
+        ),
+        (&bare, vec![], 401),
+        (
+            &format!("{bare}?token=0123456789abcdef0123456789abcdef"),
+            vec![],
+            401,
+        ),
+        (
+            &bare,
+            vec![("Authorization", format!("Basic {token}"))],
+            401,
+        ),
+    ] {
+        let h: Vec<(&str, &str)> = headers.iter().map(|(n, v)| (*n, v.as_str())).collect();
+        let (status, text) = handshake(url, &h);
+        assert_eq!(status, want, "{url} {headers:?}: {text}");
+        if want == 401 {
+            assert!(text.contains("token"), "{text}");
+        }
+        if want == 403 {
+            assert!(text.contains("--allow-origin"), "{text}");
+        }
+    }
+    // The page's plain files do not need the token; a foreign page's
+    // request for them is refused.
+    let page = request(
+        port,
+        &format!("GET /meta.json HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n\r\n"),
+    );
+    assert!(page.starts_with("HTTP/1.1 200"), "{page}");
+    let foreign = request(
+        port,
+        &format!(
+            "GET /meta.json HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nOrigin: http://evil.example\r\n\r\n"
+        ),
+    );
+    assert!(foreign.starts_with("HTTP/1.1 403"), "{foreign}");
+    running.stop();
+}
+
+/// `--token`, `--allow-origin`, `--rate` and `--report-speed` are checked
+/// before anything starts, each error naming its flag.
+#[test]
+fn bad_access_flags_and_extreme_settings_are_errors() {
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let mut a = args("swing4", &scenario);
+    a.token = Some("rig-token-0123456789".into());
+    let running = start(&a).unwrap();
+    assert_eq!(running.token, "rig-token-0123456789");
+    running.stop();
+    for bad in [
+        "short",
+        "has space in it, long enough",
+        "ünïcödé-0123456789",
+    ] {
+        a.token = Some(bad.into());
+        let e = start(&a).err().expect("a bad token").to_string();
+        assert!(e.contains("--token") && e.contains("16 to 256"), "{e}");
+    }
+    a.token = None;
+    for bad in [
+        "localhost:3000",
+        "http://x/app",
+        "ftp://x",
+        "http://x:70000",
+    ] {
+        a.allow_origin = vec![bad.into()];
+        let e = start(&a).err().expect("a bad origin").to_string();
+        assert!(e.contains("--allow-origin") && e.contains(bad), "{e}");
+    }
+    a.allow_origin = Vec::new();
+    for rate in [1e-19, 1e300, -1.0, f64::INFINITY] {
+        a.rate = rate;
+        let e = start(&a).err().expect("a bad rate").to_string();
+        assert!(
+            e.contains("--rate") && e.contains("between 1 and 20000"),
+            "{e}"
+        );
+    }
+    a.rate = 1000.0;
+    for speed in [1e308, -1e308, f64::NAN, 5.0] {
+        a.report_speed = speed;
+        let e = rover::drive::report(&a, 0.1).unwrap_err().to_string();
+        assert!(
+            e.contains("--report-speed") && e.contains("±4.5 m/s"),
+            "{e}"
+        );
+    }
+    // The library's loop refuses a rate it cannot pace, without a panic.
+    let model = rover_scenario::prepare::load_rover("swing4", None)
+        .unwrap()
+        .model;
+    let scenario = rover_scenario::scenario::Scenario::parse(
+        "duration = 1.0\n",
+        std::path::Path::new("s.toml"),
+    )
+    .unwrap();
+    let plant = rover_runtime::generic_plant::GenericPlant::new(model.clone()).unwrap();
+    let config = rover::drive::live::LoopConfig::new(1e-19, None, &scenario);
+    let e =
+        rover::drive::live::Sim::new(plant, &model, &scenario, std::path::Path::new("."), &config)
+            .err()
+            .expect("no loop at 1e-19 Hz")
+            .to_string();
+    assert!(e.contains("--rate"), "{e}");
+}
+
+/// Connections beyond the cap are answered 503 without being served;
+/// once some close, new ones are served again.
+#[test]
+fn too_many_connections_are_refused() {
+    use rover::drive::server::MAX_CONNECTIONS;
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let running = start(&args("swing4", &scenario)).unwrap();
+    let port = running.port;
+    // Idle: each holds a connection until its head times out.
+    let idle: Vec<TcpStream> = (0..MAX_CONNECTIONS)
+        .map(|_| TcpStream::connect(("127.0.0.1", port)).unwrap())
+        .collect();
+    let busy = get(port, "/meta.json");
+    assert!(
+        busy.starts_with("HTTP/1.1 503") && busy.contains("too many connections"),
+        "{busy}"
+    );
+    drop(idle);
+    let give_up = Instant::now() + Duration::from_secs(10);
+    loop {
+        let again = get(port, "/meta.json");
+        if again.starts_with("HTTP/1.1 200") {
+            break;
+        }
+        assert!(Instant::now() < give_up, "never served again: {again}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    running.stop();
+}
+
+/// A WebSocket message over the cap closes that connection (code 1009,
+/// message too big) without being answered as a command; a request head
+/// over its cap, or with a body, is refused; the server goes on serving.
+#[test]
+fn oversized_messages_and_requests_are_refused() {
+    use rover::drive::server::{MAX_HEAD, MAX_MESSAGE};
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let running = start(&args("swing4", &scenario)).unwrap();
+    let port = running.port;
+    let mut ws = connect(&running);
+    next_of(&mut ws, "hello");
+    // Under the cap, an unknown key is answered.
+    let small = format!(r#"{{"speed": 0.1, "pad": "{}"}}"#, "x".repeat(1000));
+    ws.send(Message::text(small)).unwrap();
+    assert!(
+        next_of(&mut ws, "error")["message"]
+            .as_str()
+            .unwrap()
+            .contains("`pad`")
+    );
+    let big = format!(
+        r#"{{"speed": 0.1, "pad": "{}"}}"#,
+        "x".repeat(MAX_MESSAGE + 1)
+    );
+    let _ = ws.send(Message::text(big));
+    let code = loop {
+        match ws.read() {
+            Ok(Message::Close(frame)) => break frame.map(|f| u16::from(f.code)),
+            Ok(Message::Text(t)) => {
+                let v: Value = serde_json::from_str(t.as_str()).unwrap();
+                assert_ne!(v["type"], "error", "the oversized message was read: {v}");
+            }
+            Ok(_) => {}
+            Err(_) => break None,
+        }
+    };
+    if let Some(code) = code {
+        assert_eq!(code, 1009);
+    }
+    // The same with a binary message.
+    let mut ws = connect(&running);
+    next_of(&mut ws, "hello");
+    let _ = ws.send(Message::binary(vec![0u8; 4 * MAX_MESSAGE]));
+    loop {
+        match ws.read() {
+            Ok(Message::Close(_)) | Err(_) => break,
+            Ok(Message::Text(t)) => assert!(!t.contains("\"error\""), "answered: {t}"),
+            Ok(_) => {}
+        }
+    }
+    let long = format!(
+        "GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nX-Pad: {}\r\n\r\n",
+        "x".repeat(MAX_HEAD)
+    );
+    let r = request(port, &long);
+    assert!(r.starts_with("HTTP/1.1 431"), "{}", &r[..r.len().min(200)]);
+    let body = request(
+        port,
+        &format!("GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nContent-Length: 5\r\n\r\nhello"),
+    );
+    assert!(body.starts_with("HTTP/1.1 413"), "{body}");
+    let mut ws = connect(&running);
+    next_of(&mut ws, "hello");
+    next_of(&mut ws, "state");
+    running.stop();
+}
+
+/// A client sending a stream of random and mutated messages, text and
+/// binary, gets an error or nothing for each, never a dropped connection;
+/// the loop keeps stepping and the last good command holds.
+#[test]
+fn a_live_server_survives_random_messages() {
+    use proptest::strategy::{Strategy, ValueTree};
+    use proptest::test_runner::{Config, RngSeed, TestRunner};
+    let scenario = scratch_file("drive", "flat.toml", "duration = 1.0\n");
+    let running = start(&args("swing4", &scenario)).unwrap();
+    let mut ws = connect(&running);
+    next_of(&mut ws, "hello");
+    ws.send(Message::text(r#"{"speed": 0.03}"#)).unwrap();
+    let mut runner = TestRunner::new(Config {
+        rng_seed: RngSeed::Fixed(2012),
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strategy = fuzz::message();
+    for _ in 0..300 {
+        let m = strategy.new_tree(&mut runner).unwrap().current();
+        let is_command = matches!(&m, fuzz::Msg::Text(t) if protocol_ok(t));
+        if is_command {
+            continue;
+        }
+        match m {
+            fuzz::Msg::Text(t) => ws.send(Message::text(t)).unwrap(),
+            fuzz::Msg::Binary(b) => ws.send(Message::binary(b)).unwrap(),
+        }
+        let e = next_of(&mut ws, "error");
+        assert!(!e["message"].as_str().unwrap().is_empty(), "{e}");
+    }
+    let s = next_of(&mut ws, "state");
+    assert_eq!(s["V_set"].as_f64(), Some(0.03), "{s}");
+    assert!(s["error"].is_null(), "{s}");
+    running.stop();
+}
+
+/// Whether the protocol takes `text` for swing4 at 1 kHz.
+fn protocol_ok(text: &str) -> bool {
+    rover::drive::protocol::parse(text, &fuzz::info("swing4"), 1000.0).is_ok()
+}
+
+/// Random and mutated protocol messages, fed to `protocol::parse` and
+/// `protocol::apply`: nothing panics, every refusal is a non-empty text,
+/// and what is taken is within the rover's ranges.
+mod fuzz {
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, RngSeed};
+    use rover::drive::live::{self, RoverInfo};
+    use rover::drive::protocol::{self, KEYS, MAX_RAW_STEERING, MAX_STEER};
+
+    /// A message as sent over the WebSocket.
+    #[derive(Clone, Debug)]
+    pub enum Msg {
+        Text(String),
+        Binary(Vec<u8>),
+    }
+
+    /// swing4 (slip-steered) or exomars (Ackermann), loaded once.
+    pub fn info(rover: &str) -> RoverInfo {
+        static LOADED: std::sync::OnceLock<[RoverInfo; 2]> = std::sync::OnceLock::new();
+        let [swing4, exomars] = LOADED.get_or_init(|| {
+            ["swing4", "exomars"].map(|r| {
+                RoverInfo::new(&rover_scenario::prepare::load_rover(r, None).unwrap().model)
+            })
+        });
+        match rover {
+            "swing4" => swing4.clone(),
+            _ => exomars.clone(),
+        }
+    }
+
+    const HOSTILE: &[&str] = &[
+        "1e308",
+        "-1e308",
+        "1e-320",
+        "5e-324",
+        "-0.0",
+        "0",
+        "1e999",
+        "NaN",
+        "Infinity",
+        "null",
+        "true",
+        "\"1\"",
+        "[]",
+        "{}",
+        "[1e308, 1e308, 1e308, 1e308]",
+        "[0, 0, 0, 0, 0, 0]",
+        "99999999999999999999999",
+        "-1",
+        "1.2000000001",
+        "3.2",
+    ];
+
+    /// Valid messages to mutate.
+    const SEEDS: &[&str] = &[
+        r#"{"speed": 0.1}"#,
+        r#"{"speed": 0.1, "delta_tau": 0.2}"#,
+        r#"{"speed": 0.1, "steer": 0.2}"#,
+        r#"{"torques": [1, 1, 1, 1], "steering": [0, 0, 0, 0]}"#,
+        r#"{"rate": 60, "watchdog": 0.5, "subscribe": "binary"}"#,
+        r#"{"pause": true, "reset": true}"#,
+    ];
+
+    fn json_value() -> impl Strategy<Value = String> {
+        let leaf = prop_oneof![
+            Just("null".to_string()),
+            any::<bool>().prop_map(|b| b.to_string()),
+            any::<f64>().prop_map(|v| format!("{v:e}")),
+            any::<i64>().prop_map(|v| v.to_string()),
+            (0..HOSTILE.len()).prop_map(|k| HOSTILE[k].to_string()),
+            "[a-z\"\\\\]{0,8}".prop_map(|s| format!("{:?}", s)),
+        ];
+        leaf.prop_recursive(3, 24, 6, |inner| {
+            prop_oneof![
+                prop::collection::vec(inner.clone(), 0..6)
+                    .prop_map(|v| format!("[{}]", v.join(","))),
+                prop::collection::vec((key(), inner), 0..5).prop_map(|kv| {
+                    let body: Vec<String> = kv.iter().map(|(k, v)| format!("{k:?}:{v}")).collect();
+                    format!("{{{}}}", body.join(","))
+                }),
+            ]
+        })
+    }
+
+    fn key() -> impl Strategy<Value = String> {
+        prop_oneof![
+            4 => (0..KEYS.len()).prop_map(|k| KEYS[k].to_string()),
+            1 => "[a-z_]{0,10}",
+        ]
+    }
+
+    /// An object of protocol keys with random values.
+    fn object() -> impl Strategy<Value = String> {
+        prop::collection::vec((key(), json_value()), 0..6).prop_map(|kv| {
+            let body: Vec<String> = kv.iter().map(|(k, v)| format!("{k:?}:{v}")).collect();
+            format!("{{{}}}", body.join(","))
+        })
+    }
+
+    /// A valid message with one number or token replaced, or bytes cut
+    /// out or inserted.
+    fn mutated() -> impl Strategy<Value = String> {
+        (
+            0..SEEDS.len(),
+            0usize..64,
+            0usize..HOSTILE.len(),
+            0usize..3,
+            any::<u8>(),
+        )
+            .prop_map(|(seed, at, hostile, how, byte)| {
+                let text = SEEDS[seed];
+                let at = at % text.len();
+                let at = (0..=at)
+                    .rev()
+                    .find(|&k| text.is_char_boundary(k))
+                    .unwrap_or(0);
+                match how {
+                    0 => {
+                        // Replace the number (or word) at `at`.
+                        let end = text[at..]
+                            .find([',', '}', ']', ' '])
+                            .map_or(text.len(), |k| at + k);
+                        format!("{}{}{}", &text[..at], HOSTILE[hostile], &text[end..])
+                    }
+                    1 => format!("{}{}", &text[..at], &text[(at + 1).min(text.len())..]),
+                    _ => format!("{}{}{}", &text[..at], byte as char, &text[at..]),
+                }
+            })
+    }
+
+    pub fn message() -> impl Strategy<Value = Msg> {
+        prop_oneof![
+            3 => object().prop_map(Msg::Text),
+            3 => mutated().prop_map(Msg::Text),
+            1 => json_value().prop_map(Msg::Text),
+            1 => prop::collection::vec(any::<u8>(), 0..64)
+                .prop_map(|b| Msg::Text(String::from_utf8_lossy(&b).into_owned())),
+            1 => prop::collection::vec(any::<u8>(), 0..64).prop_map(Msg::Binary),
+        ]
+    }
+
+    fn config() -> Config {
+        Config {
+            cases: 2000,
+            rng_seed: RngSeed::Fixed(2012),
+            failure_persistence: None,
+            ..Config::default()
+        }
+    }
+
+    /// Parse, and apply what is taken to a fresh inbox: the command in
+    /// force stays finite and within the rover's ranges.
+    fn survives(text: &str, info: &RoverInfo) {
+        let wheels = info.steerable.len();
+        match protocol::parse(text, info, 1000.0) {
+            Ok(req) => {
+                let shared = live::shared(10, wheels, 1000.0);
+                let mut inbox = shared.inbox.lock().unwrap();
+                protocol::apply(&req, &mut inbox);
+                let c = &inbox.command;
+                assert!(c.speed.abs() <= info.max_speed(), "{text}: {c:?}");
+                assert!(c.steer.abs() <= MAX_STEER, "{text}: {c:?}");
+                assert!(c.delta_tau.abs() <= info.max_delta_tau(), "{text}: {c:?}");
+                assert!(c.torques.iter().all(|v| v.is_finite()), "{text}: {c:?}");
+                assert!(
+                    c.steering.iter().all(|v| v.abs() <= MAX_RAW_STEERING),
+                    "{text}: {c:?}"
+                );
+                assert!((0.0..=3600.0).contains(&inbox.watchdog_s), "{text}");
+                if let Some(rate) = req.rate {
+                    assert!(
+                        std::time::Duration::try_from_secs_f64(1.0 / rate).is_ok(),
+                        "{text}"
+                    );
+                }
+            }
+            Err(e) => {
+                let m = e.to_string();
+                assert!(!m.trim().is_empty(), "{text}: an empty refusal");
+                let reply: serde_json::Value =
+                    serde_json::from_str(&protocol::error_json(&m)).unwrap();
+                assert_eq!(reply["type"], "error");
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(config())]
+
+        #[test]
+        fn random_messages_never_panic_the_protocol(m in message(), rover in 0usize..2) {
+            let info = info(["swing4", "exomars"][rover]);
+            match m {
+                Msg::Text(t) => survives(&t, &info),
+                Msg::Binary(b) => survives(&String::from_utf8_lossy(&b), &info),
+            }
+        }
+    }
+}
+
+/// The access policy on its own: the hosts, origins and tokens it takes.
+mod access_policy {
+    use rover::drive::access::*;
+
+    fn access() -> Access {
+        Access::new(
+            "127.0.0.1:8080".parse().unwrap(),
+            &["https://rig.example.org".to_string()],
+            Some("0123456789abcdef".to_string()),
+        )
+    }
+
+    fn creds<'a>(host: &'a str, origin: Option<&'a str>) -> Credentials<'a> {
+        Credentials {
+            host: Some(host),
+            origin,
+            ..Credentials::default()
+        }
+    }
+
+    #[test]
+    fn hosts_of_this_server_only() {
+        let a = access();
+        for ok in ["127.0.0.1:8080", "LOCALHOST:8080", "[::1]:8080"] {
+            assert_eq!(a.check_request(&creds(ok, None)), Ok(()), "{ok}");
+        }
+        for bad in ["evil.example:8080", "127.0.0.1:8081", "localhost", ""] {
+            let e = a.check_request(&creds(bad, None)).unwrap_err();
+            assert!(e.status.starts_with("421"), "{bad}: {e:?}");
+        }
+        let e = a.check_request(&Credentials::default()).unwrap_err();
+        assert!(e.status.starts_with("400") && e.reason.contains("Host"));
+    }
+
+    #[test]
+    fn origins_own_or_allowed_only() {
+        let a = access();
+        let host = "127.0.0.1:8080";
+        for ok in [
+            "http://127.0.0.1:8080",
+            "http://localhost:8080",
+            "https://rig.example.org",
+        ] {
+            assert_eq!(a.check_websocket(&creds(host, Some(ok))), Ok(()), "{ok}");
+        }
+        for bad in [
+            "http://evil.example",
+            "null",
+            "https://127.0.0.1:8080",
+            "http://127.0.0.1:8081",
+        ] {
+            let mut c = creds(host, Some(bad));
+            c.query_token = Some("0123456789abcdef");
+            let e = a.check_websocket(&c).unwrap_err();
+            assert!(e.status.starts_with("403"), "{bad}: {e:?}");
+        }
+    }
+
+    #[test]
+    fn a_client_without_origin_needs_the_token() {
+        let a = access();
+        let mut c = creds("127.0.0.1:8080", None);
+        assert!(a.check_websocket(&c).unwrap_err().status.starts_with("401"));
+        c.query_token = Some("0123456789abcdeX");
+        assert!(a.check_websocket(&c).unwrap_err().reason.contains("wrong"));
+        c.query_token = Some("0123456789abcdef");
+        assert_eq!(a.check_websocket(&c), Ok(()));
+        c.query_token = None;
+        c.authorization = Some("Bearer 0123456789abcdef");
+        assert_eq!(a.check_websocket(&c), Ok(()));
+        c.authorization = Some("Basic 0123456789abcdef");
+        assert!(a.check_websocket(&c).is_err());
+        // The plain routes do not ask for it.
+        assert_eq!(a.check_request(&creds("127.0.0.1:8080", None)), Ok(()));
+    }
+
+    #[test]
+    fn allowed_origins_are_checked_and_normalised() {
+        for (given, want) in [
+            ("http://localhost:3000", "http://localhost:3000"),
+            ("HTTPS://Rig.Example.org:443/", "https://rig.example.org"),
+            ("http://[::1]:9000", "http://[::1]:9000"),
+        ] {
+            assert_eq!(parse_origin(given).as_deref(), Ok(want));
+        }
+        for bad in [
+            "localhost:3000",
+            "ftp://x",
+            "http://x/path",
+            "http://x:0",
+            "http://x:99999",
+            "http://",
+            "http://u@x",
+            "http://a b",
+            "http://[zz]",
+        ] {
+            let e = parse_origin(bad).unwrap_err();
+            assert!(e.starts_with("--allow-origin"), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn tokens() {
+        let t = random_token();
+        assert_eq!(t.len(), 32);
+        assert_ne!(t, random_token());
+        assert!(check_token("--token", &t).is_ok());
+        assert!(check_token("--token", "short").is_err());
+        assert!(check_token("--token", "sixteen chars ok?").is_err());
+    }
 }

@@ -217,6 +217,16 @@ pub struct Shared {
     pub stop: AtomicBool,
 }
 
+/// The fastest speed set-point, in the rover's largest wheel radii a
+/// second: the wheel turning at 50 rad/s (nearly 500 rpm), twenty-five
+/// times the page's speed hint and far past any planetary rover's top
+/// speed for its size (an LRV wheel of 0.41 m: 20 m/s).
+pub const MAX_SPEED_RADII: f64 = 50.0;
+
+/// The loop's rates \[Hz\] (steps per second): at 1 Hz a step is a
+/// second, at 20 kHz 50 µs, near the cost of one RK4 step.
+pub const RATE_RANGE: std::ops::RangeInclusive<f64> = 1.0..=20_000.0;
+
 /// What the loop needs to know about the rover to turn a speed and
 /// steering command into torques and angles.
 #[derive(Clone, Debug)]
@@ -261,6 +271,20 @@ impl RoverInfo {
             centre_x,
             m: model.m(),
         }
+    }
+
+    /// The largest |speed| set-point \[m/s\]: [`MAX_SPEED_RADII`] of the
+    /// largest wheel's radii a second.
+    pub fn max_speed(&self) -> f64 {
+        MAX_SPEED_RADII * self.radius.iter().cloned().fold(0.0, f64::max)
+    }
+
+    /// The largest |delta_tau| \[N·m\]: twice the largest motor limit.
+    /// Each wheel's torque is its share of the speed loop's plus or minus
+    /// `delta_tau`, clamped to its motor limit: a larger difference only
+    /// holds more of the wheels at their limits.
+    pub fn max_delta_tau(&self) -> f64 {
+        2.0 * self.torque_cap
     }
 
     /// Whether the rover steers with its wheels (Ackermann) rather than by
@@ -449,6 +473,18 @@ impl<P: Plant> Sim<P> {
         base: &std::path::Path,
         config: &LoopConfig,
     ) -> Result<Self, SetupError> {
+        // The step is a Duration the loop waits for.
+        if !RATE_RANGE.contains(&config.rate_hz) {
+            return Err(SetupError::Unsupported {
+                field: "--rate",
+                message: format!(
+                    "{:?} steps per second: the loop runs from {} to {} Hz",
+                    config.rate_hz,
+                    RATE_RANGE.start(),
+                    RATE_RANGE.end()
+                ),
+            });
+        }
         let terrain = scenario.terrain.build(base)?;
         let mut y = rover_scenario::simulate::initial_state(model, scenario, Some(&terrain))?;
         let ground = rover_scenario::simulate::ground_of(scenario, terrain, model, base)?;
@@ -753,6 +789,7 @@ fn timer_slack_1ns() {}
 /// of steps that would overrun in turn; simulated time then lags the
 /// wall clock by the dropped steps, which the real-time factor shows.
 pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>) -> Timing {
+    // `Sim::new` took a rate within RATE_RANGE: the step is a Duration.
     let period = Duration::from_secs_f64(sim.h());
     let columns = shared.state.lock().map(|s| s.values.len()).unwrap_or(0);
     let mut row = vec![0.0; columns];

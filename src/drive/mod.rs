@@ -7,6 +7,7 @@
 //! `drive` feature of the `rover` package only: the plant and runtime
 //! crates never depend on it.
 
+pub mod access;
 pub mod live;
 pub mod protocol;
 pub mod server;
@@ -29,7 +30,8 @@ use serde_json::json;
 
 use crate::error::CliError;
 
-use live::{LoopConfig, Method, Pacing, RoverInfo, Shared, Sim, Timing};
+use access::Access;
+use live::{LoopConfig, Method, Pacing, RATE_RANGE, RoverInfo, Shared, Sim, Timing};
 use server::{App, Content, Server};
 
 /// The ground `rover drive` runs on without a scenario: the paper's rough
@@ -58,6 +60,15 @@ pub struct DriveArgs {
     /// TCP port on 127.0.0.1 (0: any free port, printed).
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
+    /// A web origin (scheme://host[:port]) whose pages may use the server
+    /// besides its own page, e.g. a rig's dashboard; repeatable.
+    #[arg(long = "allow-origin", value_name = "URL")]
+    pub allow_origin: Vec<String>,
+    /// The token a WebSocket client without an Origin header (a program,
+    /// not a browser page) presents, as `/ws?token=…` or `Authorization:
+    /// Bearer …`; default: `ROVER_DRIVE_TOKEN`, else a random one, printed.
+    #[arg(long, value_name = "TOKEN")]
+    pub token: Option<String>,
     /// Steps per second of wall-clock time.
     #[arg(long, default_value_t = 1000.0)]
     pub rate: f64,
@@ -104,12 +115,18 @@ pub struct ViewArgs {
     /// TCP port on 127.0.0.1 (0: any free port, printed).
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
+    /// A web origin (scheme://host[:port]) whose pages may use the server
+    /// besides its own page; repeatable.
+    #[arg(long = "allow-origin", value_name = "URL")]
+    pub allow_origin: Vec<String>,
 }
 
 /// A running `rover drive`: its address, and a way to stop it.
 pub struct Running {
     /// The port it listens on.
     pub port: u16,
+    /// The token a WebSocket client without an Origin header presents.
+    pub token: String,
     /// Shared with the loop.
     pub shared: Arc<Shared>,
     sim: JoinHandle<Timing>,
@@ -197,9 +214,46 @@ fn prepare(args: &DriveArgs) -> Result<Prepared, CliError> {
 }
 
 fn check_rate(rate: f64) -> Result<(), CliError> {
-    if !(rate.is_finite() && (1.0..=20_000.0).contains(&rate)) {
+    if !RATE_RANGE.contains(&rate) {
         return Err(CliError::Usage(format!(
-            "--rate {rate}: steps per second, between 1 and 20000 (1000 is the default)"
+            "--rate {rate:?}: steps per second, between {} and {} (1000 is the default)",
+            RATE_RANGE.start(),
+            RATE_RANGE.end()
+        )));
+    }
+    Ok(())
+}
+
+/// The `--allow-origin` values, checked and normalised.
+fn allowed_origins(given: &[String]) -> Result<Vec<String>, CliError> {
+    given
+        .iter()
+        .map(|o| access::parse_origin(o).map_err(CliError::Usage))
+        .collect()
+}
+
+/// The WebSocket's token: `--token`, else `ROVER_DRIVE_TOKEN`, else a
+/// random one.
+fn token(args: &DriveArgs) -> Result<String, CliError> {
+    if let Some(t) = &args.token {
+        return access::check_token("--token", t).map_err(CliError::Usage);
+    }
+    match std::env::var("ROVER_DRIVE_TOKEN") {
+        Ok(t) => access::check_token("ROVER_DRIVE_TOKEN", &t).map_err(CliError::Usage),
+        Err(std::env::VarError::NotPresent) => Ok(access::random_token()),
+        Err(std::env::VarError::NotUnicode(_)) => Err(CliError::Usage(
+            "ROVER_DRIVE_TOKEN is not valid text: set it to 16 to 256 characters of A–Z, a–z, 0–9, `-`, `_`, `.`, `~`, or unset it".to_string(),
+        )),
+    }
+}
+
+/// `--report-speed` within what the rover's wheels reach.
+fn check_report_speed(speed: f64, info: &RoverInfo) -> Result<(), CliError> {
+    let max = info.max_speed();
+    if !(-max..=max).contains(&speed) {
+        return Err(CliError::Usage(format!(
+            "--report-speed {speed:?}: m/s, within ±{max} m/s for this rover ({} wheel radii a second; 0.1 is the default)",
+            live::MAX_SPEED_RADII
         )));
     }
     Ok(())
@@ -285,6 +339,7 @@ fn meta(
         );
         // A brisk walking pace for the rover's size: two wheel radii a second.
         m["speed_hint"] = json!(2.0 * r_max);
+        m["max_speed"] = json!(info.max_speed());
         m["body"] = json!({
             "length": 0.8 * span(&mut xs.clone()).max(2.0 * r_max),
             "width": (span(&mut ys.clone()) - 2.0 * r_max).max(r_max),
@@ -339,19 +394,31 @@ fn bind(port: u16) -> Result<TcpListener, CliError> {
 /// Start `rover drive`: the loop on its own thread, the server on another.
 pub fn start(args: &DriveArgs) -> Result<Running, CliError> {
     check_rate(args.rate)?;
+    let who = Who {
+        allowed: allowed_origins(&args.allow_origin)?,
+        token: token(args)?,
+    };
     let prepared = prepare(args)?;
     // Each kind of plant runs its own instance of the loop: a step calls
     // the generated plant without a second dispatch.
     match prepared.plant(args.generic)? {
-        RunPlant::Generated(p) => launch(p, &prepared, args),
-        RunPlant::Generic(p) => launch(p, &prepared, args),
+        RunPlant::Generated(p) => launch(p, &prepared, args, who),
+        RunPlant::Generic(p) => launch(p, &prepared, args, who),
     }
+}
+
+/// Who may connect to a `rover drive`, from its flags (checked before
+/// anything is loaded or bound).
+struct Who {
+    allowed: Vec<String>,
+    token: String,
 }
 
 fn launch<P: Plant + Send + 'static>(
     plant: P,
     prepared: &Prepared,
     args: &DriveArgs,
+    who: Who,
 ) -> Result<Running, CliError> {
     let (spec, scenario, base) = (&prepared.spec, &prepared.scenario, &prepared.base);
     let model = &spec.model;
@@ -363,7 +430,8 @@ fn launch<P: Plant + Send + 'static>(
     let terrain = scenario.terrain.build(base).map_err(other)?;
     let start = [sim.y()[0], sim.y()[1]];
     let listener = bind(args.port)?;
-    let port = listener.local_addr().map_err(other)?.port();
+    let addr = listener.local_addr().map_err(other)?;
+    let port = addr.port();
     let app = App::new(
         meta("drive", Some(spec), &columns, Some(&info), Some(&config)),
         terrain_json(&terrain, start),
@@ -373,6 +441,7 @@ fn launch<P: Plant + Send + 'static>(
             info,
             rate_hz: args.rate,
         },
+        Access::new(addr, &who.allowed, Some(who.token.clone())),
     );
     let server = Server::start(listener, app).map_err(other)?;
     let loop_shared = shared.clone();
@@ -388,6 +457,7 @@ fn launch<P: Plant + Send + 'static>(
     };
     Ok(Running {
         port,
+        token: who.token,
         shared,
         sim,
         server,
@@ -401,9 +471,15 @@ pub fn drive(args: &DriveArgs) -> Result<Option<String>, CliError> {
         return report(args, seconds).map(Some);
     }
     let running = start(args)?;
+    let port = running.port;
+    let shown = if args.token.is_some() || std::env::var_os("ROVER_DRIVE_TOKEN").is_some() {
+        "<your token>"
+    } else {
+        running.token.as_str()
+    };
     eprintln!(
-        "driving at http://127.0.0.1:{}/ (WebSocket at /ws; docs/DRIVE.md); Ctrl-C ends",
-        running.port
+        "driving at http://127.0.0.1:{port}/ (WebSocket at /ws; docs/DRIVE.md); Ctrl-C ends\n\
+         a program (no Origin header) connects with the token: ws://127.0.0.1:{port}/ws?token={shown}"
     );
     let (tx, rx) = std::sync::mpsc::channel();
     // A second handler cannot be installed in one process; then only the
@@ -461,11 +537,12 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
 pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
     if !(seconds.is_finite() && seconds > 0.0) {
         return Err(CliError::Usage(format!(
-            "--report {seconds}: seconds of driving, > 0"
+            "--report {seconds:?}: seconds of driving, > 0"
         )));
     }
     check_rate(args.rate)?;
     let prepared = prepare(args)?;
+    check_report_speed(args.report_speed, &RoverInfo::new(&prepared.spec.model))?;
     let config = loop_config(args, &prepared.scenario);
     let timing = match prepared.plant(args.generic)? {
         RunPlant::Generated(p) => measure(p, &prepared, &config, args, seconds)?,
@@ -530,6 +607,7 @@ pub fn view(args: &ViewArgs) -> Result<(), CliError> {
 
 /// Start `rover view`'s server.
 pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
+    let allowed = allowed_origins(&args.allow_origin)?;
     let csv = args.out.join("run.csv");
     let text = std::fs::read_to_string(&csv).map_err(|e| CliError::io(&csv, "read", e))?;
     let columns: Vec<String> = text
@@ -577,12 +655,15 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
         None => "null".to_string(),
     };
     let listener = bind(args.port)?;
-    let port = listener.local_addr().map_err(other)?.port();
+    let addr = listener.local_addr().map_err(other)?;
     let app = App::new(
         meta("view", spec.as_ref(), &columns, info.as_ref(), None),
         terrain,
         Content::View { csv },
+        // No WebSocket: no token.
+        Access::new(addr, &allowed, None),
     );
+    let port = addr.port();
     let server = Server::start(listener, app).map_err(other)?;
     Ok(Viewing { port, server })
 }

@@ -70,6 +70,19 @@ pub fn binary_layout(columns: &[String]) -> Vec<String> {
 /// inner wheels pass 90°.
 pub const MAX_STEER: f64 = 1.2;
 
+/// Largest |angle| of a raw `steering` value \[rad\]: half a turn either
+/// way reaches every direction a wheel can point.
+pub const MAX_RAW_STEERING: f64 = std::f64::consts::PI;
+
+/// Lowest `rate` a client may ask for [messages per second]: one state
+/// every 100 s. Its period must be a time the server can wait, and a
+/// client that wants fewer states can simply skip them.
+pub const MIN_RATE: f64 = 0.01;
+
+/// Longest `watchdog` \[s\]: an hour; a longer silence is no link
+/// failure to guard against (0 turns it off).
+pub const MAX_WATCHDOG: f64 = 3600.0;
+
 /// A command message, checked.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Request {
@@ -240,6 +253,18 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
         Some(Value::Bool(true)) => r.reset = true,
         Some(v) => return Err(bad("reset", format!("`reset` must be true, got {v}"))),
     }
+    if let Some(v) = r.speed {
+        let max = info.max_speed();
+        if v.abs() > max {
+            return Err(bad(
+                "speed",
+                format!(
+                    "`speed` = {v:?} m/s is beyond ±{max} m/s, what this rover's wheels plausibly reach ({} wheel radii a second)",
+                    super::live::MAX_SPEED_RADII
+                ),
+            ));
+        }
+    }
     if let Some(s) = r.steer {
         if !info.ackermann() {
             return Err(MessageError::Combination(
@@ -249,14 +274,25 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
         if s.abs() > MAX_STEER {
             return Err(bad(
                 "steer",
-                format!("`steer` = {s} rad is beyond ±{MAX_STEER} rad"),
+                format!("`steer` = {s:?} rad is beyond ±{MAX_STEER} rad"),
             ));
         }
     }
-    if r.delta_tau.is_some() && info.ackermann() {
-        return Err(MessageError::Combination(
-            "this rover steers its wheels (Ackermann): send `steer` [rad], or raw `steering`",
-        ));
+    if let Some(dt) = r.delta_tau {
+        if info.ackermann() {
+            return Err(MessageError::Combination(
+                "this rover steers its wheels (Ackermann): send `steer` [rad], or raw `steering`",
+            ));
+        }
+        let max = info.max_delta_tau();
+        if dt.abs() > max {
+            return Err(bad(
+                "delta_tau",
+                format!(
+                    "`delta_tau` = {dt:?} N·m is beyond ±{max} N·m (twice the rover's largest motor torque: beyond it each side's wheels are held at their motor limits whatever it is)"
+                ),
+            ));
+        }
     }
     let loop_mode = r.speed.is_some() || r.steer.is_some() || r.delta_tau.is_some();
     let raw = r.torques.is_some() || r.steering.is_some();
@@ -273,22 +309,34 @@ pub fn parse(text: &str, info: &RoverInfo, max_rate: f64) -> Result<Request, Mes
             format!("`steering`[{k}]: wheel {} does not steer; give it 0", k + 1),
         ));
     }
+    if let Some(angles) = &r.steering
+        && let Some(k) = (0..wheels).find(|&k| angles[k].abs() > MAX_RAW_STEERING)
+    {
+        return Err(bad(
+            "steering",
+            format!(
+                "`steering`[{k}] (wheel {}) = {:?} rad is beyond ±π rad",
+                k + 1,
+                angles[k]
+            ),
+        ));
+    }
     if let Some(rate) = r.rate
-        && !(rate > 0.0 && rate <= max_rate)
+        && !(MIN_RATE..=max_rate).contains(&rate)
     {
         return Err(bad(
             "rate",
             format!(
-                "`rate` = {rate}: state messages per second, in (0, {max_rate}] (the loop's rate)"
+                "`rate` = {rate:?}: state messages per second, from {MIN_RATE} to {max_rate} (the loop's rate)"
             ),
         ));
     }
     if let Some(w) = r.watchdog
-        && w < 0.0
+        && !(0.0..=MAX_WATCHDOG).contains(&w)
     {
         return Err(bad(
             "watchdog",
-            format!("`watchdog` = {w}: seconds, ≥ 0 (0 turns it off)"),
+            format!("`watchdog` = {w:?}: seconds, from 0 (off) to {MAX_WATCHDOG}"),
         ));
     }
     Ok(r)

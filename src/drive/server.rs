@@ -4,6 +4,13 @@
 //! the same socket). No async runtime: a handful of clients at tens of
 //! messages per second is what it serves, and the real-time loop runs on
 //! its own thread whatever the server does.
+//!
+//! Every request goes through [`Access`] (the Host, the Origin, the
+//! WebSocket's token), and what a client can make the server hold is
+//! bounded (docs/DRIVE.md, "Who may connect"): at most
+//! [`MAX_CONNECTIONS`] connections at once, a request head of at most
+//! [`MAX_HEAD`] bytes read within [`HEAD_TIMEOUT`], no request body, and
+//! WebSocket messages of at most [`MAX_MESSAGE`] bytes.
 
 use std::collections::HashMap;
 use std::io::{Read, Write};
@@ -14,11 +21,47 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use tungstenite::protocol::Role;
+use tungstenite::protocol::frame::CloseFrame;
+use tungstenite::protocol::frame::coding::CloseCode;
+use tungstenite::protocol::{Role, WebSocketConfig};
 use tungstenite::{Message, WebSocket};
 
+use super::access::{Access, Credentials, Refusal};
 use super::live::{RoverInfo, Shared};
 use super::protocol;
+
+/// Connections served at once (page loads, WebSocket clients, requests
+/// being read); one more is answered 503 and closed. A page takes one
+/// WebSocket and a few short requests: 32 is several operators and rigs.
+pub const MAX_CONNECTIONS: usize = 32;
+/// Largest request head (request line and headers) \[bytes\]: a browser's
+/// GET is well under 2 kB.
+pub const MAX_HEAD: usize = 8 * 1024;
+/// Time a client has to send its whole request head: a client that
+/// trickles it in holds a connection no longer than this.
+pub const HEAD_TIMEOUT: Duration = Duration::from_secs(5);
+/// Time a write may block on a client that does not read (a response, a
+/// state message): past it the connection is dropped, so that a stalled
+/// client holds no thread.
+pub const WRITE_TIMEOUT: Duration = Duration::from_secs(5);
+/// Largest WebSocket message (and frame) a client may send \[bytes\]: a
+/// command is tens of bytes. A larger one closes the connection with
+/// code 1009 (message too big) before its payload is read.
+pub const MAX_MESSAGE: usize = 64 * 1024;
+/// The most a WebSocket connection buffers for a client that reads slowly
+/// \[bytes\]: several state messages; a send beyond it fails and the
+/// connection ends.
+pub const MAX_WRITE_BUFFER: usize = 1024 * 1024;
+
+/// The WebSocket's limits: small buffers, [`MAX_MESSAGE`] in.
+fn websocket_config() -> WebSocketConfig {
+    WebSocketConfig::default()
+        .read_buffer_size(4 * 1024)
+        .write_buffer_size(0)
+        .max_write_buffer_size(MAX_WRITE_BUFFER)
+        .max_message_size(Some(MAX_MESSAGE))
+        .max_frame_size(Some(MAX_MESSAGE))
+}
 
 /// The page and its scripts, in the binary: nothing is fetched at run time.
 const INDEX: &str = include_str!("web/index.html");
@@ -53,6 +96,8 @@ pub struct App {
     pub terrain: String,
     /// Mode-specific content.
     pub content: Content,
+    /// Who may connect.
+    pub access: Access,
     /// Each WebSocket client's state rate, to set the loop's publication rate.
     rates: Mutex<HashMap<u64, f64>>,
     next_client: AtomicU64,
@@ -63,6 +108,8 @@ pub struct App {
     connections: Mutex<Vec<(Option<TcpStream>, JoinHandle<()>)>>,
     /// Live server threads: the accept loop and the connections.
     threads: Arc<AtomicUsize>,
+    /// Open connections, against [`MAX_CONNECTIONS`].
+    open: Arc<AtomicUsize>,
 }
 
 /// Counts a live thread until it ends (however it ends).
@@ -148,16 +195,18 @@ impl Server {
 
 impl App {
     /// A server's state.
-    pub fn new(meta: String, terrain: String, content: Content) -> Arc<Self> {
+    pub fn new(meta: String, terrain: String, content: Content, access: Access) -> Arc<Self> {
         Arc::new(App {
             meta,
             terrain,
             content,
+            access,
             rates: Mutex::new(HashMap::new()),
             next_client: AtomicU64::new(0),
             stop: AtomicBool::new(false),
             connections: Mutex::new(Vec::new()),
             threads: Arc::new(AtomicUsize::new(0)),
+            open: Arc::new(AtomicUsize::new(0)),
         })
     }
 
@@ -172,7 +221,12 @@ fn serve(listener: TcpListener, app: &Arc<App>) {
         if app.stopping() {
             break;
         }
-        let Ok(stream) = stream else { continue };
+        let Ok(mut stream) = stream else { continue };
+        if app.open.load(Ordering::SeqCst) >= MAX_CONNECTIONS {
+            busy(&mut stream);
+            continue;
+        }
+        let slot = Alive::new(&app.open);
         // The list's copy of the socket keeps it open: each connection
         // shuts its socket down when done, so that its client sees the end.
         let handle = stream.try_clone().ok();
@@ -183,6 +237,7 @@ fn serve(listener: TcpListener, app: &Arc<App>) {
             .name("rover-http".into())
             .spawn(move || {
                 let _alive = alive;
+                let _slot = slot;
                 // A client that goes away mid-request is nothing to report.
                 let _ = connection(stream, &conn_app);
                 if let Some(s) = closer {
@@ -204,45 +259,159 @@ fn serve(listener: TcpListener, app: &Arc<App>) {
     }
 }
 
-/// A request's method, path and the headers that matter here.
+/// A request's method, target and the headers that matter here.
+#[derive(Default)]
 struct Request {
     method: String,
-    path: String,
+    target: String,
+    host: Option<String>,
+    origin: Option<String>,
+    authorization: Option<String>,
     websocket_key: Option<String>,
+    /// Whether it announces a body (none is read).
+    body: bool,
+    /// A header that must come once came twice.
+    repeated: Option<&'static str>,
+    /// Bytes read past the head (a WebSocket client's first frames).
+    rest: Vec<u8>,
 }
 
-fn read_request(stream: &mut TcpStream) -> std::io::Result<Option<Request>> {
-    stream.set_read_timeout(Some(Duration::from_secs(10)))?;
+impl Request {
+    /// The target's path, without the query.
+    fn path(&self) -> &str {
+        self.target.split('?').next().unwrap_or("")
+    }
+
+    /// The target's `token` query parameter.
+    fn query_token(&self) -> Option<&str> {
+        let (_, query) = self.target.split_once('?')?;
+        query.split('&').find_map(|p| p.strip_prefix("token="))
+    }
+
+    fn credentials(&self) -> Credentials<'_> {
+        Credentials {
+            host: self.host.as_deref(),
+            origin: self.origin.as_deref(),
+            query_token: self.query_token(),
+            authorization: self.authorization.as_deref(),
+        }
+    }
+}
+
+/// Why no request could be read.
+enum HeadError {
+    /// The client closed the connection (or it failed) first: nothing to answer.
+    Gone,
+    /// The head passed [`MAX_HEAD`].
+    TooLarge,
+    /// The head did not come whole within [`HEAD_TIMEOUT`].
+    Timeout,
+}
+
+fn read_request(stream: &mut TcpStream) -> Result<Request, HeadError> {
+    let until = Instant::now() + HEAD_TIMEOUT;
     let mut buf = Vec::with_capacity(1024);
     let mut chunk = [0u8; 1024];
-    while !buf.windows(4).any(|w| w == b"\r\n\r\n") {
-        let n = stream.read(&mut chunk)?;
-        if n == 0 {
-            return Ok(None);
+    let end = loop {
+        let left = until.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return Err(HeadError::Timeout);
         }
+        stream
+            .set_read_timeout(Some(left))
+            .map_err(|_| HeadError::Gone)?;
+        let n = match stream.read(&mut chunk) {
+            Ok(0) => return Err(HeadError::Gone),
+            Ok(n) => n,
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+                ) =>
+            {
+                return Err(HeadError::Timeout);
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(_) => return Err(HeadError::Gone),
+        };
+        // The end may straddle the previous chunk.
+        let from = buf.len().saturating_sub(3);
         buf.extend_from_slice(&chunk[..n]);
-        if buf.len() > 32 * 1024 {
-            return Ok(None);
+        if let Some(k) = buf[from..].windows(4).position(|w| w == b"\r\n\r\n") {
+            break from + k + 4;
         }
+        if buf.len() > MAX_HEAD {
+            return Err(HeadError::TooLarge);
+        }
+    };
+    if end > MAX_HEAD {
+        return Err(HeadError::TooLarge);
     }
-    let text = String::from_utf8_lossy(&buf);
+    let text = String::from_utf8_lossy(&buf[..end]);
     let mut lines = text.split("\r\n");
     let mut first = lines.next().unwrap_or("").split_whitespace();
-    let method = first.next().unwrap_or("").to_string();
-    let path = first.next().unwrap_or("").to_string();
-    let mut websocket_key = None;
+    let mut req = Request {
+        method: first.next().unwrap_or("").to_string(),
+        target: first.next().unwrap_or("").to_string(),
+        rest: buf[end..].to_vec(),
+        ..Request::default()
+    };
     for line in lines {
-        if let Some((name, value)) = line.split_once(':')
-            && name.trim().eq_ignore_ascii_case("sec-websocket-key")
-        {
-            websocket_key = Some(value.trim().to_string());
+        let Some((name, value)) = line.split_once(':') else {
+            continue;
+        };
+        let value = Some(value.trim().to_string());
+        let name = name.trim().to_ascii_lowercase();
+        let once = |slot: &mut Option<String>, repeated: &mut Option<&'static str>, key| {
+            if slot.is_some() {
+                *repeated = Some(key);
+            }
+            *slot = value.clone();
+        };
+        match name.as_str() {
+            "host" => once(&mut req.host, &mut req.repeated, "Host"),
+            "origin" => once(&mut req.origin, &mut req.repeated, "Origin"),
+            "authorization" => once(&mut req.authorization, &mut req.repeated, "Authorization"),
+            "sec-websocket-key" => once(
+                &mut req.websocket_key,
+                &mut req.repeated,
+                "Sec-WebSocket-Key",
+            ),
+            "transfer-encoding" => req.body = true,
+            "content-length" => req.body |= value.as_deref() != Some("0"),
+            _ => {}
         }
     }
-    Ok(Some(Request {
-        method,
-        path,
-        websocket_key,
-    }))
+    Ok(req)
+}
+
+/// The answer to a connection beyond [`MAX_CONNECTIONS`], from the accept
+/// thread: what the client sent so far is read without waiting (so that
+/// closing does not reset the connection under the answer), then 503.
+fn busy(stream: &mut TcpStream) {
+    let mut sink = [0u8; 4096];
+    if stream.set_nonblocking(true).is_ok() {
+        let _ = stream.read(&mut sink);
+        let _ = stream.set_nonblocking(false);
+    }
+    let _ = stream.set_write_timeout(Some(Duration::from_millis(200)));
+    let _ = respond(
+        stream,
+        "503 Service Unavailable",
+        "text/plain",
+        format!("too many connections (at most {MAX_CONNECTIONS} at once): close one and retry\n")
+            .as_bytes(),
+    );
+    let _ = stream.shutdown(std::net::Shutdown::Write);
+}
+
+fn refused(stream: &mut TcpStream, r: &Refusal) -> std::io::Result<()> {
+    respond(
+        stream,
+        r.status,
+        "text/plain; charset=utf-8",
+        format!("{}\n", r.reason).as_bytes(),
+    )
 }
 
 fn respond(stream: &mut TcpStream, status: &str, kind: &str, body: &[u8]) -> std::io::Result<()> {
@@ -250,15 +419,62 @@ fn respond(stream: &mut TcpStream, status: &str, kind: &str, body: &[u8]) -> std
         "HTTP/1.1 {status}\r\nContent-Type: {kind}\r\nContent-Length: {}\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n",
         body.len()
     );
-    stream.write_all(head.as_bytes())?;
-    stream.write_all(body)?;
+    if body.len() <= 4096 {
+        // One write: a short answer (a refusal) reaches the client whole,
+        // even when the connection is closed right after.
+        let mut all = head.into_bytes();
+        all.extend_from_slice(body);
+        stream.write_all(&all)?;
+    } else {
+        stream.write_all(head.as_bytes())?;
+        stream.write_all(body)?;
+    }
     stream.flush()
 }
 
 fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
-    let Some(req) = read_request(&mut stream)? else {
-        return Ok(());
+    stream.set_write_timeout(Some(WRITE_TIMEOUT))?;
+    let req = match read_request(&mut stream) {
+        Ok(req) => req,
+        Err(HeadError::Gone) => return Ok(()),
+        Err(HeadError::TooLarge) => {
+            return respond(
+                &mut stream,
+                "431 Request Header Fields Too Large",
+                "text/plain",
+                format!("the request head is over {MAX_HEAD} bytes\n").as_bytes(),
+            );
+        }
+        Err(HeadError::Timeout) => {
+            return respond(
+                &mut stream,
+                "408 Request Timeout",
+                "text/plain",
+                format!(
+                    "the request head did not come within {} s\n",
+                    HEAD_TIMEOUT.as_secs()
+                )
+                .as_bytes(),
+            );
+        }
     };
+    if let Some(header) = req.repeated {
+        return respond(
+            &mut stream,
+            "400 Bad Request",
+            "text/plain",
+            format!("the {header} header came twice: send it once\n").as_bytes(),
+        );
+    }
+    let path = req.path();
+    let check = if path == "/ws" && matches!(app.content, Content::Drive { .. }) {
+        app.access.check_websocket(&req.credentials())
+    } else {
+        app.access.check_request(&req.credentials())
+    };
+    if let Err(r) = check {
+        return refused(&mut stream, &r);
+    }
     if req.method != "GET" {
         return respond(
             &mut stream,
@@ -267,7 +483,14 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
             b"only GET\n",
         );
     }
-    let path = req.path.split('?').next().unwrap_or("");
+    if req.body {
+        return respond(
+            &mut stream,
+            "413 Content Too Large",
+            "text/plain",
+            b"a GET has no body here\n",
+        );
+    }
     match path {
         "/" | "/index.html" => respond(
             &mut stream,
@@ -317,14 +540,19 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
                 b"no run file while driving live\n",
             ),
         },
-        "/ws" => match (&app.content, req.websocket_key) {
+        "/ws" => match (&app.content, &req.websocket_key) {
             (Content::Drive { .. }, Some(key)) => {
                 let accept = tungstenite::handshake::derive_accept_key(key.as_bytes());
                 let head = format!(
                     "HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Accept: {accept}\r\n\r\n"
                 );
                 stream.write_all(head.as_bytes())?;
-                let ws = WebSocket::from_raw_socket(stream, Role::Server, None);
+                let ws = WebSocket::from_partially_read(
+                    stream,
+                    req.rest,
+                    Role::Server,
+                    Some(websocket_config()),
+                );
                 session(ws, app);
                 Ok(())
             }
@@ -365,7 +593,7 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
         return;
     };
     let id = app.next_client.fetch_add(1, Ordering::Relaxed);
-    let mut period = Duration::from_secs_f64(1.0 / 30.0);
+    let mut period = Duration::from_micros(33_333);
     if let Ok(mut r) = app.rates.lock() {
         r.insert(id, 30.0);
     }
@@ -395,8 +623,12 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
                     if let Some(f) = req.subscribe {
                         format = f;
                     }
-                    if let Some(rate) = req.rate {
-                        period = Duration::from_secs_f64(1.0 / rate);
+                    // The rate was range-checked: its period is a Duration.
+                    if let Some((rate, p)) = req
+                        .rate
+                        .and_then(|r| Some((r, Duration::try_from_secs_f64(1.0 / r).ok()?)))
+                    {
+                        period = p;
                         if let Ok(mut r) = app.rates.lock() {
                             r.insert(id, rate);
                         }
@@ -420,6 +652,14 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
             }
             Ok(Message::Close(_)) => break,
             Ok(_) => {}
+            Err(tungstenite::Error::Capacity(_)) => {
+                let _ = ws.close(Some(CloseFrame {
+                    code: CloseCode::Size,
+                    reason: format!("messages are at most {MAX_MESSAGE} bytes").into(),
+                }));
+                let _ = ws.flush();
+                break;
+            }
             Err(tungstenite::Error::Io(e))
                 if matches!(
                     e.kind(),
