@@ -347,3 +347,22 @@ fn escape_sequences_in_a_file_reach_the_terminal_as_text() {
     );
     assert!(!err.contains('\u{1b}'), "{err:?}");
 }
+
+#[cfg(feature = "drive")]
+#[test]
+fn view_serves_only_what_the_run_folder_holds() {
+    let dir = scratch("view-link");
+    write(
+        &dir,
+        "elsewhere.csv",
+        "t,X,Y,Z,phi,theta,psi,W1X,Fn1\n0,0,0,0,0,0,0,0,0\n",
+    );
+    std::fs::create_dir_all(dir.join("run")).unwrap();
+    symlink(dir.join("elsewhere.csv"), &dir.join("run/run.csv"));
+    expect(
+        &dir,
+        &["view", "run", "--port", "0"],
+        2,
+        &["run.csv", "symbolic link"],
+    );
+}

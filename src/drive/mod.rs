@@ -47,6 +47,9 @@ patch_blend = 0.5
 
 /// Arguments of `rover drive`.
 #[derive(Debug, Args)]
+// A negative number is a value (`--rate -5` is refused as a rate, not taken
+// for an unknown flag).
+#[command(allow_negative_numbers = true)]
 pub struct DriveArgs {
     /// A built-in rover (exomars, swing4, mer, lrv) or a description file;
     /// overrides the scenario's `rover`.
@@ -608,8 +611,17 @@ pub fn view(args: &ViewArgs) -> Result<(), CliError> {
 /// Start `rover view`'s server.
 pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
     let allowed = allowed_origins(&args.allow_origin)?;
+    // Read once, as the folder holds it (not through a link to elsewhere),
+    // and served from memory: one copy whatever the number of clients.
     let csv = args.out.join("run.csv");
-    let text = std::fs::read_to_string(&csv).map_err(|e| CliError::io(&csv, "read", e))?;
+    let bytes = rover_files::read_entry(&args.out, "run.csv", rover_files::Limit::Data)
+        .map_err(|e| CliError::io(&csv, "read", e))?;
+    let text = String::from_utf8(bytes).map_err(|_| {
+        CliError::Usage(format!(
+            "{}: is not UTF-8 text: not a run.csv of `rover simulate`",
+            csv.display()
+        ))
+    })?;
     let columns: Vec<String> = text
         .lines()
         .next()
@@ -626,8 +638,9 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
         }
     }
     let name = args.rover.clone().or_else(|| {
-        let s = std::fs::read_to_string(args.out.join("summary.json")).ok()?;
-        let v: serde_json::Value = serde_json::from_str(&s).ok()?;
+        let s =
+            rover_files::read_entry(&args.out, "summary.json", rover_files::Limit::Text).ok()?;
+        let v: serde_json::Value = serde_json::from_slice(&s).ok()?;
         v.get("rover")?.as_str().map(str::to_string)
     });
     let spec = name.as_deref().and_then(|n| load_rover(n, None).ok());
@@ -659,7 +672,9 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
     let app = App::new(
         meta("view", spec.as_ref(), &columns, info.as_ref(), None),
         terrain,
-        Content::View { csv },
+        Content::View {
+            csv: Arc::new(text.into_bytes()),
+        },
         // No WebSocket: no token.
         Access::new(addr, &allowed, None),
     );

@@ -15,7 +15,6 @@
 use std::collections::HashMap;
 use std::io::{Read, Write};
 use std::net::{TcpListener, TcpStream};
-use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -83,8 +82,8 @@ pub enum Content {
     },
     /// A finished run: `/run.csv` is its CSV.
     View {
-        /// The CSV file.
-        csv: PathBuf,
+        /// The CSV's bytes, read once from the run's folder.
+        csv: Arc<Vec<u8>>,
     },
 }
 
@@ -524,15 +523,7 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
             app.terrain.as_bytes(),
         ),
         "/run.csv" => match &app.content {
-            Content::View { csv } => match std::fs::read(csv) {
-                Ok(bytes) => respond(&mut stream, "200 OK", "text/csv", &bytes),
-                Err(e) => respond(
-                    &mut stream,
-                    "500 Internal Server Error",
-                    "text/plain",
-                    format!("{}: {e}\n", csv.display()).as_bytes(),
-                ),
-            },
+            Content::View { csv } => respond(&mut stream, "200 OK", "text/csv", csv),
             Content::Drive { .. } => respond(
                 &mut stream,
                 "404 Not Found",
