@@ -25,7 +25,7 @@ pub(crate) fn scratch(name: &str) -> PathBuf {
 pub(crate) fn rover(dir: &Path, args: &[&str]) -> Output {
     let mut script = format!("ulimit -v {MEMORY_LIMIT_KB}; exec \"$0\"");
     for i in 1..=args.len() {
-        script.push_str(&format!(" \"${i}\""));
+        script.push_str(&format!(" \"${{{i}}}\""));
     }
     let mut child = Command::new("sh")
         .arg("-c")

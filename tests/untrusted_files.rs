@@ -366,3 +366,34 @@ fn view_serves_only_what_the_run_folder_holds() {
         &["run.csv", "symbolic link"],
     );
 }
+
+#[test]
+fn a_negative_number_is_a_value_refused_by_its_own_range() {
+    let dir = scratch("negative");
+    let err = expect(
+        &dir,
+        &["linearize", "exomars", "--speed", "-1e9"],
+        2,
+        &["speed"],
+    );
+    assert!(!err.contains("-- -1e9"), "{err}");
+    let err = expect(
+        &dir,
+        &[
+            "wheel-test",
+            "--soil",
+            "dry_sand",
+            "--radius",
+            "-1",
+            "--width",
+            "0.1",
+            "--load",
+            "10",
+            "--slip",
+            "0.1",
+        ],
+        2,
+        &["--radius -1"],
+    );
+    assert!(!err.contains("tip:"), "{err}");
+}
