@@ -377,7 +377,9 @@ fn level(
                     ),
                 ));
             }
-            Ok(Some(Level { fidelity, y_ref: y }))
+            let level = Level { fidelity, y_ref: y };
+            crate::trace::check_level(spec, &level).map_err(|m| syn::Error::new(span, m))?;
+            Ok(Some(level))
         }
         (Some((fidelity, _)), None) => Ok(Some(Level {
             fidelity,

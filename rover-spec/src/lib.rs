@@ -87,6 +87,8 @@ pub mod limits {
 pub use description::Description;
 pub use diagnostic::Diagnostic;
 pub use error::SpecError;
-pub use load::{from_description, line_column, load_file, load_str, parse_str};
+pub use load::{
+    MAX_NESTING, from_description, line_column, load_file, load_str, nesting_error, parse_str,
+};
 pub use spec::{BodyFit, Spec, SuspensionInfo};
 pub use validate::validate;

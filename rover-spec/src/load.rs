@@ -1,5 +1,6 @@
 //! Text → [`Description`] → [`Spec`], with every error located.
 
+use std::ops::Range;
 use std::path::Path;
 
 use crate::description::Description;
@@ -124,8 +125,58 @@ fn refine_tagged(text: &str, error: &toml::de::Error) -> Option<toml::de::Error>
     .filter(|e| e.span().is_some())
 }
 
+/// How deep the TOML parser nests arrays, inline tables and dotted keys.
+pub const MAX_NESTING: usize = 80;
+
+/// A TOML error of nesting too deep (arrays in arrays, inline tables in
+/// inline tables, or a dotted key of too many parts), which the parser
+/// reports as a recursion limit: where it is (the parser's span, or the
+/// first key of too many parts) and a sentence saying what is wrong.
+pub fn nesting_error(text: &str, error: &toml::de::Error) -> Option<(Range<usize>, String)> {
+    let message = error.message();
+    if !message.contains("recursion") && !message.contains("recurse") {
+        return None;
+    }
+    let span = error.span().or_else(|| deep_key(text))?;
+    Some((
+        span,
+        format!(
+            "nesting deeper than {MAX_NESTING} levels (arrays in arrays, tables in tables, or a key of more than {MAX_NESTING} dotted parts)"
+        ),
+    ))
+}
+
+/// The first key of a header or a key-value line with at least
+/// [`MAX_NESTING`] dotted parts.
+fn deep_key(text: &str) -> Option<Range<usize>> {
+    let mut start = 0;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim_start();
+        let key = match trimmed.strip_prefix('[') {
+            Some(header) => header.split(']').next().unwrap_or(""),
+            None => trimmed.split('=').next().unwrap_or(""),
+        };
+        if key.matches('.').count() + 1 >= MAX_NESTING {
+            let at = start + (line.len() - trimmed.len());
+            return Some(at..start + line.trim_end().len());
+        }
+        start += line.len();
+    }
+    None
+}
+
 /// A parser or serde error as a [`Diagnostic`], with its field path and a hint.
 fn parser_diagnostic(e: &toml::de::Error, doc: &Document, text: &str) -> Diagnostic {
+    if let Some((span, message)) = nesting_error(text, e) {
+        let mut d = Diagnostic::at(
+            "",
+            message,
+            "a rover description is a few tables deep (docs/DESCRIPTION.md): check the brackets and braces here",
+        )
+        .label("too deep");
+        d.span = Some(span);
+        return d;
+    }
     let message = e.message().trim().to_string();
     let mut span = e.span();
     let mut path = span.as_ref().map(|s| doc.path_at(s)).unwrap_or_default();
