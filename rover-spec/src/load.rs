@@ -103,26 +103,36 @@ fn refine_tagged(text: &str, error: &toml::de::Error) -> Option<toml::de::Error>
 
     let span = error.span()?;
     let root = DeTable::parse(text).ok()?.into_inner();
-    let suspensions = root.get("suspension")?.get_ref().as_array()?;
-    let entry = suspensions
-        .iter()
-        .find(|s| s.span().start <= span.start && span.end <= s.span().end)?;
-    let DeValue::Table(table) = entry.get_ref() else {
-        return None;
+    let array = root.get("suspension")?;
+    let suspensions = array.get_ref().as_array()?;
+    let inside =
+        |s: &toml::Spanned<DeValue>| s.span().start <= span.start && span.end <= s.span().end;
+    // The entry whose span holds the error's; when the error is at the
+    // whole array's span (the first entry's header), each entry in turn:
+    // serde stopped at the first that fails.
+    let entries: Vec<_> = if array.span().start == span.start {
+        suspensions.iter().collect()
+    } else {
+        vec![suspensions.iter().find(|s| inside(s))?]
     };
-    let mut table = table.clone();
-    let kind = table.remove("kind")?;
-    let value = toml::Spanned::new(entry.span(), DeValue::Table(table));
-    match kind.get_ref().as_str()? {
-        "longitudinal_swing_arm" => read::<d::SwingArmDesc>(value),
-        "transversal_swing_arm" => read::<d::TransversalSwingArmDesc>(value),
-        "double_wishbone" => read::<d::DoubleWishboneDesc>(value),
-        "longitudinal_rocker" | "transversal_rocker" => read::<d::RockerDesc>(value),
-        "rocker_bogie" => read::<d::RockerBogieDesc>(value),
-        "polynomial" => read::<d::PolynomialDesc>(value),
-        _ => None,
-    }
-    .filter(|e| e.span().is_some())
+    entries.into_iter().find_map(|entry| {
+        let DeValue::Table(table) = entry.get_ref() else {
+            return None;
+        };
+        let mut table = table.clone();
+        let kind = table.remove("kind")?;
+        let value = toml::Spanned::new(entry.span(), DeValue::Table(table));
+        match kind.get_ref().as_str()? {
+            "longitudinal_swing_arm" => read::<d::SwingArmDesc>(value),
+            "transversal_swing_arm" => read::<d::TransversalSwingArmDesc>(value),
+            "double_wishbone" => read::<d::DoubleWishboneDesc>(value),
+            "longitudinal_rocker" | "transversal_rocker" => read::<d::RockerDesc>(value),
+            "rocker_bogie" => read::<d::RockerBogieDesc>(value),
+            "polynomial" => read::<d::PolynomialDesc>(value),
+            _ => None,
+        }
+        .filter(|e| e.span().is_some())
+    })
 }
 
 /// How deep the TOML parser nests arrays, inline tables and dotted keys.
