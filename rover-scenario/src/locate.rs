@@ -142,3 +142,85 @@ pub(crate) fn render(text: &str, span: Range<usize>, message: &str) -> String {
         "^".repeat(carets)
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use crate::scenario::Scenario;
+
+    /// `line, column` of the error of parsing `text`.
+    fn at(text: &str) -> String {
+        let e = Scenario::parse(text, Path::new("s.toml")).unwrap_err();
+        let head = e.message.lines().next().unwrap_or_default().to_string();
+        head.split_once("at line ")
+            .map(|(_, l)| l.replace(" column ", ""))
+            .unwrap_or(head)
+    }
+
+    #[test]
+    fn value_errors_point_at_the_value_inside_kind_chosen_tables() {
+        let seed = "rover = \"swing4\"\nduration = 10.0\nsettle = 1.0\noutput_rate = 20.0\n\n# rough ground\n\n[terrain]\nseed = -3\nkind = \"random\"\nz_r = 0.1\n";
+        assert_eq!(at(seed), "9,8");
+        let cases = [
+            (
+                "duration = 1.0\n[terrain]\nkind = \"random\"\nz_r = 0.1\nseed = \"x\"\n",
+                "5,8",
+            ),
+            (
+                "duration = 1.0\n[terrain]\nkind = \"slope\"\nangel_deg = 1.0\n",
+                "4,1",
+            ),
+            (
+                "duration = 1.0\n[terrain]\nkind = \"flat\"\nsoil = { n = \"x\" }\n",
+                "4,14",
+            ),
+            (
+                "duration = 1.0\n[terrain]\nkind = \"flat\"\nsoil = 5\n",
+                "4,8",
+            ),
+            (
+                "duration = 1.0\n[control.steering]\nkind = \"ackermann\"\nradius = \"x\"\n",
+                "4,10",
+            ),
+            (
+                "duration = 1.0\n[control.steering]\nkind = \"slip\"\ndelta_tau = true\n",
+                "4,13",
+            ),
+            (
+                "duration = 1.0\n[contact]\nlaw = { kind = \"magic_formula\", shape = \"x\" }\n",
+                "3,41",
+            ),
+            // Outside such tables toml locates them itself.
+            ("duration = 1.0\n[integrator.bdf]\nrtol = \"x\"\n", "3,8"),
+        ];
+        for (text, want) in cases {
+            assert_eq!(at(text), want, "{text}");
+        }
+    }
+
+    #[test]
+    fn nesting_too_deep_is_located_with_a_sentence() {
+        let deep = format!(
+            "duration = 1.0\na = {}1{}\n",
+            "[".repeat(10_000),
+            "]".repeat(10_000)
+        );
+        let e = Scenario::parse(&deep, Path::new("s.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("line 2, column") && e.contains("nesting deeper than 80 levels"),
+            "{e}"
+        );
+        let deep = format!("duration = 1.0\n\n{} = 1\n", vec!["a"; 100].join("."));
+        assert_eq!(at(&deep), "3,1");
+        let e = Scenario::parse(&deep, Path::new("s.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("nesting deeper") && !e.contains("recursion"),
+            "{e}"
+        );
+    }
+}
