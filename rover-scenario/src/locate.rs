@@ -48,17 +48,20 @@ pub(crate) fn refine(text: &str, error: &toml::de::Error) -> Option<(Range<usize
             "slip" => read::<Slip>(value),
             _ => None,
         })
+        .map(|e| ("control.steering", e))
     } else if let Some(law) = child(&root, &["contact", "law"]).filter(|v| holds(v)) {
         tagged(law, |kind, value| match kind {
             "chen_genta" => read::<ChenGenta>(value),
             "magic_formula" => read::<MagicFormula>(value),
             _ => None,
         })
+        .map(|e| ("contact.law", e))
     } else {
         None
-    }?;
+    };
+    let (table, found) = found?;
     let refined = found.span()?;
-    (refined != span).then(|| (refined, found.message().trim().to_string()))
+    (refined != span).then(|| (refined, format!("{table}: {}", found.message().trim())))
 }
 
 /// The value at `path` below the root table.
@@ -93,8 +96,9 @@ fn tagged<'a>(
     read(kind, Spanned::new(value.span(), DeValue::Table(table)))
 }
 
-/// The error of `[terrain]`: of its soil table, else of its shape.
-fn terrain_error(value: &Spanned<DeValue<'_>>) -> Option<toml::de::Error> {
+/// The error of `[terrain]`: of its soil table, else of its shape, with
+/// the table's path.
+fn terrain_error(value: &Spanned<DeValue<'_>>) -> Option<(&'static str, toml::de::Error)> {
     let DeValue::Table(table) = value.get_ref() else {
         return None;
     };
@@ -103,7 +107,7 @@ fn terrain_error(value: &Spanned<DeValue<'_>>) -> Option<toml::de::Error> {
         && matches!(soil.get_ref(), DeValue::Table(_))
         && let Some(e) = read::<SoilConfig>(soil)
     {
-        return Some(e);
+        return Some(("terrain.soil", e));
     }
     tagged(
         &Spanned::new(value.span(), DeValue::Table(table)),
@@ -119,6 +123,7 @@ fn terrain_error(value: &Spanned<DeValue<'_>>) -> Option<toml::de::Error> {
             _ => None,
         },
     )
+    .map(|e| ("terrain", e))
 }
 
 /// The error at `span` of `text` as toml renders it: the line and column,
