@@ -517,3 +517,105 @@ fn huge_png(width: u32, height: u32) -> Vec<u8> {
     chunk(&mut out, b"IEND", &[]);
     out
 }
+
+/// Descriptions that are absurd, end to end: names that would drive the
+/// terminal are refused escaped (nothing reaches the terminal raw), a type
+/// name that is a keyword is refused as such, an equilibrium on a bump stop
+/// is refused naming the suspension, and Ackermann commands beyond any
+/// steering geometry name their field; a bad value inside `[terrain]` is
+/// reported at its own line and column.
+#[test]
+fn absurd_descriptions_and_commands_are_refused_naming_the_field() {
+    let dir = scratch("absurd");
+    let base = swing4();
+    let escape = base.replacen(
+        "name = \"front_left\"\nsuspension",
+        "name = \"\\u001b[2J\\u001b]0;pwned\\u0007\"\nsuspension",
+        1,
+    );
+    assert_ne!(escape, base);
+    write(&dir, "escape.toml", &escape);
+    for command in ["check", "codegen", "linearize"] {
+        let out = rover(&dir, &[command, "escape.toml"]);
+        let (stdout, stderr) = (
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr),
+        );
+        assert_eq!(out.status.code(), Some(2), "{command}: {stderr}");
+        assert!(
+            !stdout.contains('\u{1b}') && !stderr.contains('\u{1b}') && !stderr.contains('\u{7}'),
+            "{command} printed a control character: {stderr:?}"
+        );
+        assert!(
+            stderr.contains("wheel[0].name") && stderr.contains(r#""\u{1b}[2J"#),
+            "{command}: {stderr}"
+        );
+    }
+    let out = rover(&dir, &["codegen", "swing4", "--type-name", "Self"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_ne!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("keyword") && !err.contains("internal error"),
+        "{err}"
+    );
+
+    // One wheel on an arm ahead of G: it would come under G at 64°, beyond
+    // the travel's end at -2°.
+    let head = &base[..base.find("[[suspension]]").unwrap()];
+    let one = format!(
+        "{head}[[suspension]]\nname = \"only\"\nkind = \"longitudinal_swing_arm\"\npivot = [0.18, 0.0, -0.01]\nlength = 0.2\n\
+         coordinate = {{ rest_deg = -17.2, min_deg = -60.0, max_deg = -2.0, stiffness = 5.0, damping = 3.5 }}\n\n\
+         [[wheel]]\nname = \"only\"\nsuspension = \"only\"\n"
+    );
+    write(&dir, "one.toml", &one);
+    expect(&dir, &["check", "one.toml"], 0, &[]);
+    let err = expect(
+        &dir,
+        &["codegen", "one.toml", "--fidelity", "simplified"],
+        2,
+        &[
+            "suspension `only`",
+            "outside its travel [-60°, -2°]",
+            "help:",
+        ],
+    );
+    assert!(!err.contains("internal error"), "{err}");
+
+    let scenario = |name: &str, text: &str, parts: &[&str]| {
+        write(&dir, &format!("{name}.toml"), text);
+        let out = format!("out_{name}");
+        let scenario = format!("{name}.toml");
+        let args = [
+            "simulate",
+            "lrv",
+            "--scenario",
+            &scenario,
+            "--out",
+            &out,
+            "--quiet",
+            "--no-plots",
+        ];
+        let run = rover(&dir, &args);
+        let err = String::from_utf8_lossy(&run.stderr).to_string();
+        assert_ne!(run.status.code(), Some(0), "{name}: {err}");
+        assert!(!err.contains("panicked"), "{name}: {err}");
+        for p in parts {
+            assert!(err.contains(p), "{name}: no `{p}` in: {err}");
+        }
+    };
+    scenario(
+        "angle",
+        "duration = 1.0\n[control.steering]\nkind = \"ackermann\"\nfront_left_deg = 1e12\n",
+        &["control.steering.front_left_deg", "between -90° and 90°"],
+    );
+    scenario(
+        "radius",
+        "duration = 1.0\n[control.steering]\nkind = \"ackermann\"\nradius = 0.0\n",
+        &["control.steering.radius", "0 m is no turn"],
+    );
+    scenario(
+        "seed",
+        "duration = 1.0\nsettle = 0.5\noutput_rate = 20.0\n\n# rough ground\n\n\n[terrain]\nseed = -3\nkind = \"random\"\nz_r = 0.1\n",
+        &["line 9, column 8", "seed = -3"],
+    );
+}

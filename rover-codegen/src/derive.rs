@@ -377,7 +377,9 @@ fn level(
                     ),
                 ));
             }
-            Ok(Some(Level { fidelity, y_ref: y }))
+            let level = Level { fidelity, y_ref: y };
+            crate::trace::check_level(spec, &level).map_err(|m| syn::Error::new(span, m))?;
+            Ok(Some(level))
         }
         (Some((fidelity, _)), None) => Ok(Some(Level {
             fidelity,
@@ -515,6 +517,15 @@ mod tests {
         );
         let out = expand_str(&format!(r#"{toy}"simplified", y_ref = ["a"])] struct T;"#));
         assert!(out.contains("`y_ref` takes an array of numbers"), "{out}");
+        // Inside the travel [-40°, 0°] of each coordinate, or refused naming it.
+        let out = expand_str(&format!(
+            r#"{toy}"simplified", y_ref = [-0.3, 0.5])] struct T;"#
+        ));
+        assert!(
+            out.contains("coordinate y2 `right` of suspension `right`")
+                && out.contains("outside its travel [-40°, 0°]"),
+            "{out}"
+        );
         // A good one: the reduced plant, no error.
         let out = expand_str(&format!(r#"{toy}"linearized")] struct T;"#));
         assert!(!out.contains("compile_error"), "{out}");

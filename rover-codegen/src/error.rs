@@ -7,6 +7,10 @@ use std::fmt;
 pub enum CodegenError {
     /// The description is invalid (every diagnostic, rendered).
     Spec(rover_spec::SpecError),
+    /// An option cannot be used (a type name that is not a Rust
+    /// identifier, a frozen configuration outside the travel): the message
+    /// says which and how to fix it.
+    Invalid(String),
     /// The generated code did not parse: a bug of the generator.
     Internal(String),
 }
@@ -17,6 +21,7 @@ impl fmt::Display for CodegenError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             CodegenError::Spec(e) => write!(f, "{e}"),
+            CodegenError::Invalid(e) => write!(f, "{e}"),
             CodegenError::Internal(e) => write!(
                 f,
                 "internal error: the generated code does not parse ({e}); please report it"
@@ -29,7 +34,7 @@ impl std::error::Error for CodegenError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             CodegenError::Spec(e) => Some(e),
-            CodegenError::Internal(_) => None,
+            CodegenError::Invalid(_) | CodegenError::Internal(_) => None,
         }
     }
 }

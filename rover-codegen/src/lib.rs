@@ -55,5 +55,5 @@ pub use graph::{Graph, Id, Node};
 pub use items::Item;
 #[cfg(feature = "module")]
 pub use module::{ModuleOptions, generate_module, generate_module_with};
-pub use plant_source::{Options, PlantSource, plant_source};
+pub use plant_source::{Options, PlantSource, check_type_name, plant_source};
 pub use sym::Sym;

@@ -34,7 +34,7 @@ impl Default for ModuleOptions {
     }
 }
 
-/// `swing4` → `Swing4`, `my-rover 2` → `MyRover2`.
+/// `swing4` → `Swing4`, `my-rover 2` → `MyRover2`, `self` → `RoverSelf`.
 pub fn type_name(rover: &str) -> String {
     let mut out = String::new();
     let mut up = true;
@@ -50,7 +50,8 @@ pub fn type_name(rover: &str) -> String {
             up = true;
         }
     }
-    if out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) {
+    // `Self` is the one keyword this can give (from `self`).
+    if out.is_empty() || out.starts_with(|c: char| c.is_ascii_digit()) || out == "Self" {
         out.insert_str(0, "Rover");
     }
     out
@@ -76,10 +77,16 @@ pub fn generate_module_with(
     source_name: &str,
     options: &ModuleOptions,
 ) -> Result<String, CodegenError> {
-    let name = options
-        .type_name
-        .clone()
-        .unwrap_or_else(|| type_name(&spec.name));
+    let name = match &options.type_name {
+        Some(name) => {
+            crate::plant_source::check_type_name(name).map_err(CodegenError::Invalid)?;
+            name.clone()
+        }
+        None => type_name(&spec.name),
+    };
+    if let Some(level) = &options.level {
+        crate::trace::check_level(spec, level).map_err(CodegenError::Invalid)?;
+    }
     let source = plant_source(
         spec,
         &Options {

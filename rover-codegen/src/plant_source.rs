@@ -433,3 +433,23 @@ pub(crate) fn nalgebra_path() -> TokenStream {
 pub(crate) fn ground_path() -> TokenStream {
     quote!(::rover_dynamics::wheel_ground)
 }
+
+/// A plant type's name: a Rust identifier that is not a keyword (`Self`,
+/// `type`, …) nor raw (`r#…`); otherwise what is wrong and how to fix it.
+pub fn check_type_name(name: &str) -> Result<(), String> {
+    // Word characters that do not parse as an identifier: a keyword (or `_`).
+    let keyword = name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && syn::parse_str::<syn::Ident>(name).is_err();
+    if name.starts_with("r#") || syn::parse_str::<syn::Ident>(name).is_err() {
+        let what = if keyword {
+            "is a Rust keyword"
+        } else {
+            "is not a Rust identifier"
+        };
+        return Err(format!(
+            "the type name {name:?} {what}: use letters, digits and underscores, starting with an uppercase letter, and not a keyword (e.g. MyRover)"
+        ));
+    }
+    Ok(())
+}

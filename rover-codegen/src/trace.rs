@@ -195,6 +195,26 @@ pub struct Level {
     pub y_ref: Vec<f64>,
 }
 
+/// The level's frozen configuration fits the rover: one value per
+/// suspension coordinate, each inside its travel (the fitted kinematics
+/// reach no farther); otherwise a message naming the coordinate, its
+/// suspension and its travel.
+pub fn check_level(spec: &Spec, level: &Level) -> Result<(), String> {
+    let m = spec.model.coordinates.len();
+    if level.y_ref.len() != m {
+        return Err(format!(
+            "the frozen configuration y_ref has {} values but the rover has {m} suspension coordinates: give one per coordinate, in order",
+            level.y_ref.len()
+        ));
+    }
+    match spec.outside_travel(&level.y_ref, "in the frozen configuration y_ref") {
+        Some(m) => Err(format!(
+            "{m}: a reduced level is frozen inside the travel, where the kinematics are fitted; give y_ref values inside it"
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Trace every function of the plant of `spec` (full fidelity).
 pub fn trace_spec(spec: &Spec, with_jacobian: bool) -> Traced {
     trace_spec_at(spec, with_jacobian, None)

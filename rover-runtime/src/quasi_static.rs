@@ -37,6 +37,25 @@ pub enum QuasiStaticError {
         /// Largest residual left [N or N·m].
         residual: f64,
     },
+    /// The equilibrium puts a suspension coordinate beyond its travel: the
+    /// rover would rest on a bump stop, where its fitted kinematics do not
+    /// reach.
+    #[error(
+        "at the static equilibrium on flat ground suspension coordinate y{} is {value:.6} \
+         (rad, or m for a length), outside its travel [{min:.6}, {max:.6}]: the rover rests on a bump stop; \
+         stiffen the spring or move its neutral, or widen the travel (docs/DESCRIPTION.md)",
+        coordinate + 1
+    )]
+    OutsideTravel {
+        /// The coordinate (0-based).
+        coordinate: usize,
+        /// Its value at the equilibrium.
+        value: f64,
+        /// Its lower travel limit.
+        min: f64,
+        /// Its upper travel limit.
+        max: f64,
+    },
     /// A wheel left the terrain map.
     #[error("wheel {} left the terrain: {off}", wheel + 1)]
     OffMap {
@@ -403,6 +422,7 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
 /// a coordinate sits within the noise of a grid midpoint.
 pub fn flat_ground_equilibrium(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
     let y = flat_ground_solution(model)?.coordinates;
+    within_travel(model, &y)?;
     Ok(y.into_iter()
         .map(|v| (v / EQUILIBRIUM_GRID).round() * EQUILIBRIUM_GRID)
         .collect())
@@ -423,7 +443,25 @@ pub fn flat_ground_loads(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
 /// tolerance (not rounded as [`flat_ground_equilibrium`] is): the point a
 /// linearization is taken about.
 pub fn flat_ground_pose(model: &Model) -> Result<Vec<f64>, QuasiStaticError> {
-    Ok(flat_ground_solution(model)?.pose)
+    let solution = flat_ground_solution(model)?;
+    within_travel(model, &solution.coordinates)?;
+    Ok(solution.pose)
+}
+
+/// Each coordinate of an equilibrium `y` inside its travel (to the
+/// tolerance of the grid the equilibrium is rounded to).
+fn within_travel(model: &Model, y: &[f64]) -> Result<(), QuasiStaticError> {
+    for (i, (c, &v)) in model.coordinates.iter().zip(y).enumerate() {
+        if !(v >= c.min - EQUILIBRIUM_GRID && v <= c.max + EQUILIBRIUM_GRID) {
+            return Err(QuasiStaticError::OutsideTravel {
+                coordinate: i,
+                value: v,
+                min: c.min,
+                max: c.max,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The static equilibrium on flat ground.

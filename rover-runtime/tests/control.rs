@@ -284,3 +284,90 @@ fn bad_set_points_are_refused_with_the_point() {
         assert_eq!(error(speed), format!("control.speed.speed: {want}"));
     }
 }
+
+/// Ackermann commands a steering geometry can take: an angle strictly
+/// between −90° and 90°, a turn centre off the rover's centre line (R ≠ 0),
+/// at construction and as a set-point later.
+#[test]
+fn ackermann_commands_out_of_range_are_refused() {
+    let m = rover_spec::load_str(rover_models::builtin("lrv").unwrap(), "lrv")
+        .unwrap()
+        .model;
+    let build = |steering: &str| {
+        let config: rover_runtime::control::ControllerConfig =
+            toml::from_str(&format!("[steering]\nkind = \"ackermann\"\n{steering}\n")).unwrap();
+        rover_runtime::control::Controller::new(config, &m, 0.0)
+    };
+    let error = |steering: &str| build(steering).unwrap_err().to_string();
+    for angle in [
+        "1e12",
+        "90.0",
+        "-90.0",
+        "{ points = [[0.0, 5.0], [1.0, 100.0]] }",
+    ] {
+        let e = error(&format!("front_left_deg = {angle}"));
+        assert!(
+            e.starts_with("control.steering.front_left_deg: ")
+                && e.contains("between -90° and 90°"),
+            "{angle}: {e}"
+        );
+    }
+    for radius in ["0.0", "{ points = [[0.0, 5.0], [1.0, 0.0]] }"] {
+        let e = error(&format!("radius = {radius}"));
+        assert!(
+            e.starts_with("control.steering.radius: ") && e.contains("0 m is no turn"),
+            "{radius}: {e}"
+        );
+    }
+    let through_zero =
+        error("radius = { points = [[0.0, -5.0], [1.0, 5.0]], interpolation = \"linear\" }");
+    assert!(through_zero.contains("through R = 0"), "{through_zero}");
+    // Either sign turns, and a step from one to the other never passes 0.
+    build("radius = -5.0").unwrap();
+    build("front_left_deg = 89.9").unwrap();
+    build("radius = { points = [[0.0, -5.0], [1.0, 5.0]] }").unwrap();
+    // A set-point is held to the same ranges.
+    let mut by_angle = build("front_left_deg = 5.0").unwrap();
+    let e = by_angle
+        .set_steering_setpoint(1e12)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("between -90° and 90°"), "{e}");
+    by_angle.set_steering_setpoint(-30.0).unwrap();
+    let mut by_radius = build("radius = 5.0").unwrap();
+    let e = by_radius
+        .set_steering_setpoint(0.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("0 m is no turn"), "{e}");
+}
+
+/// A rover whose static equilibrium would rest on a bump stop has no
+/// equilibrium a reduced level can be frozen at.
+#[test]
+fn an_equilibrium_outside_the_travel_is_refused() {
+    // One swing arm whose wheel must come under G: at 64° it would, but
+    // the travel ends at −2°.
+    let text = rover_models::builtin("swing4").unwrap();
+    let head = &text[..text.find("[[suspension]]").unwrap()];
+    let one = format!(
+        "{head}[[suspension]]\nname = \"only\"\nkind = \"longitudinal_swing_arm\"\npivot = [0.18, 0.0, -0.01]\nlength = 0.2\n\
+         coordinate = {{ rest_deg = -17.2, min_deg = -60.0, max_deg = -2.0, stiffness = 5.0, damping = 3.5 }}\n\n\
+         [[wheel]]\nname = \"only\"\nsuspension = \"only\"\n"
+    );
+    let spec = rover_spec::load_str(&one, "one.toml").unwrap();
+    let e = rover_runtime::quasi_static::flat_ground_equilibrium(&spec.model).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            rover_runtime::quasi_static::QuasiStaticError::OutsideTravel { coordinate: 0, .. }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("outside its travel"), "{e}");
+    // The built-in rovers rest inside their travel.
+    for name in rover_models::NAMES {
+        let spec = rover_spec::load_str(rover_models::builtin(name).unwrap(), name).unwrap();
+        rover_runtime::quasi_static::flat_ground_equilibrium(&spec.model).unwrap();
+    }
+}

@@ -59,6 +59,7 @@
 
 pub mod ground;
 pub mod linearize;
+mod locate;
 pub mod output;
 pub mod prepare;
 pub mod scenario;

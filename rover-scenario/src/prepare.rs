@@ -69,6 +69,10 @@ pub enum PrepareError {
     /// not found.
     #[error("cannot find the loaded equilibrium to freeze a reduced fidelity level at: {0}")]
     Equilibrium(QuasiStaticError),
+    /// The loaded equilibrium a reduced level would be frozen at lies
+    /// outside a coordinate's travel (the message names it).
+    #[error("{0}")]
+    OutsideTravel(String),
     /// The rover is larger than the generic plant supports.
     #[error("{0}")]
     TooLarge(#[from] TooLarge),
@@ -127,6 +131,34 @@ pub fn builtin_names() -> String {
 /// so a generated reduced plant is the generic one.
 pub fn reduced_level_reference(model: &Model) -> Result<Vec<f64>, PrepareError> {
     rover_runtime::quasi_static::flat_ground_equilibrium(model).map_err(PrepareError::Equilibrium)
+}
+
+/// [`reduced_level_reference`] of a loaded rover: an equilibrium outside
+/// the travel names the coordinate, its suspension and its travel.
+pub fn reduced_level_reference_of(spec: &Spec) -> Result<Vec<f64>, PrepareError> {
+    reduced_level_reference(&spec.model).map_err(|e| named(spec, e))
+}
+
+/// An equilibrium outside the travel, told with the coordinate's and the
+/// suspension's names; any other error as it is.
+fn named(spec: &Spec, e: PrepareError) -> PrepareError {
+    let PrepareError::Equilibrium(QuasiStaticError::OutsideTravel {
+        coordinate, value, ..
+    }) = &e
+    else {
+        return e;
+    };
+    let mut y = spec.model.rest();
+    if let Some(v) = y.get_mut(*coordinate) {
+        *v = *value;
+    }
+    let at = "at the static equilibrium on flat ground (where a reduced fidelity level is frozen)";
+    match spec.outside_travel(&y, at) {
+        Some(m) => PrepareError::OutsideTravel(format!(
+            "{m}: the rover rests on a bump stop, beyond the range its kinematics are fitted over\n  = help: stiffen the spring or move its neutral (`stiffness`, `neutral`), or widen the travel (`min`, `max`), or use fidelity \"full\""
+        )),
+        None => e,
+    }
 }
 
 /// The generic plant of `model` at `level` (reduced levels frozen at
@@ -296,6 +328,7 @@ impl Prepared {
     pub fn plant(&self, generic: bool) -> Result<RunPlant, PrepareError> {
         let level = self.scenario.fidelity.dynamic().unwrap_or_default();
         RunPlant::new(&self.rover, &self.spec.model, level, generic)
+            .map_err(|e| named(&self.spec, e))
     }
 
     /// Run the scenario whole, writing the CSV to `csv`; the summary names

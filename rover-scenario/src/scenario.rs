@@ -539,8 +539,17 @@ const ECHO_WIDTH: usize = 160;
 
 /// The toml error with its line/column and caret (toml's own rendering,
 /// long lines cut to [`ECHO_WIDTH`] characters), then how to fix it.
-fn locate(_text: &str, e: &toml::de::Error) -> String {
-    let rendered = e.to_string();
+fn locate(text: &str, e: &toml::de::Error) -> String {
+    // A value inside a table read through a buffer, or nesting too deep:
+    // located here (crate::locate), rendered as toml renders.
+    let refined = rover_spec::nesting_error(text, e).or_else(|| crate::locate::refine(text, e));
+    let (rendered, message) = match &refined {
+        Some((span, message)) => (
+            crate::locate::render(text, span.clone(), message),
+            message.as_str(),
+        ),
+        None => (e.to_string(), e.message()),
+    };
     let mut out = String::new();
     for line in rendered.trim_end().lines() {
         // The source echo (`12 | …`) and its caret line (`   |  ^^^`).
@@ -556,10 +565,9 @@ fn locate(_text: &str, e: &toml::de::Error) -> String {
         }
         out.push('\n');
     }
-    let message = e.message();
     let help = if message.contains("wanted exactly 1 element") {
         "give exactly one method table, e.g. `[integrator.bdf]` or `[integrator.rk4]`, not two"
-    } else if message.contains("recursion limit") {
+    } else if message.starts_with("nesting deeper") {
         "the file nests arrays or tables too deeply for a scenario: a scenario's tables are at most a few levels deep"
     } else if message.contains("unknown field") {
         "remove or correct the key: the fields each table accepts are listed in the message and in the doc of rover-scenario/src/scenario.rs"

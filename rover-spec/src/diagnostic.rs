@@ -56,6 +56,7 @@ impl Diagnostic {
         let renderer = Renderer::plain();
         match (source, &self.span) {
             (Some(text), Some(span)) => {
+                let text = &printable(text);
                 let span = clamp(text, span.clone());
                 let report = &[Level::ERROR
                     .primary_title(&title)
@@ -115,4 +116,18 @@ fn clamp(text: &str, span: Range<usize>) -> Range<usize> {
         end -= 1;
     }
     start..end
+}
+
+/// The source with each control character other than a tab or a line
+/// break (a terminal escape, say, which a file may hold where it is
+/// invalid) replaced by as many `?` as its UTF-8 bytes, so that spans keep
+/// their places and nothing but text reaches the terminal.
+fn printable(text: &str) -> String {
+    text.chars()
+        .flat_map(|c| {
+            let keep = !crate::validate::unprintable(c) || matches!(c, '\t' | '\n' | '\r');
+            let (c, n) = if keep { (c, 1) } else { ('?', c.len_utf8()) };
+            std::iter::repeat_n(c, n)
+        })
+        .collect()
 }

@@ -87,7 +87,7 @@ pub mod limits {
 pub use description::Description;
 pub use diagnostic::Diagnostic;
 pub use error::SpecError;
-pub use load::{from_description, load_file, load_str, parse_str};
+pub use load::{MAX_NESTING, from_description, load_file, load_str, nesting_error, parse_str};
 pub use rover_files::line_column;
 pub use spec::{BodyFit, Spec, SuspensionInfo};
 pub use validate::validate;

@@ -1,5 +1,6 @@
 //! Text → [`Description`] → [`Spec`], with every error located.
 
+use std::ops::Range;
 use std::path::Path;
 
 use crate::description::Description;
@@ -73,30 +74,90 @@ fn refine_tagged(text: &str, error: &toml::de::Error) -> Option<toml::de::Error>
 
     let span = error.span()?;
     let root = DeTable::parse(text).ok()?.into_inner();
-    let suspensions = root.get("suspension")?.get_ref().as_array()?;
-    let entry = suspensions
-        .iter()
-        .find(|s| s.span().start <= span.start && span.end <= s.span().end)?;
-    let DeValue::Table(table) = entry.get_ref() else {
-        return None;
+    let array = root.get("suspension")?;
+    let suspensions = array.get_ref().as_array()?;
+    let inside =
+        |s: &toml::Spanned<DeValue>| s.span().start <= span.start && span.end <= s.span().end;
+    // The entry whose span holds the error's; when the error is at the
+    // whole array's span (the first entry's header), each entry in turn:
+    // serde stopped at the first that fails.
+    let entries: Vec<_> = if array.span().start == span.start {
+        suspensions.iter().collect()
+    } else {
+        vec![suspensions.iter().find(|s| inside(s))?]
     };
-    let mut table = table.clone();
-    let kind = table.remove("kind")?;
-    let value = toml::Spanned::new(entry.span(), DeValue::Table(table));
-    match kind.get_ref().as_str()? {
-        "longitudinal_swing_arm" => read::<d::SwingArmDesc>(value),
-        "transversal_swing_arm" => read::<d::TransversalSwingArmDesc>(value),
-        "double_wishbone" => read::<d::DoubleWishboneDesc>(value),
-        "longitudinal_rocker" | "transversal_rocker" => read::<d::RockerDesc>(value),
-        "rocker_bogie" => read::<d::RockerBogieDesc>(value),
-        "polynomial" => read::<d::PolynomialDesc>(value),
-        _ => None,
+    entries.into_iter().find_map(|entry| {
+        let DeValue::Table(table) = entry.get_ref() else {
+            return None;
+        };
+        let mut table = table.clone();
+        let kind = table.remove("kind")?;
+        let value = toml::Spanned::new(entry.span(), DeValue::Table(table));
+        match kind.get_ref().as_str()? {
+            "longitudinal_swing_arm" => read::<d::SwingArmDesc>(value),
+            "transversal_swing_arm" => read::<d::TransversalSwingArmDesc>(value),
+            "double_wishbone" => read::<d::DoubleWishboneDesc>(value),
+            "longitudinal_rocker" | "transversal_rocker" => read::<d::RockerDesc>(value),
+            "rocker_bogie" => read::<d::RockerBogieDesc>(value),
+            "polynomial" => read::<d::PolynomialDesc>(value),
+            _ => None,
+        }
+        .filter(|e| e.span().is_some())
+    })
+}
+
+/// How deep the TOML parser nests arrays, inline tables and dotted keys.
+pub const MAX_NESTING: usize = 80;
+
+/// A TOML error of nesting too deep (arrays in arrays, inline tables in
+/// inline tables, or a dotted key of too many parts), which the parser
+/// reports as a recursion limit: where it is (the parser's span, or the
+/// first key of too many parts) and a sentence saying what is wrong.
+pub fn nesting_error(text: &str, error: &toml::de::Error) -> Option<(Range<usize>, String)> {
+    let message = error.message();
+    if !message.contains("recursion") && !message.contains("recurse") {
+        return None;
     }
-    .filter(|e| e.span().is_some())
+    let span = error.span().or_else(|| deep_key(text))?;
+    Some((
+        span,
+        format!(
+            "nesting deeper than {MAX_NESTING} levels (arrays in arrays, tables in tables, or a key of more than {MAX_NESTING} dotted parts)"
+        ),
+    ))
+}
+
+/// The first key of a header or a key-value line with at least
+/// [`MAX_NESTING`] dotted parts.
+fn deep_key(text: &str) -> Option<Range<usize>> {
+    let mut start = 0;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim_start();
+        let key = match trimmed.strip_prefix('[') {
+            Some(header) => header.split(']').next().unwrap_or(""),
+            None => trimmed.split('=').next().unwrap_or(""),
+        };
+        if key.matches('.').count() + 1 >= MAX_NESTING {
+            let at = start + (line.len() - trimmed.len());
+            return Some(at..start + line.trim_end().len());
+        }
+        start += line.len();
+    }
+    None
 }
 
 /// A parser or serde error as a [`Diagnostic`], with its field path and a hint.
 fn parser_diagnostic(e: &toml::de::Error, doc: &Document, text: &str) -> Diagnostic {
+    if let Some((span, message)) = nesting_error(text, e) {
+        let mut d = Diagnostic::at(
+            "",
+            message,
+            "a rover description is a few tables deep (docs/DESCRIPTION.md): check the brackets and braces here",
+        )
+        .label("too deep");
+        d.span = Some(span);
+        return d;
+    }
     let message = e.message().trim().to_string();
     let mut span = e.span();
     let mut path = span.as_ref().map(|s| doc.path_at(s)).unwrap_or_default();

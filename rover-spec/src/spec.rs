@@ -61,3 +61,36 @@ pub struct BodyFit {
     /// Bound on the angle errors \[rad\].
     pub max_angle_error: f64,
 }
+
+impl Spec {
+    /// Whether the configuration `y` (one value per suspension coordinate)
+    /// lies inside every coordinate's travel; if not, a sentence naming the
+    /// first coordinate outside, its suspension, its value and its travel
+    /// (degrees for angles, metres for lengths), `at` saying what `y` is
+    /// (`"at the static equilibrium on flat ground"`, say).
+    pub fn outside_travel(&self, y: &[f64], at: &str) -> Option<String> {
+        let coords = &self.model.coordinates;
+        let (i, (c, &v)) = coords
+            .iter()
+            .zip(y)
+            .enumerate()
+            .find(|(_, (c, v))| !(**v >= c.min && **v <= c.max))?;
+        let linear = self.coordinate_linear.get(i).copied().unwrap_or(false);
+        let value = |v: f64| crate::checks::coord_value(v, linear);
+        let suspension = self
+            .suspensions
+            .iter()
+            .find(|s| s.coordinates.contains(&i))
+            .map_or(String::new(), |s| {
+                format!(" of suspension `{}` ({})", s.name, s.kind)
+            });
+        Some(format!(
+            "coordinate y{} `{}`{suspension} is at {} {at}, outside its travel [{}, {}]",
+            i + 1,
+            self.coordinate_names.get(i).map_or("", String::as_str),
+            value(v),
+            value(c.min),
+            value(c.max)
+        ))
+    }
+}

@@ -290,3 +290,195 @@ fn missing_field_in_suspension() {
 fn wrong_type_in_suspension() {
     insta::assert_snapshot!(bad("length = 0.2", "length = \"short\""));
 }
+
+/// The `file:line:col` the first diagnostic of loading `text` points at.
+fn location(text: &str) -> String {
+    let e = rover_spec::load_str(text, "toy.toml").unwrap_err();
+    let rendered = e.to_string();
+    let at = rendered
+        .lines()
+        .find_map(|l| l.trim_start().strip_prefix("--> "))
+        .unwrap_or_else(|| panic!("no location in {rendered}"));
+    at.to_string()
+}
+
+#[test]
+fn inertia_rows_of_other_than_three_numbers() {
+    for (matrix, row) in [
+        (
+            "[[0.7, 0.0, 0.0, 0.0], [0.0, 0.9, 0.0, 0.0], [0.0, 0.0, 1.5, 0.0]]",
+            "4 numbers",
+        ),
+        (
+            "[[0.7, 0.0, 0.0], [0.0, 0.9, 0.0, 0.0, 0.0], [0.0, 0.0, 1.5]]",
+            "5 numbers",
+        ),
+        ("[[0.7, 0.0], [0.0, 0.9], [0.0, 0.0]]", "2 numbers"),
+    ] {
+        let e = bad("[0.7, 0.9, 1.5]", matrix);
+        assert!(e.contains("body.inertia[") && e.contains(row), "{e}");
+    }
+    let e = bad(
+        "[0.7, 0.9, 1.5]",
+        "[[0.7, 0.0, 0.0], [0.0, 0.9, 0.0], [0.0, 0.0, 1.5], [0.0, 0.0, 0.0]]",
+    );
+    assert!(e.contains("more than 3 rows"), "{e}");
+    insta::assert_snapshot!(bad(
+        "[0.7, 0.9, 1.5]",
+        "[[0.7, 0.0, 0.0], [0.0, 0.9, 0.0, 0.0, 0.0], [0.0, 0.0, 1.5]]"
+    ));
+}
+
+#[test]
+fn spring_neutral_outside_the_travel() {
+    insta::assert_snapshot!(bad(
+        "rest_deg = -17.2,",
+        "rest_deg = -17.2, neutral_deg = 1e6,"
+    ));
+    let e = bad(
+        "rest_deg = -17.2,",
+        "rest_deg = -17.2, neutral_deg = -61.0,",
+    );
+    assert!(
+        e.contains("neutral_deg") && e.contains("[-60°, -2°]"),
+        "{e}"
+    );
+    // At a limit it is still inside.
+    let text = BASE.replacen(
+        "rest_deg = -17.2,",
+        "rest_deg = -17.2, neutral_deg = -2.0,",
+        1,
+    );
+    rover_spec::load_str(&text, "toy.toml").unwrap();
+}
+
+#[test]
+fn empty_names() {
+    insta::assert_snapshot!(bad("name = \"rear_left\"", "name = \"\""));
+    for (from, to, path) in [
+        (
+            "name = \"front\"\nkind",
+            "name = \" \"\nkind",
+            "suspension[0].name",
+        ),
+        (
+            "{ name = \"left\",",
+            "{ name = \"\",",
+            "suspension[1].arms[0].name",
+        ),
+        (
+            "{ min_deg = -30.0,",
+            "{ name = \"\", min_deg = -30.0,",
+            "suspension[1].coordinate.name",
+        ),
+    ] {
+        let e = bad(from, to);
+        assert!(e.contains(&format!("{path}: the name")), "{e}");
+    }
+}
+
+#[test]
+fn names_with_control_characters() {
+    let e = bad("name = \"rear_left\"", "name = \"\\u001b[2J\"");
+    assert!(!e.contains('\u{1b}'), "{e:?}");
+    assert!(e.contains(r#""\u{1b}[2J""#), "{e}");
+    insta::assert_snapshot!(e);
+    // Anywhere a string is written, a reference included; the bidirectional
+    // overrides too.
+    let e = bad("suspension = \"front\"", "suspension = \"fr\\u202eont\"");
+    assert!(
+        e.contains("wheel[0].suspension") && e.contains("U+202E"),
+        "{e}"
+    );
+    assert!(!e.contains('\u{202e}'), "{e:?}");
+    let e = bad("name = \"toy\"", "name = \"toy\\u0007\"");
+    assert!(e.contains("error: name:") && e.contains("U+0007"), "{e}");
+}
+
+#[test]
+fn raw_control_characters_in_the_source_are_not_echoed() {
+    let text = BASE.replacen("gravity = 1.62", "gravity = 1.62 # \u{1b}[2J", 1);
+    let e = rover_spec::load_str(&text, "toy.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(!e.contains('\u{1b}'), "{e:?}");
+}
+
+#[test]
+fn overlapping_wheels() {
+    // The rocker's wheels are 0.35 m apart: radii of 0.09 m and 0.3 m overlap.
+    let e = bad("point = \"right\"\n", "point = \"right\"\nradius = 0.3\n");
+    assert!(
+        e.contains("wheel[2].radius") && e.contains("overlap"),
+        "{e}"
+    );
+    insta::assert_snapshot!(bad("radius = 0.09", "radius = 50.0"));
+}
+
+#[test]
+fn wheels_larger_than_the_rover() {
+    // The front wheel clears the rocker's across, but is larger than the
+    // rover (0.62 m between its wheel centres farthest apart).
+    let e = bad(
+        "suspension = \"front\"\n",
+        "suspension = \"front\"\nradius = 5.0\n",
+    );
+    assert!(
+        e.contains("wheel[0].radius") && e.contains("more than the rover's size"),
+        "{e}"
+    );
+}
+
+#[test]
+fn value_errors_point_at_the_value() {
+    let cases = [
+        ("gravity = 1.62", "gravity = \"moon\"", "toy.toml:2:11"),
+        ("length = 0.2", "length = \"short\"", "toy.toml:22:10"),
+        ("terms = 5 }", "terms = -5 }", "toy.toml:24:36"),
+        ("stiffness = 5.0,", "stiffness = \"5\",", "toy.toml:23:79"),
+        ("max_torque = 1.29", "max_torque = [1.29]", "toy.toml:16:14"),
+        (
+            "{ name = \"right\", length = 0.25,",
+            "{ name = \"right\", length = true,",
+            "toy.toml:32:32",
+        ),
+    ];
+    for (from, to, at) in cases {
+        assert!(BASE.contains(from), "{from}");
+        let text = BASE.replacen(from, to, 1);
+        assert_eq!(location(&text), at, "{to}");
+    }
+}
+
+#[test]
+fn nesting_too_deep_is_located() {
+    let deep = format!(
+        "name = \"toy\"\ngravity = {}1.62{}\n",
+        "[".repeat(10_000),
+        "]".repeat(10_000)
+    );
+    let e = rover_spec::load_str(&deep, "toy.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("nesting deeper than 80 levels"), "{e}");
+    assert!(e.contains("--> toy.toml:2:"), "{e}");
+    let deep = format!(
+        "name = \"toy\"\nbody = {}1{}\n",
+        "{ a = ".repeat(10_000),
+        " }".repeat(10_000)
+    );
+    let e = rover_spec::load_str(&deep, "toy.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("nesting deeper") && e.contains("--> toy.toml:2:"),
+        "{e}"
+    );
+    // A dotted key of too many parts: the parser gives no place; the key's line.
+    let deep = format!("name = \"toy\"\n\n{} = 1\n", vec!["a"; 100].join("."));
+    assert_eq!(location(&deep), "toy.toml:3:1");
+    let e = rover_spec::load_str(&deep, "toy.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("nesting deeper"), "{e}");
+}

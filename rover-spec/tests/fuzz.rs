@@ -1,5 +1,6 @@
 //! No input makes the loader panic: mutated model files (bytes deleted,
-//! inserted, numbers replaced with hostile literals) give a `Result`.
+//! inserted, numbers or strings replaced with hostile literals) give a
+//! `Result`, and no error prints a control character.
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
@@ -25,6 +26,15 @@ const HOSTILE: &[&str] = &[
     "[",
     "\"",
     "0.0001",
+    "1e6",
+    "-1e12",
+    "50.0",
+    "\"\"",
+    "\"\\u001b[2J\"",
+    "\"\\u202e\"",
+    "[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]",
+    "[[1, 0, 0], [0, 1, 0, 0, 0], [0, 0, 1]]",
+    "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]",
 ];
 
 fn config() -> Config {
@@ -49,7 +59,11 @@ fn survives(text: &str) {
                     .all(|c| c.rest.is_finite() && c.stop_damping.is_finite())
             );
         }
-        Err(e) => assert!(e.to_string().starts_with("error")),
+        Err(e) => {
+            let e = e.to_string();
+            assert!(e.starts_with("error"));
+            assert!(!e.chars().any(|c| c.is_control() && c != '\n'), "{e:?}");
+        }
     }
 }
 
@@ -76,6 +90,23 @@ proptest! {
             out
         };
         let (a, b) = numbers[which % numbers.len()];
+        let mutated = format!("{}{}{}", &text[..a], HOSTILE[hostile], &text[b..]);
+        survives(&mutated);
+    }
+
+    #[test]
+    fn replacing_a_string_never_panics(model in 0usize..4, which in 0usize..200, hostile in 0usize..HOSTILE.len()) {
+        let text = rover_models::builtin(rover_models::NAMES[model]).unwrap();
+        // Each quoted string outside comments: its bytes, quotes included.
+        let mut strings = Vec::new();
+        let mut offset = 0;
+        for line in text.split_inclusive('\n') {
+            let code = line.split('#').next().unwrap_or("");
+            let quotes: Vec<usize> = code.match_indices('"').map(|(i, _)| offset + i).collect();
+            strings.extend(quotes.chunks_exact(2).map(|q| (q[0], q[1] + 1)));
+            offset += line.len();
+        }
+        let (a, b) = strings[which % strings.len()];
         let mutated = format!("{}{}{}", &text[..a], HOSTILE[hostile], &text[b..]);
         survives(&mutated);
     }

@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use rover_dynamics::fidelity::Fidelity;
 
 use rover_scenario::output::write_whole;
-use rover_scenario::prepare::{load_rover, reduced_level_reference};
+use rover_scenario::prepare::{load_rover, reduced_level_reference_of};
 
 use crate::error::{CliError, print_stdout};
 
@@ -60,15 +60,16 @@ pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
         None => None,
         Some(fidelity) => Some(rover_codegen::trace::Level {
             fidelity,
-            y_ref: reduced_level_reference(&spec.model)?,
+            y_ref: reduced_level_reference_of(&spec)?,
         }),
     };
     if let Some(name) = &args.type_name
-        && !is_type_name(name)
+        && (!is_type_name(name) || rover_codegen::check_type_name(name).is_err())
     {
         return Err(CliError::Usage(format!(
             "--type-name {name:?} is not a Rust type name: use letters, digits and \
-             underscores, starting with an uppercase letter (e.g. MyRover)"
+             underscores, starting with an uppercase letter, and not a keyword such as \
+             `Self` (e.g. MyRover)"
         )));
     }
     let options = rover_codegen::ModuleOptions {

@@ -206,7 +206,11 @@ impl Controller {
         }
         match &mut self.steering {
             SteeringLaw::Slip { delta_tau } => *delta_tau = Profile::Constant(value),
-            SteeringLaw::Ackermann { curvature, .. } => curvature.hold(value),
+            SteeringLaw::Ackermann { curvature, .. } => {
+                let angle = matches!(curvature, CurvatureCommand::Angle { .. });
+                check_ackermann(&Profile::Constant(value), angle)?;
+                curvature.hold(value)
+            }
             _ => {
                 return Err(err(
                     "steering",
@@ -635,11 +639,13 @@ fn steering_law(
             let curvature = match (a.radius, a.front_left_deg) {
                 (Some(p), None) => {
                     p.validate().map_err(|m| err("steering.radius", m))?;
+                    check_ackermann(&p, false)?;
                     CurvatureCommand::Radius(p)
                 }
                 (None, Some(p)) => {
                     p.validate()
                         .map_err(|m| err("steering.front_left_deg", m))?;
+                    check_ackermann(&p, true)?;
                     CurvatureCommand::Angle {
                         radians: p.map(f64::to_radians),
                         wheel: rest_xy[first],
@@ -660,6 +666,54 @@ fn steering_law(
             }
         }
     })
+}
+
+/// The values of an Ackermann command: a front-left angle strictly
+/// between −90° and 90° (at ±90° the wheel stands across its path, and a
+/// larger angle is a smaller one turned over), or a turn-centre position
+/// R that is not 0 (R is the turn centre's lateral offset: at 0 the rover
+/// would turn on a point of its own centre line, with an infinite
+/// curvature); a linear table of radii does not change sign between two
+/// points (it would pass through 0).
+fn check_ackermann(p: &Profile, angle: bool) -> Result<(), ControlError> {
+    let values: Vec<f64> = match p {
+        Profile::Constant(v) => vec![*v],
+        Profile::Table { points, .. } => points.iter().map(|p| p[1]).collect(),
+    };
+    if angle {
+        if let Some(v) = values.iter().find(|v| v.abs() >= 90.0) {
+            return Err(err(
+                "steering.front_left_deg",
+                format!(
+                    "{v}° is not a steering angle: it must lie strictly between -90° and 90° (the angle in degrees of the first steerable wheel, positive turns left)"
+                ),
+            ));
+        }
+        return Ok(());
+    }
+    if values.contains(&0.0) {
+        return Err(err(
+            "steering.radius",
+            "a radius of 0 m is no turn: `radius` is the turn centre's lateral position R [m], R > 0 turns left and R < 0 right; to drive straight, leave out [control.steering]",
+        ));
+    }
+    if let Profile::Table {
+        points,
+        interpolation: super::profile::Interpolation::Linear,
+    } = p
+        && let Some(w) = points
+            .windows(2)
+            .find(|w| w[0][1].signum() != w[1][1].signum())
+    {
+        return Err(err(
+            "steering.radius",
+            format!(
+                "the linear radius table goes from {} m to {} m between t = {} s and t = {} s, through R = 0 (a turn of infinite curvature); to turn the other way, step from one sign to the other (interpolation = \"step\")",
+                w[0][1], w[1][1], w[0][0], w[1][0]
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The active suspension, checked: a positive sample time and a sprung

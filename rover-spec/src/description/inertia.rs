@@ -64,8 +64,21 @@ impl<'de> Deserialize<'de> for Element {
             fn visit_u64<E: de::Error>(self, v: u64) -> Result<Element, E> {
                 Ok(Element::Number(v as f64))
             }
-            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Element, A::Error> {
-                let row = <[f64; 3]>::deserialize(de::value::SeqAccessDeserializer::new(seq))?;
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Element, A::Error> {
+                let mut row = [0.0; 3];
+                let mut len = 0;
+                while let Some(v) = seq.next_element::<f64>()? {
+                    if let Some(slot) = row.get_mut(len) {
+                        *slot = v;
+                    }
+                    len += 1;
+                }
+                if len != 3 {
+                    return Err(de::Error::custom(format!(
+                        "a row of the inertia matrix has {len} number{}, not 3: the matrix is 3×3, [[Jxx, Jxy, Jxz], [Jxy, Jyy, Jyz], [Jxz, Jyz, Jzz]]",
+                        if len == 1 { "" } else { "s" }
+                    )));
+                }
                 Ok(Element::Row(row))
             }
         }
@@ -85,7 +98,14 @@ impl<'de> Deserialize<'de> for Inertia {
                 let mut items = Vec::new();
                 while let Some(e) = seq.next_element::<Element>()? {
                     if items.len() == 3 {
-                        return Err(de::Error::invalid_length(4, &self));
+                        return Err(de::Error::custom(match e {
+                            Element::Number(_) => {
+                                "has more than 3 numbers: write the diagonal [Jxx, Jyy, Jzz] or the 3×3 matrix [[..], [..], [..]]"
+                            }
+                            Element::Row(_) => {
+                                "has more than 3 rows: the inertia matrix is 3×3, [[..], [..], [..]]"
+                            }
+                        }));
                     }
                     items.push(e);
                 }

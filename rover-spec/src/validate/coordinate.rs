@@ -115,6 +115,19 @@ pub fn check_coordinate(
         return None;
     }
     let neutral = neutral.ok()?.unwrap_or(rest);
+    if neutral < min || neutral > max {
+        ctx.error(
+            Ctx::angle_path(path, "neutral", c.neutral_deg.is_some()),
+            format!(
+                "the spring neutral {} is outside the travel range [{}, {}]",
+                coord_value(neutral, linear),
+                coord_value(min, linear),
+                coord_value(max, linear)
+            ),
+            "the neutral is where the spring force is zero, a position the suspension can take (the active suspension moves it within the travel): give a value in [min, max]",
+        );
+        return None;
+    }
     let spring = check_spring(ctx, path, c, linear)?;
     let damping = match c.damping {
         Some(d) => ctx.non_negative(

@@ -8,4 +8,5 @@ pub mod runnable;
 mod suspension;
 mod wheel;
 
+pub use names::unprintable;
 pub use rover::validate;

@@ -7,7 +7,7 @@ use rover_dynamics::Model;
 use rover_dynamics::model::{CarriedBody, Coordinate, RigidBody, Spring};
 
 use super::body::check_inertia;
-use super::names::check_unique;
+use super::names::{check_strings, check_unique};
 use super::suspension::{Built, Source, build};
 use super::wheel::{CheckedWheel, check_wheel};
 use crate::checks::{Ctx, coord_value, non_finite, num};
@@ -56,6 +56,9 @@ struct Carried {
 pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
     let mut ctx = Ctx::default();
     if let Ok(value) = toml::Value::try_from(desc) {
+        if check_strings(&mut ctx, &value) {
+            return Err(ctx.diags);
+        }
         non_finite(&mut ctx, &value, "");
         super::runnable::magnitudes(&mut ctx, &value, "");
     }
@@ -131,7 +134,16 @@ pub fn validate(desc: &Description) -> Result<Spec, Vec<Diagnostic>> {
         wheels: model_wheels,
     };
     let rest_wheel_centres = model.rest_wheel_centres();
-    check_runnable(&model, &built, &rest_wheel_centres)?;
+    let radius_paths: Vec<String> = desc
+        .wheels
+        .iter()
+        .enumerate()
+        .map(|(i, w)| match w.radius {
+            Some(_) => format!("wheel[{i}].radius"),
+            None => "wheel_defaults.radius".to_string(),
+        })
+        .collect();
+    check_runnable(&model, &built, &rest_wheel_centres, &radius_paths)?;
     let sketch = sketch(&built, &carried, &model);
     Ok(Spec {
         name: desc.name.clone(),
@@ -400,6 +412,7 @@ fn check_runnable(
     model: &Model,
     built: &[Built],
     rest_wheel_centres: &[[f64; 3]],
+    radius_paths: &[String],
 ) -> Result<(), Vec<Diagnostic>> {
     let mut ctx = Ctx::default();
     let coordinate_paths: Vec<String> = coords_of(built).map(|c| c.path.clone()).collect();
@@ -414,6 +427,7 @@ fn check_runnable(
         &coordinate_paths,
         &suspension_of,
         rest_wheel_centres,
+        radius_paths,
     );
     if ctx.diags.is_empty() {
         Ok(())

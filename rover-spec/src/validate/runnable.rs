@@ -87,13 +87,14 @@ pub fn fields(ctx: &mut Ctx, desc: &crate::description::Description) {
 
 /// Checks of the assembled model. `coordinate_paths[i]`: the field path of
 /// coordinate i; `suspension_of[i]`: the path of its suspension;
-/// `wheel_paths[j]`: the path of wheel j.
+/// `radius_paths[j]`: the path of wheel j's radius.
 pub fn model(
     ctx: &mut Ctx,
     model: &Model,
     coordinate_paths: &[String],
     suspension_of: &[String],
     rest_wheel_centres: &[[f64; 3]],
+    radius_paths: &[String],
 ) {
     let m = model.m();
     if model.dof() > MAX_DOF {
@@ -135,6 +136,7 @@ pub fn model(
             }
         }
     }
+    wheel_sizes(ctx, model, rest_wheel_centres, radius_paths);
     // A wheel as wide as the track would overlap its neighbour across.
     let (lo, hi) = rest_wheel_centres
         .iter()
@@ -220,6 +222,63 @@ pub fn model(
             for j in k..n {
                 a[i * n + j] -= f * a[k * n + j];
             }
+        }
+    }
+}
+
+/// Wheels that fit the rover: no two tyres overlap at rest (seen from the
+/// side, two wheels whose tyres overlap across are closer than the sum of
+/// their radii), and no wheel's radius exceeds the rover's size, the
+/// largest distance between two wheel centres at rest. A tyre without a
+/// `width` counts as a thin disc.
+fn wheel_sizes(ctx: &mut Ctx, model: &Model, centres: &[[f64; 3]], radius_paths: &[String]) {
+    let path = |j: usize| {
+        radius_paths
+            .get(j)
+            .cloned()
+            .unwrap_or_else(|| format!("wheel[{j}]"))
+    };
+    let mut span: f64 = 0.0;
+    for (j, a) in centres.iter().enumerate() {
+        for (k, b) in centres.iter().enumerate().take(j) {
+            let (wa, wb) = (&model.wheels[j], &model.wheels[k]);
+            let across = (a[1] - b[1]).abs();
+            let side = ((a[0] - b[0]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            span = span.max((side * side + across * across).sqrt());
+            let half_widths = 0.5 * (wa.width.unwrap_or(0.0) + wb.width.unwrap_or(0.0));
+            let same_place = side.hypot(across) < 1e-3 * wa.radius.min(wb.radius);
+            if across <= half_widths && side < wa.radius + wb.radius && !same_place {
+                ctx.error(
+                    path(j),
+                    format!(
+                        "wheels {} and {} overlap at rest: seen from the side their centres are {} m apart, less than the sum of their radii ({} m + {} m), and their tyres overlap across ({} m apart in y)",
+                        k + 1,
+                        j + 1,
+                        num(side),
+                        num(wb.radius),
+                        num(wa.radius),
+                        num(across)
+                    ),
+                    "two tyres cannot share space: the radius is in metres; make the wheels smaller or place them farther apart (the suspension's pivots and lengths)",
+                );
+            }
+        }
+    }
+    if centres.len() < 2 || !span.is_finite() {
+        return;
+    }
+    for (j, w) in model.wheels.iter().enumerate() {
+        if w.radius > span {
+            ctx.error(
+                path(j),
+                format!(
+                    "wheel {} has a radius of {} m, more than the rover's size ({} m between its wheel centres farthest apart)",
+                    j + 1,
+                    num(w.radius),
+                    num(span)
+                ),
+                "the radius is in metres (not a diameter in cm, say): a wheel is smaller than the rover it carries",
+            );
         }
     }
 }
