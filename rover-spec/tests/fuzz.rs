@@ -4,38 +4,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
-
-const HOSTILE: &[&str] = &[
-    "nan",
-    "-inf",
-    "inf",
-    "0",
-    "-0.0",
-    "1e308",
-    "-1e308",
-    "1e-320",
-    "\"x\"",
-    "[]",
-    "[1, 2]",
-    "{}",
-    "[[1], [2], [3]]",
-    "true",
-    "99999999999999999999",
-    "-1",
-    "=",
-    "[",
-    "\"",
-    "0.0001",
-    "1e6",
-    "-1e12",
-    "50.0",
-    "\"\"",
-    "\"\\u001b[2J\"",
-    "\"\\u202e\"",
-    "[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]",
-    "[[1, 0, 0], [0, 1, 0, 0, 0], [0, 0, 1]]",
-    "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]",
-];
+use rover_test_support::mutate::{HOSTILE, replace_number, replace_string, splice};
 
 fn config() -> Config {
     Config {
@@ -73,56 +42,18 @@ proptest! {
     #[test]
     fn replacing_a_number_never_panics(model in 0usize..4, which in 0usize..400, hostile in 0usize..HOSTILE.len()) {
         let text = rover_models::builtin(rover_models::NAMES[model]).unwrap();
-        let numbers: Vec<(usize, usize)> = {
-            let b = text.as_bytes();
-            let mut out = Vec::new();
-            let mut i = 0;
-            while i < b.len() {
-                if b[i].is_ascii_digit() {
-                    let start = i;
-                    while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
-                        i += 1;
-                    }
-                    out.push((start, i));
-                }
-                i += 1;
-            }
-            out
-        };
-        let (a, b) = numbers[which % numbers.len()];
-        let mutated = format!("{}{}{}", &text[..a], HOSTILE[hostile], &text[b..]);
-        survives(&mutated);
+        survives(&replace_number(text, which, hostile));
     }
 
     #[test]
     fn replacing_a_string_never_panics(model in 0usize..4, which in 0usize..200, hostile in 0usize..HOSTILE.len()) {
         let text = rover_models::builtin(rover_models::NAMES[model]).unwrap();
-        // Each quoted string outside comments: its bytes, quotes included.
-        let mut strings = Vec::new();
-        let mut offset = 0;
-        for line in text.split_inclusive('\n') {
-            let code = line.split('#').next().unwrap_or("");
-            let quotes: Vec<usize> = code.match_indices('"').map(|(i, _)| offset + i).collect();
-            strings.extend(quotes.chunks_exact(2).map(|q| (q[0], q[1] + 1)));
-            offset += line.len();
-        }
-        let (a, b) = strings[which % strings.len()];
-        let mutated = format!("{}{}{}", &text[..a], HOSTILE[hostile], &text[b..]);
-        survives(&mutated);
+        survives(&replace_string(text, which, hostile));
     }
 
     #[test]
     fn deleting_or_inserting_bytes_never_panics(model in 0usize..4, at in 0usize..5000, len in 0usize..40, insert in "[ -~\n]{0,12}") {
         let text = rover_models::builtin(rover_models::NAMES[model]).unwrap();
-        let mut start = at % text.len();
-        while !text.is_char_boundary(start) {
-            start -= 1;
-        }
-        let mut end = (start + len).min(text.len());
-        while !text.is_char_boundary(end) {
-            end -= 1;
-        }
-        let mutated = format!("{}{}{}", &text[..start], insert, &text[end..]);
-        survives(&mutated);
+        survives(&splice(text, at, len, &insert));
     }
 }

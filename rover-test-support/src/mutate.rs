@@ -24,8 +24,16 @@ pub const HOSTILE: &[&str] = &[
     "[",
     "\"",
     "0.0001",
+    "1e6",
     "1e12",
+    "-1e12",
+    "50.0",
+    "\"\"",
     "\"\\u001b[2J\"",
+    "\"\\u202e\"",
+    "[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]",
+    "[[1, 0, 0], [0, 1, 0, 0, 0], [0, 0, 1]]",
+    "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]",
 ];
 
 /// The byte ranges of the unsigned decimal numbers of `text`.
@@ -49,17 +57,40 @@ pub fn numbers(text: &str) -> Vec<(usize, usize)> {
 /// `text` with its number `which` (modulo their count) replaced by
 /// [`HOSTILE`]`[hostile]` (modulo its length); `text` if it has none.
 pub fn replace_number(text: &str, which: usize, hostile: usize) -> String {
-    let numbers = numbers(text);
-    if numbers.is_empty() {
+    replace_range(text, &numbers(text), which, hostile)
+}
+
+fn replace_range(text: &str, ranges: &[(usize, usize)], which: usize, hostile: usize) -> String {
+    if ranges.is_empty() {
         return text.to_string();
     }
-    let (a, b) = numbers[which % numbers.len()];
+    let (a, b) = ranges[which % ranges.len()];
     format!(
         "{}{}{}",
         &text[..a],
         HOSTILE[hostile % HOSTILE.len()],
         &text[b..]
     )
+}
+
+/// The byte ranges of the quoted strings of `text` outside comments,
+/// quotes included.
+pub fn strings(text: &str) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let code = line.split('#').next().unwrap_or("");
+        let quotes: Vec<usize> = code.match_indices('"').map(|(i, _)| offset + i).collect();
+        out.extend(quotes.chunks_exact(2).map(|q| (q[0], q[1] + 1)));
+        offset += line.len();
+    }
+    out
+}
+
+/// `text` with its quoted string `which` (modulo their count) replaced by
+/// [`HOSTILE`]`[hostile]` (modulo its length); `text` if it has none.
+pub fn replace_string(text: &str, which: usize, hostile: usize) -> String {
+    replace_range(text, &strings(text), which, hostile)
 }
 
 /// `text` with up to `len` bytes from `at` (modulo its length, on char
