@@ -20,5 +20,5 @@
 mod read;
 mod write;
 
-pub use read::{Limit, excerpt, line_column, read, read_entry, read_text};
+pub use read::{Limit, NotUtf8, excerpt, line_column, read, read_entry, read_text};
 pub use write::{OutputDir, create_fresh, same_file, write_whole};

@@ -55,20 +55,48 @@ pub fn read(path: &Path, limit: Limit) -> io::Result<Vec<u8>> {
 }
 
 /// The UTF-8 text of the regular file at `path`, at most `limit`'s cap.
+/// Text that is not UTF-8 is an [`io::ErrorKind::InvalidData`] error
+/// carrying a [`NotUtf8`] (its place, for callers that report lines).
 pub fn read_text(path: &Path, limit: Limit) -> io::Result<String> {
     String::from_utf8(read(path, limit)?).map_err(|e| {
-        let at = e.utf8_error().valid_up_to();
-        let (line, column) = line_column(e.as_bytes(), at);
-        io::Error::new(
-            io::ErrorKind::InvalidData,
-            format!(
-                "is not UTF-8 text: byte {} (line {line}, column {column}) is not valid UTF-8; \
-                 save it as UTF-8 text (is it a binary file?)",
-                at + 1
-            ),
-        )
+        let byte = e.utf8_error().valid_up_to();
+        let (line, column) = line_column(e.as_bytes(), byte);
+        io::Error::new(io::ErrorKind::InvalidData, NotUtf8 { byte, line, column })
     })
 }
+
+/// Where a file stops being UTF-8 text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NotUtf8 {
+    /// The first bad byte, from 0.
+    pub byte: usize,
+    /// Its 1-based line.
+    pub line: usize,
+    /// Its 1-based column (in characters).
+    pub column: usize,
+}
+
+impl NotUtf8 {
+    /// The place of the first bad byte in `error`, if it is one of these.
+    pub fn of(error: &io::Error) -> Option<NotUtf8> {
+        error.get_ref()?.downcast_ref::<NotUtf8>().copied()
+    }
+}
+
+impl std::fmt::Display for NotUtf8 {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "is not UTF-8 text: byte {} (line {}, column {}) is not valid UTF-8; \
+             save it as UTF-8 text (is it a binary file?)",
+            self.byte + 1,
+            self.line,
+            self.column
+        )
+    }
+}
+
+impl std::error::Error for NotUtf8 {}
 
 /// The bytes of the file `name` directly inside `dir`, which must be a
 /// regular file there and not a link to one elsewhere: what a server of

@@ -276,12 +276,22 @@ impl Scenario {
             message,
         };
         let text = rover_files::read_text(path, rover_files::Limit::Text).map_err(|e| {
-            error(
-                None,
-                format!(
-                    "cannot read the scenario file: {e}\n  = help: give the path of a scenario file (.toml)"
+            match rover_files::NotUtf8::of(&e) {
+                Some(at) => error(
+                    Some(at.line),
+                    format!(
+                        "column {}: byte {} is not valid UTF-8\n  = help: save the scenario as UTF-8 text (TOML is UTF-8)",
+                        at.column,
+                        at.byte + 1
+                    ),
                 ),
-            )
+                None => error(
+                    None,
+                    format!(
+                        "cannot read the scenario file: {e}\n  = help: give the path of a scenario file (.toml)"
+                    ),
+                ),
+            }
         })?;
         let scenario = Self::parse(&text, path)?;
         Ok((scenario, text))
