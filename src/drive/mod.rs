@@ -63,8 +63,9 @@ pub struct DriveArgs {
     /// TCP port on 127.0.0.1 (0: any free port, printed).
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
-    /// A web origin (scheme://host[:port]) whose pages may use the server
-    /// besides its own page, e.g. a rig's dashboard; repeatable.
+    /// A web origin (scheme://host, or scheme://host:port) whose pages may
+    /// use the server besides its own page, e.g. a rig's dashboard;
+    /// repeatable.
     #[arg(long = "allow-origin", value_name = "URL")]
     pub allow_origin: Vec<String>,
     /// The token a WebSocket client without an Origin header (a program,
@@ -118,7 +119,7 @@ pub struct ViewArgs {
     /// TCP port on 127.0.0.1 (0: any free port, printed).
     #[arg(long, default_value_t = 8080)]
     pub port: u16,
-    /// A web origin (scheme://host[:port]) whose pages may use the server
+    /// A web origin (scheme://host, or scheme://host:port) whose pages may use the server
     /// besides its own page; repeatable.
     #[arg(long = "allow-origin", value_name = "URL")]
     pub allow_origin: Vec<String>,
