@@ -9,6 +9,25 @@ use std::time::{Duration, Instant};
 
 use super::hostile::{expect, rover, scratch, write};
 
+/// `rover simulate --scenario scenario --out out` in `dir` succeeds.
+fn runs(dir: &Path, scenario: &str, out: &str) {
+    let args = [
+        "simulate",
+        "--scenario",
+        scenario,
+        "--out",
+        out,
+        "--no-plots",
+        "--quiet",
+    ];
+    let done = rover(dir, &args);
+    assert!(
+        done.status.success(),
+        "{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+}
+
 fn mkfifo(path: &Path) {
     assert!(Command::new("mkfifo").arg(path).status().unwrap().success());
 }
@@ -178,23 +197,7 @@ fn outputs_never_escape_their_folder_nor_replace_anything_but_a_regular_file() {
         rover_models::builtin("swing4").unwrap()
     );
     // And a good run writes regular files only.
-    let out = rover(
-        &dir,
-        &[
-            "simulate",
-            "--scenario",
-            "s.toml",
-            "--out",
-            "good",
-            "--no-plots",
-            "--quiet",
-        ],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    runs(&dir, "s.toml", "good");
     for name in ["run.csv", "summary.json"] {
         assert!(
             std::fs::symlink_metadata(dir.join("good").join(name))
@@ -256,23 +259,7 @@ fn scenarios_with_absurd_numbers_are_refused_naming_the_field() {
         "drop.toml",
         "rover = \"swing4\"\nduration = 1.0\n[initial]\nz = 0.5\n",
     );
-    let out = rover(
-        &dir,
-        &[
-            "simulate",
-            "--scenario",
-            "drop.toml",
-            "--out",
-            "d",
-            "--no-plots",
-            "--quiet",
-        ],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    runs(&dir, "drop.toml", "d");
 }
 
 #[test]
