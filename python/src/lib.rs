@@ -14,6 +14,7 @@
 //! handlers, so that Ctrl-C stops it (see `Signals`).
 
 use std::path::Path;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
@@ -90,6 +91,7 @@ impl Signals {
 struct Rover {
     spec: rover_spec::Spec,
     key: String,
+    text: bool,
 }
 
 #[pymethods]
@@ -134,6 +136,20 @@ impl Rover {
     fn report(&self) -> String {
         rover_spec::report::check_report(&self.spec)
     }
+    /// What the rover was loaded from: a built-in name, a path, or a
+    /// description's TOML text.
+    #[getter]
+    fn source(&self) -> String {
+        self.key.clone()
+    }
+    /// Pickled as what it was loaded from, loaded again on unpickling.
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, (String, bool))> {
+        let load = slf.py().import("rover._native")?.getattr("load")?;
+        let r = slf.get();
+        Ok((load, (r.key.clone(), r.text)))
+    }
     fn __repr__(&self) -> String {
         format!(
             "<rover {} ({} DOF, {} wheels)>",
@@ -150,7 +166,8 @@ impl Rover {
 #[pyfunction]
 #[pyo3(signature = (source, text=None))]
 fn load(source: &str, text: Option<bool>) -> PyResult<Rover> {
-    let spec = if text.unwrap_or_else(|| source.contains('\n')) {
+    let text = text.unwrap_or_else(|| source.contains('\n'));
+    let spec = if text {
         rover_spec::load_str(source, "<string>")
     } else {
         load_rover(source, None)
@@ -159,6 +176,7 @@ fn load(source: &str, text: Option<bool>) -> PyResult<Rover> {
     Ok(Rover {
         spec,
         key: source.to_string(),
+        text,
     })
 }
 
@@ -262,6 +280,33 @@ struct Simulation {
     dof: usize,
     wheels: usize,
     units: Vec<&'static str>,
+    /// What the run was set up from (rover, scenario, origin, base,
+    /// plant): a snapshot restores only into a run set up alike.
+    setup: Arc<str>,
+}
+
+/// A step-wise run's complete condition at one instant, taken by
+/// `Simulation.snapshot()`: the state, the time, the integrator's step and
+/// history, the controllers' integral states, the commands and set-points.
+/// `Simulation.restore()` puts it back, and the run then continues bit for
+/// bit as it did from the instant it was taken. Opaque; restores only into
+/// a simulation of the same rover and scenario.
+#[pyclass(module = "rover._native")]
+struct Snapshot {
+    inner: Stepper<RunPlant>,
+    setup: Arc<str>,
+}
+
+#[pymethods]
+impl Snapshot {
+    /// The time it was taken at \[s\].
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner.time()
+    }
+    fn __repr__(&self) -> String {
+        format!("<rover snapshot at t = {} s>", self.inner.time())
+    }
 }
 
 /// The f64 buffer of a Python object (a C-contiguous, 1-D float64 numpy
@@ -348,7 +393,10 @@ impl Simulation {
     /// Set up the scenario's run (from its TOML text, as for `simulate`),
     /// placed at t = 0.
     #[new]
-    #[pyo3(signature = (rover, text, origin, base, generic=false))]
+    #[pyo3(
+        signature = (rover, text, origin, base, generic=false),
+        text_signature = "(rover, text, origin, base, generic=False)"
+    )]
     fn new(
         rover: Option<&Rover>,
         text: &str,
@@ -359,11 +407,15 @@ impl Simulation {
         let p = prepare(rover, text, origin, base).map_err(py_err)?;
         let inner = p.stepper(generic).map_err(py_err)?;
         let model = &p.spec.model;
+        let key = rover.map(|r| r.key.as_str()).unwrap_or("");
+        // Unit separators: no name, path or TOML text holds one.
+        let setup = format!("{key}\u{1f}{text}\u{1f}{origin}\u{1f}{base}\u{1f}{generic}");
         Ok(Self {
             units: inner.columns().units(&p.spec.coordinate_linear),
             inner,
             dof: model.dof(),
             wheels: model.wheels.len(),
+            setup: setup.into(),
         })
     }
 
@@ -453,6 +505,84 @@ impl Simulation {
             o.copy_from_slice(&y[..n2]);
             Ok(())
         })
+    }
+
+    /// Length of the full state (`get_state()`): 2N values [x; w], then
+    /// the run's internal states (soil and controller states), if any.
+    #[getter]
+    fn state_size(&self) -> usize {
+        self.inner.state().len()
+    }
+
+    /// Write the full state (`state_size` values: [x; w], then the run's
+    /// internal states) into `out`.
+    fn full_state_into(&self, out: &Bound<'_, PyAny>) -> PyResult<()> {
+        let y = self.inner.state();
+        with_buffer(out, true, "state", y.len(), |o| {
+            o.copy_from_slice(y);
+            Ok(())
+        })
+    }
+
+    /// Replace the state at the current time with `values`: a float64
+    /// array of 2N values [x; w] (the run's internal states kept) or of
+    /// `state_size` values (the full state). The integrator restarts from
+    /// it. Raises RunFailed if the run has failed or the state cannot be
+    /// evaluated (a wheel off the map).
+    fn set_state(&mut self, values: &Bound<'_, PyAny>) -> PyResult<()> {
+        let full = self.inner.state().len();
+        let n2 = 2 * self.dof;
+        let len = match values.len() {
+            Ok(l) if l == n2 => n2,
+            _ => full,
+        };
+        let mut y = self.inner.state().to_vec();
+        with_buffer(values, false, "state", len, |v| {
+            y[..len].copy_from_slice(v);
+            Ok(())
+        })
+        .map_err(|e| {
+            if len == full && full != n2 {
+                PyValueError::new_err(format!(
+                    "{}; or 2N = {n2} values [x; w]",
+                    e.value(values.py())
+                ))
+            } else {
+                e
+            }
+        })?;
+        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "state: value {i} is {}: every value must be finite",
+                y[i]
+            )));
+        }
+        self.inner
+            .set_state(&y)
+            .map_err(|e| RunFailed::new_err(format!("error: {e}")))
+    }
+
+    /// The run's complete condition now (state, time, integrator,
+    /// controllers, commands, set-points), for `restore()`.
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            inner: self.inner.clone(),
+            setup: self.setup.clone(),
+        }
+    }
+
+    /// Put back a snapshot taken of this run (or of one set up from the
+    /// same rover and scenario): the run continues bit for bit as it did
+    /// from the instant the snapshot was taken.
+    fn restore(&mut self, snapshot: &Bound<'_, Snapshot>) -> PyResult<()> {
+        let snap = snapshot.borrow();
+        if snap.setup != self.setup {
+            return Err(PyValueError::new_err(
+                "snapshot: taken of a simulation of another rover or scenario; restore it into a simulation set up as the one it was taken of",
+            ));
+        }
+        self.inner.clone_from(&snap.inner);
+        Ok(())
     }
 
     /// Write the current trajectory row (every column of `run.csv`) into
@@ -621,6 +751,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(wheel_test, m)?)?;
     m.add_class::<Rover>()?;
     m.add_class::<Simulation>()?;
+    m.add_class::<Snapshot>()?;
     m.add("RoverError", m.py().get_type::<RoverError>())?;
     m.add("RunFailed", m.py().get_type::<RunFailed>())?;
     Ok(())

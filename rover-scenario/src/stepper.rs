@@ -147,6 +147,19 @@ impl<P: Plant + Clone> Stepper<P> {
         &self.y
     }
 
+    /// Replace the full state `[x; w; ζ]` (as [`Stepper::state`] gives it)
+    /// at the current time; the integrator restarts (a jump of the state)
+    /// and the row is evaluated anew. `y` must have the state's length. A
+    /// failed run stays failed until [`Stepper::reset`].
+    pub fn set_state(&mut self, y: &[f64]) -> Result<(), RunError> {
+        if let Some(e) = &self.failed {
+            return Err(e.clone());
+        }
+        self.y.copy_from_slice(y);
+        self.integ.restart();
+        self.refresh().inspect_err(|e| self.failed = Some(e.clone()))
+    }
+
     /// The run's error, once it has failed.
     pub fn failure(&self) -> Option<&RunError> {
         self.failed.as_ref()
