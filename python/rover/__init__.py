@@ -6,12 +6,15 @@
 
 The runs are the command line's (`rover simulate`): the same numbers bit
 for bit, the same messages in the exceptions (`RoverError`). Units are SI
-(m, s, rad, N, N·m), as in the CSV columns. `wheel_test` is the
-single-wheel testbed (`rover wheel-test`) on soft soil.
+(m, s, rad, N, N·m), as in the CSV columns. `Simulation` is a run stepped
+by the caller, `rover.gym` a Gymnasium environment over it, `sweep` a
+parameter sweep on Ray. `wheel_test` is the single-wheel testbed (`rover
+wheel-test`) on soft soil. Guide: docs/PYTHON.md.
 """
 
 from __future__ import annotations
 
+import importlib
 import json
 import os
 from contextlib import contextmanager
@@ -21,7 +24,7 @@ from typing import Any, Mapping, Optional, Union
 import numpy as np
 
 from . import _native
-from ._native import Rover, RoverError, RunFailed
+from ._native import Rover, RoverError, RunFailed, Snapshot
 from ._toml import dumps as _toml_dumps
 
 __all__ = [
@@ -30,6 +33,7 @@ __all__ = [
     "RoverError",
     "RunFailed",
     "Simulation",
+    "Snapshot",
     "builtins",
     "load",
     "simulate",
@@ -39,7 +43,26 @@ __all__ = [
 ]
 
 ScenarioLike = Union[str, os.PathLike, Mapping[str, Any]]
+RoverLike = Union[Rover, str, os.PathLike, Mapping[str, Any]]
 SoilLike = Union[str, os.PathLike, Mapping[str, Any]]
+
+#: The optional dependencies: module -> the extra of the package that
+#: installs it (python/pyproject.toml).
+_EXTRAS = {"gymnasium": "gym", "ray": "sweep", "pyarrow": "sweep", "pandas": "pandas"}
+
+
+def _require(module: str, needed_by: str):
+    """Import `module`, or raise ImportError naming the extra that
+    installs it (before the caller has done anything)."""
+    try:
+        return importlib.import_module(module)
+    except ImportError as e:
+        extra = _EXTRAS.get(module, module)
+        raise ImportError(
+            f"{needed_by} needs {module}, which is not installed: install the package with its"
+            f" `{extra}` extra (from the repository: pip install './python[{extra}]'), or pip install {module}",
+            name=module,
+        ) from e
 
 
 def builtins() -> list[str]:
@@ -47,16 +70,54 @@ def builtins() -> list[str]:
     return list(_native.builtins())
 
 
-def load(source: Union[str, os.PathLike]) -> Rover:
-    """A rover: a built-in name (``"swing4"``), a description file, or a
-    description's TOML text. A ``pathlib.Path`` (any ``os.PathLike``) is
-    always a file; a ``str`` is a file when one of that name exists, else
-    TOML text when it holds a line break, else a name or a path."""
+def load(source: RoverLike) -> Rover:
+    """A rover: a built-in name (``"swing4"``), a description file, a
+    description's TOML text, or a dict of the description (as its TOML
+    file's tables). A ``pathlib.Path`` (any ``os.PathLike``) is always a
+    file; a ``str`` is a file when one of that name exists, else TOML text
+    when it holds a line break, else a name or a path. A loaded rover is
+    returned as is."""
+    if isinstance(source, Rover):
+        return source
+    if isinstance(source, Mapping):
+        return _native.load(_toml_dumps(source), True)
     if isinstance(source, os.PathLike):
         return _native.load(os.fspath(source), False)
     if isinstance(source, str):
         return _native.load(source, False if os.path.isfile(source) else None)
-    raise TypeError(f"a rover is a name, a path or TOML text, not {type(source).__name__}")
+    raise TypeError(
+        f"rover: a built-in name, a path, TOML text or a dict is a rover, not {type(source).__name__}"
+    )
+
+
+def _rover_and_scenario(rover, scenario, call: str) -> tuple[Optional[Rover], ScenarioLike]:
+    """The loaded rover (None: the scenario's own) and the scenario of a
+    call given ``(rover, scenario)``, or the scenario alone (first, or as
+    ``scenario=``) when it names its rover."""
+    if scenario is None:
+        if rover is None:
+            raise TypeError(
+                f"{call}() needs a scenario: {call}(scenario) when the scenario names its rover"
+                f" (`rover = \"swing4\"`), else {call}(rover, scenario)"
+            )
+        if isinstance(rover, Rover) or (isinstance(rover, str) and rover in _native.builtins()):
+            raise TypeError(f"{call}(): a rover but no scenario; give one: {call}(rover, scenario)")
+        rover, scenario = None, rover
+    return (None if rover is None else load(rover)), scenario
+
+
+@contextmanager
+def _python_words():
+    """A RoverError in the command line's words, in Python's (the rover
+    is an argument here, not on the command line)."""
+    try:
+        yield
+    except RoverError as e:
+        message = str(e)
+        if "give one on the command line" not in message:
+            raise
+        message = message.replace("give one on the command line", "give one as the `rover` argument", 1)
+        raise type(e)(message) from None
 
 
 def _scenario_source(scenario: ScenarioLike) -> tuple[str, str, str, Optional[str]]:
@@ -136,8 +197,7 @@ class Result:
 
     def to_pandas(self):
         """The trajectory as a pandas DataFrame (pandas must be installed)."""
-        import pandas as pd
-
+        pd = _require("pandas", "Result.to_pandas()")
         return pd.DataFrame(self.table, columns=self.columns)
 
     def __repr__(self) -> str:
@@ -145,27 +205,26 @@ class Result:
 
 
 def simulate(
-    rover: Optional[Union[Rover, str]] = None,
+    rover: Optional[RoverLike] = None,
     scenario: Optional[ScenarioLike] = None,
     *,
     generic: bool = False,
 ) -> Result:
     """Run ``scenario`` (a path, TOML text or a dict) with ``rover`` (a
-    loaded rover or a name; None: the scenario's own), as ``rover simulate``
-    does. ``generic`` runs the interpreted plant even for a built-in rover.
-    Raises RoverError for a scenario that cannot run.
+    loaded rover, a name, a path, TOML text or a dict; None: the scenario's
+    own), as ``rover simulate`` does: ``simulate(rover, scenario)``, or
+    ``simulate(scenario)`` for a scenario that names its rover. ``generic``
+    runs the interpreted plant even for a built-in rover. Raises RoverError
+    for a scenario that cannot run.
 
     Ctrl-C (SIGINT, or any signal whose Python handler raises) stops the
     run within one output interval and 50 ms: the handler's exception
     (KeyboardInterrupt) is raised with what was computed attached as its
     ``result`` attribute, a Result of status "interrupted" holding the rows
     up to the stop."""
-    if scenario is None:
-        raise TypeError("simulate() needs a scenario")
-    if isinstance(rover, (str, os.PathLike)):
-        rover = load(rover)
+    rover, scenario = _rover_and_scenario(rover, scenario, "simulate")
     text, origin, base, note = _scenario_source(scenario)
-    with _noted(note):
+    with _noted(note), _python_words():
         columns, data, rows, summary, units, raised = _native.simulate(rover, text, origin, base, generic)
     table = np.frombuffer(data, dtype=np.float64).reshape(rows, len(columns))
     result = Result(list(columns), table, json.loads(summary), list(units))
@@ -175,16 +234,47 @@ def simulate(
     return result
 
 
+def _float64_vector(values: Any, what: str, lengths: tuple[int, ...], hint: str) -> np.ndarray:
+    """`values` (a sequence of numbers or an array convertible to float64)
+    as a C-contiguous 1-D float64 array of one of `lengths` values (no
+    copy when it is one already); else an error naming `what`, what it
+    takes (`hint`) and what it was given."""
+    expected = " or ".join(f"{n} values (shape ({n},))" for n in lengths)
+    try:
+        if values is None or isinstance(values, (str, bytes)):
+            raise TypeError("not numbers")
+        v = np.asarray(values, dtype=np.float64, order="C")
+    except (TypeError, ValueError) as e:
+        raise TypeError(
+            f"{what}: expected a sequence of numbers or a numeric array of {expected}, {hint};"
+            f" got {type(values).__name__} ({e})"
+        ) from None
+    if v.ndim != 1 or v.shape[0] not in lengths:
+        shape = f"({v.shape[0]},)" if v.ndim == 1 else f"({', '.join(map(str, v.shape))})"
+        raise ValueError(f"{what}: expected {expected}, {hint}; got shape {shape}")
+    return v
+
+
 class Simulation(_native.Simulation):
-    """A scenario run step by step.
+    """A scenario run step by step: ``Simulation(rover, scenario)``, or
+    ``Simulation(scenario)`` for a scenario that names its rover.
 
     ``step(n)`` advances n output intervals (``dt`` = 1 / output_rate);
     ``state`` is [x; w] as numpy (2N values: the trajectory's columns after
-    ``t``); ``columns`` and ``units`` name the row's values and their units;
-    ``set_torques``/``set_steering`` take a numpy float64 array, one
-    value per wheel; ``set_speed``/``set_steering_setpoint`` move the
+    ``t``), ``get_state()``/``set_state()`` the full state (``state_size``
+    values: [x; w], then the run's internal states); ``columns`` and
+    ``units`` name the row's values and their units; ``set_torques``/
+    ``set_steering`` take one value per wheel (a list, a tuple or any
+    numeric array); ``set_speed``/``set_steering_setpoint`` move the
     built-in loops' set-points. Stepped without changes, the states are the
     whole run's rows bit for bit. Long ``step(n)`` calls release the GIL.
+
+    ``snapshot()`` takes the run's complete condition, ``restore(snap)``
+    puts it back: the run then continues bit for bit as it did after the
+    snapshot. ``copy.copy``/``copy.deepcopy`` give an independent run in
+    the same condition; ``pickle`` keeps the setup and replays the calls
+    that led to the current condition (the same numbers, at the cost of
+    computing them again).
 
     Ctrl-C stops a long ``step(n)`` after the step in progress (checked
     every 50 ms): KeyboardInterrupt is raised, and the simulation stays at
@@ -192,31 +282,168 @@ class Simulation(_native.Simulation):
     to step on.
     """
 
-    def __new__(cls, rover=None, scenario=None, *, generic: bool = False):
-        if scenario is None:
-            raise TypeError("Simulation() needs a scenario")
-        if isinstance(rover, (str, os.PathLike)):
-            rover = load(rover)
-        text, origin, base, note = _scenario_source(scenario)
-        with _noted(note):
-            return super().__new__(cls, rover, text, origin, base, generic)
+    def __new__(cls, rover=None, scenario=None, *, generic: bool = False, _setup=None):
+        if _setup is not None:
+            rover, text, origin, base = _setup
+            note = None
+        else:
+            rover, scenario = _rover_and_scenario(rover, scenario, "Simulation")
+            text, origin, base, note = _scenario_source(scenario)
+        with _noted(note), _python_words():
+            self = super().__new__(cls, rover, text, origin, base, generic)
+        self._setup = (rover, text, origin, base)
+        self._generic = generic
+        # The calls since t = 0 that changed the run, for pickling.
+        self._log: list = []
+        return self
 
-    def __init__(self, rover=None, scenario=None, *, generic: bool = False):
+    def __init__(self, rover=None, scenario=None, *, generic: bool = False, _setup=None):
         self._state = np.empty(2 * self.dof)
         self._row = np.empty(len(self.columns))
 
+    # -- the calls that change the run, logged -------------------------
+
+    def step(self, n: int = 1) -> float:
+        """Advance ``n`` output intervals; the time reached. Raises
+        RunFailed when the run fails (it then stays failed until
+        ``reset()`` or ``restore()``)."""
+        t0 = self.time
+        try:
+            return super().step(n)
+        finally:
+            done = n if self.error is not None else round((self.time - t0) / self.dt)
+            if done:
+                if self._log and self._log[-1][0] == "step":
+                    self._log[-1] = ("step", self._log[-1][1] + done)
+                else:
+                    self._log.append(("step", done))
+
+    def reset(self) -> None:
+        """Back to t = 0 with the scenario's commands and set-points."""
+        super().reset()
+        self._log = []
+
+    def set_torques(self, torques) -> None:
+        """Open-loop motor torques [N·m], one per wheel (a list, a tuple or
+        any numeric array), added to the controller's and held until
+        changed."""
+        v = _float64_vector(torques, "torques", (self.wheel_count,), "one torque [N·m] per wheel")
+        super().set_torques(v)
+        self._log.append(("set_torques", v.tolist()))
+
+    def set_steering(self, angles) -> None:
+        """Open-loop steering angles [rad], one per wheel (a list, a tuple
+        or any numeric array), added to the controller's and held until
+        changed."""
+        v = _float64_vector(angles, "steering", (self.wheel_count,), "one angle [rad] per wheel")
+        super().set_steering(v)
+        self._log.append(("set_steering", v.tolist()))
+
+    def set_speed(self, speed: float) -> None:
+        """Hold the speed set-point at ``speed`` [m/s]."""
+        super().set_speed(speed)
+        self._log.append(("set_speed", float(speed)))
+
+    def set_steering_setpoint(self, value: float) -> None:
+        """Hold the steering set-point at ``value`` (slip steering's Δτ
+        [N·m], or Ackermann steering's radius [m] or front-left angle [°])."""
+        super().set_steering_setpoint(value)
+        self._log.append(("set_steering_setpoint", float(value)))
+
+    def get_state(self) -> np.ndarray:
+        """The full state (``state_size`` values: [x; w], then the run's
+        internal states), a new array; ``time`` is its time."""
+        out = np.empty(self.state_size)
+        self.full_state_into(out)
+        return out
+
+    def set_state(self, values) -> None:
+        """Replace the state at the current time (``time`` is kept): 2N
+        values [x; w] (the internal states kept) or ``state_size`` values
+        (as ``get_state()`` gives them). The integrator restarts from it.
+        Raises RunFailed when the run has failed or cannot be evaluated
+        there."""
+        v = _float64_vector(
+            values,
+            "state",
+            (2 * self.dof, self.state_size),
+            f"[x; w] of 2N = {2 * self.dof} values, or the full state of {self.state_size}",
+        )
+        super().set_state(v)
+        self._log.append(("set_state", v.tolist()))
+
+    def snapshot(self) -> Snapshot:
+        """The run's complete condition now, for ``restore()``: state,
+        time, integrator, controllers' integral states, commands and
+        set-points."""
+        snap = super().snapshot()
+        snap._log = list(self._log)
+        return snap
+
+    def restore(self, snapshot: Snapshot) -> None:
+        """Put back a snapshot taken of this simulation (or of one of the
+        same rover and scenario): stepped on, the run gives what it gave
+        after the snapshot, bit for bit."""
+        if not isinstance(snapshot, Snapshot):
+            raise TypeError(f"snapshot: expected a Snapshot (from snapshot()), got {type(snapshot).__name__}")
+        super().restore(snapshot)
+        self._log = list(getattr(snapshot, "_log", [("unknown",)]))
+
+    # -- copies and pickling ---------------------------------------------
+
+    def __copy__(self) -> "Simulation":
+        new = type(self).__new__(type(self), generic=self._generic, _setup=self._setup)
+        new.__init__()
+        new.restore(self.snapshot())
+        return new
+
+    def __deepcopy__(self, memo) -> "Simulation":
+        new = self.__copy__()
+        memo[id(self)] = new
+        return new
+
+    def __reduce__(self):
+        if any(op[0] == "unknown" for op in self._log):
+            raise TypeError(
+                "cannot pickle this Simulation: it was restored from a snapshot of another simulation;"
+                " pickle that simulation, or this one after reset()"
+            )
+        return (_rebuild_simulation, (type(self), self._setup, self._generic, list(self._log)))
+
     @property
     def state(self) -> np.ndarray:
-        """The state [x; w] (a new array each call; ``state_into`` fills one)."""
+        """The state [x; w] (a new array each call; ``state_into`` fills
+        one). Set it to move the rover (the internal states kept)."""
         out = np.empty(2 * self.dof)
         self.state_into(out)
         return out
+
+    @state.setter
+    def state(self, values) -> None:
+        v = _float64_vector(values, "state", (2 * self.dof,), f"[x; w] of 2N = {2 * self.dof} values")
+        self.set_state(v)
 
     @property
     def row(self) -> dict:
         """The current trajectory row, by column name."""
         self.row_into(self._row)
         return dict(zip(self.columns, self._row.tolist()))
+
+
+def _rebuild_simulation(cls, setup, generic, log):
+    """An unpickled Simulation: set up again, then the logged calls
+    replayed (a failed step fails again, as it did)."""
+    sim = cls.__new__(cls, generic=generic, _setup=setup)
+    sim.__init__()
+    for op, *args in log:
+        if op == "step":
+            try:
+                sim.step(*args)
+            except RunFailed:
+                pass
+        else:
+            getattr(sim, op)(*args)
+    return sim
 
 
 def wheel_test(

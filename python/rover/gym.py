@@ -15,10 +15,11 @@ import os
 import tomllib
 from typing import Any, Callable, Mapping, Optional, Union
 
-import gymnasium as gym
 import numpy as np
 
-from . import RunFailed, Simulation, load
+from . import RunFailed, Simulation, _require, load
+
+gym = _require("gymnasium", "rover.gym")
 
 #: reward(previous row, row) -> float; rows by trajectory column name.
 Reward = Callable[[dict, dict], float]
@@ -31,7 +32,8 @@ def forward_progress(previous: dict, row: dict) -> float:
 
 class RoverEnv(gym.Env):
     """``RoverEnv(scenario, rover=None, reward=forward_progress,
-    steps_per_action=1, max_steps=200)``: each action holds for
+    steps_per_action=1, max_steps=200)``: ``rover`` (a name, a path, TOML
+    text, a dict or a loaded rover; None: the scenario's own); each action holds for
     ``steps_per_action`` output intervals; an episode ends when the run
     fails (terminated, reward ``failure_reward``) or after ``max_steps``
     actions (truncated)."""
@@ -54,7 +56,7 @@ class RoverEnv(gym.Env):
                 self._scenario = tomllib.load(f)
         else:
             self._scenario = tomllib.loads(scenario)
-        self._rover = load(rover) if isinstance(rover, (str, os.PathLike)) else rover
+        self._rover = None if rover is None else load(rover)
         self.reward_fn = reward
         self.steps_per_action = steps_per_action
         self.max_steps = max_steps

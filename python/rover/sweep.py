@@ -33,6 +33,18 @@ def _run_task(plan_text: str, origin: str, folder: str, index: int, base_text: s
         return json.dumps({"task": index, "status": "error", "error": f"error: {type(e).__name__}: {e}"})
 
 
+def _require_extras(call: str, table: str):
+    """Ray, pandas and (for a parquet table) pyarrow, or ImportError naming
+    the extra to install: raised before the sweep writes anything. Ray."""
+    from . import _require
+
+    ray = _require("ray", call)
+    _require("pandas", call)
+    if table == "parquet":
+        _require("pyarrow", f"{call} with table='parquet'")
+    return ray
+
+
 def _write_whole(path: Path, text: str) -> None:
     """Write `text` to `path` whole or not at all (a rename over it)."""
     partial = path.with_name(f"{path.name}.partial-{os.getpid()}")
@@ -84,6 +96,7 @@ def sweep(
     """
     from . import _noted, _scenario_source
 
+    _require_extras("rover.sweep()", table)
     out = Path(out).resolve()
     text, origin, base, note = _scenario_source(base_scenario)
     written = origin in ("<dict>", "<string>")
@@ -109,7 +122,7 @@ def sweep(
 def sweep_plan(plan: Union[str, os.PathLike], *, address: Optional[str] = None, table: str = "parquet"):
     """Run a plan file on Ray (the tasks without a record), then gather
     every record into the table; returns it as a pandas DataFrame."""
-    import ray
+    ray = _require_extras("rover.sweep_plan()", table)
 
     plan_path = Path(plan).resolve()
     plan_text = plan_path.read_text()
@@ -147,8 +160,11 @@ def gather(out: Union[str, os.PathLike], count: int, *, table: str = "parquet"):
     status ``unreadable`` and the reason as its ``error``. The table is
     written either way; then, if any task lacks its result, RoverError is
     raised naming them, the table attached as its ``table`` attribute."""
-    import pandas as pd
+    from . import _require
 
+    pd = _require("pandas", "rover.sweep.gather()")
+    if table == "parquet":
+        _require("pyarrow", "rover.sweep.gather(table='parquet')")
     if table not in ("parquet", "csv"):
         raise ValueError(f"table: 'parquet' or 'csv', not {table!r}")
     out = Path(out)

@@ -143,9 +143,7 @@ impl Rover {
         self.key.clone()
     }
     /// Pickled as what it was loaded from, loaded again on unpickling.
-    fn __reduce__<'py>(
-        slf: &Bound<'py, Self>,
-    ) -> PyResult<(Bound<'py, PyAny>, (String, bool))> {
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, bool))> {
         let load = slf.py().import("rover._native")?.getattr("load")?;
         let r = slf.get();
         Ok((load, (r.key.clone(), r.text)))
@@ -291,7 +289,7 @@ struct Simulation {
 /// `Simulation.restore()` puts it back, and the run then continues bit for
 /// bit as it did from the instant it was taken. Opaque; restores only into
 /// a simulation of the same rover and scenario.
-#[pyclass(module = "rover._native")]
+#[pyclass(module = "rover._native", dict)]
 struct Snapshot {
     inner: Stepper<RunPlant>,
     setup: Arc<str>,

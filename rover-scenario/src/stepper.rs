@@ -157,7 +157,8 @@ impl<P: Plant + Clone> Stepper<P> {
         }
         self.y.copy_from_slice(y);
         self.integ.restart();
-        self.refresh().inspect_err(|e| self.failed = Some(e.clone()))
+        self.refresh()
+            .inspect_err(|e| self.failed = Some(e.clone()))
     }
 
     /// The run's error, once it has failed.
