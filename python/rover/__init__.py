@@ -80,7 +80,7 @@ def load(source: RoverLike) -> Rover:
     if isinstance(source, Rover):
         return source
     if isinstance(source, Mapping):
-        return _native.load(_toml_dumps(source), True)
+        return _native.load(_toml_dumps(source), True, "<dict>")
     if isinstance(source, os.PathLike):
         return _native.load(os.fspath(source), False)
     if isinstance(source, str):

@@ -161,12 +161,13 @@ impl Rover {
 /// Load a rover: a built-in name, a description file, or a description's
 /// TOML text; `text` says which of text (true) or a name or path (false)
 /// `source` is, else a line break (which no name has) tells them apart.
+/// `origin` names text in messages (default `<string>`).
 #[pyfunction]
-#[pyo3(signature = (source, text=None))]
-fn load(source: &str, text: Option<bool>) -> PyResult<Rover> {
+#[pyo3(signature = (source, text=None, origin=None))]
+fn load(source: &str, text: Option<bool>, origin: Option<&str>) -> PyResult<Rover> {
     let text = text.unwrap_or_else(|| source.contains('\n'));
     let spec = if text {
-        rover_spec::load_str(source, "<string>")
+        rover_spec::load_str(source, origin.unwrap_or("<string>"))
     } else {
         load_rover(source, None)
     };
