@@ -293,35 +293,13 @@ class Simulation(_native.Simulation):
             self = super().__new__(cls, rover, text, origin, base, generic)
         self._setup = (rover, text, origin, base)
         self._generic = generic
-        # The calls since t = 0 that changed the run, for pickling.
-        self._log: list = []
         return self
 
     def __init__(self, rover=None, scenario=None, *, generic: bool = False, _setup=None):
         self._state = np.empty(2 * self.dof)
         self._row = np.empty(len(self.columns))
 
-    # -- the calls that change the run, logged -------------------------
-
-    def step(self, n: int = 1) -> float:
-        """Advance ``n`` output intervals; the time reached. Raises
-        RunFailed when the run fails (it then stays failed until
-        ``reset()`` or ``restore()``)."""
-        t0 = self.time
-        try:
-            return super().step(n)
-        finally:
-            done = n if self.error is not None else round((self.time - t0) / self.dt)
-            if done:
-                if self._log and self._log[-1][0] == "step":
-                    self._log[-1] = ("step", self._log[-1][1] + done)
-                else:
-                    self._log.append(("step", done))
-
-    def reset(self) -> None:
-        """Back to t = 0 with the scenario's commands and set-points."""
-        super().reset()
-        self._log = []
+    # -- commands from any sequence of numbers ----------------------------
 
     def set_torques(self, torques) -> None:
         """Open-loop motor torques [N·m], one per wheel (a list, a tuple or
@@ -329,7 +307,6 @@ class Simulation(_native.Simulation):
         changed."""
         v = _float64_vector(torques, "torques", (self.wheel_count,), "one torque [N·m] per wheel")
         super().set_torques(v)
-        self._log.append(("set_torques", v.tolist()))
 
     def set_steering(self, angles) -> None:
         """Open-loop steering angles [rad], one per wheel (a list, a tuple
@@ -337,18 +314,6 @@ class Simulation(_native.Simulation):
         changed."""
         v = _float64_vector(angles, "steering", (self.wheel_count,), "one angle [rad] per wheel")
         super().set_steering(v)
-        self._log.append(("set_steering", v.tolist()))
-
-    def set_speed(self, speed: float) -> None:
-        """Hold the speed set-point at ``speed`` [m/s]."""
-        super().set_speed(speed)
-        self._log.append(("set_speed", float(speed)))
-
-    def set_steering_setpoint(self, value: float) -> None:
-        """Hold the steering set-point at ``value`` (slip steering's Δτ
-        [N·m], or Ackermann steering's radius [m] or front-left angle [°])."""
-        super().set_steering_setpoint(value)
-        self._log.append(("set_steering_setpoint", float(value)))
 
     def get_state(self) -> np.ndarray:
         """The full state (``state_size`` values: [x; w], then the run's
@@ -370,15 +335,6 @@ class Simulation(_native.Simulation):
             f"[x; w] of 2N = {2 * self.dof} values, or the full state of {self.state_size}",
         )
         super().set_state(v)
-        self._log.append(("set_state", v.tolist()))
-
-    def snapshot(self) -> Snapshot:
-        """The run's complete condition now, for ``restore()``: state,
-        time, integrator, controllers' integral states, commands and
-        set-points."""
-        snap = super().snapshot()
-        snap._log = list(self._log)
-        return snap
 
     def restore(self, snapshot: Snapshot) -> None:
         """Put back a snapshot taken of this simulation (or of one of the
@@ -387,7 +343,6 @@ class Simulation(_native.Simulation):
         if not isinstance(snapshot, Snapshot):
             raise TypeError(f"snapshot: expected a Snapshot (from snapshot()), got {type(snapshot).__name__}")
         super().restore(snapshot)
-        self._log = list(getattr(snapshot, "_log", [("unknown",)]))
 
     # -- copies and pickling ---------------------------------------------
 
@@ -403,12 +358,7 @@ class Simulation(_native.Simulation):
         return new
 
     def __reduce__(self):
-        if any(op[0] == "unknown" for op in self._log):
-            raise TypeError(
-                "cannot pickle this Simulation: it was restored from a snapshot of another simulation;"
-                " pickle that simulation, or this one after reset()"
-            )
-        return (_rebuild_simulation, (type(self), self._setup, self._generic, list(self._log)))
+        return (_rebuild_simulation, (type(self), self._setup, self._generic, self.calls()))
 
     @property
     def state(self) -> np.ndarray:
@@ -435,14 +385,16 @@ def _rebuild_simulation(cls, setup, generic, log):
     replayed (a failed step fails again, as it did)."""
     sim = cls.__new__(cls, generic=generic, _setup=setup)
     sim.__init__()
-    for op, *args in log:
-        if op == "step":
-            try:
-                sim.step(*args)
-            except RunFailed:
-                pass
-        else:
-            getattr(sim, op)(*args)
+    for method, args in log:
+        try:
+            if method == "step":
+                sim.step(int(args[0]))
+            elif method in ("set_speed", "set_steering_setpoint"):
+                getattr(sim, method)(args[0])
+            else:
+                getattr(sim, method)(np.array(args))
+        except RunFailed:
+            pass  # failed as the original did
     return sim
 
 

@@ -282,6 +282,86 @@ struct Simulation {
     /// What the run was set up from (rover, scenario, origin, base,
     /// plant): a snapshot restores only into a run set up alike.
     setup: Arc<str>,
+    /// The calls since t = 0 that changed the run (for pickling).
+    log: Log,
+}
+
+/// A call that changed a step-wise run: replayed in order on a run set up
+/// alike, the calls since t = 0 give the run's condition bit for bit.
+enum Op {
+    Step(u64),
+    Torques(Vec<f64>),
+    Steering(Vec<f64>),
+    Speed(f64),
+    SteeringSetpoint(f64),
+    State(Vec<f64>),
+}
+
+/// The calls since t = 0 that changed a run, newest first, each entry
+/// shared by the snapshots taken after it (a snapshot's copy costs one
+/// reference count, whatever the run's length).
+#[derive(Clone, Default)]
+struct Log(Option<Arc<Entry>>);
+
+struct Entry {
+    op: Op,
+    prev: Log,
+}
+
+impl Log {
+    fn push(&mut self, op: Op) {
+        let prev = std::mem::take(self);
+        self.0 = Some(Arc::new(Entry { op, prev }));
+    }
+
+    /// `n` more steps: added to the newest entry when it is steps that no
+    /// snapshot shares.
+    fn steps(&mut self, n: u64) {
+        if n == 0 {
+            return;
+        }
+        if let Some(Entry {
+            op: Op::Step(k), ..
+        }) = self.0.as_mut().and_then(Arc::get_mut)
+        {
+            *k += n;
+            return;
+        }
+        self.push(Op::Step(n));
+    }
+
+    /// Oldest first, as (method, arguments) for the Python side to replay.
+    fn calls(&self) -> Vec<(&'static str, Vec<f64>)> {
+        let mut out = Vec::new();
+        let mut cur = self.0.as_deref();
+        while let Some(e) = cur {
+            out.push(match &e.op {
+                Op::Step(n) => ("step", vec![*n as f64]),
+                Op::Torques(v) => ("set_torques", v.clone()),
+                Op::Steering(v) => ("set_steering", v.clone()),
+                Op::Speed(v) => ("set_speed", vec![*v]),
+                Op::SteeringSetpoint(v) => ("set_steering_setpoint", vec![*v]),
+                Op::State(v) => ("set_state", v.clone()),
+            });
+            cur = e.prev.0.as_deref();
+        }
+        out.reverse();
+        out
+    }
+}
+
+impl Drop for Log {
+    /// Entry after entry, not recursively: a long run's log would
+    /// overflow the stack.
+    fn drop(&mut self) {
+        let mut cur = self.0.take();
+        while let Some(entry) = cur {
+            match Arc::try_unwrap(entry) {
+                Ok(mut e) => cur = e.prev.0.take(),
+                Err(_) => break,
+            }
+        }
+    }
 }
 
 /// A step-wise run's complete condition at one instant, taken by
@@ -290,10 +370,11 @@ struct Simulation {
 /// `Simulation.restore()` puts it back, and the run then continues bit for
 /// bit as it did from the instant it was taken. Opaque; restores only into
 /// a simulation of the same rover and scenario.
-#[pyclass(module = "rover._native", dict)]
+#[pyclass(module = "rover._native")]
 struct Snapshot {
     inner: Stepper<RunPlant>,
     setup: Arc<str>,
+    log: Log,
 }
 
 #[pymethods]
@@ -415,12 +496,14 @@ impl Simulation {
             dof: model.dof(),
             wheels: model.wheels.len(),
             setup: setup.into(),
+            log: Log::default(),
         })
     }
 
     /// Back to t = 0 with the scenario's commands and set-points.
     fn reset(&mut self) {
         self.inner.reset();
+        self.log = Log::default();
     }
 
     /// Advance `n` output intervals; the time reached. Raises RunFailed
@@ -431,12 +514,14 @@ impl Simulation {
     #[pyo3(signature = (n=1))]
     fn step(&mut self, py: Python<'_>, n: u64) -> PyResult<f64> {
         let inner = &mut self.inner;
+        let mut done = n;
         let result = if n > HOLD_GIL_STEPS {
             py.detach(|| {
                 let mut signals = Signals::new();
-                for _ in 0..n {
+                for i in 1..=n {
                     inner.step(1)?;
                     if signals.poll() {
+                        done = i;
                         break;
                     }
                 }
@@ -445,6 +530,8 @@ impl Simulation {
         } else {
             inner.step(n).map(|()| None)
         };
+        // A failed step is logged too: replayed, it fails again.
+        self.log.steps(done);
         match result {
             Ok(None) => Ok(self.inner.time()),
             Ok(Some(raised)) => Err(raised),
@@ -556,9 +643,13 @@ impl Simulation {
                 y[i]
             )));
         }
-        self.inner
-            .set_state(&y)
-            .map_err(|e| RunFailed::new_err(format!("error: {e}")))
+        let was_failed = self.inner.failure().is_some();
+        let set = self.inner.set_state(&y);
+        if !was_failed {
+            // Replayed, a state that fails the run fails it again.
+            self.log.push(Op::State(y));
+        }
+        set.map_err(|e| RunFailed::new_err(format!("error: {e}")))
     }
 
     /// The run's complete condition now (state, time, integrator,
@@ -567,6 +658,7 @@ impl Simulation {
         Snapshot {
             inner: self.inner.clone(),
             setup: self.setup.clone(),
+            log: self.log.clone(),
         }
     }
 
@@ -581,6 +673,7 @@ impl Simulation {
             ));
         }
         self.inner.clone_from(&snap.inner);
+        self.log = snap.log.clone();
         Ok(())
     }
 
@@ -610,7 +703,9 @@ impl Simulation {
     fn set_speed(&mut self, speed: f64) -> PyResult<()> {
         self.inner
             .set_speed(speed)
-            .map_err(|e| RoverError::new_err(format!("error: {e}")))
+            .map_err(|e| RoverError::new_err(format!("error: {e}")))?;
+        self.log.push(Op::Speed(speed));
+        Ok(())
     }
 
     /// Hold the steering set-point at `value` (slip steering's Δτ [N·m],
@@ -618,23 +713,43 @@ impl Simulation {
     fn set_steering_setpoint(&mut self, value: f64) -> PyResult<()> {
         self.inner
             .set_steering_setpoint(value)
-            .map_err(|e| RoverError::new_err(format!("error: {e}")))
+            .map_err(|e| RoverError::new_err(format!("error: {e}")))?;
+        self.log.push(Op::SteeringSetpoint(value));
+        Ok(())
+    }
+
+    /// The calls since t = 0 that changed the run (after a reset; a
+    /// restored snapshot brings its own), oldest first, as (method,
+    /// arguments): replayed on a simulation set up alike, they give this
+    /// run's condition bit for bit. Pickling replays them.
+    fn calls(&self) -> Vec<(&'static str, Vec<f64>)> {
+        self.log.calls()
     }
 }
 
 impl Simulation {
     fn command(&mut self, values: &Bound<'_, PyAny>, torques: bool) -> PyResult<()> {
         let what = if torques { "torques" } else { "steering" };
-        let s = &mut self.inner;
+        let (s, log) = (&mut self.inner, &mut self.log);
         let wheels = s.command_buffer().len();
         with_buffer(values, false, what, wheels, |v| {
+            let held = s.system().commands();
+            let changed = if torques { held.0 != v } else { held.1 != v };
             s.command_buffer().copy_from_slice(v);
             let applied = if torques {
                 s.apply_torques()
             } else {
                 s.apply_steering()
             };
-            applied.map_err(|e| RoverError::new_err(format!("error: {e}")))
+            applied.map_err(|e| RoverError::new_err(format!("error: {e}")))?;
+            if changed {
+                log.push(if torques {
+                    Op::Torques(v.to_vec())
+                } else {
+                    Op::Steering(v.to_vec())
+                });
+            }
+            Ok(())
         })
     }
 }

@@ -178,3 +178,17 @@ def test_a_rover_pickles_as_what_it_was_loaded_from(data):
     for r in (rover.load("swing4"), rover.load((data.parents[2] / "models" / "mer.toml").read_text())):
         back = pickle.loads(pickle.dumps(r))
         assert (back.name, back.dof, back.wheel_names) == (r.name, r.dof, r.wheel_names)
+
+
+def test_the_calls_a_pickle_replays_are_the_changes_not_every_step():
+    sim = rover.Simulation(HEADING)
+    for _ in range(30):
+        sim.step()
+        sim.set_torques([0.1, 0.1, 0.1, 0.1])  # the same torques again: no change
+    snap = sim.snapshot()
+    sim.step(5)
+    assert sim.calls() == [("step", [1.0]), ("set_torques", [0.1] * 4), ("step", [34.0])]
+    sim.restore(snap)
+    assert sim.calls() == [("step", [1.0]), ("set_torques", [0.1] * 4), ("step", [29.0])]
+    sim.reset()
+    assert sim.calls() == []
