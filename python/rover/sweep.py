@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import tempfile
 from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence, Union
 
@@ -52,6 +53,39 @@ def _write_whole(path: Path, text: str) -> None:
     partial.replace(path)
 
 
+#: The file, in a sweep's folder, of a rover given as text or a dict.
+ROVER_FILE = "rover.toml"
+
+
+def _plan_rover(rover) -> tuple[Optional[str], Optional[str]]:
+    """The plan's `rover` (a built-in name or an absolute path) and, for a
+    rover given as TOML text or a dict, its text (to be written as
+    ROVER_FILE, which the plan then names). Loaded first: a description
+    that cannot load is refused before the plan is."""
+    from . import load
+
+    if rover is None:
+        return None, None
+    if isinstance(rover, Mapping):
+        load(rover)
+        return ROVER_FILE, _toml_dumps(rover)
+    if isinstance(rover, _native.Rover):
+        source, is_text = rover.__reduce__()[1]
+        rover = source
+        if is_text:
+            return ROVER_FILE, source
+    if isinstance(rover, os.PathLike) or (isinstance(rover, str) and os.path.isfile(rover)):
+        return str(Path(rover).resolve()), None
+    if isinstance(rover, str) and "\n" in rover:
+        load(rover)
+        return ROVER_FILE, rover
+    if isinstance(rover, str):
+        return rover, None
+    raise TypeError(
+        f"rover: a built-in name, a path, TOML text, a dict or a loaded rover is a rover, not {type(rover).__name__}"
+    )
+
+
 def _plan_text(scenario_file: str, rover, seeds, samples, sample_seed, grid, ranges) -> str:
     plan: dict[str, Any] = {"scenario": scenario_file, "out": "."}
     if rover is not None:
@@ -75,7 +109,7 @@ def sweep(
     ranges: Optional[Mapping[str, Sequence[float]]] = None,
     seeds: Optional[Sequence[int]] = None,
     *,
-    rover: Optional[str] = None,
+    rover=None,
     out: Union[str, os.PathLike] = "sweep-out",
     sample_seed: int = 0,
     address: Optional[str] = None,
@@ -85,7 +119,9 @@ def sweep(
     combination of ``grid`` (dotted field -> values), and/or ``samples``
     parameter sets drawn uniformly from ``ranges`` (dotted field ->
     [low, high]), each once per terrain seed in ``seeds``; one Ray task per
-    run. ``rover`` (a built-in name or a path) overrides the scenario's.
+    run. ``rover`` (a built-in name, a path, TOML text, a dict or a loaded
+    rover) overrides the scenario's; one given as text or a dict is
+    written as ``out/rover.toml``.
 
     ``out`` receives plan.toml (the command line's plan of this sweep),
     one record per task in tasks/, and the table: results.parquet
@@ -101,6 +137,7 @@ def sweep(
     text, origin, base, note = _scenario_source(base_scenario)
     written = origin in ("<dict>", "<string>")
     scenario_file = "base.toml" if written else str(Path(origin).resolve())
+    rover, rover_text = _plan_rover(rover)
     plan_text = _plan_text(scenario_file, rover, seeds, samples, sample_seed, grid, ranges)
     plan_path = out / "plan.toml"
     if plan_path.exists() and plan_path.read_text() != plan_text:
@@ -108,12 +145,19 @@ def sweep(
             f"error: {plan_path}: another sweep's plan is there; give this sweep another `out` folder"
         )
     # The plan is checked before anything is written for it: a plan refused
-    # leaves nothing in `out` that would stand in the way of the next.
-    with _noted(note):
-        _native.plan_info(plan_text, str(plan_path), str(out), text)
+    # leaves nothing in `out` that would stand in the way of the next (a
+    # rover given as text is checked from a folder of its own meanwhile).
+    with _noted(note), tempfile.TemporaryDirectory() as scratch:
+        folder = str(out)
+        if rover_text is not None:
+            Path(scratch, ROVER_FILE).write_text(rover_text)
+            folder = scratch
+        _native.plan_info(plan_text, str(plan_path), folder, text)
     (out / "tasks").mkdir(parents=True, exist_ok=True)
     if written:
         _write_whole(out / scenario_file, text)
+    if rover_text is not None:
+        _write_whole(out / ROVER_FILE, rover_text)
     _write_whole(plan_path, plan_text)
     with _noted(note):
         return sweep_plan(plan_path, address=address, table=table)

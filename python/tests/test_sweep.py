@@ -160,3 +160,25 @@ def test_gathering_names_the_missing_and_unreadable_records_and_keeps_the_table(
     for i in (1, 2, 3):
         (tasks / f"{i:06}.json").write_text(json.dumps({"task": i, "status": "completed"}))
     assert list(gather(tmp_path, 4, table="csv")["status"]) == ["completed"] * 4
+
+
+def test_a_rover_given_as_a_dict_or_a_loaded_rover_runs_every_task(local_ray, tmp_path):
+    import tomllib
+
+    from conftest import REPO
+
+    path = REPO / "models" / "mer.toml"
+    with open(path, "rb") as f:
+        description = tomllib.load(f)
+    base = {k: v for k, v in BASE.items() if k != "rover"}
+    grid = {"control.speed.kp": [5.0, 10.0]}
+    by_dict = rover.sweep(base, grid=grid, rover=description, out=tmp_path / "dict", table="csv")
+    by_path = rover.sweep(base, grid=grid, rover=rover.load(path), out=tmp_path / "path", table="csv")
+    assert list(by_dict["status"]) == ["completed", "completed"]
+    assert (tmp_path / "dict" / "rover.toml").exists()
+    cols = [c for c in by_dict.columns if c not in TIMING]
+    assert by_dict[cols].equals(by_path[cols])
+    bad = dict(description, gravity=-1.0)
+    with pytest.raises(rover.RoverError, match="gravity"):
+        rover.sweep(base, grid=grid, rover=bad, out=tmp_path / "bad")
+    assert not (tmp_path / "bad").exists()
