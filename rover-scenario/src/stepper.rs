@@ -149,7 +149,7 @@ impl<P: Plant + Clone> Stepper<P> {
 
     /// Replace the full state `[x; w; ζ]` (as [`Stepper::state`] gives it)
     /// at the current time; the integrator restarts (a jump of the state)
-    /// and the row is evaluated anew. `y` must have the state's length. A
+    /// and the row is evaluated anew. Panics unless `y` has the state's length. A
     /// failed run stays failed until [`Stepper::reset`].
     pub fn set_state(&mut self, y: &[f64]) -> Result<(), RunError> {
         if let Some(e) = &self.failed {
