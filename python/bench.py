@@ -21,7 +21,7 @@ from rover._toml import dumps
 
 STEP = {
     "rover": "swing4",
-    "duration": 1e6,
+    "duration": 900.0,  # 5 × 20 000 steps of 1 ms fit; at most 10⁶ output rows
     "output_rate": 1000.0,
     "terrain": {"kind": "flat"},
     "control": {"speed": {"speed": 0.1}},
