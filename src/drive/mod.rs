@@ -112,7 +112,8 @@ pub struct ViewArgs {
     /// sizes; without one they are estimated from the CSV).
     #[arg(long)]
     pub rover: Option<String>,
-    /// The run's scenario, for its terrain (without it the ground is drawn
+    /// A scenario whose terrain is drawn under the run, instead of the
+    /// output folder's `terrain.json` (without either the ground is drawn
     /// flat at the contact points' mean height).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
