@@ -291,6 +291,89 @@ fn view_serves_a_finished_run() {
     assert!(e.contains("run.csv") && e.contains("cannot read"), "{e}");
 }
 
+/// A run's output folder carries its ground: `rover simulate` writes
+/// `terrain.json` (the terrain under the path), and `rover view` without
+/// `--scenario` serves it, so a run on rough ground is not drawn flat; a
+/// `terrain.json` that is not a grid of heights is not served.
+#[test]
+fn view_draws_the_terrain_the_run_had_without_its_scenario() {
+    let scenario = scratch_file(
+        "drive-view-terrain",
+        "rough.toml",
+        "rover = \"swing4\"\nduration = 0.3\n[terrain]\nkind = \"random\"\nz_r = 0.2\nnode_amplitude = 0.25\npatch_radius = 0.6\npatch_blend = 0.5\n[control.speed]\nspeed = 0.05\n[integrator.rk4]\nstep = 1e-3\n",
+    );
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("drive-view-terrain/out");
+    let run = |scenario: &std::path::Path| {
+        rover::cli::simulate(&rover::cli::SimulateArgs {
+            rover: None,
+            scenario: scenario.into(),
+            out: out.clone(),
+            quiet: true,
+            no_plots: true,
+            generic: false,
+        })
+        .unwrap()
+    };
+    run(scenario.as_ref());
+    let view = || {
+        rover::drive::start_view(&rover::drive::ViewArgs {
+            out: out.clone(),
+            rover: None,
+            scenario: None,
+            port: 0,
+            allow_origin: Vec::new(),
+        })
+        .unwrap()
+    };
+    let body = |port: u16| -> Value {
+        let r = get(port, "/terrain.json");
+        assert!(r.starts_with("HTTP/1.1 200"), "{r}");
+        serde_json::from_str(r.split("\r\n\r\n").nth(1).unwrap()).unwrap()
+    };
+    let viewing = view();
+    let grid = body(viewing.port);
+    viewing.stop();
+    let z: Vec<f64> = grid["z"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
+    let relief = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - z.iter().cloned().fold(f64::INFINITY, f64::min);
+    assert!(relief > 0.05, "relief {relief} m: drawn flat");
+    let (nx, ny) = (grid["nx"].as_u64().unwrap(), grid["ny"].as_u64().unwrap());
+    assert!(
+        nx <= 256 && ny <= 256 && z.len() as u64 == nx * ny,
+        "{nx} × {ny}"
+    );
+    // The grid covers the path with its margin: the start is inside.
+    let x0 = grid["x0"].as_f64().unwrap();
+    assert!(x0 <= -rover::drive::PATH_MARGIN + 0.01, "x0 = {x0}");
+    // A run on flat ground over the same folder replaces it.
+    let flat = scratch_file(
+        "drive-view-terrain",
+        "flat.toml",
+        "rover = \"swing4\"\nduration = 0.2\n[integrator.rk4]\nstep = 1e-3\n",
+    );
+    run(flat.as_ref());
+    let viewing = view();
+    let grid = body(viewing.port);
+    viewing.stop();
+    let z: Vec<f64> = grid["z"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_f64)
+        .collect();
+    assert!(z.iter().all(|h| (h - z[0]).abs() < 1e-9), "not flat");
+    // Not a grid: flat ground (`null`), not the file.
+    rover_files::write_whole(&out.join("terrain.json"), b"{\"z\": [1, 2]}").unwrap();
+    let viewing = view();
+    assert_eq!(body(viewing.port), Value::Null);
+    viewing.stop();
+}
+
 /// With a watchdog, a client that stops sending commands has the speed
 /// zeroed once it expires; a message that is not a command (a rate) does
 /// not bring the old set-point back, and the next command does.

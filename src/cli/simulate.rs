@@ -189,6 +189,8 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     out.write_whole("summary.json", (json + "\n").as_bytes())
         .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
     *summarized = true;
+    #[cfg(feature = "drive")]
+    crate::drive::write_view_terrain(&out, &prepared);
     let mut files = vec![csv_path.clone(), summary_path];
     // A user who stopped the run wants it to stop: no plots, which take
     // seconds for a long run.

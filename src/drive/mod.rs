@@ -112,7 +112,8 @@ pub struct ViewArgs {
     /// sizes; without one they are estimated from the CSV).
     #[arg(long)]
     pub rover: Option<String>,
-    /// The run's scenario, for its terrain (without it the ground is drawn
+    /// A scenario whose terrain is drawn under the run, instead of the
+    /// output folder's `terrain.json` (without either the ground is drawn
     /// flat at the contact points' mean height).
     #[arg(long)]
     pub scenario: Option<PathBuf>,
@@ -304,6 +305,8 @@ fn meta(
     });
     if let Some(spec) = spec {
         m["coordinates"] = json!(spec.coordinate_names);
+        m["mass"] = json!(spec.model.total_mass());
+        m["gravity"] = json!(spec.model.gravity);
         m["sketch"] = sketch_json(&spec.sketch);
         let (m_, k) = (spec.model.m(), spec.model.wheels.len());
         let row = [false, true]
@@ -363,17 +366,51 @@ fn meta(
 /// (or 40 m × 40 m around `centre` on an unbounded terrain), for the
 /// page's mesh. Nodes off the map are `null`.
 pub fn terrain_json(terrain: &Terrain, centre: [f64; 2]) -> String {
-    let b = terrain.bounds();
     let half = 20.0;
-    let x0 = b.x_min.max(centre[0] - half);
-    let x1 = b.x_max.min(centre[0] + half);
-    let y0 = b.y_min.max(centre[1] - half);
-    let y1 = b.y_max.min(centre[1] + half);
-    let n = 256usize;
-    let (dx, dy) = ((x1 - x0) / (n - 1) as f64, (y1 - y0) / (n - 1) as f64);
-    let mut z = String::with_capacity(n * n * 8);
-    for j in 0..n {
-        for i in 0..n {
+    grid_json(
+        terrain,
+        [centre[0] - half, centre[1] - half],
+        [centre[0] + half, centre[1] + half],
+    )
+}
+
+/// The margin around a run's path that its replay's ground covers \[m\].
+pub const PATH_MARGIN: f64 = 5.0;
+
+/// The ground under a run's path, for its replay: heights on a grid of at
+/// most 256 nodes a side over the rectangle the path (`lo`…`hi` in X and
+/// Y) covers, [`PATH_MARGIN`] wider on every side, within the terrain's
+/// map; the same form as [`terrain_json`].
+pub fn path_terrain_json(terrain: &Terrain, lo: [f64; 2], hi: [f64; 2]) -> String {
+    grid_json(
+        terrain,
+        [lo[0] - PATH_MARGIN, lo[1] - PATH_MARGIN],
+        [hi[0] + PATH_MARGIN, hi[1] + PATH_MARGIN],
+    )
+}
+
+/// Heights on a grid over the rectangle `lo`…`hi` (within the terrain's
+/// map), its cells square, at most 256 nodes along the longer side.
+fn grid_json(terrain: &Terrain, lo: [f64; 2], hi: [f64; 2]) -> String {
+    const N: usize = 256;
+    let b = terrain.bounds();
+    let x0 = b.x_min.max(lo[0]);
+    let x1 = b.x_max.min(hi[0]).max(x0);
+    let y0 = b.y_min.max(lo[1]);
+    let y1 = b.y_max.min(hi[1]).max(y0);
+    let cell = (x1 - x0).max(y1 - y0) / (N - 1) as f64;
+    let nodes = |w: f64| {
+        if cell > 0.0 {
+            ((w / cell).ceil() as usize + 1).clamp(2, N)
+        } else {
+            2
+        }
+    };
+    let (nx, ny) = (nodes(x1 - x0), nodes(y1 - y0));
+    let (dx, dy) = ((x1 - x0) / (nx - 1) as f64, (y1 - y0) / (ny - 1) as f64);
+    let mut z = String::with_capacity(nx * ny * 8);
+    for j in 0..ny {
+        for i in 0..nx {
             if i + j > 0 {
                 z.push(',');
             }
@@ -383,7 +420,96 @@ pub fn terrain_json(terrain: &Terrain, centre: [f64; 2]) -> String {
             }
         }
     }
-    format!("{{\"x0\":{x0},\"y0\":{y0},\"dx\":{dx},\"dy\":{dy},\"nx\":{n},\"ny\":{n},\"z\":[{z}]}}")
+    format!(
+        "{{\"x0\":{x0},\"y0\":{y0},\"dx\":{dx},\"dy\":{dy},\"nx\":{nx},\"ny\":{ny},\"z\":[{z}]}}"
+    )
+}
+
+/// The rectangle (lowest X and Y, highest X and Y) a run's path covers,
+/// from the `X` and `Y` columns of its CSV; `None` without a row.
+fn path_box(text: &str) -> Option<([f64; 2], [f64; 2])> {
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next()?.split(',').map(str::trim).collect();
+    let ix = header.iter().position(|h| *h == "X")?;
+    let iy = header.iter().position(|h| *h == "Y")?;
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for line in lines {
+        let v: Vec<&str> = line.split(',').collect();
+        let get = |i: usize| v.get(i).and_then(|s| s.trim().parse::<f64>().ok());
+        if let (Some(x), Some(y)) = (get(ix), get(iy))
+            && x.is_finite()
+            && y.is_finite()
+        {
+            lo = [lo[0].min(x), lo[1].min(y)];
+            hi = [hi[0].max(x), hi[1].max(y)];
+        }
+    }
+    (lo[0] <= hi[0]).then_some((lo, hi))
+}
+
+/// The file of a `rover simulate` output folder that `rover view` draws
+/// the ground from.
+pub const VIEW_TERRAIN: &str = "terrain.json";
+
+/// Write [`VIEW_TERRAIN`] into a run's output folder: the ground under the
+/// path of its `run.csv` ([`path_terrain_json`]), so that `rover view`
+/// draws the terrain the run had. Best effort: a failure is a warning on
+/// stderr, and the run's outputs stand.
+pub fn write_view_terrain(out: &rover_files::OutputDir, prepared: &Prepared) {
+    let path = out.join(VIEW_TERRAIN);
+    let json = rover_files::read_entry(out.path(), "run.csv", rover_files::Limit::Data)
+        .map_err(|e| e.to_string())
+        .and_then(|bytes| {
+            let text = String::from_utf8_lossy(&bytes);
+            let (lo, hi) = path_box(&text).ok_or("run.csv has no rows")?;
+            let terrain = prepared
+                .scenario
+                .terrain
+                .build(&prepared.base)
+                .map_err(|e| e.to_string())?;
+            Ok(path_terrain_json(&terrain, lo, hi))
+        });
+    // Without the ground, `null`: an earlier run's terrain never passes
+    // for this one's.
+    let (json, why) = match json {
+        Ok(j) => (j, None),
+        Err(e) => ("null".to_string(), Some(e)),
+    };
+    let written = out.write_whole(VIEW_TERRAIN, json.as_bytes());
+    if let Some(e) = why.or(written.err().map(|e| e.to_string())) {
+        eprintln!(
+            "warning: {}: no terrain for `rover view` ({e}); it draws flat ground unless given `--scenario`",
+            path.display()
+        );
+    }
+}
+
+/// A terrain file as [`terrain_json`] writes it (or `null`), checked
+/// before it is served.
+fn check_terrain(bytes: &[u8]) -> Result<String, String> {
+    let v: serde_json::Value =
+        serde_json::from_slice(bytes).map_err(|e| format!("not JSON: {e}"))?;
+    if v.is_null() {
+        return Ok("null".to_string());
+    }
+    let n = |k: &str| v.get(k).and_then(serde_json::Value::as_u64).unwrap_or(0);
+    let z = v.get("z").and_then(serde_json::Value::as_array);
+    let numbers = ["x0", "y0", "dx", "dy"]
+        .iter()
+        .all(|k| v.get(*k).is_some_and(serde_json::Value::is_number));
+    match z {
+        Some(z)
+            if numbers
+                && n("nx") >= 2
+                && n("ny") >= 2
+                && z.len() as u64 == n("nx") * n("ny")
+                && z.iter().all(|h| h.is_null() || h.is_number()) =>
+        {
+            Ok(v.to_string())
+        }
+        _ => Err("not a grid of heights (x0, y0, dx, dy, nx, ny, z)".to_string()),
+    }
 }
 
 /// Bind 127.0.0.1:`port`, with the reason when that fails.
@@ -646,27 +772,33 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
     });
     let spec = name.as_deref().and_then(|n| load_rover(n, None).ok());
     let info = spec.as_ref().map(|s| RoverInfo::new(&s.model));
+    // The ground: the `--scenario`'s terrain under the path, else the
+    // output folder's terrain.json, else none (the page draws a plane).
     let terrain = match &args.scenario {
         Some(p) => {
             let (scenario, base) = load_scenario(Some(p))?;
             let terrain = scenario.terrain.build(&base).map_err(other)?;
-            let first: Vec<f64> = text
-                .lines()
-                .nth(1)
-                .unwrap_or("")
-                .split(',')
-                .map(|v| v.trim().parse().unwrap_or(0.0))
-                .collect();
-            let at = |c: &str| {
-                columns
-                    .iter()
-                    .position(|h| h == c)
-                    .and_then(|i| first.get(i).copied())
-                    .unwrap_or(0.0)
-            };
-            terrain_json(&terrain, [at("X"), at("Y")])
+            let (lo, hi) = path_box(&text).unwrap_or(([0.0; 2], [0.0; 2]));
+            path_terrain_json(&terrain, lo, hi)
         }
-        None => "null".to_string(),
+        None => match rover_files::read_entry(&args.out, VIEW_TERRAIN, rover_files::Limit::Text) {
+            Ok(bytes) => check_terrain(&bytes).unwrap_or_else(|e| {
+                eprintln!(
+                    "warning: {}: {e}; the ground is drawn flat (give `--scenario` for the run's terrain)",
+                    args.out.join(VIEW_TERRAIN).display()
+                );
+                "null".to_string()
+            }),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                eprintln!(
+                    "no {} in {}: the ground is drawn flat (give `--scenario` for the run's terrain)",
+                    VIEW_TERRAIN,
+                    args.out.display()
+                );
+                "null".to_string()
+            }
+            Err(e) => return Err(CliError::io(args.out.join(VIEW_TERRAIN), "read", e)),
+        },
     };
     let listener = bind(args.port)?;
     let addr = listener.local_addr().map_err(other)?;

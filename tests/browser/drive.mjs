@@ -1,7 +1,8 @@
 // The page of `rover drive` in headless Chromium: it loads, its canvas has
 // a WebGL context, the keyboard drives the rover forward, the states the
 // page received over its WebSocket show the rover moved, and the
-// suspension members are drawn on the rover.
+// suspension members are drawn on the rover, and the load arrows are at
+// the rover's weight share per wheel.
 //
 // node drive.mjs <rover binary> <chromium binary>
 import { spawn } from 'node:child_process';
@@ -54,6 +55,7 @@ try {
   // world axes near the rover, the wheel joints on the wheels.
   const members = await page.evaluate(() => ({
     sketch: window.roverPage.meta.sketch, joints: window.roverPage.sketchJoints(), s: window.roverPage.shown,
+    meta: window.roverPage.meta,
   }));
   if (!(members.sketch && members.sketch.links.length >= 4)) fail(`no suspension links in the sketch: ${JSON.stringify(members.sketch)}`);
   members.joints.forEach((p, i) => {
@@ -65,6 +67,10 @@ try {
       if (!(e < 1e-9)) fail(`joint ${i} is ${e} m off wheel ${k}`);
     }
   });
+  // The load arrows' scale: the rover's weight share per wheel, m·g/n.
+  const scale = await page.evaluate(() => window.roverPage.arrowScale);
+  const share = members.meta.mass * members.meta.gravity / members.meta.wheels;
+  if (!(scale && Math.abs(scale.load - share) <= 1e-9 * share)) fail(`arrow scale ${JSON.stringify(scale)}, m·g/n = ${share} N`);
   const hud = await page.locator('#hud').innerText();
   if (!/real-time factor/.test(hud)) fail(`HUD without the real-time factor: ${hud}`);
   if (errors.length) fail(`page errors: ${errors.join('; ')}`);

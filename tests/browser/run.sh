@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The headless-browser test of `rover drive`'s page (tests/browser/drive.mjs).
+# The headless-browser tests of the page of `rover drive` (drive.mjs) and
+# of `rover view` (view.mjs).
 # Needs Chromium (Debian's `chromium`; .ci/setup-browser installs it) and
 # Node.js; where either is missing it is skipped with a message saying
 # what to install, and exits 0.
@@ -18,3 +19,4 @@ fi
 target=${CARGO_TARGET_DIR:-../../target}
 cargo build --release --locked --bin rover
 node drive.mjs "$target/release/rover" "$browser"
+node view.mjs "$target/release/rover" "$browser"

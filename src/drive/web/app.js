@@ -9,9 +9,10 @@ import * as THREE from '/three.min.js';
 const canvas = document.getElementById('view');
 const hud = document.getElementById('hud');
 const help = document.getElementById('help');
+const legend = document.getElementById('legend');
 
 // What a test (or a curious user at the console) can read.
-const page = { hello: null, meta: null, states: 0, first: null, last: null, shown: null, errors: [], send: null };
+const page = { hello: null, meta: null, states: 0, first: null, last: null, shown: null, errors: [], send: null, arrowScale: null };
 window.roverPage = page;
 
 const meta = await (await fetch('/meta.json')).json();
@@ -84,7 +85,8 @@ nose.position.set(bodyDims.length / 2 + bodyDims.height * 0.5, 0, 0);
 body.add(nose);
 scene.add(body);
 
-const wheelMeshes = [], links = [], arrows = [];
+const wheelMeshes = [], links = [], arrows = [], arrowLengths = [];
+page.arrowLengths = () => arrowLengths.slice();
 const linkMat = new THREE.LineBasicMaterial({ color: 0x9ad0ff });
 // The suspension members: one rod per link of the sketch, a small block at
 // each joint that is not a wheel centre (pivots, ball joints).
@@ -163,7 +165,6 @@ function pathClear() { pathCount = 0; pathGeo.setDrawRange(0, 0); }
 // Rest positions of the wheels in body axes; in `rover view` without a
 // known rover, from the first row (the body's frame applied backwards).
 let rest = meta.rest || null;
-let meanLoad = 0;
 const euler = new THREE.Euler(), q = new THREE.Quaternion(), qs = new THREE.Quaternion();
 const zAxis = new THREE.Vector3(0, 0, 1), v = new THREE.Vector3(), up = new THREE.Vector3();
 
@@ -178,6 +179,42 @@ function restFrom(s) {
   return out;
 }
 
+// ---- the load arrows' scale: one for the whole run ----
+// An arrow `length` long stands for the reference `load`: live, the
+// rover's weight share per wheel (m·g/n, from /meta.json); in a replay,
+// the median over the run's rows of the mean wheel load (from run.csv).
+// Set once, it does not move with the loads or with scrubbing: a longer
+// arrow is a heavier load.
+let arrowScale = null;
+// A round length near two wheel radii: 1, 2 or 5 times a power of ten.
+function roundLength(x) {
+  const p = Math.pow(10, Math.floor(Math.log10(x)));
+  return [1, 2, 5, 10].map(k => k * p).reduce((a, b) => Math.abs(b - x) < Math.abs(a - x) ? b : a);
+}
+function setArrowScale(load, from) {
+  const length = roundLength(2 * rMax);
+  arrowScale = { load, length, metresPerNewton: length / load, from };
+  page.arrowScale = arrowScale;
+  document.body.dataset.arrowLoad = String(load);
+  const len = length >= 1 ? `${+length.toFixed(2)} m` : `${+(100 * length).toFixed(1)} cm`;
+  const n = load >= 100 ? load.toFixed(0) : load.toPrecision(3);
+  legend.innerHTML = `<span style="color:#ffd23f">▲</span> load arrow: ${len} = ${n} N (${from})`;
+}
+// The median over rows of the mean wheel load Σ max(0, Fn_j) / n (rows
+// with no wheel on the ground left out).
+function medianLoad(rowsOfLoads) {
+  const means = [];
+  for (const fns of rowsOfLoads) {
+    let sum = 0;
+    for (const f of fns) sum += Math.max(0, f);
+    if (sum > 0) means.push(sum / fns.length);
+  }
+  if (!means.length) return null;
+  means.sort((a, b) => a - b);
+  const m = means.length >> 1;
+  return means.length % 2 ? means[m] : 0.5 * (means[m - 1] + means[m]);
+}
+
 // Place everything from one state (an object keyed by the CSV's names).
 function show(s) {
   if (!rest) rest = restFrom(s);
@@ -185,12 +222,6 @@ function show(s) {
   q.setFromEuler(euler);
   body.position.set(s.X, s.Y, s.Z);
   body.quaternion.copy(q);
-  // Forces are drawn against the recent mean load (two wheel radii long):
-  // what the arrows show is how the load is shared, at any rover's scale.
-  let sum = 0;
-  for (let j = 1; j <= wheels; j++) sum += Math.max(0, s[`Fn${j}`]);
-  const mean = sum / wheels;
-  meanLoad = meanLoad > 0 ? 0.97 * meanLoad + 0.03 * mean : mean;
   for (let j = 0; j < wheels; j++) {
     const k = j + 1, c = [s[`W${k}X`], s[`W${k}Y`], s[`W${k}Z`]];
     wheelMeshes[j].position.set(...c);
@@ -203,7 +234,7 @@ function show(s) {
       links[j].geometry.attributes.position.needsUpdate = true;
     }
     const fn = s[`Fn${k}`];
-    if (fn > 0 && meanLoad > 1e-9) {
+    if (fn > 0 && arrowScale) {
       arrows[j].visible = true;
       // Along the line from the contact point to the wheel centre (the
       // normal force's line of action on a round wheel), drawn from the top
@@ -213,8 +244,9 @@ function show(s) {
       up.normalize();
       arrows[j].position.set(c[0] + up.x * radius[j], c[1] + up.y * radius[j], c[2] + up.z * radius[j]);
       arrows[j].setDirection(up);
-      const len = Math.min(8 * rMax, Math.max(1e-3, 2 * rMax * fn / meanLoad));
+      const len = Math.max(1e-3, fn * arrowScale.metresPerNewton);
       arrows[j].setLength(len, 0.25 * Math.min(len, rMax), 0.15 * Math.min(len, rMax));
+      arrowLengths[j] = len;
     } else {
       arrows[j].visible = false;
     }
@@ -257,10 +289,23 @@ function groundBelow(s) {
   return s.Z + (rest ? Math.min(...rest.map(p => p[2])) : 0) - rMax;
 }
 
-// ---- cameras: follow (behind the rover, along its heading) and free
-// (orbit about a target: drag to turn, wheel to zoom, right-drag to pan) ----
+// ---- cameras: follow (behind the rover, along its heading, at a
+// distance that frames it with margin, eased) and free (orbit about a
+// target: drag to turn, wheel to zoom, right-drag to pan) ----
 let follow = true;
 const orbit = { target: new THREE.Vector3(), dist: 12 * rMax, az: -Math.PI / 2 - 0.6, el: 0.45 };
+// The rover's size: the diagonal of its wheelbase and track, tyres
+// included; the follow camera stands back so that it spans about half the
+// view's height.
+let framed = false;
+function roverSize() {
+  const xs = rest.map(p => p[0]), ys = rest.map(p => p[1]);
+  const span = v => Math.max(...v) - Math.min(...v);
+  return Math.hypot(span(xs) + 2 * rMax, span(ys) + 2 * rMax, bodyDims.height + 2 * rMax);
+}
+function followDistance() {
+  return 2 * roverSize() / (2 * Math.tan(camera.fov * Math.PI / 360));
+}
 let dragging = null;
 canvas.addEventListener('pointerdown', e => { dragging = { x: e.clientX, y: e.clientY, b: e.button }; });
 window.addEventListener('pointerup', () => { dragging = null; });
@@ -284,11 +329,27 @@ canvas.addEventListener('wheel', e => {
   e.preventDefault();
 }, { passive: false });
 
+// The follow camera eases towards the rover with a time constant of
+// EASE_S: bumps and slip-steering wobble do not shake the view.
+const EASE_S = 0.35;
+let lastPlaced = null;
 function placeCamera() {
-  if (follow) {
-    const psi = lastShown ? lastShown.psi : 0;
+  const now = performance.now();
+  const dt = lastPlaced === null ? Infinity : (now - lastPlaced) / 1000;
+  lastPlaced = now;
+  if (!framed && rest) {
+    orbit.dist = followDistance();
+    framed = true;
     orbit.target.copy(body.position);
-    orbit.az = psi + Math.PI;
+    orbit.az = (lastShown ? lastShown.psi : 0) + Math.PI;
+  }
+  if (follow) {
+    const a = 1 - Math.exp(-dt / EASE_S);
+    const az = (lastShown ? lastShown.psi : 0) + Math.PI;
+    // The shorter way round.
+    const turn = Math.atan2(Math.sin(az - orbit.az), Math.cos(az - orbit.az));
+    orbit.az += a * turn;
+    orbit.target.lerp(body.position, a);
   }
   const t = orbit.target;
   camera.position.set(
@@ -297,6 +358,12 @@ function placeCamera() {
     t.z + orbit.dist * Math.sin(orbit.el));
   camera.lookAt(t);
 }
+// Where the wheel centres are on the screen (normalised device
+// coordinates, −1…1 across the view).
+page.wheelsOnScreen = () => wheelMeshes.map(w => {
+  const p = w.position.clone().project(camera);
+  return [p.x, p.y];
+});
 
 // ---- HUD ----
 const deg = r => (r * 180 / Math.PI).toFixed(1);
@@ -315,6 +382,7 @@ let lastShown = null;
 function live() {
   const keysHelp = meta.steering === 'ackermann' ? 'steer' : 'slip-steer (Δτ)';
   help.innerHTML = `W/S or ↑/↓ speed · A/D or ←/→ ${keysHelp} · space stop · P pause · R reset · C follow/free camera · gamepad: left stick`;
+  if (meta.mass > 0 && meta.gravity > 0) setArrowScale(meta.mass * meta.gravity / wheels, 'weight per wheel, m·g/n');
   const ws = new WebSocket(`ws://${location.host}/ws`);
   const cmd = { speed: 0, turn: 0 };
   let status = 'connecting';
@@ -339,6 +407,11 @@ function live() {
     if (page.last && m.t < page.last.t) pathClear();
     page.states++;
     if (!page.first) page.first = m;
+    // No mass known: the first loads on the ground, once.
+    if (!arrowScale) {
+      const l = medianLoad([Array.from({ length: wheels }, (_, j) => m[`Fn${j + 1}`])]);
+      if (l) setArrowScale(l, 'first loads');
+    }
     page.last = m;
   };
   const step = () => meta.speed_hint / 5;
@@ -402,6 +475,9 @@ async function view() {
   const cols = lines[0].split(',');
   const rows = lines.slice(1).map(l => l.split(',').map(Number));
   const at = i => Object.fromEntries(cols.map((c, k) => [c, rows[i][k]]));
+  const fnCols = Array.from({ length: wheels }, (_, j) => cols.indexOf(`Fn${j + 1}`));
+  const load = medianLoad(rows.map(r => fnCols.map(k => r[k])));
+  if (load) setArrowScale(load, 'median wheel load of the run');
   const ti = cols.indexOf('t');
   const t0 = rows[0][ti], t1 = rows[rows.length - 1][ti];
   const player = document.getElementById('player');
