@@ -190,7 +190,7 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
     *summarized = true;
     #[cfg(feature = "drive")]
-    crate::drive::write_view_terrain(&out, &prepared);
+    crate::drive::write_view_terrain(&out, &prepared, summary.status == Status::Interrupted);
     let mut files = vec![csv_path.clone(), summary_path];
     // A user who stopped the run wants it to stop: no plots, which take
     // seconds for a long run.

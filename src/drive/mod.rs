@@ -456,8 +456,15 @@ pub const VIEW_TERRAIN: &str = "terrain.json";
 /// path of its `run.csv` ([`path_terrain_json`]), so that `rover view`
 /// draws the terrain the run had. Best effort: a failure is a warning on
 /// stderr, and the run's outputs stand.
-pub fn write_view_terrain(out: &rover_files::OutputDir, prepared: &Prepared) {
+pub fn write_view_terrain(out: &rover_files::OutputDir, prepared: &Prepared, interrupted: bool) {
     let path = out.join(VIEW_TERRAIN);
+    if interrupted {
+        // Stopped by the user: no second build of the terrain (seconds on
+        // a fine one), and no earlier run's ground left to pass for this
+        // run's.
+        let _ = out.write_whole(VIEW_TERRAIN, b"null");
+        return;
+    }
     let json = rover_files::read_entry(out.path(), "run.csv", rover_files::Limit::Data)
         .map_err(|e| e.to_string())
         .and_then(|bytes| {
