@@ -18,7 +18,9 @@
 //! exact Jacobian; `fidelity = "simplified"` or `"linearized"` generates a
 //! reduced level (MODEL.md §9), frozen at `y_ref = [...]` (one value per
 //! suspension coordinate, rad or m) or, without it, at the description's
-//! rest configuration y_c. These three combine with `file`.
+//! rest configuration y_c. `no_std = true` names `rover_dynamics` and
+//! `libm` directly rather than through `rover_runtime` ([`crate::crates`]).
+//! These four combine with `file`.
 
 use std::path::{Path, PathBuf};
 
@@ -27,6 +29,7 @@ use quote::{format_ident, quote};
 
 use rover_dynamics::fidelity::Fidelity;
 
+use crate::crates::{Crates, route};
 use crate::plant_source::{Options, plant_source};
 use crate::tokens::{Entry, Value, parse_entries, span_at, to_toml};
 use crate::trace::Level;
@@ -44,13 +47,34 @@ pub fn expand_derive(input: &syn::DeriveInput) -> TokenStream {
 
 /// [`expand_derive`] with an explicit base directory (for tests).
 pub fn expand_derive_in(input: &syn::DeriveInput, base: &Path) -> TokenStream {
-    match expand(input, base) {
+    let code = match expand(input, base) {
         Ok(tokens) => tokens,
         Err(e) => {
             let mut out = e.to_compile_error();
             out.extend(stub::stub(input));
             out
         }
+    };
+    route(code, crates_of(input))
+}
+
+/// Where the generated code finds `rover_dynamics` and `libm`: through
+/// `rover_runtime` unless the attribute says `no_std = true` (also for
+/// the stub of a description with mistakes, so that its code resolves).
+fn crates_of(input: &syn::DeriveInput) -> Crates {
+    let no_std = rover_attribute(input)
+        .ok()
+        .and_then(|a| a.meta.require_list().ok())
+        .and_then(|l| parse_entries(l.tokens.clone()).ok())
+        .is_some_and(|entries| {
+            entries
+                .iter()
+                .any(|e| e.key == "no_std" && matches!(e.value, Value::Bool(true, _)))
+        });
+    if no_std {
+        Crates::Direct
+    } else {
+        Crates::Runtime
     }
 }
 
@@ -60,6 +84,8 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
     let list = attr.meta.require_list()?;
     let mut entries = parse_entries(list.tokens.clone())?;
     let jacobian = take_bool(&mut entries, "jacobian")?.unwrap_or(false);
+    // Read by `crates_of`.
+    take_bool(&mut entries, "no_std")?;
     let fidelity = take_fidelity(&mut entries)?;
     let y_ref = take_numbers(&mut entries, "y_ref")?;
     let (spec, description) = match entries.iter().position(|e| e.key == "file") {
@@ -471,8 +497,20 @@ mod tests {
         let out = expand_str(r#"#[rover(file = "tests/data/toy.toml")] pub struct Toy;"#);
         assert!(out.contains("pub struct ToyPlant"), "{out}");
         assert!(out.contains("include_str !"), "{out}");
-        assert!(out.contains("impl :: rover_dynamics :: plant :: Plant for ToyPlant"));
+        assert!(out.contains(
+            "impl :: rover_runtime :: __private :: rover_dynamics :: plant :: Plant for ToyPlant"
+        ));
         assert!(!out.contains("compile_error"));
+        // Every path to the two crates goes through the runtime.
+        for name in ["rover_dynamics", "libm"] {
+            let all = out.matches(&format!(":: {name} ::")).count();
+            let routed = out.matches(&format!("__private :: {name} ::")).count();
+            assert!(all > 0 && routed == all, "{name}: {routed} of {all}");
+        }
+        let direct =
+            expand_str(r#"#[rover(file = "tests/data/toy.toml", no_std = true)] pub struct Toy;"#);
+        assert!(direct.contains("impl :: rover_dynamics :: plant :: Plant for ToyPlant"));
+        assert!(!direct.contains("rover_runtime"), "{direct}");
         assert!(!out.contains("jacobian_fixed"));
     }
 
