@@ -18,7 +18,9 @@
 //! exact Jacobian; `fidelity = "simplified"` or `"linearized"` generates a
 //! reduced level (MODEL.md §9), frozen at `y_ref = [...]` (one value per
 //! suspension coordinate, rad or m) or, without it, at the description's
-//! rest configuration y_c. These three combine with `file`.
+//! rest configuration y_c. `no_std = true` names `rover_dynamics` and
+//! `libm` directly rather than through `rover_runtime` ([`crate::crates`]).
+//! These four combine with `file`.
 
 use std::path::{Path, PathBuf};
 
@@ -27,6 +29,7 @@ use quote::{format_ident, quote};
 
 use rover_dynamics::fidelity::Fidelity;
 
+use crate::crates::{Crates, route};
 use crate::plant_source::{Options, plant_source};
 use crate::tokens::{Entry, Value, parse_entries, span_at, to_toml};
 use crate::trace::Level;
@@ -44,13 +47,34 @@ pub fn expand_derive(input: &syn::DeriveInput) -> TokenStream {
 
 /// [`expand_derive`] with an explicit base directory (for tests).
 pub fn expand_derive_in(input: &syn::DeriveInput, base: &Path) -> TokenStream {
-    match expand(input, base) {
+    let code = match expand(input, base) {
         Ok(tokens) => tokens,
         Err(e) => {
             let mut out = e.to_compile_error();
             out.extend(stub::stub(input));
             out
         }
+    };
+    route(code, crates_of(input))
+}
+
+/// Where the generated code finds `rover_dynamics` and `libm`: through
+/// `rover_runtime` unless the attribute says `no_std = true` (also for
+/// the stub of a description with mistakes, so that its code resolves).
+fn crates_of(input: &syn::DeriveInput) -> Crates {
+    let no_std = rover_attribute(input)
+        .ok()
+        .and_then(|a| a.meta.require_list().ok())
+        .and_then(|l| parse_entries(l.tokens.clone()).ok())
+        .is_some_and(|entries| {
+            entries
+                .iter()
+                .any(|e| e.key == "no_std" && matches!(e.value, Value::Bool(true, _)))
+        });
+    if no_std {
+        Crates::Direct
+    } else {
+        Crates::Runtime
     }
 }
 
@@ -60,6 +84,8 @@ fn expand(input: &syn::DeriveInput, base: &Path) -> syn::Result<TokenStream> {
     let list = attr.meta.require_list()?;
     let mut entries = parse_entries(list.tokens.clone())?;
     let jacobian = take_bool(&mut entries, "jacobian")?.unwrap_or(false);
+    // Read by `crates_of`.
+    take_bool(&mut entries, "no_std")?;
     let fidelity = take_fidelity(&mut entries)?;
     let y_ref = take_numbers(&mut entries, "y_ref")?;
     let (spec, description) = match entries.iter().position(|e| e.key == "file") {
@@ -130,8 +156,8 @@ fn file_description(
 /// tokens that wrote them (`whole`, the attribute, for the others).
 fn inline_description(entries: &[Entry], whole: Span) -> syn::Result<(rover_spec::Spec, Source)> {
     let (text, spans) = to_toml(entries);
-    let spec =
-        rover_spec::load_str(&text, "<inline>").map_err(|e| inline_errors(&e, &spans, whole))?;
+    let spec = rover_spec::load_str(&text, "<inline>")
+        .map_err(|e| inline_errors(&e, &spans, &text, whole))?;
     let source = Source {
         text: quote! { #text },
         origin: quote! { ::core::concat!(::core::file!(), ":", ::core::line!()) },
@@ -388,6 +414,69 @@ fn level(
     }
 }
 
+/// The bytes of the first line of `text` that starts with `start`.
+fn line_starting(text: &str, start: &str) -> Option<std::ops::Range<usize>> {
+    let mut at = 0;
+    for line in text.split_inclusive('\n') {
+        if line.trim_start().starts_with(start) {
+            let indent = line.len() - line.trim_start().len();
+            return Some(at + indent..at + line.trim_end().len());
+        }
+        at += line.len();
+    }
+    None
+}
+
+/// The diagnostics with those of wheels that lack the same fields, which
+/// the wheel defaults (`defaults`, written at `at` if at all) do not give
+/// either, made one: a field missing from the defaults is one mistake,
+/// not one per wheel. The others are kept as they are.
+fn merge_missing_wheel_fields(
+    diagnostics: &[rover_spec::Diagnostic],
+    at: Option<std::ops::Range<usize>>,
+    defaults: &str,
+) -> Vec<rover_spec::Diagnostic> {
+    // `wheel `fl` has no `radius` (and `[wheel_defaults]` gives none)`.
+    let missing = |d: &rover_spec::Diagnostic| -> Option<(String, String)> {
+        let rest = d.message.strip_prefix("wheel `")?;
+        let (name, rest) = rest.split_once("` has no ")?;
+        let fields = rest.strip_suffix(" (and `[wheel_defaults]` gives none)")?;
+        Some((name.to_string(), fields.to_string()))
+    };
+    let mut out: Vec<rover_spec::Diagnostic> = Vec::new();
+    let mut groups: Vec<(String, Vec<String>, usize)> = Vec::new();
+    for d in diagnostics {
+        match missing(d) {
+            Some((wheel, fields)) => match groups.iter_mut().find(|g| g.0 == fields) {
+                Some(group) => group.1.push(wheel),
+                None => {
+                    groups.push((fields, vec![wheel], out.len()));
+                    out.push(d.clone());
+                }
+            },
+            None => out.push(d.clone()),
+        }
+    }
+    for (fields, wheels, k) in groups {
+        if wheels.len() < 2 {
+            continue;
+        }
+        let names: Vec<String> = wheels.iter().map(|w| format!("`{w}`")).collect();
+        let mut merged = rover_spec::Diagnostic::at(
+            "wheel_defaults",
+            format!(
+                "{} wheels ({}) have no {fields}, and {defaults} gives none",
+                wheels.len(),
+                names.join(", ")
+            ),
+            format!("add {fields} to {defaults} (for every wheel), or to each of these wheels"),
+        );
+        merged.span = at.clone();
+        out[k] = merged;
+    }
+    out
+}
+
 /// Line and column (1-based, in characters) of byte `at` of `text`.
 fn line_col(text: &str, at: usize) -> (usize, usize) {
     let at = at.min(text.len());
@@ -400,7 +489,9 @@ fn line_col(text: &str, at: usize) -> (usize, usize) {
 /// One compile error per diagnostic, at the `file = "…"` literal, quoting
 /// the file's line: `path:line:col: field: message`, the line, `help:`.
 fn file_errors(e: &rover_spec::SpecError, rel: &str, text: &str, span: Span) -> syn::Error {
-    let mut errors = e.diagnostics.iter().map(|d| {
+    let defaults = line_starting(text, "[wheel_defaults]");
+    let diagnostics = merge_missing_wheel_fields(&e.diagnostics, defaults, "`[wheel_defaults]`");
+    let mut errors = diagnostics.iter().map(|d| {
         let title = if d.path.is_empty() {
             d.message.clone()
         } else {
@@ -432,9 +523,13 @@ fn file_errors(e: &rover_spec::SpecError, rel: &str, text: &str, span: Span) -> 
 fn inline_errors(
     e: &rover_spec::SpecError,
     spans: &[(std::ops::Range<usize>, Span)],
+    text: &str,
     whole: Span,
 ) -> syn::Error {
-    let mut errors = e.diagnostics.iter().map(|d| {
+    let defaults = line_starting(text, "wheel_defaults =");
+    let diagnostics =
+        merge_missing_wheel_fields(&e.diagnostics, defaults, "`wheel_defaults = { … }`");
+    let mut errors = diagnostics.iter().map(|d| {
         let at = d
             .span
             .as_ref()
@@ -471,8 +566,20 @@ mod tests {
         let out = expand_str(r#"#[rover(file = "tests/data/toy.toml")] pub struct Toy;"#);
         assert!(out.contains("pub struct ToyPlant"), "{out}");
         assert!(out.contains("include_str !"), "{out}");
-        assert!(out.contains("impl :: rover_dynamics :: plant :: Plant for ToyPlant"));
+        assert!(out.contains(
+            "impl :: rover_runtime :: __private :: rover_dynamics :: plant :: Plant for ToyPlant"
+        ));
         assert!(!out.contains("compile_error"));
+        // Every path to the two crates goes through the runtime.
+        for name in ["rover_dynamics", "libm"] {
+            let all = out.matches(&format!(":: {name} ::")).count();
+            let routed = out.matches(&format!("__private :: {name} ::")).count();
+            assert!(all > 0 && routed == all, "{name}: {routed} of {all}");
+        }
+        let direct =
+            expand_str(r#"#[rover(file = "tests/data/toy.toml", no_std = true)] pub struct Toy;"#);
+        assert!(direct.contains("impl :: rover_dynamics :: plant :: Plant for ToyPlant"));
+        assert!(!direct.contains("rover_runtime"), "{direct}");
         assert!(!out.contains("jacobian_fixed"));
     }
 
@@ -486,6 +593,37 @@ mod tests {
         assert!(out.contains("struct BadPlant"), "{out}");
         let out = expand_str(r#"#[rover(jacobian = 1)] struct Bad;"#);
         assert!(out.contains("`jacobian` takes `true` or `false`"), "{out}");
+    }
+
+    #[test]
+    fn a_field_missing_from_every_wheel_is_one_error_at_the_defaults() {
+        let toy = include_str!("../tests/data/toy.toml");
+        assert!(toy.contains("radius = "), "{toy}");
+        let text: String = toy
+            .lines()
+            .filter(|l| !l.trim_start().starts_with("radius ="))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let e = rover_spec::load_str(&text, "x.toml").unwrap_err();
+        let per_wheel = e
+            .diagnostics
+            .iter()
+            .filter(|d| d.message.contains("has no `radius`"))
+            .count();
+        assert!(per_wheel >= 2, "{e}");
+        let msg = file_errors(&e, "x.toml", &text, Span::call_site()).to_string();
+        assert_eq!(msg.matches("no `radius`").count(), 1, "{msg}");
+        let (line, _) = line_col(&text, text.find("[wheel_defaults]").unwrap());
+        assert!(
+            msg.starts_with(&format!(
+                "x.toml:{line}:1: wheel_defaults: {per_wheel} wheels (`"
+            )) && msg.contains("have no `radius`, and `[wheel_defaults]` gives none"),
+            "{msg}"
+        );
+        assert!(
+            msg.contains("help: add `radius` to `[wheel_defaults]`"),
+            "{msg}"
+        );
     }
 
     #[test]

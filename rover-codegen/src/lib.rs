@@ -33,6 +33,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod crates;
 pub mod derive;
 pub mod diff;
 pub mod emit;
@@ -49,6 +50,7 @@ pub mod sym;
 pub mod tokens;
 pub mod trace;
 
+pub use crates::Crates;
 pub use derive::{expand_derive, expand_derive_in};
 pub use error::CodegenError;
 pub use graph::{Graph, Id, Node};

@@ -88,6 +88,7 @@ pub fn parse_entries(tokens: TokenStream) -> syn::Result<Vec<Entry>> {
                 ));
             }
         }
+        let start = i;
         let value = parse_value(&trees, &mut i, key_span)?;
         entries.push(Entry {
             key,
@@ -97,6 +98,7 @@ pub fn parse_entries(tokens: TokenStream) -> syn::Result<Vec<Entry>> {
         match trees.get(i) {
             None => {}
             Some(TokenTree::Punct(p)) if p.as_char() == ',' => i += 1,
+            Some(t) if continues_expression(t) => return Err(not_a_literal(&trees, start)),
             Some(t) => {
                 return Err(err(t.span(), "expected `,` between fields: `a = 1, b = 2`"));
             }
@@ -107,6 +109,35 @@ pub fn parse_entries(tokens: TokenStream) -> syn::Result<Vec<Entry>> {
 
 fn err(span: Span, msg: &str) -> syn::Error {
     syn::Error::new(span, msg)
+}
+
+/// Whether `t`, right after a value, makes it an expression (`2.0 * M`,
+/// `X.0`, `f(1)`) rather than ending it.
+fn continues_expression(t: &TokenTree) -> bool {
+    match t {
+        TokenTree::Punct(p) => p.as_char() != ',',
+        TokenTree::Group(g) => g.delimiter() != Delimiter::Brace,
+        _ => false,
+    }
+}
+
+/// The error for an expression or a constant written as a value (the
+/// tokens from `start` to the next `,`), with why and what to write.
+fn not_a_literal(trees: &[TokenTree], start: usize) -> syn::Error {
+    let expr: TokenStream = trees[start..]
+        .iter()
+        .take_while(|t| !matches!(t, TokenTree::Punct(p) if p.as_char() == ','))
+        .cloned()
+        .collect();
+    syn::Error::new_spanned(
+        &expr,
+        format!(
+            "`{expr}` is not a literal: the derive validates the description and generates the plant \
+             while compiling, before constants and expressions have values, so values are literals \
+             (a string, a number, `true`/`false`, `[…]`, `{{ key = value, … }}`); write the value, or \
+             build a rover from Rust values at run time (docs/RUST.md, \"A rover built at run time\")"
+        ),
+    )
 }
 
 fn parse_value(trees: &[TokenTree], i: &mut usize, before: Span) -> syn::Result<Value> {
@@ -126,20 +157,33 @@ fn parse_value(trees: &[TokenTree], i: &mut usize, before: Span) -> syn::Result<
                     v => v,
                 })
             }
-            _ => Err(err(p.span(), "expected a number after `-`")),
+            Some(_) => Err(not_a_literal(trees, *i - 1)),
+            None => Err(err(p.span(), "expected a number after `-`")),
         },
         TokenTree::Ident(id) if id == "true" || id == "false" => {
             Ok(Value::Bool(id == "true", id.span()))
+        }
+        // A constant, a path, a call or a block: Rust, not a literal.
+        TokenTree::Ident(_) => Err(not_a_literal(trees, *i - 1)),
+        TokenTree::Group(g) if g.delimiter() == Delimiter::Parenthesis => {
+            Err(not_a_literal(trees, *i - 1))
+        }
+        TokenTree::Punct(p) if matches!(p.as_char(), '&' | '*' | '!' | '<' | ':') => {
+            Err(not_a_literal(trees, *i - 1))
         }
         TokenTree::Group(g) if g.delimiter() == Delimiter::Bracket => {
             let inner: Vec<TokenTree> = g.stream().into_iter().collect();
             let mut k = 0;
             let mut items = Vec::new();
             while k < inner.len() {
+                let start = k;
                 items.push(parse_value(&inner, &mut k, g.span())?);
                 match inner.get(k) {
                     None => {}
                     Some(TokenTree::Punct(p)) if p.as_char() == ',' => k += 1,
+                    Some(t) if continues_expression(t) => {
+                        return Err(not_a_literal(&inner, start));
+                    }
                     Some(t) => return Err(err(t.span(), "expected `,` between array items")),
                 }
             }
@@ -301,5 +345,29 @@ mod tests {
         assert!(e.to_string().starts_with("remove the type suffix"));
         let e = parse_entries(quote! { a = 1 b = 2 }).unwrap_err();
         assert_eq!(e.to_string(), "expected `,` between fields: `a = 1, b = 2`");
+    }
+
+    #[test]
+    fn constants_and_expressions_are_refused_as_not_literals() {
+        for (tokens, expr) in [
+            (quote! { mass = MASS, x = 1 }, "`MASS`"),
+            (quote! { mass = 2.0 * 10.0 }, "`2.0 * 10.0`"),
+            (quote! { mass = -MASS }, "`- MASS`"),
+            (
+                quote! { body = { mass = consts::MASS } },
+                "`consts :: MASS`",
+            ),
+            (quote! { inertia = [0.1, X * 2.0, 0.3] }, "`X * 2.0`"),
+            (quote! { inertia = [0.1, 2.0 * X, 0.3] }, "`2.0 * X`"),
+            (quote! { mass = (1.0), a = 2 }, "`(1.0)`"),
+            (quote! { mass = f(1.0) }, "`f (1.0)`"),
+        ] {
+            let e = parse_entries(tokens).unwrap_err().to_string();
+            assert!(
+                e.starts_with(&format!("{expr} is not a literal: the derive validates")),
+                "{e}"
+            );
+            assert!(e.contains("A rover built at run time"), "{e}");
+        }
     }
 }

@@ -73,10 +73,19 @@
 //! `"linearized"` generates a reduced level (MODEL.md §9), frozen at
 //! `y_ref = [...]` or at the description's rest configuration.
 //!
-//! The crate using it needs `rover-dynamics` and `libm`; for the plant
-//! alone, in `no_std` firmware, `rover-dynamics = { default-features =
-//! false, features = ["plant"] }` is enough. It needs `rover-runtime` to
-//! simulate the rover.
+//! The crate using it depends on `rover-derive`, `rover-runtime` and
+//! `rover-scenario` (the README's three lines), and on nothing else for
+//! the generated code, which names `rover_dynamics` and `libm` through
+//! `rover_runtime`. In `no_std` firmware, without the runtime, it depends
+//! on `rover-derive`, `rover-dynamics = { default-features = false,
+//! features = ["plant"] }` and `libm`, and writes `no_std = true` in the
+//! attribute: the code then names those two crates directly.
+//!
+//! Values in the attribute are literals: the description is validated and
+//! the plant generated while the crate compiles, before constants and
+//! expressions have values, so `mass = MASS` is a compile error at `MASS`.
+//! A rover whose numbers come from Rust is built at run time instead
+//! (docs/RUST.md, "A rover built at run time").
 //!
 //! What the derive costs to build: it runs the code generator at compile
 //! time, so the generator and what it needs (rover-spec with serde and

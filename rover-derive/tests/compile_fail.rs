@@ -8,14 +8,29 @@
 //! `target/tests/trybuild/rover-derive/`, which is then the
 //! `CARGO_MANIFEST_DIR` the derive resolves `file = "…"` against: the
 //! files name the TOML files by `../../../../rover-derive/tests/ui/…`
-//! (the default target directory).
+//! (the default target directory; the test says so when it is elsewhere).
 //!
 //! Each case then uses every item of the rover (`uses/use_all.rs`), as a
 //! user's code does, so that its `.stderr` holds the description's error
 //! and no error of the code that uses the rover.
 
+use std::path::Path;
+
 #[test]
 fn bad_descriptions_fail_to_compile_and_good_ones_run() {
+    // The cases' `../../../../` reaches the workspace only from trybuild's
+    // project under the workspace's own target directory.
+    let target = Path::new(env!("CARGO_TARGET_TMPDIR")).parent().unwrap();
+    let project = target.join("tests/trybuild/rover-derive");
+    std::fs::create_dir_all(&project).unwrap();
+    let fixture = project.join("../../../../rover-derive/tests/ui/good.toml");
+    assert!(
+        fixture.exists(),
+        "the cases name their TOML files relative to trybuild's project in the workspace's \
+         target directory, and {} is elsewhere: run these tests with CARGO_TARGET_DIR unset \
+         (or set to the workspace's `target`)",
+        target.display()
+    );
     let t = trybuild::TestCases::new();
     t.compile_fail("tests/ui/*.rs");
     // The same rover from a file and inline, both compiled and run.

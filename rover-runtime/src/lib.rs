@@ -29,3 +29,11 @@ pub use rover_terrain as terrain;
 
 pub use described::RoverDescription;
 pub use generic_plant::GenericPlant;
+
+/// What `#[derive(Rover)]`'s code names, so that a crate depending on
+/// rover-runtime needs no other dependency for it; not an API.
+#[doc(hidden)]
+pub mod __private {
+    pub use libm;
+    pub use rover_dynamics;
+}
