@@ -396,7 +396,7 @@ fn reduced_levels_of_example_2_run_their_generated_plant_and_match_the_generic_o
     let (generated, generic) = (run(false), run(true));
     assert_eq!(
         generated.plant,
-        "generated (rover_models::Swing4Simplified)"
+        "generated (rover_models::generated::swing4_simplified::Swing4Simplified)"
     );
     assert_eq!(generic.plant, "generic (simplified level)");
     let state = |s: &rover_scenario::output::Summary| {

@@ -18,6 +18,7 @@ mod fuzz_loaders;
 mod ground;
 mod hostile;
 mod linearize;
+mod motors;
 mod no_std;
 mod paper_accuracy;
 mod profile;

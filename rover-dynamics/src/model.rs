@@ -121,8 +121,37 @@ pub enum MotorMount {
     Body,
 }
 
+/// A DC motor's torque–speed characteristic: at full drive voltage the
+/// torque falls on the line τ_stall·(1 − ω/ω₀) from the stall torque at
+/// rest to zero at the no-load speed ω₀ (docs/DESCRIPTION.md, "Motors").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MotorCurve {
+    /// Stall torque τ_stall [N·m], > 0: the torque at ω = 0 on the line.
+    pub stall_torque: f64,
+    /// No-load speed ω₀ [rad/s], > 0: the wheel's spin rate at which the
+    /// line reaches zero torque.
+    pub no_load_speed: f64,
+}
+
+impl MotorCurve {
+    /// The torques the motor can give at the wheel's spin rate `omega`
+    /// [rad/s] (positive rolling forward), `(lo, hi)` with lo ≤ 0 ≤ hi:
+    /// - in the direction of the spin, τ_stall·(1 − |ω|/ω₀) clamped to
+    ///   [0, τ_stall] (nothing more at or beyond the no-load speed);
+    /// - against it (braking, or reversing), τ_stall·(1 + |ω|/ω₀) clamped
+    ///   to τ_stall: the full stall torque, as a DC motor driven against
+    ///   its back-EMF gives up to its current limit.
+    ///
+    /// Symmetric: the reverse direction sees the mirrored line. The drive's
+    /// `max_torque` caps both sides on top of this.
+    pub fn limits(&self, omega: f64) -> (f64, f64) {
+        let line = |w: f64| self.stall_torque * (1.0 - w / self.no_load_speed).clamp(0.0, 1.0);
+        (-line(-omega), line(omega))
+    }
+}
+
 /// A wheel: its centre is a carried body; its tyre, motor and orientation.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct Wheel {
     /// Index j of the carried body at the wheel centre.
     pub body: usize,
@@ -146,6 +175,9 @@ pub struct Wheel {
     pub cornering_stiffness: f64,
     /// Maximum motor torque M_sat [N·m], ≥ 0.
     pub max_torque: f64,
+    /// The motor's torque–speed line, when the description gives one;
+    /// `None`: a pure torque source up to `max_torque` at any speed.
+    pub motor_curve: Option<MotorCurve>,
     /// Stator location of the drive motor.
     pub motor: MotorMount,
     /// Whether a steering angle δ_j is commanded on this wheel.
@@ -156,7 +188,48 @@ pub struct Wheel {
     pub toe: ScalarPoly,
 }
 
+// By hand: a wheel without a motor curve prints as it did before the
+// field existed, so the model's fingerprint (the generated modules'
+// headers) depends only on what the description gives.
+impl core::fmt::Debug for Wheel {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let mut d = f.debug_struct("Wheel");
+        d.field("body", &self.body)
+            .field("radius", &self.radius)
+            .field("width", &self.width)
+            .field("spin_inertia", &self.spin_inertia)
+            .field("stiffness", &self.stiffness)
+            .field("damping", &self.damping)
+            .field("mu_x", &self.mu_x)
+            .field("mu_y", &self.mu_y)
+            .field("cornering_stiffness", &self.cornering_stiffness)
+            .field("max_torque", &self.max_torque);
+        if let Some(curve) = &self.motor_curve {
+            d.field("motor_curve", curve);
+        }
+        d.field("motor", &self.motor)
+            .field("steerable", &self.steerable)
+            .field("camber", &self.camber)
+            .field("toe", &self.toe)
+            .finish()
+    }
+}
+
 impl Wheel {
+    /// The torques the motor can give at the wheel's spin rate `omega`
+    /// [rad/s], `(lo, hi)`: ±`max_torque`, narrowed by the motor curve
+    /// when there is one ([`MotorCurve::limits`]).
+    pub fn torque_limits(&self, omega: f64) -> (f64, f64) {
+        let cap = self.max_torque;
+        match &self.motor_curve {
+            None => (-cap, cap),
+            Some(c) => {
+                let (lo, hi) = c.limits(omega);
+                (lo.max(-cap), hi.min(cap))
+            }
+        }
+    }
+
     /// The tyre's constants for the wheel law, without rolling resistance
     /// (a scenario's option): what the runtime's ground and a generated
     /// plant's `TYRES` both take.
@@ -210,5 +283,29 @@ impl Model {
             .map(|w| self.bodies[w.body].position.value(&rest)[2] - w.radius)
             .fold(f64::INFINITY, f64::min);
         -lowest
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::MotorCurve;
+
+    #[test]
+    fn a_dc_motor_gives_its_stall_torque_at_rest_and_none_at_its_no_load_speed() {
+        let m = MotorCurve {
+            stall_torque: 2.0,
+            no_load_speed: 10.0,
+        };
+        assert_eq!(m.limits(0.0), (-2.0, 2.0));
+        // Driving: the line; nothing at or beyond ω₀.
+        assert_eq!(m.limits(2.5).1, 1.5);
+        assert_eq!(m.limits(10.0).1, 0.0);
+        assert_eq!(m.limits(25.0).1, 0.0);
+        // Braking against the spin: the full stall torque at any speed.
+        assert_eq!(m.limits(2.5).0, -2.0);
+        assert_eq!(m.limits(25.0).0, -2.0);
+        // Reversing: the mirrored line.
+        assert_eq!(m.limits(-2.5), (-1.5, 2.0));
+        assert_eq!(m.limits(-10.0), (0.0, 2.0));
     }
 }

@@ -107,6 +107,12 @@ pub trait Plant {
     ) -> Option<()> {
         None
     }
+    /// The plant's name, for a run's summary: by default its type's path
+    /// (a generated plant's, e.g. `rover_models::generated::mer::Mer`); the
+    /// generic plant says `generic`, with its level when reduced.
+    fn name(&self) -> &'static str {
+        core::any::type_name::<Self>()
+    }
 }
 
 /// Implements [`Plant`] for an enum each of whose variants holds one plant:
@@ -160,6 +166,9 @@ macro_rules! forward_plant {
                 jac: &mut [f64],
             ) -> Option<()> {
                 match self { $(Self::$variant(p) => p.jacobian(x, w, loads, jac)),+ }
+            }
+            fn name(&self) -> &'static str {
+                match self { $(Self::$variant(p) => p.name()),+ }
             }
         }
     };

@@ -105,6 +105,14 @@ impl GenericPlant {
 }
 
 impl Plant for GenericPlant {
+    fn name(&self) -> &'static str {
+        match self.level {
+            Fidelity::Full => "generic",
+            Fidelity::Simplified => "generic (simplified level)",
+            Fidelity::Linearized => "generic (linearized level)",
+        }
+    }
+
     fn dof(&self) -> usize {
         self.model.dof()
     }

@@ -25,6 +25,7 @@ fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
         (&vec![0.0; n], &w, &[0.0], &[]),
         &[1.0, 0.0, 0.0, 0.0],
         &[0.0; 4],
+        &[],
         &mut tau,
     );
     let tau0 = 2.0 * 0.1;
@@ -370,4 +371,46 @@ fn an_equilibrium_outside_the_travel_is_refused() {
         let spec = rover_spec::load_str(rover_models::builtin(name).unwrap(), name).unwrap();
         rover_runtime::quasi_static::flat_ground_equilibrium(&spec.model).unwrap();
     }
+}
+
+/// A motor with a torque–speed line, saturated by a large speed error:
+/// full stall torque at rest, the line in between, nothing at the no-load
+/// speed, while braking keeps the full torque.
+#[test]
+fn a_motor_line_limits_the_drive_torque_by_the_wheel_spin() {
+    use rover_dynamics::model::MotorCurve;
+    use rover_runtime::control::{Controller, ControllerConfig};
+    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
+    let mut model = spec.model;
+    let (stall, w0) = (1.0, 5.0);
+    for w in &mut model.wheels {
+        w.motor_curve = Some(MotorCurve {
+            stall_torque: stall,
+            no_load_speed: w0,
+        });
+    }
+    let n = model.dof();
+    let k = model.wheels.len();
+    let torques = |speed: f64, rate: f64| {
+        let config: ControllerConfig =
+            toml::from_str(&format!("[speed]\nspeed = {speed:?}\nkp = 100.0")).unwrap();
+        let control = Controller::new(config, &model, 0.0).unwrap();
+        let mut tau = vec![0.0; k];
+        control.torques(
+            1.0,
+            (&vec![0.0; n], &vec![0.0; n], &[0.0], &[]),
+            &vec![1.0; k],
+            &vec![0.0; k],
+            &vec![rate; k],
+            &mut tau,
+        );
+        tau
+    };
+    // Below max_torque (1.29 N·m): the stall torque caps it at rest.
+    assert_eq!(torques(1.0, 0.0), vec![stall; k]);
+    assert_eq!(torques(1.0, 0.5 * w0), vec![0.5 * stall; k]);
+    assert_eq!(torques(1.0, w0), vec![0.0; k]);
+    assert_eq!(torques(1.0, 2.0 * w0), vec![0.0; k]);
+    // Braking a wheel spinning at its no-load speed: the full torque.
+    assert_eq!(torques(-1.0, w0), vec![-stall; k]);
 }

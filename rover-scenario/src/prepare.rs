@@ -13,7 +13,7 @@
 //! let run = Prepared::from_text(None, text, Path::new("<example>"), Path::new("."))?;
 //! let mut csv = Vec::new();
 //! let summary = run.run(false, &mut csv, &AtomicBool::new(false), |_t| {})?; // `rover simulate`
-//! assert!(summary.complete && summary.plant == "generated (rover_models::Swing4)");
+//! assert!(summary.complete && summary.plant == "generated (rover_models::generated::swing4::Swing4)");
 //! let mut stepped = run.stepper(false)?; // Python's `Simulation`
 //! stepped.step(10)?;
 //! assert_eq!(stepped.time(), 10.0 * stepped.dt());
@@ -216,13 +216,7 @@ impl RunPlant {
     /// What ran, for the summary: `generated (<type>)`, `generic`, or
     /// `generic (<level> level)` at a reduced level.
     pub fn backend(&self) -> String {
-        match self {
-            RunPlant::Generated(p) => format!("generated ({})", p.name()),
-            RunPlant::Generic(p) => match p.level() {
-                Fidelity::Full => "generic".to_string(),
-                level => format!("generic ({} level)", level.name()),
-            },
-        }
+        crate::output::plant_label(self)
     }
 }
 
@@ -341,7 +335,6 @@ impl Prepared {
         progress: impl FnMut(f64),
     ) -> Result<Summary, PrepareError> {
         let plant = self.plant(generic)?;
-        let backend = plant.backend();
         let (model, name) = (&self.spec.model, &self.spec.name);
         let (scenario, base) = (&self.scenario, &self.base);
         // Each kind of plant runs its own instance of the run: the right-hand
@@ -354,9 +347,7 @@ impl Prepared {
                 simulate(p, model, name, scenario, base, csv, interrupt, progress)
             }
         };
-        let mut summary = run.map_err(|e| self.locate(e))?;
-        summary.plant = backend;
-        Ok(summary)
+        run.map_err(|e| self.locate(e))
     }
 
     /// The scenario's run, step by step.

@@ -11,7 +11,7 @@ use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::plant::Plant;
 
-use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x};
+use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x, plant_label};
 use crate::scenario::{FidelityLevel, Scenario};
 use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{Integrator, OdeSystem};
@@ -311,12 +311,20 @@ pub fn simulate<P: Plant, W: Write>(
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
     let mut plant = plant;
+    let label = plant_label(&plant);
     let differences = rover_runtime::described::plant_differences(&mut plant, model);
     if !differences.is_empty() {
         return Err(rover_runtime::described::Mismatch { differences }.into());
     }
     if scenario.fidelity == FidelityLevel::QuasiStatic {
-        return quasi_static_run(model, name, scenario, base_dir, csv, interrupt, progress);
+        return quasi_static_run(
+            (model, name, label),
+            scenario,
+            base_dir,
+            csv,
+            interrupt,
+            progress,
+        );
     }
     let (mut sys, mut y) = system_of(plant, model, scenario, base_dir)?;
     let kinematic_radius = sys.control.kinematic_radius(scenario.duration);
@@ -367,6 +375,7 @@ pub fn simulate<P: Plant, W: Write>(
             kinematic_radius,
             wall_time_s: wall,
             integrator: integ.name().to_string(),
+            plant: label,
             rhs_evals: stats.rhs_evals,
             steps: stats.steps,
             rejected_steps: stats.rejected_steps,
@@ -529,8 +538,7 @@ fn imposed_path(
 
 /// Level 4: static equilibria along the imposed path, one per output instant.
 fn quasi_static_run<W: Write>(
-    model: &Model,
-    name: &str,
+    (model, name, label): (&Model, &str, String),
     scenario: &Scenario,
     base_dir: &Path,
     csv: W,
@@ -642,6 +650,7 @@ fn quasi_static_run<W: Write>(
             kinematic_radius,
             wall_time_s: wall,
             integrator: "quasi-static newton".into(),
+            plant: label,
             rhs_evals: solver.residual_evals,
             steps: solver.iterations,
             rejected_steps: 0,

@@ -108,7 +108,7 @@ pub fn check_report(spec: &Spec) -> String {
     for (k, w) in m.wheels.iter().enumerate() {
         let _ = writeln!(
             out,
-            "  {} `{}`: R_w {} m, k_w {} N/m, c_w {} N·s/m, μx {}, μy {}, C {} N/rad, M_sat {} N·m, motor on {}, {}",
+            "  {} `{}`: R_w {} m, k_w {} N/m, c_w {} N·s/m, μx {}, μy {}, C {} N/rad, M_sat {} N·m{}, motor on {}, {}",
             k + 1,
             spec.wheel_names[k],
             num(w.radius),
@@ -118,6 +118,14 @@ pub fn check_report(spec: &Spec) -> String {
             num(w.mu_y),
             num(w.cornering_stiffness),
             num(w.max_torque),
+            match &w.motor_curve {
+                Some(c) => format!(
+                    " (DC line: stall {} N·m, no load at {} rad/s)",
+                    num(c.stall_torque),
+                    num(c.no_load_speed)
+                ),
+                None => String::new(),
+            },
             match w.motor {
                 MotorMount::Hub => "the hub",
                 MotorMount::Body => "the body",

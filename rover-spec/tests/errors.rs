@@ -482,3 +482,16 @@ fn nesting_too_deep_is_located() {
         .to_string();
     assert!(e.contains("nesting deeper"), "{e}");
 }
+
+#[test]
+fn a_motor_line_without_a_positive_no_load_speed_is_refused_with_the_fix() {
+    let e = bad(
+        "max_torque = 1.29",
+        "max_torque = 1.29\nno_load_speed = 0.0",
+    );
+    assert!(e.contains("no_load_speed"), "{e}");
+    assert!(e.contains("rad/s and positive"), "{e}");
+    let e = bad("max_torque = 1.29", "max_torque = 1.29\nstall_torque = 2.0");
+    assert!(e.contains("wheel_defaults.stall_torque"), "{e}");
+    assert!(e.contains("add `no_load_speed`"), "{e}");
+}

@@ -83,6 +83,7 @@ fn wheel(body: usize, steerable: bool) -> Wheel {
         mu_y: 0.5,
         cornering_stiffness: 50.0,
         max_torque: 1.29,
+        motor_curve: None,
         motor: MotorMount::Body,
         steerable,
         camber: ScalarPoly::default(),

@@ -200,6 +200,7 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     bar.suspend(|| {
         report_end(&spec.name, &summary, &args.out);
         stalled_warning(spec, &summary);
+        runaway_warning(spec, &summary);
     });
     Ok(SimulateReport { summary, files })
 }
@@ -249,6 +250,24 @@ fn stalled_warning(spec: &rover_spec::Spec, summary: &Summary) {
         },
         s.window_s,
         s.commanded_m
+    );
+}
+
+/// A warning when the rover ran away (`summary.json` has the numbers): it
+/// turned or drove far faster than its commands ask. Motors without a speed
+/// limit are the usual cause: a slip-steering torque difference beyond
+/// what turning needs spins the rover ever faster.
+fn runaway_warning(spec: &rover_spec::Spec, summary: &Summary) {
+    let Some(r) = &summary.runaway else { return };
+    let unlimited = spec.model.wheels.iter().any(|w| w.motor_curve.is_none());
+    let cause = if unlimited {
+        "its motors have no speed limit: give them `no_load_speed` in the description, or lower the slip-steering `delta_tau` or the speed command (docs/CLI.md, sizing the control)"
+    } else {
+        "lower the slip-steering `delta_tau` or the speed command (docs/CLI.md, sizing the control)"
+    };
+    eprintln!(
+        "warning: {} ran away from t = {:.2} s: up to {:.0} °/s of yaw and {:.2} m/s (bounds {:.0} °/s, {:.2} m/s for its commands); {cause}",
+        spec.name, r.t, r.yaw_rate_deg_s, r.speed_m_s, r.yaw_rate_bound_deg_s, r.speed_bound_m_s,
     );
 }
 

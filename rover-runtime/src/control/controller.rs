@@ -2,6 +2,7 @@
 //! active suspension together, driven by time profiles.
 
 use rover_dynamics::Model;
+use rover_dynamics::model::MotorCurve;
 use rover_dynamics::plant::Plant;
 use serde::{Deserialize, Serialize};
 
@@ -63,6 +64,8 @@ pub struct Controller {
     rest_xy: Vec<(f64, f64)>,
     steerable: Vec<bool>,
     max_torque: Vec<f64>,
+    /// Each motor's torque–speed line, when the description gives one.
+    motor_curves: Vec<Option<MotorCurve>>,
     /// Each wheel's radius \[m\]: on a soil the speed loop reads the
     /// wheels' rim speeds.
     radii: Vec<f64>,
@@ -146,6 +149,7 @@ impl Controller {
             rest_xy,
             steerable,
             max_torque: model.wheels.iter().map(|w| w.max_torque).collect(),
+            motor_curves: model.wheels.iter().map(|w| w.motor_curve).collect(),
             radii: model.wheels.iter().map(|w| w.radius).collect(),
             torque_cap: model
                 .wheels
@@ -336,9 +340,14 @@ impl Controller {
     /// speeds of the wheels spinning at `spins`), the
     /// integral states `z` (ζ) and the wheels' normal loads `normals` (this
     /// evaluation), plus the open-loop commands `commanded` (an external
-    /// controller's, one per wheel), all within each motor's limit; heading
+    /// controller's, one per wheel), all within each motor's limit at the
+    /// wheel's spin rate `rates[k]` [rad/s] ([`Wheel::torque_limits`]:
+    /// `max_torque`, narrowed by the motor's torque–speed line when it has
+    /// one; `rates` is only read then, and may be empty otherwise); heading
     /// hold also reads the attitude `x[3..6]` and the angular velocity
     /// `w[3..6]`.
+    ///
+    /// [`Wheel::torque_limits`]: rover_dynamics::model::Wheel::torque_limits
     #[allow(clippy::too_many_arguments)]
     pub fn torques(
         &self,
@@ -346,6 +355,7 @@ impl Controller {
         (x, w, z, spins): (&[f64], &[f64], &[f64], &[f64]),
         normals: &[f64],
         commanded: &[f64],
+        rates: &[f64],
         out: &mut [f64],
     ) {
         out.copy_from_slice(commanded);
@@ -363,9 +373,26 @@ impl Controller {
         {
             s.add_torques(t - self.settle, out);
         }
-        for (o, &cap) in out.iter_mut().zip(&self.max_torque) {
-            *o = o.clamp(-cap, cap);
+        for (k, (o, &cap)) in out.iter_mut().zip(&self.max_torque).enumerate() {
+            *o = match &self.motor_curves[k] {
+                None => o.clamp(-cap, cap),
+                Some(curve) => {
+                    let (lo, hi) = curve.limits(rates[k]);
+                    o.clamp(lo.max(-cap), hi.min(cap))
+                }
+            };
         }
+    }
+
+    /// Each wheel's radius \[m\], in the description's order.
+    pub fn radii(&self) -> &[f64] {
+        &self.radii
+    }
+
+    /// Whether any motor has a torque–speed line: then
+    /// [`Controller::torques`] reads the wheels' spin rates.
+    pub fn has_motor_curves(&self) -> bool {
+        self.motor_curves.iter().any(Option::is_some)
     }
 
     /// The built-in loops' torques, added to `out`.

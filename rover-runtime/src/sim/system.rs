@@ -36,6 +36,9 @@ pub struct RoverSystem<P, H> {
     loads: Vec<WheelLoad>,
     reports: Vec<WheelReport>,
     torques: Vec<f64>,
+    /// Each wheel's spin rate [rad/s] for the motors' torque–speed lines
+    /// (filled only when a motor has one).
+    motor_rates: Vec<f64>,
     steer: Vec<f64>,
     normals: Vec<f64>,
     torque_commands: Vec<f64>,
@@ -64,6 +67,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             loads: vec![WheelLoad::default(); k],
             reports: vec![WheelReport::default(); k],
             torques: vec![0.0; k],
+            motor_rates: vec![0.0; k],
             steer: vec![0.0; k],
             normals: vec![0.0; k],
             torque_commands: vec![0.0; k],
@@ -172,15 +176,25 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         self.place_wheels(t, x, w, z);
         let radii = self.ground.as_ref().map_or(&[][..], |g| g.radii());
         for ((spin, s), r) in y[range].iter_mut().zip(&self.wheels).zip(radii) {
-            let a = s.spin_axis;
-            // a_w × e_Z, horizontal.
-            let heading = [a[1], -a[0], 0.0];
-            let norm = heading[0].hypot(heading[1]);
-            *spin = if norm > 0.0 {
-                (s.velocity[0] * heading[0] + s.velocity[1] * heading[1]) / (norm * r)
-            } else {
-                0.0
-            };
+            *spin = rolling_rate(s.spin_axis, s.velocity, *r);
+        }
+    }
+
+    /// Each wheel's spin rate into `motor_rates`, for the motors'
+    /// torque–speed lines: the spin state on a soil; on rigid ground (no
+    /// spin state: the tyre rolls) the rate of rolling at the centre's
+    /// velocity, its speed along the wheel's heading over the radius.
+    fn fill_motor_rates(&mut self, spins: &[f64]) {
+        if !self.control.has_motor_curves() {
+            return;
+        }
+        if spins.is_empty() {
+            let radii = self.control.radii();
+            for ((o, s), r) in self.motor_rates.iter_mut().zip(&self.wheels).zip(radii) {
+                *o = rolling_rate(s.spin_axis, s.velocity, *r);
+            }
+        } else {
+            self.motor_rates.copy_from_slice(spins);
         }
     }
 
@@ -267,6 +281,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let t = self.command_time(t);
         let (x, w, z, spins) = self.parts(y);
         self.place_wheels(t, x, w, z);
+        self.fill_motor_rates(spins);
         mark(0);
         match &mut self.ground {
             Some(g) => {
@@ -278,6 +293,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                     (x, w, z, spins),
                     &self.normals,
                     &self.torque_commands,
+                    &self.motor_rates,
                     &mut self.torques,
                 );
                 g.loads(
@@ -295,6 +311,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                     (x, w, z, spins),
                     &self.normals,
                     &self.torque_commands,
+                    &self.motor_rates,
                     &mut self.torques,
                 );
                 self.loads
@@ -321,6 +338,20 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         }
         mark(3);
         Ok(())
+    }
+}
+
+/// The spin rate [rad/s] of a wheel of radius `r` rolling without slip at
+/// its centre's velocity `v`: the speed along its heading `a_w × e_Z`
+/// (horizontal) over the radius; 0 for a wheel lying flat.
+fn rolling_rate(a: [f64; 3], v: [f64; 3], r: f64) -> f64 {
+    // a_w × e_Z, horizontal.
+    let heading = [a[1], -a[0], 0.0];
+    let norm = heading[0].hypot(heading[1]);
+    if norm > 0.0 {
+        (v[0] * heading[0] + v[1] * heading[1]) / (norm * r)
+    } else {
+        0.0
     }
 }
 

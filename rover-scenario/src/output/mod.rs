@@ -12,7 +12,8 @@ pub use slide::{
     AxleSlide, SLIDE_WINDOW, SLIDE_YAW_DEG, Slide, SlideTrack, SuddenSlide, axles_by_rest_x, slide,
 };
 pub use summary::{
-    PathDeviation, RunEnd, RunLog, STALL_FRACTION, STALL_MIN_DISTANCE, STALL_WINDOW, Stall, Status,
-    Summary,
+    PathDeviation, RUNAWAY_SPEED_FACTOR, RUNAWAY_SPEED_FLOOR, RUNAWAY_WINDOW, RUNAWAY_YAW_FACTOR,
+    RUNAWAY_YAW_RATE_DEG_S, RunEnd, RunLog, Runaway, STALL_FRACTION, STALL_MIN_DISTANCE,
+    STALL_WINDOW, Stall, Status, Summary, plant_label,
 };
 pub use write_whole::{WriteError, write_whole};

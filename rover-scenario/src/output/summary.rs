@@ -63,6 +63,10 @@ pub struct Summary {
     /// asked for at the end of the run (see [`Stall`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stalled: Option<Stall>,
+    /// Set when the rover turned or drove far faster than its commands ask
+    /// (see [`Runaway`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub runaway: Option<Runaway>,
     /// On a soil, each wheel's slip and sinkage after settling.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub soil: Option<Vec<WheelSoil>>,
@@ -80,7 +84,8 @@ pub struct Summary {
     pub real_time_factor: f64,
     /// Integrator name.
     pub integrator: String,
-    /// The plant back end: `generic`, or the generated type's name (set by the caller).
+    /// The plant that ran: `generic` (with its level when reduced), or
+    /// `generated (<type path>)` ([`plant_label`]).
     pub plant: String,
     /// Right-hand-side evaluations.
     pub rhs_evals: u64,
@@ -153,12 +158,115 @@ pub struct Stall {
     pub final_torques: Vec<f64>,
 }
 
+/// A rover turning or driving far beyond what its commands ask, over a
+/// [`RUNAWAY_WINDOW`] after settling: its mean yaw rate above
+/// `max(RUNAWAY_YAW_RATE_DEG_S, RUNAWAY_YAW_FACTOR·|V|_max/R_k)` (R_k the
+/// Ackermann command's kinematic radius; no Ackermann command, only the
+/// floor), or its mean horizontal speed above
+/// `max(RUNAWAY_SPEED_FLOOR, RUNAWAY_SPEED_FACTOR·|V|_max)` with V the speed
+/// set-point. Typically a slip-steering torque difference far beyond what
+/// turning the rover needs, on motors with no speed limit (no
+/// `no_load_speed`): the run is valid, but the rover is spinning out, not
+/// turning (docs/CLI.md, sizing Δτ).
+///
+/// The bounds: no rover's steering asks for half a turn a second (real
+/// skid-steered rovers turn at a few degrees a second; of the shipped
+/// scenarios a heading hold pivoting at a waypoint's corner turns fastest,
+/// about 100 °/s over a second, a runaway Δτ of 15 % of the motors' limit
+/// on a 20 kg rover over 400 °/s), and an Ackermann turn at the set-point
+/// yaws at V/R_k; a speed loop holds the set-point to within tens of
+/// percent, and a rover without one (V = 0) settling, rolling off a bump
+/// or under open-loop torques stays below a metre a second (the shipped
+/// scenarios below 0.45 m/s).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Runaway {
+    /// When the first window over a bound ended \[s\].
+    pub t: f64,
+    /// The largest mean yaw rate over a window, in magnitude [deg/s].
+    pub yaw_rate_deg_s: f64,
+    /// The largest mean horizontal speed of G over a window [m/s].
+    pub speed_m_s: f64,
+    /// The yaw-rate bound [deg/s].
+    pub yaw_rate_bound_deg_s: f64,
+    /// The speed bound [m/s].
+    pub speed_bound_m_s: f64,
+}
+
+/// Window over which a runaway's yaw rate and speed are averaged \[s\]:
+/// long enough that a bump's jolt does not count.
+pub const RUNAWAY_WINDOW: f64 = 1.0;
+/// Yaw rate no steering command asks for [deg/s]: half a turn a second.
+pub const RUNAWAY_YAW_RATE_DEG_S: f64 = 180.0;
+/// How far beyond an Ackermann command's yaw rate V/R_k a rover may turn.
+pub const RUNAWAY_YAW_FACTOR: f64 = 3.0;
+/// Speed any rover may reach without a runaway [m/s].
+pub const RUNAWAY_SPEED_FLOOR: f64 = 1.0;
+/// How far beyond its speed set-point a rover may drive.
+pub const RUNAWAY_SPEED_FACTOR: f64 = 3.0;
+
+/// The runaway over the rows after settling (times, yaw, G's path and
+/// set-points), with an Ackermann command's kinematic radius.
+fn runaway(track: &Track, yaw: &[f64], kinematic_radius: Option<f64>) -> Option<Runaway> {
+    let times = track.times;
+    let v_max = track.setpoints.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let commanded_yaw = kinematic_radius
+        .filter(|r| r.is_finite() && *r != 0.0)
+        .map_or(0.0, |r| (v_max / r.abs()).to_degrees());
+    let yaw_bound = RUNAWAY_YAW_RATE_DEG_S.max(RUNAWAY_YAW_FACTOR * commanded_yaw);
+    let speed_bound = RUNAWAY_SPEED_FLOOR.max(RUNAWAY_SPEED_FACTOR * v_max);
+    let (mut first, mut peak_yaw, mut peak_speed) = (None, 0.0f64, 0.0f64);
+    let mut travelled = 0.0;
+    // Path length from the first row to each row.
+    let along: Vec<f64> = std::iter::once(0.0)
+        .chain(track.path.windows(2).map(|p| {
+            travelled += (p[1][0] - p[0][0]).hypot(p[1][1] - p[0][1]);
+            travelled
+        }))
+        .collect();
+    let mut j = 0;
+    for i in 0..times.len() {
+        while j < times.len() && times[j] < times[i] + RUNAWAY_WINDOW {
+            j += 1;
+        }
+        if j == times.len() {
+            break;
+        }
+        let dt = times[j] - times[i];
+        let yaw_rate = ((yaw[j] - yaw[i]) / dt).abs().to_degrees();
+        let speed = (along[j] - along[i]) / dt;
+        peak_yaw = peak_yaw.max(yaw_rate);
+        peak_speed = peak_speed.max(speed);
+        if first.is_none() && (yaw_rate > yaw_bound || speed > speed_bound) {
+            first = Some(times[j]);
+        }
+    }
+    first.map(|t| Runaway {
+        t,
+        yaw_rate_deg_s: peak_yaw,
+        speed_m_s: peak_speed,
+        yaw_rate_bound_deg_s: yaw_bound,
+        speed_bound_m_s: speed_bound,
+    })
+}
+
 /// Window over which a stall is judged \[s\].
 pub const STALL_WINDOW: f64 = 10.0;
 /// A rover covering less than this fraction of its commanded distance stalled.
 pub const STALL_FRACTION: f64 = 0.1;
 /// Commanded distances below this are too short to judge \[m\].
 pub const STALL_MIN_DISTANCE: f64 = 0.01;
+
+/// How a run's summary names `plant`: the generic plant by its own name
+/// (`generic`, with its level when reduced), any other as
+/// `generated (<type path>)`.
+pub fn plant_label<P: rover_dynamics::plant::Plant + ?Sized>(plant: &P) -> String {
+    let name = plant.name();
+    if name.starts_with("generic") {
+        name.to_string()
+    } else {
+        format!("generated ({name})")
+    }
+}
 
 /// What a run's rows after settling hold for the stall judgement.
 struct Track<'a> {
@@ -263,6 +371,8 @@ pub struct RunEnd {
     pub wall_time_s: f64,
     /// Method name.
     pub integrator: String,
+    /// The plant that ran, as the summary names it ([`plant_label`]).
+    pub plant: String,
     /// Right-hand-side (or residual) evaluations.
     pub rhs_evals: u64,
     /// Accepted steps (or Newton iterations).
@@ -418,6 +528,18 @@ impl RunLog {
                         .collect(),
                 )
             }),
+            runaway: self.forward_column.and_then(|_| {
+                runaway(
+                    &Track {
+                        times: &self.times,
+                        path: &self.path,
+                        setpoints: &self.setpoints,
+                        forward: &self.forward,
+                    },
+                    &self.yaw,
+                    end.kinematic_radius,
+                )
+            }),
             soil: (!self.soil.is_empty()).then(|| {
                 self.soil
                     .iter()
@@ -453,7 +575,7 @@ impl RunLog {
                 f64::INFINITY
             },
             integrator: end.integrator,
-            plant: "generic".into(),
+            plant: end.plant,
             rhs_evals: end.rhs_evals,
             steps: end.steps,
             rejected_steps: end.rejected_steps,

@@ -63,6 +63,15 @@ pub struct WheelDesc {
     /// Maximum motor torque M_sat [N·m], ≥ 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_torque: Option<f64>,
+    /// The motor's no-load speed ω₀ [rad/s], > 0: with it the motor
+    /// follows the DC line τ_stall·(1 − ω/ω₀) (absent: a pure torque
+    /// source up to `max_torque` at any speed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub no_load_speed: Option<f64>,
+    /// The motor's stall torque τ_stall [N·m], > 0 (needs `no_load_speed`;
+    /// default `max_torque`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stall_torque: Option<f64>,
     /// `hub` or `body`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motor: Option<MotorMountDesc>,
@@ -109,6 +118,12 @@ pub struct WheelFields {
     /// M_sat [N·m].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_torque: Option<f64>,
+    /// No-load speed ω₀ [rad/s].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub no_load_speed: Option<f64>,
+    /// Stall torque τ_stall [N·m].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stall_torque: Option<f64>,
     /// `hub` or `body`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motor: Option<MotorMountDesc>,

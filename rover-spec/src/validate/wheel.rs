@@ -1,6 +1,6 @@
 //! Wheels: their fields (from the wheel or `[wheel_defaults]`) and ranges.
 
-use rover_dynamics::model::{MotorMount, Wheel};
+use rover_dynamics::model::{MotorCurve, MotorMount, Wheel};
 use rover_dynamics::poly::ScalarPoly;
 
 use super::body::check_inertia;
@@ -150,6 +150,46 @@ pub fn check_wheel(
         d.spin_inertia,
         "the moment of inertia about the axle is in kg·m² and positive (leave it out for ½·mass·radius²)",
     )?;
+    let no_load_speed = optional(
+        "no_load_speed",
+        w.no_load_speed,
+        d.no_load_speed,
+        "the motor's no-load speed is the wheel's spin rate at zero torque, in rad/s and positive (leave it out for a motor without a speed limit)",
+    )?;
+    let stall_torque = optional(
+        "stall_torque",
+        w.stall_torque,
+        d.stall_torque,
+        "the motor's stall torque is in N·m and positive (leave it out to take max_torque)",
+    )?;
+    let motor_curve = match (no_load_speed, stall_torque) {
+        (Some(no_load_speed), stall) => match (stall, max_torque) {
+            (Some(stall_torque), _) => Some(MotorCurve {
+                stall_torque,
+                no_load_speed,
+            }),
+            (None, Some(m)) if m > 0.0 => Some(MotorCurve {
+                stall_torque: m,
+                no_load_speed,
+            }),
+            // max_torque 0: no torque at any speed, the line is moot.
+            (None, _) => None,
+        },
+        (None, Some(_)) => {
+            let path = pick(index, "stall_torque", w.stall_torque, d.stall_torque)
+                .map_or_else(|| format!("wheel[{index}].stall_torque"), |p| p.1);
+            ctx.error(
+                path,
+                format!(
+                    "wheel `{}` has a motor stall torque but no `no_load_speed`: the torque–speed line needs both",
+                    w.name
+                ),
+                "add `no_load_speed` [rad/s] (the wheel's spin rate at which the motor gives no torque), or remove `stall_torque`",
+            );
+            return None;
+        }
+        (None, None) => None,
+    };
     let motor = match pick(index, "motor", w.motor, d.motor).map(|p| p.0) {
         Some(MotorMountDesc::Hub) => MotorMount::Hub,
         Some(MotorMountDesc::Body) | None => MotorMount::Body,
@@ -170,6 +210,7 @@ pub fn check_wheel(
             mu_y: mu_y?,
             cornering_stiffness: cornering?,
             max_torque: max_torque?,
+            motor_curve,
             motor,
             steerable,
             camber: ScalarPoly::constant(0.0),

@@ -61,6 +61,8 @@ pub(super) struct JacobianWork {
     /// `∂τ_k/∂y_j` at `[k·dim + j]`.
     torque: Vec<f64>,
     tau: Vec<f64>,
+    /// The wheels' spin rates at a perturbed state, for the motor lines.
+    motor_rates: Vec<f64>,
     y: Vec<f64>,
     zd: Vec<f64>,
     perturbed: Vec<WheelLoad>,
@@ -84,6 +86,7 @@ impl Default for JacobianWork {
             loads: Vec::new(),
             torque: Vec::new(),
             tau: Vec::new(),
+            motor_rates: Vec::new(),
             y: Vec::new(),
             zd: Vec::new(),
             perturbed: Vec::new(),
@@ -120,6 +123,7 @@ impl JacobianWork {
             loads: vec![[[0.0; 8]; 10]; k],
             torque: vec![0.0; k * dim],
             tau: vec![0.0; k],
+            motor_rates: vec![0.0; k],
             y: vec![0.0; dim],
             zd: vec![0.0; dim - 2 * n],
             perturbed: vec![WheelLoad::default(); k],
@@ -241,8 +245,29 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let torques = &self.torques;
         let (tau, torque) = (&mut work.tau, &mut work.torque);
         let spins = self.spin_range();
+        // The motor lines' spin rates: on a soil the (perturbed) spins; on
+        // rigid ground the rolling rates, moved by a pseudo-velocity's
+        // perturbation along J_j (the heading's turn with x is left out).
+        let curves = control.has_motor_curves();
+        let (base, velocity, rates) = (&self.motor_rates, &work.velocity, &mut work.motor_rates);
+        let (wheels, radii) = (&self.wheels, control.radii());
         each_perturbed(y, (n, spins.len()), &mut work.y, |j, h, parts| {
-            control.torques(tc, parts, normals, commands, tau);
+            let rates: &[f64] = if !curves {
+                &[]
+            } else if !parts.3.is_empty() {
+                parts.3
+            } else {
+                rates.copy_from_slice(base);
+                if (n..two_n).contains(&j) {
+                    for (wheel, r) in rates.iter_mut().enumerate() {
+                        let a = wheels[wheel].spin_axis;
+                        let dv = velocity[wheel * n + j - n];
+                        *r += h * super::rolling_rate(a, dv, radii[wheel]);
+                    }
+                }
+                rates
+            };
+            control.torques(tc, parts, normals, commands, rates, tau);
             for wheel in 0..k {
                 torque[wheel * dim + j] = (tau[wheel] - torques[wheel]) / h;
             }
