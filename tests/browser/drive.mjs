@@ -5,31 +5,14 @@
 // the rover's weight share per wheel.
 //
 // node drive.mjs <rover binary> <chromium binary>
-import { spawn } from 'node:child_process';
-import { chromium } from 'playwright-core';
+import { launchBrowser, startRover } from './serve.mjs';
 
 const [rover, browserPath] = process.argv.slice(2);
 const fail = (msg) => { console.error(`FAIL: ${msg}`); process.exitCode = 1; };
 
-const server = spawn(rover, ['drive', 'swing4', '--port', '0', '--rate', '500'], {
-  stdio: ['ignore', 'ignore', 'pipe'],
-});
-const port = await new Promise((resolve, reject) => {
-  let err = '';
-  const timer = setTimeout(() => reject(new Error(`no port printed: ${err}`)), 60000);
-  server.stderr.on('data', (d) => {
-    err += d;
-    const m = /127\.0\.0\.1:(\d+)/.exec(err);
-    if (m) { clearTimeout(timer); resolve(Number(m[1])); }
-  });
-  server.on('exit', (code) => reject(new Error(`rover drive exited (${code}): ${err}`)));
-});
+const { server, port } = await startRover(rover, ['drive', 'swing4', '--port', '0', '--rate', '500']);
 
-const browser = await chromium.launch({
-  executablePath: browserPath,
-  // Software WebGL: a headless machine has no GPU.
-  args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launchBrowser(browserPath);
 try {
   const page = await browser.newPage();
   const errors = [];

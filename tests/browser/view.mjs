@@ -7,11 +7,11 @@
 // help and player bar do not overlap at common window sizes.
 //
 // node view.mjs <rover binary> <chromium binary>
-import { spawn, spawnSync } from 'node:child_process';
+import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, writeFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { launchBrowser, startRover } from './serve.mjs';
 
 const [rover, browserPath] = process.argv.slice(2);
 const fail = (msg) => { console.error(`FAIL: ${msg}`); process.exitCode = 1; };
@@ -49,22 +49,9 @@ const h = means.length >> 1;
 const csvLoad = means.length % 2 ? means[h] : 0.5 * (means[h - 1] + means[h]);
 
 // No `--scenario`: the ground comes from the output folder.
-const server = spawn(rover, ['view', out, '--port', '0'], { stdio: ['ignore', 'ignore', 'pipe'] });
-const port = await new Promise((resolve, reject) => {
-  let err = '';
-  const timer = setTimeout(() => reject(new Error(`no port printed: ${err}`)), 60000);
-  server.stderr.on('data', (d) => {
-    err += d;
-    const m = /127\.0\.0\.1:(\d+)/.exec(err);
-    if (m) { clearTimeout(timer); resolve(Number(m[1])); }
-  });
-  server.on('exit', (code) => reject(new Error(`rover view exited (${code}): ${err}`)));
-});
+const { server, port } = await startRover(rover, ['view', out, '--port', '0']);
 
-const browser = await chromium.launch({
-  executablePath: browserPath,
-  args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launchBrowser(browserPath);
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
   const errors = [];
