@@ -518,13 +518,7 @@ fn linearize_prints_the_modes_and_writes_them_as_json() {
 /// command CSV, found next to it): the examples the README points to work.
 #[test]
 fn every_shipped_scenario_runs() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    names.sort();
+    let names = super::support::shipped_scenarios();
     assert!(names.len() >= 9, "{names:?}");
     for path in names {
         let mut scenario = rover_scenario::scenario::Scenario::load(&path)
@@ -541,7 +535,7 @@ fn every_shipped_scenario_runs() {
             &spec.model,
             &rover,
             &scenario,
-            &dir,
+            path.parent().unwrap(),
             std::io::sink(),
             &std::sync::atomic::AtomicBool::new(false),
             |_| {},

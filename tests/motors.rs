@@ -4,7 +4,7 @@
 //! motors cannot drive it past the no-load rim speed; the summary of the
 //! `Simulation` builder names the plant that ran.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 use rover_scenario::Simulation;
@@ -168,13 +168,7 @@ fn the_simulation_builder_names_the_plant_that_ran() {
 
 #[test]
 fn no_shipped_scenario_runs_away() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    names.sort();
+    let names = super::support::shipped_scenarios();
     for path in names {
         let scenario = rover_scenario::scenario::Scenario::load(&path).unwrap();
         let rover = scenario.rover.clone().unwrap();
@@ -185,7 +179,7 @@ fn no_shipped_scenario_runs_away() {
             &spec.model,
             &rover,
             &scenario,
-            &dir,
+            path.parent().unwrap(),
             std::io::sink(),
             &std::sync::atomic::AtomicBool::new(false),
             |_| {},
