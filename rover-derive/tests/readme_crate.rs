@@ -1,6 +1,6 @@
 //! A user's first crate, built from the README alone: its `[dependencies]`
 //! are the lines of the README's "A rover declared in Rust" (each
-//! `name = "version"` made a path to the workspace's crate), its `main`
+//! `name = …` made a path to the workspace's crate), its `main`
 //! declares a rover inline with `#[derive(Rover)]` and runs it for 1 s.
 //! If the derive's code needs a crate the README does not name, or the
 //! README's lines drift from what the code needs, this fails.
