@@ -102,10 +102,11 @@ fn a_crate_with_the_readme_dependencies_builds_and_runs_a_derived_rover() {
          # Not a member of the workspace it is built under.\n[workspace]\n\n[dependencies]\n",
     );
     for (name, version) in &dependencies {
-        // A crates.io line `name = "0.1"` becomes the workspace's crate.
+        // The README's `{ path = "../rover/<crate>" }` is the workspace's
+        // crate `<crate>`, wherever this checkout is.
         assert!(
-            version.starts_with('"'),
-            "`{name} = {version}`: the README gives a version"
+            version.starts_with("{ path = \"../rover/") && version.contains(&format!("/{name}\"")),
+            "`{name} = {version}`: the README gives no path to a checkout's crate"
         );
         let path = crate_dir(root, name);
         manifest.push_str(&format!(
