@@ -703,12 +703,19 @@ fn steering_law(
 /// curvature); a linear table of radii does not change sign between two
 /// points (it would pass through 0).
 fn check_ackermann(p: &Profile, angle: bool) -> Result<(), ControlError> {
-    let values: Vec<f64> = match p {
-        Profile::Constant(v) => vec![*v],
-        Profile::Table { points, .. } => points.iter().map(|p| p[1]).collect(),
+    // The profile's values, without allocating: a set-point is checked on
+    // the live loop's path.
+    let constant;
+    let values: &[[f64; 2]] = match p {
+        Profile::Constant(v) => {
+            constant = [[0.0, *v]];
+            &constant
+        }
+        Profile::Table { points, .. } => points,
     };
+    let mut values = values.iter().map(|p| p[1]);
     if angle {
-        if let Some(v) = values.iter().find(|v| v.abs() >= 90.0) {
+        if let Some(v) = values.find(|v| v.abs() >= 90.0) {
             return Err(err(
                 "steering.front_left_deg",
                 format!(
@@ -718,7 +725,7 @@ fn check_ackermann(p: &Profile, angle: bool) -> Result<(), ControlError> {
         }
         return Ok(());
     }
-    if values.contains(&0.0) {
+    if values.any(|v| v == 0.0) {
         return Err(err(
             "steering.radius",
             "a radius of 0 m is no turn: `radius` is the turn centre's lateral position R [m], R > 0 turns left and R < 0 right; to drive straight, leave out [control.steering]",
