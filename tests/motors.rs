@@ -34,21 +34,7 @@ fn light_rover(no_load: Option<f64>) -> String {
     if let Some(w0) = no_load {
         s += &format!("no_load_speed = {w0:?}\n");
     }
-    for (name, x, y, rest, min, max) in [
-        ("fl", 0.18, 0.2, -17.2, -60.0, -2.0),
-        ("fr", 0.18, -0.2, -17.2, -60.0, -2.0),
-        ("rl", -0.22, 0.2, 17.2, 2.0, 60.0),
-        ("rr", -0.22, -0.2, 17.2, 2.0, 60.0),
-    ] {
-        s += &format!(
-            "[[suspension]]\nname = \"{name}\"\nkind = \"longitudinal_swing_arm\"\n\
-             pivot = [{x:?}, {y:?}, -0.01]\nlength = 0.2\n\
-             coordinate = {{ rest_deg = {rest:?}, min_deg = {min:?}, max_deg = {max:?}, stiffness = 15.0, damping = 3.5 }}\n"
-        );
-    }
-    for name in ["fl", "fr", "rl", "rr"] {
-        s += &format!("[[wheel]]\nname = \"{name}\"\nsuspension = \"{name}\"\n");
-    }
+    s += &rover_test_support::swing_arm_quad_tables();
     s
 }
 

@@ -30,3 +30,27 @@ pub fn scratch_file(tmp_dir: &str, folder: &str, name: &str, text: &str) -> Stri
     std::fs::write(&path, text).unwrap();
     path.display().to_string()
 }
+
+/// The `[[suspension]]` and `[[wheel]]` tables of a four-wheeled test rover
+/// (swing4's layout: a longitudinal swing arm per wheel, front arms
+/// trailing and rear arms leading), to follow a description's `[body]` and
+/// `[wheel_defaults]`.
+pub fn swing_arm_quad_tables() -> String {
+    let mut s = String::new();
+    for (name, x, y, rest, min, max) in [
+        ("fl", 0.18, 0.2, -17.2, -60.0, -2.0),
+        ("fr", 0.18, -0.2, -17.2, -60.0, -2.0),
+        ("rl", -0.22, 0.2, 17.2, 2.0, 60.0),
+        ("rr", -0.22, -0.2, 17.2, 2.0, 60.0),
+    ] {
+        s += &format!(
+            "[[suspension]]\nname = \"{name}\"\nkind = \"longitudinal_swing_arm\"\n\
+             pivot = [{x:?}, {y:?}, -0.01]\nlength = 0.2\n\
+             coordinate = {{ rest_deg = {rest:?}, min_deg = {min:?}, max_deg = {max:?}, stiffness = 15.0, damping = 3.5 }}\n"
+        );
+    }
+    for name in ["fl", "fr", "rl", "rr"] {
+        s += &format!("[[wheel]]\nname = \"{name}\"\nsuspension = \"{name}\"\n");
+    }
+    s
+}
