@@ -538,6 +538,15 @@ mod derived_levels {
         jacobian = false
     )]
     pub struct Swing4Linearized;
+
+    #[derive(Rover)]
+    #[rover(
+        file = "models/swing4.toml",
+        fidelity = "linearized_exact_rotation",
+        y_ref = [-0.55, -0.57, 0.56, 0.58],
+        jacobian = false
+    )]
+    pub struct Swing4LinearizedExactRotation;
 }
 
 #[test]
@@ -554,8 +563,23 @@ fn derived_reduced_levels_equal_generic() {
     compare_with(
         "swing4",
         derived_levels::Swing4Linearized::plant(),
-        GenericPlant::with_fidelity_at(swing4, Fidelity::Linearized, &[-0.55, -0.57, 0.56, 0.58])
-            .unwrap(),
+        GenericPlant::with_fidelity_at(
+            swing4.clone(),
+            Fidelity::Linearized,
+            &[-0.55, -0.57, 0.56, 0.58],
+        )
+        .unwrap(),
         82,
+    );
+    compare_with(
+        "swing4",
+        derived_levels::Swing4LinearizedExactRotation::plant(),
+        GenericPlant::with_fidelity_at(
+            swing4,
+            Fidelity::LinearizedExactRotation,
+            &[-0.55, -0.57, 0.56, 0.58],
+        )
+        .unwrap(),
+        83,
     );
 }

@@ -33,7 +33,12 @@ fn reduced_levels_equal_the_full_model_at_their_reference_state() {
             })
             .collect();
         let mut out = Vec::new();
-        for level in [Fidelity::Full, Fidelity::Simplified, Fidelity::Linearized] {
+        for level in [
+            Fidelity::Full,
+            Fidelity::Simplified,
+            Fidelity::Linearized,
+            Fidelity::LinearizedExactRotation,
+        ] {
             let mut p = GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).unwrap();
             let (mut xd, mut wd) = (vec![0.0; n], vec![0.0; n]);
             p.derivatives(&x, &w, &loads, &mut xd, &mut wd).unwrap();
@@ -65,7 +70,11 @@ fn reduced_levels_equal_the_full_model_at_their_reference_state() {
             out
         };
         let exact = wheels(Fidelity::Full);
-        for level in [Fidelity::Simplified, Fidelity::Linearized] {
+        for level in [
+            Fidelity::Simplified,
+            Fidelity::Linearized,
+            Fidelity::LinearizedExactRotation,
+        ] {
             for (k, (got, want)) in wheels(level).iter().zip(&exact).enumerate() {
                 for c in 0..3 {
                     assert!(
@@ -96,6 +105,49 @@ fn reduced_levels_equal_the_full_model_at_their_reference_state() {
             "{name}: levels 1 and 3 differ off the reference"
         );
     }
+}
+
+#[test]
+fn the_linearized_level_takes_the_rotation_to_first_order_and_its_variant_keeps_it_exact() {
+    // The paper's level 3 places the wheels with R ≈ Rz(ψ)·(I + skew([φ, θ, 0])):
+    // off level, its wheel centres leave the full model's by a second-order
+    // amount (a quarter of it at half the angles), while the variant that
+    // keeps R exact places them where the full model does at any attitude
+    // (at y = y_ref, where the tangent is exact).
+    let spec = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
+    let model = spec.model;
+    let y_ref = flat_ground_equilibrium(&model).unwrap();
+    let n = model.dof();
+    let steer = vec![0.0; model.wheels.len()];
+    let w = vec![0.0; n];
+    let centres = |level: Fidelity, phi: f64, theta: f64| {
+        let mut x = vec![0.5, -1.0, 0.3, phi, theta, 0.9];
+        x.extend_from_slice(&y_ref);
+        let mut p = GenericPlant::with_fidelity_at(model.clone(), level, &y_ref).unwrap();
+        let mut out = vec![rover_dynamics::plant::WheelState::default(); model.wheels.len()];
+        p.wheels(&x, &w, &steer, &mut out);
+        out
+    };
+    let gap = |level: Fidelity, phi: f64, theta: f64| {
+        let exact = centres(Fidelity::Full, phi, theta);
+        centres(level, phi, theta)
+            .iter()
+            .zip(&exact)
+            .flat_map(|(a, b)| (0..3).map(move |c| (a.centre[c] - b.centre[c]).abs()))
+            .fold(0.0, f64::max)
+    };
+    let (phi, theta) = (0.2, -0.15);
+    assert!(gap(Fidelity::LinearizedExactRotation, phi, theta) < 1e-12);
+    let big = gap(Fidelity::Linearized, phi, theta);
+    let half = gap(Fidelity::Linearized, phi / 2.0, theta / 2.0);
+    assert!(
+        big > 1e-3,
+        "the first-order rotation misplaces the wheels: {big} m"
+    );
+    assert!(
+        (big / half - 4.0).abs() < 0.3,
+        "second order: {big} m at the angles, {half} m at half of them"
+    );
 }
 
 fn fig12(level: &str, path_from: Option<&std::path::Path>) -> Run {

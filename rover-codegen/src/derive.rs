@@ -167,11 +167,7 @@ fn inline_description(entries: &[Entry], whole: Span) -> syn::Result<(rover_spec
 
 /// A fidelity level as the attribute writes it.
 fn fidelity_name(fidelity: Fidelity) -> &'static str {
-    match fidelity {
-        Fidelity::Full => "full",
-        Fidelity::Simplified => "simplified",
-        Fidelity::Linearized => "linearized",
-    }
+    fidelity.name()
 }
 
 /// The generated plant `plant` of `spec`, with the struct's visibility
@@ -326,7 +322,8 @@ fn take_bool(entries: &mut Vec<Entry>, key: &str) -> syn::Result<Option<bool>> {
     }
 }
 
-/// `fidelity = "full" | "simplified" | "linearized"` (MODEL.md §9).
+/// `fidelity = "full" | "simplified" | "linearized" | "linearized_exact_rotation"`
+/// (MODEL.md §9).
 fn take_fidelity(entries: &mut Vec<Entry>) -> syn::Result<Option<(Fidelity, Span)>> {
     let Some(k) = entries.iter().position(|e| e.key == "fidelity") else {
         return Ok(None);
@@ -336,10 +333,11 @@ fn take_fidelity(entries: &mut Vec<Entry>) -> syn::Result<Option<(Fidelity, Span
         Value::Str(s, _) if s == "full" => Fidelity::Full,
         Value::Str(s, _) if s == "simplified" => Fidelity::Simplified,
         Value::Str(s, _) if s == "linearized" => Fidelity::Linearized,
+        Value::Str(s, _) if s == "linearized_exact_rotation" => Fidelity::LinearizedExactRotation,
         v => {
             return Err(syn::Error::new(
                 v.span(),
-                "`fidelity` takes \"full\", \"simplified\" or \"linearized\" (MODEL.md §9)",
+                "`fidelity` takes \"full\", \"simplified\", \"linearized\" or \"linearized_exact_rotation\" (MODEL.md §9)",
             ));
         }
     };

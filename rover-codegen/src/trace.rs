@@ -320,10 +320,11 @@ fn trace_derivatives(
                 .iter()
                 .map(|&r| (frozen.factor[r * n + r], Sym::one()))
                 .collect();
-            let cos_roll = match level.fidelity {
+            let cos_roll = if level.fidelity.is_linearized() {
                 // The linearized attitude has no cos φ: never singular.
-                Fidelity::Linearized => Sym::one(),
-                _ => x[3].cos(),
+                Sym::one()
+            } else {
+                x[3].cos()
             };
             return (xdot, wdot, pivots, cos_roll);
         }
@@ -463,8 +464,8 @@ fn trace_wheels(
         body_kinematics(model, &x[6..], &mut ws);
         let att = Attitude::new(x[3], x[4], x[5]);
         let linear = level
-            .filter(|l| l.fidelity == Fidelity::Linearized)
-            .map(|l| Frozen::<Sym>::at(model, &l.y_ref));
+            .filter(|l| l.fidelity.is_linearized())
+            .map(|l| (l.fidelity, Frozen::<Sym>::at(model, &l.y_ref)));
         (0..model.wheels.len())
             .map(|k| {
                 let steer = if model.wheels[k].steerable {
@@ -473,7 +474,9 @@ fn trace_wheels(
                     Sym::zero()
                 };
                 match &linear {
-                    Some(frozen) => linear_wheel_kinematics(model, frozen, &x, &w, k, steer),
+                    Some((fidelity, frozen)) => {
+                        linear_wheel_kinematics(model, *fidelity, frozen, &x, &w, k, steer)
+                    }
                     None => wheel_kinematics(model, &ws, &att, &x, &w, k, steer),
                 }
             })

@@ -22,8 +22,12 @@ pub struct Attitude<S> {
     pub phi: S,
     /// Pitch θ.
     pub theta: S,
-    /// First order in φ and θ (MODEL.md §9, level 3).
+    /// The gravity direction (the paper's C, eq. 30) and the angle rates
+    /// (Aᵀ, eq. 10) to first order in φ and θ (MODEL.md §9, level 3).
     pub linear: bool,
+    /// The rotation R (eq. 4) to first order in φ and θ as well: the
+    /// paper's linearized model. `false` with `linear` keeps R exact.
+    pub linear_rotation: bool,
 }
 
 impl<S: Scalar> Attitude<S> {
@@ -39,29 +43,52 @@ impl<S: Scalar> Attitude<S> {
             phi,
             theta,
             linear: false,
+            linear_rotation: false,
         }
     }
 
-    /// The linearized attitude of MODEL.md §9 (level 3): roll and pitch small,
-    /// `R ≈ Rz(ψ)·(I + skew([φ, θ, 0]))`, `E⁻¹` to first order, exact in ψ.
+    /// The linearized attitude of MODEL.md §9 (level 3), the paper's: roll
+    /// and pitch small, `R ≈ Rz(ψ)·(I + skew([φ, θ, 0]))` (eq. 4), the
+    /// gravity direction (eq. 30) and `E⁻¹` (eq. 10) to first order, exact
+    /// in ψ.
     pub fn linear(phi: S, theta: S, psi: S) -> Self {
+        Self {
+            linear: true,
+            linear_rotation: true,
+            ..Self::new(phi, theta, psi)
+        }
+    }
+
+    /// As [`Attitude::linear`] but with R exact: only the gravity direction
+    /// and the angle rates are taken to first order.
+    pub fn linear_exact_rotation(phi: S, theta: S, psi: S) -> Self {
         Self {
             linear: true,
             ..Self::new(phi, theta, psi)
         }
     }
 
-    /// `R = Rz(ψ)·Rx(φ)·Ry(θ)`: body components → inertial components (eq. 1–4).
+    /// `R = Rz(ψ)·Rx(φ)·Ry(θ)`: body components → inertial components
+    /// (eq. 1–4); with `linear_rotation`, `Rz(ψ)·(I + skew([φ, θ, 0]))`.
     pub fn rotation(&self) -> M3<S> {
         let (sf, cf, st, ct, sp, cp) = (
             self.sphi, self.cphi, self.sth, self.cth, self.spsi, self.cpsi,
         );
-        // Rx(φ)·Ry(θ)
-        let a = [
-            [ct, S::zero(), st],
-            [sf * st, cf, -(sf * ct)],
-            [-(cf * st), sf, cf * ct],
-        ];
+        // Rx(φ)·Ry(θ), or its first-order form I + skew([φ, θ, 0]).
+        let a = if self.linear_rotation {
+            let (f, t) = (self.phi, self.theta);
+            [
+                [S::one(), S::zero(), t],
+                [S::zero(), S::one(), -f],
+                [-t, f, S::one()],
+            ]
+        } else {
+            [
+                [ct, S::zero(), st],
+                [sf * st, cf, -(sf * ct)],
+                [-(cf * st), sf, cf * ct],
+            ]
+        };
         [
             [
                 cp * a[0][0] - sp * a[1][0],

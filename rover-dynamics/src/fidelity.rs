@@ -11,6 +11,10 @@
 //! linearized:  M_c·ẇ = Q(x_lin, w; T_c),  R ≈ Rz(ψ)·(I + skew([φ, θ, 0])),
 //!              ẋ = B_lin(x)·w,  wheel centres from u_c + S_c·(y − y_ref)
 //! ```
+//! The linearized level is the paper's: R (eq. 4), Aᵀ (eq. 10) and the
+//! gravity matrix C (eq. 30) all to first order in roll and pitch. Its
+//! variant [`Fidelity::LinearizedExactRotation`] keeps R exact and takes only
+//! the gravity direction and the angle rates to first order.
 //! Dropping f1 drops the centripetal term Ω × p, which the paper accepts
 //! for slow rovers.
 
@@ -32,9 +36,12 @@ pub enum Fidelity {
     Full,
     /// Level 2: T_j frozen at rest; M constant, Ṁ = f2 = 0.
     Simplified,
-    /// Level 3: as level 2, plus u_j tangent at rest, R and E⁻¹ to first
-    /// order in roll and pitch, f1 = 0.
+    /// Level 3, the paper's: as level 2, plus u_j tangent at rest, R, E⁻¹
+    /// and the gravity direction to first order in roll and pitch, f1 = 0.
     Linearized,
+    /// Level 3 with R exact: only the gravity direction and E⁻¹ to first
+    /// order (wheel positions and the load mapping keep the exact rotation).
+    LinearizedExactRotation,
 }
 
 impl Fidelity {
@@ -44,7 +51,16 @@ impl Fidelity {
             Fidelity::Full => "full",
             Fidelity::Simplified => "simplified",
             Fidelity::Linearized => "linearized",
+            Fidelity::LinearizedExactRotation => "linearized_exact_rotation",
         }
+    }
+
+    /// Level 3, in either form: u_j tangent at the reference, f1 = 0.
+    pub fn is_linearized(self) -> bool {
+        matches!(
+            self,
+            Fidelity::Linearized | Fidelity::LinearizedExactRotation
+        )
     }
 }
 
@@ -93,6 +109,7 @@ impl<S: Scalar> Frozen<S> {
 pub fn attitude<S: Scalar>(level: Fidelity, x: &[S]) -> Attitude<S> {
     match level {
         Fidelity::Linearized => Attitude::linear(x[3], x[4], x[5]),
+        Fidelity::LinearizedExactRotation => Attitude::linear_exact_rotation(x[3], x[4], x[5]),
         _ => Attitude::new(x[3], x[4], x[5]),
     }
 }
@@ -127,7 +144,7 @@ pub fn reduced_derivatives<S: Scalar>(
     wdot.copy_from_slice(&rhs);
     frozen.ws.rhs = rhs;
     match level {
-        Fidelity::Linearized => {
+        Fidelity::Linearized | Fidelity::LinearizedExactRotation => {
             let vel = mul(&att.rotation(), [w[0], w[1], w[2]]);
             let rates = att.rates([w[3], w[4], w[5]]);
             xdot[..3].copy_from_slice(&vel);
@@ -140,9 +157,12 @@ pub fn reduced_derivatives<S: Scalar>(
 
 /// Wheel-centre kinematics of level 3: `u_j ≈ u_j(y_ref) + S_j(y_ref)·(y − y_ref)`,
 /// tangent at the configuration frozen at (y_c for [`Frozen::new`]), with
-/// the linearized attitude (orientation polynomials kept exact).
+/// the level's attitude (orientation polynomials kept exact). The spin axis
+/// is a direction the contact search takes as a unit vector: with the
+/// first-order R it is normalized (its length is 1 + O(φ²)).
 pub fn linear_wheel_kinematics<S: Scalar>(
     model: &Model,
+    level: Fidelity,
     frozen: &Frozen<S>,
     x: &[S],
     w: &[S],
@@ -160,12 +180,15 @@ pub fn linear_wheel_kinematics<S: Scalar>(
         u = add(u, scale(y[i] - frozen.y_ref[i], ws.s[j * m + i]));
         rel = add(rel, scale(w[6 + i], ws.s[j * m + i]));
     }
-    let att = Attitude::linear(x[3], x[4], x[5]);
+    let att = attitude(level, x);
     let r = att.rotation();
     let centre = add([x[0], x[1], x[2]], mul(&r, u));
     let body_vel = add(add([w[0], w[1], w[2]], cross([w[3], w[4], w[5]], u)), rel);
     let velocity = mul(&r, body_vel);
-    let spin_axis = crate::kinematics::spin_axis(wheel, &r, y, steer);
+    let mut spin_axis = crate::kinematics::spin_axis(wheel, &r, y, steer);
+    if att.linear_rotation {
+        spin_axis = scale(S::one() / crate::linalg::norm(spin_axis), spin_axis);
+    }
 
     WheelKinematics {
         centre,

@@ -110,6 +110,7 @@ impl Plant for GenericPlant {
             Fidelity::Full => "generic",
             Fidelity::Simplified => "generic (simplified level)",
             Fidelity::Linearized => "generic (linearized level)",
+            Fidelity::LinearizedExactRotation => "generic (linearized level, exact rotation)",
         }
     }
 
@@ -122,10 +123,10 @@ impl Plant for GenericPlant {
     }
 
     fn wheels(&mut self, x: &[f64], w: &[f64], steer: &[f64], out: &mut [WheelState]) {
-        if let (Fidelity::Linearized, Some(frozen)) = (self.level, &self.frozen) {
+        if let (true, Some(frozen)) = (self.level.is_linearized(), &self.frozen) {
             for (k, o) in out.iter_mut().enumerate() {
                 let steer_k = steer.get(k).copied().unwrap_or(0.0);
-                let wk = linear_wheel_kinematics(&self.model, frozen, x, w, k, steer_k);
+                let wk = linear_wheel_kinematics(&self.model, self.level, frozen, x, w, k, steer_k);
                 *o = WheelState {
                     centre: wk.centre,
                     velocity: wk.velocity,

@@ -182,6 +182,7 @@ pub fn generated_plant(rover: &str, level: Fidelity) -> Option<BuiltinPlant> {
         Fidelity::Full => rover_models::plant(rover),
         Fidelity::Simplified => rover_models::plant_at(rover, "simplified"),
         Fidelity::Linearized => rover_models::plant_at(rover, "linearized"),
+        Fidelity::LinearizedExactRotation => None,
     }
 }
 

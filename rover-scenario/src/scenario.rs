@@ -76,7 +76,7 @@ pub struct Scenario {
     #[serde(default = "default_rollover")]
     pub rollover_limit_deg: f64,
     /// Model fidelity (MODEL.md §9): `"full"` (default), `"simplified"`,
-    /// `"linearized"` or `"quasi_static"`.
+    /// `"linearized"`, `"linearized_exact_rotation"` or `"quasi_static"`.
     #[serde(default)]
     pub fidelity: FidelityLevel,
     /// Quasi-static runs with slip steering follow a path: the CSV of
@@ -100,8 +100,11 @@ pub enum FidelityLevel {
     Full,
     /// Level 2: T_j frozen at rest, M constant.
     Simplified,
-    /// Level 3: linear kinematics, small roll and pitch, no f1.
+    /// Level 3, the paper's: linear kinematics, R, E⁻¹ and the gravity
+    /// direction to first order in roll and pitch, no f1.
     Linearized,
+    /// Level 3 keeping R exact (only gravity and E⁻¹ to first order).
+    LinearizedExactRotation,
     /// Level 4: static equilibrium along an imposed path.
     QuasiStatic,
 }
@@ -114,6 +117,7 @@ impl FidelityLevel {
             FidelityLevel::Full => Some(Fidelity::Full),
             FidelityLevel::Simplified => Some(Fidelity::Simplified),
             FidelityLevel::Linearized => Some(Fidelity::Linearized),
+            FidelityLevel::LinearizedExactRotation => Some(Fidelity::LinearizedExactRotation),
             FidelityLevel::QuasiStatic => None,
         }
     }

@@ -20,8 +20,11 @@ pub enum CodegenLevel {
     Full,
     /// Level 2: kinematics frozen, M constant, Ṁ = f2 = 0.
     Simplified,
-    /// Level 3: as level 2, plus attitude and wheel positions to first order.
+    /// Level 3, the paper's: as level 2, plus the rotation, the angle rates,
+    /// the gravity direction and the wheel positions to first order.
     Linearized,
+    /// Level 3 keeping the rotation exact.
+    LinearizedExactRotation,
 }
 
 /// Arguments of `rover codegen`.
@@ -55,6 +58,7 @@ pub fn codegen(args: &CodegenArgs) -> Result<String, CliError> {
         CodegenLevel::Full => None,
         CodegenLevel::Simplified => Some(Fidelity::Simplified),
         CodegenLevel::Linearized => Some(Fidelity::Linearized),
+        CodegenLevel::LinearizedExactRotation => Some(Fidelity::LinearizedExactRotation),
     };
     let level = match fidelity {
         None => None,
