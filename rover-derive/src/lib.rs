@@ -69,8 +69,9 @@
 //!   `report()`, and `rover_scenario::Simulation::new` runs the plant alone.
 //!
 //! Options in the attribute: `jacobian = true` adds the exact Jacobian
-//! (`jacobian_array`, `jacobian_fixed`); `fidelity = "simplified"` or
-//! `"linearized"` generates a reduced level (MODEL.md §9), frozen at
+//! (`jacobian_array`, `jacobian_fixed`); `fidelity = "simplified"`,
+//! `"linearized"` or `"linearized_exact_rotation"` generates a reduced level
+//! (MODEL.md §9), frozen at
 //! `y_ref = [...]` or at the description's rest configuration.
 //!
 //! The crate using it depends on `rover-derive`, `rover-runtime` and
