@@ -328,7 +328,7 @@ impl ActiveSuspension {
             let h = 1e-6;
             let q = |y: f64| rover_dynamics::forces::coordinate_force(c, c.neutral, y, 0.0);
             let k = -(q(y_eq[i] + h) - q(y_eq[i] - h)) / (2.0 * h);
-            if !(k > 0.0) {
+            if k.is_nan() || k <= 0.0 {
                 return Err(LevelingError(format!(
                     "coordinate y{} has no stiffness at its static deflection, so moving its neutral moves nothing",
                     i + 1
