@@ -247,7 +247,8 @@ fn a_stepper_allocates_nothing_per_step_nor_per_command() {
 /// or 0.5 s of wall-clock time: what it allocates is set up before the
 /// first tick, nothing per step. Both with RK4 at 1 kHz on flat ground and
 /// with ROS2 at 200 Hz on rough ground with the scenario's active
-/// suspension and the speed loop's torque shared by the measured loads.
+/// suspension (the paper's law, then the leveling law) and the speed loop's
+/// torque shared by the measured loads.
 #[cfg(feature = "drive")]
 #[test]
 fn the_drive_loop_allocates_nothing_per_step() {
@@ -260,7 +261,12 @@ fn the_drive_loop_allocates_nothing_per_step() {
          [control.active_suspension]\nsample_time = 0.05\nkp_pitch = 0.6\nkp_roll = 0.6\n",
         rover::drive::DEFAULT_SCENARIO
     );
-    for (text, rate) in [("duration = 1.0\n", 1000.0), (rough.as_str(), 200.0)] {
+    let leveling = rough.replace("kp_pitch = 0.6\nkp_roll = 0.6\n", "law = \"leveling\"\n");
+    for (text, rate) in [
+        ("duration = 1.0\n", 1000.0),
+        (rough.as_str(), 200.0),
+        (leveling.as_str(), 200.0),
+    ] {
         let scenario = rover_scenario::scenario::Scenario::parse(text, path).unwrap();
         let config = live::LoopConfig::new(rate, None, &scenario);
         let columns =

@@ -414,3 +414,81 @@ fn a_motor_line_limits_the_drive_torque_by_the_wheel_spin() {
     // Braking a wheel spinning at its no-load speed: the full torque.
     assert_eq!(torques(-1.0, w0), vec![-stall; k]);
 }
+
+/// The active suspension's laws take their own settings only: the paper's
+/// law needs its gains, the leveling law refuses them and gains outside
+/// their range, each named with the fix; the leveling law's defaults come
+/// from the rover (Example 2: the arm's lag c/k = 0.7 s).
+#[test]
+fn active_suspension_settings_are_checked_per_law() {
+    use rover_runtime::control::{Controller, ControllerConfig};
+    let m = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")
+        .unwrap()
+        .model;
+    let build = |table: &str| {
+        let config: ControllerConfig =
+            toml::from_str(&format!("[active_suspension]\n{table}")).unwrap();
+        Controller::new(config, &m, 0.0).map(|_| ())
+    };
+    let error = |table: &str| build(table).unwrap_err().to_string();
+    assert!(build("kp_pitch = 0.6\nkp_roll = 0.6\n").is_ok());
+    assert!(build("law = \"leveling\"\n").is_ok());
+    assert!(build("law = \"leveling\"\nattitude_gain = 0.2\nrate_gain = 0.1\n").is_ok());
+    let cases = [
+        (
+            "kp_roll = 0.6\n",
+            "control.active_suspension.kp_pitch: the paper's law (eq. 42) gives no gains",
+        ),
+        (
+            "law = \"leveling\"\nkp_pitch = 0.6\n",
+            "control.active_suspension.kp_pitch: belongs to law = \"eq42\", not to law = \"leveling\"",
+        ),
+        (
+            "kp_pitch = 0.6\nkp_roll = 0.6\nwarp_gain = 0.5\n",
+            "control.active_suspension.warp_gain: belongs to law = \"leveling\", not to law = \"eq42\"",
+        ),
+        (
+            "law = \"leveling\"\nattitude_gain = 1.5\n",
+            "control.active_suspension.attitude_gain: is the fraction of the error removed per update and must lie in (0, 1], got 1.5",
+        ),
+        (
+            "law = \"leveling\"\nattitude_gain = 0.0\n",
+            "control.active_suspension.attitude_gain: is the fraction of the error removed per update and must lie in (0, 1], got 0",
+        ),
+        (
+            "law = \"leveling\"\nrate_gain = -0.1\n",
+            "control.active_suspension.rate_gain: must be ≥ 0 s, got -0.1",
+        ),
+    ];
+    for (table, want) in cases {
+        let got = error(table);
+        assert!(got.starts_with(want), "{table}: {got}");
+    }
+    assert!(toml::from_str::<ControllerConfig>("[active_suspension]\nlaw = \"lqr\"\n").is_err());
+    // The defaults, from the rover: b = a·c/k, c_h = Δt_c·k/(2c).
+    let y_eq = rover_runtime::quasi_static::flat_ground_equilibrium(&m).unwrap();
+    let config = toml::from_str("law = \"leveling\"\n").unwrap();
+    let law = rover_runtime::control::ActiveSuspension::leveling(config, &m, &y_eq).unwrap();
+    let l = law.leveling.unwrap();
+    let lag = 3.5 / 5.0;
+    assert!((l.lag - lag).abs() < 1e-6, "lag {}", l.lag);
+    let want = [0.3, 0.3 * lag, 0.1 / (2.0 * lag), 0.5];
+    for (g, w) in l.gains.iter().zip(want) {
+        assert!((g - w).abs() < 1e-6, "gains {:?} vs {want:?}", l.gains);
+    }
+    // The neutral's range: the travel shifted by the static deflection on
+    // the loaded side (front arms sag towards −60°, rear towards +60°).
+    for i in 0..4 {
+        let c = &m.coordinates[i];
+        let d = c.neutral - y_eq[i];
+        assert!(
+            (law.lo[i] - (c.min + d.min(0.0))).abs() < 1e-12
+                && (law.hi[i] - (c.max + d.max(0.0))).abs() < 1e-12,
+            "y{}: [{}, {}], deflection {d}",
+            i + 1,
+            law.lo[i],
+            law.hi[i]
+        );
+        assert!(d.abs() > 0.2, "y{}: static deflection {d} rad", i + 1);
+    }
+}

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::quasi_static::flat_ground_loads;
 
-use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
+use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig, SuspensionLaw};
 use super::commands::{CommandSchedule, CommandsConfig};
 use super::law::{CurvatureCommand, SpeedLaw, SteeringLaw};
 use super::profile::Profile;
@@ -73,8 +73,6 @@ pub struct Controller {
     torque_cap: f64,
     active: Option<ActiveSuspension>,
     neutral: Vec<f64>,
-    lo: Vec<f64>,
-    hi: Vec<f64>,
     /// The heading hold's current leg of its waypoints.
     leg: usize,
     /// Indices in ζ of the heading hold's integrals, when it has them.
@@ -158,8 +156,6 @@ impl Controller {
                 .fold(0.0, f64::max),
             active,
             neutral: model.coordinates.iter().map(|c| c.neutral).collect(),
-            lo: model.coordinates.iter().map(|c| c.min).collect(),
-            hi: model.coordinates.iter().map(|c| c.max).collect(),
             settle,
             leg: 0,
         })
@@ -582,20 +578,12 @@ impl Controller {
                 changed = true;
             }
         }
-        let Some(active) = &self.active else {
+        let Some(active) = &mut self.active else {
             return changed;
         };
         let att = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]);
         let rates = att.rates([w[3], w[4], w[5]]);
-        active.update(
-            x[4],
-            rates[1],
-            x[3],
-            rates[0],
-            &mut self.neutral,
-            &self.lo,
-            &self.hi,
-        );
+        active.update(x[4], rates[1], x[3], rates[0], &x[6..], &mut self.neutral);
         for (i, &n) in self.neutral.iter().enumerate() {
             plant.set_spring_neutral(i, n);
         }
@@ -750,8 +738,9 @@ fn check_ackermann(p: &Profile, angle: bool) -> Result<(), ControlError> {
     Ok(())
 }
 
-/// The active suspension, checked: a positive sample time and a sprung
-/// coordinate to move.
+/// The active suspension, checked: a positive sample time, a sprung
+/// coordinate to move, the gains its law needs (and none of the other
+/// law's); the leveling law settled at the static equilibrium.
 fn active_suspension(
     c: &ActiveSuspensionConfig,
     model: &Model,
@@ -774,11 +763,112 @@ fn active_suspension(
             "the rover has no sprung coordinate whose neutral could be moved",
         ));
     }
-    Ok(ActiveSuspension::new(
-        c.clone(),
-        &sprung,
-        &slopes(model, rest),
-    ))
+    let eq42 = [
+        ("kp_pitch", c.kp_pitch),
+        ("kd_pitch", c.kd_pitch),
+        ("kp_roll", c.kp_roll),
+        ("kd_roll", c.kd_roll),
+    ];
+    let leveling = [
+        ("attitude_gain", c.attitude_gain),
+        ("rate_gain", c.rate_gain),
+        ("centring_gain", c.centring_gain),
+        ("warp_gain", c.warp_gain),
+    ];
+    let finite = |list: &[(&str, Option<f64>)]| {
+        for (name, v) in list {
+            if let Some(v) = v
+                && !v.is_finite()
+            {
+                return Err(err(
+                    &format!("active_suspension.{name}"),
+                    format!("must be finite, got {v}"),
+                ));
+            }
+        }
+        Ok(())
+    };
+    let foreign = |list: &[(&str, Option<f64>)], law: &str, other: &str| match list
+        .iter()
+        .find(|(_, v)| v.is_some())
+    {
+        Some((name, _)) => Err(err(
+            &format!("active_suspension.{name}"),
+            format!(
+                "belongs to law = \"{other}\", not to law = \"{law}\"; remove it or set law = \"{other}\""
+            ),
+        )),
+        None => Ok(()),
+    };
+    match c.law {
+        SuspensionLaw::Eq42 => {
+            foreign(&leveling, "eq42", "leveling")?;
+            finite(&eq42)?;
+            for name in ["kp_pitch", "kp_roll"] {
+                let v = if name == "kp_pitch" {
+                    c.kp_pitch
+                } else {
+                    c.kp_roll
+                };
+                if v.is_none() {
+                    return Err(err(
+                        &format!("active_suspension.{name}"),
+                        "the paper's law (eq. 42) gives no gains: set kp_pitch and kp_roll (radians of neutral per radian, per update; e.g. 0.6), or choose law = \"leveling\", whose gains come from the rover",
+                    ));
+                }
+            }
+            Ok(ActiveSuspension::new(
+                c.clone(),
+                &sprung,
+                &slopes(model, rest),
+                model.coordinates.iter().map(|c| c.min).collect(),
+                model.coordinates.iter().map(|c| c.max).collect(),
+            ))
+        }
+        SuspensionLaw::Leveling => {
+            foreign(&eq42, "leveling", "eq42")?;
+            finite(&leveling)?;
+            let in_range = |name: &str, v: Option<f64>, lo: f64, lo_open: bool| {
+                if let Some(v) = v
+                    && (v > 1.0 || v < lo || (lo_open && v <= lo))
+                {
+                    let bound = if lo_open { "(0, 1]" } else { "[0, 1]" };
+                    return Err(err(
+                        &format!("active_suspension.{name}"),
+                        format!(
+                            "is the fraction of the error removed per update and must lie in {bound}, got {v}; leave it out for the rover's default"
+                        ),
+                    ));
+                }
+                Ok(())
+            };
+            in_range("attitude_gain", c.attitude_gain, 0.0, true)?;
+            in_range("centring_gain", c.centring_gain, 0.0, false)?;
+            in_range("warp_gain", c.warp_gain, 0.0, false)?;
+            if let Some(b) = c.rate_gain
+                && b < 0.0
+            {
+                return Err(err(
+                    "active_suspension.rate_gain",
+                    format!("must be ≥ 0 s, got {b}"),
+                ));
+            }
+            let y_eq = crate::quasi_static::flat_ground_equilibrium(model).map_err(|e| {
+                err(
+                    "active_suspension.law",
+                    format!(
+                        "the leveling law is settled at the static equilibrium on flat ground, which cannot be found: {e}"
+                    ),
+                )
+            })?;
+            ActiveSuspension::leveling(c.clone(), model, &y_eq).map_err(|e| {
+                err(
+                    "active_suspension.law",
+                    format!("the leveling law cannot run on this rover: {}", e.0),
+                )
+            })
+        }
+    }
 }
 
 /// The checks of a heading hold: finite set-point and line, the gains its

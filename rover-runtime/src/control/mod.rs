@@ -13,7 +13,10 @@ mod profile;
 mod speed;
 mod steering;
 
-pub use active_suspension::{ActiveSuspension, ActiveSuspensionConfig};
+pub use active_suspension::{
+    ActiveSuspension, ActiveSuspensionConfig, LEVELING_CROSSOVER_PER_UPDATE, Leveling,
+    SuspensionLaw,
+};
 pub use commands::{CommandFileError, CommandFileProblem, CommandSchedule, CommandsConfig};
 pub use controller::{
     ControlError, Controller, ControllerConfig, HEADING_INTEGRAL, LINE_INTEGRAL, SPEED_INTEGRAL,
