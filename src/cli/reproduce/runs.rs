@@ -154,3 +154,21 @@ pub fn rough_ratio(case: &Case) -> Result<Option<f64>, CliError> {
     };
     Ok(Some(c.radius / rk))
 }
+
+/// The largest deviation of a run from the full model's, row by row over
+/// the rows both have: X, Y, Z \[m\], roll, pitch, yaw \[deg\].
+pub fn deviations(full: &Path, other_csv: &Path) -> Result<[f64; 6], CliError> {
+    const NAMES: [&str; 6] = ["X", "Y", "Z", "phi", "theta", "psi"];
+    let base = columns(full, &NAMES)?;
+    let run = columns(other_csv, &NAMES)?;
+    let mut out = [0.0; 6];
+    for (k, o) in out.iter_mut().enumerate() {
+        let d = base[k]
+            .iter()
+            .zip(&run[k])
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        *o = if k >= 3 { d.to_degrees() } else { d };
+    }
+    Ok(out)
+}
