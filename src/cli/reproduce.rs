@@ -64,6 +64,8 @@ pub struct ReproduceArgs {
 
 /// Roughness of the paper's Fig. 11 cases.
 const FIG11_ROUGHNESS: [f64; 3] = [0.1, 0.3, 1.0];
+/// Speeds of the Fig. 11 speed table \[m/s\], at Z_R = 0.3.
+const FIG11_SPEEDS: [f64; 4] = [0.05, 0.1, 0.2, 0.5];
 /// Runs of a case whose median wall time is taken.
 const TIMED_RUNS: usize = 5;
 /// Steering angles of Fig. 5 \[deg\].
@@ -652,15 +654,15 @@ struct Levels {
     quasi_static: (Case, f64),
 }
 
-fn levels(work: &Path, z: f64) -> Result<Levels, CliError> {
-    let dir = work.join(format!("fig11/zr{z}"));
+fn levels(work: &Path, z: f64, speed: f64) -> Result<Levels, CliError> {
+    let dir = work.join(format!("fig11/zr{z}_v{speed}"));
     let terrain = CHOSEN.terrain(z, SEED);
     let level = |name: &str, extra: &str| {
         timed(
             "swing4",
             &slip(
                 &terrain,
-                0.1,
+                speed,
                 0.2,
                 40.0,
                 &format!("profile = true\n{extra}"),
@@ -687,7 +689,7 @@ fn fig11_12(v: &mut Values, work: &Path, figs: &Path) -> Result<(), CliError> {
     let mut failures = Vec::new();
     let mut first = None;
     for z in FIG11_ROUGHNESS {
-        let l = levels(work, z)?;
+        let l = levels(work, z, 0.1)?;
         let base = l.full.1;
         let share = |(c, time): &(Case, f64)| {
             if c.summary.complete {
@@ -742,6 +744,28 @@ fn fig11_12(v: &mut Values, work: &Path, figs: &Path) -> Result<(), CliError> {
         }
     }
     v.set("fig11_table", t);
+    let mut speeds = String::from(
+        "| V [m/s] | full [s] | simplified | linearized | quasi-static |\n|---|---|---|---|---|\n",
+    );
+    for speed in FIG11_SPEEDS {
+        let l = levels(work, 0.3, speed)?;
+        let base = l.full.1;
+        let share = |(c, time): &(Case, f64)| {
+            if c.summary.complete {
+                format!("{:.0} %", 100.0 * time / base)
+            } else {
+                format!("stopped at {:.1} s", c.summary.t_end)
+            }
+        };
+        let _ = writeln!(
+            speeds,
+            "| {speed} | {base:.3} | {} | {} | {} |",
+            share(&l.simplified),
+            share(&l.linearized),
+            share(&l.quasi_static),
+        );
+    }
+    v.set("fig11_speed_table", speeds);
     v.set(
         "fig11_failures",
         if failures.is_empty() {
