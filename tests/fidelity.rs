@@ -301,3 +301,133 @@ fn the_quasi_static_level_stands_on_slopes() {
         }
     }
 }
+
+/// Example 2 on the report's Fig. 11 terrain (Z_R = 0.3), Δτ = 0.2 N·m,
+/// V = 0.1 m/s, for 21 s: the full model, then the quasi-static level on its
+/// path.
+fn fig11_zr03(level: &str, path_from: Option<&std::path::Path>) -> Run {
+    let extra = path_from
+        .map(|p| format!("path_from = \"{}\"\n", p.display()))
+        .unwrap_or_default();
+    run(
+        "swing4",
+        &format!(
+            "duration = 21.0\nsettle = 6.0\noutput_rate = 10.0\nfidelity = \"{level}\"\n{extra}\
+             [terrain]\nkind = \"random\"\nz_r = 0.3\nseed = 1\nnode_amplitude = 0.5\nnode_spacing = 0.5\n\
+             patch_radius = 0.63\npatch_blend = 0.15\n\
+             [control.speed]\nspeed = 0.1\nkp = 10.0\n[control.steering]\nkind = \"slip\"\ndelta_tau = 0.2\n\
+             [integrator.bdf]\nrtol = 1e-6\natol = 1e-8\nmax_order = 2\n"
+        ),
+    )
+}
+
+/// The horizontal projection of the centre of mass of a CSV row.
+fn centre_of_mass(m: &rover_dynamics::Model, x: &[f64]) -> [f64; 2] {
+    let rot = rover_dynamics::attitude::Attitude::new(x[3], x[4], x[5]).rotation();
+    let mut centre = [x[0] * m.body.mass, x[1] * m.body.mass];
+    for b in &m.bodies {
+        let u = b.position.value(&x[6..]);
+        for k in 0..2 {
+            centre[k] += b.mass * (x[k] + (0..3).map(|i| rot[k][i] * u[i]).sum::<f64>());
+        }
+    }
+    centre.map(|c| c / m.total_mass())
+}
+
+/// On the paper's own Fig. 11 case the quasi-static level runs through
+/// t ≈ 10.1 s, where the ground under the front wheels falls away faster
+/// than their static deflection between two output instants (they start the
+/// solve in the air), and t ≈ 20.5 s, where the rover, balanced on three
+/// wheels with the fourth unloading, rocks over its diagonal. At every
+/// instant the equilibrium holds: the vertical wheel forces carry the
+/// weight, and their load-weighted contact point is the centre of mass's
+/// projection (no moment left), and the rover stands on at least three
+/// wheels.
+#[test]
+fn the_quasi_static_level_runs_the_fig11_case() {
+    let full = fig11_zr03("full", None);
+    assert!(full.summary.complete, "{:?}", full.summary.error);
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("fig11_zr03");
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("full.csv");
+    let mut text = full.header.join(",") + "\n";
+    for r in &full.rows {
+        text += &r
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(",");
+        text += "\n";
+    }
+    std::fs::write(&csv, text).unwrap();
+    let r = fig11_zr03("quasi_static", Some(&csv));
+    assert!(r.summary.complete, "{:?}", r.summary.error);
+    let m = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")
+        .unwrap()
+        .model;
+    let w = m.total_mass() * m.gravity;
+    let n = m.dof();
+    let k = |c: &str| r.header.iter().position(|h| h == c).unwrap();
+    let t = r.col("t");
+    assert!(*t.last().unwrap() >= 21.0 - 1e-9);
+    for row in &r.rows {
+        let x: Vec<f64> = (1..=n).map(|i| row[i]).collect();
+        let centre = centre_of_mass(&m, &x);
+        let (mut weight, mut mean, mut touching) = (0.0, [0.0; 2], 0);
+        for j in 1..=m.wheels.len() {
+            let f = row[k(&format!("Fn{j}"))];
+            touching += usize::from(f > 0.0);
+            weight += f;
+            mean[0] += f * row[k(&format!("H{j}X"))];
+            mean[1] += f * row[k(&format!("H{j}Y"))];
+        }
+        // The solver's tolerance is 1e-9 of the weight in force and in
+        // moment (N·m, with arms of a few tenths of a metre).
+        assert!(
+            (weight - w).abs() < 1e-8 * w,
+            "t = {}: loads {weight} N, weight {w} N",
+            row[0]
+        );
+        for c in 0..2 {
+            let off = mean[c] / weight - centre[c];
+            assert!(
+                off.abs() < 1e-8,
+                "t = {}: load centre off the centre of mass by {off} m",
+                row[0]
+            );
+        }
+        assert!(touching >= 3, "t = {}: on {touching} wheels", row[0]);
+    }
+}
+
+/// A side slope steeper than swing4's tipping angle (about atan(b/h) =
+/// atan(0.2/0.26) ≈ 38°, b the half track, h the height of the centre of
+/// mass) has no equilibrium: the error says the rover would tip about the
+/// downhill wheels 2 and 4, with the centre of mass outside their line.
+/// On 30° it stands.
+#[test]
+fn the_quasi_static_level_says_when_the_rover_would_tip() {
+    let scenario = |angle: f64| {
+        format!(
+            "duration = 0.1\nsettle = 0.0\noutput_rate = 10.0\nfidelity = \"quasi_static\"\n[terrain]\n\
+             kind = \"slope\"\nangle_deg = {angle}\ndirection_deg = 90.0\n"
+        )
+    };
+    assert!(run("swing4", &scenario(30.0)).summary.complete);
+    for angle in [45.0f64, 60.0] {
+        let r = run("swing4", &scenario(angle));
+        assert!(!r.summary.complete);
+        let e = r.summary.error.unwrap();
+        assert!(
+            e.contains("the rover would tip about wheels 2 and 4"),
+            "{angle}°: {e}"
+        );
+        let outside: f64 = e
+            .split("its centre of mass is ")
+            .nth(1)
+            .and_then(|s| s.split(" m outside").next())
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("{e}"));
+        assert!(outside > 0.0, "{angle}°: {outside} m");
+    }
+}

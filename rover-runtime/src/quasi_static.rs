@@ -37,6 +37,45 @@ pub enum QuasiStaticError {
         /// Largest residual left [N or N·m].
         residual: f64,
     },
+    /// No equilibrium exists near the imposed pose: the vertical wheel
+    /// forces, which can only push, balance gravity's moment only when the
+    /// centre of mass's vertical projection lies inside the support polygon
+    /// (the convex hull of the loaded contact points), and it lies outside.
+    #[error(
+        "no quasi-static equilibrium at X = {x:.3} m, Y = {y:.3} m: the rover would tip about {}: \
+         its centre of mass is {outside:.3} m outside the support polygon of the wheels on the ground ({}){}; \
+         use a dynamic fidelity level here",
+        wheel_list(edge),
+        wheel_list(touching),
+        stops_note(on_stops)
+    )]
+    Tips {
+        /// Imposed X \[m\].
+        x: f64,
+        /// Imposed Y \[m\].
+        y: f64,
+        /// The wheels (0-based) of the support polygon's edge (or corner)
+        /// the centre of mass lies beyond.
+        edge: Vec<usize>,
+        /// Horizontal distance of the centre of mass beyond that edge \[m\].
+        outside: f64,
+        /// The wheels (0-based) on the ground.
+        touching: Vec<usize>,
+        /// Suspension coordinates (0-based) beyond their travel, on a bump
+        /// stop.
+        on_stops: Vec<usize>,
+    },
+    /// No wheel touches the ground anywhere Newton–Raphson looked.
+    #[error(
+        "no quasi-static equilibrium at X = {x:.3} m, Y = {y:.3} m: no wheel reaches the ground; \
+         use a dynamic fidelity level here"
+    )]
+    NoContact {
+        /// Imposed X \[m\].
+        x: f64,
+        /// Imposed Y \[m\].
+        y: f64,
+    },
     /// The equilibrium puts a suspension coordinate beyond its travel: the
     /// rover would rest on a bump stop, where its fitted kinematics do not
     /// reach.
@@ -66,6 +105,25 @@ pub enum QuasiStaticError {
     },
 }
 
+/// "wheel 3", "wheels 1 and 3", "wheels 1, 2 and 4" (1-based).
+fn wheel_list(w: &[usize]) -> String {
+    let n: Vec<String> = w.iter().map(|k| (k + 1).to_string()).collect();
+    match n.len() {
+        0 => "no wheel".into(),
+        1 => format!("wheel {}", n[0]),
+        k => format!("wheels {} and {}", n[..k - 1].join(", "), n[k - 1]),
+    }
+}
+
+/// ", suspension coordinates y2 on their bump stops" or nothing.
+fn stops_note(c: &[usize]) -> String {
+    if c.is_empty() {
+        return String::new();
+    }
+    let n: Vec<String> = c.iter().map(|k| format!("y{}", k + 1)).collect();
+    format!(", suspension coordinate(s) {} on a bump stop", n.join(", "))
+}
+
 /// The equilibrium solver with its scratch storage.
 pub struct QuasiStatic<'a, H> {
     model: &'a Model,
@@ -79,6 +137,18 @@ pub struct QuasiStatic<'a, H> {
     x: Vec<f64>,
     zeros: Vec<f64>,
     gq: Vec<f64>,
+    // Scratch of a solve: residuals, trial point, Jacobian, step, iterate,
+    // best iterate.
+    r: Vec<f64>,
+    trial: Vec<f64>,
+    r_trial: Vec<f64>,
+    jac: Vec<f64>,
+    step: Vec<f64>,
+    work: Vec<f64>,
+    best: Vec<f64>,
+    r_check: Vec<f64>,
+    /// The pose of the current solution, once one was solved.
+    solved_at: Option<[f64; 3]>,
     /// The current solution [Z, φ, θ, y…].
     pub q: Vec<f64>,
     /// Residual evaluations so far.
@@ -92,6 +162,13 @@ const MAX_ITERATIONS: usize = 50;
 
 /// Largest change of any unknown in one Newton step [m or rad].
 const MAX_STEP: f64 = 0.1;
+
+/// Smallest fraction of the way from the last solved pose to the next that
+/// the continuation steps by before it gives up.
+const MIN_FRACTION: f64 = 1.0 / 64.0;
+
+/// Largest pseudo-transient iterations per instant.
+const PSEUDO_TRANSIENT_ITERATIONS: usize = 400;
 
 impl<'a, H: HeightField> QuasiStatic<'a, H> {
     /// A solver starting from `q0` = [Z, φ, θ, y…].
@@ -120,6 +197,15 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             x: Vec::with_capacity(model.dof()),
             zeros: vec![0.0; model.dof()],
             gq: vec![0.0; model.dof()],
+            r: vec![0.0; q0.len()],
+            trial: vec![0.0; q0.len()],
+            r_trial: vec![0.0; q0.len()],
+            jac: vec![0.0; q0.len() * q0.len()],
+            step: vec![0.0; q0.len()],
+            work: vec![0.0; q0.len()],
+            best: vec![0.0; q0.len()],
+            r_check: vec![0.0; q0.len()],
+            solved_at: None,
             q: q0,
             residual_evals: 0,
             iterations: 0,
@@ -305,40 +391,284 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
     }
 
     /// Solve the equilibrium at pose (X, Y, ψ) from the previous solution;
-    /// returns the iterations used.
+    /// returns the Newton iterations used.
+    ///
+    /// When Newton–Raphson does not converge from the previous solution (a
+    /// wheel whose ground fell away by more than its static deflection since
+    /// the last pose starts in the air, where the Jacobian does not see the
+    /// ground and is nearly singular), the pose is approached by
+    /// continuation: from the last solved pose in steps halved on each
+    /// failure, down to [`MIN_FRACTION`] of the way. Where even that fails,
+    /// the error says why: the rover would tip (the centre of mass outside
+    /// the support polygon), no wheel reaches the ground, or (neither)
+    /// Newton–Raphson did not converge.
     pub fn solve(&mut self, pose: [f64; 3]) -> Result<usize, QuasiStaticError> {
+        let first = match self.newton(pose)? {
+            Ok(it) => {
+                self.solved_at = Some(pose);
+                return Ok(it);
+            }
+            Err(residual) => residual,
+        };
+        let mut total = MAX_ITERATIONS;
+        let (at, residual) = match self.solved_at {
+            Some(from) => match self.continuation(from, pose, &mut total)? {
+                Ok(()) => {
+                    self.solved_at = Some(pose);
+                    return Ok(total);
+                }
+                Err(failed) => failed,
+            },
+            None => (pose, first),
+        };
+        // The branch followed ends in a fold (a rover balanced on three
+        // wheels of four, or rocking on a diagonal, whose equilibrium turns
+        // unstable), or the start is far from any equilibrium: the rover
+        // snaps to another equilibrium, which a damped flow towards a
+        // stable one finds from the last solution.
+        let diagnosis = self.diagnose(at, total, residual);
+        let it = self.pseudo_transient(pose)?;
+        total += it.unwrap_or(PSEUDO_TRANSIENT_ITERATIONS);
+        if it.is_ok() {
+            self.solved_at = Some(pose);
+            return Ok(total);
+        }
+        Err(diagnosis)
+    }
+
+    /// Pseudo-transient continuation at `pose` from the current solution:
+    /// the steps `(D/Δτ − J)·Δq = r`, with D the magnitudes of the
+    /// Jacobian's diagonal, follow the damped flow `D·q̇ = Q(q)` towards a
+    /// stable equilibrium while Δτ is small and become Newton's as the
+    /// residual falls and Δτ grows (switched evolution relaxation:
+    /// Δτ ← Δτ·|r_old|/|r_new|). `Ok(Ok(iterations))` with `q` updated, or
+    /// `Ok(Err(residual))` with `q` unchanged.
+    fn pseudo_transient(&mut self, pose: [f64; 3]) -> Result<Result<usize, f64>, QuasiStaticError> {
         let k = self.q.len();
         let weight = self.model.total_mass() * self.model.gravity;
         let tol = 1e-9 * weight.max(1e-12);
-        let mut r = vec![0.0; k];
-        let mut trial = vec![0.0; k];
-        let mut r_trial = vec![0.0; k];
-        let mut jac = vec![0.0; k * k];
-        let mut q = self.q.clone();
-        self.residual(pose, &q, &mut r)?;
+        let mut r = core::mem::take(&mut self.r);
+        let mut trial = core::mem::take(&mut self.trial);
+        let mut r_trial = core::mem::take(&mut self.r_trial);
+        let mut jac = core::mem::take(&mut self.jac);
+        let mut step = core::mem::take(&mut self.step);
+        let mut q = core::mem::take(&mut self.work);
         let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-        for it in 0..MAX_ITERATIONS {
-            if norm(&r) <= tol {
-                self.q = q;
+        let mut out = Ok(Err(f64::INFINITY));
+        q.copy_from_slice(&self.q);
+        let mut dtau = 1e-2;
+        match self.residual(pose, &q, &mut r) {
+            Err(e) => out = Err(e),
+            Ok(()) => {
+                for it in 0..PSEUDO_TRANSIENT_ITERATIONS {
+                    let now = norm(&r);
+                    out = Ok(Err(now));
+                    if now <= tol {
+                        match self.stands(pose, &q) {
+                            Ok(true) => {}
+                            Ok(false) => break,
+                            Err(e) => {
+                                out = Err(e);
+                                break;
+                            }
+                        }
+                        out = Ok(Ok(it));
+                        break;
+                    }
+                    let mut failed = None;
+                    for c in 0..k {
+                        let h = 1e-7 * (1.0 + q[c].abs());
+                        trial.copy_from_slice(&q);
+                        trial[c] += h;
+                        if let Err(e) = self.residual(pose, &trial, &mut r_trial) {
+                            failed = Some(e);
+                            break;
+                        }
+                        for row in 0..k {
+                            jac[row * k + c] = (r_trial[row] - r[row]) / h;
+                        }
+                    }
+                    if let Some(e) = failed {
+                        out = Err(e);
+                        break;
+                    }
+                    for i in 0..k {
+                        let d = jac[i * k + i].abs().max(1e-6);
+                        for c in 0..k {
+                            jac[i * k + c] = -jac[i * k + c];
+                        }
+                        jac[i * k + i] += d / dtau;
+                        step[i] = r[i];
+                    }
+                    if !gauss_solve(&mut jac, &mut step, k) {
+                        dtau *= 0.1;
+                        continue;
+                    }
+                    let longest = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    if longest > MAX_STEP {
+                        let shrink = MAX_STEP / longest;
+                        step.iter_mut().for_each(|v| *v *= shrink);
+                    }
+                    for i in 0..k {
+                        trial[i] = q[i] + step[i];
+                    }
+                    if let Err(e) = self.residual(pose, &trial, &mut r_trial) {
+                        out = Err(e);
+                        break;
+                    }
+                    let next = norm(&r_trial);
+                    // A step that more than doubles the residual is retaken
+                    // shorter; one that lowers it lengthens the next; the
+                    // flow may climb a little on its way to a stable
+                    // equilibrium.
+                    if next.is_nan() || next > 2.0 * now {
+                        dtau *= 0.25;
+                        continue;
+                    }
+                    if next < now {
+                        dtau = (2.0 * dtau).min(1e12);
+                    }
+                    q.copy_from_slice(&trial);
+                    r.copy_from_slice(&r_trial);
+                }
+                if let Ok(Err(_)) = out
+                    && norm(&r) <= tol
+                    && matches!(self.stands(pose, &q), Ok(true))
+                {
+                    out = Ok(Ok(PSEUDO_TRANSIENT_ITERATIONS));
+                }
+            }
+        }
+        match out {
+            Ok(Ok(it)) => {
+                self.q.copy_from_slice(&q);
                 self.iterations += it as u64;
-                return Ok(it);
+            }
+            _ => self.iterations += PSEUDO_TRANSIENT_ITERATIONS as u64,
+        }
+        (self.r, self.trial, self.r_trial, self.jac) = (r, trial, r_trial, jac);
+        (self.step, self.work) = (step, q);
+        out
+    }
+
+    /// Continuation from the solution at `from` to `to` in steps halved on
+    /// each failure: `Ok(Err((pose, residual)))` where the step fell below
+    /// [`MIN_FRACTION`] of the way, with `q` the last solution reached.
+    #[allow(clippy::type_complexity)]
+    fn continuation(
+        &mut self,
+        from: [f64; 3],
+        pose: [f64; 3],
+        total: &mut usize,
+    ) -> Result<Result<(), ([f64; 3], f64)>, QuasiStaticError> {
+        let (mut done, mut h) = (0.0f64, 0.5f64);
+        while done < 1.0 {
+            let next = (done + h).min(1.0);
+            let target = [0, 1, 2].map(|i| from[i] + next * (pose[i] - from[i]));
+            match self.newton(target)? {
+                Ok(it) => {
+                    *total += it;
+                    done = next;
+                    h = (2.0 * h).min(0.5);
+                }
+                Err(residual) => {
+                    *total += MAX_ITERATIONS;
+                    h *= 0.5;
+                    if h < MIN_FRACTION {
+                        return Ok(Err((target, residual)));
+                    }
+                }
+            }
+        }
+        Ok(Ok(()))
+    }
+
+    /// Newton–Raphson at `pose` from the current solution: `Ok(Ok(iterations))`
+    /// with `q` updated, or `Ok(Err(residual))` with `q` unchanged and the
+    /// iterate of least residual in `best`.
+    fn newton(&mut self, pose: [f64; 3]) -> Result<Result<usize, f64>, QuasiStaticError> {
+        let k = self.q.len();
+        let weight = self.model.total_mass() * self.model.gravity;
+        let tol = 1e-9 * weight.max(1e-12);
+        let mut r = core::mem::take(&mut self.r);
+        let mut trial = core::mem::take(&mut self.trial);
+        let mut r_trial = core::mem::take(&mut self.r_trial);
+        let mut jac = core::mem::take(&mut self.jac);
+        let mut step = core::mem::take(&mut self.step);
+        let mut q = core::mem::take(&mut self.work);
+        let mut best = core::mem::take(&mut self.best);
+        let out = self.iterate(
+            pose,
+            tol,
+            [
+                &mut r,
+                &mut trial,
+                &mut r_trial,
+                &mut jac,
+                &mut step,
+                &mut q,
+                &mut best,
+            ],
+        );
+        if let Ok(Ok(it)) = out {
+            self.q.copy_from_slice(&q);
+            self.iterations += it as u64;
+        } else {
+            self.iterations += MAX_ITERATIONS as u64;
+        }
+        (self.r, self.trial, self.r_trial, self.jac) = (r, trial, r_trial, jac);
+        (self.step, self.work, self.best) = (step, q, best);
+        debug_assert_eq!(k, self.r.len());
+        out
+    }
+
+    /// The iterations of [`QuasiStatic::newton`], on taken-out scratch
+    /// `[r, trial, r_trial, jac, step, q, best]`.
+    fn iterate(
+        &mut self,
+        pose: [f64; 3],
+        tol: f64,
+        [r, trial, r_trial, jac, step, q, best]: [&mut Vec<f64>; 7],
+    ) -> Result<Result<usize, f64>, QuasiStaticError> {
+        let k = self.q.len();
+        q.copy_from_slice(&self.q);
+        self.residual(pose, q, r)?;
+        let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
+        best.copy_from_slice(q);
+        let mut least = norm(r);
+        for it in 0..MAX_ITERATIONS {
+            let now = norm(r);
+            if now <= tol {
+                // An unstable equilibrium (a rover balanced on a diagonal
+                // or on one wheel) is not where it stays.
+                if !self.stands(pose, q)? {
+                    return Ok(Err(now));
+                }
+                return Ok(Ok(it));
+            }
+            if now < least {
+                least = now;
+                best.copy_from_slice(q);
             }
             // Forward-difference Jacobian.
             for c in 0..k {
                 let h = 1e-7 * (1.0 + q[c].abs());
-                trial.copy_from_slice(&q);
+                trial.copy_from_slice(q);
                 trial[c] += h;
-                self.residual(pose, &trial, &mut r_trial)?;
+                self.residual(pose, trial, r_trial)?;
                 for row in 0..k {
                     jac[row * k + c] = (r_trial[row] - r[row]) / h;
                 }
             }
-            let mut step: Vec<f64> = r.iter().map(|v| -v).collect();
-            if !gauss_solve(&mut jac, &mut step, k) {
+            for (s, v) in step.iter_mut().zip(r.iter()) {
+                *s = -v;
+            }
+            if !gauss_solve(jac, step, k) {
                 // No wheel in contact (a singular Jacobian): lower the rover
                 // by a millimetre and try again.
                 q[0] -= 1e-3;
-                self.residual(pose, &q, &mut r)?;
+                self.residual(pose, q, r)?;
                 continue;
             }
             // A step no larger than a trust radius: where a wheel is off the
@@ -352,33 +682,203 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                 step.iter_mut().for_each(|v| *v *= shrink);
             }
             // Backtracking (Armijo) on ½|r|².
-            let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
-            let base = sq(&r);
+            let base = sq(r);
             let mut lambda = 1.0;
             loop {
                 for i in 0..k {
                     trial[i] = q[i] + lambda * step[i];
                 }
-                self.residual(pose, &trial, &mut r_trial)?;
-                if sq(&r_trial) <= (1.0 - 1e-4 * lambda) * base || lambda < 1e-3 {
+                self.residual(pose, trial, r_trial)?;
+                if sq(r_trial) <= (1.0 - 1e-4 * lambda) * base || lambda < 1e-3 {
                     break;
                 }
                 lambda *= 0.5;
             }
-            q.copy_from_slice(&trial);
-            r.copy_from_slice(&r_trial);
+            q.copy_from_slice(trial);
+            r.copy_from_slice(r_trial);
         }
-        if norm(&r) <= tol {
-            self.q = q;
-            return Ok(MAX_ITERATIONS);
+        let now = norm(r);
+        if now <= tol && self.stands(pose, q)? {
+            return Ok(Ok(MAX_ITERATIONS));
         }
-        Err(QuasiStaticError::NoConvergence {
-            x: pose[0],
-            y: pose[1],
-            iterations: MAX_ITERATIONS,
-            residual: norm(&r),
-        })
+        if now < least {
+            least = now;
+            best.copy_from_slice(q);
+        }
+        Ok(Err(least))
     }
+
+    /// Whether the rover stands at the equilibrium `q`: at least three
+    /// wheels on the ground, not in a line, with the centre of mass's
+    /// projection inside their support polygon. An equilibrium on two
+    /// wheels (a diagonal) or on one is a balance that the slightest
+    /// disturbance tips, not a rest: Newton–Raphson finds such balances,
+    /// and the rover does not stay in them.
+    fn stands(&mut self, pose: [f64; 3], q: &[f64]) -> Result<bool, QuasiStaticError> {
+        let mut r = core::mem::take(&mut self.r_check);
+        let out = self.residual(pose, q, &mut r);
+        self.r_check = r;
+        out?;
+        let centre = self.centre_of_mass(pose, q);
+        let points: Vec<(usize, [f64; 2])> = (0..self.model.wheels.len())
+            .filter(|&k| self.loads[k].force[2] > 0.0)
+            .map(|k| (k, [self.points[k][0], self.points[k][1]]))
+            .collect();
+        Ok(convex_hull(&points).len() >= 3 && outside_support(&points, centre).is_none())
+    }
+
+    /// The horizontal projection of the centre of mass at pose and `q`.
+    fn centre_of_mass(&self, pose: [f64; 3], q: &[f64]) -> [f64; 2] {
+        let model = self.model;
+        let rot = Attitude::new(q[1], q[2], pose[2]).rotation();
+        let mut centre = [pose[0] * model.body.mass, pose[1] * model.body.mass];
+        for b in &model.bodies {
+            let u = b.position.value(&q[3..]);
+            for (i, c) in centre.iter_mut().enumerate() {
+                *c += b.mass * (pose[i] + (0..3).map(|j| rot[i][j] * u[j]).sum::<f64>());
+            }
+        }
+        centre.map(|c| c / model.total_mass())
+    }
+
+    /// Why no equilibrium was found at `pose`, judged at the iterate of
+    /// least residual: the centre of mass outside the support polygon of
+    /// the loaded wheels (the rover tips), no wheel on the ground, or
+    /// neither (Newton–Raphson did not converge).
+    fn diagnose(&mut self, pose: [f64; 3], iterations: usize, residual: f64) -> QuasiStaticError {
+        let model = self.model;
+        let q = self.best.clone();
+        let mut r = vec![0.0; q.len()];
+        if let Err(e) = self.residual(pose, &q, &mut r) {
+            return e;
+        }
+        let touching: Vec<usize> = (0..model.wheels.len())
+            .filter(|&k| self.loads[k].force[2] > 0.0)
+            .collect();
+        if touching.is_empty() {
+            return QuasiStaticError::NoContact {
+                x: pose[0],
+                y: pose[1],
+            };
+        }
+        let centre = self.centre_of_mass(pose, &q);
+        let points: Vec<(usize, [f64; 2])> = touching
+            .iter()
+            .map(|&k| (k, [self.points[k][0], self.points[k][1]]))
+            .collect();
+        let on_stops: Vec<usize> = model
+            .coordinates
+            .iter()
+            .zip(&q[3..])
+            .enumerate()
+            .filter(|(_, (c, v))| **v < c.min || **v > c.max)
+            .map(|(i, _)| i)
+            .collect();
+        match outside_support(&points, centre) {
+            Some((edge, outside)) => QuasiStaticError::Tips {
+                x: pose[0],
+                y: pose[1],
+                edge,
+                outside,
+                touching,
+                on_stops,
+            },
+            None => QuasiStaticError::NoConvergence {
+                x: pose[0],
+                y: pose[1],
+                iterations,
+                residual,
+            },
+        }
+    }
+}
+
+/// Where `centre` lies outside the convex hull of `points` (wheel, X, Y):
+/// the wheels of the hull's edge (or the corner, or the lone point) it lies
+/// beyond and its distance from it \[m\]; `None` inside (within 1e-9 m).
+/// Two or more points in a line make a segment, whose distance is the one
+/// reported.
+fn outside_support(points: &[(usize, [f64; 2])], centre: [f64; 2]) -> Option<(Vec<usize>, f64)> {
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    // Distance from the centre to segment ab, with the nearer end when the
+    // foot falls outside it.
+    let to_segment = |a: [f64; 2], b: [f64; 2]| {
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len2 = dx * dx + dy * dy;
+        let t = if len2 > 0.0 {
+            ((centre[0] - a[0]) * dx + (centre[1] - a[1]) * dy) / len2
+        } else {
+            0.0
+        };
+        let t = t.clamp(0.0, 1.0);
+        (dist(centre, [a[0] + t * dx, a[1] + t * dy]), t)
+    };
+    let hull = convex_hull(points);
+    let near = |i: usize, j: usize| {
+        let (a, b) = (hull[i], hull[j]);
+        let (d, t) = to_segment(a.1, b.1);
+        let wheels = if t <= 0.0 {
+            vec![a.0]
+        } else if t >= 1.0 {
+            vec![b.0]
+        } else {
+            let mut w = vec![a.0, b.0];
+            w.sort_unstable();
+            w
+        };
+        (wheels, d)
+    };
+    match hull.len() {
+        0 => None,
+        1 => Some((vec![hull[0].0], dist(centre, hull[0].1))),
+        2 => Some(near(0, 1)),
+        n => {
+            // Counter-clockwise: the centre is outside an edge it lies to
+            // the right of; the nearest such edge is the one it tips over.
+            let mut found: Option<(Vec<usize>, f64)> = None;
+            for i in 0..n {
+                let (a, b) = (hull[i].1, hull[(i + 1) % n].1);
+                let cross = (b[0] - a[0]) * (centre[1] - a[1]) - (b[1] - a[1]) * (centre[0] - a[0]);
+                if cross < -1e-9 * dist(a, b) {
+                    let (w, d) = near(i, (i + 1) % n);
+                    if found.as_ref().is_none_or(|f| d < f.1) {
+                        found = Some((w, d));
+                    }
+                }
+            }
+            found
+        }
+    }
+}
+
+/// The convex hull of points (wheel, X, Y), counter-clockwise (Andrew's
+/// monotone chain); collinear points give the segment's two ends.
+fn convex_hull(points: &[(usize, [f64; 2])]) -> Vec<(usize, [f64; 2])> {
+    let mut p = points.to_vec();
+    p.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]).then(a.1[1].total_cmp(&b.1[1])));
+    if p.len() < 3 {
+        return p;
+    }
+    let turn = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let mut hull: Vec<(usize, [f64; 2])> = Vec::with_capacity(2 * p.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        for &pt in p.iter() {
+            while hull.len() >= start + 2
+                && turn(hull[hull.len() - 2].1, hull[hull.len() - 1].1, pt.1) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(pt);
+        }
+        hull.pop();
+        if pass == 0 {
+            p.reverse();
+        }
+    }
+    hull
 }
 
 /// Gaussian elimination with partial pivoting; false if singular.

@@ -105,6 +105,8 @@ const COINCIDE: f64 = 0.02;
 const FIG11_PAPER_SHARES: [f64; 3] = [0.70, 0.58, 0.15];
 /// How far from the paper's share ours may be (percentage points / 100).
 const FIG11_SHARE_TOLERANCE: f64 = 0.15;
+/// Speeds of the Fig. 11 speed table \[m/s\], at Z_R = 0.3.
+const FIG11_SPEEDS: [f64; 4] = [0.05, 0.1, 0.2, 0.5];
 /// Runs of a case whose median wall time is taken.
 const TIMED_RUNS: usize = 5;
 /// Steering angles of Fig. 5 \[deg\].
@@ -178,7 +180,7 @@ fn quick(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
     let cases = fig5_runs(work, &QUICK_FIG5_DELTAS, plan)?;
     judged.extend(fig5_claims(&QUICK_FIG5_DELTAS, &cases)?);
     for z in [FIG12_ROUGHNESS, FIG11_CLAIM_ROUGHNESS] {
-        let l = levels_with(work, z, plan, 1)?;
+        let l = levels_with(work, z, FIG11_SPEED, plan, 1)?;
         if z == FIG12_ROUGHNESS {
             judged.extend(fig12_claims(&l)?);
         } else {
@@ -833,21 +835,27 @@ struct Levels {
     quasi_static: (Case, f64),
 }
 
-fn levels(work: &Path, z: f64) -> Result<Levels, CliError> {
-    levels_with(work, z, &calibration::FULL, TIMED_RUNS)
+fn levels(work: &Path, z: f64, speed: f64) -> Result<Levels, CliError> {
+    levels_with(work, z, speed, &calibration::FULL, TIMED_RUNS)
 }
 
 /// [`levels`] for the plan's Figs. 11–12 duration, each level timed over
 /// `runs` runs.
-fn levels_with(work: &Path, z: f64, plan: &Plan, runs: usize) -> Result<Levels, CliError> {
-    let dir = work.join(format!("fig11/zr{z}"));
+fn levels_with(
+    work: &Path,
+    z: f64,
+    speed: f64,
+    plan: &Plan,
+    runs: usize,
+) -> Result<Levels, CliError> {
+    let dir = work.join(format!("fig11/zr{z}_v{speed}"));
     let terrain = CHOSEN.terrain(z, SEED);
     let level = |name: &str, extra: &str| {
         timed(
             "swing4",
             &slip(
                 &terrain,
-                FIG11_SPEED,
+                speed,
                 FIG11_DELTA_TAU,
                 plan.fig11,
                 &format!("profile = true\n{extra}"),
@@ -880,7 +888,7 @@ fn fig11_12(
     let mut failures = Vec::new();
     let mut first = None;
     for z in FIG11_ROUGHNESS {
-        let l = levels(work, z)?;
+        let l = levels(work, z, FIG11_SPEED)?;
         if z == FIG11_CLAIM_ROUGHNESS {
             judged.extend(fig11_claims(&l));
         }
@@ -938,6 +946,28 @@ fn fig11_12(
         }
     }
     v.set("fig11_table", t);
+    let mut speeds = String::from(
+        "| V [m/s] | full [s] | simplified | linearized | quasi-static |\n|---|---|---|---|---|\n",
+    );
+    for speed in FIG11_SPEEDS {
+        let l = levels(work, FIG11_CLAIM_ROUGHNESS, speed)?;
+        let base = l.full.1;
+        let share = |(c, time): &(Case, f64)| {
+            if c.summary.complete {
+                format!("{:.0} %", 100.0 * time / base)
+            } else {
+                format!("stopped at {:.1} s", c.summary.t_end)
+            }
+        };
+        let _ = writeln!(
+            speeds,
+            "| {speed} | {base:.3} | {} | {} | {} |",
+            share(&l.simplified),
+            share(&l.linearized),
+            share(&l.quasi_static),
+        );
+    }
+    v.set("fig11_speed_table", speeds);
     v.set(
         "fig11_failures",
         if failures.is_empty() {
@@ -951,7 +981,7 @@ fn fig11_12(
     );
     let l = first.ok_or_else(|| other("no Fig. 11 case"))?;
     judged.extend(fig12_claims(&l)?);
-    fig12(v, figs, &l)
+    fig12(v, work, figs, &l)
 }
 
 /// Fig. 11's claims on the Z_R = 0.3 case: judged on wall times, so
@@ -1071,18 +1101,37 @@ fn fig12_claims(l: &Levels) -> Result<Vec<Judged>, CliError> {
 }
 
 /// Fig. 12: the reduced levels against the full one.
-fn fig12(v: &mut Values, figs: &Path, l: &Levels) -> Result<(), CliError> {
+fn fig12(v: &mut Values, work: &Path, figs: &Path, l: &Levels) -> Result<(), CliError> {
     let names = ["X", "Y", "Z", "phi", "theta", "psi"];
     let mut t = String::from(
         "| level | max ΔX [m] | max ΔY [m] | max ΔZ [m] | max Δφ [°] | max Δθ [°] | max Δψ [°] |\n|---|---|---|---|---|---|---|\n",
     );
+    // The linearized level's variant that keeps R exact (docs/FIDELITY.md),
+    // on the same case, for the table only.
+    let exact_rotation = run_case(
+        "swing4",
+        &slip(
+            &CHOSEN.terrain(FIG12_ROUGHNESS, SEED),
+            FIG11_SPEED,
+            FIG11_DELTA_TAU,
+            calibration::FULL.fig11,
+            "fidelity = \"linearized_exact_rotation\"",
+        ),
+        &work.join("fig12/linearized_exact_rotation.csv"),
+    )?;
     let all = [
         ("full", &l.full.0),
         ("simplified", &l.simplified.0),
         ("linearized", &l.linearized.0),
         ("quasi-static", &l.quasi_static.0),
     ];
-    for (label, case) in &all[1..] {
+    let table = [
+        ("simplified", &l.simplified.0),
+        ("linearized (the paper's)", &l.linearized.0),
+        ("linearized, exact rotation", &exact_rotation),
+        ("quasi-static", &l.quasi_static.0),
+    ];
+    for (label, case) in table {
         let _ = write!(t, "| {label} |");
         for d in deviations(&l.full.0.csv, &case.csv)? {
             let _ = write!(t, " {d:.3} |");
