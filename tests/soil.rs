@@ -277,3 +277,83 @@ fn a_run_that_ends_as_settling_does_completes() {
     assert_eq!(r.summary.status, Status::Completed, "{:?}", r.summary.error);
     assert_eq!(*r.col("t").last().unwrap(), 3.0);
 }
+
+/// The shipped anti-spin climb against the same climb with the torque
+/// shared evenly: with anti-spin the wheels slip less (the front ones, the
+/// least loaded, no longer spin up), and the rover climbs further.
+#[test]
+fn anti_spin_climbs_a_soft_slope_further_with_less_slip_than_even_shares() {
+    let anti_spin = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("scenarios/soil_slope_anti_spin.toml"),
+    )
+    .unwrap();
+    let even = anti_spin
+        .replace("distribution = \"anti_spin\"", "distribution = \"even\"")
+        .lines()
+        .filter(|l| !l.starts_with("slip_"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let (a, e) = (run("mer", &anti_spin), run("mer", &even));
+    for r in [&a, &e] {
+        assert_eq!(r.summary.status, Status::Completed);
+    }
+    let peak = |r: &Run| {
+        let soil = r.summary.soil.as_ref().unwrap();
+        soil.iter().map(|w| w.peak_slip).fold(0.0, f64::max)
+    };
+    assert!(
+        a.summary.distance_m > 1.2 * e.summary.distance_m,
+        "anti-spin {} m, even {} m",
+        a.summary.distance_m,
+        e.summary.distance_m
+    );
+    assert!(
+        mean_slip(&a) < mean_slip(&e) - 0.05,
+        "{} {}",
+        mean_slip(&a),
+        mean_slip(&e)
+    );
+    assert!(
+        peak(&a) < 0.8 && peak(&e) > 0.9,
+        "{} {}",
+        peak(&a),
+        peak(&e)
+    );
+}
+
+/// The anti-spin distribution reads a slip the rigid law does not have:
+/// on rigid ground it is refused, naming the field; and its parameters
+/// are checked.
+#[test]
+fn anti_spin_is_refused_on_rigid_ground_and_with_bad_parameters() {
+    let soft = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("scenarios/soil_slope_anti_spin.toml"),
+    )
+    .unwrap()
+    .replace("duration = 40.0", "duration = 0.5")
+    .replace("settle = 3.0", "settle = 0.2");
+    let rigid = soft.replace("soil = \"dry_sand\"", "");
+    let e = try_run(&rigid);
+    assert!(
+        e.contains("control.speed.distribution") && e.contains("soil"),
+        "{e}"
+    );
+    let e = try_run(&soft.replace("slip_threshold = 0.2", "slip_threshold = 1.5"));
+    assert!(
+        e.contains("control.speed.slip_threshold") && e.contains("[0, 1)"),
+        "{e}"
+    );
+    let e = try_run(&soft.replace("slip_band = 0.2", "slip_band = 0.0"));
+    assert!(
+        e.contains("control.speed.slip_band") && e.contains("> 0"),
+        "{e}"
+    );
+    let e = try_run(&soft.replace("\"anti_spin\"", "\"even\""));
+    assert!(
+        e.contains("control.speed.slip_threshold") && e.contains("anti_spin"),
+        "{e}"
+    );
+    assert_eq!(try_run(&soft), "");
+}

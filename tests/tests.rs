@@ -25,6 +25,7 @@ mod profile;
 #[cfg(feature = "reproduce")]
 mod reproduction;
 mod soil;
+mod steer_characteristic;
 mod sweep;
 #[cfg(unix)]
 mod untrusted_files;

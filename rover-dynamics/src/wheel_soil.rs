@@ -93,6 +93,30 @@ fn reported_slip<S: Scalar + PartialOrd>(u: S, v: S) -> S {
         .min(S::one())
 }
 
+/// The slip of wheel `s` on its soil at the patches of `contact`, spinning
+/// at `spin` \[rad/s\] with radius `radius` \[m\], for a controller to
+/// read in the same evaluation (before the loads): the deepest patch's,
+/// rim speed r·ω against the centre's speed along that patch's tangent, as
+/// [`soil_wheel_load`] reports it, except that the sign of the travel is
+/// blended over |u + v| < v_ε ([`SOIL_V_EPS`]) so that the slip is
+/// continuous through standstill (the report's flips sign there, and a
+/// controller fed a jump would chatter); `None` for a wheel in the air.
+pub fn wheel_slip(s: &WheelState, contact: &Contact, spin: f64, radius: f64) -> Option<f64> {
+    // The first patch of the largest clamped sinkage, as the report takes.
+    let mut deepest: Option<(&Patch, f64)> = None;
+    for p in contact.patches() {
+        let sinkage = p.deflection.max(1e-12 * radius).min(radius);
+        if deepest.is_none_or(|(_, d)| sinkage > d) {
+            deepest = Some((p, sinkage));
+        }
+    }
+    let (p, _) = deepest?;
+    let (u, v) = (radius * spin, dot(s.velocity, p.tangent));
+    let scale = u.abs().max(v.abs()).max(SOIL_V_EPS);
+    let sign = 2.0 * forward_weight(u + v) - 1.0;
+    Some(((u - v) * sign / scale).clamp(-1.0, 1.0))
+}
+
 /// The weight of the forward frame: 1 for v ≥ v_ε, 0 for v ≤ −v_ε, a
 /// smooth step (C¹) between.
 fn forward_weight<S: Scalar + PartialOrd>(v: S) -> S {

@@ -15,7 +15,7 @@ use rover_dynamics::wheel_ground::{
 };
 use rover_dynamics::wheel_law::Tyre;
 use rover_dynamics::wheel_soil::{
-    RunRule, SoilTyre, soil_load_derivative, soil_wheel_loads, spin_rates,
+    RunRule, SoilTyre, soil_load_derivative, soil_wheel_loads, spin_rates, wheel_slip,
 };
 
 use crate::wheel_law::WheelLawConfig;
@@ -141,6 +141,36 @@ impl<H: HeightField> Ground<H> {
         if let Some(soil) = &self.soil {
             spin_rates(torques, reports, &soil.inertias, out);
         }
+    }
+
+    /// Whether the wheels have a longitudinal slip: on a soil (each wheel's
+    /// spin is a state); the rigid law has none (its tyre rolls).
+    pub fn has_slip(&self) -> bool {
+        self.soil.is_some()
+    }
+
+    /// On a soil, each wheel's longitudinal slip at the contacts of the last
+    /// [`Ground::find_contacts`] and the spins `spins` into `out`: the slip
+    /// its report will give ([`wheel_slip`]), in [−1, 1], positive driving;
+    /// a wheel in the air counts as spinning (1). Zeros on rigid ground.
+    /// Allocates nothing.
+    pub fn slips(&self, states: &[WheelState], spins: &[f64], out: &mut [f64]) {
+        if self.soil.is_none() {
+            out.iter_mut().for_each(|o| *o = 0.0);
+            return;
+        }
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = self.slip(k, &states[k], spins[k]);
+        }
+    }
+
+    /// Wheel `k`'s slip of [`Ground::slips`] in state `s`, spinning at
+    /// `spin` \[rad/s\], at its last contact (0 on rigid ground).
+    pub fn slip(&self, k: usize, s: &WheelState, spin: f64) -> f64 {
+        if self.soil.is_none() {
+            return 0.0;
+        }
+        wheel_slip(s, self.wheels[k].contact(), spin, self.radii[k]).unwrap_or(1.0)
     }
 
     /// On a soil, each wheel's sinkage \[m\] at rest under `loads` \[N\]

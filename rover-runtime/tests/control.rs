@@ -23,7 +23,7 @@ fn torque_by_static_load_follows_the_flat_ground_equilibrium() {
     control.torques(
         1.0,
         (&vec![0.0; n], &w, &[0.0], &[]),
-        &[1.0, 0.0, 0.0, 0.0],
+        (&[1.0, 0.0, 0.0, 0.0], &[]),
         &[0.0; 4],
         &[],
         &mut tau,
@@ -399,7 +399,7 @@ fn a_motor_line_limits_the_drive_torque_by_the_wheel_spin() {
         control.torques(
             1.0,
             (&vec![0.0; n], &vec![0.0; n], &[0.0], &[]),
-            &vec![1.0; k],
+            (&vec![1.0; k], &[]),
             &vec![0.0; k],
             &vec![rate; k],
             &mut tau,

@@ -427,8 +427,26 @@ impl Scenario {
                 ),
             ));
         }
+        self.check_anti_spin()?;
         self.check_steps()?;
         self.check_initial()
+    }
+
+    /// The anti-spin distribution reads each wheel's slip, which only a
+    /// soil's law gives (the rigid law's tyre rolls without slip).
+    fn check_anti_spin(&self) -> Result<(), (&'static str, String)> {
+        let anti_spin = self
+            .control
+            .speed
+            .as_ref()
+            .is_some_and(|s| s.distribution == rover_runtime::control::Distribution::AntiSpin);
+        if anti_spin && !self.soft() {
+            return Err((
+                "control.speed.distribution",
+                "control.speed.distribution = \"anti_spin\" reads each wheel's longitudinal slip, which only a soil gives; this scenario's ground is rigid (its wheels roll without slip)\n  = help: give the terrain a soil (`[terrain] soil = \"dry_sand\"`, docs/SOIL.md), or on rigid ground use distribution = \"measured_load\" (wheels that lose their load lose their torque)".into(),
+            ));
+        }
+        Ok(())
     }
 
     /// The number of steps a fixed-step method takes (or an adaptive one

@@ -21,7 +21,7 @@ pub use check::{CheckArgs, check};
 pub use codegen::{CodegenArgs, CodegenLevel, codegen};
 pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
-pub use reproduce::{ReproduceArgs, calibrated, reproduce};
+pub use reproduce::{ReproduceArgs, calibrated, reproduce, steer};
 pub use simulate::{SimulateArgs, SimulateReport, simulate};
 pub use sweep::{SweepArgs, sweep};
 pub use wheel_test::{WheelTestArgs, wheel_test_cmd};

@@ -9,6 +9,7 @@ mod calibration;
 mod claims;
 mod handling;
 mod runs;
+pub mod steer;
 mod template;
 
 use std::fmt::Write as _;
@@ -140,6 +141,7 @@ pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
     fig5(&mut v, work, &figs, &mut judged)?;
     fig6(&mut v, work, &figs, &chosen_runs)?;
     fig7(&mut v, &figs, &chosen)?;
+    steer::steer_section(&mut v, work, &figs)?;
     fig8(&mut v, work, &figs)?;
     fig11_12(&mut v, work, &figs, &mut judged)?;
     fig13(&mut v, work, &figs)?;

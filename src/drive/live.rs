@@ -15,8 +15,9 @@ use rover_integrate::{
     Ros2Config,
 };
 use rover_runtime::control::{
-    Controller, ControllerConfig, Distribution, SpeedConfig, ackermann_angle, add_share,
-    curvature_from_angle, heading_centre_x,
+    Controller, ControllerConfig, DEFAULT_SLIP_BAND, DEFAULT_SLIP_THRESHOLD, Distribution,
+    SpeedConfig, ackermann_angle, add_share, anti_spin_weight, curvature_from_angle,
+    heading_centre_x,
 };
 use rover_runtime::row::{Columns, RowInputs};
 use rover_runtime::sim::{CommandError, Driver, RoverSystem, RunError, RunOptions};
@@ -310,6 +311,9 @@ pub struct LoopConfig {
     /// How the speed loop's torque is shared among the wheels (the
     /// scenario's `[control.speed] distribution`).
     pub distribution: Distribution,
+    /// The anti-spin distribution's slip threshold and band (the
+    /// scenario's `slip_threshold`, `slip_band` or their defaults).
+    pub anti_spin: (f64, f64),
     /// The scenario's controllers that run in the loop besides the speed
     /// loop: its active suspension.
     pub control: ControllerConfig,
@@ -338,6 +342,13 @@ impl LoopConfig {
             }) => (*kp, *ki, *distribution),
             None => (10.0, 10.0, Distribution::Even),
         };
+        let speed = scenario.control.speed.as_ref();
+        let anti_spin = (
+            speed
+                .and_then(|s| s.slip_threshold)
+                .unwrap_or(DEFAULT_SLIP_THRESHOLD),
+            speed.and_then(|s| s.slip_band).unwrap_or(DEFAULT_SLIP_BAND),
+        );
         LoopConfig {
             rate_hz,
             method: method.unwrap_or(Method::for_rate(rate_hz)),
@@ -345,6 +356,7 @@ impl LoopConfig {
             ki,
             rollover_limit: scenario.rollover_limit_deg.to_radians(),
             distribution,
+            anti_spin,
             control: ControllerConfig {
                 active_suspension: scenario.control.active_suspension.clone(),
                 ..ControllerConfig::default()
@@ -454,8 +466,11 @@ pub struct Sim<P> {
     torques: Vec<f64>,
     steering: Vec<f64>,
     distribution: Distribution,
+    /// The anti-spin slip threshold and band.
+    anti_spin: (f64, f64),
     /// The speed loop's weights per wheel: 1 (even), the static loads, or
-    /// the loads of the last evaluation (measured), refreshed each step.
+    /// the loads (measured) or anti-spin weights of the slips of the last
+    /// evaluation, refreshed each step.
     weights: Vec<f64>,
     /// The controller as built, for a reset (the active suspension's
     /// neutrals back at rest).
@@ -492,7 +507,9 @@ impl<P: Plant> Sim<P> {
         let control = Controller::new_in(config.control.clone(), model, 0.0, base)?;
         let weights = match config.distribution {
             Distribution::StaticLoad => rover_runtime::quasi_static::flat_ground_loads(model)?,
-            Distribution::Even | Distribution::MeasuredLoad => vec![1.0; model.wheels.len()],
+            Distribution::Even | Distribution::MeasuredLoad | Distribution::AntiSpin => {
+                vec![1.0; model.wheels.len()]
+            }
         };
         let h = 1.0 / config.rate_hz;
         let driver = Driver::new(
@@ -526,6 +543,7 @@ impl<P: Plant> Sim<P> {
             torques: vec![0.0; k],
             steering: vec![0.0; k],
             distribution: config.distribution,
+            anti_spin: config.anti_spin,
             weights,
             control0: control,
             pacing: config.pacing,
@@ -634,6 +652,14 @@ impl<P: Plant> Sim<P> {
                 if self.distribution == Distribution::MeasuredLoad {
                     for (w, r) in self.weights.iter_mut().zip(self.sys.reports()) {
                         *w = r.normal.max(0.0);
+                    }
+                }
+                if self.distribution == Distribution::AntiSpin {
+                    let (threshold, band) = self.anti_spin;
+                    for (w, r) in self.weights.iter_mut().zip(self.sys.reports()) {
+                        // A wheel in the air spins.
+                        let slip = if r.patches == 0 { 1.0 } else { r.slip };
+                        *w = anti_spin_weight(slip, threshold, band);
                     }
                 }
                 // τ0 per wheel on the mean, shared by the weights.

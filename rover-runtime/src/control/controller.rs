@@ -10,6 +10,7 @@ use crate::quasi_static::flat_ground_loads;
 
 use super::active_suspension::{ActiveSuspension, ActiveSuspensionConfig, SuspensionLaw};
 use super::commands::{CommandSchedule, CommandsConfig};
+use super::distribution::{DEFAULT_SLIP_BAND, DEFAULT_SLIP_THRESHOLD, Distribution};
 use super::law::{CurvatureCommand, SpeedLaw, SteeringLaw};
 use super::profile::Profile;
 use super::speed::SpeedConfig;
@@ -334,8 +335,10 @@ impl Controller {
     /// Motor torques per wheel [N·m] from the speed the loop holds
     /// ([`Controller::measured_speed`]: `w[0]`, or on a soil the rim
     /// speeds of the wheels spinning at `spins`), the
-    /// integral states `z` (ζ) and the wheels' normal loads `normals` (this
-    /// evaluation), plus the open-loop commands `commanded` (an external
+    /// integral states `z` (ζ), the wheels' normal loads `normals` and
+    /// longitudinal slips `slips` (this evaluation; `slips` is only read by
+    /// the anti-spin distribution, [`Controller::reads_slip`], and may be
+    /// empty otherwise), plus the open-loop commands `commanded` (an external
     /// controller's, one per wheel), all within each motor's limit at the
     /// wheel's spin rate `rates[k]` [rad/s] ([`Wheel::torque_limits`]:
     /// `max_torque`, narrowed by the motor's torque–speed line when it has
@@ -349,14 +352,14 @@ impl Controller {
         &self,
         t: f64,
         (x, w, z, spins): (&[f64], &[f64], &[f64], &[f64]),
-        normals: &[f64],
+        (normals, slips): (&[f64], &[f64]),
         commanded: &[f64],
         rates: &[f64],
         out: &mut [f64],
     ) {
         out.copy_from_slice(commanded);
         let speed = self.measured_speed(w, spins);
-        self.add_torques(t, x, w, z, speed, normals, out);
+        self.add_torques(t, (x, w, z), speed, (normals, slips), out);
         // On a soil each wheel's own rate is held too, about the mean: a
         // lightly loaded wheel does not spin out while the others stall.
         if let Some(s) = &self.speed {
@@ -391,23 +394,26 @@ impl Controller {
         self.motor_curves.iter().any(Option::is_some)
     }
 
+    /// Whether the speed loop's distribution reads the wheels' slips (the
+    /// anti-spin distribution): then [`Controller::torques`] needs them.
+    pub fn reads_slip(&self) -> bool {
+        self.speed.as_ref().is_some_and(SpeedLaw::reads_slip)
+    }
+
     /// The built-in loops' torques, added to `out`.
-    #[allow(clippy::too_many_arguments)]
     fn add_torques(
         &self,
         t: f64,
-        x: &[f64],
-        w: &[f64],
-        z: &[f64],
+        (x, w, z): (&[f64], &[f64], &[f64]),
         speed: f64,
-        normals: &[f64],
+        (normals, slips): (&[f64], &[f64]),
         out: &mut [f64],
     ) {
         let Some(s) = &self.speed else {
             return;
         };
         let tau0 = s.kp * (self.speed_setpoint(t) - speed) + s.ki * z[0];
-        s.add_shares(tau0, normals, out);
+        s.add_shares(tau0, normals, slips, out);
         let settled = t >= self.settle;
         let dt = match &self.steering {
             SteeringLaw::Slip { delta_tau } => Some(if settled {
@@ -604,7 +610,8 @@ fn speed_law(s: SpeedConfig, model: &Model) -> Result<SpeedLaw, ControlError> {
             ),
         ));
     }
-    SpeedLaw::new(s.speed, s.kp, s.ki, s.distribution, || {
+    let anti_spin = anti_spin_parameters(&s)?;
+    SpeedLaw::new(s.speed, (s.kp, s.ki), s.distribution, anti_spin, || {
         flat_ground_loads(model)
     })
     .map_err(|e| {
@@ -613,6 +620,44 @@ fn speed_law(s: SpeedConfig, model: &Model) -> Result<SpeedLaw, ControlError> {
             format!("cannot find the static loads: {e}"),
         )
     })
+}
+
+/// The anti-spin distribution's slip threshold and band, checked (the
+/// defaults when not given); either given with another distribution is an
+/// error.
+fn anti_spin_parameters(s: &SpeedConfig) -> Result<(f64, f64), ControlError> {
+    let threshold = s.slip_threshold.unwrap_or(DEFAULT_SLIP_THRESHOLD);
+    let band = s.slip_band.unwrap_or(DEFAULT_SLIP_BAND);
+    if s.distribution != Distribution::AntiSpin {
+        for (field, given) in [
+            ("speed.slip_threshold", s.slip_threshold),
+            ("speed.slip_band", s.slip_band),
+        ] {
+            if given.is_some() {
+                return Err(err(
+                    field,
+                    "only the anti-spin distribution reads it: set `distribution = \"anti_spin\"` or remove it",
+                ));
+            }
+        }
+    }
+    if !(threshold.is_finite() && (0.0..1.0).contains(&threshold)) {
+        return Err(err(
+            "speed.slip_threshold",
+            format!(
+                "must lie in [0, 1) (the longitudinal slip 1 − v/(r·ω) above which a wheel's torque is cut), got {threshold}; {DEFAULT_SLIP_THRESHOLD} suits soft soil"
+            ),
+        ));
+    }
+    if !(band.is_finite() && band > 0.0) {
+        return Err(err(
+            "speed.slip_band",
+            format!(
+                "must be > 0 (the slip beyond `slip_threshold` over which a wheel's share falls to none), got {band}; {DEFAULT_SLIP_BAND} is the default"
+            ),
+        ));
+    }
+    Ok((threshold, band))
 }
 
 /// The steering, checked and settled: degrees become radians, an Ackermann

@@ -3,7 +3,7 @@
 //! (radians, the wheel an angle refers to, the torque weights), so that an
 //! evaluation never matches configuration or converts units again.
 
-use super::distribution::{Distribution, add_share};
+use super::distribution::{Distribution, add_anti_spin_share, add_share};
 use super::profile::Profile;
 use super::steering::{HeadingHold, curvature_from_angle};
 
@@ -26,22 +26,26 @@ pub(crate) enum Shares {
     MeasuredLoad,
     /// In proportion to the static loads on flat ground, found once.
     StaticLoad(Vec<f64>),
+    /// By the anti-spin weights of the wheels' slips at this evaluation.
+    AntiSpin { threshold: f64, band: f64 },
 }
 
 impl SpeedLaw {
     /// The settled loop of `distribution`, with the static loads when it
-    /// needs them (`static_loads`' error when they cannot be found).
+    /// needs them (`static_loads`' error when they cannot be found) and the
+    /// anti-spin slip threshold and band (checked by the caller).
     pub(crate) fn new<E>(
         speed: Profile,
-        kp: f64,
-        ki: f64,
+        (kp, ki): (f64, f64),
         distribution: Distribution,
+        (threshold, band): (f64, f64),
         static_loads: impl FnOnce() -> Result<Vec<f64>, E>,
     ) -> Result<Self, E> {
         let shares = match distribution {
             Distribution::Even => Shares::Even,
             Distribution::MeasuredLoad => Shares::MeasuredLoad,
             Distribution::StaticLoad => Shares::StaticLoad(static_loads()?),
+            Distribution::AntiSpin => Shares::AntiSpin { threshold, band },
         };
         Ok(Self {
             speed,
@@ -51,13 +55,22 @@ impl SpeedLaw {
         })
     }
 
-    /// Adds τ_0's share to each wheel's torque in `out`.
-    pub(crate) fn add_shares(&self, tau0: f64, normals: &[f64], out: &mut [f64]) {
+    /// Adds τ_0's share to each wheel's torque in `out`, reading the
+    /// wheels' normal loads `normals` and slips `slips` of this evaluation.
+    pub(crate) fn add_shares(&self, tau0: f64, normals: &[f64], slips: &[f64], out: &mut [f64]) {
         match &self.shares {
             Shares::Even => out.iter_mut().for_each(|o| *o += tau0),
             Shares::MeasuredLoad => add_share(tau0, normals, out),
             Shares::StaticLoad(weights) => add_share(tau0, weights, out),
+            Shares::AntiSpin { threshold, band } => {
+                add_anti_spin_share(tau0, slips, *threshold, *band, out)
+            }
         }
+    }
+
+    /// Whether the shares read the wheels' slips.
+    pub(crate) fn reads_slip(&self) -> bool {
+        matches!(self.shares, Shares::AntiSpin { .. })
     }
 }
 

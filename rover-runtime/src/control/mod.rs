@@ -22,7 +22,10 @@ pub use controller::{
     ControlError, Controller, ControllerConfig, HEADING_INTEGRAL, LINE_INTEGRAL, SPEED_INTEGRAL,
     heading_centre_x,
 };
-pub use distribution::{Distribution, add_share};
+pub use distribution::{
+    DEFAULT_SLIP_BAND, DEFAULT_SLIP_THRESHOLD, Distribution, add_anti_spin_share, add_share,
+    anti_spin_weight,
+};
 pub use profile::{Interpolation, Profile, ProfileError};
 pub use speed::SpeedConfig;
 pub use steering::{

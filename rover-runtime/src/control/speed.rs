@@ -30,6 +30,14 @@ pub struct SpeedConfig {
     /// How τ_0 is shared among the wheels.
     #[serde(default)]
     pub distribution: Distribution,
+    /// Anti-spin only: the slip above which a wheel's share is cut
+    /// (default [`DEFAULT_SLIP_THRESHOLD`](super::DEFAULT_SLIP_THRESHOLD)), in [0, 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slip_threshold: Option<f64>,
+    /// Anti-spin only: the width of slip over which the cut share falls to
+    /// none (default [`DEFAULT_SLIP_BAND`](super::DEFAULT_SLIP_BAND)), > 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slip_band: Option<f64>,
 }
 
 fn default_kp() -> f64 {
@@ -43,6 +51,8 @@ impl Default for SpeedConfig {
             kp: default_kp(),
             ki: 0.0,
             distribution: Distribution::default(),
+            slip_threshold: None,
+            slip_band: None,
         }
     }
 }

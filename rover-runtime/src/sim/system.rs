@@ -41,6 +41,9 @@ pub struct RoverSystem<P, H> {
     motor_rates: Vec<f64>,
     steer: Vec<f64>,
     normals: Vec<f64>,
+    /// Each wheel's longitudinal slip (filled only when the controller
+    /// reads it: the anti-spin distribution on a soil).
+    slips: Vec<f64>,
     torque_commands: Vec<f64>,
     steer_commands: Vec<f64>,
     next_break: f64,
@@ -70,6 +73,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             motor_rates: vec![0.0; k],
             steer: vec![0.0; k],
             normals: vec![0.0; k],
+            slips: vec![0.0; k],
             torque_commands: vec![0.0; k],
             steer_commands: vec![0.0; k],
             control,
@@ -288,10 +292,13 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 g.find_contacts(&self.wheels, &mut self.normals)
                     .map_err(SimError::OffMap)?;
                 mark(1);
+                if self.control.reads_slip() {
+                    g.slips(&self.wheels, spins, &mut self.slips);
+                }
                 self.control.torques(
                     t,
                     (x, w, z, spins),
-                    &self.normals,
+                    (&self.normals, &self.slips),
                     &self.torque_commands,
                     &self.motor_rates,
                     &mut self.torques,
@@ -306,10 +313,12 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             }
             None => {
                 self.normals.iter_mut().for_each(|v| *v = 0.0);
+                // In free flight every wheel spins.
+                self.slips.iter_mut().for_each(|v| *v = 1.0);
                 self.control.torques(
                     t,
                     (x, w, z, spins),
-                    &self.normals,
+                    (&self.normals, &self.slips),
                     &self.torque_commands,
                     &self.motor_rates,
                     &mut self.torques,

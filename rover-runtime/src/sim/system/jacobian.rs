@@ -63,6 +63,8 @@ pub(super) struct JacobianWork {
     tau: Vec<f64>,
     /// The wheels' spin rates at a perturbed state, for the motor lines.
     motor_rates: Vec<f64>,
+    /// The wheels' slips at a perturbed state, for an anti-spin distribution.
+    slips: Vec<f64>,
     y: Vec<f64>,
     zd: Vec<f64>,
     perturbed: Vec<WheelLoad>,
@@ -87,6 +89,7 @@ impl Default for JacobianWork {
             torque: Vec::new(),
             tau: Vec::new(),
             motor_rates: Vec::new(),
+            slips: Vec::new(),
             y: Vec::new(),
             zd: Vec::new(),
             perturbed: Vec::new(),
@@ -124,6 +127,7 @@ impl JacobianWork {
             torque: vec![0.0; k * dim],
             tau: vec![0.0; k],
             motor_rates: vec![0.0; k],
+            slips: vec![0.0; k],
             y: vec![0.0; dim],
             zd: vec![0.0; dim - 2 * n],
             perturbed: vec![WheelLoad::default(); k],
@@ -241,7 +245,13 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
 
         // The controller's torques, differenced.
         let tc = self.command_time(t);
-        let (control, normals, commands) = (&self.control, &self.normals, &self.torque_commands);
+        // The wheels' loads are held at the evaluation's (as the loads' own
+        // columns hold the contacts); an anti-spin distribution's slips move
+        // with the spins and the centres' velocities (the spin is light: its
+        // loop through the slip is the stiff one), the contacts held.
+        let (control, commands, normals) = (&self.control, &self.torque_commands, &self.normals);
+        let reads_slip = control.reads_slip();
+        let slips = &mut work.slips;
         let torques = &self.torques;
         let (tau, torque) = (&mut work.tau, &mut work.torque);
         let spins = self.spin_range();
@@ -267,7 +277,17 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 }
                 rates
             };
-            control.torques(tc, parts, normals, commands, rates, tau);
+            if reads_slip {
+                for (wheel, slip) in slips.iter_mut().enumerate() {
+                    let mut state = wheels[wheel];
+                    if (n..two_n).contains(&j) {
+                        let dv = velocity[wheel * n + j - n];
+                        (0..3).for_each(|a| state.velocity[a] += h * dv[a]);
+                    }
+                    *slip = ground.slip(wheel, &state, parts.3[wheel]);
+                }
+            }
+            control.torques(tc, parts, (normals, slips), commands, rates, tau);
             for wheel in 0..k {
                 torque[wheel * dim + j] = (tau[wheel] - torques[wheel]) / h;
             }
