@@ -41,30 +41,8 @@ pub enum QuasiStaticError {
     /// forces, which can only push, balance gravity's moment only when the
     /// centre of mass's vertical projection lies inside the support polygon
     /// (the convex hull of the loaded contact points), and it lies outside.
-    #[error(
-        "no quasi-static equilibrium at X = {x:.3} m, Y = {y:.3} m: the rover would tip about {}: \
-         its centre of mass is {outside:.3} m outside the support polygon of the wheels on the ground ({}){}; \
-         use a dynamic fidelity level here",
-        wheel_list(edge),
-        wheel_list(touching),
-        stops_note(on_stops)
-    )]
-    Tips {
-        /// Imposed X \[m\].
-        x: f64,
-        /// Imposed Y \[m\].
-        y: f64,
-        /// The wheels (0-based) of the support polygon's edge (or corner)
-        /// the centre of mass lies beyond.
-        edge: Vec<usize>,
-        /// Horizontal distance of the centre of mass beyond that edge \[m\].
-        outside: f64,
-        /// The wheels (0-based) on the ground.
-        touching: Vec<usize>,
-        /// Suspension coordinates (0-based) beyond their travel, on a bump
-        /// stop.
-        on_stops: Vec<usize>,
-    },
+    #[error("{0}")]
+    Tips(Box<Tipping>),
     /// No wheel touches the ground anywhere Newton–Raphson looked.
     #[error(
         "no quasi-static equilibrium at X = {x:.3} m, Y = {y:.3} m: no wheel reaches the ground; \
@@ -103,6 +81,33 @@ pub enum QuasiStaticError {
         /// The query.
         off: OffMap,
     },
+}
+
+/// Where the rover would tip (see [`QuasiStaticError::Tips`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "no quasi-static equilibrium at X = {x:.3} m, Y = {y:.3} m: the rover would tip about {}: \
+     its centre of mass is {outside:.3} m outside the support polygon of the wheels on the ground ({}){}; \
+     use a dynamic fidelity level here",
+    wheel_list(edge),
+    wheel_list(touching),
+    stops_note(on_stops)
+)]
+pub struct Tipping {
+    /// Imposed X \[m\].
+    pub x: f64,
+    /// Imposed Y \[m\].
+    pub y: f64,
+    /// The wheels (0-based) of the support polygon's edge (or corner)
+    /// the centre of mass lies beyond.
+    pub edge: Vec<usize>,
+    /// Horizontal distance of the centre of mass beyond that edge \[m\].
+    pub outside: f64,
+    /// The wheels (0-based) on the ground.
+    pub touching: Vec<usize>,
+    /// Suspension coordinates (0-based) beyond their travel, on a bump
+    /// stop.
+    pub on_stops: Vec<usize>,
 }
 
 /// "wheel 3", "wheels 1 and 3", "wheels 1, 2 and 4" (1-based).
@@ -775,14 +780,14 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             .map(|(i, _)| i)
             .collect();
         match outside_support(&points, centre) {
-            Some((edge, outside)) => QuasiStaticError::Tips {
+            Some((edge, outside)) => QuasiStaticError::Tips(Box::new(Tipping {
                 x: pose[0],
                 y: pose[1],
                 edge,
                 outside,
                 touching,
                 on_stops,
-            },
+            })),
             None => QuasiStaticError::NoConvergence {
                 x: pose[0],
                 y: pose[1],

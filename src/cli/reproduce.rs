@@ -1358,11 +1358,13 @@ mod tests {
             let crawl = b.radius(d, 0.005).unwrap();
             assert!((r / crawl - 1.0).abs() < 1e-3, "{r} {crawl}");
         }
-        // Gentle steering: each axle's mean angle is its wheels' angle, and
-        // the turn is the kinematic one.
-        let (_, rk) = b.ackermann(2f64.to_radians());
-        let r = b.radius(2f64.to_radians(), 0.05).unwrap();
-        assert!((r / rk - 1.0).abs() < 1e-3, "R {r}, R_k {rk}");
+        // At walking speed the equivalent wheels roll without slip: the
+        // turn is the kinematic one, gently steered or not.
+        for d in [2.0f64, 20.0, 30.0] {
+            let (_, rk) = b.ackermann(d.to_radians());
+            let r = b.radius(d.to_radians(), 0.005).unwrap();
+            assert!((r / rk - 1.0).abs() < 1e-6, "δ₁ {d}°: R {r}, R_k {rk}");
+        }
         // Faster, the centripetal force needs slip: the radius changes.
         let d = 10f64.to_radians();
         let slow = b.radius(d, 0.05).unwrap();

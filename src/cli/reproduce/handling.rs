@@ -78,32 +78,28 @@ impl SingleTrack {
         (kappa, self.centre_x.hypot(1.0 / kappa))
     }
 
-    /// Each wheel's Ackermann angle at curvature κ.
-    fn angles(&self, kappa: f64) -> Vec<f64> {
-        self.rest_xy
+    /// Steady turning at forward speed `v` with the Ackermann angles of δ₁:
+    /// the radius of G's path \[m\]. Each axle that steers (any of its
+    /// wheels steerable) is the single track's wheel at the axle's centre,
+    /// steered by the Ackermann angle of that point,
+    /// `δ_a = atan(κ·(x_a − x_c))`: the wheels of an Ackermann axle roll
+    /// without slip on the kinematic turn, and so does this equivalent
+    /// wheel (the mean of the left and right angles would not: it makes a
+    /// slip of its own, 2.7 % of R_k at δ₁ = 20°). F_a = C_a·(δ_a −
+    /// atan((v_y + r·x_a)/v)); ΣF_a = m·v·r and Σx_a·F_a = 0 are solved for
+    /// (v_y, r) by Newton.
+    pub fn radius(&self, delta1: f64, v: f64) -> Option<f64> {
+        let (kappa, rk) = self.ackermann(delta1);
+        let steer: Vec<f64> = self
+            .axles
             .iter()
-            .zip(&self.steerable)
-            .map(|(&(x, y), &s)| {
-                if s {
-                    (kappa * (x - self.centre_x)).atan2(1.0 - kappa * y)
+            .map(|a| {
+                if a.wheels.iter().any(|&j| self.steerable[j]) {
+                    (kappa * (a.x - self.centre_x)).atan()
                 } else {
                     0.0
                 }
             })
-            .collect()
-    }
-
-    /// Steady turning at forward speed `v` with the Ackermann angles of δ₁:
-    /// the radius of G's path \[m\]. Each axle steers by its wheels' mean
-    /// angle δ_a and makes F_a = C_a·(δ_a − atan((v_y + r·x_a)/v));
-    /// ΣF_a = m·v·r and Σx_a·F_a = 0 are solved for (v_y, r) by Newton.
-    pub fn radius(&self, delta1: f64, v: f64) -> Option<f64> {
-        let (kappa, rk) = self.ackermann(delta1);
-        let delta = self.angles(kappa);
-        let steer: Vec<f64> = self
-            .axles
-            .iter()
-            .map(|a| a.wheels.iter().map(|&j| delta[j]).sum::<f64>() / a.wheels.len() as f64)
             .collect();
         let residual = |vy: f64, r: f64| {
             let mut f = [-self.mass * v * r, 0.0];
