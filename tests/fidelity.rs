@@ -302,7 +302,8 @@ fn the_quasi_static_level_stands_on_slopes() {
     }
 }
 
-/// Example 2 on the report's Fig. 11 terrain (Z_R = 0.3), Δτ = 0.2 N·m,
+/// Example 2 on Fig. 11's case (Z_R = 0.3) on the rough field of node
+/// amplitude 0.5 m and spacing 0.5 m, where the solver used to stop, Δτ = 0.2 N·m,
 /// V = 0.1 m/s, for 21 s: the full model, then the quasi-static level on its
 /// path.
 fn fig11_zr03(level: &str, path_from: Option<&std::path::Path>) -> Run {
