@@ -154,6 +154,11 @@ pub struct QuasiStatic<'a, H> {
     r_check: Vec<f64>,
     /// The pose of the current solution, once one was solved.
     solved_at: Option<[f64; 3]>,
+    /// Accept an equilibrium balanced on fewer than three wheels (or with
+    /// the centre of mass on the support polygon's edge): the rest pose
+    /// that linearization and the reduced levels are taken about, which
+    /// may be a balance (a rover on one axle), not a path to follow.
+    pub accept_balance: bool,
     /// The current solution [Z, φ, θ, y…].
     pub q: Vec<f64>,
     /// Residual evaluations so far.
@@ -211,6 +216,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             best: vec![0.0; q0.len()],
             r_check: vec![0.0; q0.len()],
             solved_at: None,
+            accept_balance: false,
             q: q0,
             residual_evals: 0,
             iterations: 0,
@@ -720,6 +726,9 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
     /// disturbance tips, not a rest: Newton–Raphson finds such balances,
     /// and the rover does not stay in them.
     fn stands(&mut self, pose: [f64; 3], q: &[f64]) -> Result<bool, QuasiStaticError> {
+        if self.accept_balance {
+            return Ok(true);
+        }
         let mut r = core::mem::take(&mut self.r_check);
         let out = self.residual(pose, q, &mut r);
         self.r_check = r;
@@ -985,6 +994,7 @@ fn flat_ground_solution(model: &Model) -> Result<FlatGround, QuasiStaticError> {
     let mut q0 = vec![model.touchdown_height(), 0.0, 0.0];
     q0.extend_from_slice(&model.rest());
     let mut solver = QuasiStatic::new(model, &flat, MeridionalContact::default(), q0);
+    solver.accept_balance = true;
     solver.solve([0.0; 3])?;
     let mut loads = vec![0.0; model.wheels.len()];
     solver.normal_forces([0.0; 3], &mut loads)?;

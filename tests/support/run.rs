@@ -61,12 +61,19 @@ pub fn run(rover: &str, toml: &str) -> Run {
 
 /// [`run`] with the scenario's files (commands, terrain maps) found from `dir`.
 pub fn run_in(rover: &str, toml: &str, dir: &Path) -> Run {
+    run_plant_in(rover, toml, dir, true)
+}
+
+/// [`run_in`] with the plant `rover simulate` runs by default (`generic =
+/// false`: a built-in rover's generated plant, with its exact Jacobian) or
+/// the generic one.
+pub fn run_plant_in(rover: &str, toml: &str, dir: &Path, generic: bool) -> Run {
     let prepared = Prepared::from_text(Some(rover), toml, &dir.join("test.toml"), dir)
         .unwrap_or_else(|e| panic!("{e}"));
     let mut csv = Vec::new();
     let stop = AtomicBool::new(false);
     let summary = prepared
-        .run(true, &mut csv, &stop, |_| {})
+        .run(generic, &mut csv, &stop, |_| {})
         .unwrap_or_else(|e| panic!("{e}"));
     let text = String::from_utf8(csv).unwrap();
     let mut lines = text.lines();
