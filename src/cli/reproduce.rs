@@ -119,7 +119,7 @@ const SEED: u64 = 1;
 
 /// Rerun every figure and write the report; an error after writing it when
 /// a claim the stored record says held no longer holds. With `--quick`,
-/// the short form ([`quick`]).
+/// the short form (`--quick`).
 pub fn reproduce(args: &ReproduceArgs) -> Result<PathBuf, CliError> {
     if args.quick {
         return quick(args);
