@@ -409,7 +409,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
     /// the last pose starts in the air, where the Jacobian does not see the
     /// ground and is nearly singular), the pose is approached by
     /// continuation: from the last solved pose in steps halved on each
-    /// failure, down to [`MIN_FRACTION`] of the way. Where even that fails,
+    /// failure, down to 1/64 of the way. Where even that fails,
     /// the error says why: the rover would tip (the centre of mass outside
     /// the support polygon), no wheel reaches the ground, or (neither)
     /// Newton–Raphson did not converge.
