@@ -85,14 +85,7 @@ pub enum QuasiStaticError {
 
 /// Where the rover would tip (see [`QuasiStaticError::Tips`]).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error(
-    "no quasi-static equilibrium at X = {x:.3} m, Y = {y:.3} m: the rover would tip about {}: \
-     its centre of mass is {outside:.3} m outside the support polygon of the wheels on the ground ({}){}; \
-     use a dynamic fidelity level here",
-    wheel_list(edge),
-    wheel_list(touching),
-    stops_note(on_stops)
-)]
+#[error("{}", tip_message(*x, *y, edge, *outside, touching, on_stops))]
 pub struct Tipping {
     /// Imposed X \[m\].
     pub x: f64,
@@ -108,6 +101,35 @@ pub struct Tipping {
     /// Suspension coordinates (0-based) beyond their travel, on a bump
     /// stop.
     pub on_stops: Vec<usize>,
+}
+
+/// The tipping error's text: beyond an edge by a distance, or (within
+/// 1 mm) on the line of the only wheels on the ground, a balance that
+/// tips either way.
+fn tip_message(
+    x: f64,
+    y: f64,
+    edge: &[usize],
+    outside: f64,
+    touching: &[usize],
+    on_stops: &[usize],
+) -> String {
+    let why = if outside < 1e-3 && edge.len() < 3 && touching.len() < 3 {
+        format!(
+            "the rover would tip: its centre of mass lies on the line of {}, the only wheels on the ground, a balance it falls out of",
+            wheel_list(touching)
+        )
+    } else {
+        format!(
+            "the rover would tip about {}: its centre of mass is {outside:.3} m outside the support polygon of the wheels on the ground ({})",
+            wheel_list(edge),
+            wheel_list(touching)
+        )
+    };
+    format!(
+        "no quasi-static equilibrium at X = {x:.3} m, Y = {y:.3} m: {why}{}; use a dynamic fidelity level here",
+        stops_note(on_stops)
+    )
 }
 
 /// "wheel 3", "wheels 1 and 3", "wheels 1, 2 and 4" (1-based).
