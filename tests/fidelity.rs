@@ -150,6 +150,20 @@ fn the_linearized_level_takes_the_rotation_to_first_order_and_its_variant_keeps_
     );
 }
 
+/// Write a run's rows as a CSV, for another run's `path_from`.
+fn save_csv(run: &Run, path: &std::path::Path) {
+    let mut text = run.header.join(",") + "\n";
+    for r in &run.rows {
+        text += &r
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(",");
+        text += "\n";
+    }
+    std::fs::write(path, text).unwrap();
+}
+
 fn fig12(level: &str, path_from: Option<&std::path::Path>) -> Run {
     let extra = path_from
         .map(|p| format!("path_from = \"{}\"\n", p.display()))
@@ -182,16 +196,7 @@ fn the_four_levels_agree_closely_on_gentle_ground_quasi_static_least() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("fig12");
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("full.csv");
-    let mut text = full.header.join(",") + "\n";
-    for r in &full.rows {
-        text += &r
-            .iter()
-            .map(|v| v.to_string())
-            .collect::<Vec<_>>()
-            .join(",");
-        text += "\n";
-    }
-    std::fs::write(&csv, text).unwrap();
+    save_csv(&full, &csv);
     let travelled = full.col("X").last().unwrap() - full.col("X")[0];
     let mut attitude_rms = Vec::new();
     for level in ["simplified", "linearized", "quasi_static"] {
@@ -351,16 +356,7 @@ fn the_quasi_static_level_runs_the_fig11_case() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("fig11_zr03");
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("full.csv");
-    let mut text = full.header.join(",") + "\n";
-    for r in &full.rows {
-        text += &r
-            .iter()
-            .map(|v| v.to_string())
-            .collect::<Vec<_>>()
-            .join(",");
-        text += "\n";
-    }
-    std::fs::write(&csv, text).unwrap();
+    save_csv(&full, &csv);
     let r = fig11_zr03("quasi_static", Some(&csv));
     assert!(r.summary.complete, "{:?}", r.summary.error);
     let m = rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4")

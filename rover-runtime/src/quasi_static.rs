@@ -508,20 +508,9 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                         out = Ok(Ok(it));
                         break;
                     }
-                    let mut failed = None;
-                    for c in 0..k {
-                        let h = 1e-7 * (1.0 + q[c].abs());
-                        trial.copy_from_slice(&q);
-                        trial[c] += h;
-                        if let Err(e) = self.residual(pose, &trial, &mut r_trial) {
-                            failed = Some(e);
-                            break;
-                        }
-                        for row in 0..k {
-                            jac[row * k + c] = (r_trial[row] - r[row]) / h;
-                        }
-                    }
-                    if let Some(e) = failed {
+                    if let Err(e) =
+                        self.difference_jacobian(pose, &q, &r, &mut trial, &mut r_trial, &mut jac)
+                    {
                         out = Err(e);
                         break;
                     }
@@ -684,16 +673,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                 least = now;
                 best.copy_from_slice(q);
             }
-            // Forward-difference Jacobian.
-            for c in 0..k {
-                let h = 1e-7 * (1.0 + q[c].abs());
-                trial.copy_from_slice(q);
-                trial[c] += h;
-                self.residual(pose, trial, r_trial)?;
-                for row in 0..k {
-                    jac[row * k + c] = (r_trial[row] - r[row]) / h;
-                }
-            }
+            self.difference_jacobian(pose, q, r, trial, r_trial, jac)?;
             for (s, v) in step.iter_mut().zip(r.iter()) {
                 *s = -v;
             }
@@ -739,6 +719,31 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             best.copy_from_slice(q);
         }
         Ok(Err(least))
+    }
+
+    /// The forward-difference Jacobian of the residual at `q` (whose
+    /// residual is `r`) into `jac`, row-major; `trial` and `r_trial` are
+    /// scratch.
+    fn difference_jacobian(
+        &mut self,
+        pose: [f64; 3],
+        q: &[f64],
+        r: &[f64],
+        trial: &mut [f64],
+        r_trial: &mut [f64],
+        jac: &mut [f64],
+    ) -> Result<(), QuasiStaticError> {
+        let k = q.len();
+        for c in 0..k {
+            let h = 1e-7 * (1.0 + q[c].abs());
+            trial.copy_from_slice(q);
+            trial[c] += h;
+            self.residual(pose, trial, r_trial)?;
+            for row in 0..k {
+                jac[row * k + c] = (r_trial[row] - r[row]) / h;
+            }
+        }
+        Ok(())
     }
 
     /// Whether the rover stands at the equilibrium `q`: at least three
