@@ -1,20 +1,13 @@
 //! Fig. 7's dependence on the steer characteristic (docs/REPRODUCTION.md):
 //! on flat ground an understeering variant of Example 1 turns wider as it
 //! goes faster, an oversteering one tighter, as the single-track model of
-//! each variant says, in sign and order of magnitude.
+//! each variant says: the same radius within 1 % at walking speed and at
+//! 0.5 m/s, the same trend within 30 %.
 
 use rover::cli::steer::{VARIANTS, measure, single_track_ratio};
 
 #[test]
 fn understeer_widens_the_turn_with_speed_and_oversteer_tightens_it() {
-    for v in &VARIANTS {
-        let model = v.single_track().unwrap();
-        let ratios: Vec<String> = [0.05, 0.1, 0.2, 0.5, 1.0]
-            .iter()
-            .map(|&s| format!("{:.4}", single_track_ratio(&model, s).unwrap()))
-            .collect();
-        eprintln!("single-track {}: {}", v.name, ratios.join(" "));
-    }
     // The single-track model's trend in speed, for the variants tested.
     let trend = |k: usize| {
         let m = VARIANTS[k].single_track().unwrap();
@@ -35,13 +28,18 @@ fn understeer_widens_the_turn_with_speed_and_oversteer_tightens_it() {
         let [(Some(slow), _), (Some(fast), _)] = row[..] else {
             panic!("a run did not complete: {row:?}");
         };
+        // Each radius as the single-track model's (measured: within 0.6 %).
+        for (got, model) in row {
+            let (Some(got), Some(model)) = (got, model) else {
+                panic!("no radius: {row:?}");
+            };
+            assert!((got - model).abs() < 0.01, "{row:?}");
+        }
+        // The trend in speed: same sign and size (measured: 14–17 % apart).
         let got = fast - slow;
-        eprintln!("{row:?}: simulated {got:.4}, single-track {want:.4}");
-        // Same sign, within a factor of three.
-        assert!(got * want > 0.0, "simulated {got}, single-track {want}");
         let ratio = got / want;
         assert!(
-            (1.0 / 3.0..3.0).contains(&ratio),
+            (0.7..1.3).contains(&ratio),
             "simulated {got}, single-track {want}"
         );
     }
