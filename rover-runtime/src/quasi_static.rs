@@ -174,6 +174,10 @@ pub struct QuasiStatic<'a, H> {
     work: Vec<f64>,
     best: Vec<f64>,
     r_check: Vec<f64>,
+    /// The last differenced Jacobian, reused by the next solves (a chord
+    /// method) while its steps converge fast; `kept_valid` once there is one.
+    kept_jac: Vec<f64>,
+    kept_valid: bool,
     /// The pose of the current solution, once one was solved.
     solved_at: Option<[f64; 3]>,
     /// Accept an equilibrium balanced on fewer than three wheels (or with
@@ -237,6 +241,8 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             work: vec![0.0; q0.len()],
             best: vec![0.0; q0.len()],
             r_check: vec![0.0; q0.len()],
+            kept_jac: vec![0.0; q0.len() * q0.len()],
+            kept_valid: false,
             solved_at: None,
             accept_balance: false,
             q: q0,
@@ -659,6 +665,11 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
         best.copy_from_slice(q);
         let mut least = norm(r);
+        // Between output instants the rover moves a few millimetres and its
+        // Jacobian hardly changes: the last differenced one is reused (a
+        // chord step costs one residual against k + 1 for a fresh
+        // Jacobian) for as long as each step at least halves the residual.
+        let mut stale = self.kept_valid;
         for it in 0..MAX_ITERATIONS {
             let now = norm(r);
             if now <= tol {
@@ -673,11 +684,21 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                 least = now;
                 best.copy_from_slice(q);
             }
-            self.difference_jacobian(pose, q, r, trial, r_trial, jac)?;
+            if stale {
+                jac.copy_from_slice(&self.kept_jac);
+            } else {
+                self.difference_jacobian(pose, q, r, trial, r_trial, jac)?;
+                self.kept_jac.copy_from_slice(jac);
+                self.kept_valid = true;
+            }
             for (s, v) in step.iter_mut().zip(r.iter()) {
                 *s = -v;
             }
             if !gauss_solve(jac, step, k) {
+                if stale {
+                    stale = false;
+                    continue;
+                }
                 // No wheel in contact (a singular Jacobian): lower the rover
                 // by a millimetre and try again.
                 q[0] -= 1e-3;
@@ -694,8 +715,23 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                 let shrink = MAX_STEP / longest;
                 step.iter_mut().for_each(|v| *v *= shrink);
             }
-            // Backtracking (Armijo) on ½|r|².
             let base = sq(r);
+            if stale {
+                // A chord step is kept only if it halves the residual;
+                // otherwise the Jacobian is differenced afresh.
+                for i in 0..k {
+                    trial[i] = q[i] + step[i];
+                }
+                self.residual(pose, trial, r_trial)?;
+                if sq(r_trial) <= 0.25 * base {
+                    q.copy_from_slice(trial);
+                    r.copy_from_slice(r_trial);
+                } else {
+                    stale = false;
+                }
+                continue;
+            }
+            // Backtracking (Armijo) on ½|r|².
             let mut lambda = 1.0;
             loop {
                 for i in 0..k {
