@@ -132,6 +132,50 @@ fn tip_message(
     )
 }
 
+/// The scratch of one solve: residuals, trial point and its residuals,
+/// Jacobian, step, iterate and best iterate, taken out of the solver while
+/// it evaluates residuals.
+#[derive(Default)]
+struct Scratch {
+    r: Vec<f64>,
+    trial: Vec<f64>,
+    r_trial: Vec<f64>,
+    jac: Vec<f64>,
+    step: Vec<f64>,
+    q: Vec<f64>,
+    best: Vec<f64>,
+}
+
+impl Scratch {
+    fn new(k: usize) -> Self {
+        Self {
+            r: vec![0.0; k],
+            trial: vec![0.0; k],
+            r_trial: vec![0.0; k],
+            jac: vec![0.0; k * k],
+            step: vec![0.0; k],
+            q: vec![0.0; k],
+            best: vec![0.0; k],
+        }
+    }
+}
+
+/// The largest magnitude of `v` (the residual norm the solves judge by).
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |a, b| a.max(b.abs()))
+}
+
+/// Shorten `step` to the trust radius [`MAX_STEP`]: where a wheel is off
+/// the ground the Jacobian is nearly singular and a raw step can be tens
+/// of radians.
+fn limit_step(step: &mut [f64]) {
+    let longest = max_abs(step);
+    if longest > MAX_STEP {
+        let shrink = MAX_STEP / longest;
+        step.iter_mut().for_each(|v| *v *= shrink);
+    }
+}
+
 /// "wheel 3", "wheels 1 and 3", "wheels 1, 2 and 4" (1-based).
 fn wheel_list(w: &[usize]) -> String {
     let n: Vec<String> = w.iter().map(|k| (k + 1).to_string()).collect();
@@ -164,15 +208,7 @@ pub struct QuasiStatic<'a, H> {
     x: Vec<f64>,
     zeros: Vec<f64>,
     gq: Vec<f64>,
-    // Scratch of a solve: residuals, trial point, Jacobian, step, iterate,
-    // best iterate.
-    r: Vec<f64>,
-    trial: Vec<f64>,
-    r_trial: Vec<f64>,
-    jac: Vec<f64>,
-    step: Vec<f64>,
-    work: Vec<f64>,
-    best: Vec<f64>,
+    scratch: Scratch,
     r_check: Vec<f64>,
     /// The last differenced Jacobian, reused by the next solves (a chord
     /// method) while its steps converge fast; `kept_valid` once there is one.
@@ -233,13 +269,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             x: Vec::with_capacity(model.dof()),
             zeros: vec![0.0; model.dof()],
             gq: vec![0.0; model.dof()],
-            r: vec![0.0; q0.len()],
-            trial: vec![0.0; q0.len()],
-            r_trial: vec![0.0; q0.len()],
-            jac: vec![0.0; q0.len() * q0.len()],
-            step: vec![0.0; q0.len()],
-            work: vec![0.0; q0.len()],
-            best: vec![0.0; q0.len()],
+            scratch: Scratch::new(q0.len()),
             r_check: vec![0.0; q0.len()],
             kept_jac: vec![0.0; q0.len() * q0.len()],
             kept_valid: false,
@@ -484,26 +514,29 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
     /// `Ok(Err(residual))` with `q` unchanged.
     fn pseudo_transient(&mut self, pose: [f64; 3]) -> Result<Result<usize, f64>, QuasiStaticError> {
         let k = self.q.len();
-        let weight = self.model.total_mass() * self.model.gravity;
-        let tol = 1e-9 * weight.max(1e-12);
-        let mut r = core::mem::take(&mut self.r);
-        let mut trial = core::mem::take(&mut self.trial);
-        let mut r_trial = core::mem::take(&mut self.r_trial);
-        let mut jac = core::mem::take(&mut self.jac);
-        let mut step = core::mem::take(&mut self.step);
-        let mut q = core::mem::take(&mut self.work);
-        let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let tol = self.tolerance();
+        let mut scratch = core::mem::take(&mut self.scratch);
+        let Scratch {
+            r,
+            trial,
+            r_trial,
+            jac,
+            step,
+            q,
+            ..
+        } = &mut scratch;
+        let norm = max_abs;
         let mut out = Ok(Err(f64::INFINITY));
         q.copy_from_slice(&self.q);
         let mut dtau = 1e-2;
-        match self.residual(pose, &q, &mut r) {
+        match self.residual(pose, q, r) {
             Err(e) => out = Err(e),
             Ok(()) => {
                 for it in 0..PSEUDO_TRANSIENT_ITERATIONS {
-                    let now = norm(&r);
+                    let now = norm(r);
                     out = Ok(Err(now));
                     if now <= tol {
-                        match self.stands(pose, &q) {
+                        match self.stands(pose, q) {
                             Ok(true) => {}
                             Ok(false) => break,
                             Err(e) => {
@@ -514,9 +547,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                         out = Ok(Ok(it));
                         break;
                     }
-                    if let Err(e) =
-                        self.difference_jacobian(pose, &q, &r, &mut trial, &mut r_trial, &mut jac)
-                    {
+                    if let Err(e) = self.difference_jacobian(pose, q, r, trial, r_trial, jac) {
                         out = Err(e);
                         break;
                     }
@@ -528,23 +559,19 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                         jac[i * k + i] += d / dtau;
                         step[i] = r[i];
                     }
-                    if !gauss_solve(&mut jac, &mut step, k) {
+                    if !gauss_solve(jac, step, k) {
                         dtau *= 0.1;
                         continue;
                     }
-                    let longest = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                    if longest > MAX_STEP {
-                        let shrink = MAX_STEP / longest;
-                        step.iter_mut().for_each(|v| *v *= shrink);
-                    }
+                    limit_step(step);
                     for i in 0..k {
                         trial[i] = q[i] + step[i];
                     }
-                    if let Err(e) = self.residual(pose, &trial, &mut r_trial) {
+                    if let Err(e) = self.residual(pose, trial, r_trial) {
                         out = Err(e);
                         break;
                     }
-                    let next = norm(&r_trial);
+                    let next = norm(r_trial);
                     // A step that more than doubles the residual is retaken
                     // shorter; one that lowers it lengthens the next; the
                     // flow may climb a little on its way to a stable
@@ -556,12 +583,12 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                     if next < now {
                         dtau = (2.0 * dtau).min(1e12);
                     }
-                    q.copy_from_slice(&trial);
-                    r.copy_from_slice(&r_trial);
+                    q.copy_from_slice(trial);
+                    r.copy_from_slice(r_trial);
                 }
                 if let Ok(Err(_)) = out
-                    && norm(&r) <= tol
-                    && matches!(self.stands(pose, &q), Ok(true))
+                    && norm(r) <= tol
+                    && matches!(self.stands(pose, q), Ok(true))
                 {
                     out = Ok(Ok(PSEUDO_TRANSIENT_ITERATIONS));
                 }
@@ -569,13 +596,12 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
         }
         match out {
             Ok(Ok(it)) => {
-                self.q.copy_from_slice(&q);
+                self.q.copy_from_slice(q);
                 self.iterations += it as u64;
             }
             _ => self.iterations += PSEUDO_TRANSIENT_ITERATIONS as u64,
         }
-        (self.r, self.trial, self.r_trial, self.jac) = (r, trial, r_trial, jac);
-        (self.step, self.work) = (step, q);
+        self.scratch = scratch;
         out
     }
 
@@ -615,53 +641,38 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
     /// with `q` updated, or `Ok(Err(residual))` with `q` unchanged and the
     /// iterate of least residual in `best`.
     fn newton(&mut self, pose: [f64; 3]) -> Result<Result<usize, f64>, QuasiStaticError> {
-        let k = self.q.len();
-        let weight = self.model.total_mass() * self.model.gravity;
-        let tol = 1e-9 * weight.max(1e-12);
-        let mut r = core::mem::take(&mut self.r);
-        let mut trial = core::mem::take(&mut self.trial);
-        let mut r_trial = core::mem::take(&mut self.r_trial);
-        let mut jac = core::mem::take(&mut self.jac);
-        let mut step = core::mem::take(&mut self.step);
-        let mut q = core::mem::take(&mut self.work);
-        let mut best = core::mem::take(&mut self.best);
-        let out = self.iterate(
-            pose,
-            tol,
-            [
-                &mut r,
-                &mut trial,
-                &mut r_trial,
-                &mut jac,
-                &mut step,
-                &mut q,
-                &mut best,
-            ],
-        );
+        let mut scratch = core::mem::take(&mut self.scratch);
+        let out = self.iterate(pose, &mut scratch);
         if let Ok(Ok(it)) = out {
-            self.q.copy_from_slice(&q);
+            self.q.copy_from_slice(&scratch.q);
             self.iterations += it as u64;
         } else {
             self.iterations += MAX_ITERATIONS as u64;
         }
-        (self.r, self.trial, self.r_trial, self.jac) = (r, trial, r_trial, jac);
-        (self.step, self.work, self.best) = (step, q, best);
-        debug_assert_eq!(k, self.r.len());
+        self.scratch = scratch;
         out
     }
 
-    /// The iterations of [`QuasiStatic::newton`], on taken-out scratch
-    /// `[r, trial, r_trial, jac, step, q, best]`.
+    /// The iterations of [`QuasiStatic::newton`], on taken-out scratch.
     fn iterate(
         &mut self,
         pose: [f64; 3],
-        tol: f64,
-        [r, trial, r_trial, jac, step, q, best]: [&mut Vec<f64>; 7],
+        scratch: &mut Scratch,
     ) -> Result<Result<usize, f64>, QuasiStaticError> {
+        let Scratch {
+            r,
+            trial,
+            r_trial,
+            jac,
+            step,
+            q,
+            best,
+        } = scratch;
         let k = self.q.len();
+        let tol = self.tolerance();
         q.copy_from_slice(&self.q);
         self.residual(pose, q, r)?;
-        let norm = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let norm = max_abs;
         let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
         best.copy_from_slice(q);
         let mut least = norm(r);
@@ -705,16 +716,9 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
                 self.residual(pose, q, r)?;
                 continue;
             }
-            // A step no larger than a trust radius: where a wheel is off the
-            // ground the Jacobian is nearly singular (a rover started level
-            // on a slope has its downhill wheels in the air) and the Newton
-            // step can be tens of radians; a bounded step lets the wheels
-            // touch first.
-            let longest = step.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            if longest > MAX_STEP {
-                let shrink = MAX_STEP / longest;
-                step.iter_mut().for_each(|v| *v *= shrink);
-            }
+            // A rover started level on a slope has its downhill wheels in the
+            // air: a bounded step lets them touch first.
+            limit_step(step);
             let base = sq(r);
             if stale {
                 // A chord step is kept only if it halves the residual;
@@ -755,6 +759,11 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
             best.copy_from_slice(q);
         }
         Ok(Err(least))
+    }
+
+    /// The residual a solve converges to: 1e-9 of the rover's weight.
+    fn tolerance(&self) -> f64 {
+        1e-9 * (self.model.total_mass() * self.model.gravity).max(1e-12)
     }
 
     /// The forward-difference Jacobian of the residual at `q` (whose
@@ -824,7 +833,7 @@ impl<'a, H: HeightField> QuasiStatic<'a, H> {
     /// neither (Newton–Raphson did not converge).
     fn diagnose(&mut self, pose: [f64; 3], iterations: usize, residual: f64) -> QuasiStaticError {
         let model = self.model;
-        let q = self.best.clone();
+        let q = self.scratch.best.clone();
         let mut r = vec![0.0; q.len()];
         if let Err(e) = self.residual(pose, &q, &mut r) {
             return e;
