@@ -529,18 +529,8 @@ fn every_shipped_scenario_runs() {
             .clone()
             .expect("a shipped scenario names its rover");
         let spec = rover_spec::load_str(rover_models::builtin(&rover).unwrap(), &rover).unwrap();
-        let plant = rover_runtime::GenericPlant::new(spec.model.clone()).unwrap();
-        let summary = rover_scenario::simulate::simulate(
-            plant,
-            &spec.model,
-            &rover,
-            &scenario,
-            path.parent().unwrap(),
-            std::io::sink(),
-            &std::sync::atomic::AtomicBool::new(false),
-            |_| {},
-        )
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let plant = rover_runtime::GenericPlant::new(spec.model).unwrap();
+        let summary = super::support::simulate_shipped(plant, &scenario, &path);
         assert_eq!(
             summary.status,
             rover_scenario::output::Status::Completed,

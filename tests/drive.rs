@@ -330,15 +330,20 @@ fn view_draws_the_terrain_the_run_had_without_its_scenario() {
         assert!(r.starts_with("HTTP/1.1 200"), "{r}");
         serde_json::from_str(r.split("\r\n\r\n").nth(1).unwrap()).unwrap()
     };
-    let viewing = view();
-    let grid = body(viewing.port);
-    viewing.stop();
-    let z: Vec<f64> = grid["z"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(Value::as_f64)
-        .collect();
+    // The terrain grid `rover view` serves, and its heights.
+    let heights = || {
+        let viewing = view();
+        let grid = body(viewing.port);
+        viewing.stop();
+        let z: Vec<f64> = grid["z"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(Value::as_f64)
+            .collect();
+        (grid, z)
+    };
+    let (grid, z) = heights();
     let relief = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
         - z.iter().cloned().fold(f64::INFINITY, f64::min);
     assert!(relief > 0.05, "relief {relief} m: drawn flat");
@@ -357,15 +362,7 @@ fn view_draws_the_terrain_the_run_had_without_its_scenario() {
         "rover = \"swing4\"\nduration = 0.2\n[integrator.rk4]\nstep = 1e-3\n",
     );
     run(flat.as_ref());
-    let viewing = view();
-    let grid = body(viewing.port);
-    viewing.stop();
-    let z: Vec<f64> = grid["z"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .filter_map(Value::as_f64)
-        .collect();
+    let (_, z) = heights();
     assert!(z.iter().all(|h| (h - z[0]).abs() < 1e-9), "not flat");
     // Not a grid: flat ground (`null`), not the file.
     rover_files::write_whole(&out.join("terrain.json"), b"{\"z\": [1, 2]}").unwrap();

@@ -51,12 +51,7 @@ fn variant(text: &str, longest: f64, integrator: &str) -> String {
 #[test]
 fn ros2_is_stable_at_5_and_10_ms_on_every_shipped_scenario() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    names.sort();
+    let names = crate::support::shipped_scenarios();
     assert!(names.len() >= 8, "{names:?}");
     for path in names {
         let text = std::fs::read_to_string(&path).unwrap();

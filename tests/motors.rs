@@ -157,20 +157,8 @@ fn no_shipped_scenario_runs_away() {
     let names = super::support::shipped_scenarios();
     for path in names {
         let scenario = rover_scenario::scenario::Scenario::load(&path).unwrap();
-        let rover = scenario.rover.clone().unwrap();
-        let spec = rover_spec::load_str(rover_models::builtin(&rover).unwrap(), &rover).unwrap();
-        let plant = rover_models::plant(&rover).unwrap();
-        let summary = rover_scenario::simulate::simulate(
-            plant,
-            &spec.model,
-            &rover,
-            &scenario,
-            path.parent().unwrap(),
-            std::io::sink(),
-            &std::sync::atomic::AtomicBool::new(false),
-            |_| {},
-        )
-        .unwrap();
+        let plant = rover_models::plant(scenario.rover.as_deref().unwrap()).unwrap();
+        let summary = super::support::simulate_shipped(plant, &scenario, &path);
         assert!(
             summary.runaway.is_none(),
             "{}: {:?}",
