@@ -16,7 +16,7 @@ use crate::scalar::Scalar;
 use crate::wheel_law::{
     PatchForces, PatchMotion, Tyre, WheelLaw, normal_force, rolling_resistance,
 };
-use crate::wheel_soil::{RunRule, SoilTyre, soil_wheel_loads, spin_rates};
+use crate::wheel_soil::{RunRule, SoilTyre, SoilUnder, soil_wheel_loads, spin_rates};
 
 /// Which contact search a run uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -61,9 +61,15 @@ pub struct WheelReport {
     /// Slip angle between the heading and the centre's velocity on a soil
     /// \[rad\] (0 on rigid ground).
     pub slip_angle: f64,
-    /// Sinkage: the rim's depth below the surface on a soil \[m\] (0 on
-    /// rigid ground).
+    /// Sinkage: the rim's depth below the soil's surface on a soil \[m\]
+    /// (0 on rigid ground). Where an earlier pass left a rut, below the
+    /// rut's floor: `rut + sinkage` is the depth below the undisturbed
+    /// ground.
     pub sinkage: f64,
+    /// The depth of the rut under the wheel \[m\]: how far earlier passes
+    /// lowered the soil's surface below the terrain's (0 on fresh soil and
+    /// on rigid ground).
+    pub rut: f64,
     /// Number of patches.
     pub patches: usize,
     /// The whole lower half of the wheel was below ground.
@@ -235,6 +241,7 @@ pub struct FixedGround<const W: usize> {
     soil: Option<[SoilTyre; W]>,
     rule: RunRule,
     spins: [f64; W],
+    unders: [SoilUnder; W],
     wheels: [WheelContact; W],
     normals: [f64; W],
     loads: [WheelLoad; W],
@@ -249,6 +256,7 @@ impl<const W: usize> FixedGround<W> {
             soil: None,
             rule: RunRule::new(),
             spins: [0.0; W],
+            unders: [SoilUnder::default(); W],
             wheels: [WheelContact::new(&search); W],
             normals: [0.0; W],
             loads: [WheelLoad::default(); W],
@@ -273,6 +281,14 @@ impl<const W: usize> FixedGround<W> {
     /// on a soil (positive rolling forward; unused on rigid ground).
     pub fn set_spins(&mut self, spins: &[f64; W]) {
         self.spins = *spins;
+    }
+
+    /// The soil under each wheel for the next [`FixedGround::loads`] on a
+    /// soil: the rut and compaction earlier passes left where it stands
+    /// (fresh soil until set). A rig keeping its own rut map reads it at
+    /// each wheel's contact point after [`FixedGround::find_contacts`].
+    pub fn set_soil_under(&mut self, unders: &[SoilUnder; W]) {
+        self.unders = *unders;
     }
 
     /// Each wheel's spin acceleration `(τ − T)/I_w` \[rad/s²\] after
@@ -321,7 +337,7 @@ impl<const W: usize> FixedGround<W> {
             Some(soil) => soil_wheel_loads(
                 soil,
                 &self.rule,
-                (&self.wheels[..], &states[..]),
+                (&self.wheels[..], &states[..], &self.unders[..]),
                 torques,
                 &self.spins,
                 &mut self.loads,

@@ -30,7 +30,9 @@ use crate::height_field::HeightField;
 use crate::linalg::{cross, dot, v3};
 use crate::plant::{WheelLoad, WheelState};
 use crate::scalar::Scalar;
-use crate::soil::{EntryAngle, GaussLegendre, Shear, SoilForces, SoilWheel, forces_on_arc};
+use crate::soil::{
+    Compaction, EntryAngle, GaussLegendre, Reload, Shear, SoilForces, SoilWheel, forces_on_arc,
+};
 use crate::wheel_ground::{LoadDerivative, WheelReport, lever_gradient};
 use crate::wheel_law::DAMPING_RAMP;
 
@@ -57,6 +59,21 @@ pub struct SoilTyre {
     pub wheel: SoilWheel,
     /// Radial damping c_w [N·s/m].
     pub damping: f64,
+}
+
+/// The soil under one wheel as earlier passes left it (docs/MODEL.md,
+/// "Ruts and multipass"), read from the ground's memory where the wheel
+/// stands: fresh soil is the default.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SoilUnder {
+    /// How far the soil's surface lies below the terrain's, d \[m\] (the
+    /// rut): the wheel sinks into the soil from there.
+    pub rut: f64,
+    /// `[∂d/∂X, ∂d/∂Y]` [m/m]: how the rut's depth changes as the wheel
+    /// moves (the assembled Jacobian's share of it).
+    pub rut_gradient: [f64; 2],
+    /// What the soil under the rut was pressed to.
+    pub compaction: Compaction,
 }
 
 /// What the soil does to one patch of a wheel, reduced to its centre.
@@ -130,7 +147,7 @@ fn forward_weight<S: Scalar + PartialOrd>(v: S) -> S {
 fn in_frame<S: Scalar + PartialOrd>(
     tyre: &SoilTyre,
     rule: &RunRule,
-    entry: EntryAngle<S>,
+    (entry, reload): (EntryAngle<S>, Option<&Reload>),
     sign: f64,
     [u, v, v_c]: [S; 3],
 ) -> (SoilForces<S>, S) {
@@ -146,14 +163,16 @@ fn in_frame<S: Scalar + PartialOrd>(
     let slip_angle = v_c.atan2(forward);
     // tan β of β = atan2(v_c, forward), forward > 0.
     let tan_beta = v_c / forward;
-    let forces = forces_on_arc(&tyre.wheel, entry, slip, tan_beta, shear, rule);
+    let forces = forces_on_arc(&tyre.wheel, entry, slip, tan_beta, shear, reload, rule);
     (forces, slip_angle)
 }
 
 /// [`SoilPatchLoad`] of patch `p` of a wheel spinning at `spin` \[rad/s\],
 /// its centre displaced by `shift` from where the patch was found and
 /// moving at `velocity`, the patch's frame held (as the rigid law's
-/// `patch_load`): the sinkage is the patch's depth `Δ₀ − g·shift`.
+/// `patch_load`), over the soil `under` (its reloading law `reload`):
+/// the sinkage is the patch's depth below the rut's floor,
+/// `Δ₀ − g·shift − d − ∇d·shift`.
 #[allow(clippy::too_many_arguments)]
 fn soil_patch_load<S: Scalar + PartialOrd>(
     tyre: &SoilTyre,
@@ -161,6 +180,7 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
     s: &WheelState,
     p: &Patch,
     lever_gradient: [f64; 3],
+    (under, reload): (&SoilUnder, Option<&Reload>),
     shift: [S; 3],
     velocity: [S; 3],
     spin: S,
@@ -168,8 +188,10 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
     let radius = tyre.wheel.radius;
     let (n, t, c) = (v3::<S>(p.normal), v3::<S>(p.tangent), v3::<S>(p.lateral));
     let moved = dot(v3::<S>(lever_gradient), shift);
-    // The rim's depth below the surface, within the wheel.
-    let sinkage = (S::cst(p.deflection) - moved)
+    let [gx, gy] = under.rut_gradient;
+    let rut = S::cst(under.rut) + S::cst(gx) * shift[0] + S::cst(gy) * shift[1];
+    // The rim's depth below the soil's surface, within the wheel.
+    let sinkage = (S::cst(p.deflection) - moved - rut)
         .max(S::cst(1e-12 * radius))
         .min(S::cst(radius));
     let r = S::cst(radius);
@@ -194,7 +216,7 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
         if weight <= S::zero() {
             continue;
         }
-        let (f, beta) = in_frame(tyre, rule, entry, sign, speeds);
+        let (f, beta) = in_frame(tyre, rule, (entry, reload), sign, speeds);
         sum.vertical += weight * f.vertical;
         sum.drawbar += weight * S::cst(sign) * f.drawbar;
         sum.torque += weight * S::cst(sign) * f.torque;
@@ -235,11 +257,13 @@ fn soil_patch_load<S: Scalar + PartialOrd>(
 /// τ_stator = −τ·a_w                                    on the stator
 /// I_w·ω̇ = τ − Σ T                                      the wheel's spin
 /// ```
-/// The report's slip, slip angle and sinkage are the deepest patch's.
+/// The report's slip, slip angle and sinkage are the deepest patch's; the
+/// soil under every patch is `under` (what earlier passes left where the
+/// wheel stands).
 pub fn soil_wheel_load(
     tyre: &SoilTyre,
     rule: &RunRule,
-    s: &WheelState,
+    (s, under): (&WheelState, &SoilUnder),
     contact: &Contact,
     torque: f64,
     spin: f64,
@@ -254,9 +278,11 @@ pub fn soil_wheel_load(
         deep: contact.deep,
         ..Default::default()
     };
+    let reload = tyre.wheel.reload(under.compaction);
+    let soil = (under, reload.as_ref());
     let mut deepest = f64::NEG_INFINITY;
     for p in contact.patches() {
-        let pl = soil_patch_load(tyre, rule, s, p, p.normal, [0.0; 3], s.velocity, spin);
+        let pl = soil_patch_load(tyre, rule, s, p, p.normal, soil, [0.0; 3], s.velocity, spin);
         for k in 0..3 {
             load.force[k] += pl.force[k];
             load.moment[k] += pl.moment[k];
@@ -271,6 +297,7 @@ pub fn soil_wheel_load(
             report.slip = pl.slip;
             report.slip_angle = pl.slip_angle;
             report.sinkage = pl.sinkage;
+            report.rut = under.rut;
         }
     }
     (load, report)
@@ -287,7 +314,7 @@ pub fn soil_load_derivative<H: HeightField + ?Sized>(
     tyre: &SoilTyre,
     rule: &RunRule,
     terrain: &H,
-    s: &WheelState,
+    (s, under): (&WheelState, &SoilUnder),
     contact: &Contact,
     spin: f64,
 ) -> LoadDerivative {
@@ -302,9 +329,11 @@ pub fn soil_load_derivative<H: HeightField + ?Sized>(
     let shift = core::array::from_fn(|k| Jet::var(0.0, k));
     let velocity = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
     let spin = Jet::var(spin, 6);
+    let reload = tyre.wheel.reload(under.compaction);
+    let soil = (under, reload.as_ref());
     for p in contact.patches() {
         let gradient = lever_gradient(terrain, s, p);
-        let pl = soil_patch_load(tyre, rule, s, p, gradient, shift, velocity, spin);
+        let pl = soil_patch_load(tyre, rule, s, p, gradient, soil, shift, velocity, spin);
         for (i, &col) in COLUMNS.iter().enumerate() {
             for k in 0..3 {
                 d[k][col] += pl.force[k].eps[i];
@@ -503,23 +532,30 @@ impl Scalar for Jet {
     }
 }
 
-/// The load on every wheel on the soil (`tyres`, `states`, `spins` and
-/// `torques` in the order of `wheels`), from its last contact, with its
-/// report: the second phase of a right-hand side on a soil
-/// ([`crate::wheel_ground::wheel_loads`] on rigid ground).
+/// The load on every wheel on the soil (`tyres`, `states`, the soil
+/// `unders` each stands on, `spins` and `torques` in the order of
+/// `wheels`), from its last contact, with its report: the second phase of
+/// a right-hand side on a soil ([`crate::wheel_ground::wheel_loads`] on
+/// rigid ground).
 #[allow(clippy::too_many_arguments)]
 pub fn soil_wheel_loads(
     tyres: &[SoilTyre],
     rule: &RunRule,
-    (wheels, states): (&[crate::wheel_ground::WheelContact], &[WheelState]),
+    (wheels, states, unders): (
+        &[crate::wheel_ground::WheelContact],
+        &[WheelState],
+        &[SoilUnder],
+    ),
     torques: &[f64],
     spins: &[f64],
     loads: &mut [WheelLoad],
     reports: &mut [WheelReport],
 ) {
-    let each = wheels.iter().zip(states).zip(tyres.iter().zip(torques));
-    for ((((wheel, s), (tyre, &torque)), &spin), (load, report)) in
-        each.zip(spins).zip(loads.iter_mut().zip(reports))
+    let each = wheels.iter().zip(states.iter().zip(unders));
+    for ((((wheel, s), (tyre, &torque)), &spin), (load, report)) in each
+        .zip(tyres.iter().zip(torques))
+        .zip(spins)
+        .zip(loads.iter_mut().zip(reports))
     {
         (*load, *report) = soil_wheel_load(tyre, rule, s, wheel.contact(), torque, spin);
     }
@@ -557,6 +593,8 @@ mod tests {
             a1: 0.15,
             rear_ratio: 0.0,
             unit_weight: 0.0,
+            reload_k0: 0.0,
+            reload_au: 5.03e8,
         };
         SoilTyre {
             wheel: SoilWheel::new(&soil, R, B),
@@ -588,7 +626,8 @@ mod tests {
 
     fn load(z: f64, v: f64, spin: f64) -> (WheelLoad, WheelReport) {
         let (s, contact) = wheel(z, v);
-        soil_wheel_load(&tyre(), &RunRule::new(), &s, &contact, 0.0, spin)
+        let fresh = SoilUnder::default();
+        soil_wheel_load(&tyre(), &RunRule::new(), (&s, &fresh), &contact, 0.0, spin)
     }
 
     /// Driving forward at slip s (r·ω = v/(1 − s)), the wheel carries the
@@ -681,7 +720,8 @@ mod tests {
         let flat = Flat;
         let (z, v, spin) = (0.011, 0.05, 0.6);
         let (s, contact) = wheel(z, v);
-        let d = soil_load_derivative(&tyre(), &RunRule::new(), &flat, &s, &contact, spin);
+        let fresh = SoilUnder::default();
+        let d = soil_load_derivative(&tyre(), &RunRule::new(), &flat, (&s, &fresh), &contact, spin);
         let parts = |l: &WheelLoad, r: &WheelReport| {
             let mut p = [0.0; 10];
             p[..3].copy_from_slice(&l.force);
@@ -727,7 +767,7 @@ mod tests {
 
     mod jets {
         use super::super::*;
-        use crate::soil::Soil;
+        use crate::soil::{Compaction, Soil};
 
         /// Wong's LLL dry sand (docs/SOIL.md), a 0.125 m wheel 0.16 m wide.
         fn tyre() -> SoilTyre {
@@ -743,6 +783,8 @@ mod tests {
                 a1: 0.15,
                 rear_ratio: 0.0,
                 unit_weight: 0.0,
+                reload_k0: 0.0,
+                reload_au: 5.03e8,
             };
             SoilTyre {
                 wheel: SoilWheel::new(&soil, 0.125, 0.16),
@@ -791,19 +833,36 @@ mod tests {
             ]
         }
 
+        /// Each motion over fresh soil, over a rut sunk past its elastic
+        /// knee (the stress's kink inside the arc) and over a rut reloaded
+        /// elastically only, the rut deepening across the slope.
+        fn motions_over_soils() -> impl Iterator<Item = (([f64; 3], f64), SoilUnder)> {
+            let rut = |depth: f64, past: f64| SoilUnder {
+                rut: depth,
+                rut_gradient: [0.02, -0.3],
+                compaction: Compaction { past_sinkage: past },
+            };
+            let soils = [SoilUnder::default(), rut(0.011, 0.013), rut(0.014, 0.016)];
+            soils
+                .into_iter()
+                .flat_map(|under| motions().into_iter().map(move |m| (m, under)))
+        }
+
         /// The seven directions of one [`Jet`] pass are, bit for bit, the
         /// seven [`Dual`] passes they replace.
         #[test]
         fn one_jet_pass_is_the_dual_passes() {
             use crate::dual::Dual;
             let (tyre, rule) = (tyre(), RunRule::new());
-            for (velocity, spin) in motions() {
+            for ((velocity, spin), under) in motions_over_soils() {
+                let reload = tyre.wheel.reload(under.compaction);
+                let soil = (&under, reload.as_ref());
                 let (s, p, spin) = wheel(velocity, spin);
                 let gradient = [0.1, -0.05, 1.0];
                 let shift = core::array::from_fn(|k| Jet::var(0.0, k));
                 let v = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
                 let jet =
-                    soil_patch_load(&tyre, &rule, &s, &p, gradient, shift, v, Jet::var(spin, 6));
+                    soil_patch_load(&tyre, &rule, &s, &p, gradient, soil, shift, v, Jet::var(spin, 6));
                 for i in 0..DIRECTIONS {
                     let seed = |j: usize| if i == j { 1.0 } else { 0.0 };
                     let shift = core::array::from_fn(|k| Dual {
@@ -818,7 +877,7 @@ mod tests {
                         re: spin,
                         eps: seed(6),
                     };
-                    let dual = soil_patch_load(&tyre, &rule, &s, &p, gradient, shift, v, w);
+                    let dual = soil_patch_load(&tyre, &rule, &s, &p, gradient, soil, shift, v, w);
                     for k in 0..3 {
                         assert_eq!(jet.force[k].re.to_bits(), dual.force[k].re.to_bits());
                         assert_eq!(jet.force[k].eps[i].to_bits(), dual.force[k].eps.to_bits());
@@ -835,13 +894,15 @@ mod tests {
         #[test]
         fn the_jet_derivatives_are_the_differences_of_the_law() {
             let (tyre, rule) = (tyre(), RunRule::new());
-            for (velocity, spin) in motions() {
+            for ((velocity, spin), under) in motions_over_soils() {
+                let reload = tyre.wheel.reload(under.compaction);
+                let soil = (&under, reload.as_ref());
                 let (s, p, spin) = wheel(velocity, spin);
                 let gradient = [0.1, -0.05, 1.0];
                 let shift = core::array::from_fn(|k| Jet::var(0.0, k));
                 let v = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
                 let jet =
-                    soil_patch_load(&tyre, &rule, &s, &p, gradient, shift, v, Jet::var(spin, 6));
+                    soil_patch_load(&tyre, &rule, &s, &p, gradient, soil, shift, v, Jet::var(spin, 6));
                 let at = |i: usize, h: f64| {
                     let mut x = [0.0, 0.0, 0.0, velocity[0], velocity[1], velocity[2], spin];
                     x[i] += h;
@@ -851,6 +912,7 @@ mod tests {
                         &s,
                         &p,
                         gradient,
+                        soil,
                         [x[0], x[1], x[2]],
                         [x[3], x[4], x[5]],
                         x[6],

@@ -438,6 +438,7 @@ impl Integrator for Bdf {
                     *t = t_new;
                     y.copy_from_slice(self.hist.row(0));
                 }
+                sys.step_accepted(t_new, self.hist.row(0));
             }
             if side {
                 std::mem::swap(&mut self.hist, &mut self.spare);

@@ -219,6 +219,7 @@ impl Integrator for Dopri5 {
                     self.k.swap(0, 6);
                     *t = t_new;
                     self.stats.steps += 1;
+                    sys.step_accepted(t_new, y);
                     let mut factor = (SAFETY * err.powf(-ALPHA) * self.err_prev.powf(BETA))
                         .clamp(MIN_FACTOR, MAX_FACTOR);
                     if after_rejection {

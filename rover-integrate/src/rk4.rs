@@ -108,6 +108,7 @@ impl Integrator for Rk4 {
         fixed_steps(step, t, y, t_target, |t, h, y| {
             self.step_once(sys, t, h, y)?;
             self.stats.steps += 1;
+            sys.step_accepted(t + h, y);
             Ok(())
         })
     }

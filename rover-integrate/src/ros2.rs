@@ -215,6 +215,7 @@ impl Integrator for Ros2 {
         fixed_steps(step, t, y, t_target, |t, h, y| {
             self.step_once(sys, t, h, y)?;
             self.stats.steps += 1;
+            sys.step_accepted(t + h, y);
             Ok(())
         })
     }

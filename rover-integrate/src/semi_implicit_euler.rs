@@ -91,6 +91,7 @@ impl Integrator for SemiImplicitEuler {
         fixed_steps(step, t, y, t_target, |t, h, y| {
             self.step_once(sys, t, h, split, y)?;
             self.stats.steps += 1;
+            sys.step_accepted(t + h, y);
             Ok(())
         })
     }

@@ -40,6 +40,14 @@ pub trait OdeSystem {
         None
     }
 
+    /// Called after every step the integrator accepts, with the state it
+    /// reached: a system with memory (the ground's ruts, which the wheels
+    /// deepen as they go) updates it here. Whatever it changes must lie
+    /// where the right-hand side does not read it at the present state,
+    /// so that the step just taken, and a multistep method's history,
+    /// stay valid. Default: nothing.
+    fn step_accepted(&mut self, _t: f64, _y: &[f64]) {}
+
     /// The system's own Jacobian `∂f/∂y` at `(t, y)`, row-major (`jac[i·dim + j] =
     /// ∂f_i/∂y_j`), for the implicit methods (BDF, ROS2), with the number of right-hand-side
     /// evaluations it spent. It may approximate: the methods need it for convergence and

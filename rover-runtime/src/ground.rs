@@ -15,9 +15,10 @@ use rover_dynamics::wheel_ground::{
 };
 use rover_dynamics::wheel_law::Tyre;
 use rover_dynamics::wheel_soil::{
-    RunRule, SoilTyre, soil_load_derivative, soil_wheel_loads, spin_rates, wheel_slip,
+    RunRule, SoilTyre, SoilUnder, soil_load_derivative, soil_wheel_load, spin_rates, wheel_slip,
 };
 
+use crate::ruts::Ruts;
 use crate::wheel_law::WheelLawConfig;
 
 /// A soil under the wheels: each wheel's constants in it, the quadrature
@@ -28,6 +29,17 @@ struct SoilGround {
     tyres: Vec<SoilTyre>,
     rule: RunRule,
     inertias: Vec<f64>,
+    /// The wheels' ruts, when the ground keeps them.
+    ruts: Option<Ruts>,
+}
+
+impl SoilGround {
+    /// The soil as earlier passes left it under a wheel at `contact`.
+    fn under(&self, contact: &Contact) -> SoilUnder {
+        self.ruts
+            .as_ref()
+            .map_or(SoilUnder::default(), |r| r.under(contact))
+    }
 }
 
 /// A wheel the soil law cannot take.
@@ -120,8 +132,41 @@ impl<H: HeightField> Ground<H> {
             tyres,
             rule: RunRule::new(),
             inertias: model.wheels.iter().map(|w| w.spin_inertia).collect(),
+            ruts: None,
         });
         Ok(self)
+    }
+
+    /// The same soft ground keeping the wheels' ruts in cells of side
+    /// `cell` \[m\] (docs/MODEL.md, "Ruts and multipass"): each wheel
+    /// presses the soil, and the wheels that come after meet the rut and
+    /// the compacted soil it left. Nothing on rigid ground.
+    pub fn with_ruts(mut self, cell: f64) -> Self {
+        if let Some(soil) = &mut self.soil {
+            let widths: Vec<f64> = soil.tyres.iter().map(|t| t.wheel.width).collect();
+            soil.ruts = Some(Ruts::new(cell, &widths, &self.radii));
+        }
+        self
+    }
+
+    /// The ruts, when the ground keeps them.
+    pub fn ruts(&self) -> Option<&Ruts> {
+        self.soil.as_ref()?.ruts.as_ref()
+    }
+
+    /// The ruts, to reserve tiles ahead.
+    pub fn ruts_mut(&mut self) -> Option<&mut Ruts> {
+        self.soil.as_mut()?.ruts.as_mut()
+    }
+
+    /// After an accepted step: the wheels' presses in the states and
+    /// reports of the last evaluation go into the ruts they leave
+    /// ([`Ruts::record`]). Nothing without ruts.
+    pub fn record_ruts(&mut self, states: &[WheelState], reports: &[WheelReport]) {
+        let Some(soil) = &mut self.soil else { return };
+        let Some(ruts) = &mut soil.ruts else { return };
+        let tyres = &soil.tyres;
+        ruts.record(states, reports, |k, z| tyres[k].wheel.rut_depth(z));
     }
 
     /// The soil, if the ground is soft.
@@ -257,16 +302,18 @@ impl<H: HeightField> Ground<H> {
     ) {
         match &self.soil {
             Some(soil) => {
-                let wheels = (&self.wheels[..], states);
-                soil_wheel_loads(
-                    &soil.tyres,
-                    &soil.rule,
-                    wheels,
-                    torques,
-                    spins,
-                    loads,
-                    reports,
-                );
+                for (k, wheel) in self.wheels.iter().enumerate() {
+                    let contact = wheel.contact();
+                    let under = soil.under(contact);
+                    (loads[k], reports[k]) = soil_wheel_load(
+                        &soil.tyres[k],
+                        &soil.rule,
+                        (&states[k], &under),
+                        contact,
+                        torques[k],
+                        spins[k],
+                    );
+                }
             }
             None => {
                 let wheels = (&self.wheels[..], states, &self.tyres[..]);
@@ -287,14 +334,17 @@ impl<H: HeightField> Ground<H> {
     ) {
         for (k, d) in out.iter_mut().enumerate() {
             *d = match &self.soil {
-                Some(soil) => soil_load_derivative(
-                    &soil.tyres[k],
-                    &soil.rule,
-                    &self.terrain,
-                    &states[k],
-                    self.wheels[k].contact(),
-                    spins[k],
-                ),
+                Some(soil) => {
+                    let contact = self.wheels[k].contact();
+                    soil_load_derivative(
+                        &soil.tyres[k],
+                        &soil.rule,
+                        &self.terrain,
+                        (&states[k], &soil.under(contact)),
+                        contact,
+                        spins[k],
+                    )
+                }
                 None => self.wheels[k].load_derivative(
                     &self.law,
                     &self.tyres[k],

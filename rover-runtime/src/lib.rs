@@ -17,6 +17,7 @@ pub mod generic_plant;
 pub mod ground;
 pub mod quasi_static;
 pub mod row;
+pub mod ruts;
 pub mod sim;
 pub mod soil;
 pub mod wheel_law;

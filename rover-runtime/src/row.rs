@@ -302,8 +302,20 @@ pub const ROW: &[Group] = &[
             field(
                 "sinkage{j}",
                 Unit::Metre,
-                "on a soil: the rim's depth below the surface",
+                "on a soil: the rim's depth below the soil's surface (a rut's floor where earlier passes left one)",
                 |r, j| r.reports[j].sinkage,
+            ),
+            field(
+                "rut{j}",
+                Unit::Metre,
+                "on a soil: the depth of the rut earlier passes left under the wheel, below the terrain",
+                |r, j| r.reports[j].rut,
+            ),
+            field(
+                "sinkage_undisturbed{j}",
+                Unit::Metre,
+                "on a soil: the rim's depth below the undisturbed terrain, rut{j} + sinkage{j}",
+                |r, j| r.reports[j].rut + r.reports[j].sinkage,
             ),
             field(
                 "T{j}",

@@ -41,6 +41,25 @@ pub struct SoilConfig {
     /// 2007); left out by default.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub unit_weight: Option<f64>,
+    /// Wong's unloading–reloading modulus at zero past sinkage, k_0
+    /// \[Pa/m\] (≥ 0, default 0): `k_u = k_0 + A_u·z_u`, the soil's
+    /// stiffness when a wheel reloads ground an earlier pass pressed to
+    /// z_u (docs/MODEL.md, "Ruts and multipass").
+    #[serde(default)]
+    pub reload_k0: f64,
+    /// Its growth with the past sinkage, A_u \[Pa/m²\] (≥ 0; default
+    /// 5.03e8, Wong's LETE sand). k_0 = A_u = 0: the soil keeps no memory
+    /// of its load, and a rut's floor is fresh soil.
+    #[serde(default = "default_reload_au")]
+    pub reload_au: f64,
+}
+
+/// A_u of LETE sand, 503 000 kN/m⁴ (Wong, *Theory of Ground Vehicles*,
+/// 4th ed. 2008, the repetitive-loading parameters) \[Pa/m²\].
+pub const LETE_RELOAD_AU: f64 = 5.03e8;
+
+fn default_reload_au() -> f64 {
+    LETE_RELOAD_AU
 }
 
 fn default_a0() -> f64 {
@@ -74,7 +93,7 @@ impl SoilConfig {
     pub fn soil(&self) -> Result<Soil, SoilError> {
         let lateral = self.lateral_shear_modulus.unwrap_or(self.shear_modulus);
         let unit_weight = self.unit_weight.unwrap_or(0.0);
-        let checks: [(&'static str, f64, bool, &'static str); 11] = [
+        let checks: [(&'static str, f64, bool, &'static str); 13] = [
             (
                 "n",
                 self.n,
@@ -141,6 +160,18 @@ impl SoilConfig {
                 self.unit_weight.is_none() || unit_weight > 0.0,
                 "the soil's weight per volume in N/m³, > 0 (ρ·g: 1600 kg/m³ on the Moon is 2592 N/m³); leave it out to leave out the side's bulldozing",
             ),
+            (
+                "reload_k0",
+                self.reload_k0,
+                self.reload_k0 >= 0.0,
+                "the reloading modulus at zero sinkage in Pa/m, >= 0 (sands: 0)",
+            ),
+            (
+                "reload_au",
+                self.reload_au,
+                self.reload_au >= 0.0,
+                "the reloading modulus's growth with the past sinkage in Pa/m², >= 0 (sands 0.86e8-5.03e8; 0 with reload_k0 = 0 for a soil without memory)",
+            ),
         ];
         for (field, value, ok, help) in checks {
             if !(ok && value.is_finite()) {
@@ -166,6 +197,8 @@ impl SoilConfig {
             a1: self.a1,
             rear_ratio: self.rear_ratio,
             unit_weight,
+            reload_k0: self.reload_k0,
+            reload_au: self.reload_au,
         })
     }
 
@@ -184,6 +217,8 @@ impl SoilConfig {
             a1: 0.15,
             rear_ratio: 0.0,
             unit_weight: None,
+            reload_k0: 0.0,
+            reload_au: LETE_RELOAD_AU,
         };
         Some(match name {
             "lete_sand" => soil(0.79, 102.0, 5301.0, 1.3, 31.1, 0.01, None),

@@ -7,6 +7,8 @@
 //! kind = "slope"
 //! angle_deg = 10.0
 //! soil = "lunar_nominal"      # a built-in soil, or a file with a [soil] table
+//! ruts = true                 # on a soil: the wheels leave ruts (default)
+//! rut_cell = 0.02             # the ruts' cell [m] (default 0.02)
 //!
 //! [terrain.soil]              # or the soil's own numbers
 //! n = 1.0
@@ -40,11 +42,23 @@ pub struct GroundConfig {
     pub shape: TerrainConfig,
     /// The soil (`soil`), or `None` for rigid ground.
     pub soil: Option<SoilSpec>,
+    /// `ruts`: whether the wheels leave ruts on the soil (default: yes).
+    pub ruts: Option<bool>,
+    /// `rut_cell`: the side of the ruts' cells \[m\] (default
+    /// [`DEFAULT_RUT_CELL`]).
+    pub rut_cell: Option<f64>,
 }
+
+/// The ruts' cell unless `rut_cell` says otherwise \[m\]: a fifth to a
+/// tenth of a rover wheel's width.
+pub const DEFAULT_RUT_CELL: f64 = 0.02;
 
 impl From<TerrainConfig> for GroundConfig {
     fn from(shape: TerrainConfig) -> Self {
-        Self { shape, soil: None }
+        Self {
+            shape,
+            ..Self::default()
+        }
     }
 }
 
@@ -52,6 +66,28 @@ impl GroundConfig {
     /// The terrain, its files relative to `base_dir`.
     pub fn build(&self, base_dir: &Path) -> Result<Terrain, TerrainError> {
         self.shape.build(base_dir)
+    }
+
+    /// The ruts' cell \[m\] when the wheels leave ruts (a soil, and
+    /// `ruts` not false), `None` when they do not; a `rut_cell` that is
+    /// not a positive length, or ruts asked of rigid ground, is refused.
+    pub fn rut_cell(&self) -> Result<Option<f64>, SoilError> {
+        if let Some(cell) = self.rut_cell
+            && !(cell.is_finite() && cell > 0.0 && cell <= 1.0)
+        {
+            return Err(SoilError::Source(format!(
+                "terrain.rut_cell = {cell}: the side of the ruts' cells must be a length in (0, 1] m; 0.02 (the default) resolves a rover wheel's rut, a tenth of a wheel's width is enough"
+            )));
+        }
+        if self.soil.is_none() {
+            if self.ruts == Some(true) || self.rut_cell.is_some() {
+                return Err(SoilError::Source(
+                    "terrain.ruts: ruts need a soil, and this terrain is rigid; give [terrain] a soil (soil = \"dry_sand\", docs/SOIL.md), or leave out ruts and rut_cell".into(),
+                ));
+            }
+            return Ok(None);
+        }
+        Ok((self.ruts != Some(false)).then_some(self.rut_cell.unwrap_or(DEFAULT_RUT_CELL)))
     }
 
     /// The soil, checked, its file relative to `base_dir`; `None` for
@@ -102,6 +138,25 @@ impl<'de> Deserialize<'de> for GroundConfig {
                 )));
             }
         };
+        let ruts = match table.remove("ruts") {
+            None => None,
+            Some(toml::Value::Boolean(b)) => Some(b),
+            Some(other) => {
+                return Err(D::Error::custom(format!(
+                    "terrain.ruts = {other}: give true (the wheels leave ruts on the soil, the default) or false (the soil springs back under every wheel)"
+                )));
+            }
+        };
+        let rut_cell = match table.remove("rut_cell") {
+            None => None,
+            Some(toml::Value::Float(x)) => Some(x),
+            Some(toml::Value::Integer(i)) => Some(i as f64),
+            Some(other) => {
+                return Err(D::Error::custom(format!(
+                    "terrain.rut_cell = {other}: give the ruts' cell in metres, e.g. 0.02"
+                )));
+            }
+        };
         let shape = if table.is_empty() {
             TerrainConfig::default()
         } else {
@@ -109,7 +164,12 @@ impl<'de> Deserialize<'de> for GroundConfig {
                 .try_into()
                 .map_err(|e| D::Error::custom(format!("terrain: {e}")))?
         };
-        Ok(Self { shape, soil })
+        Ok(Self {
+            shape,
+            soil,
+            ruts,
+            rut_cell,
+        })
     }
 }
 
@@ -123,6 +183,14 @@ impl Serialize for GroundConfig {
                 SoilSpec::Table(c) => toml::Value::try_from(c).map_err(S::Error::custom)?,
             };
             table.insert("soil".into(), soil);
+        }
+        if let toml::Value::Table(table) = &mut value {
+            if let Some(ruts) = self.ruts {
+                table.insert("ruts".into(), toml::Value::Boolean(ruts));
+            }
+            if let Some(cell) = self.rut_cell {
+                table.insert("rut_cell".into(), toml::Value::Float(cell));
+            }
         }
         value.serialize(s)
     }

@@ -224,8 +224,12 @@ pub fn ground_of(
     base_dir: &Path,
 ) -> Result<Ground<Terrain>, SetupError> {
     let ground = scenario.contact.ground(terrain, model);
-    Ok(match scenario.terrain.soil(base_dir)? {
+    let ground = match scenario.terrain.soil(base_dir)? {
         Some(soil) => ground.with_soil(&soil, model)?,
+        None => ground,
+    };
+    Ok(match scenario.terrain.rut_cell()? {
+        Some(cell) => ground.with_ruts(cell),
         None => ground,
     })
 }

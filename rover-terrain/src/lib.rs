@@ -19,6 +19,8 @@
 //!   a [`TerrainError`] naming the file, the line (or pixel, or tag), the
 //!   problem and the fix. Both features are on by default; a rig that only
 //!   needs the contact can leave them (and their decoders) out.
+//! - [`RutMap`] is the ground's memory of the wheels that passed: the ruts
+//!   they left and how deep they pressed the soil, in sparse tiles.
 //! - [`TerrainConfig`] is the scenario's `[terrain]` table;
 //!   [`TerrainConfig::build`] checks it and makes the [`Terrain`].
 //!
@@ -50,6 +52,7 @@ pub mod prng;
 mod profile;
 mod random_field;
 mod range_pyramid;
+pub mod ruts;
 mod sinusoid;
 mod slope;
 mod statistics;
@@ -76,6 +79,7 @@ pub use grid::{EdgePolicy, Grid, Interpolation, MAX_FILE_NODES};
 pub use png_map::{SampleScale, read_png, write_png};
 pub use profile::Footprint;
 pub use random_field::RandomField;
+pub use ruts::{Footprint as RutFootprint, RutMap, RutSample};
 pub use sinusoid::Sinusoid;
 pub use slope::Slope;
 pub use statistics::TerrainStatistics;

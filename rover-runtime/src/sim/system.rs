@@ -375,6 +375,14 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
         self.evaluate(t, y, dy)
     }
 
+    /// The wheels' presses of the last evaluation (at or just before the
+    /// step's end) go into the ground's ruts, behind the wheels.
+    fn step_accepted(&mut self, _t: f64, _y: &[f64]) {
+        if let Some(ground) = &mut self.ground {
+            ground.record_ruts(&self.wheels, &self.reports);
+        }
+    }
+
     fn split(&self) -> usize {
         self.n
     }
