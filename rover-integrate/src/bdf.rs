@@ -438,7 +438,11 @@ impl Integrator for Bdf {
                     *t = t_new;
                     y.copy_from_slice(self.hist.row(0));
                 }
-                sys.step_accepted(t_new, self.hist.row(0));
+                // A side landing is a solution point but not the
+                // history's: the next regular step starts before it.
+                if !side {
+                    sys.step_accepted(t_new, self.hist.row(0));
+                }
             }
             if side {
                 std::mem::swap(&mut self.hist, &mut self.spare);

@@ -40,12 +40,15 @@ pub trait OdeSystem {
         None
     }
 
-    /// Called after every step the integrator accepts, with the state it
-    /// reached: a system with memory (the ground's ruts, which the wheels
-    /// deepen as they go) updates it here. Whatever it changes must lie
-    /// where the right-hand side does not read it at the present state,
-    /// so that the step just taken, and a multistep method's history,
-    /// stay valid. Default: nothing.
+    /// Called after every step the integrator accepts and builds on, with
+    /// the state it reached, in increasing time: no later evaluation is
+    /// at an earlier time (BDF's landings on an output instant, from which
+    /// the next step does not start, are not reported). A system with
+    /// memory (the ground's ruts, which the wheels deepen as they go)
+    /// updates it here; whatever it changes must lie where the right-hand
+    /// side does not read it from the present state on, so that the step
+    /// just taken, and a multistep method's history, stay valid. Default:
+    /// nothing.
     fn step_accepted(&mut self, _t: f64, _y: &[f64]) {}
 
     /// The system's own Jacobian `∂f/∂y` at `(t, y)`, row-major (`jac[i·dim + j] =

@@ -34,11 +34,11 @@ struct SoilGround {
 }
 
 impl SoilGround {
-    /// The soil as earlier passes left it under a wheel at `contact`.
-    fn under(&self, contact: &Contact) -> SoilUnder {
+    /// The soil as earlier passes left it under wheel `k` at `contact`.
+    fn under(&self, k: usize, contact: &Contact) -> SoilUnder {
         self.ruts
             .as_ref()
-            .map_or(SoilUnder::default(), |r| r.under(contact))
+            .map_or(SoilUnder::default(), |r| r.under(k, contact))
     }
 }
 
@@ -304,7 +304,7 @@ impl<H: HeightField> Ground<H> {
             Some(soil) => {
                 for (k, wheel) in self.wheels.iter().enumerate() {
                     let contact = wheel.contact();
-                    let under = soil.under(contact);
+                    let under = soil.under(k, contact);
                     (loads[k], reports[k]) = soil_wheel_load(
                         &soil.tyres[k],
                         &soil.rule,
@@ -340,7 +340,7 @@ impl<H: HeightField> Ground<H> {
                         &soil.tyres[k],
                         &soil.rule,
                         &self.terrain,
-                        (&states[k], &soil.under(contact)),
+                        (&states[k], &soil.under(k, contact)),
                         contact,
                         spins[k],
                     )

@@ -8,21 +8,25 @@
 //! the map there ([`Ruts::under`]). Written at once, a wheel's own press
 //! would be read back by the wheel at its next step, and the wheel would
 //! sink into its own rut step after step. Held back until the wheel's
-//! contact point is [`CLEARANCE_CELLS`] cells away, a rut is met only by
-//! the wheels that come after (or by the same wheel, driven back over
-//! it), as on real ground.
+//! contact point is further than its read reaches (half its radius) and
+//! [`CLEARANCE_CELLS`] cells more, a rut is met only by the wheels that
+//! come after (or by the same wheel, driven back over it), as on real
+//! ground.
 
 use rover_dynamics::contact::Contact;
 use rover_dynamics::plant::WheelState;
 use rover_dynamics::wheel_ground::WheelReport;
 use rover_dynamics::wheel_soil::SoilUnder;
-use rover_dynamics::soil::Compaction;
 use rover_terrain::ruts::{Footprint, RutMap};
 
 /// How far \[cells\] a wheel's contact point must move from where it
 /// pressed before the press is written: the bilinear read reaches one
 /// cell, the rasterized write half a cell more.
 pub const CLEARANCE_CELLS: f64 = 3.0;
+
+/// How far either side of a wheel's contact point its rut is read, as a
+/// fraction of its radius ([`Ruts::under`]).
+const READ_REACH: f64 = 0.5;
 
 /// Presses a trail holds before the oldest is written anyway (a wheel
 /// that turns on the spot keeps pressing the same ground).
@@ -113,10 +117,15 @@ impl Ruts {
         &mut self.map
     }
 
-    /// The soil as earlier passes left it under a wheel whose contact is
-    /// `contact`: read where its deepest patch lies; fresh soil for a
-    /// wheel in the air. Allocates nothing.
-    pub fn under(&self, contact: &Contact) -> SoilUnder {
+    /// The soil as earlier passes left it under wheel `k` whose contact is
+    /// `contact`, fresh soil for a wheel in the air. Read along the
+    /// deepest patch's tangent, at its point and half the wheel's radius
+    /// either side, weighted 1/4, 1/2, 1/4: the rim spans that much of
+    /// the rut, and the rut a wheel meets then deepens over a stretch of
+    /// the wheel's size, not of a cell's (a rut begun by a wheel at rest
+    /// has a wall one cell wide, which a point read would make a step).
+    /// Allocates nothing.
+    pub fn under(&self, k: usize, contact: &Contact) -> SoilUnder {
         let deepest = contact
             .patches()
             .iter()
@@ -124,14 +133,18 @@ impl Ruts {
         let Some(p) = deepest else {
             return SoilUnder::default();
         };
-        let s = self.map.sample(p.point[0], p.point[1]);
-        SoilUnder {
-            rut: s.depth,
-            rut_gradient: s.gradient,
-            compaction: Compaction {
-                past_sinkage: s.past_sinkage,
-            },
+        let reach = READ_REACH * self.radii[k];
+        let mut under = SoilUnder::default();
+        for (u, w) in [(-1.0, 0.25), (0.0, 0.5), (1.0, 0.25)] {
+            let x = p.point[0] + u * reach * p.tangent[0];
+            let y = p.point[1] + u * reach * p.tangent[1];
+            let s = self.map.sample(x, y);
+            under.rut += w * s.depth;
+            under.rut_gradient[0] += w * s.gradient[0];
+            under.rut_gradient[1] += w * s.gradient[1];
+            under.compaction.past_sinkage += w * s.past_sinkage;
         }
+        under
     }
 
     /// Records where each wheel presses now (its state and the report of
@@ -147,8 +160,8 @@ impl Ruts {
         rut_depth: impl Fn(usize, f64) -> f64,
     ) {
         let cell = self.map.cell();
-        let clearance = CLEARANCE_CELLS * cell;
         for (k, (s, r)) in states.iter().zip(reports).enumerate() {
+            let clearance = READ_REACH * self.radii[k] + CLEARANCE_CELLS * cell;
             let here = [r.point[0], r.point[1]];
             let trail = &mut self.trails[k];
             if r.patches > 0 && r.sinkage > 0.0 {
@@ -165,7 +178,12 @@ impl Ruts {
                     past_sinkage: r.rut + r.sinkage,
                 };
                 match trail.newest_mut() {
-                    Some(newest) if distance(newest.centre, here) < 0.25 * cell => {
+                    // A press every quarter cell, and at most a sixteenth
+                    // of the clearance apart, so that the trail holds the
+                    // whole stretch behind the wheel.
+                    Some(newest)
+                        if distance(newest.centre, here) < (0.25 * cell).max(clearance / 16.0) =>
+                    {
                         newest.past_sinkage = newest.past_sinkage.max(now.past_sinkage);
                         newest.axle = now.axle;
                     }

@@ -203,7 +203,15 @@ impl RutMap {
         }
         let (fi, fj) = (gx.floor(), gy.floor());
         let (i, j) = (fi as i64, fj as i64);
-        let (fx, fy) = (gx - fi, gy - fj);
+        let (ux, uy) = (gx - fi, gy - fj);
+        // Smoothstep weights: the read is C1 (its gradient continuous
+        // across cells), which an implicit integrator's step control needs
+        // more than a bilinear read's exactness between nodes.
+        let (fx, fy) = (ux * ux * (3.0 - 2.0 * ux), uy * uy * (3.0 - 2.0 * uy));
+        let (sx, sy) = (
+            6.0 * ux * (1.0 - ux) * self.inv_cell,
+            6.0 * uy * (1.0 - uy) * self.inv_cell,
+        );
         let t = TILE as i64;
         let Some(&slot) = self.index.get(&key(i.div_euclid(t), j.div_euclid(t))) else {
             return RutSample::default();
@@ -223,8 +231,8 @@ impl RutMap {
         RutSample {
             depth: lerp2(d00, d10, d01, d11),
             gradient: [
-                ((1.0 - fy) * (d10 - d00) + fy * (d11 - d01)) * self.inv_cell,
-                ((1.0 - fx) * (d01 - d00) + fx * (d11 - d10)) * self.inv_cell,
+                ((1.0 - fy) * (d10 - d00) + fy * (d11 - d01)) * sx,
+                ((1.0 - fx) * (d01 - d00) + fx * (d11 - d10)) * sy,
             ],
             past_sinkage: lerp2(p00, p10, p01, p11),
         }
