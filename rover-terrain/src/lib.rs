@@ -19,6 +19,9 @@
 //!   a [`TerrainError`] naming the file, the line (or pixel, or tag), the
 //!   problem and the fix. Both features are on by default; a rig that only
 //!   needs the contact can leave them (and their decoders) out.
+//! - [`SoilMap`] says which soil classes lie where (a background, a
+//!   [`ClassRaster`] read from a CSV or PNG file, [`SoilPatch`]es), as
+//!   [`SoilWeights`] continuous in (X, Y).
 //! - [`TerrainConfig`] is the scenario's `[terrain]` table;
 //!   [`TerrainConfig::build`] checks it and makes the [`Terrain`].
 //!
@@ -52,6 +55,7 @@ mod random_field;
 mod range_pyramid;
 mod sinusoid;
 mod slope;
+pub mod soil_map;
 mod statistics;
 mod step;
 #[allow(clippy::module_inception)]
@@ -78,6 +82,9 @@ pub use profile::Footprint;
 pub use random_field::RandomField;
 pub use sinusoid::Sinusoid;
 pub use slope::Slope;
+pub use soil_map::{
+    ClassFile, ClassRaster, PatchShape, SoilMap, SoilPatch, SoilWeights, read_class_raster,
+};
 pub use statistics::TerrainStatistics;
 pub use step::Step;
 pub use terrain::Terrain;
