@@ -103,6 +103,9 @@ fn terrain_error(value: &Spanned<DeValue<'_>>) -> Option<(&'static str, toml::de
         return None;
     };
     let mut table = table.clone();
+    // The soils by region are read (and their errors named) by the ground.
+    table.remove("soil_map");
+    table.remove("soil_patches");
     if let Some(soil) = table.remove("soil")
         && matches!(soil.get_ref(), DeValue::Table(_))
         && let Some(e) = read::<SoilConfig>(soil)
