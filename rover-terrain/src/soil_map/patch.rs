@@ -96,7 +96,8 @@ fn segments_meet(p1: [f64; 2], p2: [f64; 2], q1: [f64; 2], q2: [f64; 2]) -> bool
 }
 
 /// Checks a polygon: ≥ 3 finite points, no repeated neighbours, no edge
-/// folding back on the previous one, no two other edges meeting, an area.
+/// folding back on the previous one, no two other edges meeting (so the
+/// outline encloses an area).
 fn check_polygon(points: &[[f64; 2]]) -> Result<(), TerrainError> {
     let n = points.len();
     if n < 3 {
