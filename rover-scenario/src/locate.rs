@@ -103,6 +103,11 @@ fn terrain_error(value: &Spanned<DeValue<'_>>) -> Option<(&'static str, toml::de
         return None;
     };
     let mut table = table.clone();
+    // The soils by region and the ruts are read (and their errors named)
+    // by the ground.
+    for key in ["soil_map", "soil_patches", "ruts", "rut_cell"] {
+        table.remove(key);
+    }
     if let Some(soil) = table.remove("soil")
         && matches!(soil.get_ref(), DeValue::Table(_))
         && let Some(e) = read::<SoilConfig>(soil)

@@ -352,7 +352,7 @@ impl Scenario {
     /// under it): its wheels then spin as states, and its rows carry their
     /// spin, slip and sinkage.
     pub fn soft(&self) -> bool {
-        self.terrain.soil.is_some() && !self.free_flight
+        self.terrain.is_soft() && !self.free_flight
     }
 
     /// The checks that need no rover, which a scenario file gets when it

@@ -62,6 +62,55 @@ pub fn parse_csv(
     path: &Path,
     georeference: Option<Georeference>,
 ) -> Result<Grid, TerrainError> {
+    let m = parse_matrix(text, path, georeference, &HEIGHTS)?;
+    Grid::new(
+        m.georeference.origin,
+        m.georeference.spacing,
+        m.nx,
+        m.ny,
+        m.values,
+    )
+}
+
+/// What a CSV matrix's cells hold, for its error messages: heights, or
+/// the soil classes of a soil map.
+pub(crate) struct Cells {
+    /// One cell's value: "height".
+    pub noun: &'static str,
+    /// What the values are written as: "heights are decimal numbers in metres".
+    pub form: &'static str,
+    /// The unit a finite value is given in: " in metres".
+    pub unit: &'static str,
+    /// The scenario table that gives origin and spacing.
+    pub table: &'static str,
+}
+
+/// A terrain grid's cells.
+const HEIGHTS: Cells = Cells {
+    noun: "height",
+    form: "heights are decimal numbers in metres",
+    unit: " in metres",
+    table: "[terrain]",
+};
+
+/// A CSV matrix as read: placed, its values south row first, and the line
+/// of the file each row came from (for the errors of a caller that checks
+/// the values further).
+pub(crate) struct Matrix {
+    pub georeference: Georeference,
+    pub nx: usize,
+    pub ny: usize,
+    pub values: Vec<f64>,
+    pub lines: Vec<usize>,
+}
+
+/// Parses the CSV matrix `text` of `cells`; `path` names the file in errors.
+pub(crate) fn parse_matrix(
+    text: &str,
+    path: &Path,
+    georeference: Option<Georeference>,
+    cells: &Cells,
+) -> Result<Matrix, TerrainError> {
     let err = |line: usize, problem: String, help: &str| {
         FileError::at(path, Place::Line(line), problem, help)
     };
@@ -167,25 +216,33 @@ pub fn parse_csv(
                 "the file has an `x0,y0,dx,dy` header and the scenario gives origin and \
                  spacing too"
                     .into(),
-                "remove origin and spacing from [terrain] or the header from the file, so the \
-                 two cannot disagree",
+                &format!(
+                    "remove origin and spacing from {} or the header from the file, so the \
+                     two cannot disagree",
+                    cells.table
+                ),
             ));
         }
         (None, None) => {
             return Err(err(
                 first_data,
                 "the grid has no georeference: no `x0,y0,dx,dy` header".into(),
-                "add the header line `x0,y0,dx,dy` and a line with their values before the \
-                 heights, or set origin = [x0, y0] and spacing = [dx, dy] in [terrain]",
+                &format!(
+                    "add the header line `x0,y0,dx,dy` and a line with their values before the \
+                     {}s, or set origin = [x0, y0] and spacing = [dx, dy] in {}",
+                    cells.noun, cells.table
+                ),
             ));
         }
     };
 
     let mut heights = Vec::new();
+    let mut row_lines = Vec::new();
     let mut ncols = 0;
     let mut nrows = 0;
     for (number, line) in lines {
         nrows += 1;
+        row_lines.push(number);
         let mut count = 0;
         for (c, word) in line.split(',').map(str::trim).enumerate() {
             let c = c + 1;
@@ -194,7 +251,10 @@ pub fn parse_csv(
                 return Err(err(
                     number,
                     format!("row {nrows}, column {c} is empty"),
-                    "every cell needs a height; check for a doubled or trailing comma",
+                    &format!(
+                        "every cell needs a {}; check for a doubled or trailing comma",
+                        cells.noun
+                    ),
                 ));
             }
             let Ok(z) = word.parse::<f64>() else {
@@ -204,14 +264,20 @@ pub fn parse_csv(
                         "row {nrows}, column {c}: `{}` is not a number",
                         rover_files::excerpt(word, 24)
                     ),
-                    "heights are decimal numbers in metres, separated by commas",
+                    &format!("{}, separated by commas", cells.form),
                 ));
             };
             if !z.is_finite() {
                 return Err(err(
                     number,
-                    format!("row {nrows}, column {c}: the height {word} is not a finite number"),
-                    "every cell needs a finite height in metres; fill holes before loading",
+                    format!(
+                        "row {nrows}, column {c}: the {} {word} is not a finite number",
+                        cells.noun
+                    ),
+                    &format!(
+                        "every cell needs a finite {}{}; fill holes before loading",
+                        cells.noun, cells.unit
+                    ),
                 ));
             }
             heights.push(z);
@@ -231,14 +297,14 @@ pub fn parse_csv(
         return Err(err(
             first_data,
             format!("the matrix has {nrows} rows of {ncols} values; a grid needs at least 2 × 2"),
-            "give at least two rows of at least two heights",
+            &format!("give at least two rows of at least two {}s", cells.noun),
         ));
     }
-    Grid::new(
-        georeference.origin,
-        georeference.spacing,
-        ncols,
-        nrows,
-        heights,
-    )
+    Ok(Matrix {
+        georeference,
+        nx: ncols,
+        ny: nrows,
+        values: heights,
+        lines: row_lines,
+    })
 }

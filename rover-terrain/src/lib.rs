@@ -21,6 +21,9 @@
 //!   needs the contact can leave them (and their decoders) out.
 //! - [`RutMap`] is the ground's memory of the wheels that passed: the ruts
 //!   they left and how deep they pressed the soil, in sparse tiles.
+//! - [`SoilMap`] says which soil classes lie where (a background, a
+//!   [`ClassRaster`] read from a CSV or PNG file, [`SoilPatch`]es), as
+//!   [`SoilWeights`] continuous in (X, Y).
 //! - [`TerrainConfig`] is the scenario's `[terrain]` table;
 //!   [`TerrainConfig::build`] checks it and makes the [`Terrain`].
 //!
@@ -55,6 +58,7 @@ mod range_pyramid;
 pub mod ruts;
 mod sinusoid;
 mod slope;
+pub mod soil_map;
 mod statistics;
 mod step;
 #[allow(clippy::module_inception)]
@@ -82,6 +86,9 @@ pub use random_field::RandomField;
 pub use ruts::{Footprint as RutFootprint, RutMap, RutSample};
 pub use sinusoid::Sinusoid;
 pub use slope::Slope;
+pub use soil_map::{
+    ClassFile, ClassRaster, PatchShape, SoilMap, SoilPatch, SoilWeights, read_class_raster,
+};
 pub use statistics::TerrainStatistics;
 pub use step::Step;
 pub use terrain::Terrain;

@@ -64,6 +64,54 @@ pub fn decode_png(
 ) -> Result<Grid, TerrainError> {
     let georeference = georeference.check()?;
     let scale = scale.check()?;
+    let samples = decode_samples(bytes, path, Samples::Heights)?;
+    let heights = samples
+        .values
+        .iter()
+        .map(|&k| scale.offset + scale.scale * f64::from(k))
+        .collect();
+    Grid::new(
+        georeference.origin,
+        georeference.spacing,
+        samples.width,
+        samples.height,
+        heights,
+    )
+}
+
+/// What a PNG's samples are, which decides the images accepted.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Samples {
+    /// Heights: 16-bit grayscale only (8 bits give 256 levels).
+    Heights,
+    /// Soil classes: 8- or 16-bit grayscale (a class is an integer).
+    Classes,
+}
+
+impl Samples {
+    /// What the image is called in messages.
+    fn noun(self) -> &'static str {
+        match self {
+            Samples::Heights => "height map",
+            Samples::Classes => "soil map",
+        }
+    }
+}
+
+/// A grayscale image's samples, south row first, west to east.
+pub(crate) struct Image {
+    pub width: usize,
+    pub height: usize,
+    pub values: Vec<u16>,
+}
+
+/// Decodes the grayscale samples of PNG `bytes`; `path` names the file in
+/// errors.
+pub(crate) fn decode_samples(
+    bytes: &[u8],
+    path: &Path,
+    kind: Samples,
+) -> Result<Image, TerrainError> {
     let whole = |problem: String, help: &str| FileError::at(path, Place::Whole, problem, help);
     let decoder = png::Decoder::new(Cursor::new(bytes));
     let mut reader = decoder.read_info().map_err(|e| {
@@ -75,27 +123,45 @@ pub fn decode_png(
     let info = reader.info();
     let (width, height) = (info.width as usize, info.height as usize);
     let (color, depth) = (info.color_type, info.bit_depth);
-    if color != png::ColorType::Grayscale || depth != png::BitDepth::Sixteen {
-        return Err(whole(
-            format!(
-                "the image is {}-bit {color:?}; a height map must be 16-bit Grayscale",
-                depth as u8
+    let bytes_per_sample = match (kind, depth) {
+        (_, png::BitDepth::Sixteen) => 2,
+        (Samples::Classes, png::BitDepth::Eight) => 1,
+        _ => 0,
+    };
+    if color != png::ColorType::Grayscale || bytes_per_sample == 0 {
+        return Err(match kind {
+            Samples::Heights => whole(
+                format!(
+                    "the image is {}-bit {color:?}; a height map must be 16-bit Grayscale",
+                    depth as u8
+                ),
+                "re-export the height map as a 16-bit grayscale PNG (8 bits give only 256 \
+                 height levels; colour has no single height per pixel)",
             ),
-            "re-export the height map as a 16-bit grayscale PNG (8 bits give only 256 \
-             height levels; colour has no single height per pixel)",
-        ));
+            Samples::Classes => whole(
+                format!(
+                    "the image is {}-bit {color:?}; a soil map must be 8- or 16-bit Grayscale",
+                    depth as u8
+                ),
+                "re-export the soil map as a grayscale PNG whose pixel values are the classes \
+                 (no palette, no colour, no alpha)",
+            ),
+        });
     }
     if width < 2 || height < 2 {
         return Err(whole(
             format!("the image is {width} × {height} pixels; a grid needs at least 2 × 2"),
-            "give a height map of at least two rows and two columns",
+            &format!(
+                "give a {} of at least two rows and two columns",
+                kind.noun()
+            ),
         ));
     }
     super::grid::check_file_nodes(path, width, height)?;
     let size = reader.output_buffer_size().ok_or_else(|| {
         whole(
             format!("the image ({width} × {height}) is too large to decode"),
-            "crop or downsample the height map",
+            &format!("crop or downsample the {}", kind.noun()),
         )
     })?;
     let mut buffer = vec![0; size];
@@ -106,22 +172,25 @@ pub fn decode_png(
         )
     })?;
     let line = frame.line_size;
-    let mut heights = vec![0.0; width * height];
+    let mut values = vec![0; width * height];
     for r in 0..height {
         let j = height - 1 - r;
-        let row = buffer.get(r * line..r * line + 2 * width).unwrap_or(&[]);
-        for (i, pair) in row.chunks_exact(2).enumerate() {
-            let k = u16::from_be_bytes([pair[0], pair[1]]);
-            heights[j * width + i] = scale.offset + scale.scale * f64::from(k);
+        let row = buffer
+            .get(r * line..r * line + bytes_per_sample * width)
+            .unwrap_or(&[]);
+        for (i, sample) in row.chunks_exact(bytes_per_sample).enumerate() {
+            values[j * width + i] = match sample {
+                [hi, lo] => u16::from_be_bytes([*hi, *lo]),
+                [k] => u16::from(*k),
+                _ => 0,
+            };
         }
     }
-    Grid::new(
-        georeference.origin,
-        georeference.spacing,
+    Ok(Image {
         width,
         height,
-        heights,
-    )
+        values,
+    })
 }
 
 /// Writes `grid` as a 16-bit grayscale PNG, each height quantized to

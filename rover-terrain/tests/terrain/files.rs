@@ -367,7 +367,7 @@ pub(crate) const PNG_SCALE: SampleScale = SampleScale {
     offset: -10.0,
 };
 
-fn png_bytes(
+pub(crate) fn png_bytes(
     width: u32,
     height: u32,
     color: png::ColorType,

@@ -5,4 +5,5 @@ mod files;
 mod library;
 mod random_field;
 mod robustness;
+mod soil_map;
 mod support;
