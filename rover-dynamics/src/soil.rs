@@ -960,7 +960,10 @@ mod tests {
         assert_eq!(fresh, none);
         let barely = Compaction { past_sinkage: 1e-9 };
         let f = soil_forces_compacted(&wheel, contact, barely, &rule);
-        assert!((f.vertical - fresh.vertical).abs() < 1e-3 * fresh.vertical, "{f:?} {fresh:?}");
+        assert!(
+            (f.vertical - fresh.vertical).abs() < 1e-3 * fresh.vertical,
+            "{f:?} {fresh:?}"
+        );
         // Without memory (k_0 = A_u = 0) the rut's floor is fresh soil.
         let forgetful = SoilWheel::new(
             &Soil {
@@ -984,7 +987,11 @@ mod tests {
     #[test]
     fn compacted_soil_answers_elastically_up_to_its_past_pressure() {
         let (r, b) = (0.2, 0.15);
-        let soil = Soil { a0: 0.0, a1: 0.0, ..lete() };
+        let soil = Soil {
+            a0: 0.0,
+            a1: 0.0,
+            ..lete()
+        };
         let wheel = SoilWheel::new(&soil, r, b);
         let past = Compaction { past_sinkage: 0.03 };
         let reload = wheel.reload(past).unwrap();
@@ -1011,7 +1018,11 @@ mod tests {
         // ∫₀^θ1 (cos θ − cos θ1)·cos θ dθ = θ1/2 + sin 2θ1/4 − cos θ1·sin θ1.
         let integral = theta1 / 2.0 + (2.0 * theta1).sin() / 4.0 - c1 * s1;
         let want = r * b * k_u * r * integral;
-        assert!((f.vertical - want).abs() < 1e-9 * want, "{} vs {want}", f.vertical);
+        assert!(
+            (f.vertical - want).abs() < 1e-9 * want,
+            "{} vs {want}",
+            f.vertical
+        );
         // Across the knee, the quadrature converges.
         let deep = 3.0 * z_e;
         let theta1 = libm::acos(1.0 - deep / r);
@@ -1021,12 +1032,22 @@ mod tests {
             slip_angle: 0.0,
         };
         let at = |q: &dyn Fn() -> SoilForces| q();
-        let exact = at(&|| soil_forces_compacted(&wheel, contact, past, &GaussLegendre::<512>::new()));
+        let exact =
+            at(&|| soil_forces_compacted(&wheel, contact, past, &GaussLegendre::<512>::new()));
         for (got, tol) in [
-            (soil_forces_compacted(&wheel, contact, past, &GaussLegendre::<4>::new()), 2e-2),
-            (soil_forces_compacted(&wheel, contact, past, &GaussLegendre::<16>::new()), 2e-3),
+            (
+                soil_forces_compacted(&wheel, contact, past, &GaussLegendre::<4>::new()),
+                2e-2,
+            ),
+            (
+                soil_forces_compacted(&wheel, contact, past, &GaussLegendre::<16>::new()),
+                2e-3,
+            ),
         ] {
-            for (g, e) in [(got.vertical, exact.vertical), (got.torque / r, exact.torque / r)] {
+            for (g, e) in [
+                (got.vertical, exact.vertical),
+                (got.torque / r, exact.torque / r),
+            ] {
                 assert!((g - e).abs() < tol * exact.vertical, "{g} vs {e}");
             }
         }
@@ -1041,7 +1062,15 @@ mod tests {
     fn a_wheel_over_its_own_rut_sinks_less_and_needs_less_torque() {
         let (r, b, load, slip) = (0.13, 0.16, 150.0, 0.2);
         let rule = GaussLegendre::<16>::new();
-        for soil in [lete(), Soil { n: 1.1, k_c: 990.0, k_phi: 1.528e6, ..lete() }] {
+        for soil in [
+            lete(),
+            Soil {
+                n: 1.1,
+                k_c: 990.0,
+                k_phi: 1.528e6,
+                ..lete()
+            },
+        ] {
             let wheel = SoilWheel::new(&soil, r, b);
             let sink = |theta1: f64| r * (1.0 - theta1.cos());
             let (t1, first) = steady_state(&wheel, load, slip, 0.0, &rule).unwrap();
@@ -1051,12 +1080,17 @@ mod tests {
             let z2 = sink(t2);
             let rut = wheel.rut_depth(z1);
             assert!(rut > 0.5 * z1 && rut < z1, "rut {rut} of {z1}");
-            assert!(z2 < 0.5 * z1, "second pass sinks {z2} below the floor, first {z1}");
+            assert!(
+                z2 < 0.5 * z1,
+                "second pass sinks {z2} below the floor, first {z1}"
+            );
             assert!(second.torque < first.torque, "{second:?} vs {first:?}");
             assert!(second.drawbar > first.drawbar, "{second:?} vs {first:?}");
             // Back to within a fifth of the first pass's depth.
             assert!(((rut + z2) - z1).abs() < 0.2 * z1, "{rut} + {z2} vs {z1}");
-            let deeper = Compaction { past_sinkage: z1.max(rut + z2) };
+            let deeper = Compaction {
+                past_sinkage: z1.max(rut + z2),
+            };
             let (t3, _) = steady_state_on(&wheel, deeper, load, slip, 0.0, &rule).unwrap();
             assert!(sink(t3) <= z2 * 1.0001, "{} vs {z2}", sink(t3));
         }

@@ -721,7 +721,14 @@ mod tests {
         let (z, v, spin) = (0.011, 0.05, 0.6);
         let (s, contact) = wheel(z, v);
         let fresh = SoilUnder::default();
-        let d = soil_load_derivative(&tyre(), &RunRule::new(), &flat, (&s, &fresh), &contact, spin);
+        let d = soil_load_derivative(
+            &tyre(),
+            &RunRule::new(),
+            &flat,
+            (&s, &fresh),
+            &contact,
+            spin,
+        );
         let parts = |l: &WheelLoad, r: &WheelReport| {
             let mut p = [0.0; 10];
             p[..3].copy_from_slice(&l.force);
@@ -861,8 +868,17 @@ mod tests {
                 let gradient = [0.1, -0.05, 1.0];
                 let shift = core::array::from_fn(|k| Jet::var(0.0, k));
                 let v = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
-                let jet =
-                    soil_patch_load(&tyre, &rule, &s, &p, gradient, soil, shift, v, Jet::var(spin, 6));
+                let jet = soil_patch_load(
+                    &tyre,
+                    &rule,
+                    &s,
+                    &p,
+                    gradient,
+                    soil,
+                    shift,
+                    v,
+                    Jet::var(spin, 6),
+                );
                 for i in 0..DIRECTIONS {
                     let seed = |j: usize| if i == j { 1.0 } else { 0.0 };
                     let shift = core::array::from_fn(|k| Dual {
@@ -901,8 +917,17 @@ mod tests {
                 let gradient = [0.1, -0.05, 1.0];
                 let shift = core::array::from_fn(|k| Jet::var(0.0, k));
                 let v = core::array::from_fn(|k| Jet::var(s.velocity[k], 3 + k));
-                let jet =
-                    soil_patch_load(&tyre, &rule, &s, &p, gradient, soil, shift, v, Jet::var(spin, 6));
+                let jet = soil_patch_load(
+                    &tyre,
+                    &rule,
+                    &s,
+                    &p,
+                    gradient,
+                    soil,
+                    shift,
+                    v,
+                    Jet::var(spin, 6),
+                );
                 let at = |i: usize, h: f64| {
                     let mut x = [0.0, 0.0, 0.0, velocity[0], velocity[1], velocity[2], spin];
                     x[i] += h;

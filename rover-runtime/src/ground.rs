@@ -20,13 +20,20 @@ use rover_dynamics::wheel_soil::{
 
 use crate::ruts::Ruts;
 use crate::wheel_law::WheelLawConfig;
+use rover_terrain::SoilMap;
+use rover_terrain::soil_map::SoilWeights;
 
-/// A soil under the wheels: each wheel's constants in it, the quadrature
-/// and the wheels' spin inertias (their spins are states of the run).
+/// The soils under the wheels: each wheel's constants in each soil, where
+/// each soil lies, the quadrature and the wheels' spin inertias (their
+/// spins are states of the run).
 #[derive(Clone, Debug)]
 struct SoilGround {
-    soil: Soil,
-    tyres: Vec<SoilTyre>,
+    /// The soils, by class.
+    soils: Vec<Soil>,
+    /// `tyres[class][wheel]`.
+    tyres: Vec<Vec<SoilTyre>>,
+    /// Where each class lies.
+    map: SoilMap,
     rule: RunRule,
     inertias: Vec<f64>,
     /// The wheels' ruts, when the ground keeps them.
@@ -40,6 +47,75 @@ impl SoilGround {
             .as_ref()
             .map_or(SoilUnder::default(), |r| r.under(k, contact))
     }
+
+    /// The soils at wheel `k`'s contact, read where its deepest patch
+    /// lies (at its centre in the air, where no soil acts).
+    fn weights(&self, contact: &Contact, centre: [f64; 3]) -> SoilWeights {
+        let p = deepest_patch(contact).map_or(centre, |p| p.point);
+        self.map.weights(p[0], p[1])
+    }
+
+    /// The load on wheel `k` and its report: each soil's at the wheel's
+    /// contact, weighted as the map says (continuous across a soil's
+    /// edge; one soil's own where only one lies).
+    fn load(
+        &self,
+        k: usize,
+        (s, contact): (&WheelState, &Contact),
+        torque: f64,
+        spin: f64,
+    ) -> (WheelLoad, WheelReport) {
+        let under = self.under(k, contact);
+        let weights = self.weights(contact, s.centre);
+        let one = |class: u16| {
+            let tyre = &self.tyres[usize::from(class)][k];
+            soil_wheel_load(tyre, &self.rule, (s, &under), contact, torque, spin)
+        };
+        if weights.count == 1 {
+            return one(weights.classes[0]);
+        }
+        let mut load = WheelLoad::default();
+        let mut report = WheelReport::default();
+        for (i, (class, w)) in weights.iter().enumerate() {
+            let (l, r) = one(class);
+            for j in 0..3 {
+                load.force[j] += w * l.force[j];
+                load.moment[j] += w * l.moment[j];
+                load.stator_torque[j] += w * l.stator_torque[j];
+            }
+            report.normal += w * r.normal;
+            report.drawbar += w * r.drawbar;
+            report.lateral += w * r.lateral;
+            report.torque += w * r.torque;
+            report.slip += w * r.slip;
+            report.slip_angle += w * r.slip_angle;
+            report.sinkage += w * r.sinkage;
+            if i == 0 {
+                (report.point, report.patches, report.deep, report.rut) =
+                    (r.point, r.patches, r.deep, r.rut);
+            }
+        }
+        (load, report)
+    }
+
+    /// The rut a press to past sinkage `z` \[m\] by wheel `k` at `at`
+    /// leaves: the law of the soil that weighs most there.
+    fn rut_depth(&self, k: usize, at: [f64; 2], z: f64) -> f64 {
+        let weights = self.map.weights(at[0], at[1]);
+        let main = weights
+            .iter()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map_or(0, |(class, _)| class);
+        self.tyres[usize::from(main)][k].wheel.rut_depth(z)
+    }
+}
+
+/// The patch of `contact` that reaches deepest, if any.
+pub(crate) fn deepest_patch(contact: &Contact) -> Option<&rover_dynamics::contact::Patch> {
+    contact
+        .patches()
+        .iter()
+        .max_by(|a, b| a.deflection.total_cmp(&b.deflection))
 }
 
 /// A wheel the soil law cannot take.
@@ -115,21 +191,38 @@ impl<H: HeightField> Ground<H> {
     /// needs a width and a spin inertia) then follows the soil law
     /// (docs/MODEL.md, "Soft soil") in place of `law`, and spins at its own
     /// rate, a state of the run.
-    pub fn with_soil(mut self, soil: &Soil, model: &Model) -> Result<Self, SoilWheelError> {
-        let mut tyres = Vec::with_capacity(model.wheels.len());
+    pub fn with_soil(self, soil: &Soil, model: &Model) -> Result<Self, SoilWheelError> {
+        self.with_soils(&[*soil], SoilMap::uniform(0), model)
+    }
+
+    /// The same ground covered by several soils, `soils[c]` where `map`
+    /// puts class c (docs/SOIL.md, "Soil maps"): each wheel takes the
+    /// soils at its contact, their loads weighted by the map's weights.
+    /// The map's classes must index `soils` (the scenario's layout
+    /// guarantees it).
+    pub fn with_soils(
+        mut self,
+        soils: &[Soil],
+        map: SoilMap,
+        model: &Model,
+    ) -> Result<Self, SoilWheelError> {
+        let mut tyres = vec![Vec::with_capacity(model.wheels.len()); soils.len()];
         for (wheel, w) in model.wheels.iter().enumerate() {
             let width = w.width.ok_or(SoilWheelError::NoWidth { wheel })?;
             if w.spin_inertia.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 return Err(SoilWheelError::NoSpinInertia { wheel });
             }
-            tyres.push(SoilTyre {
-                wheel: SoilWheel::new(soil, w.radius, width),
-                damping: w.damping,
-            });
+            for (class, soil) in soils.iter().enumerate() {
+                tyres[class].push(SoilTyre {
+                    wheel: SoilWheel::new(soil, w.radius, width),
+                    damping: w.damping,
+                });
+            }
         }
         self.soil = Some(SoilGround {
-            soil: *soil,
+            soils: soils.to_vec(),
             tyres,
+            map,
             rule: RunRule::new(),
             inertias: model.wheels.iter().map(|w| w.spin_inertia).collect(),
             ruts: None,
@@ -143,7 +236,7 @@ impl<H: HeightField> Ground<H> {
     /// the compacted soil it left. Nothing on rigid ground.
     pub fn with_ruts(mut self, cell: f64) -> Self {
         if let Some(soil) = &mut self.soil {
-            let widths: Vec<f64> = soil.tyres.iter().map(|t| t.wheel.width).collect();
+            let widths: Vec<f64> = soil.tyres[0].iter().map(|t| t.wheel.width).collect();
             soil.ruts = Some(Ruts::new(cell, &widths, &self.radii));
         }
         self
@@ -164,20 +257,29 @@ impl<H: HeightField> Ground<H> {
     /// ([`Ruts::record`]). Nothing without ruts.
     pub fn record_ruts(&mut self, states: &[WheelState], reports: &[WheelReport]) {
         let Some(soil) = &mut self.soil else { return };
-        let Some(ruts) = &mut soil.ruts else { return };
-        let tyres = &soil.tyres;
-        ruts.record(states, reports, |k, z| tyres[k].wheel.rut_depth(z));
+        // Out of the soil while the soil's laws say what the presses leave.
+        let Some(mut ruts) = soil.ruts.take() else {
+            return;
+        };
+        ruts.record(states, reports, |k, at, z| soil.rut_depth(k, at, z));
+        soil.ruts = Some(ruts);
     }
 
-    /// The soil, if the ground is soft.
+    /// The soil, if the ground is soft: the first of its soils (the
+    /// background, on a map that has one).
     pub fn soil(&self) -> Option<&Soil> {
-        self.soil.as_ref().map(|s| &s.soil)
+        self.soil.as_ref().map(|s| &s.soils[0])
+    }
+
+    /// The soils by class, and where each lies, if the ground is soft.
+    pub fn soils(&self) -> Option<(&[Soil], &SoilMap)> {
+        self.soil.as_ref().map(|s| (&s.soils[..], &s.map))
     }
 
     /// How many spin states the ground adds to a run: one per wheel on a
     /// soil, none on rigid ground (the wheels' rotation is massless there).
     pub fn spin_states(&self) -> usize {
-        self.soil.as_ref().map_or(0, |s| s.tyres.len())
+        self.soil.as_ref().map_or(0, |s| s.inertias.len())
     }
 
     /// Each wheel's spin acceleration \[rad/s²\] (on a soil) from the
@@ -220,14 +322,14 @@ impl<H: HeightField> Ground<H> {
 
     /// On a soil, each wheel's sinkage \[m\] at rest under `loads` \[N\]
     /// (one per wheel): the depth at which the soil's pressure, without
-    /// shear, carries the load ([`rover_dynamics::soil::rest_state`]).
-    /// Empty on rigid ground; a load the soil cannot carry gives the
-    /// wheel's radius.
+    /// shear, carries the load ([`rover_dynamics::soil::rest_state`]), in
+    /// the first soil (the background of a map). Empty on rigid ground; a
+    /// load the soil cannot carry gives the wheel's radius.
     pub fn rest_sinkages(&self, loads: &[f64]) -> Vec<f64> {
         let Some(soil) = &self.soil else {
             return Vec::new();
         };
-        soil.tyres
+        soil.tyres[0]
             .iter()
             .zip(loads)
             .map(|(tyre, &load)| {
@@ -303,16 +405,8 @@ impl<H: HeightField> Ground<H> {
         match &self.soil {
             Some(soil) => {
                 for (k, wheel) in self.wheels.iter().enumerate() {
-                    let contact = wheel.contact();
-                    let under = soil.under(k, contact);
-                    (loads[k], reports[k]) = soil_wheel_load(
-                        &soil.tyres[k],
-                        &soil.rule,
-                        (&states[k], &under),
-                        contact,
-                        torques[k],
-                        spins[k],
-                    );
+                    let at = (&states[k], wheel.contact());
+                    (loads[k], reports[k]) = soil.load(k, at, torques[k], spins[k]);
                 }
             }
             None => {
@@ -336,14 +430,24 @@ impl<H: HeightField> Ground<H> {
             *d = match &self.soil {
                 Some(soil) => {
                     let contact = self.wheels[k].contact();
-                    soil_load_derivative(
-                        &soil.tyres[k],
-                        &soil.rule,
-                        &self.terrain,
-                        (&states[k], &soil.under(k, contact)),
-                        contact,
-                        spins[k],
-                    )
+                    let under = soil.under(k, contact);
+                    let mut sum = [[0.0; 8]; 10];
+                    for (class, w) in soil.weights(contact, states[k].centre).iter() {
+                        let d = soil_load_derivative(
+                            &soil.tyres[usize::from(class)][k],
+                            &soil.rule,
+                            &self.terrain,
+                            (&states[k], &under),
+                            contact,
+                            spins[k],
+                        );
+                        for (row, d_row) in sum.iter_mut().zip(&d) {
+                            for (s, v) in row.iter_mut().zip(d_row) {
+                                *s += w * v;
+                            }
+                        }
+                    }
+                    sum
                 }
                 None => self.wheels[k].load_derivative(
                     &self.law,

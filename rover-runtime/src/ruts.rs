@@ -149,15 +149,15 @@ impl Ruts {
 
     /// Records where each wheel presses now (its state and the report of
     /// the last evaluation), and writes into the map the presses each
-    /// wheel has left behind; `rut_depth(k, z)` is the rut wheel `k`'s
-    /// soil keeps after a press to past sinkage z. Called after each
+    /// wheel has left behind; `rut_depth(k, at, z)` is the rut wheel
+    /// `k`'s soil at `at` keeps after a press to past sinkage z. Called after each
     /// accepted step. Allocates only when a press reaches ground no tile
     /// holds yet, and not even then from a reserved pool.
     pub fn record(
         &mut self,
         states: &[WheelState],
         reports: &[WheelReport],
-        rut_depth: impl Fn(usize, f64) -> f64,
+        rut_depth: impl Fn(usize, [f64; 2], f64) -> f64,
     ) {
         let cell = self.map.cell();
         for (k, (s, r)) in states.iter().zip(reports).enumerate() {
@@ -191,7 +191,7 @@ impl Ruts {
                         if trail.len == TRAIL {
                             let oldest = trail.pop().expect("a full trail");
                             write(&mut self.map, trail, oldest, self.radii[k], |z| {
-                                rut_depth(k, z)
+                                rut_depth(k, oldest.centre, z)
                             });
                         }
                         trail.push(now);
@@ -204,7 +204,7 @@ impl Ruts {
                 }
                 let oldest = trail.pop().expect("an oldest press");
                 write(&mut self.map, trail, oldest, self.radii[k], |z| {
-                    rut_depth(k, z)
+                    rut_depth(k, oldest.centre, z)
                 });
             }
         }

@@ -45,6 +45,9 @@ pub enum SetupError {
     /// The soil cannot be read or is outside physics.
     #[error("terrain.{0}")]
     Soil(#[from] rover_runtime::soil::SoilError),
+    /// A soil map or patch that cannot be built.
+    #[error("{0}")]
+    SoilMap(#[from] crate::ground::SoilMapError),
     /// A wheel the soil law cannot take.
     #[error("{0}\n  = help: give the rover description's wheels (or its [wheel_defaults]) `{field}`: {help}", field = .0.field(), help = soil_wheel_help(.0))]
     SoilWheel(#[from] rover_runtime::ground::SoilWheelError),
@@ -84,6 +87,7 @@ impl SetupError {
                 Some(format!("terrain.{name}"))
             }
             SetupError::Soil(_) => Some("terrain.soil".into()),
+            SetupError::SoilMap(e) => Some(e.field_path()),
             SetupError::Control(e) => Some(format!("control.{}", e.field)),
             SetupError::Integrator(e) => Some(format!("integrator.{}.{}", e.method, e.field)),
             SetupError::Initial { field, .. } => Some(format!("initial.{field}")),
@@ -223,9 +227,13 @@ pub fn ground_of(
     model: &Model,
     base_dir: &Path,
 ) -> Result<Ground<Terrain>, SetupError> {
+    let layout = scenario.terrain.soil_layout(base_dir, &terrain)?;
     let ground = scenario.contact.ground(terrain, model);
-    let ground = match scenario.terrain.soil(base_dir)? {
-        Some(soil) => ground.with_soil(&soil, model)?,
+    let ground = match layout {
+        Some(layout) => {
+            let soils: Vec<_> = layout.soils.iter().map(|(_, s)| *s).collect();
+            ground.with_soils(&soils, layout.map, model)?
+        }
         None => ground,
     };
     Ok(match scenario.terrain.rut_cell()? {

@@ -220,9 +220,7 @@ impl RutMap {
         let (li, lj) = (i.rem_euclid(t) as usize, j.rem_euclid(t) as usize);
         let n00 = lj * NODES + li;
         let (n10, n01, n11) = (n00 + 1, n00 + NODES, n00 + NODES + 1);
-        let corners = |v: &[f32; NODES * NODES]| {
-            [n00, n10, n01, n11].map(|n| f64::from(v[n]))
-        };
+        let corners = |v: &[f32; NODES * NODES]| [n00, n10, n01, n11].map(|n| f64::from(v[n]));
         let [d00, d10, d01, d11] = corners(&tile.depth);
         let [p00, p10, p01, p11] = corners(&tile.past);
         let lerp2 = |a: f64, b: f64, c: f64, d: f64| {
@@ -395,7 +393,10 @@ impl RutMap {
         let ny = ((d - c + 1) * t + 1) as usize;
         let mut depths = vec![0.0; nx * ny];
         for (&k, &slot) in &self.index {
-            let (ti, tj) = (i64::from((k >> 32) as u32 as i32), i64::from(k as u32 as i32));
+            let (ti, tj) = (
+                i64::from((k >> 32) as u32 as i32),
+                i64::from(k as u32 as i32),
+            );
             let tile = &self.tiles[slot as usize];
             for lj in 0..NODES {
                 for li in 0..NODES {
@@ -405,7 +406,11 @@ impl RutMap {
                 }
             }
         }
-        Some(([i0 as f64 * self.cell, j0 as f64 * self.cell], [nx, ny], depths))
+        Some((
+            [i0 as f64 * self.cell, j0 as f64 * self.cell],
+            [nx, ny],
+            depths,
+        ))
     }
 }
 
@@ -435,7 +440,13 @@ mod tests {
         assert!((inside.depth - 0.016).abs() < stored, "{inside:?}");
         assert!((inside.past_sinkage - 0.02).abs() < stored);
         assert_eq!(inside.gradient, [0.0, 0.0]);
-        for (x, y) in [(0.2, 0.65), (0.2, 0.35), (0.8, 0.5), (-0.4, 0.5), (50.0, -3.0)] {
+        for (x, y) in [
+            (0.2, 0.65),
+            (0.2, 0.35),
+            (0.8, 0.5),
+            (-0.4, 0.5),
+            (50.0, -3.0),
+        ] {
             assert_eq!(map.sample(x, y), RutSample::default(), "({x}, {y})");
         }
         // Across the band's edge the depth falls over one cell.
@@ -493,7 +504,10 @@ mod tests {
         let b = map.bounds().unwrap();
         assert_eq!([origin[0], origin[1]], [b.x_min, b.y_min]);
         assert_eq!((nx - 1) as f64 * 0.02, b.x_max - b.x_min);
-        let (i, j) = (((0.0 - origin[0]) / 0.02).round() as usize, ((0.0 - origin[1]) / 0.02).round() as usize);
+        let (i, j) = (
+            ((0.0 - origin[0]) / 0.02).round() as usize,
+            ((0.0 - origin[1]) / 0.02).round() as usize,
+        );
         assert_eq!(depths[j * nx + i], f64::from(0.02f32));
         assert_eq!(depths.len(), nx * ny);
     }
@@ -517,11 +531,19 @@ mod tests {
         let far = drive(156_250.0 * TILE as f64 * 0.02);
         assert_eq!(near.tile_count(), far.tile_count());
         // 10 m of a 16 cm band: 32 tiles along, 1 or 2 across.
-        assert!(near.tile_count() >= 32 && near.tile_count() <= 70, "{}", near.tile_count());
+        assert!(
+            near.tile_count() >= 32 && near.tile_count() <= 70,
+            "{}",
+            near.tile_count()
+        );
         let mut pooled = RutMap::new(0.02);
         pooled.reserve(80);
         let before = pooled.heap_bytes();
-        pooled.press(&footprint(0.0, 0.0, 0.02), &footprint(10.0, 0.0, 0.02), |z| z);
+        pooled.press(
+            &footprint(0.0, 0.0, 0.02),
+            &footprint(10.0, 0.0, 0.02),
+            |z| z,
+        );
         assert_eq!(pooled.heap_bytes(), before);
     }
 }
