@@ -668,6 +668,8 @@ fn soil(c: &mut Criterion) {
         a1: 0.15,
         rear_ratio: 0.0,
         unit_weight: 0.0,
+        reload_k0: 0.0,
+        reload_au: 5.03e8,
     };
     let contact = SoilContact {
         entry_angle: 0.3,

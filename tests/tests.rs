@@ -24,6 +24,7 @@ mod paper_accuracy;
 mod profile;
 #[cfg(feature = "reproduce")]
 mod reproduction;
+mod ruts;
 mod soil;
 mod steer_characteristic;
 mod sweep;

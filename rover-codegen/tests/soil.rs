@@ -21,6 +21,8 @@ fn lunar() -> Soil {
         a1: 0.15,
         rear_ratio: 0.2,
         unit_weight: 15_000.0,
+        reload_k0: 0.0,
+        reload_au: 5.03e8,
     }
 }
 

@@ -189,15 +189,23 @@ impl SoilWheel {
 
     /// The reloading law over soil pressed to `compaction` ([`Compaction`]);
     /// `None` for fresh soil, or a soil without memory (k_0 = A_u = 0).
+    ///
+    /// The elastic line is never softer than the secant `p_u/z_u`: the
+    /// soil springs back at most as far as it sank. Wong's `k_0 + A_u·z_u`,
+    /// measured at sinkages of centimetres, is softer than that for a firm
+    /// soil pressed a few millimetres (LETE sand under a rover's wheel: it
+    /// would spring back 40 mm from 2.4), and a wheel after it would sink
+    /// deeper into compacted soil than into fresh.
     pub fn reload(&self, compaction: Compaction) -> Option<Reload> {
         let z_u = compaction.past_sinkage;
-        let k_u = self.soil.reload_k0 + self.soil.reload_au * z_u;
+        let wong = self.soil.reload_k0 + self.soil.reload_au * z_u;
         // NaN is fresh soil too.
-        if !(z_u > 0.0 && k_u > 0.0) {
+        if !(z_u > 0.0 && wong > 0.0) {
             return None;
         }
         let r = self.radius;
         let p_u = self.pressure_at(z_u);
+        let k_u = wong.max(p_u / z_u);
         Some(Reload {
             elastic: k_u * r,
             knee: p_u / k_u / r,
@@ -1057,20 +1065,21 @@ mod tests {
     /// over the rut it left sinks less below the rut's floor and needs
     /// less torque; the soil is pressed back to about where the first
     /// pass left it, and a third pass, which compacts nothing more, is
-    /// the second one again.
+    /// the second one again. (Its pull at that slip is smaller too: the
+    /// shorter arc mobilizes less shear, docs/SOIL.md.)
     #[test]
     fn a_wheel_over_its_own_rut_sinks_less_and_needs_less_torque() {
         let (r, b, load, slip) = (0.13, 0.16, 150.0, 0.2);
         let rule = GaussLegendre::<16>::new();
-        for soil in [
-            lete(),
-            Soil {
-                n: 1.1,
-                k_c: 990.0,
-                k_phi: 1.528e6,
-                ..lete()
-            },
-        ] {
+        // LLL dry sand (Wong 2008); LETE sand under this load sinks a few
+        // millimetres and springs back fully (the test below).
+        let dry = Soil {
+            n: 1.1,
+            k_c: 990.0,
+            k_phi: 1.528e6,
+            ..lete()
+        };
+        for soil in [dry] {
             let wheel = SoilWheel::new(&soil, r, b);
             let sink = |theta1: f64| r * (1.0 - theta1.cos());
             let (t1, first) = steady_state(&wheel, load, slip, 0.0, &rule).unwrap();
@@ -1084,8 +1093,10 @@ mod tests {
                 z2 < 0.5 * z1,
                 "second pass sinks {z2} below the floor, first {z1}"
             );
-            assert!(second.torque < first.torque, "{second:?} vs {first:?}");
-            assert!(second.drawbar > first.drawbar, "{second:?} vs {first:?}");
+            assert!(
+                second.torque < 0.8 * first.torque,
+                "{second:?} vs {first:?}"
+            );
             // Back to within a fifth of the first pass's depth.
             assert!(((rut + z2) - z1).abs() < 0.2 * z1, "{rut} + {z2} vs {z1}");
             let deeper = Compaction {
@@ -1094,6 +1105,20 @@ mod tests {
             let (t3, _) = steady_state_on(&wheel, deeper, load, slip, 0.0, &rule).unwrap();
             assert!(sink(t3) <= z2 * 1.0001, "{} vs {z2}", sink(t3));
         }
+    }
+
+    /// A firm soil pressed a few millimetres springs back fully: Wong's
+    /// linear k_u would be softer than the soil's secant there, and the
+    /// floor on it leaves no rut, the reloading line through the press.
+    #[test]
+    fn a_firm_soil_pressed_lightly_springs_back_fully() {
+        let wheel = SoilWheel::new(&lete(), 0.13, 0.16);
+        let z = 0.0024;
+        let reload = wheel.reload(Compaction { past_sinkage: z }).unwrap();
+        assert!(lete().reload_au * z < wheel.pressure_at(z) / z);
+        assert_eq!(wheel.rut_depth(z), 0.0);
+        assert!((reload.elastic_sinkage(0.13) - z).abs() < 1e-15);
+        assert!((reload.yield_stress() - wheel.pressure_at(z)).abs() < 1e-9);
     }
 
     /// The side's bulldozing resistance (a soil with a unit weight) adds
