@@ -22,6 +22,8 @@ mod motors;
 mod no_std;
 mod paper_accuracy;
 mod profile;
+#[cfg(feature = "plots")]
+mod rut_outputs;
 #[cfg(feature = "reproduce")]
 mod reproduction;
 mod soil;
