@@ -1487,6 +1487,9 @@ fn a_drive_on_soil_sends_the_ruts() {
         }
     };
     // A rut, shallower than the wheel's radius.
-    assert!(deepest > 1e-4 && deepest < 0.13, "{deepest} m over {nodes} tiles");
+    assert!(
+        deepest > 1e-4 && deepest < 0.13,
+        "{deepest} m over {nodes} tiles"
+    );
     running.stop();
 }

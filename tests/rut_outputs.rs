@@ -60,7 +60,10 @@ fn a_run_on_soil_writes_its_ruts_as_the_next_runs_terrain() {
     let deepest = ruts["deepest_m"].as_f64().unwrap();
     let cell = ruts["cell_m"].as_f64().unwrap();
     assert_eq!(cell, 0.02);
-    assert!(deepest > 0.0 && ruts["tiles"].as_u64().unwrap() > 0, "{ruts}");
+    assert!(
+        deepest > 0.0 && ruts["tiles"].as_u64().unwrap() > 0,
+        "{ruts}"
+    );
 
     // The CSV grid: where the summary says, its deepest the summary's.
     let rut = read_csv(&out.join("ruts.csv"), None).unwrap();
@@ -73,7 +76,11 @@ fn a_run_on_soil_writes_its_ruts_as_the_next_runs_terrain() {
         [rut.nx(), rut.ny()].map(|n| n as u64),
         [0, 1].map(|k| g["nodes"][k].as_u64().unwrap())
     );
-    let max = rut.heights().iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let max = rut
+        .heights()
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
     assert_eq!(max, deepest);
     let touched = rut.heights().iter().filter(|d| **d > 0.0).count();
     let area = ruts["touched_area_m2"].as_f64().unwrap();
@@ -112,7 +119,10 @@ fn a_run_on_soil_writes_its_ruts_as_the_next_runs_terrain() {
             origin[1] + (k / nx) as f64 * spacing,
         );
         let expected = terrain.height(x, y).unwrap() - d;
-        assert!((z - expected).abs() < 1e-12, "({x}, {y}): {z} against {expected}");
+        assert!(
+            (z - expected).abs() < 1e-12,
+            "({x}, {y}): {z} against {expected}"
+        );
     }
 
     // The next run's terrain: the ground file, as docs/TERRAIN.md loads it.
@@ -145,7 +155,13 @@ fn a_run_on_soil_writes_its_ruts_as_the_next_runs_terrain() {
     })
     .unwrap();
     assert!(report.summary.ruts.is_none());
-    for f in ["ruts.csv", "ruts.png", "ground.csv", "ruts_map.png", "ruts_map.svg"] {
+    for f in [
+        "ruts.csv",
+        "ruts.png",
+        "ground.csv",
+        "ruts_map.png",
+        "ruts_map.svg",
+    ] {
         assert!(!out.join(f).exists(), "{f} left from the run before");
     }
 }

@@ -22,10 +22,10 @@ mod motors;
 mod no_std;
 mod paper_accuracy;
 mod profile;
-#[cfg(feature = "plots")]
-mod rut_outputs;
 #[cfg(feature = "reproduce")]
 mod reproduction;
+#[cfg(feature = "plots")]
+mod rut_outputs;
 mod soil;
 mod steer_characteristic;
 mod sweep;

@@ -262,7 +262,7 @@ fn colour_bar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, deepest: f64) -
         ))
         .map_err(failed)?;
         area.draw(&Text::new(
-            tick_label(&mm),
+            format!("{mm:.2}"),
             (left + width + 10, y - 6),
             text.clone(),
         ))

@@ -511,10 +511,7 @@ fn view_ruts(out: &Path) -> String {
             .map_or_else(|| "null".to_string(), |(m, _)| m),
         Err(why) => {
             if let Some(e) = why {
-                eprintln!(
-                    "warning: {}: {e}; the ruts are not drawn",
-                    path.display()
-                );
+                eprintln!("warning: {}: {e}; the ruts are not drawn", path.display());
             }
             "null".to_string()
         }

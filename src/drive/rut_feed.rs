@@ -210,7 +210,11 @@ mod tests {
         let (second, _) = feed.message(rev).unwrap();
         let changed = tiles(&second);
         assert_eq!(changed.len(), map.tile_count() - before);
-        assert!(changed.iter().all(|t| t["origin"][0].as_f64().unwrap() > 9.0));
+        assert!(
+            changed
+                .iter()
+                .all(|t| t["origin"][0].as_f64().unwrap() > 9.0)
+        );
     }
 
     /// A client that joins late is sent everything over several messages,
@@ -241,7 +245,11 @@ mod tests {
     fn a_grid_is_cut_into_tiles() {
         let (nx, ny) = (40, 20);
         let grid = Grid::from_fn([1.0, 2.0], [0.02, 0.02], nx, ny, |x, y| {
-            if (x - 1.5).abs() < 0.05 && y > 2.2 { 0.01 } else { 0.0 }
+            if (x - 1.5).abs() < 0.05 && y > 2.2 {
+                0.01
+            } else {
+                0.0
+            }
         })
         .unwrap();
         let feed = RutFeed::of_grid(&grid);

@@ -265,7 +265,12 @@ mod tests {
     }
 
     fn slope() -> Terrain {
-        Terrain::Grid(Grid::from_fn([-5.0, -5.0], [0.1, 0.1], 101, 101, |x, y| 0.1 * x - 0.05 * y).unwrap())
+        Terrain::Grid(
+            Grid::from_fn([-5.0, -5.0], [0.1, 0.1], 101, 101, |x, y| {
+                0.1 * x - 0.05 * y
+            })
+            .unwrap(),
+        )
     }
 
     /// At full resolution the grid is the map's own depth grid, node for

@@ -74,7 +74,8 @@ function terrainMesh(g, zFallback) {
 // `ruts` messages (docs/DRIVE.md), replaced when the tile changes ----
 let groundGrid = null;
 page.ruts = { messages: 0, tiles: 0, deepest: 0 };
-const rutMat = new THREE.MeshBasicMaterial({
+// Lambert, as the terrain (the bundle has no other mesh material).
+const rutMat = new THREE.MeshLambertMaterial({
   vertexColors: true, transparent: true, depthWrite: false,
   polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -2,
 });
@@ -118,6 +119,7 @@ function showRuts(m) {
     geo.setAttribute('position', new THREE.BufferAttribute(pos, 3));
     geo.setAttribute('color', new THREE.BufferAttribute(col, 4));
     geo.setIndex(idx);
+    geo.computeVertexNormals();
     const mesh = new THREE.Mesh(geo, rutMat);
     scene.add(mesh);
     rutMeshes.set(key, mesh);
