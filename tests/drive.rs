@@ -1440,3 +1440,56 @@ mod access_policy {
         assert!(check_token("--token", "sixteen chars ok?").is_err());
     }
 }
+
+/// On a soft soil the wheels leave ruts, and a client is sent them: a
+/// `ruts` message whose tiles hold the depths (counts of `scale` metres)
+/// of the map's nodes, one of them nonzero once the rover has driven off
+/// its first presses.
+#[test]
+fn a_drive_on_soil_sends_the_ruts() {
+    let scenario = scratch_file(
+        "drive",
+        "soil.toml",
+        "duration = 1.0\n[terrain]\nkind = \"flat\"\nsoil = \"dry_sand\"\n",
+    );
+    let running = start(&args("mer", &scenario)).unwrap();
+    let mut ws = connect(&running);
+    next_of(&mut ws, "hello");
+    ws.send(Message::text(r#"{"rate": 20, "speed": 0.3}"#))
+        .unwrap();
+    // Wall-clock bound only against a hung loop.
+    let give_up = Instant::now() + Duration::from_secs(120);
+    let (deepest, nodes) = loop {
+        assert!(Instant::now() < give_up, "no rut within 2 minutes");
+        let m = next(&mut ws);
+        if m["type"] == "state" {
+            assert!(m["error"].is_null(), "{}", m["error"]);
+            continue;
+        }
+        if m["type"] != "ruts" {
+            continue;
+        }
+        assert_eq!(m["cell"].as_f64(), Some(0.02), "{m}");
+        let scale = m["scale"].as_f64().unwrap();
+        let tiles = m["tiles"].as_array().unwrap();
+        assert!(!tiles.is_empty());
+        let mut deepest = 0.0f64;
+        for t in tiles {
+            let [nx, ny] = [0, 1].map(|k| t["nodes"][k].as_u64().unwrap() as usize);
+            let depth = t["depth"].as_array().unwrap();
+            assert_eq!(depth.len(), nx * ny, "{t}");
+            for k in depth {
+                deepest = deepest.max(k.as_f64().unwrap() * scale);
+            }
+        }
+        if deepest > 0.0 {
+            break (deepest, tiles.len());
+        }
+    };
+    // A rut, shallower than the wheel's radius.
+    assert!(
+        deepest > 1e-4 && deepest < 0.13,
+        "{deepest} m over {nodes} tiles"
+    );
+    running.stop();
+}

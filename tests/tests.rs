@@ -24,6 +24,8 @@ mod paper_accuracy;
 mod profile;
 #[cfg(feature = "reproduce")]
 mod reproduction;
+#[cfg(feature = "plots")]
+mod rut_outputs;
 mod ruts;
 mod soil;
 mod steer_characteristic;

@@ -42,6 +42,10 @@
 //! - `forces`: the normal force `Fn{j}` of each wheel, N (zero when the wheel
 //!   is off the ground).
 //!
+//! - `ruts_map` ([`plot_ruts`], for a run on ground that keeps ruts): the
+//!   rut depth seen from above as a colour scale (pale: shallow, dark
+//!   brown: the deepest; a colour bar in mm), and G's path over it.
+//!
 //! Legends sit in their own column right of the chart and never hide data.
 //! Every time history shows a dashed vertical marker labelled "settled" at
 //! [`PlotMeta::settle_time`] when it falls inside the run. Runs longer than
@@ -77,6 +81,7 @@ mod meta;
 mod plot_run;
 mod render;
 mod run_data;
+mod rut_map;
 mod speed;
 mod style;
 mod tick_label;
@@ -89,3 +94,4 @@ pub use error::PlotError;
 pub use figure::Figure;
 pub use meta::PlotMeta;
 pub use plot_run::plot_run;
+pub use rut_map::{MAX_BLOCKS, RutImage, plot_ruts};

@@ -396,6 +396,13 @@ pub fn simulate<P: Plant, W: Write>(
         },
     );
     summary.path_deviation = path_deviation;
+    // The ruts as the run left them, also after a failure: the rows up to
+    // it pressed them.
+    summary.rut_grid = sys
+        .ground
+        .as_ref()
+        .and_then(|g| crate::output::RutGrid::of(g.ruts()?.map(), &g.terrain));
+    summary.ruts = summary.rut_grid.as_ref().map(|g| g.summary().clone());
     summary.profile = sys
         .profile()
         .map(|p| rover_runtime::sim::Profile::new(&p, wall));

@@ -184,6 +184,10 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     };
     let summary = prepared.run(args.generic, csv, &flag, progress)?;
     bar.finish_and_clear();
+    // The rut grids before the summary that says the run is done: a
+    // summary never points at an earlier run's ruts.
+    let mut files = vec![csv_path.clone(), summary_path.clone()];
+    files.extend(rut_files(&out, &prepared, &summary)?);
     let json = serde_json::to_string_pretty(&summary)
         .map_err(|e| CliError::io(&summary_path, "write the summary", e.into()))?;
     out.write_whole("summary.json", (json + "\n").as_bytes())
@@ -191,11 +195,13 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     *summarized = true;
     #[cfg(feature = "drive")]
     crate::drive::write_view_terrain(&out, &prepared, summary.status == Status::Interrupted);
-    let mut files = vec![csv_path.clone(), summary_path];
     // A user who stopped the run wants it to stop: no plots, which take
     // seconds for a long run.
     if !args.no_plots && summary.status != Status::Interrupted {
         files.extend(plots(&csv_path, &args.out, spec, scenario.settle)?);
+        if let Some(grid) = &summary.rut_grid {
+            files.extend(rut_plot(&csv_path, &args.out, spec, grid)?);
+        }
     }
     bar.suspend(|| {
         report_end(&spec.name, &summary, &args.out);
@@ -203,6 +209,49 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         runaway_warning(spec, &summary);
     });
     Ok(SimulateReport { summary, files })
+}
+
+/// The rut map beside the CSV (`ruts.csv`, `ruts.png`, `ground.csv`;
+/// docs/CLI.md), each written whole, when the run's ground keeps ruts.
+/// Without ruts, an earlier run's rut files in the folder are removed
+/// (regular files only, and never the scenario's own terrain file: a run
+/// on the last run's `ground.csv` may write into the same folder).
+fn rut_files(
+    out: &OutputDir,
+    prepared: &Prepared,
+    summary: &Summary,
+) -> Result<Vec<PathBuf>, CliError> {
+    let Some(grid) = &summary.rut_grid else {
+        let terrain = match &prepared.scenario.terrain.shape {
+            rover_terrain::TerrainConfig::File(f) => Some(prepared.base.join(&f.path)),
+            _ => None,
+        };
+        let stale = rover_scenario::output::RUT_FILES
+            .iter()
+            .chain(&["ruts_map.png", "ruts_map.svg"]);
+        for name in stale {
+            let path = out.join(name);
+            let input = terrain.as_deref().is_some_and(|t| same_file(t, &path));
+            if !input && std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+                std::fs::remove_file(&path)
+                    .map_err(|e| CliError::io(&path, "remove an earlier run's rut map", e))?;
+            }
+        }
+        return Ok(Vec::new());
+    };
+    let files = grid.files().map_err(|e| {
+        CliError::Usage(format!(
+            "{}: cannot write the rut map: {e}",
+            out.path().display()
+        ))
+    })?;
+    files
+        .into_iter()
+        .map(|(name, bytes)| {
+            out.write_whole(name, &bytes)
+                .map_err(|e| CliError::io(out.join(name), "write the rut map", e))
+        })
+        .collect()
 }
 
 /// The line that says how the run ended and where its outputs are.
@@ -306,6 +355,37 @@ fn plots(
         ..Default::default()
     };
     Ok(rover_plot::plot_run(csv, out, &meta)?)
+}
+
+/// The top view of the ruts with the rover's path (`ruts_map.png` and
+/// `.svg`), when built with the `plots` feature.
+#[cfg(feature = "plots")]
+fn rut_plot(
+    csv: &Path,
+    out: &Path,
+    spec: &rover_spec::Spec,
+    grid: &rover_scenario::output::RutGrid,
+) -> Result<Vec<PathBuf>, CliError> {
+    let depth = grid
+        .depth()
+        .map_err(|e| CliError::Usage(format!("{}: the rut map: {e}", out.display())))?;
+    let map = rover_plot::RutImage {
+        origin: depth.origin(),
+        spacing: depth.spacing()[0],
+        nodes: [depth.nx(), depth.ny()],
+        depth: depth.heights(),
+    };
+    Ok(rover_plot::plot_ruts(csv, out, &spec.name, &map)?)
+}
+
+#[cfg(not(feature = "plots"))]
+fn rut_plot(
+    _csv: &Path,
+    _out: &Path,
+    _spec: &rover_spec::Spec,
+    _grid: &rover_scenario::output::RutGrid,
+) -> Result<Vec<PathBuf>, CliError> {
+    Ok(Vec::new())
 }
 
 #[cfg(not(feature = "plots"))]

@@ -24,6 +24,9 @@ use rover_runtime::sim::{CommandError, Driver, RoverSystem, RunError, RunOptions
 use rover_runtime::terrain::Terrain;
 use rover_scenario::scenario::Scenario;
 use rover_scenario::simulate::SetupError;
+use rover_terrain::ruts::RutMap;
+
+use super::rut_feed::{RUT_PERIOD, RutFeed};
 
 /// The fixed-step method of the loop.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -216,6 +219,9 @@ pub struct Shared {
     pub publish_every: AtomicU64,
     /// Ends the loop.
     pub stop: AtomicBool,
+    /// The ruts' tiles, copied by the loop every [`RUT_PERIOD`] when the
+    /// ground keeps ruts.
+    pub ruts: Mutex<RutFeed>,
 }
 
 /// The fastest speed set-point, in the rover's largest wheel radii a
@@ -578,6 +584,11 @@ impl<P: Plant> Sim<P> {
         &self.y
     }
 
+    /// The ruts the wheels left, when the ground keeps them.
+    pub fn ruts(&self) -> Option<&RutMap> {
+        Some(self.sys.ground.as_ref()?.ruts()?.map())
+    }
+
     /// The rover's geometry as the loop uses it.
     pub fn info(&self) -> &RoverInfo {
         &self.info
@@ -835,6 +846,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
     let mut tick: u64 = 0;
     let mut published_at = 0u64;
     let mut waiter = Waiter::new(sim.pacing, period);
+    let mut ruts_copied = start;
     while !shared.stop.load(Ordering::Relaxed) {
         let deadline = start + period.mul_f64(tick as f64);
         if let Some(limit) = max_wall_s
@@ -899,6 +911,13 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
                 s.error = None;
             }
         }
+        if let Some(map) = sim.ruts()
+            && woke - ruts_copied >= RUT_PERIOD
+            && let Ok(mut feed) = shared.ruts.try_lock()
+        {
+            ruts_copied = woke;
+            feed.update(map);
+        }
         let done = Instant::now();
         last_step_s = (done - woke).as_secs_f64();
         if stepping {
@@ -957,5 +976,6 @@ pub fn shared(columns: usize, wheels: usize, rate_hz: f64) -> Arc<Shared> {
         // 30 Hz until a client asks for more.
         publish_every: AtomicU64::new(((rate_hz / 30.0).floor() as u64).max(1)),
         stop: AtomicBool::new(false),
+        ruts: Mutex::new(RutFeed::default()),
     })
 }

@@ -10,6 +10,7 @@
 pub mod access;
 pub mod live;
 pub mod protocol;
+pub mod rut_feed;
 pub mod server;
 
 use std::net::TcpListener;
@@ -492,6 +493,31 @@ pub fn write_view_terrain(out: &rover_files::OutputDir, prepared: &Prepared, int
     }
 }
 
+/// The ruts of a run's folder for `rover view`: its `ruts.csv` (read as
+/// the folder holds it, not through a link) as one `ruts` message, or
+/// `null` without one. A file that is not a rut grid is a warning, and no
+/// ruts are drawn.
+fn view_ruts(out: &Path) -> String {
+    let path = out.join("ruts.csv");
+    let grid = rover_files::read_entry(out, "ruts.csv", rover_files::Limit::Data)
+        .map_err(|e| (e.kind() != std::io::ErrorKind::NotFound).then(|| e.to_string()))
+        .and_then(|bytes| {
+            let text = String::from_utf8(bytes).map_err(|_| Some("not UTF-8 text".to_string()))?;
+            rover_terrain::csv_grid::parse_csv(&text, &path, None).map_err(|e| Some(e.to_string()))
+        });
+    match grid {
+        Ok(grid) => rut_feed::RutFeed::of_grid(&grid)
+            .message(0)
+            .map_or_else(|| "null".to_string(), |(m, _)| m),
+        Err(why) => {
+            if let Some(e) = why {
+                eprintln!("warning: {}: {e}; the ruts are not drawn", path.display());
+            }
+            "null".to_string()
+        }
+    }
+}
+
 /// A terrain file as [`terrain_json`] writes it (or `null`), checked
 /// before it is served.
 fn check_terrain(bytes: &[u8]) -> Result<String, String> {
@@ -814,6 +840,7 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
         terrain,
         Content::View {
             csv: Arc::new(text.into_bytes()),
+            ruts: view_ruts(&args.out),
         },
         // No WebSocket: no token.
         Access::new(addr, &allowed, None),

@@ -1,7 +1,8 @@
 //! The WebSocket protocol (docs/DRIVE.md): JSON text messages, commands in
 //! and state out. A message is checked whole before any of it applies, and
 //! a bad one is answered with `{"type": "error", "message": …}` naming the
-//! field: the connection and the loop go on.
+//! field: the connection and the loop go on. The ruts' messages
+//! (`"type": "ruts"`) are [`super::rut_feed`]'s.
 
 use std::fmt::Write as _;
 use std::time::Instant;

@@ -28,6 +28,7 @@ use tungstenite::{Message, WebSocket};
 use super::access::{Access, Credentials, Refusal};
 use super::live::{RoverInfo, Shared};
 use super::protocol;
+use super::rut_feed::RUT_PERIOD;
 
 /// Connections served at once (page loads, WebSocket clients, requests
 /// being read); one more is answered 503 and closed. A page takes one
@@ -84,6 +85,9 @@ pub enum Content {
     View {
         /// The CSV's bytes, read once from the run's folder.
         csv: Arc<Vec<u8>>,
+        /// `/ruts.json`: the run's ruts as one `ruts` message
+        /// ([`super::rut_feed`]), or `null`.
+        ruts: String,
     },
 }
 
@@ -522,8 +526,15 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
             "application/json",
             app.terrain.as_bytes(),
         ),
+        "/ruts.json" => match &app.content {
+            Content::View { ruts, .. } => {
+                respond(&mut stream, "200 OK", "application/json", ruts.as_bytes())
+            }
+            // Live, the ruts come over the WebSocket.
+            Content::Drive { .. } => respond(&mut stream, "200 OK", "application/json", b"null"),
+        },
         "/run.csv" => match &app.content {
-            Content::View { csv } => respond(&mut stream, "200 OK", "text/csv", csv),
+            Content::View { csv, .. } => respond(&mut stream, "200 OK", "text/csv", csv),
             Content::Drive { .. } => respond(
                 &mut stream,
                 "404 Not Found",
@@ -595,6 +606,10 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
     let mut next_send = Instant::now();
     let mut sent_seq = 0u64;
     let mut format = protocol::Format::Json;
+    // The ruts' revision this client has every tile of, and when it is
+    // next sent what changed since.
+    let mut ruts_sent = 0u64;
+    let mut next_ruts = Instant::now();
     loop {
         if shared.stop.load(Ordering::Relaxed) || app.stopping() {
             let _ = ws.close(None);
@@ -679,6 +694,19 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
             if next_send < now {
                 // Behind (a slow client): skip, never burst.
                 next_send = now + period;
+            }
+        }
+        if now >= next_ruts {
+            next_ruts = now + RUT_PERIOD;
+            let message = match shared.ruts.lock() {
+                Ok(feed) => feed.message(ruts_sent),
+                Err(_) => None,
+            };
+            if let Some((text, revision)) = message {
+                if ws.send(Message::text(text)).is_err() {
+                    break;
+                }
+                ruts_sent = revision;
             }
         }
     }

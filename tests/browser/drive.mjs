@@ -2,9 +2,13 @@
 // a WebGL context, the keyboard drives the rover forward, the states the
 // page received over its WebSocket show the rover moved, and the
 // suspension members are drawn on the rover, and the load arrows are at
-// the rover's weight share per wheel.
+// the rover's weight share per wheel. Then a drive on soft soil: the page
+// receives `ruts` messages with a nonzero depth and draws their tiles.
 //
 // node drive.mjs <rover binary> <chromium binary>
+import { mkdtempSync, writeFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { launchBrowser, startRover } from './serve.mjs';
 
 const [rover, browserPath] = process.argv.slice(2);
@@ -63,4 +67,32 @@ try {
 } finally {
   await browser.close();
   server.kill();
+}
+
+// Soft soil: the wheels leave ruts, and the page is sent and draws them.
+const dir = mkdtempSync(join(tmpdir(), 'rover-drive-ruts-'));
+const soil = join(dir, 'soil.toml');
+writeFileSync(soil, 'duration = 1.0\n[terrain]\nkind = "flat"\nsoil = "dry_sand"\n');
+const soft = await startRover(rover, ['drive', 'mer', '--scenario', soil, '--port', '0', '--rate', '500']);
+const browser2 = await launchBrowser(browserPath);
+try {
+  const page = await browser2.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(`http://127.0.0.1:${soft.port}/`);
+  await page.waitForFunction(() => window.roverPage && window.roverPage.states > 5, null, { timeout: 60000 });
+  await page.locator('canvas').click();
+  for (let i = 0; i < 5; i++) await page.keyboard.press('w');
+  await page.waitForFunction(() => window.roverPage.ruts.deepest > 0, null, { timeout: 120000 });
+  const ruts = await page.evaluate(() => window.roverPage.ruts);
+  if (!(ruts.messages >= 1 && ruts.tiles >= 1)) fail(`ruts received but not drawn: ${JSON.stringify(ruts)}`);
+  if (!(ruts.deepest < 0.13)) fail(`a rut deeper than the wheel's radius: ${ruts.deepest} m`);
+  if (errors.length) fail(`page errors: ${errors.join('; ')}`);
+  console.log(`ok: ${ruts.messages} rut messages, ${ruts.tiles} tiles drawn, deepest ${(1e3 * ruts.deepest).toFixed(2)} mm`);
+} catch (e) {
+  fail(e.message);
+} finally {
+  await browser2.close();
+  soft.server.kill();
+  rmSync(dir, { recursive: true, force: true });
 }

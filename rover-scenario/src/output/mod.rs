@@ -1,13 +1,15 @@
-//! What a run writes: the CSV time histories and the summary.
+//! What a run writes: the CSV time histories, the summary and the rut map.
 
 mod circle_fit;
 mod csv_writer;
+mod rut_grid;
 mod slide;
 mod summary;
 mod write_whole;
 
 pub use circle_fit::{Circle, fit_circle};
 pub use csv_writer::CsvWriter;
+pub use rut_grid::{MAX_RUT_NODES, RUT_FILES, RUT_PNG_SCALE, RutGrid, RutGridInfo, RutSummary};
 pub use slide::{
     AxleSlide, SLIDE_WINDOW, SLIDE_YAW_DEG, Slide, SlideTrack, SuddenSlide, axles_by_rest_x, slide,
 };

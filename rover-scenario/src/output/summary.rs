@@ -70,6 +70,15 @@ pub struct Summary {
     /// On a soil, each wheel's slip and sinkage after settling.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub soil: Option<Vec<WheelSoil>>,
+    /// On ground that keeps the wheels' ruts: the deepest, the area
+    /// touched, the map's size and the grid written of it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ruts: Option<super::RutSummary>,
+    /// The ruts at the end of the run, for the files written beside the
+    /// CSV (`ruts.csv`, `ruts.png`, `ground.csv`; [`super::RutGrid::files`]);
+    /// not part of `summary.json`.
+    #[serde(skip)]
+    pub rut_grid: Option<super::RutGrid>,
     /// Sideways slides after settling: the yaw-rate excursion, each axle's
     /// sideways speed and the first sudden slide (dynamic runs).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -540,6 +549,8 @@ impl RunLog {
                     end.kinematic_radius,
                 )
             }),
+            ruts: None,
+            rut_grid: None,
             soil: (!self.soil.is_empty()).then(|| {
                 self.soil
                     .iter()

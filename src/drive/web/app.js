@@ -69,6 +69,64 @@ function terrainMesh(g, zFallback) {
   return new THREE.Mesh(geo, new THREE.MeshLambertMaterial({ vertexColors: true }));
 }
 
+// ---- ruts: a dark overlay on the terrain where the wheels left a rut,
+// darker the deeper (opaque from 3 cm), one small mesh per tile of the
+// `ruts` messages (docs/DRIVE.md), replaced when the tile changes ----
+let groundGrid = null;
+page.ruts = { messages: 0, tiles: 0, deepest: 0 };
+// Lambert, as the terrain (the bundle has no other mesh material).
+const rutMat = new THREE.MeshLambertMaterial({
+  vertexColors: true, transparent: true, depthWrite: false,
+  polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -2,
+});
+const rutMeshes = new Map();
+// The terrain mesh's height at (x, y): its own triangles (a, b, e) and
+// (a, e, d) of the cell, so that the overlay lies on what is drawn.
+function groundAt(x, y) {
+  const g = groundGrid;
+  if (!g) return 0;
+  const fx = Math.min(Math.max((x - g.x0) / g.dx, 0), g.nx - 1.000001);
+  const fy = Math.min(Math.max((y - g.y0) / g.dy, 0), g.ny - 1.000001);
+  const i = Math.floor(fx), j = Math.floor(fy), u = fx - i, v = fy - j;
+  const z = k => (g.z[k] === null ? g.lo : g.z[k]);
+  const a = j * g.nx + i;
+  const za = z(a), zb = z(a + 1), zd = z(a + g.nx), ze = z(a + g.nx + 1);
+  return u >= v ? za + u * (zb - za) + v * (ze - zb) : za + v * (zd - za) + u * (ze - zd);
+}
+function showRuts(m) {
+  page.ruts.messages++;
+  for (const t of m.tiles) {
+    const key = `${t.origin[0]},${t.origin[1]}`;
+    const old = rutMeshes.get(key);
+    if (old) { scene.remove(old); old.geometry.dispose(); }
+    const [nx, ny] = t.nodes;
+    const pos = new Float32Array(nx * ny * 3), col = new Float32Array(nx * ny * 4);
+    const depth = t.depth.map(k => k * m.scale);
+    for (let j = 0; j < ny; j++) for (let i = 0; i < nx; i++) {
+      const k = j * nx + i, d = depth[k];
+      const x = t.origin[0] + i * m.cell, y = t.origin[1] + j * m.cell;
+      pos.set([x, y, groundAt(x, y) + 0.002], 3 * k);
+      col.set([0.10, 0.06, 0.03, d > 0 ? Math.min(0.9, 0.35 + 0.55 * d / 0.03) : 0], 4 * k);
+      page.ruts.deepest = Math.max(page.ruts.deepest, d);
+    }
+    const idx = [];
+    for (let j = 0; j + 1 < ny; j++) for (let i = 0; i + 1 < nx; i++) {
+      const a = j * nx + i, b = a + 1, d = a + nx, e = d + 1;
+      if (depth[a] > 0 || depth[b] > 0 || depth[d] > 0 || depth[e] > 0) idx.push(a, b, e, a, e, d);
+    }
+    if (!idx.length) { rutMeshes.delete(key); continue; }
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    geo.setAttribute('color', new THREE.BufferAttribute(col, 4));
+    geo.setIndex(idx);
+    geo.computeVertexNormals();
+    const mesh = new THREE.Mesh(geo, rutMat);
+    scene.add(mesh);
+    rutMeshes.set(key, mesh);
+  }
+  page.ruts.tiles = rutMeshes.size;
+}
+
 // ---- rover ----
 const radius = meta.radius || new Array(wheels).fill(0.1);
 const rMax = Math.max(...radius);
@@ -403,6 +461,7 @@ function live() {
     const m = JSON.parse(ev.data);
     if (m.type === 'hello') { page.hello = m; return; }
     if (m.type === 'error') { page.errors.push(m.message); return; }
+    if (m.type === 'ruts') { showRuts(m); return; }
     if (m.type !== 'state') return;
     if (page.last && m.t < page.last.t) pathClear();
     page.states++;
@@ -516,6 +575,7 @@ async function view() {
 const frame = meta.mode === 'view' ? await view() : live();
 if (terrainGrid) {
   scene.add(terrainMesh(terrainGrid, 0));
+  groundGrid = terrainGrid;
 } else {
   // No terrain known: a plane at the mean contact height of the first state.
   const s = page.first || {};
@@ -523,6 +583,17 @@ if (terrainGrid) {
   for (let j = 1; j <= wheels; j++) if (isFinite(s[`H${j}Z`])) { z += s[`H${j}Z`]; n++; }
   const g = { x0: (s.X || 0) - 20, y0: (s.Y || 0) - 20, dx: 40, dy: 40, nx: 2, ny: 2, z: new Array(4).fill(n ? z / n : 0) };
   scene.add(terrainMesh(g, 0));
+  groundGrid = g;
+}
+{
+  let lo = Infinity;
+  for (const z of groundGrid.z) if (z !== null) lo = Math.min(lo, z);
+  groundGrid.lo = isFinite(lo) ? lo : 0;
+}
+// A finished run's ruts, from its folder's ruts.csv.
+if (meta.mode === 'view') {
+  const r = await (await fetch('/ruts.json')).json();
+  if (r) showRuts(r);
 }
 scene.add(new THREE.AxesHelper(rMax * 4));
 
