@@ -1071,15 +1071,24 @@ mod tests {
     fn a_wheel_over_its_own_rut_sinks_less_and_needs_less_torque() {
         let (r, b, load, slip) = (0.13, 0.16, 150.0, 0.2);
         let rule = GaussLegendre::<16>::new();
-        // LLL dry sand (Wong 2008); LETE sand under this load sinks a few
-        // millimetres and springs back fully (the test below).
+        // LLL dry sand (Wong 2008) and Bekker's lunar soil; LETE sand under
+        // this load sinks a few millimetres and springs back fully (the
+        // test below).
         let dry = Soil {
             n: 1.1,
             k_c: 990.0,
             k_phi: 1.528e6,
             ..lete()
         };
-        for soil in [dry] {
+        let lunar = Soil {
+            n: 1.0,
+            k_c: 1400.0,
+            k_phi: 820e3,
+            cohesion: 170.0,
+            friction_angle: 35f64.to_radians(),
+            ..lete()
+        };
+        for soil in [dry, lunar] {
             let wheel = SoilWheel::new(&soil, r, b);
             let sink = |theta1: f64| r * (1.0 - theta1.cos());
             let (t1, first) = steady_state(&wheel, load, slip, 0.0, &rule).unwrap();

@@ -45,9 +45,10 @@ pub enum SetupError {
     /// The soil cannot be read or is outside physics.
     #[error("terrain.{0}")]
     Soil(#[from] rover_runtime::soil::SoilError),
-    /// A soil map or patch that cannot be built.
+    /// A soil map or patch that cannot be built (boxed: it is the
+    /// largest of these).
     #[error("{0}")]
-    SoilMap(#[from] crate::ground::SoilMapError),
+    SoilMap(Box<crate::ground::SoilMapError>),
     /// A wheel the soil law cannot take.
     #[error("{0}\n  = help: give the rover description's wheels (or its [wheel_defaults]) `{field}`: {help}", field = .0.field(), help = soil_wheel_help(.0))]
     SoilWheel(#[from] rover_runtime::ground::SoilWheelError),
@@ -77,6 +78,12 @@ pub enum SetupError {
     /// The quasi-static level found no equilibrium to start from.
     #[error("{0}")]
     QuasiStatic(#[from] rover_runtime::quasi_static::QuasiStaticError),
+}
+
+impl From<crate::ground::SoilMapError> for SetupError {
+    fn from(e: crate::ground::SoilMapError) -> Self {
+        SetupError::SoilMap(Box::new(e))
+    }
 }
 
 impl SetupError {

@@ -121,7 +121,12 @@ pub struct TileView<'a> {
 }
 
 /// The rut depth and past sinkage of the ground, in sparse tiles.
+///
+/// The tiles are boxed: the list of them then holds 8 bytes a tile, so
+/// that its growth copies pointers, not 2.3 KB a tile, and its spare
+/// capacity (up to as much again as it holds) costs pointers, not tiles.
 #[derive(Clone, Debug)]
+#[allow(clippy::vec_box)]
 pub struct RutMap {
     cell: f64,
     inv_cell: f64,
@@ -267,7 +272,7 @@ impl RutMap {
             let c = [0, 1].map(|k| lerp(from.centre[k], to.centre[k]));
             let axle = [0, 1].map(|k| lerp(from.axle[k], to.axle[k]));
             let norm = axle[0].hypot(axle[1]);
-            if !(norm > 0.0) {
+            if norm.is_nan() || norm <= 0.0 {
                 continue;
             }
             let axle = axle.map(|v| v / norm);
