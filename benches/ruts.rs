@@ -14,7 +14,7 @@
 //!   the cost of 10,000 steps from the first metres against from 990 m.
 //!
 //! Medians and ratios are printed at the end. A name given on the command
-//! line that no part's group contains skips that part's setup.
+//! line that none of a part's benchmark ids contains skips that part's setup.
 //! `cargo bench --bench ruts -- --warm-up-time 1 --measurement-time 3`.
 
 mod support;
@@ -254,11 +254,11 @@ impl Drive {
 }
 
 /// The median of the last `n` entries (criterion's measured samples come
-/// after its warm-up's).
+/// after its warm-up's); NaN for a benchmark the filter left out.
 fn median_of_last(v: &[f64], n: usize) -> f64 {
     let mut last = v[v.len().saturating_sub(n)..].to_vec();
     last.sort_by(f64::total_cmp);
-    last[last.len() / 2]
+    last.get(last.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
 /// Times `run` on a fresh clone of `from` per iteration, the clone and its
@@ -284,14 +284,15 @@ fn time_from<T: Clone>(
     });
 }
 
-/// Whether a part whose group is `group` runs: no name on the command line
-/// (other than flags and their numbers), or one the group contains.
-fn wanted(group: &str) -> bool {
+/// Whether a part that benchmarks `ids` (`group/function/parameter`)
+/// runs: no name on the command line (other than flags and their
+/// numbers), or one that one of its ids contains, as criterion filters.
+fn wanted(ids: &[&str]) -> bool {
     let names: Vec<String> = std::env::args()
         .skip(1)
         .filter(|a| !a.starts_with('-') && a.parse::<f64>().is_err())
         .collect();
-    names.is_empty() || names.iter().any(|n| group.contains(n.as_str()))
+    names.is_empty() || names.iter().any(|n| ids.iter().any(|id| id.contains(n.as_str())))
 }
 
 /// Simulated time of the rough drives before timing \[s\]: the rear
@@ -353,7 +354,12 @@ fn rough_drive(ruts: Option<f64>, gains: Gains, step: f64) -> (String, Drive) {
 /// stalls).
 fn fixed_step(c: &mut Criterion, out: &mut Vec<String>) {
     const GROUP: &str = "ruts_fixed_step";
-    if !wanted(GROUP) {
+    if !wanted(&[
+        "ruts_fixed_step/advance_1ms/ruts",
+        "ruts_fixed_step/advance_1ms/no_ruts",
+        "ruts_fixed_step/advance_1ms/stiff_loop_ruts",
+        "ruts_fixed_step/advance_1ms/stiff_loop_no_ruts",
+    ]) {
         return;
     }
     let (line, _) = rough_drive(Some(CELL), STIFF, STEP);
@@ -421,12 +427,23 @@ fn fixed_step(c: &mut Criterion, out: &mut Vec<String>) {
 /// Simulated time of the whole drive with the default integrator \[s\].
 const WHOLE: f64 = 20.0;
 
+/// When the middle and rear wheels meet the ruts of the wheels ahead
+/// (0.65–0.7 m ahead of them, at about 0.09 m/s) \[s\]: where they
+/// stood at the start, then along them. Until then both drives are the
+/// same to the bit.
+const MEET_RUTS: [f64; 2] = [6.0, 8.0];
+
 /// Part 2: the whole 20 s drive with the scenario's default integrator
 /// (BDF), with ruts and without; and the shipped soil_pocket scenarios
 /// whole, as `rover simulate` runs them (generated plant, CSV to a sink).
 fn default_integrator(c: &mut Criterion, out: &mut Vec<String>) {
     const GROUP: &str = "ruts_default_integrator";
-    if !wanted(GROUP) {
+    if !wanted(&[
+        "ruts_default_integrator/drive_20s/ruts",
+        "ruts_default_integrator/drive_20s/no_ruts",
+        "ruts_default_integrator/scenario/soil_pocket",
+        "ruts_default_integrator/scenario/soil_pocket_no_ruts",
+    ]) {
         return;
     }
     let model = mer();
@@ -442,19 +459,29 @@ fn default_integrator(c: &mut Criterion, out: &mut Vec<String>) {
         let (mut sys, mut y) = start.clone();
         let mut integ = config.build(y.len()).unwrap();
         let mut t = 0.0;
-        integ.advance(&mut sys, &mut t, &mut y, WHOLE).unwrap();
+        // Steps before the middle and rear wheels meet the ruts, while they
+        // enter them, and in them.
+        let mut steps = Vec::new();
+        for t_end in [MEET_RUTS[0], MEET_RUTS[1], WHOLE] {
+            integ.advance(&mut sys, &mut t, &mut y, t_end).unwrap();
+            steps.push(integ.stats().steps - steps.iter().sum::<u64>());
+        }
         let stats = integ.stats();
         let mut dy = vec![0.0; y.len()];
         sys.rhs(t, &y, &mut dy).unwrap();
         let under: Vec<f64> = sys.reports().iter().map(|r| r.rut).collect();
         out.push(format!(
-            "BDF {id}: x = {:.3} m after {WHOLE} s, {} steps, {} right-hand sides, \
-             {} Jacobians, rut under wheels [mm] {:?}",
+            "BDF {id}: x = {:.3} m after {WHOLE} s, {} steps ({:?} over 0–{}–{}–{WHOLE} s; \
+             {} rejected), {} right-hand sides, {} Jacobians, rut under wheels [mm] {:?}",
             y[0],
             stats.steps,
+            steps,
+            MEET_RUTS[0],
+            MEET_RUTS[1],
+            stats.rejected_steps,
             stats.rhs_evals,
             stats.jacobian_evals,
-            under.iter().map(|r| (r * 1e4).round() / 10.0).collect::<Vec<_>>(),
+            mm(under.iter().copied()),
         ));
         if ruts.is_some() {
             assert!(
@@ -524,7 +551,10 @@ const TEN_METRES: usize = 10_000;
 /// 10 m from the first metres against 10 m from 990 m.
 fn kilometre(c: &mut Criterion, out: &mut Vec<String>) {
     const GROUP: &str = "ruts_kilometre";
-    if !wanted(GROUP) {
+    if !wanted(&[
+        "ruts_kilometre/steps_10000/first_10m",
+        "ruts_kilometre/steps_10000/last_10m",
+    ]) {
         return;
     }
     let model = mer();
