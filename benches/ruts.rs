@@ -15,7 +15,9 @@
 //!   map and the process hold after it (a counting global allocator), and
 //!   the cost of 10,000 steps from the first metres against from 990 m.
 //!
-//! Medians and ratios are printed at the end. A name given on the command
+//! Medians and ratios are printed at the end, and beside each ratio of two
+//! criterion medians the median ratio of runs timed in turn, which the
+//! shared machine's changing load moves less. A name given on the command
 //! line that none of a part's benchmark ids contains skips that part's setup.
 //! `cargo bench --bench ruts -- --warm-up-time 1 --measurement-time 3`.
 
@@ -286,6 +288,24 @@ fn time_from<T: Clone>(
     });
 }
 
+/// The median over `pairs` of the ratio of `run` on a clone of `a` to `run`
+/// on a clone of `b`, timed one after the other (clones outside the
+/// timer): the shared machine's load, which moves from one criterion
+/// benchmark to the next, weighs on both sides of each ratio alike.
+fn paired<T: Clone>(a: &T, b: &T, pairs: usize, mut run: impl FnMut(&mut T)) -> f64 {
+    let mut time = |from: &T| {
+        let mut x = from.clone();
+        let start = Instant::now();
+        run(&mut x);
+        let took = start.elapsed().as_secs_f64();
+        black_box(&x);
+        took
+    };
+    let mut ratios: Vec<f64> = (0..pairs).map(|_| time(a) / time(b)).collect();
+    ratios.sort_by(f64::total_cmp);
+    ratios[pairs / 2]
+}
+
 /// Whether a part that benchmarks `ids` (`group/function/parameter`)
 /// runs: no name on the command line (other than flags and their
 /// numbers), or one that one of its ids contains, as criterion filters.
@@ -416,16 +436,24 @@ fn fixed_step(c: &mut Criterion, out: &mut Vec<String>) {
         medians.push(median_of_last(&samples, 100));
     }
     group.finish();
+    // The same windows of 2000 ms, with ruts and without, in turn.
+    let window = |d: &mut Drive| d.millis(WINDOW);
+    let pair = [
+        paired(&drives[0].1, &drives[1].1, 21, window),
+        paired(&drives[2].1, &drives[3].1, 11, window),
+    ];
     out.push(format!(
         "one 1 ms semi-implicit Euler step, rough dry sand: with ruts {:.2} µs, without {:.2} µs, \
-         ratio {:.3}; stiff loop, 4 steps of 0.25 ms: with ruts {:.2} µs per simulated ms, \
-         without {:.2} µs, ratio {:.3} (target ≤ 10 µs per 1 ms step)",
+         ratio {:.3} (paired {:.3}); stiff loop, 4 steps of 0.25 ms: with ruts {:.2} µs per \
+         simulated ms, without {:.2} µs, ratio {:.3} (paired {:.3}) (target ≤ 10 µs per 1 ms step)",
         1e6 * medians[0],
         1e6 * medians[1],
         medians[0] / medians[1],
+        pair[0],
         1e6 * medians[2],
         1e6 * medians[3],
         medians[2] / medians[3],
+        pair[1],
     ));
 }
 
@@ -459,8 +487,10 @@ fn default_integrator(c: &mut Criterion, out: &mut Vec<String>) {
     // Long runs: as many iterations in every sample.
     group.sample_size(10).sampling_mode(SamplingMode::Flat);
     let mut medians = Vec::new();
+    let mut starts = Vec::new();
     for (id, ruts) in [("ruts", Some(CELL)), ("no_ruts", None)] {
         let start = soft_system(rough.clone(), &model, &sand, ruts, support::SPEED, GAINS);
+        starts.push(start.clone());
         // One run outside the timing, to say where it ends.
         let (mut sys, mut y) = start.clone();
         let mut integ = config.build(y.len()).unwrap();
@@ -529,11 +559,16 @@ fn default_integrator(c: &mut Criterion, out: &mut Vec<String>) {
         ));
     }
     group.finish();
+    let pair = paired(&starts[0], &starts[1], 5, |(sys, y)| {
+        let mut integ = config.build(y.len()).unwrap();
+        let mut t = 0.0;
+        integ.advance(sys, &mut t, y, WHOLE).unwrap();
+    });
     let pocket = 50.0;
     out.push(format!(
         "default integrator (BDF), whole runs: 20 s rough drive with ruts {:.1} ms ({:.0}× real \
-         time), without {:.1} ms ({:.0}×), ratio {:.3}; soil_pocket {:.1} ms ({:.0}×), \
-         soil_pocket_no_ruts {:.1} ms ({:.0}×), ratio {:.3} (target ≥ 500×)",
+         time), without {:.1} ms ({:.0}×), ratio {:.3} (paired {pair:.3}); soil_pocket {:.1} ms \
+         ({:.0}×), soil_pocket_no_ruts {:.1} ms ({:.0}×), ratio {:.3} (target ≥ 500×)",
         1e3 * medians[0],
         WHOLE / medians[0],
         1e3 * medians[1],
@@ -633,9 +668,10 @@ fn kilometre(c: &mut Criterion, out: &mut Vec<String>) {
         ));
     }
     group.finish();
+    let pair = paired(&last, &first, 11, |d| d.millis(TEN_METRES));
     out.push(format!(
         "10,000 steps of 1 ms at {FAST} m/s: first 10 m {:.2} µs per step, last 10 m {:.2} µs, \
-         ratio last/first {:.3} (target ≤ 1.10)",
+         ratio last/first {:.3} (paired {pair:.3}) (target ≤ 1.10)",
         1e6 * medians[0] / TEN_METRES as f64,
         1e6 * medians[1] / TEN_METRES as f64,
         medians[1] / medians[0],
