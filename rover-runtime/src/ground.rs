@@ -41,11 +41,11 @@ struct SoilGround {
 }
 
 impl SoilGround {
-    /// The soil as earlier passes left it under wheel `k` at `contact`.
-    fn under(&self, k: usize, contact: &Contact) -> SoilUnder {
+    /// The soil as earlier passes left it under a wheel at `contact`.
+    fn under(&self, contact: &Contact) -> SoilUnder {
         self.ruts
             .as_ref()
-            .map_or(SoilUnder::default(), |r| r.under(k, contact))
+            .map_or(SoilUnder::default(), |r| r.under(contact))
     }
 
     /// The soils at wheel `k`'s contact, read where its deepest patch
@@ -65,7 +65,7 @@ impl SoilGround {
         torque: f64,
         spin: f64,
     ) -> (WheelLoad, WheelReport) {
-        let under = self.under(k, contact);
+        let under = self.under(contact);
         let weights = self.weights(contact, s.centre);
         let one = |class: u16| {
             let tyre = &self.tyres[usize::from(class)][k];
@@ -430,7 +430,7 @@ impl<H: HeightField> Ground<H> {
             *d = match &self.soil {
                 Some(soil) => {
                     let contact = self.wheels[k].contact();
-                    let under = soil.under(k, contact);
+                    let under = soil.under(contact);
                     let mut sum = [[0.0; 8]; 10];
                     for (class, w) in soil.weights(contact, states[k].centre).iter() {
                         let d = soil_load_derivative(

@@ -8,13 +8,14 @@
 //! the map there ([`Ruts::under`]). Written at once, a wheel's own press
 //! would be read back by the wheel at its next step, and the wheel would
 //! sink into its own rut step after step. Held back until the wheel's
-//! contact point is further than its read reaches (half its radius) and
-//! [`CLEARANCE_CELLS`] cells more, a rut is met only by the wheels that
-//! come after (or by the same wheel, driven back over it), as on real
-//! ground.
+//! contact point is [`CLEARANCE_CELLS`] cells away, further than a read
+//! reaches (a cell and a half) and a write spreads (half a cell), a rut
+//! is met only by the wheels that come after (or by the same wheel,
+//! driven back over it), as on real ground.
 
 use rover_dynamics::contact::Contact;
 use rover_dynamics::plant::WheelState;
+use rover_dynamics::soil::Compaction;
 use rover_dynamics::wheel_ground::WheelReport;
 use rover_dynamics::wheel_soil::SoilUnder;
 use rover_terrain::ruts::{Footprint, RutMap};
@@ -23,10 +24,6 @@ use rover_terrain::ruts::{Footprint, RutMap};
 /// pressed before the press is written: the bilinear read reaches one
 /// cell, the rasterized write half a cell more.
 pub const CLEARANCE_CELLS: f64 = 3.0;
-
-/// How far either side of a wheel's contact point its rut is read, as a
-/// fraction of its radius ([`Ruts::under`]).
-const READ_REACH: f64 = 0.5;
 
 /// Presses a trail holds before the oldest is written anyway (a wheel
 /// that turns on the spot keeps pressing the same ground).
@@ -117,34 +114,25 @@ impl Ruts {
         &mut self.map
     }
 
-    /// The soil as earlier passes left it under wheel `k` whose contact is
-    /// `contact`, fresh soil for a wheel in the air. Read along the
-    /// deepest patch's tangent, at its point and half the wheel's radius
-    /// either side, weighted 1/4, 1/2, 1/4: the rim spans that much of
-    /// the rut, and the rut a wheel meets then deepens over a stretch of
-    /// the wheel's size, not of a cell's (a rut begun by a wheel at rest
-    /// has a wall one cell wide, which a point read would make a step).
-    /// Allocates nothing.
-    pub fn under(&self, k: usize, contact: &Contact) -> SoilUnder {
-        let deepest = contact
+    /// The soil as earlier passes left it under a wheel whose contact is
+    /// `contact`, read where its deepest patch lies; fresh soil for a
+    /// wheel in the air. Allocates nothing.
+    pub fn under(&self, contact: &Contact) -> SoilUnder {
+        let Some(p) = contact
             .patches()
             .iter()
-            .max_by(|a, b| a.deflection.total_cmp(&b.deflection));
-        let Some(p) = deepest else {
+            .max_by(|a, b| a.deflection.total_cmp(&b.deflection))
+        else {
             return SoilUnder::default();
         };
-        let reach = READ_REACH * self.radii[k];
-        let mut under = SoilUnder::default();
-        for (u, w) in [(-1.0, 0.25), (0.0, 0.5), (1.0, 0.25)] {
-            let x = p.point[0] + u * reach * p.tangent[0];
-            let y = p.point[1] + u * reach * p.tangent[1];
-            let s = self.map.sample(x, y);
-            under.rut += w * s.depth;
-            under.rut_gradient[0] += w * s.gradient[0];
-            under.rut_gradient[1] += w * s.gradient[1];
-            under.compaction.past_sinkage += w * s.past_sinkage;
+        let s = self.map.sample(p.point[0], p.point[1]);
+        SoilUnder {
+            rut: s.depth,
+            rut_gradient: s.gradient,
+            compaction: Compaction {
+                past_sinkage: s.past_sinkage,
+            },
         }
-        under
     }
 
     /// Records where each wheel presses now (its state and the report of
@@ -161,7 +149,7 @@ impl Ruts {
     ) {
         let cell = self.map.cell();
         for (k, (s, r)) in states.iter().zip(reports).enumerate() {
-            let clearance = READ_REACH * self.radii[k] + CLEARANCE_CELLS * cell;
+            let clearance = CLEARANCE_CELLS * cell;
             let here = [r.point[0], r.point[1]];
             let trail = &mut self.trails[k];
             if r.patches > 0 && r.sinkage > 0.0 {

@@ -7,13 +7,19 @@
 //! Storage grows with the ground the wheels touched, never with the
 //! terrain's extent: the lattice is cut into square tiles of [`TILE`] ×
 //! [`TILE`] cells, created when a wheel first presses a node of theirs.
-//! A tile holds its own border nodes (a node on a tile's edge is stored in
-//! every tile that has it), so that a query reads one tile. A node is two
-//! `f32`s: a 1 km drive of a six-wheel rover at 2 cm cells keeps a few
-//! thousand tiles, a few megabytes.
+//! A tile holds its own nodes and a ring of its neighbours' around them
+//! (a node near a tile's edge is stored in every tile that reads it), so
+//! that a query reads one tile. A node is two `f32`s: a 1 km drive of a
+//! six-wheel rover at 2 cm cells keeps about twelve thousand tiles, some
+//! thirty megabytes.
 //!
-//! [`RutMap::sample`] is the right-hand side's query (one a wheel): a hash
-//! lookup and a bilinear interpolation, no allocation. [`RutMap::press`]
+//! [`RutMap::sample`] is the right-hand side's query (a few a wheel): a
+//! hash lookup and a quadratic B-spline over the 3 × 3 nodes nearest the
+//! point, no allocation. The B-spline is C1 and reproduces linear ramps
+//! exactly: a rut's wall or floor that changes steadily is read as it is,
+//! without the ripples at every cell that a C1 blend of the bilinear
+//! weights (smoothstep) adds to a ramp, which an implicit integrator's
+//! error control would resolve step by step. [`RutMap::press`]
 //! writes, between steps of the integrator; it creates tiles, from the
 //! pool [`RutMap::reserve`] sized beforehand if any is left (a rig that
 //! must not allocate at all in its loop reserves what its drive needs),
@@ -27,16 +33,28 @@ use rover_dynamics::height_field::Bounds;
 /// Cells along a tile's side.
 pub const TILE: usize = 16;
 
-/// Nodes along a tile's side (its border nodes included).
+/// Nodes along a tile's side as a view gives them: its own and the
+/// first of its east (north) neighbour's.
 const NODES: usize = TILE + 1;
 
-/// One tile's nodes, row by row (south first), west to east.
+/// Nodes stored along a tile's side: local indices −1 ..= [`TILE`], the
+/// ring a read near the tile's edge needs.
+const STRIDE: usize = TILE + 2;
+
+/// The storage index of the node at local (`li`, `lj`), each in −1 ..= TILE.
+#[inline]
+fn at(li: i64, lj: i64) -> usize {
+    (lj + 1) as usize * STRIDE + (li + 1) as usize
+}
+
+/// One tile's nodes, row by row (south first), west to east, from local
+/// index −1 to [`TILE`].
 #[derive(Clone, Debug)]
 struct Tile {
     /// Rut depth d \[m\].
-    depth: [f32; NODES * NODES],
+    depth: [f32; STRIDE * STRIDE],
     /// Past sinkage z_u \[m\].
-    past: [f32; NODES * NODES],
+    past: [f32; STRIDE * STRIDE],
     /// The map's revision when the tile last changed.
     revision: u64,
 }
@@ -44,8 +62,8 @@ struct Tile {
 impl Tile {
     fn fresh() -> Box<Tile> {
         Box::new(Tile {
-            depth: [0.0; NODES * NODES],
-            past: [0.0; NODES * NODES],
+            depth: [0.0; STRIDE * STRIDE],
+            past: [0.0; STRIDE * STRIDE],
             revision: 0,
         })
     }
@@ -109,15 +127,29 @@ pub struct Footprint {
     pub past_sinkage: f64,
 }
 
-/// A tile's nodes, for drawing or writing them ([`RutMap::tiles_since`]).
+/// A tile's nodes, for drawing or writing them ([`RutMap::tiles_since`]):
+/// its own and the first row and column of its east and north
+/// neighbours', [`TILE`] + 1 along each side.
 #[derive(Clone, Copy, Debug)]
 pub struct TileView<'a> {
     /// `[X, Y]` of its south-west node \[m\].
     pub origin: [f64; 2],
     /// Nodes along each side ([`TILE`] + 1).
     pub nodes: usize,
-    /// Rut depths \[m\], south row first, west to east.
-    pub depth: &'a [f32],
+    /// The stored depths (a ring wider than the view).
+    stored: &'a [f32],
+}
+
+impl TileView<'_> {
+    /// The rut depth \[m\] at node (`li`, `lj`), each in 0 ..= [`TILE`].
+    pub fn depth(&self, li: usize, lj: usize) -> f32 {
+        self.stored[at(li as i64, lj as i64)]
+    }
+
+    /// The depths \[m\], south row first, west to east: `nodes²` of them.
+    pub fn depths(&self) -> impl Iterator<Item = f32> + '_ {
+        (0..self.nodes).flat_map(move |lj| (0..self.nodes).map(move |li| self.depth(li, lj)))
+    }
 }
 
 /// The rut depth and past sinkage of the ground, in sparse tiles.
@@ -199,46 +231,47 @@ impl RutMap {
     }
 
     /// The memory at (`x`, `y`) \[m\]; zero where no wheel pressed, and at
-    /// a non-finite point. Allocates nothing.
+    /// a non-finite point: the quadratic B-spline of the 3 × 3 nodes
+    /// nearest it (module doc). Allocates nothing.
     #[inline]
     pub fn sample(&self, x: f64, y: f64) -> RutSample {
         let (gx, gy) = (x * self.inv_cell, y * self.inv_cell);
         if !(gx.is_finite() && gy.is_finite()) || gx.abs() > 1e15 || gy.abs() > 1e15 {
             return RutSample::default();
         }
-        let (fi, fj) = (gx.floor(), gy.floor());
-        let (i, j) = (fi as i64, fj as i64);
-        let (ux, uy) = (gx - fi, gy - fj);
-        // Smoothstep weights: the read is C1 (its gradient continuous
-        // across cells), which an implicit integrator's step control needs
-        // more than a bilinear read's exactness between nodes.
-        let (fx, fy) = (ux * ux * (3.0 - 2.0 * ux), uy * uy * (3.0 - 2.0 * uy));
-        let (sx, sy) = (
-            6.0 * ux * (1.0 - ux) * self.inv_cell,
-            6.0 * uy * (1.0 - uy) * self.inv_cell,
-        );
+        let (mx, my) = (gx.round(), gy.round());
+        let (i, j) = (mx as i64, my as i64);
         let t = TILE as i64;
         let Some(&slot) = self.index.get(&key(i.div_euclid(t), j.div_euclid(t))) else {
             return RutSample::default();
         };
         let tile = &self.tiles[slot as usize];
-        let (li, lj) = (i.rem_euclid(t) as usize, j.rem_euclid(t) as usize);
-        let n00 = lj * NODES + li;
-        let (n10, n01, n11) = (n00 + 1, n00 + NODES, n00 + NODES + 1);
-        let corners = |v: &[f32; NODES * NODES]| [n00, n10, n01, n11].map(|n| f64::from(v[n]));
-        let [d00, d10, d01, d11] = corners(&tile.depth);
-        let [p00, p10, p01, p11] = corners(&tile.past);
-        let lerp2 = |a: f64, b: f64, c: f64, d: f64| {
-            (1.0 - fy) * ((1.0 - fx) * a + fx * b) + fy * ((1.0 - fx) * c + fx * d)
+        let (li, lj) = (i.rem_euclid(t), j.rem_euclid(t));
+        // The weights of the nodes m − 1, m, m + 1 at u = g − m in
+        // [−½, ½], and their derivatives in u.
+        let spline = |u: f64| {
+            let (a, c) = (0.5 - u, 0.5 + u);
+            ([0.5 * a * a, 0.75 - u * u, 0.5 * c * c], [-a, -2.0 * u, c])
         };
-        RutSample {
-            depth: lerp2(d00, d10, d01, d11),
-            gradient: [
-                ((1.0 - fy) * (d10 - d00) + fy * (d11 - d01)) * sx,
-                ((1.0 - fx) * (d01 - d00) + fx * (d11 - d10)) * sy,
-            ],
-            past_sinkage: lerp2(p00, p10, p01, p11),
+        let (wx, dx) = spline(gx - mx);
+        let (wy, dy) = spline(gy - my);
+        let mut out = RutSample::default();
+        for (b, (&wyb, &dyb)) in wy.iter().zip(&dy).enumerate() {
+            let row = at(li - 1, lj - 1 + b as i64);
+            let (mut d, mut d_x, mut p) = (0.0, 0.0, 0.0);
+            for (a, (&wxa, &dxa)) in wx.iter().zip(&dx).enumerate() {
+                let depth = f64::from(tile.depth[row + a]);
+                d += wxa * depth;
+                d_x += dxa * depth;
+                p += wxa * f64::from(tile.past[row + a]);
+            }
+            out.depth += wyb * d;
+            out.gradient[0] += wyb * d_x;
+            out.gradient[1] += dyb * d;
+            out.past_sinkage += wyb * p;
         }
+        out.gradient = out.gradient.map(|g| g * self.inv_cell);
+        out
     }
 
     /// Presses the soil along a wheel's path from `from` to `to` (two
@@ -299,43 +332,38 @@ impl RutMap {
     /// in every tile that holds it.
     fn press_node(&mut self, i: i64, j: i64, z: f32, rut: f32) -> bool {
         let t = TILE as i64;
-        let (ti, tj) = (i.div_euclid(t), j.div_euclid(t));
-        let (li, lj) = (i.rem_euclid(t) as usize, j.rem_euclid(t) as usize);
-        // The node, and its copies on the borders of the tiles west and
-        // south of it.
-        let mut copies = [(ti, tj, li, lj); 4];
-        let mut count = 1;
-        if li == 0 {
-            copies[count] = (ti - 1, tj, TILE, lj);
-            count += 1;
-        }
-        if lj == 0 {
-            copies[count] = (ti, tj - 1, li, TILE);
-            count += 1;
-        }
-        if li == 0 && lj == 0 {
-            copies[count] = (ti - 1, tj - 1, TILE, TILE);
-            count += 1;
-        }
-        // Every copy holds the same values: the first says whether it is
-        // pressed deeper.
-        let (slot, li0, lj0) = {
-            let (ti, tj, li, lj) = copies[0];
-            (self.tile_slot(ti, tj), li, lj)
+        // Along each axis: the tile that owns the node, and the neighbour
+        // whose ring holds it when it lies on the owner's edge.
+        let holders = |g: i64| {
+            let (tile, local) = (g.div_euclid(t), g.rem_euclid(t));
+            let other = if local == 0 {
+                Some((tile - 1, t))
+            } else if local == t - 1 {
+                Some((tile + 1, -1))
+            } else {
+                None
+            };
+            ((tile, local), other)
         };
-        let n = lj0 * NODES + li0;
-        if z <= self.tiles[slot].past[n] {
+        let (own_x, other_x) = holders(i);
+        let (own_y, other_y) = holders(j);
+        // The owner's copy says whether it is pressed deeper; every copy
+        // holds the same values.
+        let slot = self.tile_slot(own_x.0, own_y.0);
+        if z <= self.tiles[slot].past[at(own_x.1, own_y.1)] {
             return false;
         }
         let revision = self.revision;
-        for &(ti, tj, li, lj) in &copies[..count] {
-            let slot = self.tile_slot(ti, tj);
-            let tile = &mut self.tiles[slot];
-            let n = lj * NODES + li;
-            tile.past[n] = z;
-            tile.depth[n] = tile.depth[n].max(rut);
-            tile.revision = revision;
-            self.deepest = self.deepest.max(f64::from(tile.depth[n]));
+        for (tx, lx) in [Some(own_x), other_x].into_iter().flatten() {
+            for (ty, ly) in [Some(own_y), other_y].into_iter().flatten() {
+                let slot = self.tile_slot(tx, ty);
+                let tile = &mut self.tiles[slot];
+                let n = at(lx, ly);
+                tile.past[n] = z;
+                tile.depth[n] = tile.depth[n].max(rut);
+                tile.revision = revision;
+                self.deepest = self.deepest.max(f64::from(tile.depth[n]));
+            }
         }
         true
     }
@@ -381,7 +409,7 @@ impl RutMap {
                 TileView {
                     origin: [f64::from(ti) * side, f64::from(tj) * side],
                     nodes: NODES,
-                    depth: &tile.depth[..],
+                    stored: &tile.depth[..],
                 }
             })
         })
@@ -407,7 +435,7 @@ impl RutMap {
                 for li in 0..NODES {
                     let gi = (ti * t + li as i64 - i0) as usize;
                     let gj = (tj * t + lj as i64 - j0) as usize;
-                    depths[gj * nx + gi] = f64::from(tile.depth[lj * NODES + li]);
+                    depths[gj * nx + gi] = f64::from(tile.depth[at(li as i64, lj as i64)]);
                 }
             }
         }
@@ -439,12 +467,15 @@ mod tests {
         let mut map = RutMap::new(0.02);
         let rut = |z: f64| 0.8 * z;
         assert!(map.press(&footprint(-0.3, 0.5, 0.02), &footprint(0.7, 0.5, 0.02), rut));
-        let inside = map.sample(0.2, 0.51);
+        let inside = map.sample(0.2, 0.5);
         // Depths are stored as f32: to 2e-9 m at 2 cm.
         let stored = 0.02 * f64::from(f32::EPSILON);
         assert!((inside.depth - 0.016).abs() < stored, "{inside:?}");
         assert!((inside.past_sinkage - 0.02).abs() < stored);
-        assert_eq!(inside.gradient, [0.0, 0.0]);
+        assert!(
+            inside.gradient.iter().all(|g| g.abs() < 1e-12),
+            "{inside:?}"
+        );
         for (x, y) in [
             (0.2, 0.65),
             (0.2, 0.35),
@@ -454,7 +485,7 @@ mod tests {
         ] {
             assert_eq!(map.sample(x, y), RutSample::default(), "({x}, {y})");
         }
-        // Across the band's edge the depth falls over one cell.
+        // Across the band's edge the depth falls over a cell and a half.
         let edge = map.sample(0.2, 0.59);
         assert!(edge.depth > 0.0 && edge.depth < 0.016 && edge.gradient[1] < 0.0);
         assert!(map.deepest() > 0.0159 && map.deepest() < 0.0161);

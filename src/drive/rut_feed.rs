@@ -64,13 +64,15 @@ impl RutFeed {
                 self.tiles.push(FeedTile {
                     origin: view.origin,
                     nodes: [view.nodes; 2],
-                    depth: vec![0.0; view.depth.len()],
+                    depth: vec![0.0; view.nodes * view.nodes],
                     revision: 0,
                 });
                 self.tiles.len() - 1
             });
             let tile = &mut self.tiles[slot];
-            tile.depth.copy_from_slice(view.depth);
+            for (d, v) in tile.depth.iter_mut().zip(view.depths()) {
+                *d = v;
+            }
             tile.revision = revision;
         }
         self.revision = revision;

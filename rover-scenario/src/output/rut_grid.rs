@@ -106,7 +106,7 @@ impl RutGrid {
             let tj = (tile.origin[1] / cell).round() as i64;
             for lj in 0..tile.nodes {
                 for li in 0..tile.nodes {
-                    let d = f64::from(tile.depth[lj * tile.nodes + li]);
+                    let d = f64::from(tile.depth(li, lj));
                     if d <= 0.0 {
                         continue;
                     }
