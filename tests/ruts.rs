@@ -171,6 +171,7 @@ radius = 2.0
     let (origin, [nx, ny], before) = halfway.depth_grid().unwrap();
     stepper.step(steps).unwrap();
     let end = map(&stepper);
+    let (end_origin, [end_nx, _], after) = end.depth_grid().unwrap();
     let cell = end.cell();
     let mut pressed = 0;
     for j in 0..ny {
@@ -179,8 +180,13 @@ radius = 2.0
             if d > 0.0 {
                 pressed += 1;
                 let (x, y) = (origin[0] + i as f64 * cell, origin[1] + j as f64 * cell);
-                let now = end.sample(x, y).depth;
-                assert!(now >= d - 1e-9, "({x}, {y}): {d} then {now}");
+                // The same node in the later, larger grid.
+                let (ie, je) = (
+                    ((x - end_origin[0]) / cell).round() as usize,
+                    ((y - end_origin[1]) / cell).round() as usize,
+                );
+                let now = after[je * end_nx + ie];
+                assert!(now >= d, "({x}, {y}): {d} then {now}");
             }
         }
     }
