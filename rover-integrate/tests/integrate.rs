@@ -1021,3 +1021,75 @@ fn bdf_rests_on_a_noisy_equilibrium_without_collapsing_its_step() {
         stats.steps
     );
 }
+
+/// Decay that logs, in order, every time it is evaluated at (`false`) and
+/// every step its integrator says it accepted and builds on (`true`).
+struct Recording {
+    decay: Decay,
+    log: Vec<(f64, bool)>,
+}
+
+impl OdeSystem for Recording {
+    type Error = Infallible;
+    fn dim(&self) -> usize {
+        self.decay.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Infallible> {
+        self.log.push((t, false));
+        self.decay.rhs(t, y, dy)
+    }
+    fn step_accepted(&mut self, t: f64, _y: &[f64]) {
+        self.log.push((t, true));
+    }
+}
+
+/// Every method reports the steps it builds on in increasing time, and
+/// never evaluates the system before the last one it reported: a system
+/// with memory (the ground's ruts) may change what lies behind it. The
+/// fixed-step methods and dopri5 report every step; BDF every step but
+/// its landings on an output instant, from which the next step does not
+/// start.
+#[test]
+fn every_method_reports_the_steps_it_builds_on_in_time_order() {
+    let ros2 = IntegratorConfig::Ros2(rover_integrate::Ros2Config {
+        step: 1e-3,
+        jacobian_every: 1,
+        jacobian: Default::default(),
+    });
+    for config in every_method().into_iter().map(|(c, _)| c).chain([ros2]) {
+        let mut sys = Recording {
+            decay: Decay {
+                rates: vec![1.0, 30.0],
+            },
+            log: Vec::new(),
+        };
+        // Output instants a step rarely divides, so that BDF lands on them.
+        let (_, stats) = run(&config, &mut sys, &[1.0, 1.0], &outputs(0.0137, 60));
+        let name = config.method();
+        let accepted: Vec<f64> = sys.log.iter().filter(|e| e.1).map(|e| e.0).collect();
+        assert!(!accepted.is_empty(), "{name}");
+        assert!(
+            accepted.windows(2).all(|w| w[0] < w[1]),
+            "{name}: steps reported out of order"
+        );
+        if name == "bdf" {
+            assert!(
+                (accepted.len() as u64) < stats.steps,
+                "{name}: no landing left out"
+            );
+        } else {
+            assert_eq!(accepted.len() as u64, stats.steps, "{name}");
+        }
+        let mut reported = f64::NEG_INFINITY;
+        for &(t, step) in &sys.log {
+            if step {
+                reported = t;
+            } else {
+                assert!(
+                    t >= reported,
+                    "{name}: evaluated at {t} after reporting {reported}"
+                );
+            }
+        }
+    }
+}

@@ -378,15 +378,6 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
     /// The wheels' presses of the last evaluation (at or just before the
     /// step's end) go into the ground's ruts, behind the wheels.
     fn step_accepted(&mut self, _t: f64, _y: &[f64]) {
-        if std::env::var("DBG_STEPS").is_ok() {
-            eprintln!(
-                "STEP {_t} {:?}",
-                self.reports
-                    .iter()
-                    .map(|r| (r.point[0], r.sinkage * 1e3, r.rut * 1e3))
-                    .collect::<Vec<_>>()
-            );
-        }
         if let Some(ground) = &mut self.ground {
             ground.record_ruts(&self.wheels, &self.reports);
         }
