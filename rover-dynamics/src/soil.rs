@@ -355,22 +355,7 @@ pub fn soil_forces_sheared<S: Scalar, const Q: usize>(
     shear: Shear<S>,
     rule: &GaussLegendre<Q>,
 ) -> SoilForces<S> {
-    let theta1 = contact.entry_angle;
-    let beta = contact.slip_angle;
-    let arc = EntryAngle {
-        angle: theta1,
-        sin: theta1.sin(),
-        cos: theta1.cos(),
-    };
-    forces_on_arc(
-        wheel,
-        arc,
-        contact.slip,
-        beta.sin() / beta.cos(),
-        shear,
-        None,
-        rule,
-    )
+    forces_at(wheel, contact, shear, None, rule)
 }
 
 /// [`soil_forces`] over soil that earlier passes compacted
@@ -382,6 +367,25 @@ pub fn soil_forces_compacted<S: Scalar, const Q: usize>(
     compaction: Compaction,
     rule: &GaussLegendre<Q>,
 ) -> SoilForces<S> {
+    let shear = Shear::of_slip(contact.slip);
+    forces_at(
+        wheel,
+        contact,
+        shear,
+        wheel.reload(compaction).as_ref(),
+        rule,
+    )
+}
+
+/// [`forces_on_arc`] at `contact`'s entry angle (its sine and cosine
+/// taken here) and slip angle.
+fn forces_at<S: Scalar, const Q: usize>(
+    wheel: &SoilWheel,
+    contact: SoilContact<S>,
+    shear: Shear<S>,
+    reload: Option<&Reload>,
+    rule: &GaussLegendre<Q>,
+) -> SoilForces<S> {
     let theta1 = contact.entry_angle;
     let beta = contact.slip_angle;
     let arc = EntryAngle {
@@ -389,15 +393,8 @@ pub fn soil_forces_compacted<S: Scalar, const Q: usize>(
         sin: theta1.sin(),
         cos: theta1.cos(),
     };
-    forces_on_arc(
-        wheel,
-        arc,
-        contact.slip,
-        beta.sin() / beta.cos(),
-        Shear::of_slip(contact.slip),
-        wheel.reload(compaction).as_ref(),
-        rule,
-    )
+    let tan_beta = beta.sin() / beta.cos();
+    forces_on_arc(wheel, arc, contact.slip, tan_beta, shear, reload, rule)
 }
 
 /// The entry angle θ1 with its sine and cosine, as a caller that knows
