@@ -41,18 +41,18 @@ struct SoilGround {
 }
 
 impl SoilGround {
-    /// The soil as earlier passes left it under a wheel at `contact`.
-    fn under(&self, contact: &Contact) -> SoilUnder {
-        self.ruts
-            .as_ref()
-            .map_or(SoilUnder::default(), |r| r.under(contact))
-    }
-
-    /// The soils at wheel `k`'s contact, read where its deepest patch
-    /// lies (at its centre in the air, where no soil acts).
-    fn weights(&self, contact: &Contact, centre: [f64; 3]) -> SoilWeights {
-        let p = deepest_patch(contact).map_or(centre, |p| p.point);
-        self.map.weights(p[0], p[1])
+    /// The soil under a wheel at `contact`, read where its deepest patch
+    /// lies: what earlier passes left there, and which soils lie there
+    /// (in the air, fresh soil and the soils under its centre, where no
+    /// soil acts).
+    fn under(&self, contact: &Contact, centre: [f64; 3]) -> (SoilUnder, SoilWeights) {
+        let patch = deepest_patch(contact);
+        let under = match (patch, &self.ruts) {
+            (Some(p), Some(ruts)) => ruts.under(p.point),
+            _ => SoilUnder::default(),
+        };
+        let at = patch.map_or(centre, |p| p.point);
+        (under, self.map.weights(at[0], at[1]))
     }
 
     /// The load on wheel `k` and its report: each soil's at the wheel's
@@ -65,8 +65,7 @@ impl SoilGround {
         torque: f64,
         spin: f64,
     ) -> (WheelLoad, WheelReport) {
-        let under = self.under(contact);
-        let weights = self.weights(contact, s.centre);
+        let (under, weights) = self.under(contact, s.centre);
         let one = |class: u16| {
             let tyre = &self.tyres[usize::from(class)][k];
             soil_wheel_load(tyre, &self.rule, (s, &under), contact, torque, spin)
@@ -430,9 +429,9 @@ impl<H: HeightField> Ground<H> {
             *d = match &self.soil {
                 Some(soil) => {
                     let contact = self.wheels[k].contact();
-                    let under = soil.under(contact);
+                    let (under, weights) = soil.under(contact, states[k].centre);
                     let mut sum = [[0.0; 8]; 10];
-                    for (class, w) in soil.weights(contact, states[k].centre).iter() {
+                    for (class, w) in weights.iter() {
                         let d = soil_load_derivative(
                             &soil.tyres[usize::from(class)][k],
                             &soil.rule,

@@ -13,7 +13,6 @@
 //! is met only by the wheels that come after (or by the same wheel,
 //! driven back over it), as on real ground.
 
-use rover_dynamics::contact::Contact;
 use rover_dynamics::plant::WheelState;
 use rover_dynamics::soil::Compaction;
 use rover_dynamics::wheel_ground::WheelReport;
@@ -114,18 +113,10 @@ impl Ruts {
         &mut self.map
     }
 
-    /// The soil as earlier passes left it under a wheel whose contact is
-    /// `contact`, read where its deepest patch lies; fresh soil for a
-    /// wheel in the air. Allocates nothing.
-    pub fn under(&self, contact: &Contact) -> SoilUnder {
-        let Some(p) = contact
-            .patches()
-            .iter()
-            .max_by(|a, b| a.deflection.total_cmp(&b.deflection))
-        else {
-            return SoilUnder::default();
-        };
-        let s = self.map.sample(p.point[0], p.point[1]);
+    /// The soil as earlier passes left it at `point` (a wheel's contact
+    /// point, inertial \[m\]; Z unused). Allocates nothing.
+    pub fn under(&self, point: [f64; 3]) -> SoilUnder {
+        let s = self.map.sample(point[0], point[1]);
         SoilUnder {
             rut: s.depth,
             rut_gradient: s.gradient,
