@@ -202,6 +202,23 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         }
     }
 
+    /// Each wheel's spin rate \[rad/s\] at the last evaluation, of state
+    /// `y`, into `out`: the spin state on a soil; on rigid ground, where the
+    /// tyre rolls, the speed of its centre along its heading over the
+    /// radius (0 in free flight). What a wheel encoder differentiates.
+    pub fn wheel_spin_rates(&self, y: &[f64], out: &mut [f64]) {
+        let range = self.spin_range();
+        if !range.is_empty() {
+            out.copy_from_slice(&y[range]);
+            return;
+        }
+        let radii = self.ground.as_ref().map_or(&[][..], |g| g.radii());
+        out.fill(0.0);
+        for ((o, s), r) in out.iter_mut().zip(&self.wheels).zip(radii) {
+            *o = rolling_rate(s.spin_axis, s.velocity, *r);
+        }
+    }
+
     /// Wheel states of the last evaluation.
     pub fn wheel_states(&self) -> &[WheelState] {
         &self.wheels

@@ -1,0 +1,24 @@
+//! The rover as an observer in its own control loop (F. Chen and G. Genta,
+//! Acta Astronautica 81 (2012) 288–305, §1: "an observer in the control
+//! loop of autonomous rovers"), from the same declaration as the plant:
+//!
+//! - [`sensors`]: what a rover's sensors read, declared in datasheet units
+//!   ([`SensorConfig`]) and held in SI; one instant's readings
+//!   ([`SensorSample`]);
+//! - [`process`]: what the filter needs of the rover model
+//!   ([`ProcessModel`]): the right-hand side under commanded torques and
+//!   steering, its Jacobian, and the wheels' spin rates;
+//!
+//! The crate is `#![no_std]` with `alloc`: buffers are sized once, when a
+//! filter is built, and no step allocates. The repository's
+//! `docs/ESTIMATE.md` gives the equations as implemented.
+#![no_std]
+#![warn(missing_docs)]
+
+extern crate alloc;
+
+pub mod process;
+pub mod sensors;
+
+pub use process::ProcessModel;
+pub use sensors::{SensorConfig, SensorSample};
