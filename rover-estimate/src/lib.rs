@@ -8,6 +8,9 @@
 //! - [`process`]: what the filter needs of the rover model
 //!   ([`ProcessModel`]): the right-hand side under commanded torques and
 //!   steering, its Jacobian, and the wheels' spin rates;
+//! - [`dead_reckoning`]: the baseline without a model, a complementary
+//!   filter on the gyros and accelerometers and the wheels' odometry;
+//! - [`so3`]: rotations in the model's attitude convention.
 //!
 //! The crate is `#![no_std]` with `alloc`: buffers are sized once, when a
 //! filter is built, and no step allocates. The repository's
@@ -17,8 +20,11 @@
 
 extern crate alloc;
 
+pub mod dead_reckoning;
 pub mod process;
 pub mod sensors;
+pub mod so3;
 
+pub use dead_reckoning::{DeadReckoning, DeadReckoningConfig};
 pub use process::ProcessModel;
 pub use sensors::{SensorConfig, SensorSample};
