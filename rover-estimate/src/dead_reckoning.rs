@@ -217,7 +217,7 @@ impl DeadReckoning {
 
     fn check(&self, s: &SensorSample) -> Result<(), DeadReckoningError> {
         let bad = |what| Err(DeadReckoningError::BadSample { t: s.t, what });
-        if !(s.t > self.t) {
+        if s.t.partial_cmp(&self.t) != Some(core::cmp::Ordering::Greater) {
             return bad("its time does not advance");
         }
         if s.wheel_angles.len() != self.radii.len() {
