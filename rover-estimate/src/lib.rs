@@ -20,6 +20,7 @@
 
 extern crate alloc;
 
+pub mod consistency;
 pub mod dead_reckoning;
 pub mod process;
 pub mod sensors;
