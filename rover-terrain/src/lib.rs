@@ -58,6 +58,7 @@ mod range_pyramid;
 pub mod ruts;
 mod sinusoid;
 mod slope;
+mod smoothing;
 pub mod soil_map;
 mod statistics;
 mod step;
@@ -86,6 +87,7 @@ pub use random_field::RandomField;
 pub use ruts::{Footprint as RutFootprint, RutMap, RutSample};
 pub use sinusoid::Sinusoid;
 pub use slope::Slope;
+pub use smoothing::gaussian_sigma;
 pub use soil_map::{
     ClassFile, ClassRaster, PatchShape, SoilMap, SoilPatch, SoilWeights, read_class_raster,
 };
