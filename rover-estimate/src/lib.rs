@@ -8,6 +8,9 @@
 //! - [`process`]: what the filter needs of the rover model
 //!   ([`ProcessModel`]): the right-hand side under commanded torques and
 //!   steering, its Jacobian, and the wheels' spin rates;
+//! - [`simulate`]: the readings of the declared sensors when the motion is
+//!   known ([`SensorSimulator`]), with seeded noise: what a simulated run
+//!   gives a filter to read;
 //!
 //! The crate is `#![no_std]` with `alloc`: buffers are sized once, when a
 //! filter is built, and no step allocates. The repository's
@@ -19,6 +22,8 @@ extern crate alloc;
 
 pub mod process;
 pub mod sensors;
+pub mod simulate;
 
 pub use process::ProcessModel;
 pub use sensors::{SensorConfig, SensorSample};
+pub use simulate::{SensorSimulator, Truth};
