@@ -421,6 +421,46 @@ impl core::fmt::Display for Column {
 }
 
 impl Column {
+    /// The column named `name` (as [`Column`]'s `Display` writes it), of
+    /// any sensor, wheel or coordinate; `None` for a name no sensor log
+    /// has.
+    pub fn from_name(name: &str) -> Option<Column> {
+        let digits = name.trim_start_matches(|c: char| !c.is_ascii_digit());
+        let numbered = digits
+            .parse::<usize>()
+            .ok()
+            .filter(|&k| k >= 1 && !digits.starts_with('0'))
+            .map(|k| {
+                [
+                    Column::WheelAngle(k - 1),
+                    Column::Suspension(k - 1),
+                    Column::Torque(k - 1),
+                    Column::Steering(k - 1),
+                ]
+            });
+        let fixed = [
+            Column::Time,
+            Column::Gyro(0),
+            Column::Gyro(1),
+            Column::Gyro(2),
+            Column::Accel(0),
+            Column::Accel(1),
+            Column::Accel(2),
+            Column::Position(0),
+            Column::Position(1),
+            Column::Position(2),
+            Column::Heading,
+        ];
+        let mut text = String::new();
+        fixed
+            .into_iter()
+            .chain(numbered.into_iter().flatten())
+            .find(|c| {
+                text.clear();
+                core::fmt::write(&mut text, format_args!("{c}")).is_ok() && text == name
+            })
+    }
+
     /// The column's unit; `rad or m` for a suspension coordinate.
     pub fn unit(&self) -> &'static str {
         match self {
@@ -659,5 +699,14 @@ mod tests {
         }
         Column::Position(1).set(&mut s, None);
         assert_eq!(s.position, None);
+        // Each name reads back as its column; nothing else does.
+        for c in columns(&full(), 12, 11) {
+            assert_eq!(Column::from_name(&c.to_string()), Some(c));
+        }
+        for name in [
+            "", "T", "enc0", "enc01", "enc", "gw", "fix_x", "tau-1", "susp1.0",
+        ] {
+            assert_eq!(Column::from_name(name), None, "{name}");
+        }
     }
 }

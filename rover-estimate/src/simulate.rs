@@ -182,7 +182,8 @@ fn normal(rng: &mut Pcg64) -> f64 {
 /// resolution²/12. (Truncating to the count below, `floor`, would add a
 /// bias of −resolution/2.)
 fn quantize(v: f64, resolution: f64) -> f64 {
-    libm::round(v / resolution) * resolution
+    // + 0.0 turns the count −0 into 0.
+    libm::round(v / resolution) * resolution + 0.0
 }
 
 /// A first-order Gauss–Markov bias per axis, with its white noise.
