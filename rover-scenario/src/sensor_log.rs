@@ -153,6 +153,18 @@ pub fn parse_sensor_log(
                 help,
             }
         };
+    if let Err(e) = config.check() {
+        let (problem, help) = e
+            .message
+            .split_once("\n  = help: ")
+            .unwrap_or((&e.message, ""));
+        return Err(error(
+            None,
+            None,
+            format!("the declaration to read it with cannot be used: {problem}"),
+            help.into(),
+        ));
+    }
     let expected = columns(config, wheels, coordinates);
     let names: Vec<String> = expected.iter().map(Column::to_string).collect();
     let listing = names.join(",");

@@ -307,6 +307,20 @@ fn the_reader_names_the_column_that_does_not_fit_the_declaration() {
         reader_error(&with_header(&HEADER.replace("ax", "gx"))),
         "sensors.csv:1: column 5 (`gx`): the column is named twice\n  = help: name each column once: t,gx,gy,gz,ax,ay,az,enc1,enc2,fix_X,fix_Y,fix_Z,tau1,tau2,delta1,delta2"
     );
+    let mut zero_rate = declared();
+    zero_rate.rate = 0.0;
+    let e = parse_sensor_log(
+        &log(&good_rows()),
+        Path::new("sensors.csv"),
+        &zero_rate,
+        2,
+        1,
+    )
+    .expect_err("refused");
+    assert_eq!(
+        e.to_string(),
+        "sensors.csv: the declaration to read it with cannot be used: sensors.rate must be > 0, got 0\n  = help: readings per second of the IMU and the encoders [Hz], e.g. rate = 100.0"
+    );
     assert_eq!(
         reader_error(""),
         "sensors.csv: the file is empty: it has no header\n  = help: a sensor log starts with the header t,gx,gy,gz,ax,ay,az,enc1,enc2,fix_X,fix_Y,fix_Z,tau1,tau2,delta1,delta2"
