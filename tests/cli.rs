@@ -184,6 +184,65 @@ fn a_run_that_cannot_start_leaves_a_failed_summary_and_no_csv() {
     assert!(error.contains("steerable"), "{error} (CLI: {text})");
 }
 
+/// `rover simulate` of a scenario with `[sensors]`: `sensors.csv` beside
+/// `run.csv`, its columns those of the declaration, a row at every sensor
+/// instant (t = 0 to the end at 50 Hz), read back by `read_sensor_log`; a
+/// later run without `[sensors]` in the same folder removes it, and so
+/// does a scenario that cannot start.
+#[test]
+fn simulate_writes_the_sensor_log_beside_the_run() {
+    let dir = scratch("sensors");
+    let sensors = "[sensors]\nseed = 2\nrate = 50.0\n\
+        [sensors.imu]\ngyro_noise_deg_per_sqrt_h = 0.2\ngyro_bias_deg_per_h = 10.0\n\
+        accel_noise_ug_per_sqrt_hz = 100.0\naccel_bias_mg = 0.1\nposition = [0.1, 0.0, 0.05]\n\
+        [sensors.suspension_encoders]\nresolution = 0.0017453292519943296\n\
+        [sensors.heading_fix]\nrate = 1.0\nsigma = 0.01\n";
+    let base = "duration = 1.5\nsettle = 0.5\n[control.speed]\nspeed = 0.05\n";
+    let scenario = write(&dir, "s.toml", &format!("{base}{sensors}"));
+    let out = dir.join("out");
+    let args = SimulateArgs {
+        rover: Some("swing4".into()),
+        scenario: scenario.clone(),
+        out: out.clone(),
+        quiet: true,
+        no_plots: true,
+        generic: false,
+    };
+    let report = simulate(&args).unwrap();
+    assert!(report.summary.complete);
+    let log = out.join("sensors.csv");
+    assert!(report.files.contains(&log), "{:?}", report.files);
+    let text = std::fs::read_to_string(&log).unwrap();
+    assert_eq!(
+        text.lines().next().unwrap(),
+        "t,gx,gy,gz,ax,ay,az,susp1,susp2,susp3,susp4,fix_psi,tau1,tau2,tau3,tau4,delta1,delta2,delta3,delta4"
+    );
+    let config = rover_scenario::scenario::Scenario::load(&scenario)
+        .unwrap()
+        .sensors
+        .unwrap();
+    let samples = rover_scenario::read_sensor_log(&log, &config, 4, 4).unwrap();
+    assert_eq!(samples.len(), 76, "t = 0, 0.02, …, 1.5");
+    assert_eq!(samples.last().unwrap().t, 1.5);
+    let headings = samples.iter().filter(|s| s.heading.is_some()).count();
+    assert_eq!(headings, 2, "heading fixes at t = 0 and 1");
+    // The same folder, the run without [sensors]: no sensor log is left.
+    std::fs::write(&scenario, base).unwrap();
+    let report = simulate(&args).unwrap();
+    assert!(!log.exists() && !report.files.contains(&log));
+    // A scenario that cannot start leaves none either.
+    std::fs::write(&scenario, format!("{base}{sensors}")).unwrap();
+    simulate(&args).unwrap();
+    assert!(log.exists());
+    std::fs::write(
+        &scenario,
+        format!("{base}[control.steering]\nkind = \"ackermann\"\nradius = 2.0\n{sensors}"),
+    )
+    .unwrap();
+    simulate(&args).expect_err("swing4 has no steerable wheels");
+    assert!(!log.exists());
+}
+
 #[test]
 fn an_output_path_that_is_a_file_is_refused_with_a_fix() {
     let dir = scratch("out_is_a_file");

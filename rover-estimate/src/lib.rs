@@ -8,6 +8,9 @@
 //! - [`process`]: what the filter needs of the rover model
 //!   ([`ProcessModel`]): the right-hand side under commanded torques and
 //!   steering, its Jacobian, and the wheels' spin rates;
+//! - [`simulate`]: the readings of the declared sensors when the motion is
+//!   known ([`SensorSimulator`]), with seeded noise: what a simulated run
+//!   gives a filter to read;
 //! - [`dead_reckoning`]: the baseline without a model, a complementary
 //!   filter on the gyros and accelerometers and the wheels' odometry;
 //! - [`so3`]: rotations in the model's attitude convention.
@@ -24,8 +27,10 @@ pub mod consistency;
 pub mod dead_reckoning;
 pub mod process;
 pub mod sensors;
+pub mod simulate;
 pub mod so3;
 
 pub use dead_reckoning::{DeadReckoning, DeadReckoningConfig};
 pub use process::ProcessModel;
 pub use sensors::{SensorConfig, SensorSample};
+pub use simulate::{SensorSimulator, Truth};

@@ -1,8 +1,8 @@
 //! Runs of a rover from a scenario: the scenario file (`[terrain]`,
-//! `[initial]`, `[control]`, `[contact]`, `[integrator]`), the whole run
-//! and its outputs (CSV, summary, plots' data), runs step by step, the
-//! linearization about a steady state, and [`Simulation`], a run assembled
-//! in Rust.
+//! `[initial]`, `[control]`, `[contact]`, `[integrator]`, `[sensors]`),
+//! the whole run and its outputs (CSV, summary, plots' data, the sensor
+//! log), runs step by step, the linearization about a steady state, and
+//! [`Simulation`], a run assembled in Rust.
 //!
 //! # A rover declared in Rust
 //!
@@ -64,10 +64,12 @@ mod locate;
 pub mod output;
 pub mod prepare;
 pub mod scenario;
+pub mod sensor_log;
 pub mod simulate;
 mod simulation;
 mod stepper;
 pub mod sweep;
 
+pub use sensor_log::read_sensor_log;
 pub use simulation::{Simulation, SimulationError};
 pub use stepper::Stepper;

@@ -34,7 +34,7 @@ use rover_spec::{Spec, SpecError};
 
 use crate::output::Summary;
 use crate::scenario::{Scenario, ScenarioError, line_of_field};
-use crate::simulate::{SetupError, simulate};
+use crate::simulate::{SetupError, simulate_with_sensors};
 use crate::stepper::Stepper;
 
 /// Why a run could not be prepared or could not start.
@@ -327,11 +327,26 @@ impl Prepared {
     }
 
     /// Run the scenario whole, writing the CSV to `csv`; the summary names
-    /// the plant that ran.
+    /// the plant that ran. The readings of `[sensors]` are not written
+    /// ([`Prepared::run_with_sensors`]); the rows are the same.
     pub fn run<W: Write>(
         &self,
         generic: bool,
         csv: W,
+        interrupt: &AtomicBool,
+        progress: impl FnMut(f64),
+    ) -> Result<Summary, PrepareError> {
+        self.run_with_sensors(generic, csv, None::<std::io::Sink>, interrupt, progress)
+    }
+
+    /// [`Prepared::run`], writing the readings of the scenario's
+    /// `[sensors]` to `sensors` (`rover simulate`'s `sensors.csv`) when
+    /// both are given.
+    pub fn run_with_sensors<W: Write, S: Write>(
+        &self,
+        generic: bool,
+        csv: W,
+        sensors: Option<S>,
         interrupt: &AtomicBool,
         progress: impl FnMut(f64),
     ) -> Result<Summary, PrepareError> {
@@ -341,12 +356,12 @@ impl Prepared {
         // Each kind of plant runs its own instance of the run: the right-hand
         // side calls the generated plant without a second dispatch.
         let run = match plant {
-            RunPlant::Generated(p) => {
-                simulate(p, model, name, scenario, base, csv, interrupt, progress)
-            }
-            RunPlant::Generic(p) => {
-                simulate(p, model, name, scenario, base, csv, interrupt, progress)
-            }
+            RunPlant::Generated(p) => simulate_with_sensors(
+                p, model, name, scenario, base, csv, sensors, interrupt, progress,
+            ),
+            RunPlant::Generic(p) => simulate_with_sensors(
+                p, model, name, scenario, base, csv, sensors, interrupt, progress,
+            ),
         };
         run.map_err(|e| self.locate(e))
     }

@@ -24,6 +24,20 @@
 //!
 //! [integrator.bdf]            # the default: orders 1–2, like ode15s
 //! rtol = 1e-6
+//!
+//! [sensors]                   # optional: sensors.csv beside run.csv (docs/ESTIMATE.md)
+//! seed = 1
+//! rate = 100.0               # [Hz]: the IMU and the encoders
+//! [sensors.imu]
+//! gyro_noise_deg_per_sqrt_h = 0.2
+//! gyro_bias_deg_per_h = 10.0
+//! accel_noise_ug_per_sqrt_hz = 100.0
+//! accel_bias_mg = 0.1
+//! [sensors.wheel_encoders]
+//! resolution = 0.001         # [rad]
+//! [sensors.position_fix]     # also [sensors.suspension_encoders], [sensors.heading_fix]
+//! rate = 0.1
+//! sigma = 0.05
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -89,6 +103,10 @@ pub struct Scenario {
     /// costs a few percent of the run).
     #[serde(default)]
     pub profile: bool,
+    /// The rover's sensors (`[sensors]`, docs/ESTIMATE.md): their readings
+    /// go to `sensors.csv`, and the run lands on their instants.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sensors: Option<rover_estimate::SensorConfig>,
 }
 
 /// The four fidelity levels of MODEL.md §9.
@@ -345,6 +363,7 @@ impl Scenario {
             fidelity: FidelityLevel::default(),
             path_from: None,
             profile: false,
+            sensors: None,
         }
     }
 
@@ -429,7 +448,34 @@ impl Scenario {
         }
         self.check_anti_spin()?;
         self.check_steps()?;
+        self.check_sensors()?;
         self.check_initial()
+    }
+
+    /// The `[sensors]` table: its own checks, at most [`MAX_OUTPUT_ROWS`]
+    /// rows of readings, and a run with dynamics to read.
+    fn check_sensors(&self) -> Result<(), (&'static str, String)> {
+        let Some(sensors) = &self.sensors else {
+            return Ok(());
+        };
+        sensors.check().map_err(|e| (e.field, e.message))?;
+        let rows = (self.duration * sensors.rate).floor() + 1.0;
+        if rows > MAX_OUTPUT_ROWS as f64 {
+            return Err((
+                "sensors.rate",
+                format!(
+                    "duration × sensors.rate = {} s × {} Hz asks for {rows:.3e} rows of readings; at most {MAX_OUTPUT_ROWS} are written\n  = help: lower sensors.rate or shorten duration",
+                    self.duration, sensors.rate
+                ),
+            ));
+        }
+        if self.fidelity == FidelityLevel::QuasiStatic {
+            return Err((
+                "sensors",
+                "[sensors] needs the rover's accelerations and wheel spins, which the quasi-static level (a static equilibrium at each instant) does not have\n  = help: run the sensors at the \"full\", \"simplified\" or \"linearized\" level, or remove [sensors]".into(),
+            ));
+        }
+        Ok(())
     }
 
     /// The anti-spin distribution reads each wheel's slip, which only a

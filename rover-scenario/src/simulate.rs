@@ -13,12 +13,15 @@ use rover_dynamics::plant::Plant;
 
 use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x, plant_label};
 use crate::scenario::{FidelityLevel, Scenario};
+use crate::sensor_log::SensorLogWriter;
 use rover_dynamics::wheel_ground::ContactMethod;
+use rover_estimate::sensors::{SensorConfig, SensorSample};
+use rover_estimate::{SensorSimulator, Truth};
 use rover_integrate::{Integrator, OdeSystem};
 use rover_runtime::control::Controller;
 use rover_runtime::ground::Ground;
 use rover_runtime::row::{Columns, RowInputs};
-use rover_runtime::sim::{RoverSystem, RunError, RunOptions, Stop, run};
+use rover_runtime::sim::{RoverSystem, RunError, RunOptions, Stop, run_with_sensors};
 use rover_terrain::Terrain;
 
 /// A run that could not start: the scenario does not fit the rover, or a
@@ -302,6 +305,80 @@ pub(crate) fn system_of<P: Plant>(
     Ok((sys, y))
 }
 
+/// The sensors' period of a scenario with `[sensors]`: the run lands on
+/// their instants whether or not their readings are written, so that its
+/// rows do not depend on where it is run from.
+pub(crate) fn sensor_period(scenario: &Scenario) -> Option<f64> {
+    scenario.sensors.as_ref().map(|s| 1.0 / s.rate)
+}
+
+/// The readings of a scenario's sensors at each sensor instant, written
+/// to the sensor log: the simulator and the buffers of the truth, sized
+/// once.
+struct SensorRecorder<W: Write> {
+    sim: SensorSimulator,
+    sample: SensorSample,
+    /// ẏ at the instant.
+    dy: Vec<f64>,
+    /// Each wheel's spin rate at the instant.
+    rates: Vec<f64>,
+    gravity: f64,
+    n: usize,
+    log: SensorLogWriter<W>,
+}
+
+impl<W: Write> SensorRecorder<W> {
+    fn new(config: &SensorConfig, model: &Model, dim: usize, out: W) -> Result<Self, SetupError> {
+        let (k, m) = (model.wheels.len(), model.m());
+        let sim = SensorSimulator::new(config, k, m).map_err(|e| SetupError::Unsupported {
+            field: e.field,
+            message: e.message,
+        })?;
+        Ok(Self {
+            sample: sim.new_sample(),
+            sim,
+            dy: vec![0.0; dim],
+            rates: vec![0.0; k],
+            gravity: model.gravity,
+            n: model.dof(),
+            log: SensorLogWriter::new(out, config, k, m)?,
+        })
+    }
+
+    /// The readings at `(t, y)`: one right-hand side gives ẇ, the wheels'
+    /// spin rates and the commands there. Allocates nothing.
+    fn record<P: Plant, H: rover_dynamics::HeightField>(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        sys: &mut RoverSystem<P, H>,
+    ) -> Result<(), RunError> {
+        sys.evaluate_at(t, y, &mut self.dy)?;
+        sys.wheel_spin_rates(y, &mut self.rates);
+        let n = self.n;
+        let truth = Truth {
+            t,
+            x: &y[..n],
+            w: &y[n..2 * n],
+            w_dot: &self.dy[n..2 * n],
+            wheel_rates: &self.rates,
+            torques: sys.torques(),
+            steering: sys.steering(),
+            gravity: self.gravity,
+        };
+        let failed = |message: String| RunError::Output {
+            t,
+            message: format!("sensors.csv: {message}"),
+        };
+        self.sim
+            .sample_into(&truth, &mut self.sample)
+            .map_err(|e| failed(e.to_string()))?;
+        self.log
+            .write(&self.sample)
+            .map_err(|e| failed(e.to_string()))
+    }
+}
+
 /// The driver's options of a scenario: its duration, output interval and
 /// roll-over limit.
 pub(crate) fn run_options(scenario: &Scenario) -> RunOptions {
@@ -314,6 +391,9 @@ pub(crate) fn run_options(scenario: &Scenario) -> RunOptions {
 
 /// Run `scenario` with `plant` (whose model is `model`, named `name`),
 /// writing the CSV to `csv`. `progress(t)` is called at every output row.
+/// The readings of the scenario's `[sensors]` are not written
+/// ([`simulate_with_sensors`] writes them), but the run lands on their
+/// instants all the same: its rows are those of the run that writes them.
 ///
 /// A plant that does not fit the model (another number of coordinates or
 /// wheels, another total mass) is a [`SetupError::Mismatch`] naming what
@@ -326,6 +406,34 @@ pub fn simulate<P: Plant, W: Write>(
     scenario: &Scenario,
     base_dir: &Path,
     csv: W,
+    interrupt: &AtomicBool,
+    progress: impl FnMut(f64),
+) -> Result<Summary, SetupError> {
+    simulate_with_sensors(
+        plant,
+        model,
+        name,
+        scenario,
+        base_dir,
+        csv,
+        None::<std::io::Sink>,
+        interrupt,
+        progress,
+    )
+}
+
+/// [`simulate`], writing the readings of the scenario's `[sensors]` to
+/// `sensors` at each sensor instant (t = 0 first; the columns of
+/// [`rover_estimate::sensors::columns`]), when both are given. A log that
+/// cannot be written stops the run as failed, like the CSV.
+pub fn simulate_with_sensors<P: Plant, W: Write, S: Write>(
+    plant: P,
+    model: &Model,
+    name: &str,
+    scenario: &Scenario,
+    base_dir: &Path,
+    csv: W,
+    sensors: Option<S>,
     interrupt: &AtomicBool,
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
@@ -355,22 +463,41 @@ pub fn simulate<P: Plant, W: Write>(
     let k = model.wheels.len();
     let columns = Columns::on_ground(model.m(), k, !sys.spin_range().is_empty());
     let mut writer = CsvWriter::new(csv, &columns)?;
+    let mut recorder = match (&scenario.sensors, sensors) {
+        (Some(config), Some(out)) => Some(SensorRecorder::new(config, model, sys.dim(), out)?),
+        _ => None,
+    };
     let opts = run_options(scenario);
     let rest_x: Vec<f64> = model.rest_wheel_centres().iter().map(|u| u[0]).collect();
     let mut log = RunLog::new(scenario.settle, model.dof(), k)
         .with_axles(axles_by_rest_x(&rest_x))
         .with_soil(columns.names(), k);
     let started = Instant::now();
-    let outcome = run(&mut sys, &mut integ, &mut y, &opts, interrupt, |row| {
-        let s = row.system;
-        let inputs = RowInputs::of_system(s, row.t, row.y, s.control.speed_setpoint(row.t));
-        let values = writer.write(&inputs)?;
-        log.record(values, s.reports().iter().map(|r| r.deep));
-        progress(row.t);
-        Ok(())
-    });
+    let outcome = run_with_sensors(
+        &mut sys,
+        &mut integ,
+        &mut y,
+        &opts,
+        sensor_period(scenario),
+        interrupt,
+        |row| {
+            let s = row.system;
+            let inputs = RowInputs::of_system(s, row.t, row.y, s.control.speed_setpoint(row.t));
+            let values = writer.write(&inputs)?;
+            log.record(values, s.reports().iter().map(|r| r.deep));
+            progress(row.t);
+            Ok(())
+        },
+        |t, y, sys| match &mut recorder {
+            Some(r) => r.record(t, y, sys),
+            None => Ok(()),
+        },
+    );
     let wall = started.elapsed().as_secs_f64();
     writer.into_inner()?;
+    if let Some(r) = recorder {
+        r.log.into_inner()?;
+    }
     let (status, error) = match &outcome.stop {
         Stop::Completed => (Status::Completed, None),
         Stop::Interrupted { t } => (

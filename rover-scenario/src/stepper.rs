@@ -11,7 +11,7 @@ use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
 
 use crate::scenario::{FidelityLevel, Scenario};
-use crate::simulate::{SetupError, run_options, system_of};
+use crate::simulate::{SetupError, run_options, sensor_period, system_of};
 use rover_integrate::{AnyIntegrator, Integrator, OdeSystem};
 use rover_runtime::control::ControlError;
 use rover_terrain::Terrain;
@@ -60,7 +60,8 @@ impl<P: Plant + Clone> Stepper<P> {
                 duration: f64::INFINITY,
                 ..run_options(scenario)
             },
-        );
+        )
+        .with_sensor_period(sensor_period(scenario));
         let mut s = Self {
             start: sys.clone(),
             integ_start: integ.clone(),

@@ -87,6 +87,33 @@ fn a_stepped_run_gives_the_whole_runs_rows_bit_for_bit_with_every_integrator() {
 }
 
 #[test]
+fn with_sensor_instants_a_stepped_run_still_gives_the_whole_runs_rows_with_every_integrator() {
+    // The integrator lands on every sensor instant (100 Hz, between the
+    // 20 Hz output instants) whether the readings are written or not.
+    let sensors = "[sensors]\nrate = 100.0\n[sensors.wheel_encoders]\nresolution = 0.001\n";
+    for integrator in INTEGRATORS {
+        let p = prepared(&format!("{}{sensors}", scenario(integrator)));
+        let whole = whole_rows(&p, false);
+        assert_eq!(whole.len(), 61, "{integrator}");
+        let mut s = p.stepper(false).unwrap_or_else(|e| panic!("{e}"));
+        for (k, want) in whole.iter().enumerate() {
+            if k > 0 {
+                s.step(1).unwrap_or_else(|e| panic!("{integrator}: {e}"));
+            }
+            let got = stepped_row(&s);
+            let same = got
+                .iter()
+                .zip(want)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(
+                same,
+                "{integrator} row {k}: stepped {got:?}, whole {want:?}"
+            );
+        }
+    }
+}
+
+#[test]
 fn a_blow_up_is_a_divergence_whole_or_stepped() {
     // A step far too long for the tyre's stiffness, on flat ground (which
     // no wheel can leave).

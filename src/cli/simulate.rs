@@ -78,12 +78,11 @@ fn interrupt_flag() -> Arc<AtomicBool> {
     .clone()
 }
 
-/// The outputs of a run interrupted before its first step: no CSV, and a
-/// summary that says so.
+/// The outputs of a run interrupted before its first step: no CSV nor
+/// sensor log, and a summary that says so.
 fn interrupted_outputs(out: &Path, why: &str) {
-    let csv = out.join("run.csv");
-    if std::fs::symlink_metadata(&csv).is_ok_and(|m| m.is_file()) {
-        let _ = std::fs::remove_file(&csv);
+    for name in ["run.csv", SENSORS_CSV] {
+        remove_regular(&out.join(name));
     }
     let json = serde_json::json!({ "status": "interrupted", "complete": false, "error": why });
     let _ = rover_files::write_whole(&out.join("summary.json"), format!("{json:#}\n").as_bytes());
@@ -110,7 +109,20 @@ impl Drop for Preparing {
     }
 }
 
-/// Run the scenario and write `run.csv` and `summary.json` into `args.out`.
+/// The sensor log's name, beside `run.csv` when the scenario has
+/// `[sensors]`.
+const SENSORS_CSV: &str = "sensors.csv";
+
+/// Remove `path` if it is a regular file (a link of that name stays, and
+/// nothing it points to is touched); best effort.
+fn remove_regular(path: &Path) {
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+        let _ = std::fs::remove_file(path);
+    }
+}
+
+/// Run the scenario and write `run.csv` and `summary.json` into `args.out`,
+/// and `sensors.csv` when the scenario has `[sensors]`.
 ///
 /// A run that cannot start, for whatever reason, leaves a summary saying
 /// `failed` with the error, and no CSV: an earlier run's outputs in the
@@ -138,12 +150,13 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         .map_err(|e| CliError::Usage(format!("--out {}: {e}", args.out.display())))?;
     let csv_path = out.join("run.csv");
     let summary_path = out.join("summary.json");
+    let sensors_path = out.join(SENSORS_CSV);
     let inputs = [
         Some(args.scenario.as_path()),
         args.rover.as_deref().map(Path::new),
     ];
     for input in inputs.into_iter().flatten() {
-        for output in [&csv_path, &summary_path] {
+        for output in [&csv_path, &summary_path, &sensors_path] {
             if same_file(input, output) {
                 return Err(CliError::Usage(format!(
                     "--out {}: its {} is the input {}, which the run would overwrite; give another folder",
@@ -167,6 +180,25 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         .create_fresh("run.csv")
         .map_err(|e| CliError::io(&csv_path, "create the CSV", e))?;
     let csv = BufWriter::new(csv);
+    // The sensor log is written as the run goes, like the CSV; without
+    // `[sensors]` an earlier run's is removed, so that it never passes
+    // for this one's.
+    let sensors = match &scenario.sensors {
+        Some(_) => {
+            let (_, file) = out
+                .create_fresh(SENSORS_CSV)
+                .map_err(|e| CliError::io(&sensors_path, "create the sensor log", e))?;
+            Some(BufWriter::new(file))
+        }
+        None => {
+            if std::fs::symlink_metadata(&sensors_path).is_ok_and(|m| m.is_file()) {
+                std::fs::remove_file(&sensors_path).map_err(|e| {
+                    CliError::io(&sensors_path, "remove an earlier run's sensor log", e)
+                })?;
+            }
+            None
+        }
+    };
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -182,11 +214,14 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         preparing.take();
         bar.set_position((1000.0 * t / duration) as u64);
     };
-    let summary = prepared.run(args.generic, csv, &flag, progress)?;
+    let summary = prepared.run_with_sensors(args.generic, csv, sensors, &flag, progress)?;
     bar.finish_and_clear();
     // The rut grids before the summary that says the run is done: a
     // summary never points at an earlier run's ruts.
     let mut files = vec![csv_path.clone(), summary_path.clone()];
+    if scenario.sensors.is_some() {
+        files.push(sensors_path);
+    }
     files.extend(rut_files(&out, &prepared, &summary)?);
     let json = serde_json::to_string_pretty(&summary)
         .map_err(|e| CliError::io(&summary_path, "write the summary", e.into()))?;
@@ -320,15 +355,16 @@ fn runaway_warning(spec: &rover_spec::Spec, summary: &Summary) {
     );
 }
 
-/// The outputs of a run that could not start: its CSV (holding not even
-/// its header), or an earlier run's, is removed and the summary replaced by
-/// a failed one carrying the error. Best effort: the error itself is what
-/// the caller reports.
+/// The outputs of a run that could not start: its CSV and sensor log
+/// (holding not even their headers), or an earlier run's, are removed and
+/// the summary replaced by a failed one carrying the error. Best effort:
+/// the error itself is what the caller reports.
 fn fail_outputs(csv: &Path, summary: &Path, e: &CliError) {
     // Only a regular file is removed: a link named `run.csv` stays (and
     // nothing it points to is touched).
-    if std::fs::symlink_metadata(csv).is_ok_and(|m| m.is_file()) {
-        let _ = std::fs::remove_file(csv);
+    remove_regular(csv);
+    if let Some(dir) = csv.parent() {
+        remove_regular(&dir.join(SENSORS_CSV));
     }
     let json = serde_json::json!({
         "status": "failed",

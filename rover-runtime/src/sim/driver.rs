@@ -1,6 +1,6 @@
 //! The one driver of a run's events: output instants, controller samples,
-//! command breakpoints, and the checks after every advance (a diverged
-//! integration, a roll-over). The whole run ([`run`](super::run())), the
+//! command breakpoints, sensor instants, and the checks after every
+//! advance (a diverged integration, a roll-over). The whole run ([`run`](super::run())), the
 //! step-wise run (`rover_scenario::Stepper`) and the live loop of
 //! `rover drive` all advance through it, so the three take the same events
 //! in the same order and stop for the same reasons.
@@ -26,6 +26,11 @@ pub struct RunOptions {
     pub rollover_limit: f64,
 }
 
+/// The callback of a run without sensors.
+fn no_sensors<P, H>(_t: f64, _y: &[f64], _sys: &mut RoverSystem<P, H>) -> Result<(), RunError> {
+    Ok(())
+}
+
 /// Two event times within this fraction of (1 + t) are one instant: a
 /// sample period and an output step that are multiples of each other
 /// meet to rounding, and the integrator must not take a step of 1e-17 s
@@ -41,12 +46,16 @@ pub struct Driver {
     opts: RunOptions,
     /// The controller's sample period (active suspension, waypoint legs).
     sample: Option<f64>,
+    /// The sensors' period ([`Driver::with_sensor_period`]).
+    sensor: Option<f64>,
     /// Times at which the commands jump, ascending, in (0, duration].
     breaks: Vec<f64>,
     /// The next output instant is `k_out · output_step`.
     k_out: u64,
     /// The next controller sample is at `k_sample · sample`.
     k_sample: u64,
+    /// The next sensor instant is at `k_sensor · sensor`.
+    k_sensor: u64,
     /// The first breakpoint not yet passed.
     next_break: usize,
     /// On a soil, since when every wheel on the ground has slipped above
@@ -71,13 +80,33 @@ impl Driver {
         Self {
             opts,
             sample: control.sample_period(),
+            sensor: None,
             breaks,
             k_out: 0,
             k_sample: 0,
+            k_sensor: 0,
             next_break: 0,
             slipping_since: None,
             settle: control.settle_time(),
         }
+    }
+
+    /// The schedule with sensor instants every `period` seconds from t = 0
+    /// (`None`, or a period that is not finite and positive: none). The
+    /// integrator lands on each, as on an output instant, and goes on
+    /// without a restart: nothing jumps there. [`Driver::start_with`] and
+    /// [`Driver::advance_with`] call their callback at each;
+    /// [`Driver::start`] and [`Driver::advance`] land on them all the same,
+    /// so that a run stepped without the callback takes the steps of the
+    /// run with it.
+    pub fn with_sensor_period(mut self, period: Option<f64>) -> Self {
+        self.sensor = period.filter(|p| p.is_finite() && *p > 0.0);
+        self
+    }
+
+    /// The sensors' period, if the schedule has sensor instants.
+    pub fn sensor_period(&self) -> Option<f64> {
+        self.sensor
     }
 
     /// The options the schedule was made with.
@@ -90,6 +119,7 @@ impl Driver {
     pub fn rewind(&mut self) {
         self.k_out = 0;
         self.k_sample = 0;
+        self.k_sensor = 0;
         self.next_break = 0;
         self.slipping_since = None;
     }
@@ -100,8 +130,8 @@ impl Driver {
     }
 
     /// The events of t = 0: the controller's first sample; t = 0 is the
-    /// first output instant. Call once, after [`Driver::new`] or
-    /// [`Driver::rewind`].
+    /// first output instant (and sensor instant). Call once, after
+    /// [`Driver::new`] or [`Driver::rewind`].
     pub fn start<P: Plant, H: HeightField, I: Integrator>(
         &mut self,
         sys: &mut RoverSystem<P, H>,
@@ -109,19 +139,38 @@ impl Driver {
         t: f64,
         y: &[f64],
     ) {
+        // The callback does nothing, so nothing fails.
+        let _ = self.start_with(sys, integ, t, y, &mut no_sensors);
+    }
+
+    /// [`Driver::start`], calling `on_sensor(t, y, sys)` at t = 0 when the
+    /// schedule has sensor instants (after the controller's sample). Its
+    /// error is returned as it is.
+    pub fn start_with<P: Plant, H: HeightField, I: Integrator, F>(
+        &mut self,
+        sys: &mut RoverSystem<P, H>,
+        integ: &mut I,
+        t: f64,
+        y: &[f64],
+        on_sensor: &mut F,
+    ) -> Result<(), RunError>
+    where
+        F: FnMut(f64, &[f64], &mut RoverSystem<P, H>) -> Result<(), RunError>,
+    {
         self.sample_due(sys, integ, t, y);
         self.k_out = 1;
+        self.sensor_due(sys, t, y, on_sensor)
     }
 
     /// Advance `(t, y)` to the next output instant, or to the run's end
     /// when that comes first (the end is always an output instant, whether
     /// the output step divides the duration or not), through every
-    /// controller sample and command breakpoint before it. The integrator
-    /// restarts after a breakpoint (the commands jump) and after a sample
-    /// that changed something; the samples due at the instant reached are
-    /// taken before this returns. After each advance the attitude is
-    /// checked: past half a turn is a diverged integration, past the limit
-    /// a roll-over.
+    /// controller sample, command breakpoint and sensor instant before it.
+    /// The integrator restarts after a breakpoint (the commands jump) and
+    /// after a sample that changed something; the samples due at the
+    /// instant reached are taken before this returns. After each advance
+    /// the attitude is checked: past half a turn is a diverged integration,
+    /// past the limit a roll-over.
     ///
     /// On failure, `(t, y)` are those of the last step the integrator
     /// accepted (for a roll-over, the event at which it was seen), and the
@@ -133,6 +182,27 @@ impl Driver {
         t: &mut f64,
         y: &mut [f64],
     ) -> Result<(), RunError> {
+        self.advance_with(sys, integ, t, y, &mut no_sensors)
+    }
+
+    /// [`Driver::advance`], calling `on_sensor(t, y, sys)` at each sensor
+    /// instant reached ([`Driver::with_sensor_period`]), after the checks
+    /// and the controller's sample there; the callback may evaluate the
+    /// system (`RoverSystem::evaluate_at`) to read its accelerations and
+    /// commands. The integrator is not restarted: a callback that changes
+    /// the commands should restart it itself. Its error ends the advance
+    /// there. Allocates nothing but what the callback does.
+    pub fn advance_with<P: Plant, H: HeightField, I: Integrator, F>(
+        &mut self,
+        sys: &mut RoverSystem<P, H>,
+        integ: &mut I,
+        t: &mut f64,
+        y: &mut [f64],
+        on_sensor: &mut F,
+    ) -> Result<(), RunError>
+    where
+        F: FnMut(f64, &[f64], &mut RoverSystem<P, H>) -> Result<(), RunError>,
+    {
         loop {
             let t_out = self.k_out as f64 * self.opts.output_step;
             while self.next_break < self.breaks.len() && self.breaks[self.next_break] <= *t {
@@ -141,6 +211,9 @@ impl Driver {
             let mut target = t_out.min(self.opts.duration);
             if let Some(dt) = self.sample {
                 target = target.min(self.k_sample as f64 * dt);
+            }
+            if let Some(dt) = self.sensor {
+                target = target.min(self.k_sensor as f64 * dt);
             }
             // A breakpoint on (or within rounding of) the next event is
             // one too: the integrator must restart there, not carry its
@@ -168,11 +241,33 @@ impl Driver {
             self.check_attitude(*t, y)?;
             self.check_soil(sys, *t, y)?;
             self.sample_due(sys, integ, *t, y);
+            self.sensor_due(sys, *t, y, on_sensor)?;
             if (t_out - *t).abs() <= SAME_INSTANT * (1.0 + *t) || self.finished(*t) {
                 self.k_out += 1;
                 return Ok(());
             }
         }
+    }
+
+    /// The sensors' callback, when a sensor instant is due at `t`.
+    fn sensor_due<P: Plant, H: HeightField, F>(
+        &mut self,
+        sys: &mut RoverSystem<P, H>,
+        t: f64,
+        y: &[f64],
+        on_sensor: &mut F,
+    ) -> Result<(), RunError>
+    where
+        F: FnMut(f64, &[f64], &mut RoverSystem<P, H>) -> Result<(), RunError>,
+    {
+        let Some(dt) = self.sensor else {
+            return Ok(());
+        };
+        if (self.k_sensor as f64 * dt - t).abs() > SAME_INSTANT * (1.0 + t) {
+            return Ok(());
+        }
+        self.k_sensor += 1;
+        on_sensor(t, y, sys)
     }
 
     /// The controller's sample, when one is due at `t`.

@@ -11,5 +11,5 @@ mod system;
 pub use driver::{Driver, RunOptions};
 pub use error::{CommandError, EMBEDDED_SINKAGE, EMBEDDED_SLIP, EMBEDDED_TIME, RunError, SimError};
 pub use profile::{Profile, RhsProfile};
-pub use run::{OutputRow, RunOutcome, Stop, run};
+pub use run::{OutputRow, RunOutcome, Stop, run, run_with_sensors};
 pub use system::RoverSystem;

@@ -1,5 +1,6 @@
 //! A whole run: from t = 0 to its end through the [`Driver`], a row at
-//! every output instant.
+//! every output instant (and, with sensors, a callback at every sensor
+//! instant).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -59,7 +60,7 @@ pub fn run<P, H, I, F>(
     y: &mut [f64],
     opts: &RunOptions,
     interrupt: &AtomicBool,
-    mut output: F,
+    output: F,
 ) -> RunOutcome
 where
     P: Plant,
@@ -67,16 +68,46 @@ where
     I: Integrator,
     F: FnMut(&OutputRow<'_, P, H>) -> std::io::Result<()>,
 {
+    let no_sensors = |_: f64, _: &[f64], _: &mut RoverSystem<P, H>| Ok(());
+    run_with_sensors(sys, integ, y, opts, None, interrupt, output, no_sensors)
+}
+
+/// [`run`] with sensor instants every `sensor_period` seconds from t = 0
+/// ([`Driver::with_sensor_period`]; `None`: none, the run of [`run`]):
+/// `on_sensor(t, y, sys)` is called at each, t = 0 first, before the
+/// output row of the same instant. An error of `on_sensor` (a sensor log
+/// that cannot be written, an evaluation that fails) stops the run as
+/// failed at that instant.
+pub fn run_with_sensors<P, H, I, F, S>(
+    sys: &mut RoverSystem<P, H>,
+    integ: &mut I,
+    y: &mut [f64],
+    opts: &RunOptions,
+    sensor_period: Option<f64>,
+    interrupt: &AtomicBool,
+    mut output: F,
+    mut on_sensor: S,
+) -> RunOutcome
+where
+    P: Plant,
+    H: HeightField,
+    I: Integrator,
+    F: FnMut(&OutputRow<'_, P, H>) -> std::io::Result<()>,
+    S: FnMut(f64, &[f64], &mut RoverSystem<P, H>) -> Result<(), RunError>,
+{
     let mut t = 0.0;
     let mut scratch = vec![0.0; y.len()];
-    let mut driver = Driver::new(&sys.control, *opts);
+    let mut driver = Driver::new(&sys.control, *opts).with_sensor_period(sensor_period);
     let mut outcome = RunOutcome {
         stop: Stop::Completed,
         t: 0.0,
         max_roll: 0.0,
         max_pitch: 0.0,
     };
-    driver.start(sys, integ, t, y);
+    if let Err(e) = driver.start_with(sys, integ, t, y, &mut on_sensor) {
+        outcome.stop = Stop::Failed(e);
+        return outcome;
+    }
     loop {
         outcome.t = t;
         outcome.max_roll = outcome.max_roll.max(y[3].abs());
@@ -92,7 +123,7 @@ where
             outcome.stop = Stop::Interrupted { t };
             return outcome;
         }
-        if let Err(e) = driver.advance(sys, integ, &mut t, y) {
+        if let Err(e) = driver.advance_with(sys, integ, &mut t, y, &mut on_sensor) {
             outcome.t = e.time();
             outcome.stop = Stop::Failed(e);
             return outcome;
