@@ -8,6 +8,10 @@
 //! - [`process`]: what the filter needs of the rover model
 //!   ([`ProcessModel`]): the right-hand side under commanded torques and
 //!   steering, its Jacobian, and the wheels' spin rates;
+//! - [`filter`]: the model-based error-state extended Kalman filter
+//!   ([`Estimator`]) over any process model;
+//! - `runtime` (feature `runtime`, with std): the rover runtime's
+//!   `RoverSystem` as a process model.
 //!
 //! The crate is `#![no_std]` with `alloc`: buffers are sized once, when a
 //! filter is built, and no step allocates. The repository's
@@ -17,8 +21,12 @@
 
 extern crate alloc;
 
+pub mod filter;
 pub mod process;
+#[cfg(feature = "runtime")]
+pub mod runtime;
 pub mod sensors;
 
+pub use filter::{EstimateError, Estimator, FilterConfig, InitialSigma};
 pub use process::ProcessModel;
 pub use sensors::{SensorConfig, SensorSample};

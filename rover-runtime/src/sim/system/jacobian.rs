@@ -188,6 +188,109 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         result
     }
 
+    /// The right-hand side `dy = f(t, y)` and its Jacobian `jac = ∂f/∂y`
+    /// (row-major) from one evaluation, for an observer linearizing about
+    /// its estimate: the assembled Jacobian when the plant has an exact
+    /// one ([`OdeSystem::jacobian`](rover_integrate::OdeSystem::jacobian)),
+    /// else (the generic plant, or a singular attitude) forward
+    /// differences of the whole right-hand side, as the integrators take
+    /// them then. Allocates nothing.
+    pub fn rhs_and_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        jac: &mut [f64],
+    ) -> Result<(), SimError> {
+        if let Some(result) = self.assembled_jacobian(t, y, jac) {
+            result?;
+            dy.copy_from_slice(&self.jacobian_work.f0[..dy.len()]);
+            return Ok(());
+        }
+        self.differenced_jacobian(t, y, dy, jac)
+    }
+
+    /// `dy = f(t, y)` and `jac` by forward differences of `f`.
+    fn differenced_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        jac: &mut [f64],
+    ) -> Result<(), SimError> {
+        let dim = y.len();
+        self.evaluate(t, y, dy)?;
+        let mut work = std::mem::take(&mut self.jacobian_work);
+        let mut result = Ok(());
+        work.y.copy_from_slice(y);
+        for j in 0..dim {
+            let h = step(y[j]);
+            work.y[j] = y[j] + h;
+            result = self.evaluate(t, &work.y, &mut work.f0);
+            work.y[j] = y[j];
+            if result.is_err() {
+                break;
+            }
+            for i in 0..dim {
+                jac[i * dim + j] = (work.f0[i] - dy[i]) / h;
+            }
+        }
+        self.jacobian_work = work;
+        result?;
+        // The wheels and reports of the last evaluation are those of `y`.
+        self.evaluate(t, y, dy)
+    }
+
+    /// Each wheel's spin rate \[rad/s\] at `(t, y)` into `rates`, as
+    /// [`RoverSystem::wheel_spin_rates`] gives it, and its gradient
+    /// `∂rate_k/∂y` into `gradient[k·dim ..][..dim]`: on a soil the spin
+    /// state (a unit gradient); on rigid ground the rolling rate
+    /// `heading·V_k / (|heading|·r)`, linear in `w` since `V_k = J_k(x)·w`
+    /// (`∂V_k/∂w` from the kinematics at unit pseudo-velocities, exact),
+    /// its turn with `x` at fixed `w` (the heading and the lever arms
+    /// moving with the attitude and the suspension) left out, as the
+    /// assembled Jacobian leaves out `∂V/∂x`. Allocates nothing.
+    pub fn wheel_spin_rate_gradients(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        rates: &mut [f64],
+        gradient: &mut [f64],
+    ) {
+        let (n, dim) = (self.n, y.len());
+        gradient.iter_mut().for_each(|g| *g = 0.0);
+        let range = self.spin_range();
+        if !range.is_empty() {
+            rates.copy_from_slice(&y[range.clone()]);
+            for (k, s) in range.enumerate() {
+                gradient[k * dim + s] = 1.0;
+            }
+            return;
+        }
+        rates.iter_mut().for_each(|r| *r = 0.0);
+        if self.ground.is_none() {
+            return;
+        }
+        let t = self.command_time(t);
+        let (x, w, z, _) = self.parts(y);
+        self.place_wheels(t, x, w, z);
+        let work = &mut self.jacobian_work;
+        let radii = self.ground.as_ref().map_or(&[][..], |g| g.radii());
+        for ((r, s), radius) in rates.iter_mut().zip(&self.wheels).zip(radii) {
+            *r = super::rolling_rate(s.spin_axis, s.velocity, *radius);
+        }
+        for j in 0..n {
+            work.unit.iter_mut().for_each(|v| *v = 0.0);
+            work.unit[j] = 1.0;
+            self.plant
+                .wheels(x, &work.unit, &self.steer, &mut work.kinematics);
+            for (k, (s, radius)) in work.kinematics.iter().zip(radii).enumerate() {
+                // The heading is the spin axis's, which the unit call shares.
+                gradient[k * dim + n + j] = super::rolling_rate(s.spin_axis, s.velocity, *radius);
+            }
+        }
+    }
+
     fn assemble(
         &mut self,
         t: f64,
