@@ -1,1 +1,10 @@
+//! The estimator's tests, one binary: a linear model against the textbook
+//! Kalman filter; swing4 on the paper's rough terrain (feature `runtime`).
+
 mod linear;
+#[cfg(feature = "runtime")]
+mod support {
+    pub mod rover;
+}
+#[cfg(feature = "runtime")]
+mod swing4;
