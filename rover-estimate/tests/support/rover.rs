@@ -84,3 +84,121 @@ pub fn settled<P: Plant>(sys: &mut RoverSystem<P, Terrain>, y: &mut [f64], secon
     let mut t = 0.0;
     integ.advance(sys, &mut t, y, seconds).unwrap();
 }
+
+/// One recorded filter step: the commands, then the readings at its end.
+pub struct Step {
+    pub torques: Vec<f64>,
+    pub steering: Vec<f64>,
+    pub gyro: [f64; 3],
+    pub accel: [f64; 3],
+    pub wheel_angles: Vec<f64>,
+}
+
+/// The sensors of the bench and the allocation test: an IMU and wheel
+/// encoders read at 100 Hz.
+pub fn imu_and_encoders() -> rover_estimate::SensorConfig {
+    use rover_estimate::sensors::{EncoderConfig, ImuConfig};
+    rover_estimate::SensorConfig {
+        seed: 3,
+        rate: 100.0,
+        imu: Some(ImuConfig {
+            gyro_noise_deg_per_sqrt_h: 0.15,
+            gyro_bias_deg_per_h: 10.0,
+            accel_noise_ug_per_sqrt_hz: 100.0,
+            accel_bias_mg: 2.0,
+            bias_time: 300.0,
+            position: [0.05, 0.0, 0.05],
+            orientation_deg: [0.0, 0.0, 0.0],
+        }),
+        wheel_encoders: Some(EncoderConfig {
+            resolution: 2.0 * std::f64::consts::PI / 4096.0,
+        }),
+        suspension_encoders: None,
+        position_fix: None,
+        heading_fix: None,
+    }
+}
+
+/// Each wheel's torque [N·m] of a P speed loop holding 0.1 m/s (10 N·m
+/// per m/s a wheel), sampled at 100 Hz.
+fn speed_loop(vx: f64, wheels: usize) -> Vec<f64> {
+    vec![10.0 * (0.1 - vx); wheels]
+}
+
+/// A filter on rover `name` (plant `plant`) on the Fig. 13 terrain, after
+/// settling and 8 s of driving at 0.1 m/s (it is then on the rough
+/// ground), and `count` filter steps of 10 ms from there (a prediction,
+/// an IMU and an encoder update): readings equal to the filter's own
+/// predictions, so that a replay from the returned filter takes exactly
+/// these steps again.
+pub fn recorded<P: Plant + Clone>(
+    name: &str,
+    plant: P,
+    count: usize,
+) -> (rover_estimate::Estimator<RoverSystem<P, Terrain>>, Vec<Step>) {
+    use rover_estimate::{Estimator, FilterConfig, InitialSigma, ProcessModel};
+    let model = model(name);
+    let (mut sys, mut y) = open_loop(&model, plant, fig13_terrain());
+    settled(&mut sys, &mut y, 1.5);
+    let wheels = model.wheels.len();
+    let n = model.dof();
+    let steering = vec![0.0; wheels];
+    let mut integ = truth_integrator(y.len());
+    let mut t = 1.5;
+    for k in 1..=800 {
+        sys.set_torques(&speed_loop(y[n], wheels)).unwrap();
+        integ.restart();
+        integ.advance(&mut sys, &mut t, &mut y, 1.5 + 0.01 * k as f64).unwrap();
+    }
+    let mut filter = Estimator::new(
+        sys,
+        &imu_and_encoders(),
+        FilterConfig::default(),
+        t,
+        &y,
+        &InitialSigma::default(),
+    )
+    .unwrap();
+    let mut angles = vec![0.0; wheels];
+    filter.update_wheel_angles(&angles).unwrap();
+    let start = filter.clone();
+    let dim = y.len();
+    let (mut rates, mut gradient) = (vec![0.0; wheels], vec![0.0; wheels * dim]);
+    let dt = 0.01;
+    let steps = (0..count)
+        .map(|_| {
+            let torques = speed_loop(filter.state()[n], wheels);
+            filter.predict(dt, &torques, &steering).unwrap();
+            let h = filter.predicted_imu(None).unwrap();
+            let (t, state) = (filter.time(), filter.state().to_vec());
+            filter
+                .model_mut()
+                .wheel_rates(t, &state, &mut rates, &mut gradient)
+                .unwrap();
+            for (a, r) in angles.iter_mut().zip(&rates) {
+                *a += r * dt;
+            }
+            let step = Step {
+                torques,
+                steering: steering.clone(),
+                gyro: [h[0], h[1], h[2]],
+                accel: [h[3], h[4], h[5]],
+                wheel_angles: angles.clone(),
+            };
+            filter.update_imu(Some(step.gyro), Some(step.accel)).unwrap();
+            filter.update_wheel_angles(&step.wheel_angles).unwrap();
+            step
+        })
+        .collect();
+    (start, steps)
+}
+
+/// One filter step of a replay.
+pub fn replay<M: rover_estimate::ProcessModel>(
+    filter: &mut rover_estimate::Estimator<M>,
+    step: &Step,
+) -> Result<(), rover_estimate::EstimateError<M::Error>> {
+    filter.predict(0.01, &step.torques, &step.steering)?;
+    filter.update_imu(Some(step.gyro), Some(step.accel))?;
+    filter.update_wheel_angles(&step.wheel_angles)
+}
