@@ -13,7 +13,7 @@ use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 
 fn steps_allocate_nothing<P: Plant + Clone>(name: &str, plant: P) {
-    let (mut filter, steps) = rover::recorded(name, plant, 60);
+    let (mut filter, steps) = rover::recorded(name, plant, 60, FilterConfig::default());
     // A warm-up step, then none may allocate.
     rover::replay(&mut filter, &steps[0]).unwrap();
     let counts = allocation_counter::measure(|| {
@@ -21,7 +21,11 @@ fn steps_allocate_nothing<P: Plant + Clone>(name: &str, plant: P) {
             rover::replay(&mut filter, step).unwrap();
         }
     });
-    assert_eq!(counts.count_total, 0, "{name}: {} allocations", counts.count_total);
+    assert_eq!(
+        counts.count_total, 0,
+        "{name}: {} allocations",
+        counts.count_total
+    );
 }
 
 #[test]
@@ -38,14 +42,25 @@ fn a_filter_step_allocates_nothing() {
 /// The other updates and the outputs, on swing4, after a few steps.
 #[test]
 fn the_other_updates_and_outputs_allocate_nothing() {
-    let (filter, steps) = rover::recorded("swing4", rover_models::Swing4::new(), 3);
+    let (filter, steps) = rover::recorded(
+        "swing4",
+        rover_models::Swing4::new(),
+        3,
+        FilterConfig::default(),
+    );
     let mut sensors = rover::imu_and_encoders();
     sensors.suspension_encoders = Some(SuspensionEncoderConfig {
         resolution: 1e-3,
         noise: 0.0,
     });
-    sensors.position_fix = Some(PositionFixConfig { rate: 1.0, sigma: 0.05 });
-    sensors.heading_fix = Some(HeadingFixConfig { rate: 1.0, sigma: 0.01 });
+    sensors.position_fix = Some(PositionFixConfig {
+        rate: 1.0,
+        sigma: 0.05,
+    });
+    sensors.heading_fix = Some(HeadingFixConfig {
+        rate: 1.0,
+        sigma: 0.01,
+    });
     let model: RoverSystem<_, Terrain> = filter.model().clone();
     let y = filter.state().to_vec();
     let mut filter = Estimator::new(

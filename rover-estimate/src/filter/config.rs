@@ -22,6 +22,11 @@ pub struct FilterConfig {
     /// Linearly implicit Euler steps per prediction, on the Jacobian of
     /// its start (1: one step of `dt`).
     pub substeps: usize,
+    /// A Jacobian of the model is taken every this many predictions (1:
+    /// at each); in between the last one serves the step's matrix, its
+    /// transition and the accelerometers' rows, the right-hand side being
+    /// evaluated afresh. The Jacobian is most of a step's cost.
+    pub jacobian_every: usize,
     /// G's position \[m/√s\].
     pub position_noise: f64,
     /// The attitude, each axis of the small rotation δθ \[rad/√s\].
@@ -46,6 +51,7 @@ impl Default for FilterConfig {
     fn default() -> Self {
         Self {
             substeps: 1,
+            jacobian_every: 1,
             position_noise: 1e-3,
             attitude_noise: 1e-3,
             suspension_noise: 1e-3,
@@ -122,6 +128,13 @@ impl FilterConfig {
         if self.substeps == 0 {
             return Err(EstimateError::Config {
                 field: "filter.substeps",
+                value: 0.0,
+                expected: "at least 1",
+            });
+        }
+        if self.jacobian_every == 0 {
+            return Err(EstimateError::Config {
+                field: "filter.jacobian_every",
                 value: 0.0,
                 expected: "at least 1",
             });

@@ -26,6 +26,7 @@ mod measure;
 mod noise;
 mod predict;
 mod rotation;
+mod step_matrix;
 mod update;
 
 use alloc::vec;
@@ -36,8 +37,8 @@ pub use error::EstimateError;
 
 use crate::process::ProcessModel;
 use crate::sensors::{SensorConfig, SensorSample};
-use dense::Lu;
 use noise::SensorNoise;
+use step_matrix::StepMatrix;
 
 /// Where the attitude lies in `x` (and δθ in the error state).
 const ATTITUDE: core::ops::Range<usize> = 3..6;
@@ -61,7 +62,8 @@ pub struct Estimator<M: ProcessModel> {
     /// The estimate before the call in progress, restored when it fails.
     saved: Snapshot,
     linearization: Linearization,
-    lu: Lu,
+    /// The prediction's `I − h·J`, factored.
+    step: StepMatrix,
     work: Work,
 }
 
@@ -120,16 +122,43 @@ impl Snapshot {
     }
 }
 
-/// The model's right-hand side and Jacobian at the estimate of
-/// `(t, version)`. An update that needs them (the accelerometers) takes
-/// them at the prior; the next prediction starts from that Jacobian
-/// (taken at its time, before the correction) and a fresh right-hand
-/// side, so that a filter step costs one Jacobian.
+/// The model's right-hand side `f` at the estimate of `f_at` (time and
+/// version), and a Jacobian taken at `jacobian_at`, `jacobian_age`
+/// predictions ago.
+///
+/// An update that needs them (the accelerometers) takes them at the
+/// prior; the next prediction starts from that Jacobian (taken at its
+/// time, before the correction) and a fresh right-hand side, so that a
+/// filter step costs one Jacobian. With [`FilterConfig::jacobian_every`]
+/// above 1 a Jacobian serves that many predictions.
 #[derive(Clone, Debug)]
 struct Linearization {
     f: Vec<f64>,
     jac: Vec<f64>,
-    at: Option<(f64, u64)>,
+    f_at: Option<(f64, u64)>,
+    jacobian_at: Option<(f64, u64)>,
+    jacobian_age: Option<usize>,
+}
+
+impl Linearization {
+    /// The Jacobian may serve one more prediction.
+    fn jacobian_current(&self, every: usize) -> bool {
+        self.jacobian_age.is_some_and(|age| age < every)
+    }
+
+    /// Nothing in the buffers is trusted any more.
+    fn forget(&mut self) {
+        self.f_at = None;
+        self.jacobian_at = None;
+        self.jacobian_age = None;
+    }
+
+    /// Both were just evaluated at `key`.
+    fn taken(&mut self, key: (f64, u64)) {
+        self.f_at = Some(key);
+        self.jacobian_at = Some(key);
+        self.jacobian_age = Some(0);
+    }
 }
 
 /// Scratch buffers.
@@ -211,9 +240,11 @@ impl<M: ProcessModel> Estimator<M> {
             linearization: Linearization {
                 f: vec![0.0; dim],
                 jac: vec![0.0; dim * dim],
-                at: None,
+                f_at: None,
+                jacobian_at: None,
+                jacobian_age: None,
             },
-            lu: Lu::new(dim),
+            step: StepMatrix::new(layout.n, dim, len),
             work: Work {
                 step: vec![0.0; dim],
                 row: vec![0.0; len],
@@ -403,7 +434,7 @@ impl<M: ProcessModel> Estimator<M> {
         if result.is_err() {
             self.estimate.copy_from(&self.saved);
             // The buffers may hold a failed call's evaluations.
-            self.linearization.at = None;
+            self.linearization.forget();
         }
         result
     }

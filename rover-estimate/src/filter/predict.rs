@@ -19,8 +19,9 @@
 
 use rover_dynamics::linalg::M3;
 
-use super::dense::{Lu, symmetrize, transpose_in_place};
+use super::dense::{symmetrize, transpose_in_place};
 use super::rotation::error_map;
+use super::step_matrix::StepMatrix;
 use super::update::check_diagonal;
 use super::{ATTITUDE, EstimateError, Estimator, Layout, Result, check_finite, check_len};
 use crate::process::ProcessModel;
@@ -51,8 +52,8 @@ impl<M: ProcessModel> Estimator<M> {
         self.linearize_step()?;
         let substeps = self.config.substeps;
         let h = dt / substeps as f64;
-        self.lu
-            .factor_shifted(&self.linearization.jac, h)
+        self.step
+            .factor(&self.linearization.jac, h)
             .map_err(|_| EstimateError::SingularStep { t })?;
         let (_, start_inverse) = error_map(&self.estimate.y[ATTITUDE]);
         for s in 0..substeps {
@@ -62,7 +63,7 @@ impl<M: ProcessModel> Estimator<M> {
                     .rhs(ts, &self.estimate.y, &mut self.work.step)
                     .map_err(|source| EstimateError::Model { t: ts, source })?;
             }
-            self.lu.solve(&mut self.work.step);
+            self.step.solve_rows(&mut self.work.step, 1);
             for (y, k) in self.estimate.y.iter_mut().zip(&self.work.step) {
                 *y += h * k;
             }
@@ -72,20 +73,23 @@ impl<M: ProcessModel> Estimator<M> {
         self.propagate_covariance(dt, &start_inverse, &end)?;
         self.estimate.t += dt;
         self.estimate.version += 1;
-        self.linearization.at = None;
+        if let Some(age) = &mut self.linearization.jacobian_age {
+            *age += 1;
+        }
         Ok(())
     }
 
     /// The step's right-hand side at the estimate into `work.step`, and
-    /// its Jacobian in `linearization.jac`: the one an update took at
-    /// this time's prior when there is one (the posterior differs from it
-    /// by the correction, and the W-method keeps its order with any
-    /// approximate J), else both from one evaluation here.
+    /// its Jacobian in `linearization.jac`: the last one while it may
+    /// serve (taken by an update at this time's prior, before the
+    /// correction, or within `jacobian_every` predictions: the W-method
+    /// keeps its order with any approximate J), else both from one
+    /// evaluation here.
     fn linearize_step(&mut self) -> Result<(), M::Error> {
         let t = self.estimate.t;
         let lin = &mut self.linearization;
         let model_error = |source| EstimateError::Model { t, source };
-        if matches!(lin.at, Some((at, _)) if at == t) {
+        if lin.jacobian_current(self.config.jacobian_every) {
             return self
                 .model
                 .rhs(t, &self.estimate.y, &mut self.work.step)
@@ -94,7 +98,7 @@ impl<M: ProcessModel> Estimator<M> {
         self.model
             .rhs_and_jacobian(t, &self.estimate.y, &mut lin.f, &mut lin.jac)
             .map_err(model_error)?;
-        lin.at = Some((t, self.estimate.version));
+        lin.taken((t, self.estimate.version));
         self.work.step.copy_from_slice(&lin.f);
         Ok(())
     }
@@ -119,19 +123,16 @@ impl<M: ProcessModel> Estimator<M> {
             )
         });
         let decay = bias.map_or(1.0, |b| b.0);
-        let transition = Transition {
+        let mut transition = Transition {
             layout: &layout,
-            lu: &self.lu,
+            step: &mut self.step,
             substeps: self.config.substeps,
             start_inverse,
             end,
             decay,
         };
         let p = &mut self.estimate.p;
-        transition.apply_rows(p);
-        transpose_in_place(p, len);
-        transition.apply_rows(p);
-        symmetrize(p, len);
+        transition.apply(p);
         for (i, q) in self.process_noise.iter().enumerate() {
             p[i * len + i] += q * dt;
         }
@@ -155,7 +156,7 @@ impl<M: ProcessModel> Estimator<M> {
 /// The step's transition Φ in error coordinates (module docs).
 struct Transition<'a> {
     layout: &'a Layout,
-    lu: &'a Lu,
+    step: &'a mut StepMatrix,
     substeps: usize,
     start_inverse: &'a M3<f64>,
     end: &'a M3<f64>,
@@ -164,14 +165,41 @@ struct Transition<'a> {
 }
 
 impl Transition<'_> {
+    /// `P ← Φ·P·Φᵀ`: `Φ·(Φ·P)ᵀ`, `P` symmetric, in the copy compiled for
+    /// x86-64-v4 when the processor has it (`dense`'s module docs).
+    fn apply(&mut self, p: &mut [f64]) {
+        #[cfg(target_arch = "x86_64")]
+        if rover_dynamics::cpu::x86_64_v4() {
+            // SAFETY: the processor has the features (checked just above).
+            return unsafe { self.apply_v4(p) };
+        }
+        self.apply_portable(p)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,avx512f,avx512vl")]
+    unsafe fn apply_v4(&mut self, p: &mut [f64]) {
+        self.apply_portable(p)
+    }
+
+    #[inline(always)]
+    fn apply_portable(&mut self, p: &mut [f64]) {
+        let len = self.layout.len;
+        self.apply_rows(p);
+        transpose_in_place(p, len);
+        self.apply_rows(p);
+        symmetrize(p, len);
+    }
+
     /// `P ← Φ·P`, on whole rows: the attitude's rows to Euler
     /// increments, the model's rows through `A⁻ᵐ`, the attitude's back to
     /// δθ at the step's end, the biases' rows decayed.
-    fn apply_rows(&self, p: &mut [f64]) {
+    #[inline(always)]
+    fn apply_rows(&mut self, p: &mut [f64]) {
         let len = self.layout.len;
         turn_rows(p, len, self.start_inverse);
         for _ in 0..self.substeps {
-            self.lu.solve_rows(p, len);
+            self.step.solve_rows(p, len);
         }
         turn_rows(p, len, self.end);
         if self.layout.imu {
@@ -183,6 +211,7 @@ impl Transition<'_> {
 }
 
 /// The attitude's three rows of `p` (`len` columns) ← `m`·those rows.
+#[inline(always)]
 fn turn_rows(p: &mut [f64], len: usize, m: &M3<f64>) {
     let rows = &mut p[ATTITUDE.start * len..ATTITUDE.end * len];
     let (r0, rest) = rows.split_at_mut(len);

@@ -20,24 +20,38 @@ use super::{ATTITUDE, EstimateError, Estimator, Result, check_finite, check_len}
 use crate::process::ProcessModel;
 
 impl<M: ProcessModel> Estimator<M> {
-    /// The model's right-hand side and Jacobian at the estimate, unless
-    /// they are already there.
-    fn linearize_here(&mut self) -> Result<(), M::Error> {
+    /// The model's right-hand side at the estimate, unless it is there,
+    /// and a Jacobian as `need` says.
+    fn linearize_here(&mut self, need: Need) -> Result<(), M::Error> {
         let key = (self.estimate.t, self.estimate.version);
-        if self.linearization.at == Some(key) {
+        let lin = &mut self.linearization;
+        let current = match need {
+            Need::Rhs => true,
+            Need::Current => lin.jacobian_current(self.config.jacobian_every),
+            Need::Exact => lin.jacobian_at == Some(key),
+        };
+        if lin.f_at == Some(key) && current {
             return Ok(());
         }
-        let lin = &mut self.linearization;
-        self.model
-            .rhs_and_jacobian(key.0, &self.estimate.y, &mut lin.f, &mut lin.jac)
-            .map_err(|source| EstimateError::Model { t: key.0, source })?;
-        lin.at = Some(key);
+        let model_error = |source| EstimateError::Model { t: key.0, source };
+        if current {
+            self.model
+                .rhs(key.0, &self.estimate.y, &mut lin.f)
+                .map_err(model_error)?;
+            lin.f_at = Some(key);
+        } else {
+            self.model
+                .rhs_and_jacobian(key.0, &self.estimate.y, &mut lin.f, &mut lin.jac)
+                .map_err(model_error)?;
+            lin.taken(key);
+        }
         Ok(())
     }
 
     /// The readings the IMU should give at the estimate, gyros then
     /// accelerometers (IMU axes, biases included), and, when `rows` is
-    /// given (`6 × error_dim`), their gradients against the error state.
+    /// given (`6 × error_dim`), their gradients against the error state,
+    /// on the model's Jacobian at the estimate.
     pub fn predicted_imu(&mut self, rows: Option<&mut [f64]>) -> Result<[f64; 6], M::Error> {
         let t = self.estimate.t;
         let Some(imu) = self.noise.imu else {
@@ -52,7 +66,11 @@ impl<M: ProcessModel> Estimator<M> {
             }
             None => &mut own,
         };
-        self.linearize_here()?;
+        self.linearize_here(if rows.is_empty() {
+            Need::Rhs
+        } else {
+            Need::Exact
+        })?;
         let y = &self.estimate.y;
         let (_, t_inv) = error_map(&y[ATTITUDE]);
         let scratch = &mut self.work.rows;
@@ -95,7 +113,7 @@ impl<M: ProcessModel> Estimator<M> {
         self.begin();
         let len = self.layout.len;
         if let Some(reading) = accel {
-            self.linearize_here()?;
+            self.linearize_here(Need::Current)?;
             let y = &self.estimate.y;
             let (_, t_inv) = error_map(&y[ATTITUDE]);
             let lin = &self.linearization;
@@ -292,10 +310,7 @@ impl<M: ProcessModel> Estimator<M> {
         let nonzero = &work.nonzero[..count];
         // u = P·Hᵀ = Σ_k H_k·P[k, :] (P symmetric): whole rows.
         let u = &mut work.gain;
-        u.iter_mut().for_each(|v| *v = 0.0);
-        for &k in nonzero {
-            super::dense::axpy(u, work.row[k], &p[k * len..(k + 1) * len]);
-        }
+        super::dense::gather(u, p, len, &work.row, nonzero);
         let mut s = r;
         let mut predicted = 0.0;
         for &k in nonzero {
@@ -312,22 +327,22 @@ impl<M: ProcessModel> Estimator<M> {
         }
         let nu = residual - predicted;
         super::dense::axpy(&mut work.correction, nu / s, u);
-        // P −= k·kᵀ with k = u/√s: each product k_i·k_j is k_j·k_i, so P
-        // stays exactly symmetric.
+        // P −= k·kᵀ with k = u/√s.
         let scale = 1.0 / libm::sqrt(s);
         u.iter_mut().for_each(|v| *v *= scale);
-        for i in 0..len {
-            let ki = u[i];
-            let row = &mut p[i * len..(i + 1) * len];
-            for (pij, kj) in row.iter_mut().zip(u.iter()) {
-                *pij -= ki * kj;
-            }
-        }
-        check_diagonal(p, len, t, "covariance diagonal after an update, component")
+        super::dense::downdate(p, u, len);
+        Ok(())
     }
 
-    /// Applies the accumulated correction to the estimate.
+    /// Applies the accumulated correction to the estimate, the
+    /// covariance's diagonal checked first (once for a sensor's rows).
     fn inject(&mut self) -> Result<(), M::Error> {
+        check_diagonal(
+            &self.estimate.p,
+            self.layout.len,
+            self.estimate.t,
+            "covariance diagonal after an update, component",
+        )?;
         let correction = core::mem::take(&mut self.work.correction);
         let result = self.correct(&correction);
         self.work.correction = correction;
@@ -383,6 +398,18 @@ impl<M: ProcessModel> Estimator<M> {
         out[ATTITUDE].copy_from_slice(&turn);
         Ok(())
     }
+}
+
+/// What a linearization at the estimate needs besides the right-hand
+/// side.
+#[derive(Clone, Copy)]
+enum Need {
+    /// No Jacobian.
+    Rhs,
+    /// A Jacobian that may still serve (`jacobian_every`).
+    Current,
+    /// The Jacobian at the estimate itself.
+    Exact,
 }
 
 /// The name of a reading's innovation variance.

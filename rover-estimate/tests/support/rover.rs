@@ -89,9 +89,7 @@ pub fn settled<P: Plant>(sys: &mut RoverSystem<P, Terrain>, y: &mut [f64], secon
 pub struct Step {
     pub torques: Vec<f64>,
     pub steering: Vec<f64>,
-    pub gyro: [f64; 3],
-    pub accel: [f64; 3],
-    pub wheel_angles: Vec<f64>,
+    pub sample: rover_estimate::SensorSample,
 }
 
 /// The sensors of the bench and the allocation test: an IMU and wheel
@@ -135,8 +133,12 @@ pub fn recorded<P: Plant + Clone>(
     name: &str,
     plant: P,
     count: usize,
-) -> (rover_estimate::Estimator<RoverSystem<P, Terrain>>, Vec<Step>) {
-    use rover_estimate::{Estimator, FilterConfig, InitialSigma, ProcessModel};
+    config: rover_estimate::FilterConfig,
+) -> (
+    rover_estimate::Estimator<RoverSystem<P, Terrain>>,
+    Vec<Step>,
+) {
+    use rover_estimate::{Estimator, InitialSigma, ProcessModel};
     let model = model(name);
     let (mut sys, mut y) = open_loop(&model, plant, fig13_terrain());
     settled(&mut sys, &mut y, 1.5);
@@ -148,12 +150,14 @@ pub fn recorded<P: Plant + Clone>(
     for k in 1..=800 {
         sys.set_torques(&speed_loop(y[n], wheels)).unwrap();
         integ.restart();
-        integ.advance(&mut sys, &mut t, &mut y, 1.5 + 0.01 * k as f64).unwrap();
+        integ
+            .advance(&mut sys, &mut t, &mut y, 1.5 + 0.01 * k as f64)
+            .unwrap();
     }
     let mut filter = Estimator::new(
         sys,
         &imu_and_encoders(),
-        FilterConfig::default(),
+        config,
         t,
         &y,
         &InitialSigma::default(),
@@ -181,24 +185,27 @@ pub fn recorded<P: Plant + Clone>(
             let step = Step {
                 torques,
                 steering: steering.clone(),
-                gyro: [h[0], h[1], h[2]],
-                accel: [h[3], h[4], h[5]],
-                wheel_angles: angles.clone(),
+                sample: rover_estimate::SensorSample {
+                    t,
+                    gyro: Some([h[0], h[1], h[2]]),
+                    accel: Some([h[3], h[4], h[5]]),
+                    wheel_angles: angles.clone(),
+                    ..Default::default()
+                },
             };
-            filter.update_imu(Some(step.gyro), Some(step.accel)).unwrap();
-            filter.update_wheel_angles(&step.wheel_angles).unwrap();
+            filter.update(&step.sample).unwrap();
             step
         })
         .collect();
     (start, steps)
 }
 
-/// One filter step of a replay.
+/// One filter step of a replay: the prediction, then the sample's
+/// updates (the IMU's, the encoders').
 pub fn replay<M: rover_estimate::ProcessModel>(
     filter: &mut rover_estimate::Estimator<M>,
     step: &Step,
 ) -> Result<(), rover_estimate::EstimateError<M::Error>> {
     filter.predict(0.01, &step.torques, &step.steering)?;
-    filter.update_imu(Some(step.gyro), Some(step.accel))?;
-    filter.update_wheel_angles(&step.wheel_angles)
+    filter.update(&step.sample)
 }

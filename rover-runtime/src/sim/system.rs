@@ -39,6 +39,8 @@ pub struct RoverSystem<P, H> {
     /// The rover's gravity g [m/s²], when the system was built from its
     /// description ([`RoverSystem::open_loop`]).
     gravity: Option<f64>,
+    /// Built by [`RoverSystem::open_loop`]: the controller has no loop.
+    open_loop: bool,
     wheels: Vec<WheelState>,
     loads: Vec<WheelLoad>,
     reports: Vec<WheelReport>,
@@ -76,6 +78,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             integrals,
             spins,
             gravity: None,
+            open_loop: false,
             wheels: vec![WheelState::default(); k],
             loads: vec![WheelLoad::default(); k],
             reports: vec![WheelReport::default(); k],
@@ -108,6 +111,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let mut system = Self::new(plant, ground, control);
         system.integrals = 0;
         system.gravity = Some(model.gravity);
+        system.open_loop = true;
         let dim = system.dim();
         system.jacobian_work =
             JacobianWork::new(&mut system.plant, system.n, system.wheels.len(), dim);
