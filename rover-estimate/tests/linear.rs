@@ -588,3 +588,32 @@ fn bad_input_is_refused_and_leaves_the_estimate() {
     .unwrap_err();
     assert_eq!(e.to_string(), "y0: expected 12 values, got 5");
 }
+
+/// A heading fix across ±π: the innovation is wrapped, so a reading of
+/// −3.1 rad on an estimate of 3.1 rad turns the yaw on past π, by the
+/// gain times 0.083 rad, not back by 6.2.
+#[test]
+fn a_heading_fix_across_pi_turns_the_short_way() {
+    let mut sensors = sensors();
+    sensors.heading_fix = Some(rover_estimate::sensors::HeadingFixConfig {
+        rate: 1.0,
+        sigma: 0.01,
+    });
+    let mut y0 = vec![0.0; DIM];
+    y0[5] = 3.1;
+    let mut filter = Estimator::new(
+        Linear::new(),
+        &sensors,
+        FilterConfig::default(),
+        0.0,
+        &y0,
+        &InitialSigma::default(),
+    )
+    .unwrap();
+    filter.update_heading(-3.1).unwrap();
+    let innovation = 2.0 * std::f64::consts::PI - 6.2;
+    // At zero roll and pitch δθ_z = δψ: the scalar gain σ²/(σ² + r).
+    let gain = 0.01f64.powi(2) / (0.01f64.powi(2) + 0.01f64.powi(2));
+    let psi = filter.state()[5];
+    assert!((psi - (3.1 + gain * innovation)).abs() < 1e-12, "{psi}");
+}

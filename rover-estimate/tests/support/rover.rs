@@ -209,3 +209,33 @@ pub fn replay<M: rover_estimate::ProcessModel>(
     filter.predict(0.01, &step.torques, &step.steering)?;
     filter.update(&step.sample)
 }
+
+/// [`open_loop`] on ground covered with the built-in soil `soil`: the
+/// state gains each wheel's spin, rolling at the start.
+pub fn open_loop_on_soil<P: Plant>(
+    model: &Model,
+    plant: P,
+    terrain: Terrain,
+    soil: &str,
+) -> (RoverSystem<P, Terrain>, Vec<f64>) {
+    let soil = rover_runtime::soil::SoilConfig::builtin(soil)
+        .unwrap()
+        .soil()
+        .unwrap();
+    let ground = Ground::new(
+        terrain,
+        model,
+        ContactMethod::Bounded,
+        RimSampling::default(),
+        WheelLawConfig::default(),
+    )
+    .with_soil(&soil, model)
+    .unwrap();
+    let mut sys = RoverSystem::open_loop(plant, Some(ground), model).unwrap();
+    let n = model.dof();
+    let mut y = vec![0.0; sys.dim()];
+    y[6..n].copy_from_slice(&model.rest());
+    y[2] = model.touchdown_height() - 2e-3;
+    sys.roll_spins(0.0, &mut y);
+    (sys, y)
+}
