@@ -14,6 +14,10 @@
 //! - [`dead_reckoning`]: the baseline without a model, a complementary
 //!   filter on the gyros and accelerometers and the wheels' odometry;
 //! - [`so3`]: rotations in the model's attitude convention.
+//! - [`filter`]: the model-based error-state extended Kalman filter
+//!   ([`Estimator`]) over any process model;
+//! - `runtime` (feature `runtime`, with std): the rover runtime's
+//!   `RoverSystem` as a process model.
 //!
 //! The crate is `#![no_std]` with `alloc`: buffers are sized once, when a
 //! filter is built, and no step allocates. The repository's
@@ -25,12 +29,16 @@ extern crate alloc;
 
 pub mod consistency;
 pub mod dead_reckoning;
+pub mod filter;
 pub mod process;
+#[cfg(feature = "runtime")]
+pub mod runtime;
 pub mod sensors;
 pub mod simulate;
 pub mod so3;
 
 pub use dead_reckoning::{DeadReckoning, DeadReckoningConfig};
+pub use filter::{EstimateError, Estimator, FilterConfig, InitialSigma};
 pub use process::ProcessModel;
 pub use sensors::{SensorConfig, SensorSample};
 pub use simulate::{SensorSimulator, Truth};

@@ -1,13 +1,14 @@
 //! What the filter needs of the rover model: the right-hand side
 //! `ẏ = f(t, y, u)` with the commands `u` (motor torques, steering angles)
-//! held, its Jacobian `∂f/∂y`, and each wheel's spin rate with its
-//! gradient, for the wheel encoders.
+//! held, its Jacobian `∂f/∂y`, each wheel's spin rate with its gradient,
+//! for the wheel encoders, and the gravity the accelerometers feel.
 //!
 //! `y = [x; w; ω]` (docs/MODEL.md §2): the coordinates, the
 //! pseudo-velocities, and on a soil each wheel's spin. The rover runtime's
-//! `RoverSystem` implements it (with no controller loops: the commands are
-//! the filter's inputs); a firmware build implements it over its own
-//! composition of a generated plant and ground.
+//! `RoverSystem` implements it (built by `RoverSystem::open_loop`: no
+//! controller loops, the commands are the filter's inputs; the `runtime`
+//! feature); a firmware build implements it over its own composition of a
+//! generated plant and ground.
 
 /// The rover model as the filter's process model.
 pub trait ProcessModel {
@@ -22,6 +23,9 @@ pub trait ProcessModel {
     fn wheel_count(&self) -> usize;
     /// Where the wheels' spins lie in `y` (empty on rigid ground).
     fn spin_range(&self) -> core::ops::Range<usize>;
+    /// Gravity g \[m/s²\], along −Z: what an accelerometer at rest reads
+    /// upwards.
+    fn gravity(&self) -> f64;
 
     /// Holds the commanded motor torques [N·m] and steering angles \[rad\]
     /// (one per wheel, the description's order) from now on.
@@ -30,9 +34,17 @@ pub trait ProcessModel {
     /// `dy = f(t, y)` under the inputs held.
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Self::Error>;
 
-    /// `jac = ∂f/∂y` at `(t, y)`, row-major `dim × dim`: the plant's exact
-    /// Jacobian with the ground's contribution assembled.
-    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut [f64]) -> Result<(), Self::Error>;
+    /// `dy = f(t, y)` and `jac = ∂f/∂y` at `(t, y)`, row-major
+    /// `dim × dim`, from one evaluation: the plant's exact Jacobian with
+    /// the ground's contribution assembled (a model without an exact one
+    /// may difference `f`, and says so).
+    fn rhs_and_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        jac: &mut [f64],
+    ) -> Result<(), Self::Error>;
 
     /// Each wheel's spin rate \[rad/s\] at `(t, y)` into `rates` (the spin
     /// state on a soil; on rigid ground, where the tyre rolls, the speed

@@ -4,11 +4,12 @@
 //! rate on a soil, none on rigid ground, [`Ground::spin_states`]).
 
 use rover_dynamics::HeightField;
+use rover_dynamics::Model;
 use rover_dynamics::kinematics::position_rates;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
 use rover_dynamics::wheel_ground::WheelReport;
 
-use crate::control::Controller;
+use crate::control::{ControlError, Controller, ControllerConfig};
 use crate::ground::Ground;
 use rover_integrate::OdeSystem;
 
@@ -30,8 +31,16 @@ pub struct RoverSystem<P, H> {
     /// The controller.
     pub control: Controller,
     n: usize,
+    /// The controller's integral states in the state (its
+    /// [`Controller::states`]; none in an open-loop system).
+    integrals: usize,
     /// Spin states (one per wheel on a soil, else none).
     spins: usize,
+    /// The rover's gravity g [m/s²], when the system was built from its
+    /// description ([`RoverSystem::open_loop`]).
+    gravity: Option<f64>,
+    /// Built by [`RoverSystem::open_loop`]: the controller has no loop.
+    open_loop: bool,
     wheels: Vec<WheelState>,
     loads: Vec<WheelLoad>,
     reports: Vec<WheelReport>,
@@ -59,13 +68,17 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let n = plant.dof();
         let k = plant.wheel_count();
         let spins = ground.as_ref().map_or(0, Ground::spin_states);
-        let dim = 2 * n + control.states() + spins;
+        let integrals = control.states();
+        let dim = 2 * n + integrals + spins;
         Self {
             jacobian_work: JacobianWork::new(&mut plant, n, k, dim),
             plant,
             ground,
             n,
+            integrals,
             spins,
+            gravity: None,
+            open_loop: false,
             wheels: vec![WheelState::default(); k],
             loads: vec![WheelLoad::default(); k],
             reports: vec![WheelReport::default(); k],
@@ -80,6 +93,35 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             next_break: f64::INFINITY,
             profile: None,
         }
+    }
+
+    /// The rover of `model` on `ground` with a controller that has no loop
+    /// (no speed loop, no steering law, passive suspension): the motors
+    /// give only the open-loop commands ([`RoverSystem::set_torques`],
+    /// [`RoverSystem::set_steering`]) and the state is `y = [x; w; ω]`,
+    /// without the integral states a loop would add. What an observer runs
+    /// beside the rover: the rover's own computer closes the loops, and
+    /// the observer is told the commands it issued.
+    pub fn open_loop(
+        plant: P,
+        ground: Option<Ground<H>>,
+        model: &Model,
+    ) -> Result<Self, ControlError> {
+        let control = Controller::new(ControllerConfig::default(), model, 0.0)?;
+        let mut system = Self::new(plant, ground, control);
+        system.integrals = 0;
+        system.gravity = Some(model.gravity);
+        system.open_loop = true;
+        let dim = system.dim();
+        system.jacobian_work =
+            JacobianWork::new(&mut system.plant, system.n, system.wheels.len(), dim);
+        Ok(system)
+    }
+
+    /// The rover's gravity g [m/s²] (along −Z), known to a system built by
+    /// [`RoverSystem::open_loop`] from the description; `None` otherwise.
+    pub fn gravity(&self) -> Option<f64> {
+        self.gravity
     }
 
     /// Times the parts of every right-hand side from now on (see
@@ -163,7 +205,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// Where the wheels' spins start in the state, and how many there are
     /// (one per wheel on a soil, none on rigid ground).
     pub fn spin_range(&self) -> core::ops::Range<usize> {
-        let start = 2 * self.n + self.control.states();
+        let start = 2 * self.n + self.integrals;
         start..start + self.spins
     }
 
@@ -385,7 +427,7 @@ impl<P: Plant, H: HeightField> OdeSystem for RoverSystem<P, H> {
     type Error = SimError;
 
     fn dim(&self) -> usize {
-        2 * self.n + self.control.states() + self.spins
+        2 * self.n + self.integrals + self.spins
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), SimError> {

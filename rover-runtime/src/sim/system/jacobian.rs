@@ -12,7 +12,8 @@
 //!   patches' frames held;
 //! - `∂V_j/∂w = J_j(x)`: exact, the wheel velocities being linear in `w`
 //!   (the plant's kinematics at unit `w`); `∂G_j/∂x = J_j·B⁻¹`, since
-//!   `Ġ_j = J_j·w` and `ẋ = B·w`;
+//!   `Ġ_j = J_j·w` and `ẋ = B·w`, with `B⁻¹ = blockdiag(Rᵀ, E, I)` in
+//!   closed form (MODEL.md §2);
 //! - `∂f/∂L`: exact, `ẇ` being linear in the loads (one plant evaluation per
 //!   column, no difference quotient);
 //! - `∂τ/∂y` and the controller's integral rates `∂ζ̇/∂y`: differences of the
@@ -31,32 +32,28 @@
 //! right-hand sides for differences.
 
 use rover_dynamics::HeightField;
-use rover_dynamics::kinematics::position_rates;
+use rover_dynamics::attitude::Attitude;
+use rover_dynamics::plant::MIN_COS_ROLL;
 use rover_dynamics::plant::{Plant, WheelLoad, WheelState};
 use rover_dynamics::wheel_ground::LoadDerivative;
 
 use crate::sim::SimError;
-use rover_integrate::Lu;
 
 use super::RoverSystem;
 
 /// Buffers of the assembled Jacobian, sized once with the system.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub(super) struct JacobianWork {
     /// The plant has an exact Jacobian.
     available: bool,
     f0: Vec<f64>,
     plant: Vec<f64>,
     unit: Vec<f64>,
-    rates: Vec<f64>,
     kinematics: Vec<WheelState>,
     /// `∂V_k/∂w_j` at `[k·n + j]`.
     velocity: Vec<[f64; 3]>,
     /// `∂G_k/∂x_j` at `[k·n + j]`.
     centre: Vec<[f64; 3]>,
-    /// `Bᵀ`, factored.
-    b_t: Lu,
-    column: Vec<f64>,
     loads: Vec<LoadDerivative>,
     /// `∂τ_k/∂y_j` at `[k·dim + j]`.
     torque: Vec<f64>,
@@ -70,33 +67,6 @@ pub(super) struct JacobianWork {
     perturbed: Vec<WheelLoad>,
     xd: Vec<f64>,
     wd: Vec<f64>,
-}
-
-impl Default for JacobianWork {
-    fn default() -> Self {
-        Self {
-            available: false,
-            f0: Vec::new(),
-            plant: Vec::new(),
-            unit: Vec::new(),
-            rates: Vec::new(),
-            kinematics: Vec::new(),
-            velocity: Vec::new(),
-            centre: Vec::new(),
-            b_t: Lu::new(0),
-            column: Vec::new(),
-            loads: Vec::new(),
-            torque: Vec::new(),
-            tau: Vec::new(),
-            motor_rates: Vec::new(),
-            slips: Vec::new(),
-            y: Vec::new(),
-            zd: Vec::new(),
-            perturbed: Vec::new(),
-            xd: Vec::new(),
-            wd: Vec::new(),
-        }
-    }
 }
 
 impl JacobianWork {
@@ -117,12 +87,9 @@ impl JacobianWork {
             f0: vec![0.0; dim],
             plant: plant_jacobian,
             unit: vec![0.0; n],
-            rates: vec![0.0; n],
             kinematics: vec![WheelState::default(); k],
             velocity: vec![[0.0; 3]; k * n],
             centre: vec![[0.0; 3]; k * n],
-            b_t: Lu::new(n),
-            column: vec![0.0; n],
             loads: vec![[[0.0; 8]; 10]; k],
             torque: vec![0.0; k * dim],
             tau: vec![0.0; k],
@@ -135,6 +102,16 @@ impl JacobianWork {
             wd: vec![0.0; n],
         }
     }
+}
+
+/// `E` of `Ω = E·[φ̇, θ̇, ψ̇]` (MODEL.md §2, eq. 9): the inverse of the
+/// angle rates' `E⁻¹` ([`Attitude::rates`]), B's attitude block.
+fn euler_rate_matrix(a: &Attitude<f64>) -> [[f64; 3]; 3] {
+    [
+        [a.cth, 0.0, -a.sth * a.cphi],
+        [0.0, 1.0, a.sphi],
+        [a.sth, 0.0, a.cth * a.cphi],
+    ]
 }
 
 /// The difference step for coordinate value `v` (Hairer & Wanner II, §IV.8).
@@ -188,6 +165,109 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         result
     }
 
+    /// The right-hand side `dy = f(t, y)` and its Jacobian `jac = ∂f/∂y`
+    /// (row-major) from one evaluation, for an observer linearizing about
+    /// its estimate: the assembled Jacobian when the plant has an exact
+    /// one ([`OdeSystem::jacobian`](rover_integrate::OdeSystem::jacobian)),
+    /// else (the generic plant, or a singular attitude) forward
+    /// differences of the whole right-hand side, as the integrators take
+    /// them then. Allocates nothing.
+    pub fn rhs_and_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        jac: &mut [f64],
+    ) -> Result<(), SimError> {
+        if let Some(result) = self.assembled_jacobian(t, y, jac) {
+            result?;
+            dy.copy_from_slice(&self.jacobian_work.f0[..dy.len()]);
+            return Ok(());
+        }
+        self.differenced_jacobian(t, y, dy, jac)
+    }
+
+    /// `dy = f(t, y)` and `jac` by forward differences of `f`.
+    fn differenced_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        dy: &mut [f64],
+        jac: &mut [f64],
+    ) -> Result<(), SimError> {
+        let dim = y.len();
+        self.evaluate(t, y, dy)?;
+        let mut work = std::mem::take(&mut self.jacobian_work);
+        let mut result = Ok(());
+        work.y.copy_from_slice(y);
+        for j in 0..dim {
+            let h = step(y[j]);
+            work.y[j] = y[j] + h;
+            result = self.evaluate(t, &work.y, &mut work.f0);
+            work.y[j] = y[j];
+            if result.is_err() {
+                break;
+            }
+            for i in 0..dim {
+                jac[i * dim + j] = (work.f0[i] - dy[i]) / h;
+            }
+        }
+        self.jacobian_work = work;
+        result?;
+        // The wheels and reports of the last evaluation are those of `y`.
+        self.evaluate(t, y, dy)
+    }
+
+    /// Each wheel's spin rate \[rad/s\] at `(t, y)` into `rates`, as
+    /// [`RoverSystem::wheel_spin_rates`] gives it, and its gradient
+    /// `∂rate_k/∂y` into `gradient[k·dim ..][..dim]`: on a soil the spin
+    /// state (a unit gradient); on rigid ground the rolling rate
+    /// `heading·V_k / (|heading|·r)`, linear in `w` since `V_k = J_k(x)·w`
+    /// (`∂V_k/∂w` from the kinematics at unit pseudo-velocities, exact),
+    /// its turn with `x` at fixed `w` (the heading and the lever arms
+    /// moving with the attitude and the suspension) left out, as the
+    /// assembled Jacobian leaves out `∂V/∂x`. Allocates nothing.
+    pub fn wheel_spin_rate_gradients(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        rates: &mut [f64],
+        gradient: &mut [f64],
+    ) {
+        let (n, dim) = (self.n, y.len());
+        gradient.iter_mut().for_each(|g| *g = 0.0);
+        let range = self.spin_range();
+        if !range.is_empty() {
+            rates.copy_from_slice(&y[range.clone()]);
+            for (k, s) in range.enumerate() {
+                gradient[k * dim + s] = 1.0;
+            }
+            return;
+        }
+        rates.iter_mut().for_each(|r| *r = 0.0);
+        if self.ground.is_none() {
+            return;
+        }
+        let t = self.command_time(t);
+        let (x, w, z, _) = self.parts(y);
+        self.place_wheels(t, x, w, z);
+        let work = &mut self.jacobian_work;
+        let radii = self.ground.as_ref().map_or(&[][..], |g| g.radii());
+        for ((r, s), radius) in rates.iter_mut().zip(&self.wheels).zip(radii) {
+            *r = super::rolling_rate(s.spin_axis, s.velocity, *radius);
+        }
+        for j in 0..n {
+            work.unit.iter_mut().for_each(|v| *v = 0.0);
+            work.unit[j] = 1.0;
+            self.plant
+                .wheels(x, &work.unit, &self.steer, &mut work.kinematics);
+            for (k, (s, radius)) in work.kinematics.iter().zip(radii).enumerate() {
+                // The heading is the spin axis's, which the unit call shares.
+                gradient[k * dim + n + j] = super::rolling_rate(s.spin_axis, s.velocity, *radius);
+            }
+        }
+    }
+
     fn assemble(
         &mut self,
         t: f64,
@@ -215,7 +295,7 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             return Some(Ok(1));
         };
 
-        // The kinematics at unit pseudo-velocities: J_j's columns, B's columns.
+        // The kinematics at unit pseudo-velocities: J_j's columns.
         for j in 0..n {
             work.unit.iter_mut().for_each(|v| *v = 0.0);
             work.unit[j] = 1.0;
@@ -224,23 +304,23 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
             for (wheel, s) in work.kinematics.iter().enumerate() {
                 work.velocity[wheel * n + j] = s.velocity;
             }
-            position_rates(x, &work.unit, &mut work.rates);
-            work.b_t.matrix_mut()[j * n..(j + 1) * n].copy_from_slice(&work.rates);
         }
-        if work.b_t.factor().is_err() {
+        // ∂G/∂x = J·B⁻¹, B⁻¹ = blockdiag(Rᵀ, E, I) in closed form.
+        let att = Attitude::new(x[3], x[4], x[5]);
+        if att.cphi.abs() < MIN_COS_ROLL {
             return None;
         }
-        // ∂G/∂x = J·B⁻¹, one row at a time: Bᵀ·gᵀ = jᵀ.
+        let (r, e) = (att.rotation(), euler_rate_matrix(&att));
         for wheel in 0..k {
+            let row = &work.velocity[wheel * n..(wheel + 1) * n];
+            let centre = &mut work.centre[wheel * n..(wheel + 1) * n];
             for axis in 0..3 {
-                for j in 0..n {
-                    work.column[j] = work.velocity[wheel * n + j][axis];
-                }
-                work.b_t.solve(&mut work.column);
-                for j in 0..n {
-                    work.centre[wheel * n + j][axis] = work.column[j];
+                for c in 0..3 {
+                    centre[c][axis] = (0..3).map(|i| row[i][axis] * r[c][i]).sum();
+                    centre[3 + c][axis] = (0..3).map(|i| row[3 + i][axis] * e[i][c]).sum();
                 }
             }
+            centre[6..].copy_from_slice(&row[6..]);
         }
 
         // The controller's torques, differenced.
@@ -261,37 +341,44 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
         let curves = control.has_motor_curves();
         let (base, velocity, rates) = (&self.motor_rates, &work.velocity, &mut work.motor_rates);
         let (wheels, radii) = (&self.wheels, control.radii());
-        each_perturbed(y, (n, spins.len()), &mut work.y, |j, h, parts| {
-            let rates: &[f64] = if !curves {
-                &[]
-            } else if !parts.3.is_empty() {
-                parts.3
-            } else {
-                rates.copy_from_slice(base);
-                if (n..two_n).contains(&j) {
-                    for (wheel, r) in rates.iter_mut().enumerate() {
-                        let a = wheels[wheel].spin_axis;
-                        let dv = velocity[wheel * n + j - n];
-                        *r += h * super::rolling_rate(a, dv, radii[wheel]);
-                    }
-                }
-                rates
-            };
-            if reads_slip {
-                for (wheel, slip) in slips.iter_mut().enumerate() {
-                    let mut state = wheels[wheel];
+        // Without a loop or a motor line the torques are the commands,
+        // which no state moves.
+        let fixed = self.open_loop && !curves;
+        if fixed {
+            torque.iter_mut().for_each(|v| *v = 0.0);
+        } else {
+            each_perturbed(y, (n, spins.len()), &mut work.y, |j, h, parts| {
+                let rates: &[f64] = if !curves {
+                    &[]
+                } else if !parts.3.is_empty() {
+                    parts.3
+                } else {
+                    rates.copy_from_slice(base);
                     if (n..two_n).contains(&j) {
-                        let dv = velocity[wheel * n + j - n];
-                        (0..3).for_each(|a| state.velocity[a] += h * dv[a]);
+                        for (wheel, r) in rates.iter_mut().enumerate() {
+                            let a = wheels[wheel].spin_axis;
+                            let dv = velocity[wheel * n + j - n];
+                            *r += h * super::rolling_rate(a, dv, radii[wheel]);
+                        }
                     }
-                    *slip = ground.slip(wheel, &state, parts.3[wheel]);
+                    rates
+                };
+                if reads_slip {
+                    for (wheel, slip) in slips.iter_mut().enumerate() {
+                        let mut state = wheels[wheel];
+                        if (n..two_n).contains(&j) {
+                            let dv = velocity[wheel * n + j - n];
+                            (0..3).for_each(|a| state.velocity[a] += h * dv[a]);
+                        }
+                        *slip = ground.slip(wheel, &state, parts.3[wheel]);
+                    }
                 }
-            }
-            control.torques(tc, parts, (normals, slips), commands, rates, tau);
-            for wheel in 0..k {
-                torque[wheel * dim + j] = (tau[wheel] - torques[wheel]) / h;
-            }
-        });
+                control.torques(tc, parts, (normals, slips), commands, rates, tau);
+                for wheel in 0..k {
+                    torque[wheel * dim + j] = (tau[wheel] - torques[wheel]) / h;
+                }
+            });
+        }
 
         let spin = &y[spins.clone()];
         ground.load_derivatives(&self.wheels, &self.torques, spin, &mut work.loads);
@@ -317,9 +404,17 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
                 if !spins.is_empty() && j == spins.start + wheel {
                     input[7] = 1.0;
                 }
+                // ΔL = d·input, over the inputs that move (a column moves
+                // either the centre or the velocity).
                 let d = &work.loads[wheel];
-                let delta: [f64; 10] =
-                    core::array::from_fn(|r| (0..8).map(|c| d[r][c] * input[c]).sum());
+                let mut delta = [0.0; 10];
+                for (c, &v) in input.iter().enumerate() {
+                    if v != 0.0 {
+                        for (o, row) in delta.iter_mut().zip(d) {
+                            *o += row[c] * v;
+                        }
+                    }
+                }
                 // The spin's row: ω̇ = (τ − T)/I_w.
                 if !spins.is_empty() {
                     let inertia = ground.spin_inertias()[wheel];
