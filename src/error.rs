@@ -38,6 +38,12 @@ pub enum CliError {
         /// The system's reason.
         source: std::io::Error,
     },
+    /// A sensor log does not fit the scenario's `[sensors]`.
+    #[error("{0}")]
+    SensorLog(Box<rover_scenario::sensor_log::SensorLogError>),
+    /// A run's truth (its run.csv) cannot be read.
+    #[error("{0}")]
+    Truth(#[from] rover_scenario::truth_log::TruthError),
     /// Standard output could not be written (other than a closed pipe).
     #[error("writing to standard output: {0}")]
     Stdout(std::io::Error),

@@ -1,19 +1,31 @@
-//! A scenario's rover as a state estimator's process model: the same
-//! plant, ground and contact as the run that made the sensor log, on the
-//! map the estimator carries, with no controller loops (the commands the
-//! rover's computer issued are the filter's inputs).
+//! A sensor log estimated (`rover estimate`): the scenario's rover as
+//! the filter's process model — the same plant, ground and contact as the
+//! run that made the log, on the map the estimator carries, with no
+//! controller loops (the commands the rover's computer issued are the
+//! filter's inputs) — the model-based filter and the dead-reckoning
+//! baseline run over the log, and both measured against the truth when
+//! it is known (docs/ESTIMATE.md).
 
+use std::io::Write;
 use std::path::Path;
+use std::time::{Duration, Instant};
 
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
+use rover_estimate::consistency::{NeesTally, Rms};
+use rover_estimate::{
+    DeadReckoning, DeadReckoningConfig, Estimator, FilterConfig, InitialSigma, SensorConfig,
+    SensorSample,
+};
 use rover_integrate::OdeSystem;
-use rover_runtime::control::{Controller, ControllerConfig};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
+use serde::Serialize;
 
+use crate::output::plant_label;
 use crate::scenario::Scenario;
 use crate::simulate::{SetupError, ground_of, initial_state, settle_into_soil};
+use crate::truth_log::{TruthLog, state_columns};
 
 /// The terrain map an estimator carries.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -31,9 +43,10 @@ pub enum EstimateMap {
 }
 
 /// The rover of `scenario` as the filter's process model, on `map`, and
-/// the run's initial state `[x; w; ζ; ω]` (computed on the true terrain:
-/// the rover knows where it starts). The controller has no loops: the
-/// filter sets the torques and steering it read from the log.
+/// the run's initial state in the model's layout `[x; w; ω]` (computed on
+/// the true terrain: the rover knows where it starts). The system is open
+/// loop ([`RoverSystem::open_loop`]): the filter sets the torques and
+/// steering it reads from the log.
 pub fn process_system<P: Plant>(
     plant: P,
     model: &Model,
@@ -55,14 +68,582 @@ pub fn process_system<P: Plant>(
     };
     let ground = ground_of(scenario, carried, model, base_dir)?;
     settle_into_soil(&ground, model, scenario, &mut y);
-    let control = Controller::new_in(
-        ControllerConfig::default(),
-        model,
-        scenario.settle,
-        base_dir,
-    )?;
-    let mut sys = RoverSystem::new(plant, Some(ground), control);
+    let mut sys = RoverSystem::open_loop(plant, Some(ground), model)?;
+    // The scenario's state carries the speed loop's integral after [x; w]:
+    // the open loop has none.
+    y.truncate(2 * model.dof());
     y.resize(sys.dim(), 0.0);
     sys.roll_spins(0.0, &mut y);
     Ok((sys, y))
+}
+
+/// What `rover estimate` runs besides the log: the map, the filter's
+/// tuning and start, and the baseline's gains.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct EstimateOptions {
+    /// The map the filter carries.
+    pub map: EstimateMap,
+    /// The filter's tuning.
+    pub filter: FilterConfig,
+    /// The filter's initial standard deviations.
+    pub initial: InitialSigma,
+    /// The dead-reckoning baseline's gains.
+    pub dead_reckoning: DeadReckoningConfig,
+}
+
+/// A state estimate's errors against the truth, at the truth's instants.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Accuracy {
+    /// RMS roll error [°].
+    pub roll_deg: f64,
+    /// RMS pitch error [°].
+    pub pitch_deg: f64,
+    /// RMS yaw error [°].
+    pub yaw_deg: f64,
+    /// Each suspension coordinate's RMS error (rad, or m).
+    pub suspension: Vec<f64>,
+    /// The largest RMS error of an angular suspension coordinate [°].
+    pub suspension_deg_max: Option<f64>,
+    /// RMS of |v − v_true|, G's velocity in body components [m/s].
+    pub velocity: f64,
+    /// RMS of |Ω − Ω_true| [rad/s].
+    pub angular_velocity: f64,
+    /// G's horizontal position error at the end [m].
+    pub final_drift: f64,
+    /// The same over the distance travelled (the truth's horizontal path).
+    pub drift_fraction: f64,
+    /// The largest horizontal position error over the run [m].
+    pub max_drift: f64,
+    /// On a soil, the largest of the wheels' RMS slip errors.
+    pub slip_max: Option<f64>,
+}
+
+/// The filter's consistency over the run (docs/ESTIMATE.md, "Consistency").
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Consistency {
+    /// Degrees of freedom of the NEES, 2N.
+    pub dof: usize,
+    /// The 95 % interval of χ²(2N).
+    pub bounds: [f64; 2],
+    /// Truth instants compared.
+    pub samples: usize,
+    /// The fraction of them whose NEES is inside the interval.
+    pub fraction_inside: f64,
+    /// How many fell below it (a timid filter) and above it (an
+    /// overconfident one).
+    pub below: usize,
+    /// See `below`.
+    pub above: usize,
+    /// The mean NEES (2N when consistent).
+    pub mean: f64,
+}
+
+/// What an estimation run did: how it ended, its accuracy against the
+/// truth when known, its consistency and its cost.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct EstimateSummary {
+    /// `completed`, or `failed` with `error`: the rows before the failure
+    /// are written and kept.
+    pub status: String,
+    /// Why it failed, with the time.
+    pub error: Option<String>,
+    /// The last sample's time estimated \[s\].
+    pub t_end: f64,
+    /// Samples taken.
+    pub samples: usize,
+    /// The map the filter carried.
+    pub map: String,
+    /// The process model's plant.
+    pub plant: String,
+    /// The truth's horizontal path length \[m\].
+    pub distance: Option<f64>,
+    /// The model-based filter's errors.
+    pub filter: Option<Accuracy>,
+    /// Dead reckoning's errors on the same log.
+    pub dead_reckoning: Option<Accuracy>,
+    /// Dead reckoning's final drift over the filter's.
+    pub drift_ratio: Option<f64>,
+    /// The filter's consistency.
+    pub consistency: Option<Consistency>,
+    /// Wall time of the estimation \[s\].
+    pub wall_time: f64,
+    /// Mean wall time of one filter step (a prediction and the updates of
+    /// one sample) [µs].
+    pub step_us: f64,
+}
+
+/// Running errors of one estimator against the truth.
+#[derive(Clone, Debug)]
+struct AccuracyTally {
+    n: usize,
+    angles: [Rms; 3],
+    suspension: Vec<Rms>,
+    velocity: Rms,
+    angular_velocity: Rms,
+    slip: Vec<Rms>,
+    final_drift: f64,
+    max_drift: f64,
+}
+
+impl AccuracyTally {
+    fn new(n: usize, wheels: usize) -> Self {
+        Self {
+            n,
+            angles: [Rms::default(); 3],
+            suspension: vec![Rms::default(); n - 6],
+            velocity: Rms::default(),
+            angular_velocity: Rms::default(),
+            slip: vec![Rms::default(); wheels],
+            final_drift: 0.0,
+            max_drift: 0.0,
+        }
+    }
+
+    /// One truth instant: the estimate `y` and the truth `truth` (both
+    /// `[x; w]` first), the slips when on a soil.
+    fn add(&mut self, y: &[f64], truth: &[f64], slips: Option<(&[f64], &[f64])>) {
+        let n = self.n;
+        let drift = (y[0] - truth[0]).hypot(y[1] - truth[1]);
+        self.final_drift = drift;
+        self.max_drift = self.max_drift.max(drift);
+        for k in 0..3 {
+            self.angles[k].add(wrap(y[3 + k] - truth[3 + k]));
+        }
+        for (i, r) in self.suspension.iter_mut().enumerate() {
+            r.add(y[6 + i] - truth[6 + i]);
+        }
+        let norm = |a: &[f64], b: &[f64]| {
+            a.iter()
+                .zip(b)
+                .map(|(p, q)| (p - q) * (p - q))
+                .sum::<f64>()
+                .sqrt()
+        };
+        self.velocity.add(norm(&y[n..n + 3], &truth[n..n + 3]));
+        self.angular_velocity
+            .add(norm(&y[n + 3..n + 6], &truth[n + 3..n + 6]));
+        if let Some((est, tru)) = slips {
+            for ((r, e), t) in self.slip.iter_mut().zip(est).zip(tru) {
+                r.add(e - t);
+            }
+        }
+    }
+
+    fn finish(&self, distance: f64, linear: &[bool]) -> Accuracy {
+        let angular = self
+            .suspension
+            .iter()
+            .zip(linear)
+            .filter(|(_, l)| !**l)
+            .map(|(r, _)| r.value().to_degrees());
+        let slip_counted = self.slip.iter().any(|r| r.count() > 0);
+        Accuracy {
+            roll_deg: self.angles[0].value().to_degrees(),
+            pitch_deg: self.angles[1].value().to_degrees(),
+            yaw_deg: self.angles[2].value().to_degrees(),
+            suspension: self.suspension.iter().map(Rms::value).collect(),
+            suspension_deg_max: angular.reduce(f64::max),
+            velocity: self.velocity.value(),
+            angular_velocity: self.angular_velocity.value(),
+            final_drift: self.final_drift,
+            drift_fraction: if distance > 0.0 {
+                self.final_drift / distance
+            } else {
+                0.0
+            },
+            max_drift: self.max_drift,
+            slip_max: slip_counted.then(|| self.slip.iter().map(Rms::value).fold(0.0, f64::max)),
+        }
+    }
+}
+
+/// An angle difference in (−π, π].
+fn wrap(a: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    a - tau * ((a + std::f64::consts::PI) / tau).floor()
+}
+
+/// The truth's horizontal path length up to each of its rows.
+fn path_lengths(truth: &TruthLog) -> Vec<f64> {
+    let mut total = 0.0;
+    let mut out = Vec::with_capacity(truth.t.len());
+    for (k, y) in truth.y.iter().enumerate() {
+        if k > 0 {
+            let p = &truth.y[k - 1];
+            total += (y[0] - p[0]).hypot(y[1] - p[1]);
+        }
+        out.push(total);
+    }
+    out
+}
+
+/// Why an estimation could not start, or could not write.
+#[derive(Debug, thiserror::Error)]
+pub enum EstimateRunError {
+    /// The scenario's rover and ground could not be set up.
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+    /// The filter or the baseline refused its start (a setting, the first sample).
+    #[error("the estimator cannot start: {0}")]
+    Start(String),
+    /// The log holds no sample.
+    #[error("the sensor log holds no sample")]
+    Empty,
+    /// An output could not be written.
+    #[error("writing {file}: {source}")]
+    Output {
+        /// The output.
+        file: &'static str,
+        /// Why.
+        source: std::io::Error,
+    },
+}
+
+/// The columns of `estimate.csv` for a rover of `m` suspension
+/// coordinates and `wheels` wheels: t, the state (with each wheel's spin
+/// `omega{j}` on a soil), each state entry's 1σ (`sigma_<name>`), the
+/// wheels' normal loads and slips, then with an IMU its biases and their
+/// 1σ.
+pub fn estimate_columns(m: usize, wheels: usize, soil: bool, imu: bool) -> Vec<String> {
+    let mut state = state_columns(m);
+    if soil {
+        state.extend((1..=wheels).map(|j| format!("omega{j}")));
+    }
+    let mut names = vec!["t".to_string()];
+    names.extend(state.iter().cloned());
+    names.extend(state.iter().map(|s| format!("sigma_{s}")));
+    names.extend((1..=wheels).map(|j| format!("Fn{j}")));
+    names.extend((1..=wheels).map(|j| format!("slip{j}")));
+    if imu {
+        let biases = ["bgx", "bgy", "bgz", "bax", "bay", "baz"];
+        names.extend(biases.iter().map(|s| s.to_string()));
+        names.extend(biases.iter().map(|s| format!("sigma_{s}")));
+    }
+    names
+}
+
+/// The columns of `dead_reckoning.csv`: t and the state `[x; w]`.
+pub fn baseline_columns(m: usize) -> Vec<String> {
+    let mut names = vec!["t".to_string()];
+    names.extend(state_columns(m));
+    names
+}
+
+/// Runs the model-based filter and the dead-reckoning baseline over the
+/// sensor log `samples` of a run of `scenario` (its rover `plant`,
+/// `model`, its linear coordinates `linear`), writing one row per sample
+/// to `estimate_csv` and `baseline_csv`, and measuring both against
+/// `truth` when given.
+///
+/// The first sample (t = 0) starts both at the scenario's initial state;
+/// each later one is predicted to with the commands of the one before
+/// (held over the interval, as the rover's computer held them) and then
+/// taken. A filter or baseline that fails at a sample ends the run there:
+/// the summary says `failed` with the time and why, and the rows written
+/// before are kept.
+#[allow(clippy::too_many_arguments)]
+pub fn estimate_log<P: Plant, W: Write, V: Write>(
+    plant: P,
+    model: &Model,
+    linear: &[bool],
+    scenario: &Scenario,
+    base_dir: &Path,
+    sensors: &SensorConfig,
+    samples: &[SensorSample],
+    truth: Option<&TruthLog>,
+    options: &EstimateOptions,
+    estimate_csv: W,
+    baseline_csv: V,
+) -> Result<EstimateSummary, EstimateRunError> {
+    let plant_name = plant_label(&plant);
+    let (n, m, wheels) = (model.dof(), model.m(), model.wheels.len());
+    let (sys, y0) = process_system(plant, model, scenario, base_dir, options.map)?;
+    let first = samples.first().ok_or(EstimateRunError::Empty)?;
+    let soil = !sys.spin_range().is_empty();
+    let mut filter = Estimator::new(
+        sys,
+        sensors,
+        options.filter.clone(),
+        first.t,
+        &y0,
+        &options.initial,
+    )
+    .map_err(|e| EstimateRunError::Start(e.to_string()))?;
+    let radii: Vec<f64> = model.wheels.iter().map(|w| w.radius).collect();
+    let mut baseline = DeadReckoning::new(
+        options.dead_reckoning,
+        sensors,
+        &radii,
+        model.gravity,
+        first.t,
+        &y0[..n],
+    )
+    .map_err(|e| EstimateRunError::Start(e.to_string()))?;
+    let imu = sensors.imu.is_some();
+    let est_names = estimate_columns(m, wheels, soil, imu);
+    let mut est_out = RowWriter::new(estimate_csv, &est_names).map_err(output("estimate.csv"))?;
+    let mut dr_out =
+        RowWriter::new(baseline_csv, &baseline_columns(m)).map_err(output("dead_reckoning.csv"))?;
+
+    let paths = truth.map(path_lengths);
+    let mut tallies = truth.map(|_| (AccuracyTally::new(n, wheels), AccuracyTally::new(n, wheels)));
+    let mut nees = NeesTally::new(2 * n);
+    let mut next_truth = 0;
+    let mut row = vec![0.0; est_names.len()];
+    let (mut x_dr, mut w_dr) = (vec![0.0; n], vec![0.0; n]);
+    let (mut normal, mut slip) = (vec![0.0; wheels], vec![0.0; wheels]);
+    let mut truth_state = vec![0.0; y0.len()];
+    let mut summary = EstimateSummary {
+        status: "completed".into(),
+        map: map_label(options.map),
+        plant: plant_name,
+        ..EstimateSummary::default()
+    };
+    let started = Instant::now();
+    let mut filter_time = Duration::ZERO;
+    for (k, s) in samples.iter().enumerate() {
+        let step_start = Instant::now();
+        let stepped = if k == 0 {
+            filter.update(s).map_err(|e| e.to_string())
+        } else {
+            let prev = &samples[k - 1];
+            filter
+                .predict(s.t - prev.t, &prev.torques, &prev.steering)
+                .and_then(|()| filter.update(s))
+                .map_err(|e| e.to_string())
+        };
+        filter_time += step_start.elapsed();
+        let stepped = stepped.and_then(|()| {
+            if k == 0 {
+                Ok(())
+            } else {
+                baseline
+                    .update(s)
+                    .map_err(|e| format!("dead reckoning: {e}"))
+            }
+        });
+        let outputs = stepped.and_then(|()| {
+            filter
+                .wheel_outputs(&mut normal, &mut slip)
+                .map_err(|e| e.to_string())
+        });
+        if let Err(why) = outputs {
+            summary.status = "failed".into();
+            summary.error = Some(format!("at t = {} s: {why}", s.t));
+            break;
+        }
+        fill_estimate_row(&filter, s.t, &normal, &slip, &mut row);
+        est_out.write(&row).map_err(output("estimate.csv"))?;
+        baseline.state(&mut x_dr, &mut w_dr);
+        dr_out
+            .write_parts(s.t, &[&x_dr, &w_dr])
+            .map_err(output("dead_reckoning.csv"))?;
+        summary.samples = k + 1;
+        summary.t_end = s.t;
+        let Some(truth) = truth else { continue };
+        while next_truth < truth.t.len() && truth.t[next_truth] < s.t - 1e-9 * (1.0 + s.t) {
+            next_truth += 1;
+        }
+        if next_truth >= truth.t.len() || (truth.t[next_truth] - s.t).abs() > 1e-9 * (1.0 + s.t) {
+            continue;
+        }
+        let tru = &truth.y[next_truth];
+        let slips = truth.slip.as_ref().map(|rows| rows[next_truth].as_slice());
+        let Some((tally, dr_tally)) = tallies.as_mut() else {
+            continue;
+        };
+        tally.add(filter.state(), tru, slips.map(|t| (slip.as_slice(), t)));
+        let dr_y: Vec<f64> = x_dr.iter().chain(&w_dr).copied().collect();
+        dr_tally.add(&dr_y, tru, None);
+        truth_state[..2 * n].copy_from_slice(tru);
+        truth_state[2 * n..].copy_from_slice(&filter.state()[2 * n..]);
+        match filter.nees(&truth_state) {
+            Ok(v) => nees.add(v),
+            Err(e) => {
+                summary.status = "failed".into();
+                summary.error = Some(format!("at t = {} s: {e}", s.t));
+                break;
+            }
+        }
+        next_truth += 1;
+    }
+    est_out.finish().map_err(output("estimate.csv"))?;
+    dr_out.finish().map_err(output("dead_reckoning.csv"))?;
+    summary.wall_time = started.elapsed().as_secs_f64();
+    summary.step_us = 1e6 * filter_time.as_secs_f64() / summary.samples.max(1) as f64;
+    if let (Some((tally, dr_tally)), Some(paths), Some(truth)) = (&tallies, &paths, truth) {
+        // The distance up to the last instant estimated.
+        let end = summary.t_end + 1e-9 * (1.0 + summary.t_end);
+        let reached = truth.t.partition_point(|t| *t <= end);
+        let upto = reached.checked_sub(1).map_or(0.0, |k| paths[k]);
+        summary.distance = Some(upto);
+        let filter_acc = tally.finish(upto, linear);
+        let dr_acc = dr_tally.finish(upto, linear);
+        summary.drift_ratio =
+            (filter_acc.final_drift > 0.0).then(|| dr_acc.final_drift / filter_acc.final_drift);
+        summary.filter = Some(filter_acc);
+        summary.dead_reckoning = Some(dr_acc);
+        let (lo, hi) = nees.bounds();
+        let (below, above) = nees.outside();
+        summary.consistency = Some(Consistency {
+            dof: 2 * n,
+            bounds: [lo, hi],
+            samples: nees.count(),
+            fraction_inside: nees.fraction_inside(),
+            below,
+            above,
+            mean: nees.mean(),
+        });
+    }
+    Ok(summary)
+}
+
+/// The map's name in the summary.
+fn map_label(map: EstimateMap) -> String {
+    match map {
+        EstimateMap::True => "true".into(),
+        EstimateMap::Smoothed { cutoff } => format!("smoothed below {cutoff} m"),
+    }
+}
+
+/// An output's write error, named.
+fn output(file: &'static str) -> impl Fn(std::io::Error) -> EstimateRunError {
+    move |source| EstimateRunError::Output { file, source }
+}
+
+/// The row of `estimate.csv` at the filter's estimate (see
+/// [`estimate_columns`]): t, the state, its 1σ, the wheels' loads and
+/// slips, the biases and their 1σ.
+fn fill_estimate_row<M: rover_estimate::ProcessModel>(
+    filter: &Estimator<M>,
+    t: f64,
+    normal: &[f64],
+    slip: &[f64],
+    row: &mut [f64],
+) {
+    let y = filter.state();
+    let dim = y.len();
+    row[0] = t;
+    row[1..=dim].copy_from_slice(y);
+    // The lengths are the filter's own: it cannot refuse them.
+    let _ = filter.state_sigma(&mut row[1 + dim..1 + 2 * dim]);
+    let mut at = 1 + 2 * dim;
+    for v in normal.iter().chain(slip) {
+        row[at] = *v;
+        at += 1;
+    }
+    if let Some((gyro, accel)) = filter.biases() {
+        row[at..at + 3].copy_from_slice(&gyro);
+        row[at + 3..at + 6].copy_from_slice(&accel);
+        let len = filter.error_dim();
+        let p = filter.covariance();
+        for k in 0..6 {
+            let i = len - 6 + k;
+            row[at + 6 + k] = p[i * len + i].max(0.0).sqrt();
+        }
+    }
+}
+
+/// Rows of numbers under a header, a non-finite value refused (a NaN
+/// never reaches the file as if it were a result).
+struct RowWriter<W: Write> {
+    out: W,
+    names: Vec<String>,
+}
+
+impl<W: Write> RowWriter<W> {
+    fn new(mut out: W, names: &[String]) -> std::io::Result<Self> {
+        writeln!(out, "{}", names.join(","))?;
+        Ok(Self {
+            out,
+            names: names.to_vec(),
+        })
+    }
+
+    fn write(&mut self, row: &[f64]) -> std::io::Result<()> {
+        if let Some(k) = row.iter().position(|v| !v.is_finite()) {
+            return Err(std::io::Error::other(format!(
+                "column {} (`{}`) is {}: not written",
+                k + 1,
+                self.names[k],
+                row[k]
+            )));
+        }
+        for (k, v) in row.iter().enumerate() {
+            if k > 0 {
+                self.out.write_all(b",")?;
+            }
+            write!(self.out, "{v}")?;
+        }
+        self.out.write_all(b"\n")
+    }
+
+    /// `t` then the parts' values, one row.
+    fn write_parts(&mut self, t: f64, parts: &[&[f64]]) -> std::io::Result<()> {
+        let row: Vec<f64> = std::iter::once(t)
+            .chain(parts.iter().flat_map(|p| p.iter().copied()))
+            .collect();
+        self.write(&row)
+    }
+
+    fn finish(mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
+}
+
+impl crate::prepare::Prepared {
+    /// Estimates the sensor log `samples` of this scenario's run (see
+    /// [`estimate_log`]) with its rover's plant (`generic`: the generic
+    /// plant even for a built-in rover), a setup error located at the
+    /// scenario's offending field.
+    pub fn estimate<W: Write, V: Write>(
+        &self,
+        generic: bool,
+        samples: &[SensorSample],
+        truth: Option<&TruthLog>,
+        options: &EstimateOptions,
+        estimate_csv: W,
+        baseline_csv: V,
+    ) -> Result<EstimateSummary, crate::prepare::PrepareError> {
+        let sensors = self.scenario.sensors.as_ref().ok_or_else(|| {
+            self.locate(SetupError::Initial {
+                field: "sensors",
+                message: "the scenario declares no [sensors]: give the scenario whose run wrote the log (its [sensors] table says what the log holds)".into(),
+            })
+        })?;
+        let (model, linear) = (&self.spec.model, &self.spec.coordinate_linear);
+        let (scenario, base) = (&self.scenario, &self.base);
+        let run = match self.plant(generic)? {
+            crate::prepare::RunPlant::Generated(p) => estimate_log(
+                p,
+                model,
+                linear,
+                scenario,
+                base,
+                sensors,
+                samples,
+                truth,
+                options,
+                estimate_csv,
+                baseline_csv,
+            ),
+            crate::prepare::RunPlant::Generic(p) => estimate_log(
+                p,
+                model,
+                linear,
+                scenario,
+                base,
+                sensors,
+                samples,
+                truth,
+                options,
+                estimate_csv,
+                baseline_csv,
+            ),
+        };
+        run.map_err(|e| match e {
+            EstimateRunError::Setup(s) => self.locate(s),
+            other => crate::prepare::PrepareError::Estimate(other.to_string()),
+        })
+    }
 }

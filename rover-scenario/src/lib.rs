@@ -69,6 +69,7 @@ pub mod simulate;
 mod simulation;
 mod stepper;
 pub mod sweep;
+pub mod truth_log;
 
 pub use sensor_log::read_sensor_log;
 pub use simulation::{Simulation, SimulationError};

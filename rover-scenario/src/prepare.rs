@@ -76,6 +76,9 @@ pub enum PrepareError {
     /// The rover is larger than the generic plant supports.
     #[error("{0}")]
     TooLarge(#[from] TooLarge),
+    /// A sensor log's estimation could not start or could not write.
+    #[error("{0}")]
+    Estimate(String),
 }
 
 impl PrepareError {

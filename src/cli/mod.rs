@@ -3,6 +3,7 @@
 mod check;
 #[cfg(feature = "codegen")]
 mod codegen;
+mod estimate;
 mod linearize;
 #[cfg(feature = "reproduce")]
 mod reproduce;
@@ -19,6 +20,7 @@ use crate::error::{CliError, print_stdout};
 pub use check::{CheckArgs, check};
 #[cfg(feature = "codegen")]
 pub use codegen::{CodegenArgs, CodegenLevel, codegen};
+pub use estimate::{EstimateArgs, estimate};
 pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, calibrated, reproduce, steer};
@@ -42,6 +44,8 @@ pub enum Command {
     Check(CheckArgs),
     /// Run a scenario: CSV time histories, plots and a summary.
     Simulate(SimulateArgs),
+    /// Estimate a run's state from its sensor log with the rover's own model (an extended Kalman filter) and with dead reckoning, against the truth when known (docs/ESTIMATE.md).
+    Estimate(EstimateArgs),
     /// The rover's modes on flat ground, parked, driving straight or turning steadily: frequencies, damping and shapes of its small motions.
     Linearize(LinearizeArgs),
     /// Write a rover's generated, allocation-free plant as a standalone Rust module.
@@ -85,6 +89,15 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
         Command::Linearize(a) => {
             print_stdout(&linearize_cmd(&a)?)?;
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Estimate(a) => {
+            let (summary, files) = estimate(&a)?;
+            print_stdout(&estimate::report(&summary, &files))?;
+            Ok(if summary.error.is_none() {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            })
         }
         Command::Sweep(a) => {
             sweep(&a)?;

@@ -26,6 +26,7 @@ mod measure;
 mod noise;
 mod predict;
 mod rotation;
+mod state_sigma;
 mod step_matrix;
 mod update;
 
