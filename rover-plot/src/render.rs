@@ -59,3 +59,49 @@ pub(crate) fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, Stri
     writer.finish().map_err(png_error)?;
     Ok(bytes)
 }
+
+/// A picture drawn alike on any back end.
+pub(crate) trait Drawing {
+    /// Draws it on `root`.
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> crate::draw_result::DrawResult;
+}
+
+/// `drawing` of `size` rendered in memory and written as `<stem>.png` and
+/// `<stem>.svg` into `out_dir`: both drawn before either is written.
+pub(crate) fn write_drawing(
+    drawing: &impl Drawing,
+    stem: &'static str,
+    size: (u32, u32),
+    out_dir: &std::path::Path,
+) -> Result<Vec<std::path::PathBuf>, PlotError> {
+    let draw_error = |message| PlotError::Draw {
+        figure: stem,
+        message,
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        drawing.draw(&root).map_err(draw_error)?;
+        root.present().map_err(|e| draw_error(e.to_string()))?;
+    }
+    let mut rgb = vec![255u8; 3 * size.0 as usize * size.1 as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+        drawing.draw(&root).map_err(draw_error)?;
+        root.present().map_err(|e| draw_error(e.to_string()))?;
+    }
+    let png = encode_png(&rgb, size).map_err(draw_error)?;
+    let mut written = Vec::new();
+    for (ext, bytes) in [("png", png), ("svg", svg.into_bytes())] {
+        let path = out_dir.join(format!("{stem}.{ext}"));
+        rover_files::write_whole(&path, &bytes).map_err(|source| PlotError::Write {
+            path: path.clone(),
+            source,
+        })?;
+        written.push(path);
+    }
+    Ok(written)
+}

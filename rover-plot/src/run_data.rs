@@ -4,6 +4,7 @@ use std::path::Path;
 
 use crate::PlotError;
 use crate::column_layout::ColumnLayout;
+use crate::csv_columns::read_columns;
 
 /// One wheel's time histories (SI units, inertial frame).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -45,96 +46,14 @@ impl RunData {
     /// Only the columns the plots use are parsed; others may hold anything.
     /// Errors name the file, the line and column, and what to do.
     pub(crate) fn from_csv(path: &Path) -> Result<Self, PlotError> {
-        let bytes = rover_files::read(path, rover_files::Limit::Data).map_err(|source| {
-            PlotError::Read {
-                path: path.to_path_buf(),
-                source,
-            }
+        let mut layout = None;
+        let mut columns = read_columns(path, |names| {
+            let l = ColumnLayout::from_header(path, names)?;
+            let used = (l.t, l.used_columns());
+            layout = Some(l);
+            Ok(used)
         })?;
-        let mut reader = csv::ReaderBuilder::new()
-            .has_headers(true)
-            .flexible(true)
-            .from_reader(bytes.as_slice());
-        let malformed = |e: csv::Error| {
-            let line = e.position().map_or(1, csv::Position::line);
-            let message = e.to_string();
-            match e.into_kind() {
-                csv::ErrorKind::Io(source) => PlotError::Read {
-                    path: path.to_path_buf(),
-                    source,
-                },
-                _ => PlotError::Malformed {
-                    path: path.to_path_buf(),
-                    line,
-                    message,
-                },
-            }
-        };
-
-        let header = reader.headers().map_err(malformed)?.clone();
-        let names: Vec<&str> = header.iter().map(str::trim).collect();
-        if names.iter().all(|n| n.is_empty()) {
-            return Err(PlotError::NoHeader {
-                path: path.to_path_buf(),
-            });
-        }
-        let layout = ColumnLayout::from_header(path, &names)?;
-        let used = layout.used_columns();
-
-        let mut columns: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
-        let mut record = csv::StringRecord::new();
-        while reader.read_record(&mut record).map_err(malformed)? {
-            let line = record.position().map_or(0, csv::Position::line);
-            if record.len() != names.len() {
-                return Err(PlotError::FieldCount {
-                    path: path.to_path_buf(),
-                    line,
-                    found: record.len(),
-                    expected: names.len(),
-                });
-            }
-            for &index in &used {
-                let text = record[index].trim();
-                let cell = |text: &str| (names[index].to_string(), index + 1, text.to_string());
-                let value: f64 = text.parse().map_err(|_| {
-                    let (column, index, text) = cell(text);
-                    PlotError::NotANumber {
-                        path: path.to_path_buf(),
-                        line,
-                        column,
-                        index,
-                        text,
-                    }
-                })?;
-                if !value.is_finite() {
-                    let (column, index, text) = cell(text);
-                    return Err(PlotError::NotFinite {
-                        path: path.to_path_buf(),
-                        line,
-                        column,
-                        index,
-                        text,
-                    });
-                }
-                if index == layout.t
-                    && let Some(&previous) = columns[index].last()
-                    && value < previous
-                {
-                    return Err(PlotError::TimeBackwards {
-                        path: path.to_path_buf(),
-                        line,
-                        t: value,
-                        previous,
-                    });
-                }
-                columns[index].push(value);
-            }
-        }
-        if columns[layout.t].is_empty() {
-            return Err(PlotError::NoRows {
-                path: path.to_path_buf(),
-            });
-        }
+        let layout = layout.expect("the header was read");
 
         let take = |columns: &mut [Vec<f64>], index: usize| std::mem::take(&mut columns[index]);
         let three = |columns: &mut [Vec<f64>], c: [usize; 3]| {

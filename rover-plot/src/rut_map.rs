@@ -18,7 +18,7 @@ use crate::decimate::{MAX_PATH_POINTS, stride_indices};
 use crate::draw_result::{DrawResult, failed};
 use crate::font::FAMILY;
 use crate::legend::LEGEND_WIDTH;
-use crate::render::encode_png;
+use crate::render::{Drawing, write_drawing};
 use crate::run_data::RunData;
 use crate::style::{AXIS_DESC_SIZE, BODY, LABEL_SIZE, LINE_WIDTH, TITLE_SIZE};
 use crate::tick_label::tick_label;
@@ -74,29 +74,25 @@ pub fn plot_ruts(
         )));
     }
     let blocks = Blocks::of(map);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        draw(&root, &data, &blocks, title).map_err(draw_error)?;
-        root.present().map_err(|e| draw_error(e.to_string()))?;
+    let drawing = RutDrawing {
+        data: &data,
+        blocks: &blocks,
+        title,
+    };
+    write_drawing(&drawing, STEM, SIZE, out_dir)
+}
+
+/// The rut map's figure.
+struct RutDrawing<'a> {
+    data: &'a RunData,
+    blocks: &'a Blocks,
+    title: &'a str,
+}
+
+impl Drawing for RutDrawing<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult {
+        draw(root, self.data, self.blocks, self.title)
     }
-    let mut rgb = vec![255u8; 3 * SIZE.0 as usize * SIZE.1 as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
-        draw(&root, &data, &blocks, title).map_err(draw_error)?;
-        root.present().map_err(|e| draw_error(e.to_string()))?;
-    }
-    let png = encode_png(&rgb, SIZE).map_err(draw_error)?;
-    let mut written = Vec::new();
-    for (ext, bytes) in [("png", png), ("svg", svg.into_bytes())] {
-        let path = out_dir.join(format!("{STEM}.{ext}"));
-        rover_files::write_whole(&path, &bytes).map_err(|source| PlotError::Write {
-            path: path.clone(),
-            source,
-        })?;
-        written.push(path);
-    }
-    Ok(written)
 }
 
 /// The map thinned to blocks, each the deepest rut of its nodes.

@@ -117,8 +117,36 @@ pub fn estimate(args: &EstimateArgs) -> Result<(EstimateSummary, Vec<PathBuf>), 
         .map_err(|e| CliError::Usage(format!("the summary: {e}")))?;
     out.write_whole("estimate.json", format!("{json}\n").as_bytes())
         .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
-    let files = OUTPUTS.iter().map(|n| out.join(n)).collect();
+    let mut files: Vec<PathBuf> = OUTPUTS.iter().map(|n| out.join(n)).collect();
+    if !args.no_plots && summary.samples > 0 {
+        files.extend(plots(&prepared, &out, truth_path.as_deref())?);
+    }
     Ok((summary, files))
+}
+
+/// The estimate's figure, when built with the `plots` feature.
+#[cfg(feature = "plots")]
+fn plots(
+    prepared: &Prepared,
+    out: &OutputDir,
+    truth: Option<&Path>,
+) -> Result<Vec<PathBuf>, CliError> {
+    let spec = &prepared.spec;
+    let angular = !spec.coordinate_linear.first().copied().unwrap_or(false);
+    Ok(rover_plot::plot_estimate(
+        &out.join(OUTPUTS[0]),
+        &out.join(OUTPUTS[1]),
+        truth,
+        out.path(),
+        &spec.name,
+        angular,
+    )?)
+}
+
+/// Without the `plots` feature: none.
+#[cfg(not(feature = "plots"))]
+fn plots(_: &Prepared, _: &OutputDir, _: Option<&Path>) -> Result<Vec<PathBuf>, CliError> {
+    Ok(Vec::new())
 }
 
 /// An output that is an input would be overwritten: refused.
