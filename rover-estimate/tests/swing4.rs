@@ -12,7 +12,7 @@ use rover_estimate::sensors::{
 };
 use rover_estimate::{Estimator, FilterConfig, InitialSigma};
 use rover_models::Swing4;
-use rover_runtime::integrate::{AnyIntegrator, Integrator};
+use rover_runtime::integrate::{AnyIntegrator, Integrator, OdeSystem};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use rover_test_support::rng::Rng;
@@ -397,6 +397,11 @@ fn imu_rows_match_differences_on_rough_ground() {
     let (_, mut filter, _) = drive(false, 7.0, FilterConfig::default());
     let len = filter.error_dim();
     let n = filter.model().dof();
+    // The generated plant has an exact Jacobian: the system assembles one.
+    let (t, y) = (filter.time(), filter.state().to_vec());
+    let mut jac = vec![0.0; y.len() * y.len()];
+    let assembled = OdeSystem::jacobian(filter.model_mut(), t, &y, &mut jac);
+    assert!(matches!(assembled, Some(Ok(_))));
     let (rows, fd) = rows_and_differences(&mut filter);
     for r in 0..6 {
         let exact = if r < 3 { 0..len } else { n..len };

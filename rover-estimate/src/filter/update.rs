@@ -111,7 +111,6 @@ impl<M: ProcessModel> Estimator<M> {
             check_finite(t, "accel", a)?;
         }
         self.begin();
-        let len = self.layout.len;
         if let Some(reading) = accel {
             self.linearize_here(Need::Current)?;
             let y = &self.estimate.y;
@@ -149,7 +148,6 @@ impl<M: ProcessModel> Estimator<M> {
                 self.scalar(reading[axis] - h[axis], imu.gyro_variance, "gyro", axis)?;
             }
         }
-        debug_assert!(self.work.row.len() == len);
         self.inject()
     }
 
