@@ -647,3 +647,33 @@ impl crate::prepare::Prepared {
         })
     }
 }
+
+/// A filter's tuning as a file gives it (`rover estimate --tuning`): the
+/// `[filter]` table ([`FilterConfig`]'s fields) and the `[initial]` table
+/// ([`InitialSigma`]'s), each field optional (its default otherwise).
+#[derive(Clone, Debug, Default, PartialEq, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Tuning {
+    /// The filter's noises and steps.
+    pub filter: FilterConfig,
+    /// Its initial standard deviations.
+    pub initial: InitialSigma,
+}
+
+/// Reads a [`Tuning`] file; the error names the file, the line and the
+/// field.
+pub fn read_tuning(path: &Path) -> Result<Tuning, String> {
+    let text = rover_files::read_text(path, rover_files::Limit::Text)
+        .map_err(|e| format!("{}: cannot read it: {e}", path.display()))?;
+    toml::from_str(&text).map_err(|e| {
+        let line = e
+            .span()
+            .map(|s| format!(":{}", text[..s.start].lines().count().max(1)))
+            .unwrap_or_default();
+        format!(
+            "{}{line}: {}\n  = help: the tuning file has a [filter] table (substeps, jacobian_every, position_noise, attitude_noise, suspension_noise, velocity_noise, angular_velocity_noise, suspension_rate_noise, spin_noise, wheel_rate_sigma, accel_model_sigma) and an [initial] table (position, attitude, suspension, velocity, angular_velocity, suspension_rate, spin); docs/ESTIMATE.md explains each",
+            path.display(),
+            e.message()
+        )
+    })
+}

@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use rover_files::{OutputDir, same_file};
-use rover_scenario::estimate::{EstimateMap, EstimateOptions, EstimateSummary};
+use rover_scenario::estimate::{
+    EstimateMap, EstimateOptions, EstimateSummary, Tuning, read_tuning,
+};
 use rover_scenario::prepare::Prepared;
 use rover_scenario::read_sensor_log;
 use rover_scenario::truth_log::read_truth;
@@ -50,6 +52,10 @@ pub struct EstimateArgs {
     /// With `--map smoothed`: the shortest wavelength the map keeps [m].
     #[arg(long, default_value_t = 1.0)]
     pub smooth_cutoff: f64,
+    /// A TOML file tuning the filter: `[filter]` (its noises and steps) and
+    /// `[initial]` (its starting standard deviations), docs/ESTIMATE.md.
+    #[arg(long)]
+    pub tuning: Option<PathBuf>,
     /// Use the generic (interpreted) plant even for a built-in rover.
     #[arg(long)]
     pub generic: bool,
@@ -93,8 +99,14 @@ pub fn estimate(args: &EstimateArgs) -> Result<(EstimateSummary, Vec<PathBuf>), 
             cutoff: args.smooth_cutoff,
         },
     };
+    let tuning = match &args.tuning {
+        Some(path) => read_tuning(path).map_err(CliError::Usage)?,
+        None => Tuning::default(),
+    };
     let options = EstimateOptions {
         map,
+        filter: tuning.filter,
+        initial: tuning.initial,
         ..EstimateOptions::default()
     };
     let out = OutputDir::create(&args.out)

@@ -45,6 +45,12 @@ pub struct FilterConfig {
     /// quantization: the model's rate is taken at the interval's end, the
     /// reading is its mean over the interval.
     pub wheel_rate_sigma: f64,
+    /// An accelerometer reading against the model's acceleration [m/s²],
+    /// on top of the sensor's noise: the model's `ẇ` at the estimate
+    /// carries the commands held over the step, the terrain between the
+    /// map's nodes and the linearization's error, and a stiff tyre makes
+    /// it swing with every small error of the state.
+    pub accel_model_sigma: f64,
 }
 
 impl Default for FilterConfig {
@@ -60,6 +66,7 @@ impl Default for FilterConfig {
             suspension_rate_noise: 0.05,
             spin_noise: 0.5,
             wheel_rate_sigma: 0.02,
+            accel_model_sigma: 0.05,
         }
     }
 }
@@ -89,8 +96,8 @@ pub struct InitialSigma {
 impl Default for InitialSigma {
     fn default() -> Self {
         Self {
-            position: 0.01,
-            attitude: 0.01,
+            position: 0.001,
+            attitude: 0.001,
             suspension: 0.01,
             velocity: 0.01,
             angular_velocity: 0.01,
@@ -140,6 +147,7 @@ impl FilterConfig {
             });
         }
         check("filter.position_noise", self.position_noise, false)?;
+        check("filter.accel_model_sigma", self.accel_model_sigma, false)?;
         check("filter.attitude_noise", self.attitude_noise, false)?;
         check("filter.suspension_noise", self.suspension_noise, false)?;
         check("filter.velocity_noise", self.velocity_noise, false)?;

@@ -127,9 +127,10 @@ impl<M: ProcessModel> Estimator<M> {
             );
             for axis in 0..3 {
                 self.take_row(axis);
+                let model = self.config.accel_model_sigma;
                 self.scalar(
                     reading[axis] - h[axis],
-                    imu.accel_variance,
+                    imu.accel_variance + model * model,
                     "accelerometer",
                     axis,
                 )?;
