@@ -1,7 +1,8 @@
 //! The rover as a first-order ODE system `ẏ = f(t, y)`, `y = [x; w; ζ; ω]`
 //! (ζ: the controller's integral states, [`Controller::states`]: the speed
-//! loop's, then a heading hold's when it integrates; ω: each wheel's spin
-//! rate on a soil, none on rigid ground, [`Ground::spin_states`]).
+//! loop's, then a heading hold's when it integrates, none in a system
+//! built by [`RoverSystem::open_loop`]; ω: each wheel's spin rate on a
+//! soil, none on rigid ground, [`Ground::spin_states`]).
 
 use rover_dynamics::HeightField;
 use rover_dynamics::Model;
@@ -101,7 +102,8 @@ impl<P: Plant, H: HeightField> RoverSystem<P, H> {
     /// [`RoverSystem::set_steering`]) and the state is `y = [x; w; ω]`,
     /// without the integral states a loop would add. What an observer runs
     /// beside the rover: the rover's own computer closes the loops, and
-    /// the observer is told the commands it issued.
+    /// the observer is told the commands it issued. Its `control` stays
+    /// without loops: the state has no room for their integrals.
     pub fn open_loop(
         plant: P,
         ground: Option<Ground<H>>,
