@@ -607,7 +607,10 @@ fn a_heading_fix_across_pi_turns_the_short_way() {
         FilterConfig::default(),
         0.0,
         &y0,
-        &InitialSigma::default(),
+        &InitialSigma {
+            attitude: 0.01,
+            ..InitialSigma::default()
+        },
     )
     .unwrap();
     filter.update_heading(-3.1).unwrap();

@@ -628,7 +628,13 @@ mod tests {
             FilterConfig::default(),
             0.0,
             &y0,
-            &InitialSigma::default(),
+            // 1 cm and 10 mrad throughout: variances of 1e-4, which the
+            // tests below drive negative on purpose.
+            &InitialSigma {
+                position: 0.01,
+                attitude: 0.01,
+                ..InitialSigma::default()
+            },
         )
         .unwrap()
     }
