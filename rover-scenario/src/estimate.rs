@@ -668,7 +668,7 @@ pub fn read_tuning(path: &Path) -> Result<Tuning, String> {
     toml::from_str(&text).map_err(|e| {
         let line = e
             .span()
-            .map(|s| format!(":{}", text[..s.start].lines().count().max(1)))
+            .map(|s| format!(":{}", 1 + text[..s.start].matches('\n').count()))
             .unwrap_or_default();
         format!(
             "{}{line}: {}\n  = help: the tuning file has a [filter] table (substeps, jacobian_every, position_noise, attitude_noise, suspension_noise, velocity_noise, angular_velocity_noise, suspension_rate_noise, spin_noise, wheel_rate_sigma, accel_model_sigma) and an [initial] table (position, attitude, suspension, velocity, angular_velocity, suspension_rate, spin); docs/ESTIMATE.md explains each",

@@ -54,14 +54,29 @@ pub fn state_columns(m: usize) -> Vec<String> {
 /// Reads the truth of a rover of `m` suspension coordinates and `wheels`
 /// wheels from the run CSV at `path`.
 pub fn read_truth(path: &Path, m: usize, wheels: usize) -> Result<TruthLog, TruthError> {
+    let text = rover_files::read_text(path, rover_files::Limit::Data).map_err(|e| TruthError {
+        file: path.to_path_buf(),
+        line: None,
+        problem: format!("cannot read it: {e}"),
+        help: HELP.into(),
+    })?;
+    parse_truth(&text, path, m, wheels)
+}
+
+/// The truth in a run CSV's `text`, named `path` in messages (see
+/// [`read_truth`]).
+pub fn parse_truth(
+    text: &str,
+    path: &Path,
+    m: usize,
+    wheels: usize,
+) -> Result<TruthLog, TruthError> {
     let fail = |line: Option<usize>, problem: String| TruthError {
         file: path.to_path_buf(),
         line,
         problem,
         help: HELP.into(),
     };
-    let text = rover_files::read_text(path, rover_files::Limit::Data)
-        .map_err(|e| fail(None, format!("cannot read it: {e}")))?;
     let mut lines = text.lines().enumerate();
     let header: Vec<&str> = lines
         .next()
