@@ -38,6 +38,8 @@ impl fmt::Display for RuntimeError {
     }
 }
 
+impl core::error::Error for RuntimeError {}
+
 impl<P: Plant, H: HeightField> ProcessModel for RoverSystem<P, H> {
     type Error = RuntimeError;
 

@@ -167,3 +167,5 @@ impl<E: fmt::Display> fmt::Display for EstimateError<E> {
         }
     }
 }
+
+impl<E: fmt::Display + fmt::Debug> core::error::Error for EstimateError<E> {}
