@@ -421,6 +421,27 @@ fn the_report_gives_latencies_and_bad_settings_are_errors() {
         assert!(text.contains(part), "{text}");
     }
     assert!(!text.contains("stopped"), "{text}");
+    assert!(!text.contains("estimator"), "{text}");
+    // With the estimator: what its sensor instants cost, 50 in 0.5 s at
+    // 100 Hz (fewer when the loop dropped ticks).
+    a.estimate = true;
+    let text = rover::drive::report(&a, 0.5).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("estimator: "))
+        .unwrap_or_else(|| panic!("{text}"));
+    let instants: u64 = line["estimator: ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        (25..=51).contains(&instants) && line.contains("at 100 Hz"),
+        "{text}"
+    );
+    assert!(!text.contains("stopped"), "{text}");
+    a.estimate = false;
     assert!(
         rover::drive::report(&a, -1.0)
             .unwrap_err()
