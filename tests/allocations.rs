@@ -248,7 +248,9 @@ fn a_stepper_allocates_nothing_per_step_nor_per_command() {
 /// first tick, nothing per step. Both with RK4 at 1 kHz on flat ground and
 /// with ROS2 at 200 Hz on rough ground with the scenario's active
 /// suspension (the paper's law, then the leveling law) and the speed loop's
-/// torque shared by the measured loads.
+/// torque shared by the measured loads; and with the estimator
+/// (`--estimate`: the default sensors read at 100 Hz, the filter's
+/// prediction and update at each sensor instant) on rough ground.
 #[cfg(feature = "drive")]
 #[test]
 fn the_drive_loop_allocates_nothing_per_step() {
@@ -262,10 +264,11 @@ fn the_drive_loop_allocates_nothing_per_step() {
         rover::drive::DEFAULT_SCENARIO
     );
     let leveling = rough.replace("kp_pitch = 0.6\nkp_roll = 0.6\n", "law = \"leveling\"\n");
-    for (text, rate) in [
-        ("duration = 1.0\n", 1000.0),
-        (rough.as_str(), 200.0),
-        (leveling.as_str(), 200.0),
+    for (text, rate, estimate) in [
+        ("duration = 1.0\n", 1000.0, false),
+        (rough.as_str(), 200.0, false),
+        (leveling.as_str(), 200.0, false),
+        (rover::drive::DEFAULT_SCENARIO, 1000.0, true),
     ] {
         let scenario = rover_scenario::scenario::Scenario::parse(text, path).unwrap();
         let config = live::LoopConfig::new(rate, None, &scenario);
@@ -275,7 +278,14 @@ fn the_drive_loop_allocates_nothing_per_step() {
             let plant = rover_models::Swing4::new();
             let dir = std::path::Path::new(".");
             let mut sim = live::Sim::new(plant, &spec.model, &scenario, dir, &config).unwrap();
-            let shared = live::shared(columns, spec.model.wheels.len(), rate);
+            if estimate {
+                let sensors = rover::drive::ghost::default_sensors();
+                sim = sim
+                    .with_estimate(&spec.model, &scenario, dir, &sensors)
+                    .unwrap();
+            }
+            let shared = sim.shared(rate);
+            assert_eq!(shared.state.lock().unwrap().values.len(), columns);
             shared.publish_every.store(1, Ordering::Relaxed);
             let go = protocol::Request {
                 speed: Some(0.1),
@@ -286,6 +296,14 @@ fn the_drive_loop_allocates_nothing_per_step() {
             let counts = allocation_counter::measure(|| {
                 steps = live::run(&mut sim, &shared, Some(seconds)).compute.count();
             });
+            assert_eq!(sim.estimate_error(), None);
+            if estimate {
+                let instants = sim.ghost().unwrap().cost().count();
+                assert!(
+                    instants as f64 >= 0.09 * steps as f64,
+                    "{instants} sensor instants in {steps} steps"
+                );
+            }
             (counts.count_total, steps)
         };
         let (short, short_steps) = count(0.1);

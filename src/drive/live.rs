@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 
 use rover_dynamics::Model;
 use rover_dynamics::plant::Plant;
+use rover_estimate::SensorConfig;
 use rover_integrate::{
     AnyIntegrator, FixedStepConfig, Integrator, IntegratorConfig, JacobianSource, OdeSystem,
     Ros2Config,
@@ -26,6 +27,7 @@ use rover_scenario::scenario::Scenario;
 use rover_scenario::simulate::SetupError;
 use rover_terrain::ruts::RutMap;
 
+use super::ghost::Ghost;
 use super::rut_feed::{RUT_PERIOD, RutFeed};
 
 /// The fixed-step method of the loop.
@@ -206,6 +208,12 @@ pub struct Snapshot {
     pub watchdog_tripped: bool,
     /// Why the simulation stopped (it pauses; a reset restarts it).
     pub error: Option<String>,
+    /// With `--estimate`, the estimate's values ([`super::ghost::columns`]);
+    /// empty otherwise.
+    pub estimate: Vec<f64>,
+    /// Why the estimation stopped (the simulation goes on; a reset
+    /// restarts it).
+    pub estimate_error: Option<String>,
 }
 
 /// What the loop and the web side share.
@@ -447,12 +455,18 @@ pub struct Timing {
     /// With [`Pacing::Spin`], how long before each tick the sleep ended at
     /// the end of the run (the spin's share of each period) \[s\].
     pub spin_margin_s: Option<f64>,
+    /// With `--estimate`, the computing time of each sensor instant (the
+    /// readings, the filter's prediction and update; part of the step
+    /// that reaches it), and the sensors' rate \[Hz\].
+    pub estimate: Option<(Histogram, f64)>,
+    /// Why the estimation stopped, if it did.
+    pub estimate_error: Option<String>,
 }
 
 /// The simulation the loop advances: the system, its integrator, the
 /// state, and the speed controller the commands drive. Every buffer is
 /// sized here: [`Sim::step`] allocates nothing.
-pub struct Sim<P> {
+pub struct Sim<P: Plant> {
     sys: RoverSystem<P, Terrain>,
     integ: AnyIntegrator,
     /// The run's events (the active suspension's samples), one step being
@@ -482,6 +496,8 @@ pub struct Sim<P> {
     /// neutrals back at rest).
     control0: Controller,
     pacing: Pacing,
+    /// With `--estimate`: the sensors and the filter.
+    ghost: Option<Ghost<P>>,
 }
 
 impl<P: Plant> Sim<P> {
@@ -553,6 +569,7 @@ impl<P: Plant> Sim<P> {
             weights,
             control0: control,
             pacing: config.pacing,
+            ghost: None,
         };
         sim.driver
             .start(&mut sim.sys, &mut sim.integ, sim.t, &sim.y);
@@ -612,8 +629,25 @@ impl<P: Plant> Sim<P> {
         self.integral = 0.0;
         self.integ.restart();
         self.driver.rewind();
-        self.driver
-            .start(&mut self.sys, &mut self.integ, self.t, &self.y);
+        match &mut self.ghost {
+            Some(ghost) => {
+                ghost.restart();
+                // The ghost's errors are its own: the callback never fails.
+                let _ = self.driver.start_with(
+                    &mut self.sys,
+                    &mut self.integ,
+                    self.t,
+                    &self.y,
+                    &mut |t, y, sys| {
+                        ghost.observe(t, y, sys);
+                        Ok(())
+                    },
+                );
+            }
+            None => self
+                .driver
+                .start(&mut self.sys, &mut self.integ, self.t, &self.y),
+        }
         self.command.stop();
         self.command.steer = 0.0;
         self.command.delta_tau = 0.0;
@@ -720,8 +754,24 @@ impl<P: Plant> Sim<P> {
         };
         self.sys.set_torques(&self.torques).map_err(command)?;
         self.sys.set_steering(&self.steering).map_err(command)?;
-        self.driver
-            .advance(&mut self.sys, &mut self.integ, &mut self.t, &mut self.y)
+        match &mut self.ghost {
+            Some(ghost) => {
+                ghost.hold(self.t, &self.torques, &self.steering);
+                self.driver.advance_with(
+                    &mut self.sys,
+                    &mut self.integ,
+                    &mut self.t,
+                    &mut self.y,
+                    &mut |t, y, sys| {
+                        ghost.observe(t, y, sys);
+                        Ok(())
+                    },
+                )
+            }
+            None => self
+                .driver
+                .advance(&mut self.sys, &mut self.integ, &mut self.t, &mut self.y),
+        }
     }
 
     /// The row at the current state into `out`, the CSV's columns (one
@@ -732,6 +782,75 @@ impl<P: Plant> Sim<P> {
         let _ = self.sys.evaluate_at(self.t, &self.y, &mut self.scratch);
         let inputs = RowInputs::of_system(&self.sys, self.t, &self.y, self.speed_setpoint());
         self.columns.fill(&inputs, out);
+    }
+
+    /// The estimator, with `--estimate`.
+    pub fn ghost(&self) -> Option<&Ghost<P>> {
+        self.ghost.as_ref()
+    }
+
+    /// The number of the estimate's values ([`super::ghost::columns`]): 0
+    /// without `--estimate`.
+    pub fn estimate_len(&self) -> usize {
+        match &self.ghost {
+            Some(_) => super::ghost::columns(self.info.m, self.info.rest.len()).len(),
+            None => 0,
+        }
+    }
+
+    /// The estimate's values into `out` ([`Sim::estimate_len`] long): NaN
+    /// once the estimation has stopped; nothing without `--estimate`.
+    pub fn estimate_row(&mut self, out: &mut [f64]) {
+        if let Some(g) = &mut self.ghost {
+            g.fill(out);
+        }
+    }
+
+    /// Why the estimation stopped, until a reset.
+    pub fn estimate_error(&self) -> Option<&str> {
+        self.ghost.as_ref().and_then(Ghost::error)
+    }
+
+    /// The state shared with the web side, sized for this simulation (its
+    /// row and, with `--estimate`, the estimate), publishing at `rate_hz`
+    /// / 30 steps until a client asks for more.
+    pub fn shared(&self, rate_hz: f64) -> Arc<Shared> {
+        let shared = shared(self.columns.len(), self.info.rest.len(), rate_hz);
+        if let Ok(mut s) = shared.state.lock() {
+            s.estimate = vec![0.0; self.estimate_len()];
+        }
+        shared
+    }
+}
+
+impl<P: Plant + Clone + Send + 'static> Sim<P> {
+    /// The simulation with the rover's own observer (`--estimate`): the
+    /// readings of `sensors` at their instants (the driver lands on them)
+    /// feed the model-based filter, started from the initial state.
+    pub fn with_estimate(
+        mut self,
+        model: &Model,
+        scenario: &Scenario,
+        base: &std::path::Path,
+        sensors: &SensorConfig,
+    ) -> Result<Self, SetupError> {
+        let ghost = Ghost::new(
+            self.sys.plant.clone(),
+            model,
+            scenario,
+            base,
+            sensors,
+            self.control0.neutrals(),
+            self.y.len(),
+        )?;
+        self.ghost = Some(ghost);
+        self.driver = self
+            .driver
+            .clone()
+            .with_sensor_period(Some(1.0 / sensors.rate));
+        // From t = 0 again, the first readings taken there.
+        self.reset();
+        Ok(self)
     }
 }
 
@@ -830,6 +949,7 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
     let period = Duration::from_secs_f64(sim.h());
     let columns = shared.state.lock().map(|s| s.values.len()).unwrap_or(0);
     let mut row = vec![0.0; columns];
+    let mut estimate = vec![0.0; sim.estimate_len()];
     let mut command = Command::zero(sim.info.rest.len());
     let mut seen_seq = u64::MAX;
     let mut seen_resets = 0u64;
@@ -895,6 +1015,16 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
             published_at = tick;
             sim.row(&mut row);
             s.values.copy_from_slice(&row);
+            if !estimate.is_empty() && s.estimate.len() == estimate.len() {
+                sim.estimate_row(&mut estimate);
+                s.estimate.copy_from_slice(&estimate);
+            }
+            match sim.estimate_error() {
+                // Once per failure: a message for the clients.
+                Some(e) if s.estimate_error.is_none() => s.estimate_error = Some(e.to_string()),
+                Some(_) => {}
+                None => s.estimate_error = None,
+            }
             s.seq += 1;
             s.wall_s = (woke - start).as_secs_f64();
             s.real_time_factor = rtf;
@@ -946,6 +1076,10 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
     timing.wall_s = start.elapsed().as_secs_f64();
     timing.error = error;
     timing.spin_margin_s = (waiter.pacing == Pacing::Spin).then_some(waiter.margin);
+    if let Some(g) = sim.ghost() {
+        timing.estimate = Some((g.cost().clone(), g.sensors().rate));
+        timing.estimate_error = g.error().map(str::to_string);
+    }
     timing
 }
 
@@ -972,10 +1106,91 @@ pub fn shared(columns: usize, wheels: usize, rate_hz: f64) -> Arc<Shared> {
             paused: false,
             watchdog_tripped: false,
             error: None,
+            estimate: Vec::new(),
+            estimate_error: None,
         }),
         // 30 Hz until a client asks for more.
         publish_every: AtomicU64::new(((rate_hz / 30.0).floor() as u64).max(1)),
         stop: AtomicBool::new(false),
         ruts: Mutex::new(RutFeed::default()),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drive::{ghost, protocol};
+
+    /// A failure of the estimation stops the estimate, not the loop: a
+    /// reading out of time order (the sensors refuse it) ends the
+    /// estimation with a message naming the time; the simulation steps on,
+    /// the state carries `null` estimates, the message once in
+    /// `est_error` and the binary frame's flag; a reset restarts the
+    /// filter from the initial state.
+    #[test]
+    fn an_estimator_failure_stops_the_estimate_not_the_simulation() {
+        let spec =
+            rover_spec::load_str(rover_models::builtin("swing4").unwrap(), "swing4").unwrap();
+        let scenario = Scenario::parse("duration = 1.0\n", std::path::Path::new("s.toml")).unwrap();
+        let dir = std::path::Path::new(".");
+        let model = &spec.model;
+        let config = LoopConfig::new(1000.0, None, &scenario);
+        let mut sim = Sim::new(rover_models::Swing4::new(), model, &scenario, dir, &config)
+            .unwrap()
+            .with_estimate(model, &scenario, dir, &ghost::default_sensors())
+            .unwrap();
+        let mut command = Command::zero(4);
+        command.speed = 0.1;
+        sim.set_command(&command);
+        for _ in 0..100 {
+            sim.step().unwrap();
+        }
+        assert_eq!(sim.estimate_error(), None);
+        let ghost = sim.ghost.as_mut().unwrap();
+        ghost.observe(sim.t - 0.05, &sim.y, &mut sim.sys);
+        let why = sim.estimate_error().unwrap().to_string();
+        assert!(
+            why.starts_with("the estimator stopped at t = 0.050 s: a sensor sample at t = 0.05")
+                && why.contains("does not follow"),
+            "{why}"
+        );
+        for _ in 0..100 {
+            sim.step().unwrap();
+        }
+        assert!((sim.t() - 0.2).abs() < 1e-9);
+        assert_eq!(sim.estimate_error(), Some(why.as_str()));
+        let mut est = vec![0.0; sim.estimate_len()];
+        sim.estimate_row(&mut est);
+        assert!(est.iter().all(|v| v.is_nan()), "{est:?}");
+        // Published: null values, the message, the flag.
+        let shared = sim.shared(1000.0);
+        shared.publish_every.store(1, Ordering::Relaxed);
+        let timing = run(&mut sim, &shared, Some(0.05));
+        assert!(timing.error.is_none() && sim.t() > 0.2);
+        assert_eq!(timing.estimate_error.as_deref(), Some(why.as_str()));
+        let names = ghost::columns(model.m(), 4);
+        let columns = sim.columns().names().to_vec();
+        let s = shared.state.lock().unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&protocol::state_json(&columns, &names, &s)).unwrap();
+        assert!(
+            json["est_X"].is_null() && json["est_W4Z"].is_null(),
+            "{json}"
+        );
+        assert_eq!(json["est_error"], why.as_str());
+        assert!(json["error"].is_null());
+        let frame = protocol::state_binary(&s);
+        let flags = f64::from_le_bytes(frame[56..64].try_into().unwrap());
+        assert_eq!(flags as u32, protocol::FLAG_ESTIMATE_ERROR);
+        drop(s);
+        // A reset: the filter anew at t = 0, from the initial state.
+        sim.reset();
+        assert_eq!(sim.estimate_error(), None);
+        sim.estimate_row(&mut est);
+        assert!(est.iter().all(|v| v.is_finite()), "{est:?}");
+        assert_eq!(est[names.len() - 1], 0.0);
+        for i in 0..3 {
+            assert!((est[i] - sim.y()[i]).abs() < 1e-3, "{est:?}");
+        }
+    }
 }

@@ -8,6 +8,7 @@
 //! crates never depend on it.
 
 pub mod access;
+pub mod ghost;
 pub mod live;
 pub mod protocol;
 pub mod rut_feed;
@@ -94,6 +95,11 @@ pub struct DriveArgs {
     /// (default), or sleep only (no CPU spent waiting, more jitter).
     #[arg(long, value_enum, default_value_t = Pacing::Spin)]
     pub pacing: Pacing,
+    /// Run the state estimator on the rover's sensors (the scenario's
+    /// `[sensors]`, or a default MEMS set) and send its estimate: the page
+    /// draws it as a ghost beside the rover (docs/DRIVE.md).
+    #[arg(long)]
+    pub estimate: bool,
 }
 
 /// The loop's settings from the command line and the scenario.
@@ -290,13 +296,23 @@ pub fn sketch_json(sketch: &Sketch) -> serde_json::Value {
     json!({"joints": joints, "links": links})
 }
 
+/// The sensors `rover drive --estimate` reads: the scenario's
+/// `[sensors]`, else [`ghost::default_sensors`]; and which.
+fn estimate_sensors(scenario: &Scenario) -> (rover_estimate::SensorConfig, &'static str) {
+    match &scenario.sensors {
+        Some(s) => (s.clone(), "scenario"),
+        None => (ghost::default_sensors(), "default"),
+    }
+}
+
 /// The rover's geometry and the loop's settings, for the page and rigs.
 fn meta(
     mode: &str,
     spec: Option<&rover_spec::Spec>,
     columns: &[String],
     info: Option<&RoverInfo>,
-    loop_config: Option<&LoopConfig>,
+    loop_config: Option<(&LoopConfig, &[String])>,
+    estimate: Option<serde_json::Value>,
 ) -> String {
     let mut m = json!({
         "mode": mode,
@@ -354,8 +370,11 @@ fn meta(
             "height": r_max,
         });
     }
-    if let Some(c) = loop_config {
-        m["binary_layout"] = json!(protocol::binary_layout(columns));
+    if let Some(e) = estimate {
+        m["estimate"] = e;
+    }
+    if let Some((c, estimate)) = loop_config {
+        m["binary_layout"] = json!(protocol::binary_layout(columns, estimate));
         m["rate_hz"] = json!(c.rate_hz);
         m["step_s"] = json!(1.0 / c.rate_hz);
         m["method"] = json!(c.method.name());
@@ -577,7 +596,7 @@ struct Who {
     token: String,
 }
 
-fn launch<P: Plant + Send + 'static>(
+fn launch<P: Plant + Clone + Send + 'static>(
     plant: P,
     prepared: &Prepared,
     args: &DriveArgs,
@@ -586,21 +605,42 @@ fn launch<P: Plant + Send + 'static>(
     let (spec, scenario, base) = (&prepared.spec, &prepared.scenario, &prepared.base);
     let model = &spec.model;
     let config = loop_config(args, scenario);
-    let mut sim = sim(plant, prepared, &config)?;
+    let mut sim = sim(plant, prepared, &config, args.estimate)?;
     let columns = Arc::new(sim.columns().names().to_vec());
-    let shared = live::shared(columns.len(), model.wheels.len(), args.rate);
+    let shared = sim.shared(args.rate);
     let info = sim.info().clone();
+    let estimate = Arc::new(if args.estimate {
+        ghost::columns(model.m(), model.wheels.len())
+    } else {
+        Vec::new()
+    });
+    let estimate_meta = sim.ghost().map(|g| {
+        let (_, from) = estimate_sensors(scenario);
+        json!({
+            "sensors": from,
+            "rate_hz": g.sensors().rate,
+            "columns": estimate.as_slice(),
+        })
+    });
     let terrain = scenario.terrain.build(base).map_err(other)?;
     let start = [sim.y()[0], sim.y()[1]];
     let listener = bind(args.port)?;
     let addr = listener.local_addr().map_err(other)?;
     let port = addr.port();
     let app = App::new(
-        meta("drive", Some(spec), &columns, Some(&info), Some(&config)),
+        meta(
+            "drive",
+            Some(spec),
+            &columns,
+            Some(&info),
+            Some((&config, &estimate)),
+            estimate_meta,
+        ),
         terrain_json(&terrain, start),
         Content::Drive {
             shared: shared.clone(),
             columns,
+            estimate,
             info,
             rate_hz: args.rate,
         },
@@ -693,6 +733,26 @@ pub fn timing_text(t: &Timing, rate: f64) -> String {
             Some(e) => format!("\nthe simulation stopped: {e}"),
             None => String::new(),
         },
+    ) + &estimate_text(t)
+}
+
+/// With `--estimate`: what the sensor instants cost, and why the
+/// estimation stopped if it did.
+fn estimate_text(t: &Timing) -> String {
+    let Some((cost, rate)) = &t.estimate else {
+        return String::new();
+    };
+    let us = |s: f64| s * 1e6;
+    format!(
+        "\nestimator: {} sensor instants at {rate} Hz (readings, prediction, update): median {:.0} µs, 99.9th percentile {:.0} µs, max {:.0} µs{}",
+        cost.count(),
+        us(cost.quantile(0.5)),
+        us(cost.quantile(0.999)),
+        us(cost.max()),
+        match &t.estimate_error {
+            Some(e) => format!("\n{e}"),
+            None => String::new(),
+        }
     )
 }
 
@@ -721,19 +781,15 @@ pub fn report(args: &DriveArgs, seconds: f64) -> Result<String, CliError> {
 }
 
 /// The loop of `--report` for `seconds` of wall-clock time.
-fn measure<P: Plant>(
+fn measure<P: Plant + Clone + Send + 'static>(
     plant: P,
     prepared: &Prepared,
     config: &LoopConfig,
     args: &DriveArgs,
     seconds: f64,
 ) -> Result<Timing, CliError> {
-    let mut sim = sim(plant, prepared, config)?;
-    let shared = live::shared(
-        sim.columns().len(),
-        prepared.spec.model.wheels.len(),
-        args.rate,
-    );
+    let mut sim = sim(plant, prepared, config, args.estimate)?;
+    let shared = sim.shared(args.rate);
     if let Ok(mut inbox) = shared.inbox.lock() {
         let r = protocol::Request {
             speed: Some(args.report_speed),
@@ -745,10 +801,22 @@ fn measure<P: Plant>(
 }
 
 /// The live simulation of a prepared run with `plant`, the one its
-/// fidelity level names.
-fn sim<P: Plant>(plant: P, prepared: &Prepared, config: &LoopConfig) -> Result<Sim<P>, CliError> {
+/// fidelity level names; with `estimate`, with the rover's own observer.
+fn sim<P: Plant + Clone + Send + 'static>(
+    plant: P,
+    prepared: &Prepared,
+    config: &LoopConfig,
+    estimate: bool,
+) -> Result<Sim<P>, CliError> {
     let (spec, scenario, base) = (&prepared.spec, &prepared.scenario, &prepared.base);
-    Sim::new(plant, &spec.model, scenario, base, config).map_err(|e| prepared.locate(e).into())
+    let locate = |e| -> CliError { prepared.locate(e).into() };
+    let sim = Sim::new(plant, &spec.model, scenario, base, config).map_err(locate)?;
+    if !estimate {
+        return Ok(sim);
+    }
+    let (sensors, _) = estimate_sensors(scenario);
+    sim.with_estimate(&spec.model, scenario, base, &sensors)
+        .map_err(locate)
 }
 
 /// `rover view`: serve the page animating `<out>/run.csv` until Ctrl-C.
@@ -836,7 +904,7 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
     let listener = bind(args.port)?;
     let addr = listener.local_addr().map_err(other)?;
     let app = App::new(
-        meta("view", spec.as_ref(), &columns, info.as_ref(), None),
+        meta("view", spec.as_ref(), &columns, info.as_ref(), None, None),
         terrain,
         Content::View {
             csv: Arc::new(text.into_bytes()),

@@ -56,14 +56,19 @@ pub const FLAG_WATCHDOG: u32 = 2;
 /// See [`FLAG_PAUSED`]: the simulation has stopped on an error (its text
 /// comes in the JSON state; subscribe to JSON to read it).
 pub const FLAG_ERROR: u32 = 4;
+/// See [`FLAG_PAUSED`]: the estimation has stopped on an error (`rover
+/// drive --estimate`; its text is the JSON state's `est_error`).
+pub const FLAG_ESTIMATE_ERROR: u32 = 8;
 
-/// The name of each f64 of a binary state frame, in order: [`BINARY_HEAD`]
-/// then the CSV's columns.
-pub fn binary_layout(columns: &[String]) -> Vec<String> {
+/// The name of each f64 of a binary state frame, in order: [`BINARY_HEAD`],
+/// the CSV's columns, then the estimate's values (`rover drive
+/// --estimate`; none otherwise).
+pub fn binary_layout(columns: &[String], estimate: &[String]) -> Vec<String> {
     BINARY_HEAD
         .iter()
         .map(|s| s.to_string())
         .chain(columns.iter().cloned())
+        .chain(estimate.iter().cloned())
         .collect()
 }
 
@@ -412,13 +417,25 @@ fn string(out: &mut String, s: &str) {
 }
 
 /// The state message: `"type": "state"`, every CSV column under its CSV
-/// name, then the loop's own figures.
-pub fn state_json(columns: &[String], s: &Snapshot) -> String {
-    let mut out = String::with_capacity(32 * columns.len() + 256);
+/// name, with `--estimate` the estimate's values under theirs (`estimate`,
+/// [`super::ghost::columns`]) and `est_error`, then the loop's own figures.
+pub fn state_json(columns: &[String], estimate: &[String], s: &Snapshot) -> String {
+    let mut out = String::with_capacity(32 * (columns.len() + estimate.len()) + 256);
     out.push_str("{\"type\":\"state\"");
     for (name, v) in columns.iter().zip(&s.values) {
         let _ = write!(out, ",\"{name}\":");
         num(&mut out, *v);
+    }
+    if !estimate.is_empty() {
+        for (name, v) in estimate.iter().zip(&s.estimate) {
+            let _ = write!(out, ",\"{name}\":");
+            num(&mut out, *v);
+        }
+        out.push_str(",\"est_error\":");
+        match &s.estimate_error {
+            Some(e) => string(&mut out, e),
+            None => out.push_str("null"),
+        }
     }
     out.push_str(",\"wall\":");
     num(&mut out, s.wall_s);
@@ -444,8 +461,8 @@ pub fn state_json(columns: &[String], s: &Snapshot) -> String {
 }
 
 /// The binary state frame: the f64 of [`binary_layout`], little-endian,
-/// 8 · (8 + columns) bytes. Counts are exact as f64 up to 2^53; a
-/// non-finite value is NaN.
+/// 8 · (8 + columns + estimate) bytes. Counts are exact as f64 up to
+/// 2^53; a non-finite value is NaN.
 pub fn state_binary(s: &Snapshot) -> Vec<u8> {
     let mut flags = 0;
     if s.paused {
@@ -457,6 +474,9 @@ pub fn state_binary(s: &Snapshot) -> Vec<u8> {
     if s.error.is_some() {
         flags |= FLAG_ERROR;
     }
+    if s.estimate_error.is_some() {
+        flags |= FLAG_ESTIMATE_ERROR;
+    }
     let head = [
         s.seq as f64,
         s.wall_s,
@@ -467,8 +487,8 @@ pub fn state_binary(s: &Snapshot) -> Vec<u8> {
         s.step_s * 1e6,
         f64::from(flags),
     ];
-    let mut out = Vec::with_capacity(8 * (head.len() + s.values.len()));
-    for v in head.iter().chain(&s.values) {
+    let mut out = Vec::with_capacity(8 * (head.len() + s.values.len() + s.estimate.len()));
+    for v in head.iter().chain(&s.values).chain(&s.estimate) {
         let v = if v.is_finite() { *v } else { f64::NAN };
         out.extend_from_slice(&v.to_le_bytes());
     }

@@ -76,6 +76,9 @@ pub enum Content {
         shared: Arc<Shared>,
         /// The CSV's column names.
         columns: Arc<Vec<String>>,
+        /// With `--estimate`, the names of the estimate's values (empty
+        /// otherwise).
+        estimate: Arc<Vec<String>>,
         /// The rover, to check commands.
         info: RoverInfo,
         /// The loop's rate \[Hz\].
@@ -588,6 +591,7 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
     let Content::Drive {
         shared,
         columns,
+        estimate,
         info,
         rate_hz,
     } = &app.content
@@ -610,6 +614,9 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
     // next sent what changed since.
     let mut ruts_sent = 0u64;
     let mut next_ruts = Instant::now();
+    // Whether this client was told the estimation stopped (once per
+    // failure; a reset that restarts it clears it).
+    let mut told_estimate_error = false;
     loop {
         if shared.stop.load(Ordering::Relaxed) || app.stopping() {
             let _ = ws.close(None);
@@ -675,20 +682,39 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
         }
         let now = Instant::now();
         if now >= next_send {
-            let message = match shared.state.lock() {
+            let (message, stopped) = match shared.state.lock() {
                 Ok(s) if s.seq != sent_seq => {
                     sent_seq = s.seq;
-                    Some(match format {
-                        protocol::Format::Json => Message::text(protocol::state_json(columns, &s)),
+                    let message = match format {
+                        protocol::Format::Json => {
+                            Message::text(protocol::state_json(columns, estimate, &s))
+                        }
                         protocol::Format::Binary => Message::binary(protocol::state_binary(&s)),
-                    })
+                    };
+                    // The text only when it is to be sent.
+                    let stopped = s
+                        .estimate_error
+                        .as_ref()
+                        .map(|e| (!told_estimate_error).then(|| e.clone()));
+                    (Some(message), stopped)
                 }
-                _ => None,
+                _ => (None, None),
             };
-            if let Some(message) = message
-                && ws.send(message).is_err()
-            {
-                break;
+            if let Some(message) = message {
+                if ws.send(message).is_err() {
+                    break;
+                }
+                match stopped {
+                    Some(Some(why)) => {
+                        told_estimate_error = true;
+                        let m = protocol::error_json(&format!("{why}; a reset restarts it"));
+                        if ws.send(Message::text(m)).is_err() {
+                            break;
+                        }
+                    }
+                    Some(None) => {}
+                    None => told_estimate_error = false,
+                }
             }
             next_send += period;
             if next_send < now {

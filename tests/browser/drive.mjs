@@ -4,6 +4,9 @@
 // suspension members are drawn on the rover, and the load arrows are at
 // the rover's weight share per wheel. Then a drive on soft soil: the page
 // receives `ruts` messages with a nonzero depth and draws their tiles.
+// Then `--estimate`: the page draws the ghost, translucent, at the state's
+// est_ pose, its wheels at the est_ wheel centres, and the HUD gives the
+// estimate's 1σ.
 //
 // node drive.mjs <rover binary> <chromium binary>
 import { mkdtempSync, writeFileSync, rmSync } from 'node:fs';
@@ -95,4 +98,57 @@ try {
   await browser2.close();
   soft.server.kill();
   rmSync(dir, { recursive: true, force: true });
+}
+
+// --estimate: the ghost at the estimated pose.
+const est = await startRover(rover, ['drive', 'swing4', '--estimate', '--port', '0', '--rate', '500']);
+const browser3 = await launchBrowser(browserPath);
+try {
+  const page = await browser3.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(`http://127.0.0.1:${est.port}/`);
+  await page.waitForFunction(() => window.roverPage && window.roverPage.states > 5, null, { timeout: 60000 });
+  await page.locator('canvas').click();
+  for (let i = 0; i < 5; i++) await page.keyboard.press('w');
+  await page.waitForFunction(
+    () => window.roverPage.shown && window.roverPage.shown.t > 2 && window.roverPage.shown.vx > 0.05,
+    null, { timeout: 90000 });
+  // The ghost as drawn for the state last shown (read in one go).
+  const { g, s } = await page.evaluate(() => ({ g: window.roverPage.ghost(), s: window.roverPage.shown }));
+  if (!g) fail('no ghost with --estimate');
+  else {
+    if (!g.visible) fail('the ghost is hidden');
+    if (!(g.opacity > 0 && g.opacity < 1)) fail(`the ghost is not translucent: opacity ${g.opacity}`);
+    const d = Math.hypot(g.position[0] - s.est_X, g.position[1] - s.est_Y, g.position[2] - s.est_Z);
+    if (!(d < 1e-9)) fail(`the ghost is ${d} m from the state's est_ position`);
+    // Its attitude: R = Rz(ψ)·Rx(φ)·Ry(θ) of the est_ angles, as a quaternion (x, y, z, w).
+    const h = (a) => [Math.cos(a / 2), Math.sin(a / 2)];
+    const [cz, sz] = h(s.est_psi), [cx, sx] = h(s.est_phi), [cy, sy] = h(s.est_theta);
+    const mul = (a, b) => [
+      a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
+      a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+      a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
+      a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2],
+    ];
+    const want = mul(mul([0, 0, sz, cz], [sx, 0, 0, cx]), [0, sy, 0, cy]);
+    const dot = Math.abs(want.reduce((acc, v, i) => acc + v * g.quaternion[i], 0));
+    if (!(dot > 1 - 1e-9)) fail(`the ghost's attitude is not the est_ one: ${g.quaternion} against ${want}`);
+    g.wheels.forEach((p, j) => {
+      const k = j + 1, e = Math.hypot(p[0] - s[`est_W${k}X`], p[1] - s[`est_W${k}Y`], p[2] - s[`est_W${k}Z`]);
+      if (!(e < 1e-9)) fail(`ghost wheel ${k} is ${e} m off est_W${k}`);
+    });
+    // Beside the true rover: the estimate follows it within centimetres.
+    const off = Math.hypot(s.est_X - s.X, s.est_Y - s.Y);
+    if (!(off < 0.02)) fail(`the ghost is ${off} m from the rover`);
+    const hud = await page.locator('#hud').innerText();
+    if (!/estimate 1σ/.test(hud)) fail(`HUD without the estimate's 1σ: ${hud}`);
+    console.log(`ok: the ghost at the estimate, ${(100 * off).toFixed(2)} cm from the rover at t = ${s.t.toFixed(2)} s`);
+  }
+  if (errors.length) fail(`page errors: ${errors.join('; ')}`);
+} catch (e) {
+  fail(e.message);
+} finally {
+  await browser3.close();
+  est.server.kill();
 }

@@ -2,7 +2,9 @@
 // `rover view` (a finished run's run.csv). One scene for both: the terrain
 // mesh, the rover's body, its suspension members (from the rover's sketch
 // in /meta.json, at the state's coordinates y1…ym), the wheels, the
-// contact forces as arrows and the path so far. Z is up, as in the
+// contact forces as arrows and the path so far; with `rover drive
+// --estimate`, the estimated rover as a translucent ghost (the state's
+// est_ values). Z is up, as in the
 // simulation; the attitude is R = Rz(psi)·Rx(phi)·Ry(theta) (MODEL.md).
 import * as THREE from '/three.min.js';
 
@@ -199,6 +201,39 @@ for (let j = 0; j < wheels; j++) {
   arrows.push(arrow);
 }
 
+// ---- the ghost: the rover as its own estimator sees it (`rover drive
+// --estimate`), body and wheels at the state's est_ pose, translucent ----
+const GHOST_OPACITY = 0.35;
+const ghostMat = new THREE.MeshLambertMaterial({
+  color: 0x4fc3ff, transparent: true, opacity: GHOST_OPACITY, depthWrite: false,
+});
+let ghost = null;
+if (meta.estimate) {
+  const g = new THREE.Group();
+  g.add(new THREE.Mesh(new THREE.BoxGeometry(bodyDims.length, bodyDims.width, bodyDims.height), ghostMat));
+  const gNose = new THREE.Mesh(new THREE.ConeGeometry(bodyDims.height * 0.4, bodyDims.height, 12), ghostMat);
+  gNose.rotation.z = -Math.PI / 2;
+  gNose.position.set(bodyDims.length / 2 + bodyDims.height * 0.5, 0, 0);
+  g.add(gNose);
+  g.visible = false;
+  scene.add(g);
+  const gWheels = radius.map(r => {
+    const w = new THREE.Mesh(new THREE.CylinderGeometry(r, r, 0.5 * r, 24), ghostMat);
+    w.visible = false;
+    scene.add(w);
+    return w;
+  });
+  ghost = { body: g, wheels: gWheels };
+}
+// Where the ghost is drawn (null without --estimate).
+page.ghost = () => ghost && {
+  visible: ghost.body.visible,
+  opacity: ghostMat.opacity,
+  position: ghost.body.position.toArray(),
+  quaternion: ghost.body.quaternion.toArray(),
+  wheels: ghost.wheels.map(w => w.position.toArray()),
+};
+
 const PATH_MAX = 50000;
 const pathGeo = new THREE.BufferGeometry();
 pathGeo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(PATH_MAX * 3), 3));
@@ -310,7 +345,29 @@ function show(s) {
     }
   }
   showMembers(s);
+  showGhost(s);
   pathPush(s.X, s.Y, groundBelow(s));
+}
+
+// The ghost at the estimate's pose; hidden while the state has no
+// estimate (the estimator stopped: its values are null).
+const qg = new THREE.Quaternion();
+function showGhost(s) {
+  if (!ghost) return;
+  const on = Number.isFinite(s.est_X);
+  ghost.body.visible = on;
+  for (const w of ghost.wheels) w.visible = on;
+  if (!on) return;
+  euler.set(s.est_phi, s.est_theta, s.est_psi, 'ZXY');
+  qg.setFromEuler(euler);
+  ghost.body.position.set(s.est_X, s.est_Y, s.est_Z);
+  ghost.body.quaternion.copy(qg);
+  ghost.wheels.forEach((w, j) => {
+    const k = j + 1;
+    w.position.set(s[`est_W${k}X`], s[`est_W${k}Y`], s[`est_W${k}Z`]);
+    qs.setFromAxisAngle(zAxis, s[`delta${k}`] || 0);
+    w.quaternion.copy(qg).multiply(qs);
+  });
 }
 
 const yAxis = new THREE.Vector3(0, 1, 0), dir = new THREE.Vector3();
@@ -435,6 +492,13 @@ function hudHtml(s, extra) {
   return `<b>${meta.rover}</b> ${extra.title}<table>${rows}${extra.rows}</table>${extra.tail}`;
 }
 let lastShown = null;
+// The estimate's own 1σ (its error against the truth is what the rover
+// cannot know): σ_X, σ_Y in cm, σ_ψ in degrees.
+function estimateRow(s) {
+  if (!meta.estimate || !Number.isFinite(s.est_sigma_X)) return '';
+  const cm = v => (100 * v).toFixed(1);
+  return `<tr><td><span style="color:#4fc3ff">■</span> estimate 1σ</td><td>X ${cm(s.est_sigma_X)} cm, Y ${cm(s.est_sigma_Y)} cm, ψ ${(s.est_sigma_psi * 180 / Math.PI).toFixed(2)}°</td></tr>`;
+}
 
 // ---- live: the WebSocket ----
 function live() {
@@ -519,8 +583,9 @@ function live() {
       rows: `<tr><td>real-time factor</td><td>${s.rtf.toFixed(3)}</td></tr>
         <tr><td>overruns</td><td class="${warn}">${s.overruns} (${s.dropped_ticks} ticks dropped)</td></tr>
         <tr><td>step</td><td>${(s.step_us ?? 0).toFixed(0)} µs</td></tr>
-        <tr><td>command</td><td>${cmd.speed.toFixed(3)} m/s, turn ${cmd.turn}</td></tr>`,
+        <tr><td>command</td><td>${cmd.speed.toFixed(3)} m/s, turn ${cmd.turn}</td></tr>${estimateRow(s)}`,
       tail: (s.error ? `<div class="err">${s.error} — press R to reset</div>` : '') +
+        (s.est_error ? `<div class="err">${s.est_error} — press R to restart it</div>` : '') +
         (s.watchdog_tripped ? '<div class="warn">watchdog: command zeroed</div>' : ''),
     });
   };
