@@ -49,7 +49,7 @@ pub struct EstimateArgs {
     /// The map the filter carries.
     #[arg(long, value_enum, default_value_t = MapArg::True)]
     pub map: MapArg,
-    /// With `--map smoothed`: the shortest wavelength the map keeps [m].
+    /// With `--map smoothed`: the shortest wavelength the map keeps, in metres.
     #[arg(long, default_value_t = 1.0)]
     pub smooth_cutoff: f64,
     /// A TOML file tuning the filter: `[filter]` (its noises and steps) and
