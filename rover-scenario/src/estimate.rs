@@ -596,9 +596,9 @@ impl crate::prepare::Prepared {
     /// a scenario without is an error located at the scenario.
     pub fn sensor_config(&self) -> Result<&SensorConfig, crate::prepare::PrepareError> {
         self.scenario.sensors.as_ref().ok_or_else(|| {
-            self.locate(SetupError::Initial {
+            self.locate(SetupError::Unsupported {
                 field: "sensors",
-                message: "the scenario declares no [sensors]: give the scenario whose run wrote the log (its [sensors] table says what the log holds)".into(),
+                message: "the scenario declares no [sensors], which say what its sensor log holds\n  = help: give the scenario whose run wrote the log".into(),
             })
         })
     }

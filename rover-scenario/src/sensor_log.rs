@@ -137,7 +137,7 @@ pub fn read_sensor_log(
 /// against `config`: the header names exactly the declaration's columns
 /// (in any order), each row has a finite number in every cell but the
 /// fixes' (empty when no fix was due, a position fix whole or not at
-/// all), and row k is at t = k / rate. The checks are [`LogReader`]'s,
+/// all), and row k is at t = k / rate. The checks are `LogReader`'s,
 /// which [`samples_from_columns`] makes too.
 pub fn parse_sensor_log(
     text: &str,
@@ -216,7 +216,7 @@ pub fn parse_sensor_log(
 /// The samples of a sensor log held as columns: each column's name (as
 /// in `sensors.csv`) and its values, one per sensor instant, NaN in a
 /// fix's columns where no fix is due. Checked against `config` as
-/// [`parse_sensor_log`] checks a file, by the same [`LogReader`]: exactly
+/// [`parse_sensor_log`] checks a file, by the same `LogReader`: exactly
 /// the declaration's columns, a finite reading in every element but the
 /// fixes' (a position fix whole or not at all), element k of `t` at
 /// k / rate; and every column as long as `t`. An error names the column
