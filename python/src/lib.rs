@@ -1,10 +1,10 @@
 //! The native half of the Python package `rover`: loading rovers, whole
-//! runs, step-wise runs and sweep tasks, all through `rover-scenario`'s
-//! preparation of a run, and the single-wheel testbed through
-//! `rover-runtime`'s, as the command line runs them, so that Python gets
-//! the command line's numbers and messages. The Python half
-//! (python/rover/) turns what crosses here into numpy arrays, dicts and
-//! tables.
+//! runs (with their sensor logs), sensor logs estimated, step-wise runs
+//! and sweep tasks, all through `rover-scenario`'s preparation of a run,
+//! and the single-wheel testbed through `rover-runtime`'s, as the command
+//! line runs them, so that Python gets the command line's numbers and
+//! messages. The Python half (python/rover/) turns what crosses here into
+//! numpy arrays, dicts and tables.
 //!
 //! Arrays cross as buffers: numpy arrays come in through the buffer
 //! protocol (read or written in place, no copy held), whole trajectories go

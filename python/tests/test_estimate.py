@@ -120,7 +120,7 @@ def test_estimate_gives_a_row_per_sample_and_follows_the_roll(run, estimated):
     assert e.status == "completed" and e.error is None
     samples = len(run.sensors["t"])
     state = ["X", "Y", "Z", "phi", "theta", "psi", "y1", "y2", "y3", "y4",
-             "vx", "vy", "vz", "Ox", "Oy", "Oz", "dy1", "dy2", "dy3", "dy4"]  # fmt: skip
+             "vx", "vy", "vz", "Ox", "Oy", "Oz", "dy1", "dy2", "dy3", "dy4"]
     biases = ["bgx", "bgy", "bgz", "bax", "bay", "baz"]
     assert list(e.estimate) == (
         ["t", *state, *(f"sigma_{s}" for s in state)]
@@ -139,7 +139,7 @@ def test_estimate_gives_a_row_per_sample_and_follows_the_roll(run, estimated):
 
     s = e.summary
     assert set(s) >= {"status", "error", "t_end", "samples", "map", "plant", "distance", "filter",
-                      "dead_reckoning", "drift_ratio", "consistency", "wall_time", "step_us"}  # fmt: skip
+                      "dead_reckoning", "drift_ratio", "consistency", "wall_time", "step_us"}
     assert (s["samples"], s["t_end"], s["map"]) == (samples, 8.0, "true")
     assert set(s["filter"]) >= {"roll_deg", "pitch_deg", "yaw_deg", "velocity", "final_drift"}
     assert s["consistency"]["dof"] == 20
@@ -307,3 +307,10 @@ def test_a_scenario_without_sensors_is_refused(data, run):
     no_log = rover.simulate(data / "slip_rough.toml")
     with pytest.raises(rover.RoverError, match=r"^error: sensors: the run has no sensor log"):
         rover.estimate(data / "slip_rough.toml", no_log)
+
+
+def test_a_log_and_a_truth_as_pandas_tables_estimate_as_the_arrays(scenario, run, estimated):
+    pd = pytest.importorskip("pandas")
+    e = rover.estimate(scenario, pd.DataFrame(run.sensors), truth=run.to_pandas())
+    assert_same_bits(e.estimate, estimated.estimate)
+    assert without_timing(e.summary) == without_timing(estimated.summary)
