@@ -9,7 +9,9 @@ for bit, the same messages in the exceptions (`RoverError`). Units are SI
 (m, s, rad, N, N·m), as in the CSV columns. `Simulation` is a run stepped
 by the caller, `rover.gym` a Gymnasium environment over it, `sweep` a
 parameter sweep on Ray. `wheel_test` is the single-wheel testbed (`rover
-wheel-test`) on soft soil. Guide: docs/PYTHON.md.
+wheel-test`) on soft soil. `estimate` runs the model-based filter and dead
+reckoning over a run's sensor log (`rover estimate`). Guide:
+docs/PYTHON.md.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ from ._native import Rover, RoverError, RunFailed, Snapshot
 from ._toml import dumps as _toml_dumps
 
 __all__ = [
+    "EstimateResult",
     "Result",
     "Rover",
     "RoverError",
@@ -35,6 +38,7 @@ __all__ = [
     "Simulation",
     "Snapshot",
     "builtins",
+    "estimate",
     "load",
     "simulate",
     "sweep",
@@ -175,20 +179,44 @@ def _noted(note: Optional[str]):
         raise type(e)(f"{e}\n  = note: {note}") from None
 
 
+def _column_table(table) -> dict[str, np.ndarray]:
+    """A table as it crosses from the native half, column after column
+    (names, bytes, rows), as a dict of numpy arrays by column name (each
+    contiguous and writable)."""
+    columns, data, rows = table
+    values = np.frombuffer(data, dtype=np.float64).reshape(len(columns), rows).copy()
+    return dict(zip(columns, values))
+
+
 class Result:
     """A whole run: ``trajectory`` (numpy arrays by CSV column name),
     ``units`` (each column's unit, by name: "m", "rad", "N", ...),
     ``summary`` (summary.json as a dict) and ``status`` ("completed",
     "failed", "embedded" on a soil, or "interrupted"; a run that stopped
-    early keeps what it computed)."""
+    early keeps what it computed).
 
-    def __init__(self, columns: list[str], table: np.ndarray, summary: dict, units: list[str]):
+    ``sensors`` is the sensor log of a scenario with ``[sensors]`` (what
+    ``rover simulate`` writes to sensors.csv): numpy arrays by sensors.csv
+    column name (``t``, ``gx`` ... ``az``, ``enc{j}``, ``susp{i}``,
+    ``fix_X`` ... ``fix_psi``, ``tau{j}``, ``delta{j}``), one value per
+    sensor instant, NaN in a fix's columns where no fix was due; None for
+    a scenario without ``[sensors]``. ``rover.estimate`` takes it as is."""
+
+    def __init__(
+        self,
+        columns: list[str],
+        table: np.ndarray,
+        summary: dict,
+        units: list[str],
+        sensors: Optional[dict[str, np.ndarray]] = None,
+    ):
         self.columns = columns
         self.units = dict(zip(columns, units))
         self.table = table
         self.trajectory = {c: table[:, i] for i, c in enumerate(columns)}
         self.summary = summary
         self.status = summary.get("status")
+        self.sensors = sensors
 
     @property
     def error(self) -> Optional[str]:
@@ -215,7 +243,8 @@ def simulate(
     own), as ``rover simulate`` does: ``simulate(rover, scenario)``, or
     ``simulate(scenario)`` for a scenario that names its rover. ``generic``
     runs the interpreted plant even for a built-in rover. Raises RoverError
-    for a scenario that cannot run.
+    for a scenario that cannot run. A scenario with ``[sensors]`` also
+    gives its sensor log (``Result.sensors``).
 
     Ctrl-C (SIGINT, or any signal whose Python handler raises) stops the
     run within one output interval and 50 ms: the handler's exception
@@ -225,13 +254,161 @@ def simulate(
     rover, scenario = _rover_and_scenario(rover, scenario, "simulate")
     text, origin, base, note = _scenario_source(scenario)
     with _noted(note), _python_words():
-        columns, data, rows, summary, units, raised = _native.simulate(rover, text, origin, base, generic)
+        (columns, data, rows), summary, units, sensors, raised = _native.simulate(
+            rover, text, origin, base, generic
+        )
     table = np.frombuffer(data, dtype=np.float64).reshape(rows, len(columns))
-    result = Result(list(columns), table, json.loads(summary), list(units))
+    log = None if sensors is None else _column_table(sensors)
+    result = Result(list(columns), table, json.loads(summary), list(units), log)
     if raised is not None:
         raised.result = result
         raise raised
     return result
+
+
+class EstimateResult:
+    """A sensor log estimated (``rover.estimate``), as ``rover estimate``
+    writes it: ``estimate`` (estimate.csv's columns as numpy arrays, by
+    name: ``t``, the state ``X`` ... ``dy{m}`` with each wheel's spin
+    ``omega{j}`` on a soil, each state entry's 1σ ``sigma_<name>``, the
+    wheels' normal loads ``Fn{j}`` and slips ``slip{j}``, with an IMU its
+    biases ``bgx`` ... ``baz`` and their 1σ), ``dead_reckoning``
+    (dead_reckoning.csv's: ``t`` and the state [x; w]), one value per
+    sample estimated, and ``summary`` (estimate.json as a dict: the RMS
+    errors of both against the truth, the filter's consistency, its cost).
+    ``status`` is "completed", or "failed" with ``error``: the rows before
+    the failure are kept."""
+
+    def __init__(self, estimate: dict[str, np.ndarray], dead_reckoning: dict[str, np.ndarray], summary: dict):
+        self.estimate = estimate
+        self.dead_reckoning = dead_reckoning
+        self.summary = summary
+        self.status = summary.get("status")
+
+    @property
+    def error(self) -> Optional[str]:
+        """Why the estimation stopped early, or None."""
+        return self.summary.get("error")
+
+    def __repr__(self) -> str:
+        return (
+            f"<rover.EstimateResult {self.status}: {self.summary.get('samples')} samples,"
+            f" t_end = {self.summary.get('t_end')} s>"
+        )
+
+
+#: What a sensor log or a truth given as columns holds, for messages.
+_LOG_HELP = {
+    "sensors": "the sensors.csv columns of the scenario's [sensors], each a 1-D array of one value per sensor"
+    " instant (NaN in a fix's columns where no fix is due), as rover.simulate(...).sensors gives them",
+    "truth": "the run's columns as run.csv names them, each a 1-D array of one value per row,"
+    " as rover.simulate(...).trajectory gives them",
+}
+
+
+def _log_argument(log: Any, table: str) -> Union[str, list[tuple[str, np.ndarray]]]:
+    """A sensor log or a truth given as a path (a str, as the native half
+    takes it) or as columns (a mapping or a pandas DataFrame: each column
+    a C-contiguous 1-D float64 array). A column that is not one is a
+    RoverError naming it; anything else a TypeError."""
+    if isinstance(log, (str, os.PathLike)):
+        return os.fspath(log)
+    if not isinstance(log, Mapping) and hasattr(log, "columns") and hasattr(log, "to_numpy"):
+        log = {c: log[c].to_numpy() for c in log.columns}  # a pandas DataFrame
+    if not isinstance(log, Mapping):
+        raise TypeError(
+            f"{table}: a path or a mapping of column name to array (or a pandas DataFrame),"
+            f" not {type(log).__name__}"
+        )
+    hint = _LOG_HELP[table]
+    columns = []
+    for name, values in log.items():
+        if not isinstance(name, str):
+            raise RoverError(f"error: {table}: the column name {name!r} is not a str\n  = help: {hint}")
+        try:
+            v = np.asarray(values, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise RoverError(
+                f'error: {table}["{name}"]: not numbers: {e}\n  = help: {hint}'
+            ) from None
+        if v.ndim != 1:
+            raise RoverError(
+                f'error: {table}["{name}"]: an array of shape {v.shape}, not one value per instant\n  = help: {hint}'
+            )
+        columns.append((name, np.ascontiguousarray(v)))
+    return columns
+
+
+def estimate(
+    scenario: ScenarioLike,
+    sensors: Any,
+    truth: Any = None,
+    rover: Optional[RoverLike] = None,
+    map: str = "true",
+    smooth_cutoff: float = 1.0,
+    generic: bool = False,
+) -> EstimateResult:
+    """Estimate a run's sensor log as ``rover estimate`` does: the
+    model-based filter (the scenario's rover as its process model, the
+    logged commands as its inputs) and dead reckoning, over every sample,
+    measured against ``truth`` when given. The same numbers as the command
+    line's, bit for bit.
+
+    ``scenario`` is the scenario whose run wrote the log (a path, TOML text
+    or a dict): its ``[sensors]`` says what the log holds, its terrain is
+    the filter's map. ``rover`` overrides its rover.
+
+    ``sensors`` is the log: a mapping of sensors.csv column name to a 1-D
+    array (exactly the columns of the scenario's ``[sensors]``, one value
+    per sensor instant, NaN in a fix's columns where no fix is due), as
+    ``rover.simulate(...).sensors`` gives it (a simulate ``Result`` is taken
+    for its ``sensors``); or a sensors.csv path.
+
+    ``truth`` is what to measure against: a simulate ``Result`` (its
+    trajectory), a mapping of run.csv column name to array, or a run.csv
+    path; None measures nothing (a path to the log does not bring the
+    run.csv beside it, as on the command line).
+
+    ``map`` is "true" (the scenario's terrain) or "smoothed" (features
+    shorter than ``smooth_cutoff`` metres removed, as an orbital map would
+    give it). ``generic`` runs the interpreted plant even for a built-in
+    rover.
+
+    Raises RoverError for a scenario that cannot run or declares no
+    ``[sensors]``, and for a log or a truth that does not fit it, naming
+    the column and the element (``sensors["gx"][12]``), or the file and
+    line, with what is wrong and how to fix it: a column missing or not of
+    the declaration, columns of different lengths, a reading not finite,
+    times not at the sensors' rate. An estimation that fails on the way
+    returns with status "failed" and the rows before."""
+    if map not in ("true", "smoothed"):
+        raise ValueError(
+            f'map: expected "true" (the scenario\'s terrain) or "smoothed" (features shorter than'
+            f" smooth_cutoff removed), got {map!r}"
+        )
+    smoothed = None
+    if map == "smoothed":
+        smoothed = float(smooth_cutoff)
+        if not (np.isfinite(smoothed) and smoothed > 0.0):
+            raise ValueError(
+                f"smooth_cutoff: the shortest wavelength the smoothed map keeps must be > 0 m, got {smooth_cutoff}"
+            )
+    if isinstance(sensors, Result):
+        if sensors.sensors is None:
+            raise RoverError(
+                "error: sensors: the run has no sensor log: its scenario declares no [sensors]\n"
+                "  = help: simulate a scenario with [sensors] and give its result, or its .sensors"
+            )
+        sensors = sensors.sensors
+    if isinstance(truth, Result):
+        truth = truth.trajectory
+    log = _log_argument(sensors, "sensors")
+    truth = None if truth is None else _log_argument(truth, "truth")
+    rover = None if rover is None else load(rover)
+    text, origin, base, note = _scenario_source(scenario)
+    with _noted(note), _python_words():
+        est, dr, summary = _native.estimate(rover, text, origin, base, log, truth, smoothed, generic)
+    return EstimateResult(_column_table(est), _column_table(dr), json.loads(summary))
 
 
 def _float64_vector(values: Any, what: str, lengths: tuple[int, ...], hint: str) -> np.ndarray:

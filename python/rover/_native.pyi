@@ -2,7 +2,7 @@
 python/rover/ builds its API on. Arrays cross as buffers: a float64 numpy
 array in, read or filled in place."""
 
-from typing import Any, Optional
+from typing import Any, Optional, Union
 
 class RoverError(Exception):
     """A rover, scenario or plan that cannot run; the message is the
@@ -76,10 +76,38 @@ class Simulation:
     def restore(self, snapshot: Snapshot) -> None: ...
     def calls(self) -> list[tuple[str, list[float]]]: ...
 
+#: A table of numbers: its column names, its values as native-endian
+#: float64 bytes (row after row for a trajectory, column after column
+#: otherwise), its row count.
+Table = tuple[list[str], bytes, int]
+
+#: A log handed to `estimate`: a file's path, or (column name, 1-D
+#: C-contiguous float64 array) pairs.
+Log = Union[str, list[tuple[str, Any]]]
+
 def load(source: str, text: Optional[bool] = None, origin: Optional[str] = None) -> Rover: ...
 def simulate(
     rover: Optional[Rover], text: str, origin: str, base: str, generic: bool = False
-) -> tuple[list[str], bytes, int, str, list[str], Optional[BaseException]]: ...
+) -> tuple[Table, str, list[str], Optional[Table], Optional[BaseException]]:
+    """A whole run: the trajectory (row after row), the summary as JSON,
+    the columns' units, the sensor log of a scenario with [sensors]
+    (column after column, NaN where no fix was due) and the exception a
+    signal handler raised, which stopped the run."""
+
+def estimate(
+    rover: Optional[Rover],
+    text: str,
+    origin: str,
+    base: str,
+    sensors: Log,
+    truth: Optional[Log] = None,
+    smoothed: Optional[float] = None,
+    generic: bool = False,
+) -> tuple[Table, Table, str]:
+    """A sensor log estimated as `rover estimate` estimates it:
+    estimate.csv and dead_reckoning.csv (column after column) and
+    estimate.json; `smoothed` is the smoothed map's cutoff [m], None for
+    the scenario's terrain."""
 def plan_info(text: str, origin: str, dir: str, base_text: Optional[str] = None) -> tuple[int, str, str]: ...
 def plan_task(text: str, origin: str, dir: str, index: int, base_text: Optional[str] = None) -> str: ...
 def wheel_test(

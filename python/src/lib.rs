@@ -1,10 +1,10 @@
 //! The native half of the Python package `rover`: loading rovers, whole
-//! runs, step-wise runs and sweep tasks, all through `rover-scenario`'s
-//! preparation of a run, and the single-wheel testbed through
-//! `rover-runtime`'s, as the command line runs them, so that Python gets
-//! the command line's numbers and messages. The Python half
-//! (python/rover/) turns what crosses here into numpy arrays, dicts and
-//! tables.
+//! runs (with their sensor logs), sensor logs estimated, step-wise runs
+//! and sweep tasks, all through `rover-scenario`'s preparation of a run,
+//! and the single-wheel testbed through `rover-runtime`'s, as the command
+//! line runs them, so that Python gets the command line's numbers and
+//! messages. The Python half (python/rover/) turns what crosses here into
+//! numpy arrays, dicts and tables.
 //!
 //! Arrays cross as buffers: numpy arrays come in through the buffer
 //! protocol (read or written in place, no copy held), whole trajectories go
@@ -194,17 +194,86 @@ fn prepare(
     }
 }
 
-/// A whole run as it crosses to Python: (column names, the rows as
-/// native-endian f64 bytes, row count, the summary as JSON, the columns'
-/// units, and the exception a signal handler raised, which stopped the run
-/// where it stood: the rows are those computed, the summary's status
-/// `interrupted`; the Python side raises it with the result attached).
+/// A table of numbers as it crosses to Python: its column names, its
+/// values as native-endian f64 bytes (row after row, or column after
+/// column), and its row count.
+type Table<'py> = (Vec<String>, Bound<'py, PyBytes>, usize);
+
+/// How a table's values are laid out in its bytes.
+#[derive(Clone, Copy, PartialEq)]
+enum Layout {
+    /// Row after row (an array of shape (rows, columns)).
+    Rows,
+    /// Column after column (shape (columns, rows): each column
+    /// contiguous).
+    Columns,
+}
+
+/// A CSV written by the library (a header, then numbers in their
+/// shortest exact form, which parse back to the computed values bit for
+/// bit) as a [`Table`]. An empty cell (a fix not due in a sensor log)
+/// reads NaN where `empty` allows it, else it is an error like any cell
+/// that is not a number.
+fn csv_table<'py>(
+    py: Python<'py>,
+    csv: &[u8],
+    layout: Layout,
+    empty: bool,
+) -> PyResult<Table<'py>> {
+    let text = String::from_utf8_lossy(csv);
+    let mut lines = text.lines();
+    let columns: Vec<String> = lines
+        .next()
+        .unwrap_or("")
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let mut values: Vec<f64> = Vec::with_capacity(csv.len() / 8);
+    let mut rows = 0;
+    for line in lines {
+        for cell in line.split(',') {
+            let v: f64 = match cell.parse() {
+                Ok(v) => v,
+                Err(_) if empty && cell.is_empty() => f64::NAN,
+                Err(_) => {
+                    return Err(RoverError::new_err(format!(
+                        "error: not a number in the run's output: {cell}"
+                    )));
+                }
+            };
+            values.push(v);
+        }
+        rows += 1;
+    }
+    let width = columns.len();
+    let mut data: Vec<u8> = Vec::with_capacity(8 * values.len());
+    match layout {
+        Layout::Rows => values
+            .iter()
+            .for_each(|v| data.extend_from_slice(&v.to_ne_bytes())),
+        Layout::Columns => {
+            for c in 0..width {
+                for r in 0..rows {
+                    data.extend_from_slice(&values[r * width + c].to_ne_bytes());
+                }
+            }
+        }
+    }
+    Ok((columns, PyBytes::new(py, &data), rows))
+}
+
+/// A whole run as it crosses to Python: the trajectory (a [`Table`], row
+/// after row), the summary as JSON, the columns' units, the sensor log
+/// when the scenario has `[sensors]` (a [`Table`], column after column,
+/// NaN in a fix's columns where no fix was due), and the exception a
+/// signal handler raised, which stopped the run where it stood: the rows
+/// are those computed, the summary's status `interrupted`; the Python side
+/// raises it with the result attached.
 type WholeRun<'py> = (
-    Vec<String>,
-    Bound<'py, PyBytes>,
-    usize,
+    Table<'py>,
     String,
     Vec<&'static str>,
+    Option<Table<'py>>,
     Option<Py<PyBaseException>>,
 );
 
@@ -221,48 +290,155 @@ fn simulate<'py>(
     generic: bool,
 ) -> PyResult<WholeRun<'py>> {
     let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
-    let run = py.detach(|| -> Result<(Vec<u8>, _, _), PrepareError> {
+    let with_sensors = prepared.scenario.sensors.is_some();
+    let run = py.detach(|| -> Result<_, PrepareError> {
         let mut csv = Vec::new();
+        let mut log = Vec::new();
         let stop = AtomicBool::new(false);
         let mut signals = Signals::new();
         // Polled at each output row, as the run polls `stop`.
-        let summary = prepared.run(generic, &mut csv, &stop, |_| {
-            if signals.poll() {
-                stop.store(true, Ordering::Relaxed);
-            }
-        })?;
+        let summary = prepared.run_with_sensors(
+            generic,
+            &mut csv,
+            with_sensors.then_some(&mut log),
+            &stop,
+            |_| {
+                if signals.poll() {
+                    stop.store(true, Ordering::Relaxed);
+                }
+            },
+        )?;
         let json = serde_json::to_string_pretty(&summary);
-        Ok((csv, json, signals.raised))
+        Ok((csv, log, json, signals.raised))
     });
-    let (csv, json, raised) = run.map_err(py_err)?;
+    let (csv, log, json, raised) = run.map_err(py_err)?;
     let json = json.map_err(|e| RoverError::new_err(format!("error: the summary: {e}")))?;
-    let text = String::from_utf8_lossy(&csv);
-    let mut lines = text.lines();
-    let columns: Vec<String> = lines
-        .next()
-        .unwrap_or("")
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let mut data: Vec<u8> = Vec::with_capacity(csv.len());
-    let mut rows = 0;
-    for line in lines {
-        for cell in line.split(',') {
-            // The CSV holds each number's shortest exact form: parsing it
-            // back gives the computed value bit for bit.
-            let v: f64 = cell.parse().map_err(|_| {
-                RoverError::new_err(format!("error: not a number in the run's output: {cell}"))
-            })?;
-            data.extend_from_slice(&v.to_ne_bytes());
-        }
-        rows += 1;
-    }
+    let trajectory = csv_table(py, &csv, Layout::Rows, false)?;
+    let sensors = with_sensors
+        .then(|| csv_table(py, &log, Layout::Columns, true))
+        .transpose()?;
     let model = &prepared.spec.model;
     let soil = prepared.scenario.soft();
     let units = Columns::on_ground(model.m(), model.wheels.len(), soil)
         .units(&prepared.spec.coordinate_linear);
     let raised = raised.map(|e| e.into_value(py));
-    Ok((columns, PyBytes::new(py, &data), rows, json, units, raised))
+    Ok((trajectory, json, units, sensors, raised))
+}
+
+/// A log handed to [`estimate`]: a file's path, or columns by name (each
+/// a 1-D float64 array, C-contiguous).
+#[derive(FromPyObject)]
+enum LogArg<'py> {
+    Path(std::path::PathBuf),
+    Columns(Vec<(String, Bound<'py, PyAny>)>),
+}
+
+/// The values of columns handed over as arrays, copied out of their
+/// buffers (`table` names them in messages).
+fn column_values(
+    table: &str,
+    columns: &[(String, Bound<'_, PyAny>)],
+) -> PyResult<Vec<(String, Vec<f64>)>> {
+    columns
+        .iter()
+        .map(|(name, array)| {
+            let what = format!("{table}[\"{name}\"]");
+            let len = array.len()?;
+            let values = with_buffer(array, false, &what, len, |v| Ok(v.to_vec()))?;
+            Ok((name.clone(), values))
+        })
+        .collect()
+}
+
+/// Columns as the readers take them: names and slices.
+fn borrowed(columns: &[(String, Vec<f64>)]) -> Vec<(&str, &[f64])> {
+    columns
+        .iter()
+        .map(|(n, v)| (n.as_str(), v.as_slice()))
+        .collect()
+}
+
+/// An estimation as it crosses to Python: `estimate.csv` and
+/// `dead_reckoning.csv` as [`Table`]s (column after column), and the
+/// summary (`estimate.json`) as JSON.
+type EstimateRun<'py> = (Table<'py>, Table<'py>, String);
+
+/// A sensor log estimated as `rover estimate` estimates it ([`EstimateRun`]):
+/// the scenario (from TOML `text` named `origin`, relative paths from
+/// `base`, `rover` overriding its rover), the log (`sensors`: a
+/// sensors.csv's path or its columns), the truth to measure against
+/// (`truth`: a run.csv's path, a run's columns, or none), the map (the
+/// scenario's terrain, or smoothed below `smoothed` metres). A log or a
+/// truth that does not fit is an error naming the file and line, or the
+/// column and element; an estimation that fails on the way is a summary
+/// of status `failed` with the rows before it.
+#[pyfunction]
+#[pyo3(signature = (rover, text, origin, base, sensors, truth=None, smoothed=None, generic=false))]
+#[allow(clippy::too_many_arguments)]
+fn estimate<'py>(
+    py: Python<'py>,
+    rover: Option<&Rover>,
+    text: &str,
+    origin: &str,
+    base: &str,
+    sensors: LogArg<'py>,
+    truth: Option<LogArg<'py>>,
+    smoothed: Option<f64>,
+    generic: bool,
+) -> PyResult<EstimateRun<'py>> {
+    use rover_scenario::estimate::{EstimateMap, EstimateOptions};
+    let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
+    let config = prepared.sensor_config().map_err(py_err)?;
+    let model = &prepared.spec.model;
+    let (wheels, m) = (model.wheels.len(), model.m());
+    let located = |e: &dyn std::fmt::Display| RoverError::new_err(format!("error: {e}"));
+    let samples = match &sensors {
+        LogArg::Path(path) => {
+            rover_scenario::read_sensor_log(path, config, wheels, m).map_err(|e| located(&e))?
+        }
+        LogArg::Columns(columns) => {
+            let values = column_values("sensors", columns)?;
+            rover_scenario::sensor_log::samples_from_columns(&borrowed(&values), config, wheels, m)
+                .map_err(|e| located(&e))?
+        }
+    };
+    let truth = match &truth {
+        None => None,
+        Some(LogArg::Path(path)) => {
+            Some(rover_scenario::truth_log::read_truth(path, m, wheels).map_err(|e| located(&e))?)
+        }
+        Some(LogArg::Columns(columns)) => {
+            let values = column_values("truth", columns)?;
+            Some(
+                rover_scenario::truth_log::truth_from_columns(&borrowed(&values), m, wheels)
+                    .map_err(|e| located(&e))?,
+            )
+        }
+    };
+    let options = EstimateOptions {
+        map: match smoothed {
+            None => EstimateMap::True,
+            Some(cutoff) => EstimateMap::Smoothed { cutoff },
+        },
+        ..EstimateOptions::default()
+    };
+    let run = py.detach(|| {
+        let (mut est, mut dr) = (Vec::new(), Vec::new());
+        let summary = prepared.estimate(
+            generic,
+            &samples,
+            truth.as_ref(),
+            &options,
+            &mut est,
+            &mut dr,
+        )?;
+        Ok::<_, PrepareError>((est, dr, serde_json::to_string_pretty(&summary)))
+    });
+    let (est, dr, json) = run.map_err(py_err)?;
+    let json = json.map_err(|e| RoverError::new_err(format!("error: the summary: {e}")))?;
+    let est = csv_table(py, &est, Layout::Columns, false)?;
+    let dr = csv_table(py, &dr, Layout::Columns, false)?;
+    Ok((est, dr, json))
 }
 
 /// Steps of a run up to this many hold the interpreter: releasing and
@@ -859,6 +1035,7 @@ fn builtins() -> Vec<&'static str> {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(estimate, m)?)?;
     m.add_function(wrap_pyfunction!(plan_info, m)?)?;
     m.add_function(wrap_pyfunction!(plan_task, m)?)?;
     m.add_function(wrap_pyfunction!(builtins, m)?)?;

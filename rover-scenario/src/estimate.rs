@@ -592,6 +592,17 @@ impl<W: Write> RowWriter<W> {
 }
 
 impl crate::prepare::Prepared {
+    /// The scenario's `[sensors]`, which says what its sensor log holds;
+    /// a scenario without is an error located at the scenario.
+    pub fn sensor_config(&self) -> Result<&SensorConfig, crate::prepare::PrepareError> {
+        self.scenario.sensors.as_ref().ok_or_else(|| {
+            self.locate(SetupError::Unsupported {
+                field: "sensors",
+                message: "the scenario declares no [sensors], which say what its sensor log holds\n  = help: give the scenario whose run wrote the log".into(),
+            })
+        })
+    }
+
     /// Estimates the sensor log `samples` of this scenario's run (see
     /// [`estimate_log`]) with its rover's plant (`generic`: the generic
     /// plant even for a built-in rover), a setup error located at the
@@ -605,12 +616,7 @@ impl crate::prepare::Prepared {
         estimate_csv: W,
         baseline_csv: V,
     ) -> Result<EstimateSummary, crate::prepare::PrepareError> {
-        let sensors = self.scenario.sensors.as_ref().ok_or_else(|| {
-            self.locate(SetupError::Initial {
-                field: "sensors",
-                message: "the scenario declares no [sensors]: give the scenario whose run wrote the log (its [sensors] table says what the log holds)".into(),
-            })
-        })?;
+        let sensors = self.sensor_config()?;
         let (model, linear) = (&self.spec.model, &self.spec.coordinate_linear);
         let (scenario, base) = (&self.scenario, &self.base);
         let run = match self.plant(generic)? {

@@ -57,6 +57,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod columns;
 pub mod estimate;
 pub mod ground;
 pub mod linearize;

@@ -13,6 +13,8 @@ use std::path::{Path, PathBuf};
 
 use rover_estimate::sensors::{Column, SensorConfig, SensorSample, columns};
 
+use crate::columns::{ColumnsError, common_length};
+
 /// Writes a sensor log: its header, then one row per sample, refusing
 /// non-finite readings.
 pub struct SensorLogWriter<W: Write> {
@@ -135,7 +137,8 @@ pub fn read_sensor_log(
 /// against `config`: the header names exactly the declaration's columns
 /// (in any order), each row has a finite number in every cell but the
 /// fixes' (empty when no fix was due, a position fix whole or not at
-/// all), and row k is at t = k / rate.
+/// all), and row k is at t = k / rate. The checks are `LogReader`'s,
+/// which [`samples_from_columns`] makes too.
 pub fn parse_sensor_log(
     text: &str,
     file: &Path,
@@ -143,170 +146,380 @@ pub fn parse_sensor_log(
     wheels: usize,
     coordinates: usize,
 ) -> Result<Vec<SensorSample>, SensorLogError> {
-    let error =
-        |line: Option<usize>, column: Option<(usize, String)>, problem: String, help: String| {
-            SensorLogError {
-                file: file.to_path_buf(),
-                line,
-                column,
-                problem,
-                help,
-            }
-        };
-    if let Err(e) = config.check() {
-        let (problem, help) = e
-            .message
-            .split_once("\n  = help: ")
-            .unwrap_or((&e.message, ""));
-        return Err(error(
-            None,
-            None,
-            format!("the declaration to read it with cannot be used: {problem}"),
-            help.into(),
-        ));
-    }
-    let expected = columns(config, wheels, coordinates);
-    let names: Vec<String> = expected.iter().map(Column::to_string).collect();
-    let listing = names.join(",");
+    let error = |line: Option<usize>, column: Option<(usize, String)>, p: Problem| SensorLogError {
+        file: file.to_path_buf(),
+        line,
+        column,
+        problem: p.problem,
+        help: p.help,
+    };
+    let mut reader = LogReader::new(config, wheels, coordinates, Form::File)
+        .map_err(|p| error(None, None, p))?;
     let mut lines = text.lines().enumerate();
     let Some((_, header)) = lines.next() else {
+        let help = format!("a sensor log starts with the header {}", reader.listing);
         return Err(error(
             None,
             None,
-            "the file is empty: it has no header".into(),
-            format!("a sensor log starts with the header {listing}"),
+            Problem::new("the file is empty: it has no header", help),
         ));
     };
-    // Where each cell of a row goes.
-    let mut order: Vec<Column> = Vec::with_capacity(expected.len());
-    for (k, name) in header.split(',').map(str::trim).enumerate() {
-        let at = Some((k + 1, name.to_string()));
-        let Some(c) = names.iter().position(|n| n == name).map(|i| expected[i]) else {
-            let (problem, help) = undeclared(name, config, wheels, coordinates, &listing);
-            return Err(error(Some(1), at, problem, help));
-        };
-        if order.contains(&c) {
-            return Err(error(
-                Some(1),
-                at,
-                "the column is named twice".into(),
-                format!("name each column once: {listing}"),
-            ));
-        }
-        order.push(c);
-    }
-    if let Some(missing) = expected.iter().find(|c| !order.contains(c)) {
-        return Err(error(
-            Some(1),
-            None,
-            format!("no column `{missing}`, which {}", declared_by(missing)),
-            format!("the columns of this declaration are {listing}"),
-        ));
-    }
-    let period = 1.0 / config.rate;
-    let mut out: Vec<SensorSample> = Vec::new();
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    reader.names(&names).map_err(|(k, p)| {
+        let at = k.map(|k| (k + 1, names[k].to_string()));
+        error(Some(1), at, p)
+    })?;
+    let order = reader.order.clone();
+    let at = |k: usize| Some((k + 1, order[k].to_string()));
     for (i, row) in lines {
         let line = Some(i + 1);
         let cells: Vec<&str> = row.split(',').collect();
-        if cells.len() != order.len() {
+        if cells.len() != reader.order.len() {
             return Err(error(
                 line,
                 None,
-                format!("the row has {} cells, the header {}", cells.len(), order.len()),
-                "one cell per column in every row (a shorter last row is a log cut off while it was written)".into(),
+                Problem::new(
+                    format!(
+                        "the row has {} cells, the header {}",
+                        cells.len(),
+                        reader.order.len()
+                    ),
+                    "one cell per column in every row (a shorter last row is a log cut off while it was written)",
+                ),
             ));
         }
-        let mut sample = SensorSample::sized(config, wheels, coordinates);
-        let mut fix_cells = [None; 3];
-        for (k, (cell, c)) in cells.iter().zip(&order).enumerate() {
-            let at = || Some((k + 1, c.to_string()));
+        reader.start_row();
+        for (k, cell) in cells.iter().enumerate() {
             let cell = cell.trim();
-            if cell.is_empty() {
-                if c.sparse() {
-                    c.set(&mut sample, None);
-                    if let Column::Position(a) = c {
-                        fix_cells[*a] = Some(false);
-                    }
-                    continue;
-                }
-                return Err(error(
-                    line,
-                    at(),
-                    "the cell is empty".into(),
-                    format!(
-                        "every row reads `{c}` ({}); only the fixes' cells may be empty",
-                        c.unit()
-                    ),
-                ));
-            }
-            let v: f64 = cell.parse().map_err(|_| {
-                error(
-                    line,
-                    at(),
-                    format!("`{cell}` is not a number"),
-                    format!("a decimal number in {}, e.g. 0.25 or -1.5e-3", c.unit()),
-                )
-            })?;
-            if !v.is_finite() {
-                return Err(error(
-                    line,
-                    at(),
-                    format!("the reading is {v}"),
-                    "a reading is a finite number: the row of a sensor that failed is left out, not written as NaN".into(),
-                ));
-            }
-            if let Column::Position(a) = c {
-                fix_cells[*a] = Some(true);
-            }
-            c.set(&mut sample, Some(v));
+            let value = if cell.is_empty() {
+                None
+            } else {
+                let c = order[k];
+                Some(cell.parse::<f64>().map_err(|_| {
+                    error(
+                        line,
+                        at(k),
+                        Problem::new(
+                            format!("`{cell}` is not a number"),
+                            format!("a decimal number in {}, e.g. 0.25 or -1.5e-3", c.unit()),
+                        ),
+                    )
+                })?)
+            };
+            reader.cell(k, value).map_err(|p| error(line, at(k), p))?;
         }
-        if fix_cells.iter().any(|f| *f != fix_cells[0]) {
-            let k = order
+        reader.end_row().map_err(|(k, p)| error(line, at(k), p))?;
+    }
+    Ok(reader.samples)
+}
+
+/// The samples of a sensor log held as columns: each column's name (as
+/// in `sensors.csv`) and its values, one per sensor instant, NaN in a
+/// fix's columns where no fix is due. Checked against `config` as
+/// [`parse_sensor_log`] checks a file, by the same `LogReader`: exactly
+/// the declaration's columns, a finite reading in every element but the
+/// fixes' (a position fix whole or not at all), element k of `t` at
+/// k / rate; and every column as long as `t`. An error names the column
+/// and the element (`sensors["gx"][12]`).
+pub fn samples_from_columns(
+    columns: &[(&str, &[f64])],
+    config: &SensorConfig,
+    wheels: usize,
+    coordinates: usize,
+) -> Result<Vec<SensorSample>, ColumnsError> {
+    let error = |column: Option<&str>, index: Option<usize>, p: Problem| ColumnsError {
+        table: "sensors",
+        column: column.map(str::to_string),
+        index,
+        problem: p.problem,
+        help: p.help,
+    };
+    let mut reader = LogReader::new(config, wheels, coordinates, Form::Columns)
+        .map_err(|p| error(None, None, p))?;
+    let names: Vec<&str> = columns.iter().map(|(name, _)| *name).collect();
+    reader
+        .names(&names)
+        .map_err(|(k, p)| error(k.map(|k| names[k]), None, p))?;
+    let t = reader.time_cell();
+    let rows = common_length(
+        "sensors",
+        columns,
+        std::iter::once(t).chain((0..columns.len()).filter(|&k| k != t)),
+        "one value per sensor instant in every column (NaN in a fix's columns where no fix is due)",
+    )?;
+    for i in 0..rows {
+        reader.start_row();
+        for (k, (name, values)) in columns.iter().enumerate() {
+            let v = values[i];
+            let value = (!(v.is_nan() && reader.order[k].sparse())).then_some(v);
+            reader
+                .cell(k, value)
+                .map_err(|p| error(Some(name), Some(i), p))?;
+        }
+        reader
+            .end_row()
+            .map_err(|(k, p)| error(Some(names[k]), Some(i), p))?;
+    }
+    Ok(reader.samples)
+}
+
+/// What is wrong and how to fix it, for the caller to locate.
+struct Problem {
+    problem: String,
+    help: String,
+}
+
+impl Problem {
+    fn new(problem: impl Into<String>, help: impl Into<String>) -> Self {
+        Self {
+            problem: problem.into(),
+            help: help.into(),
+        }
+    }
+}
+
+/// How a log's rows are carried, for the words of the messages: a file's
+/// lines (rows counted from 1 under the header, an empty cell where no
+/// fix is due), or columns in memory (elements counted from 0, NaN where
+/// no fix is due).
+#[derive(Clone, Copy, PartialEq)]
+enum Form {
+    File,
+    Columns,
+}
+
+/// The checks of a sensor log against its declaration, whatever carries
+/// it: the names ([`LogReader::names`]), then row after row each cell's
+/// reading ([`LogReader::cell`]) and the row as a whole
+/// ([`LogReader::end_row`]: a position fix whole, the time at its
+/// instant). The file reader and the columns' share it; each locates the
+/// problems in its own terms.
+struct LogReader<'a> {
+    config: &'a SensorConfig,
+    wheels: usize,
+    coordinates: usize,
+    form: Form,
+    /// The declaration's columns.
+    expected: Vec<Column>,
+    /// Their names, comma-separated, for messages.
+    listing: String,
+    /// The column of each cell of a row.
+    order: Vec<Column>,
+    /// The samples read.
+    samples: Vec<SensorSample>,
+    /// The row being read and which of its position-fix cells held a
+    /// number.
+    sample: SensorSample,
+    fix_cells: [Option<bool>; 3],
+}
+
+impl<'a> LogReader<'a> {
+    /// A reader of the log of `config`, once the declaration itself is
+    /// checked.
+    fn new(
+        config: &'a SensorConfig,
+        wheels: usize,
+        coordinates: usize,
+        form: Form,
+    ) -> Result<Self, Problem> {
+        if let Err(e) = config.check() {
+            let (problem, help) = e
+                .message
+                .split_once("\n  = help: ")
+                .unwrap_or((&e.message, ""));
+            return Err(Problem::new(
+                format!("the declaration to read it with cannot be used: {problem}"),
+                help,
+            ));
+        }
+        let expected = columns(config, wheels, coordinates);
+        let listing = expected
+            .iter()
+            .map(Column::to_string)
+            .collect::<Vec<_>>()
+            .join(",");
+        Ok(Self {
+            config,
+            wheels,
+            coordinates,
+            form,
+            listing,
+            order: Vec::with_capacity(expected.len()),
+            expected,
+            samples: Vec::new(),
+            sample: SensorSample::default(),
+            fix_cells: [None; 3],
+        })
+    }
+
+    /// The columns' names in the order of the cells: exactly the
+    /// declaration's, each once. An error at a name gives its position.
+    fn names(&mut self, names: &[&str]) -> Result<(), (Option<usize>, Problem)> {
+        for (k, name) in names.iter().enumerate() {
+            let Some(c) = self.expected.iter().find(|c| c.to_string() == *name) else {
+                let (problem, help) = undeclared(
+                    name,
+                    self.config,
+                    self.wheels,
+                    self.coordinates,
+                    &self.listing,
+                );
+                return Err((Some(k), Problem::new(problem, help)));
+            };
+            if self.order.contains(c) {
+                let help = format!("name each column once: {}", self.listing);
+                return Err((Some(k), Problem::new("the column is named twice", help)));
+            }
+            self.order.push(*c);
+        }
+        if let Some(missing) = self.expected.iter().find(|c| !self.order.contains(c)) {
+            return Err((
+                None,
+                Problem::new(
+                    format!("no column `{missing}`, which {}", declared_by(missing)),
+                    format!("the columns of this declaration are {}", self.listing),
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The position of the time among the cells.
+    fn time_cell(&self) -> usize {
+        self.order
+            .iter()
+            .position(|c| *c == Column::Time)
+            .unwrap_or(0)
+    }
+
+    /// Begin the next row.
+    fn start_row(&mut self) {
+        self.sample = SensorSample::sized(self.config, self.wheels, self.coordinates);
+        self.fix_cells = [None; 3];
+    }
+
+    /// Cell `k` of the row: its reading, `None` for none (a fix not due).
+    fn cell(&mut self, k: usize, value: Option<f64>) -> Result<(), Problem> {
+        let c = self.order[k];
+        let Some(v) = value else {
+            if c.sparse() {
+                c.set(&mut self.sample, None);
+                if let Column::Position(a) = c {
+                    self.fix_cells[a] = Some(false);
+                }
+                return Ok(());
+            }
+            return Err(Problem::new(
+                "the cell is empty",
+                format!(
+                    "every row reads `{c}` ({}); only the fixes' cells may be empty",
+                    c.unit()
+                ),
+            ));
+        };
+        if !v.is_finite() {
+            let help = match self.form {
+                Form::File => {
+                    "a reading is a finite number: the row of a sensor that failed is left out, not written as NaN"
+                }
+                Form::Columns => {
+                    "a reading is a finite number: NaN stands for no fix, in a fix's columns only"
+                }
+            };
+            return Err(Problem::new(format!("the reading is {v}"), help));
+        }
+        if let Column::Position(a) = c {
+            self.fix_cells[a] = Some(true);
+        }
+        c.set(&mut self.sample, Some(v));
+        Ok(())
+    }
+
+    /// The row read: a position fix whole or absent, the time the next
+    /// sensor instant. An error gives the cell it is at.
+    fn end_row(&mut self) -> Result<(), (usize, Problem)> {
+        let file = self.form == Form::File;
+        if self.fix_cells.iter().any(|f| *f != self.fix_cells[0]) {
+            let k = self
+                .order
                 .iter()
                 .position(|c| matches!(c, Column::Position(_)))
                 .unwrap_or(0);
-            return Err(error(
-                line,
-                Some((k + 1, order[k].to_string())),
-                "a position fix has some of fix_X, fix_Y, fix_Z and not the others".into(),
-                "a position fix gives all three coordinates, or none (three empty cells)".into(),
+            let none = if file {
+                "three empty cells"
+            } else {
+                "NaN in all three"
+            };
+            return Err((
+                k,
+                Problem::new(
+                    "a position fix has some of fix_X, fix_Y, fix_Z and not the others",
+                    format!("a position fix gives all three coordinates, or none ({none})"),
+                ),
             ));
         }
-        if fix_cells[0] != Some(true) {
-            sample.position = None;
+        if self.fix_cells[0] != Some(true) {
+            self.sample.position = None;
         }
-        let t = sample.t;
-        let at_t = order.iter().position(|c| *c == Column::Time).unwrap_or(0);
-        let t_cell = || Some((at_t + 1, "t".to_string()));
-        if let Some(prev) = out.last()
+        let t = self.sample.t;
+        let at_t = self.time_cell();
+        if let Some(prev) = self.samples.last()
             && t <= prev.t
         {
-            return Err(error(
-                line,
-                t_cell(),
-                format!("t = {t} does not follow the previous row's t = {}", prev.t),
-                "the rows' times increase, one row per sensor instant".into(),
+            let (previous, help) = if file {
+                (
+                    "row's",
+                    "the rows' times increase, one row per sensor instant",
+                )
+            } else {
+                (
+                    "instant's",
+                    "the times increase, one element per sensor instant",
+                )
+            };
+            return Err((
+                at_t,
+                Problem::new(
+                    format!(
+                        "t = {t} does not follow the previous {previous} t = {}",
+                        prev.t
+                    ),
+                    help,
+                ),
             ));
         }
-        let k = out.len();
+        let k = self.samples.len();
+        let period = 1.0 / self.config.rate;
         let want = k as f64 * period;
         if (t - want).abs() > SAME_INSTANT * (1.0 + want.abs()) {
-            return Err(error(
-                line,
-                t_cell(),
-                format!(
-                    "t = {t} is not the sensor instant of row {} at rate = {} Hz: t = {want}",
-                    k + 1,
-                    config.rate
-                ),
-                format!(
-                    "row k of a sensor log is at t = (k − 1) / rate from t = 0, every {period} s with none missing; check that [sensors] rate is the one the log was written with"
+            let rate = self.config.rate;
+            let check = "check that [sensors] rate is the one the log was written with";
+            let (instant, help) = if file {
+                (
+                    format!("the sensor instant of row {}", k + 1),
+                    format!(
+                        "row k of a sensor log is at t = (k − 1) / rate from t = 0, every {period} s with none missing; {check}"
+                    ),
+                )
+            } else {
+                (
+                    format!("sensor instant {k}"),
+                    format!(
+                        "element k of `t` is at t = k / rate from t = 0, every {period} s with none missing; {check}"
+                    ),
+                )
+            };
+            return Err((
+                at_t,
+                Problem::new(
+                    format!("t = {t} is not {instant} at rate = {rate} Hz: t = {want}"),
+                    help,
                 ),
             ));
         }
-        out.push(sample);
+        self.samples.push(std::mem::take(&mut self.sample));
+        Ok(())
     }
-    Ok(out)
 }
 
 /// What to say of a header name that is not a column of the declaration:

@@ -409,3 +409,159 @@ fn a_log_read_from_a_file_names_the_file() {
     let samples = rover_scenario::read_sensor_log(&path, &declared(), 2, 1).unwrap();
     assert_eq!(samples.len(), 3);
 }
+
+// The same log held as columns (as the Python module passes it): read by
+// the same checks, located at the column and the element.
+
+/// The columns of a log's text: each header name and its values, an
+/// empty cell as NaN.
+fn columns_of(text: &str) -> Vec<(String, Vec<f64>)> {
+    let mut lines = text.lines();
+    let mut cols: Vec<(String, Vec<f64>)> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|n| (n.to_string(), Vec::new()))
+        .collect();
+    for line in lines {
+        for (cell, (_, values)) in line.split(',').zip(cols.iter_mut()) {
+            values.push(if cell.is_empty() {
+                f64::NAN
+            } else {
+                cell.parse().unwrap()
+            });
+        }
+    }
+    cols
+}
+
+fn from_columns(
+    cols: &[(String, Vec<f64>)],
+) -> Result<Vec<rover_estimate::SensorSample>, rover_scenario::columns::ColumnsError> {
+    let borrowed: Vec<(&str, &[f64])> = cols
+        .iter()
+        .map(|(n, v)| (n.as_str(), v.as_slice()))
+        .collect();
+    rover_scenario::sensor_log::samples_from_columns(&borrowed, &declared(), 2, 1)
+}
+
+fn columns_error(cols: &[(String, Vec<f64>)]) -> String {
+    from_columns(cols).expect_err("refused").to_string()
+}
+
+fn set(cols: &mut [(String, Vec<f64>)], name: &str, i: usize, v: f64) {
+    cols.iter_mut().find(|(n, _)| n == name).unwrap().1[i] = v;
+}
+
+#[test]
+fn a_log_as_columns_reads_as_its_file() {
+    let text = log(&good_rows());
+    let from_file = parse_sensor_log(&text, Path::new("x"), &declared(), 2, 1).unwrap();
+    let mut cols = columns_of(&text);
+    assert_eq!(from_columns(&cols).unwrap(), from_file);
+    // In any order.
+    cols.reverse();
+    assert_eq!(from_columns(&cols).unwrap(), from_file);
+}
+
+#[test]
+fn a_log_as_columns_is_refused_at_the_column_and_element() {
+    let good = columns_of(&log(&good_rows()));
+    let listing = HEADER;
+
+    let mut cols = good.clone();
+    cols.retain(|(n, _)| n != "gz");
+    assert_eq!(
+        columns_error(&cols),
+        format!(
+            "sensors: no column `gz`, which [sensors.imu] declares (an IMU reads it)\n  = help: the columns of this declaration are {listing}"
+        )
+    );
+    let mut cols = good.clone();
+    cols.push(("fix_psi".into(), vec![0.0; 3]));
+    assert_eq!(
+        columns_error(&cols),
+        format!(
+            "sensors[\"fix_psi\"]: the column is read by a heading fix, which [sensors] does not declare\n  = help: declare [sensors.heading_fix] (the declaration the log was written with), or read the log without that column: {listing}"
+        )
+    );
+    let mut cols = good.clone();
+    cols[4].1.pop();
+    assert_eq!(
+        columns_error(&cols),
+        "sensors[\"ax\"]: 2 values, where `t` has 3\n  = help: one value per sensor instant in every column (NaN in a fix's columns where no fix is due)"
+    );
+    let mut cols = good.clone();
+    set(&mut cols, "az", 2, f64::NAN);
+    assert_eq!(
+        columns_error(&cols),
+        "sensors[\"az\"][2]: the reading is NaN\n  = help: a reading is a finite number: NaN stands for no fix, in a fix's columns only"
+    );
+    let mut cols = good.clone();
+    set(&mut cols, "enc1", 0, f64::INFINITY);
+    assert!(columns_error(&cols).starts_with("sensors[\"enc1\"][0]: the reading is inf\n"));
+    let mut cols = good.clone();
+    set(&mut cols, "fix_Y", 0, f64::NAN);
+    assert_eq!(
+        columns_error(&cols),
+        "sensors[\"fix_X\"][0]: a position fix has some of fix_X, fix_Y, fix_Z and not the others\n  = help: a position fix gives all three coordinates, or none (NaN in all three)"
+    );
+    let mut cols = good.clone();
+    set(&mut cols, "t", 2, 0.1);
+    assert_eq!(
+        columns_error(&cols),
+        "sensors[\"t\"][2]: t = 0.1 does not follow the previous instant's t = 0.1\n  = help: the times increase, one element per sensor instant"
+    );
+    let mut cols = good.clone();
+    set(&mut cols, "t", 2, 0.3);
+    assert_eq!(
+        columns_error(&cols),
+        "sensors[\"t\"][2]: t = 0.3 is not sensor instant 2 at rate = 10 Hz: t = 0.2\n  = help: element k of `t` is at t = k / rate from t = 0, every 0.1 s with none missing; check that [sensors] rate is the one the log was written with"
+    );
+}
+
+/// A run's truth read from its CSV and from its columns: the same log;
+/// the columns' errors name the column and the element.
+#[test]
+fn a_truth_as_columns_reads_as_its_file() {
+    use rover_scenario::truth_log::{read_truth, truth_from_columns};
+    let p = prepared(&scenario(1.0, ""));
+    let (csv, _) = run(&p, false);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("truth_columns");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("run.csv");
+    std::fs::write(&path, &csv).unwrap();
+    let from_file = read_truth(&path, 4, 4).unwrap();
+    assert_eq!(from_file.t.len(), 21);
+    let mut cols = columns_of(&csv);
+    let read = |cols: &[(String, Vec<f64>)]| {
+        let b: Vec<(&str, &[f64])> = cols
+            .iter()
+            .map(|(n, v)| (n.as_str(), v.as_slice()))
+            .collect();
+        truth_from_columns(&b, 4, 4)
+    };
+    assert_eq!(read(&cols).unwrap(), from_file);
+
+    let mut bad = cols.clone();
+    set(&mut bad, "phi", 5, f64::NAN);
+    assert_eq!(
+        read(&bad).unwrap_err().to_string(),
+        "truth[\"phi\"][5]: the value is NaN, not a finite number\n  = help: give the columns of the run that wrote the sensor log, named as in its run.csv (or no truth: no errors are then measured)"
+    );
+    let mut bad = cols.clone();
+    bad.iter_mut().find(|(n, _)| n == "Fn3").unwrap().1.pop();
+    assert!(
+        read(&bad)
+            .unwrap_err()
+            .to_string()
+            .starts_with("truth[\"Fn3\"]: 20 values, where `t` has 21\n")
+    );
+    cols.retain(|(n, _)| n != "dy2");
+    assert!(
+        read(&cols)
+            .unwrap_err()
+            .to_string()
+            .starts_with("truth: no column `dy2`: this is not a run of this rover\n")
+    );
+}
