@@ -108,11 +108,11 @@ pub struct Accuracy {
     pub velocity: f64,
     /// RMS of |Ω − Ω_true| [rad/s].
     pub angular_velocity: f64,
-    /// G's horizontal position error at the end [m].
+    /// G's horizontal position error at the end \[m\].
     pub final_drift: f64,
     /// The same over the distance travelled (the truth's horizontal path).
     pub drift_fraction: f64,
-    /// The largest horizontal position error over the run [m].
+    /// The largest horizontal position error over the run \[m\].
     pub max_drift: f64,
     /// On a soil, the largest of the wheels' RMS slip errors.
     pub slip_max: Option<f64>,
@@ -168,7 +168,7 @@ pub struct EstimateSummary {
     /// Wall time of the estimation \[s\].
     pub wall_time: f64,
     /// Mean wall time of one filter step (a prediction and the updates of
-    /// one sample) [µs].
+    /// one sample) \[µs\].
     pub step_us: f64,
 }
 

@@ -93,6 +93,12 @@ pub fn estimate(args: &EstimateArgs) -> Result<(EstimateSummary, Vec<PathBuf>), 
         .as_deref()
         .map(|p| read_truth(p, model.m(), model.wheels.len()))
         .transpose()?;
+    if !(args.smooth_cutoff.is_finite() && args.smooth_cutoff > 0.0) {
+        return Err(CliError::Usage(format!(
+            "--smooth-cutoff {}: the shortest wavelength the smoothed map keeps must be a positive number of metres, e.g. 1.0",
+            args.smooth_cutoff
+        )));
+    }
     let map = match args.map {
         MapArg::True => EstimateMap::True,
         MapArg::Smoothed => EstimateMap::Smoothed {
