@@ -150,6 +150,37 @@ pub struct HeadingFixConfig {
     pub sigma: f64,
 }
 
+impl SensorConfig {
+    /// A MEMS set read at 100 Hz with seed 0: an IMU at G, its axes the
+    /// body's (gyros 0.2 °/√h and 10 °/h, accelerometers 100 µg/√Hz and
+    /// 0.1 mg, biases wandering over 300 s), wheel encoders of 1 mrad and
+    /// suspension encoders of 0.1° (in a linear coordinate's unit,
+    /// 1.745 mm), without noise beyond their counts; no fix. What
+    /// `rover drive --estimate` gives a rover whose scenario declares none.
+    pub fn mems() -> Self {
+        SensorConfig {
+            seed: 0,
+            rate: 100.0,
+            imu: Some(ImuConfig {
+                gyro_noise_deg_per_sqrt_h: 0.2,
+                gyro_bias_deg_per_h: 10.0,
+                accel_noise_ug_per_sqrt_hz: 100.0,
+                accel_bias_mg: 0.1,
+                bias_time: 300.0,
+                position: [0.0; 3],
+                orientation_deg: [0.0; 3],
+            }),
+            wheel_encoders: Some(EncoderConfig { resolution: 1e-3 }),
+            suspension_encoders: Some(SuspensionEncoderConfig {
+                resolution: 0.1_f64.to_radians(),
+                noise: 0.0,
+            }),
+            position_fix: None,
+            heading_fix: None,
+        }
+    }
+}
+
 /// One instant's readings, in SI. A sensor the rover does not have, or a
 /// fix not due, reads `None` or an empty slice.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -560,18 +591,6 @@ mod tests {
 
     fn full() -> SensorConfig {
         SensorConfig {
-            seed: 0,
-            rate: 100.0,
-            imu: Some(ImuConfig {
-                gyro_noise_deg_per_sqrt_h: 0.2,
-                gyro_bias_deg_per_h: 10.0,
-                accel_noise_ug_per_sqrt_hz: 100.0,
-                accel_bias_mg: 0.1,
-                bias_time: 300.0,
-                position: [0.0; 3],
-                orientation_deg: [0.0; 3],
-            }),
-            wheel_encoders: Some(EncoderConfig { resolution: 1e-3 }),
             suspension_encoders: Some(SuspensionEncoderConfig {
                 resolution: 1e-3,
                 noise: 0.0,
@@ -584,6 +603,7 @@ mod tests {
                 rate: 1.0,
                 sigma: 0.01,
             }),
+            ..SensorConfig::mems()
         }
     }
 

@@ -17,7 +17,6 @@ use std::time::Instant;
 
 use rover_dynamics::Model;
 use rover_dynamics::plant::{Plant, WheelState};
-use rover_estimate::sensors::{EncoderConfig, ImuConfig, SuspensionEncoderConfig};
 use rover_estimate::{
     Estimator, FilterConfig, InitialSigma, SensorConfig, SensorSample, SensorSimulator, Truth,
 };
@@ -36,26 +35,7 @@ use super::live::Histogram;
 /// 1 mrad and suspension encoders of 0.1° (in a linear coordinate's
 /// unit, 1.745 mm), without noise beyond their counts; no fix.
 pub fn default_sensors() -> SensorConfig {
-    SensorConfig {
-        seed: 0,
-        rate: 100.0,
-        imu: Some(ImuConfig {
-            gyro_noise_deg_per_sqrt_h: 0.2,
-            gyro_bias_deg_per_h: 10.0,
-            accel_noise_ug_per_sqrt_hz: 100.0,
-            accel_bias_mg: 0.1,
-            bias_time: 300.0,
-            position: [0.0; 3],
-            orientation_deg: [0.0; 3],
-        }),
-        wheel_encoders: Some(EncoderConfig { resolution: 1e-3 }),
-        suspension_encoders: Some(SuspensionEncoderConfig {
-            resolution: 0.1_f64.to_radians(),
-            noise: 0.0,
-        }),
-        position_fix: None,
-        heading_fix: None,
-    }
+    SensorConfig::mems()
 }
 
 /// The names of the estimate's values in the state (docs/DRIVE.md): the
