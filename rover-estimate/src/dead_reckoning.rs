@@ -16,7 +16,9 @@ use alloc::vec;
 use alloc::vec::Vec;
 
 use crate::sensors::{SensorConfig, SensorSample};
-use crate::so3::{self, M3};
+use rover_dynamics::linalg::{M3, cross, mat_mul, mul, mul_t};
+
+use crate::rotation::{euler, exp, orthonormalize, rotation};
 
 /// The complementary filter's gains.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -94,9 +96,9 @@ impl core::error::Error for DeadReckoningError {}
 pub struct DeadReckoning {
     config: DeadReckoningConfig,
     /// Body → inertial.
-    r: M3,
+    r: M3<f64>,
     /// IMU axes → body (the transpose of the mounting's body → IMU).
-    imu_to_body: M3,
+    imu_to_body: M3<f64>,
     gyro_bias: [f64; 3],
     position: [f64; 3],
     /// Speed along the body's x axis \[m/s\].
@@ -135,9 +137,9 @@ impl DeadReckoning {
         let m = x0.len().saturating_sub(6);
         Ok(Self {
             config,
-            r: so3::from_euler(x0[3], x0[4], x0[5]),
+            r: rotation(&x0[3..6]),
             // The mounting's angles give the IMU's axes in body components.
-            imu_to_body: so3::from_euler(f, t, p),
+            imu_to_body: rotation(&[f, t, p]),
             gyro_bias: [0.0; 3],
             position: [x0[0], x0[1], x0[2]],
             speed: 0.0,
@@ -165,15 +167,15 @@ impl DeadReckoning {
             });
         };
         let dt = s.t - self.t;
-        let gyro = so3::apply(&self.imu_to_body, gyro);
-        let accel = so3::apply(&self.imu_to_body, accel);
+        let gyro = mul(&self.imu_to_body, gyro);
+        let accel = mul(&self.imu_to_body, accel);
         // The accelerometers' up against the estimate's, in body axes.
         let mut correction = [0.0; 3];
         let norm = libm::sqrt(accel.iter().map(|a| a * a).sum::<f64>());
         if (norm - self.gravity).abs() <= self.config.accel_gate * self.gravity && norm > 0.0 {
             let measured = accel.map(|a| a / norm);
-            let estimated = so3::apply_transposed(&self.r, [0.0, 0.0, 1.0]);
-            correction = so3::cross(measured, estimated);
+            let estimated = mul_t(&self.r, [0.0, 0.0, 1.0]);
+            correction = cross(measured, estimated);
         }
         for i in 0..3 {
             self.gyro_bias[i] -= self.config.ki * correction[i] * dt;
@@ -182,10 +184,10 @@ impl DeadReckoning {
         let turn: [f64; 3] =
             core::array::from_fn(|i| (self.omega[i] + self.config.kp * correction[i]) * dt);
         // The position advances along the heading at mid-interval.
-        let half = so3::mul(&self.r, &so3::exp(turn.map(|a| 0.5 * a)));
-        self.r = so3::orthonormalize(&so3::mul(&self.r, &so3::exp(turn)));
+        let half = mat_mul(&self.r, &exp(turn.map(|a| 0.5 * a)));
+        self.r = orthonormalize(&mat_mul(&self.r, &exp(turn)));
         self.speed = self.rolling_speed(&s.wheel_angles, dt);
-        let step = so3::apply(&half, [self.speed * dt, 0.0, 0.0]);
+        let step = mul(&half, [self.speed * dt, 0.0, 0.0]);
         for (p, d) in self.position.iter_mut().zip(step) {
             *p += d;
         }
@@ -252,7 +254,7 @@ impl DeadReckoning {
     /// ẏ1 … ẏm]`, the velocity the rolling speed along the body's x axis.
     pub fn state(&self, x: &mut [f64], w: &mut [f64]) {
         x[..3].copy_from_slice(&self.position);
-        x[3..6].copy_from_slice(&so3::to_euler(&self.r));
+        x[3..6].copy_from_slice(&euler(&self.r, 0.0));
         x[6..].copy_from_slice(&self.suspension);
         w[..3].copy_from_slice(&[self.speed, 0.0, 0.0]);
         w[3..6].copy_from_slice(&self.omega);

@@ -13,7 +13,6 @@
 //!   gives a filter to read;
 //! - [`dead_reckoning`]: the baseline without a model, a complementary
 //!   filter on the gyros and accelerometers and the wheels' odometry;
-//! - [`so3`]: rotations in the model's attitude convention.
 //! - [`filter`]: the model-based error-state extended Kalman filter
 //!   ([`Estimator`]) over any process model;
 //! - `runtime` (feature `runtime`, with std): the rover runtime's
@@ -31,11 +30,11 @@ pub mod consistency;
 pub mod dead_reckoning;
 pub mod filter;
 pub mod process;
+mod rotation;
 #[cfg(feature = "runtime")]
 pub mod runtime;
 pub mod sensors;
 pub mod simulate;
-pub mod so3;
 
 pub use dead_reckoning::{DeadReckoning, DeadReckoningConfig};
 pub use filter::{EstimateError, Estimator, FilterConfig, InitialSigma};

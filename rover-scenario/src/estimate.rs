@@ -18,10 +18,12 @@ use rover_estimate::{
     SensorSample,
 };
 use rover_integrate::OdeSystem;
+use rover_runtime::control::wrap_angle;
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
 use serde::Serialize;
 
+use crate::output::csv_writer::write_finite_row;
 use crate::output::plant_label;
 use crate::scenario::Scenario;
 use crate::simulate::{SetupError, ground_of, initial_state, settle_into_soil};
@@ -207,7 +209,7 @@ impl AccuracyTally {
         self.final_drift = drift;
         self.max_drift = self.max_drift.max(drift);
         for k in 0..3 {
-            self.angles[k].add(wrap(y[3 + k] - truth[3 + k]));
+            self.angles[k].add(wrap_angle(y[3 + k] - truth[3 + k]));
         }
         for (i, r) in self.suspension.iter_mut().enumerate() {
             r.add(y[6 + i] - truth[6 + i]);
@@ -255,12 +257,6 @@ impl AccuracyTally {
             slip_max: slip_counted.then(|| self.slip.iter().map(Rms::value).fold(0.0, f64::max)),
         }
     }
-}
-
-/// An angle difference in (−π, π].
-fn wrap(a: f64) -> f64 {
-    let tau = std::f64::consts::TAU;
-    a - tau * ((a + std::f64::consts::PI) / tau).floor()
 }
 
 /// The truth's horizontal path length up to each of its rows.
@@ -390,7 +386,8 @@ pub fn estimate_log<P: Plant, W: Write, V: Write>(
     let mut nees = NeesTally::new(2 * n);
     let mut next_truth = 0;
     let mut row = vec![0.0; est_names.len()];
-    let (mut x_dr, mut w_dr) = (vec![0.0; n], vec![0.0; n]);
+    // dead_reckoning.csv's row: t, then the baseline's [x; w].
+    let mut dr_row = vec![0.0; 1 + 2 * n];
     let (mut normal, mut slip) = (vec![0.0; wheels], vec![0.0; wheels]);
     let mut truth_state = vec![0.0; y0.len()];
     let mut summary = EstimateSummary {
@@ -434,9 +431,11 @@ pub fn estimate_log<P: Plant, W: Write, V: Write>(
         }
         fill_estimate_row(&filter, s.t, &normal, &slip, &mut row);
         est_out.write(&row).map_err(output("estimate.csv"))?;
-        baseline.state(&mut x_dr, &mut w_dr);
+        dr_row[0] = s.t;
+        let (x_dr, w_dr) = dr_row[1..].split_at_mut(n);
+        baseline.state(x_dr, w_dr);
         dr_out
-            .write_parts(s.t, &[&x_dr, &w_dr])
+            .write(&dr_row)
             .map_err(output("dead_reckoning.csv"))?;
         summary.samples = k + 1;
         summary.t_end = s.t;
@@ -453,8 +452,7 @@ pub fn estimate_log<P: Plant, W: Write, V: Write>(
             continue;
         };
         tally.add(filter.state(), tru, slips.map(|t| (slip.as_slice(), t)));
-        let dr_y: Vec<f64> = x_dr.iter().chain(&w_dr).copied().collect();
-        dr_tally.add(&dr_y, tru, None);
+        dr_tally.add(&dr_row[1..], tru, None);
         truth_state[..2 * n].copy_from_slice(tru);
         truth_state[2 * n..].copy_from_slice(&filter.state()[2 * n..]);
         match filter.nees(&truth_state) {
@@ -561,29 +559,7 @@ impl<W: Write> RowWriter<W> {
     }
 
     fn write(&mut self, row: &[f64]) -> std::io::Result<()> {
-        if let Some(k) = row.iter().position(|v| !v.is_finite()) {
-            return Err(std::io::Error::other(format!(
-                "column {} (`{}`) is {}: not written",
-                k + 1,
-                self.names[k],
-                row[k]
-            )));
-        }
-        for (k, v) in row.iter().enumerate() {
-            if k > 0 {
-                self.out.write_all(b",")?;
-            }
-            write!(self.out, "{v}")?;
-        }
-        self.out.write_all(b"\n")
-    }
-
-    /// `t` then the parts' values, one row.
-    fn write_parts(&mut self, t: f64, parts: &[&[f64]]) -> std::io::Result<()> {
-        let row: Vec<f64> = std::iter::once(t)
-            .chain(parts.iter().flat_map(|p| p.iter().copied()))
-            .collect();
-        self.write(&row)
+        write_finite_row(&mut self.out, &self.names, row)
     }
 
     fn finish(mut self) -> std::io::Result<()> {

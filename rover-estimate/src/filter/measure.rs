@@ -5,8 +5,8 @@
 use rover_dynamics::linalg::{M3, cross, dot, mul, mul_t};
 
 use super::noise::ImuNoise;
-use super::rotation::{cross3, rotation, skew};
 use super::{ATTITUDE, Layout};
+use crate::rotation::{cross3, rotation, skew};
 
 /// `row ← row·S⁻¹`: a gradient against the model's `y` (Euler angles)
 /// made a gradient against the error state (δθ), `δe = T⁻¹·δθ`.

@@ -25,7 +25,6 @@ mod error;
 mod measure;
 mod noise;
 mod predict;
-mod rotation;
 mod state_sigma;
 mod step_matrix;
 mod update;
@@ -466,21 +465,38 @@ fn process_noise(
     config: &FilterConfig,
     spins: core::ops::Range<usize>,
 ) -> Vec<f64> {
-    let n = layout.n;
-    let mut q = vec![0.0; layout.len];
-    let groups = [
-        (0..3, config.position_noise),
-        (ATTITUDE, config.attitude_noise),
-        (6..n, config.suspension_noise),
-        (n..n + 3, config.velocity_noise),
-        (n + 3..n + 6, config.angular_velocity_noise),
-        (n + 6..2 * n, config.suspension_rate_noise),
-        (spins, config.spin_noise),
+    let c = config;
+    let sigma = [
+        c.position_noise,
+        c.attitude_noise,
+        c.suspension_noise,
+        c.velocity_noise,
+        c.angular_velocity_noise,
+        c.suspension_rate_noise,
+        c.spin_noise,
     ];
-    for (range, sigma) in groups {
-        q[range].iter_mut().for_each(|v| *v = sigma * sigma);
+    by_group(layout, sigma.map(|s| s * s), spins)
+}
+
+/// One value per error component from one per group — position,
+/// attitude, suspension, velocity, angular velocity, suspension rates,
+/// spins — the biases' left 0.
+fn by_group(layout: &Layout, values: [f64; 7], spins: core::ops::Range<usize>) -> Vec<f64> {
+    let n = layout.n;
+    let mut out = vec![0.0; layout.len];
+    let ranges = [
+        0..3,
+        ATTITUDE,
+        6..n,
+        n..n + 3,
+        n + 3..n + 6,
+        n + 6..2 * n,
+        spins,
+    ];
+    for (range, v) in ranges.into_iter().zip(values) {
+        out[range].iter_mut().for_each(|o| *o = v);
     }
-    q
+    out
 }
 
 /// The initial covariance: diagonal, from `initial` and the biases' σ.
@@ -490,20 +506,18 @@ fn initial_covariance(
     noise: &SensorNoise,
     spins: core::ops::Range<usize>,
 ) -> Vec<f64> {
-    let (n, len) = (layout.n, layout.len);
-    let mut sigma = vec![0.0; len];
+    let len = layout.len;
+    let i = initial;
     let groups = [
-        (0..3, initial.position),
-        (ATTITUDE, initial.attitude),
-        (6..n, initial.suspension),
-        (n..n + 3, initial.velocity),
-        (n + 3..n + 6, initial.angular_velocity),
-        (n + 6..2 * n, initial.suspension_rate),
-        (spins, initial.spin),
+        i.position,
+        i.attitude,
+        i.suspension,
+        i.velocity,
+        i.angular_velocity,
+        i.suspension_rate,
+        i.spin,
     ];
-    for (range, s) in groups {
-        sigma[range].iter_mut().for_each(|v| *v = s);
-    }
+    let mut sigma = by_group(layout, groups, spins);
     if let Some(imu) = &noise.imu {
         let g = layout.gyro_bias();
         sigma[g..g + 3]

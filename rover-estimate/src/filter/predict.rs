@@ -20,11 +20,11 @@
 use rover_dynamics::linalg::M3;
 
 use super::dense::{symmetrize, transpose_in_place};
-use super::rotation::error_map;
 use super::step_matrix::StepMatrix;
 use super::update::check_diagonal;
 use super::{ATTITUDE, EstimateError, Estimator, Layout, Result, check_finite, check_len};
 use crate::process::ProcessModel;
+use crate::rotation::error_map;
 
 impl<M: ProcessModel> Estimator<M> {
     /// Advances the estimate by `dt` \[s\] under the motor torques [N·m]

@@ -2,9 +2,9 @@
 //! the error state's, with the attitude's small rotation mapped back to
 //! the Euler angles the model keeps.
 
-use super::rotation::error_map;
 use super::{ATTITUDE, Estimator, Result, check_len};
 use crate::process::ProcessModel;
+use crate::rotation::error_map;
 
 impl<M: ProcessModel> Estimator<M> {
     /// One standard deviation per entry of the model state `y` into `out`

@@ -15,9 +15,9 @@
 use rover_dynamics::linalg::{mat_mul, transpose};
 
 use super::measure::{self, to_error_coordinates};
-use super::rotation::{self, error_map, wrap};
 use super::{ATTITUDE, EstimateError, Estimator, Result, check_finite, check_len};
 use crate::process::ProcessModel;
+use crate::rotation::{self, error_map, wrap};
 
 impl<M: ProcessModel> Estimator<M> {
     /// The model's right-hand side at the estimate, unless it is there,

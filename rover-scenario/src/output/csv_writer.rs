@@ -27,21 +27,7 @@ impl<'c, W: Write> CsvWriter<'c, W> {
     /// Compute the row of `inputs` and write it; the row's values.
     pub fn write(&mut self, inputs: &RowInputs<'_>) -> std::io::Result<&[f64]> {
         self.columns.fill(inputs, &mut self.row);
-        if let Some(k) = self.row.iter().position(|v| !v.is_finite()) {
-            return Err(std::io::Error::other(format!(
-                "column {} (`{}`) is {}: not written",
-                k + 1,
-                self.columns.names()[k],
-                self.row[k]
-            )));
-        }
-        for (k, v) in self.row.iter().enumerate() {
-            if k > 0 {
-                self.out.write_all(b",")?;
-            }
-            write!(self.out, "{v}")?;
-        }
-        self.out.write_all(b"\n")?;
+        write_finite_row(&mut self.out, self.columns.names(), &self.row)?;
         Ok(&self.row)
     }
 
@@ -50,4 +36,29 @@ impl<'c, W: Write> CsvWriter<'c, W> {
         self.out.flush()?;
         Ok(self.out)
     }
+}
+
+/// One line of `row`'s numbers (each in its shortest exact form), or an
+/// error naming the first non-finite one by its column in `names`,
+/// nothing written then.
+pub(crate) fn write_finite_row<W: Write>(
+    out: &mut W,
+    names: &[String],
+    row: &[f64],
+) -> std::io::Result<()> {
+    if let Some(k) = row.iter().position(|v| !v.is_finite()) {
+        return Err(std::io::Error::other(format!(
+            "column {} (`{}`) is {}: not written",
+            k + 1,
+            names[k],
+            row[k]
+        )));
+    }
+    for (k, v) in row.iter().enumerate() {
+        if k > 0 {
+            out.write_all(b",")?;
+        }
+        write!(out, "{v}")?;
+    }
+    out.write_all(b"\n")
 }

@@ -1,7 +1,7 @@
 //! What a run writes: the CSV time histories, the summary and the rut map.
 
 mod circle_fit;
-mod csv_writer;
+pub(crate) mod csv_writer;
 mod rut_grid;
 mod slide;
 mod summary;

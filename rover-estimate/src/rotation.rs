@@ -118,6 +118,20 @@ pub(crate) fn wrap(a: f64) -> f64 {
     }
 }
 
+/// The rotation nearest `r`, orthonormal to rounding: one Newton–Schulz
+/// step `R·(3I − RᵀR)/2`, enough for the drift of a product of exact
+/// rotations (dead reckoning's attitude, turned every sample).
+pub(crate) fn orthonormalize(r: &M3<f64>) -> M3<f64> {
+    let rtr = mat_mul(&transpose(r), r);
+    let mut m = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            m[i][j] = 0.5 * (3.0 * f64::from(u8::from(i == j)) - rtr[i][j]);
+        }
+    }
+    mat_mul(r, &m)
+}
+
 /// `a × b`.
 pub(crate) fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     cross(a, b)
@@ -158,6 +172,19 @@ mod tests {
         // A yaw past π stays on the side of the previous one.
         let back = euler(&rotation(&[0.0, 0.0, 3.3]), 3.2);
         assert!((back[2] - 3.3).abs() < 1e-12);
+    }
+
+    #[test]
+    fn orthonormalize_removes_drift() {
+        let mut r = rotation(&[0.3, -0.2, 1.0]);
+        r[0][0] *= 1.0 + 1e-6;
+        let o = orthonormalize(&r);
+        let oto = mat_mul(&transpose(&o), &o);
+        let worst = (0..9).fold(0.0f64, |w, k| {
+            let (i, j) = (k / 3, k % 3);
+            w.max((oto[i][j] - f64::from(u8::from(i == j))).abs())
+        });
+        assert!(worst < 1e-11, "{worst}");
     }
 
     /// `R(e + δe) ≈ exp((T·δe)×)·R(e)`, to second order in δe.
