@@ -315,7 +315,9 @@ fn body_to_imu(deg: [f64; 3]) -> [[f64; 3]; 3] {
 /// Over 60 steps of 20 ms with a varying force, gyro and encoder
 /// readings every step and a position fix every 10th: the filter's
 /// state and covariance equal the textbook filter's on the discrete
-/// model `Φ = (I − hJ)⁻ᵐ` (m substeps), biases decaying by `e^(−dt/τ)`.
+/// model `Φ = (I − hJ)⁻ᵐ` (m substeps), biases decaying by `e^(−dt/τ)`,
+/// the torque's noise `dt²·(σ_τ² + (½·Δu)²)` on vx (the model's
+/// response to the torque, `b = e_vx`, by the filter's differences).
 #[test]
 fn equals_the_textbook_kalman_filter_on_a_linear_model() {
     for substeps in [1, 2] {
@@ -401,9 +403,12 @@ fn equals_the_textbook_kalman_filter_on_a_linear_model() {
         let fix_variance = 0.05f64.powi(2);
 
         let mut angle = 0.0;
+        let mut last_u = None;
         filter.update_wheel_angles(&[angle]).unwrap();
         for step in 1..=60 {
             let u = (0.3 * step as f64).sin();
+            let change = last_u.map_or(0.0, |l| u - l);
+            last_u = Some(u);
             filter.predict(dt, &[u], &[0.0]).unwrap();
             // Γ·u: each substep adds h·A⁻¹·b·u after the previous ones.
             let mut b = vec![0.0; DIM];
@@ -416,6 +421,8 @@ fn equals_the_textbook_kalman_filter_on_a_linear_model() {
             }
             gamma.extend([0.0; 6]);
             kf.predict(&phi, &gamma, &q);
+            let moving = config.torque_change_scale * change;
+            kf.p.a[6 * n + 6] += dt * dt * (config.torque_sigma.powi(2) + moving * moving);
 
             // Readings that differ from the estimate (a made-up truth).
             let s = step as f64;

@@ -56,9 +56,10 @@ fn tracks_mer_on_sand_with_the_spins_as_states() {
     assert_eq!(spins.len(), 6);
     rover::settled(&mut truth, &mut y, 1.0);
     let (process, _) = rover::open_loop_on_soil(&model, Mer::new(), terrain, "dry_sand");
+    // A soil law only approximates real sand: the preset for such a model.
     let config = FilterConfig {
         substeps: 8,
-        ..FilterConfig::default()
+        ..FilterConfig::approximate_model()
     };
     let mut filter = Estimator::new(
         process,
@@ -66,7 +67,7 @@ fn tracks_mer_on_sand_with_the_spins_as_states() {
         config,
         1.0,
         &y,
-        &InitialSigma::default(),
+        &InitialSigma::approximate_model(),
     )
     .unwrap();
     let wheels = truth.plant.wheel_count();

@@ -85,10 +85,9 @@ pub fn process_system<P: Plant>(
 pub struct EstimateOptions {
     /// The map the filter carries.
     pub map: EstimateMap,
-    /// The filter's tuning.
-    pub filter: FilterConfig,
-    /// The filter's initial standard deviations.
-    pub initial: InitialSigma,
+    /// The filter's tuning and initial standard deviations: a file's
+    /// values over the preset the run calls for ([`Preset::of`]).
+    pub tuning: Tuning,
     /// The dead-reckoning baseline's gains.
     pub dead_reckoning: DeadReckoningConfig,
 }
@@ -155,6 +154,8 @@ pub struct EstimateSummary {
     pub samples: usize,
     /// The map the filter carried.
     pub map: String,
+    /// The tuning's preset (`Preset`), under the tuning file's fields.
+    pub preset: String,
     /// The process model's plant.
     pub plant: String,
     /// The truth's horizontal path length \[m\].
@@ -356,15 +357,10 @@ pub fn estimate_log<P: Plant, W: Write, V: Write>(
     let (sys, y0) = process_system(plant, model, scenario, base_dir, options.map)?;
     let first = samples.first().ok_or(EstimateRunError::Empty)?;
     let soil = !sys.spin_range().is_empty();
-    let mut filter = Estimator::new(
-        sys,
-        sensors,
-        options.filter.clone(),
-        first.t,
-        &y0,
-        &options.initial,
-    )
-    .map_err(|e| EstimateRunError::Start(e.to_string()))?;
+    let preset = Preset::of(options.map, soil);
+    let (config, initial) = options.tuning.resolve(preset);
+    let mut filter = Estimator::new(sys, sensors, config, first.t, &y0, &initial)
+        .map_err(|e| EstimateRunError::Start(e.to_string()))?;
     let radii: Vec<f64> = model.wheels.iter().map(|w| w.radius).collect();
     let mut baseline = DeadReckoning::new(
         options.dead_reckoning,
@@ -393,6 +389,7 @@ pub fn estimate_log<P: Plant, W: Write, V: Write>(
     let mut summary = EstimateSummary {
         status: "completed".into(),
         map: map_label(options.map),
+        preset: preset.name().into(),
         plant: plant_name,
         ..EstimateSummary::default()
     };
@@ -630,16 +627,96 @@ impl crate::prepare::Prepared {
     }
 }
 
+/// Which tuning a run starts from: the model is the rover's own (its
+/// true map, rigid ground), or only approximates its world (a smoothed
+/// map, a soil law). docs/ESTIMATE.md, "Tuning".
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Preset {
+    /// [`FilterConfig::default`] and [`InitialSigma::default`].
+    ExactModel,
+    /// [`FilterConfig::approximate_model`] and
+    /// [`InitialSigma::approximate_model`].
+    ApproximateModel,
+}
+
+impl Preset {
+    /// The preset of a run on `map`, on a soil when `soil`.
+    pub fn of(map: EstimateMap, soil: bool) -> Self {
+        if soil || map != EstimateMap::True {
+            Preset::ApproximateModel
+        } else {
+            Preset::ExactModel
+        }
+    }
+
+    /// Its name in the summary.
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::ExactModel => "exact model",
+            Preset::ApproximateModel => "approximate model",
+        }
+    }
+
+    /// Its tuning and initial standard deviations.
+    pub fn values(self) -> (FilterConfig, InitialSigma) {
+        match self {
+            Preset::ExactModel => (FilterConfig::default(), InitialSigma::default()),
+            Preset::ApproximateModel => (
+                FilterConfig::approximate_model(),
+                InitialSigma::approximate_model(),
+            ),
+        }
+    }
+}
+
 /// A filter's tuning as a file gives it (`rover estimate --tuning`): the
 /// `[filter]` table ([`FilterConfig`]'s fields) and the `[initial]` table
-/// ([`InitialSigma`]'s), each field optional (its default otherwise).
-#[derive(Clone, Debug, Default, PartialEq, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
+/// ([`InitialSigma`]'s), each field optional: a field the file leaves
+/// out keeps the run's preset value ([`Preset`]).
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Tuning {
-    /// The filter's noises and steps.
-    pub filter: FilterConfig,
-    /// Its initial standard deviations.
-    pub initial: InitialSigma,
+    /// The file's tables, checked against the fields when read.
+    overrides: toml::Table,
+}
+
+/// The shape a tuning file is checked against.
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(dead_code)] // read for its checks only
+struct TuningFile {
+    #[serde(default)]
+    filter: FilterConfig,
+    #[serde(default)]
+    initial: InitialSigma,
+}
+
+impl Tuning {
+    /// The preset's values with this tuning's fields over them.
+    pub fn resolve(&self, preset: Preset) -> (FilterConfig, InitialSigma) {
+        let (filter, initial) = preset.values();
+        (
+            overlay(filter, self.overrides.get("filter")),
+            overlay(initial, self.overrides.get("initial")),
+        )
+    }
+}
+
+/// `base` with the fields of `table` (checked when the file was read)
+/// over it.
+fn overlay<T>(base: T, table: Option<&toml::Value>) -> T
+where
+    T: serde::Serialize + serde::de::DeserializeOwned + Clone,
+{
+    let Some(toml::Value::Table(fields)) = table else {
+        return base;
+    };
+    let Ok(toml::Value::Table(mut merged)) = toml::Value::try_from(base.clone()) else {
+        return base;
+    };
+    for (k, v) in fields {
+        merged.insert(k.clone(), v.clone());
+    }
+    toml::Value::Table(merged).try_into().unwrap_or(base)
 }
 
 /// Reads a [`Tuning`] file; the error names the file, the line and the
@@ -647,15 +724,18 @@ pub struct Tuning {
 pub fn read_tuning(path: &Path) -> Result<Tuning, String> {
     let text = rover_files::read_text(path, rover_files::Limit::Text)
         .map_err(|e| format!("{}: cannot read it: {e}", path.display()))?;
-    toml::from_str(&text).map_err(|e| {
+    let located = |e: toml::de::Error| {
         let line = e
             .span()
             .map(|s| format!(":{}", 1 + text[..s.start].matches('\n').count()))
             .unwrap_or_default();
         format!(
-            "{}{line}: {}\n  = help: the tuning file has a [filter] table (substeps, jacobian_every, position_noise, attitude_noise, suspension_noise, velocity_noise, angular_velocity_noise, suspension_rate_noise, spin_noise, wheel_rate_sigma, accel_model_sigma) and an [initial] table (position, attitude, suspension, velocity, angular_velocity, suspension_rate, spin); docs/ESTIMATE.md explains each",
+            "{}{line}: {}\n  = help: the tuning file has a [filter] table (substeps, jacobian_every, position_noise, attitude_noise, suspension_noise, velocity_noise, angular_velocity_noise, suspension_rate_noise, spin_noise, wheel_rate_sigma, accel_model_sigma, torque_sigma, torque_response_every, torque_change_scale) and an [initial] table (position, attitude, suspension, velocity, angular_velocity, suspension_rate, spin); docs/ESTIMATE.md explains each",
             path.display(),
             e.message()
         )
-    })
+    };
+    toml::from_str::<TuningFile>(&text).map_err(located)?;
+    let overrides = toml::from_str::<toml::Table>(&text).map_err(located)?;
+    Ok(Tuning { overrides })
 }

@@ -6,8 +6,10 @@
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
-use rover_estimate::SensorSample;
-use rover_scenario::estimate::{EstimateOptions, EstimateSummary, estimate_columns, read_tuning};
+use rover_estimate::{FilterConfig, InitialSigma, SensorSample};
+use rover_scenario::estimate::{
+    EstimateOptions, EstimateSummary, Preset, estimate_columns, read_tuning,
+};
 use rover_scenario::prepare::Prepared;
 use rover_scenario::sensor_log::parse_sensor_log;
 use rover_scenario::truth_log::{TruthLog, parse_truth};
@@ -66,9 +68,9 @@ fn estimate(
 /// within 0.2° RMS, the suspension within 0.3°, G's velocity within
 /// 1 cm/s, the position drift within 1 % of the distance; never worse than
 /// dead reckoning on the same log, and at least twice less drift where
-/// the wheels skid. The NEES's mean stays near its 2N degrees of freedom
-/// (an overall calibration of the covariance; its spread is wider than
-/// χ², docs/ESTIMATE.md).
+/// the wheels skid. Consistency: the NEES within its 95 % χ² interval
+/// at most instants (0.73 on this log; the 0.9 sought is not reached,
+/// docs/ESTIMATE.md says what binds it).
 #[test]
 fn the_fig13_drive_is_estimated_within_its_targets_and_beats_dead_reckoning() {
     let p = Prepared::from_file(None, &scenario_path("fig13_observer.toml")).unwrap();
@@ -87,13 +89,14 @@ fn the_fig13_drive_is_estimated_within_its_targets_and_beats_dead_reckoning() {
     assert!(f.drift_fraction <= 0.01, "{f:?}");
     assert!(d.final_drift >= 2.0 * f.final_drift, "{d:?} against {f:?}");
     assert!(
-        f.roll_deg <= d.roll_deg && f.pitch_deg <= d.pitch_deg,
+        f.roll_deg <= d.roll_deg && f.pitch_deg <= d.pitch_deg && f.yaw_deg <= d.yaw_deg,
         "{f:?} {d:?}"
     );
     assert!(f.suspension_deg_max <= d.suspension_deg_max && f.velocity <= d.velocity);
     let c = s.consistency.as_ref().unwrap();
     assert_eq!(c.dof, 20);
-    assert!((10.0..=40.0).contains(&c.mean), "{c:?}");
+    assert!(c.fraction_inside >= 0.6, "{c:?}");
+    assert_eq!(s.preset, "exact model");
 }
 
 /// estimate.csv: its columns, one row per sample, every value finite,
@@ -121,7 +124,8 @@ fn the_estimate_rows_hold_the_state_its_sigma_loads_and_biases() {
         assert!(r[sigma..sigma + 20].iter().all(|v| *v > 0.0), "{r:?}");
     }
     // The start is the truth's, moved by the first readings within the
-    // initial σ (1 mm, 1 mrad) and the velocities' (1 cm/s).
+    // initial σ (1 µm, 3 µrad: the start is known) and the velocities'
+    // (1 cm/s).
     for (k, v) in truth.y[0].iter().enumerate() {
         let d = (rows[0][1 + k] - v).abs();
         assert!(d < 3.0 * rows[0][sigma + k].max(1e-3), "{k}: {d}");
@@ -165,6 +169,15 @@ fn a_tuning_file_names_a_field_it_does_not_know() {
     assert!(e.contains("tuning.toml:6") && e.contains("heading"), "{e}");
     std::fs::write(&path, "[filter]\nsubsteps = 2\n").unwrap();
     let t = read_tuning(&path).unwrap();
-    assert_eq!(t.filter.substeps, 2);
+    // The file's field over either preset; the rest is the preset's.
+    let (exact, exact_initial) = t.resolve(Preset::ExactModel);
+    let (approximate, _) = t.resolve(Preset::ApproximateModel);
+    assert_eq!((exact.substeps, approximate.substeps), (2, 2));
+    assert_eq!(exact.velocity_noise, FilterConfig::default().velocity_noise);
+    assert_eq!(
+        approximate.velocity_noise,
+        FilterConfig::approximate_model().velocity_noise
+    );
+    assert_eq!(exact_initial, InitialSigma::default());
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -111,8 +111,7 @@ pub fn estimate(args: &EstimateArgs) -> Result<(EstimateSummary, Vec<PathBuf>), 
     };
     let options = EstimateOptions {
         map,
-        filter: tuning.filter,
-        initial: tuning.initial,
+        tuning,
         ..EstimateOptions::default()
     };
     let out = OutputDir::create(&args.out)
@@ -207,14 +206,15 @@ pub fn report(summary: &EstimateSummary, files: &[PathBuf]) -> String {
         &summary.consistency,
     ) {
         s.push_str(&format!(
-            "\n{:<16}{:>10}{:>10}{:>13}{:>12}{:>12}",
-            "", "roll [°]", "pitch [°]", "susp. [°]", "v [m/s]", "drift [%]"
+            "\n{:<16}{:>10}{:>10}{:>10}{:>13}{:>12}{:>12}",
+            "", "roll [°]", "pitch [°]", "yaw [°]", "susp. [°]", "v [m/s]", "drift [%]"
         ));
         for (name, a) in [("model-based EKF", f), ("dead reckoning", d)] {
             s.push_str(&format!(
-                "\n{name:<16}{:>10.4}{:>10.4}{:>13.4}{:>12.5}{:>12.3}",
+                "\n{name:<16}{:>10.4}{:>10.4}{:>10.4}{:>13.4}{:>12.5}{:>12.3}",
                 a.roll_deg,
                 a.pitch_deg,
+                a.yaw_deg,
                 a.suspension_deg_max.unwrap_or(0.0),
                 a.velocity,
                 100.0 * a.drift_fraction

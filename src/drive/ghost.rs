@@ -17,12 +17,10 @@ use std::time::Instant;
 
 use rover_dynamics::Model;
 use rover_dynamics::plant::{Plant, WheelState};
-use rover_estimate::{
-    Estimator, FilterConfig, InitialSigma, SensorConfig, SensorSample, SensorSimulator, Truth,
-};
+use rover_estimate::{Estimator, SensorConfig, SensorSample, SensorSimulator, Truth};
 use rover_runtime::sim::RoverSystem;
 use rover_runtime::terrain::Terrain;
-use rover_scenario::estimate::{EstimateMap, process_system};
+use rover_scenario::estimate::{EstimateMap, Preset, process_system};
 use rover_scenario::scenario::Scenario;
 use rover_scenario::simulate::SetupError;
 
@@ -327,22 +325,19 @@ impl<P: Plant> Ghost<P> {
     }
 }
 
-/// A filter over `system` from `y0` at t = 0, with the default tuning.
+/// A filter over `system` from `y0` at t = 0, with the preset tuning of
+/// its ground (the map is the scenario's own).
 fn start<P: Plant>(
     system: RoverSystem<P, Terrain>,
     sensors: &SensorConfig,
     y0: &[f64],
 ) -> Result<Estimator<RoverSystem<P, Terrain>>, SetupError> {
-    Estimator::new(
-        system,
-        sensors,
-        FilterConfig::default(),
-        0.0,
-        y0,
-        &InitialSigma::default(),
-    )
-    .map_err(|e| SetupError::Unsupported {
-        field: "--estimate",
-        message: format!("the estimator cannot start: {e}"),
+    let soil = !system.spin_range().is_empty();
+    let (config, initial) = Preset::of(EstimateMap::True, soil).values();
+    Estimator::new(system, sensors, config, 0.0, y0, &initial).map_err(|e| {
+        SetupError::Unsupported {
+            field: "--estimate",
+            message: format!("the estimator cannot start: {e}"),
+        }
     })
 }

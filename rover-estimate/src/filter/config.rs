@@ -12,9 +12,12 @@ use super::EstimateError;
 /// The noise stands for what the model does not know: the commands held
 /// over a step while the rover's own loops move them, the terrain between
 /// its map's nodes, a soil's or tyre's parameters, and the step's own
-/// error. The defaults keep the filter consistent (its NEES within the
-/// chi-square band) on the paper's Fig. 13 run (swing4 slip-steered on
-/// rough ground at 0.05 m/s) with the commands sampled at 100 Hz.
+/// error. Two sets are tuned (docs/ESTIMATE.md, "Tuning"):
+/// [`FilterConfig::default`] for a model that is the rover's own (its
+/// terrain map true, rigid ground): little noise, most of it where the
+/// commands move; [`FilterConfig::approximate_model`] for a model that
+/// is not (a smoothed map, a soil whose law only approximates the
+/// ground): a noise on every group.
 #[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
@@ -51,10 +54,59 @@ pub struct FilterConfig {
     /// map's nodes and the linearization's error, and a stiff tyre makes
     /// it swing with every small error of the state.
     pub accel_model_sigma: f64,
+    /// A commanded motor torque's error over one prediction [N·m], each
+    /// wheel's independent and independent between predictions: the
+    /// command is held over the step while the rover's motor loop moves
+    /// it. It enters the covariance through the model's own response to a
+    /// torque, `P += dt²·σ²·b_k·b_kᵀ` with `b_k = ∂f/∂τ_k`, so that the
+    /// uncertainty goes where a torque moves the rover: along its track,
+    /// in yaw where the wheels skid, into the suspensions by the reaction.
+    pub torque_sigma: f64,
+    /// Predictions between two evaluations of `∂f/∂τ` (one right-hand
+    /// side per wheel, by differences): the response to a torque changes
+    /// with the contacts, slowly against the step.
+    pub torque_response_every: usize,
+    /// How much of a torque's last change between two predictions the
+    /// held torque may be off by: the command is held over the step
+    /// while the rover's loop ramps it (½: a steady ramp's held value is
+    /// off by half its change, on average over the step). Adds
+    /// `(scale·Δτ_k)²` to `torque_sigma²`, so that the uncertainty grows
+    /// where the commands move — a wheel striking a bump makes the speed
+    /// loop push — and not while they hold.
+    pub torque_change_scale: f64,
 }
 
 impl Default for FilterConfig {
+    /// The tuning for a model that is the rover's own: tuned on the
+    /// paper's Fig. 13 run (swing4 slip-steered on rough ground at
+    /// 0.05 m/s, its true map) with the commands sampled at 100 Hz, over
+    /// sixteen seeds of its sensors.
     fn default() -> Self {
+        Self {
+            substeps: 2,
+            jacobian_every: 1,
+            position_noise: 3e-7,
+            attitude_noise: 1.8e-6,
+            suspension_noise: 1e-6,
+            velocity_noise: 8.25e-5,
+            angular_velocity_noise: 6e-4,
+            suspension_rate_noise: 0.016,
+            spin_noise: 0.5,
+            wheel_rate_sigma: 0.001,
+            accel_model_sigma: 0.00135,
+            torque_sigma: 0.00048,
+            torque_response_every: 10,
+            torque_change_scale: 0.5,
+        }
+    }
+}
+
+impl FilterConfig {
+    /// The tuning for a model that only approximates the rover's world:
+    /// a map smoothed below its features, a soil law over real sand.
+    /// A noise on every group, none through the torques (on a soil the
+    /// wheel loops' torques move with every change of slip).
+    pub fn approximate_model() -> Self {
         Self {
             substeps: 1,
             jacobian_every: 1,
@@ -67,6 +119,9 @@ impl Default for FilterConfig {
             spin_noise: 0.5,
             wheel_rate_sigma: 0.02,
             accel_model_sigma: 0.05,
+            torque_sigma: 0.0,
+            torque_response_every: 10,
+            torque_change_scale: 0.0,
         }
     }
 }
@@ -94,7 +149,22 @@ pub struct InitialSigma {
 }
 
 impl Default for InitialSigma {
+    /// A start the filter knows: the pose and attitude where the map's
+    /// frame says the rover stands (a rover's map frame is where it
+    /// started); the rest as the sensors will soon tell.
     fn default() -> Self {
+        Self {
+            position: 1e-6,
+            attitude: 3e-6,
+            ..Self::approximate_model()
+        }
+    }
+}
+
+impl InitialSigma {
+    /// A start placed on an approximate model (a smoothed map, a soil):
+    /// a millimetre and a milliradian.
+    pub fn approximate_model() -> Self {
         Self {
             position: 0.001,
             attitude: 0.001,
@@ -148,6 +218,19 @@ impl FilterConfig {
         }
         check("filter.position_noise", self.position_noise, false)?;
         check("filter.accel_model_sigma", self.accel_model_sigma, false)?;
+        check("filter.torque_sigma", self.torque_sigma, false)?;
+        check(
+            "filter.torque_change_scale",
+            self.torque_change_scale,
+            false,
+        )?;
+        if self.torque_response_every == 0 {
+            return Err(EstimateError::Config {
+                field: "filter.torque_response_every",
+                value: 0.0,
+                expected: "at least 1",
+            });
+        }
         check("filter.attitude_noise", self.attitude_noise, false)?;
         check("filter.suspension_noise", self.suspension_noise, false)?;
         check("filter.velocity_noise", self.velocity_noise, false)?;

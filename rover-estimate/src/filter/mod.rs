@@ -106,6 +106,10 @@ struct Snapshot {
     /// Each wheel's last angle and when it was read.
     wheel_angles: Vec<f64>,
     wheel_angles_t: Option<f64>,
+    /// The torques the last prediction held, and how much each changed
+    /// from the one before (0 at the first).
+    torques: Vec<f64>,
+    torque_change: Vec<f64>,
     /// Bumped by every change of `y`: the linearization's key.
     version: u64,
 }
@@ -118,6 +122,8 @@ impl Snapshot {
         self.p.copy_from_slice(&other.p);
         self.wheel_angles.copy_from_slice(&other.wheel_angles);
         self.wheel_angles_t = other.wheel_angles_t;
+        self.torques.copy_from_slice(&other.torques);
+        self.torque_change.copy_from_slice(&other.torque_change);
         self.version = other.version;
     }
 }
@@ -138,6 +144,11 @@ struct Linearization {
     f_at: Option<(f64, u64)>,
     jacobian_at: Option<(f64, u64)>,
     jacobian_age: Option<usize>,
+    /// The response to each wheel's torque, `b_k = ∂f/∂τ_k` in row `k`
+    /// (`wheels × dim`), for [`FilterConfig::torque_sigma`], and how many
+    /// predictions ago it was taken.
+    torque_response: Vec<f64>,
+    torque_response_age: Option<usize>,
 }
 
 impl Linearization {
@@ -151,6 +162,7 @@ impl Linearization {
         self.f_at = None;
         self.jacobian_at = None;
         self.jacobian_age = None;
+        self.torque_response_age = None;
     }
 
     /// Both were just evaluated at `key`.
@@ -182,6 +194,10 @@ struct Work {
     /// The pose and velocity block of `P`, factored, for the NEES.
     block: Vec<f64>,
     deviation: Vec<f64>,
+    /// The commanded torques with one of them nudged, and the right-hand
+    /// side under them, for `∂f/∂τ`.
+    nudged_torques: Vec<f64>,
+    nudged_rhs: Vec<f64>,
 }
 
 impl<M: ProcessModel> Estimator<M> {
@@ -226,6 +242,8 @@ impl<M: ProcessModel> Estimator<M> {
             p,
             wheel_angles: vec![0.0; layout.wheels],
             wheel_angles_t: None,
+            torques: vec![f64::NAN; layout.wheels],
+            torque_change: vec![0.0; layout.wheels],
             version: 0,
         };
         let (dim, len) = (layout.dim, layout.len);
@@ -243,6 +261,8 @@ impl<M: ProcessModel> Estimator<M> {
                 f_at: None,
                 jacobian_at: None,
                 jacobian_age: None,
+                torque_response: vec![0.0; layout.wheels * dim],
+                torque_response_age: None,
             },
             step: StepMatrix::new(layout.n, dim, len),
             work: Work {
@@ -256,6 +276,8 @@ impl<M: ProcessModel> Estimator<M> {
                 rate_gradient: vec![0.0; layout.wheels * dim],
                 block: vec![0.0; 4 * layout.n * layout.n],
                 deviation: vec![0.0; dim],
+                nudged_torques: vec![0.0; layout.wheels],
+                nudged_rhs: vec![0.0; dim],
             },
         })
     }

@@ -31,15 +31,43 @@ pub(crate) struct ImuNoise {
     pub to_imu: M3<f64>,
 }
 
+/// A suspension encoder: its count, its white noise, and the interval
+/// between its readings.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SuspensionNoise {
+    /// One count [rad, or m].
+    pub resolution: f64,
+    /// The white noise's σ².
+    pub variance: f64,
+    /// Between two readings \[s\].
+    pub interval: f64,
+}
+
+impl SuspensionNoise {
+    /// One reading's variance when the coordinate moves at `rate`
+    /// (its magnitude, the estimate's uncertainty included): the count's
+    /// uniform error `res²/12`, which stays the same from reading to
+    /// reading while the coordinate sits within one count, so that the
+    /// `res/(|rate|·Δt)` readings taken within a count tell what one
+    /// does; plus the white noise.
+    pub fn variance(&self, rate: f64) -> f64 {
+        let res = self.resolution;
+        let readings_per_count = res / (rate * self.interval);
+        // At rest (a rate of 0, never with a positive covariance) the
+        // reading still bounds the coordinate to its count, once.
+        let shared = readings_per_count.clamp(1.0, 1e9);
+        res * res / 12.0 * shared + self.variance
+    }
+}
+
 /// Every declared sensor's noise.
 #[derive(Clone, Debug)]
 pub(crate) struct SensorNoise {
     pub imu: Option<ImuNoise>,
     /// A wheel encoder's count \[rad\].
     pub encoder_resolution: Option<f64>,
-    /// One suspension reading's variance: quantization `res²/12` plus
-    /// the white noise's σ².
-    pub suspension_variance: Option<f64>,
+    /// The suspension encoders' quantization.
+    pub suspension: Option<SuspensionNoise>,
     /// One coordinate of a position fix \[m²\].
     pub position_variance: Option<f64>,
     /// A heading fix \[rad²\].
@@ -62,16 +90,25 @@ impl SensorNoise {
             )?),
             None => None,
         };
-        let suspension_variance = match &config.suspension_encoders {
+        let suspension = match &config.suspension_encoders {
             Some(s) => {
-                let res = check(
+                let resolution = check(
                     "sensors.suspension_encoders.resolution",
                     s.resolution,
                     false,
                 )?;
                 let noise = check("sensors.suspension_encoders.noise", s.noise, false)?;
-                let variance = res * res / 12.0 + noise * noise;
-                Some(check("sensors.suspension_encoders.noise", variance, true)?)
+                let variance = noise * noise;
+                check(
+                    "sensors.suspension_encoders.noise",
+                    resolution * resolution / 12.0 + variance,
+                    true,
+                )?;
+                Some(SuspensionNoise {
+                    resolution,
+                    variance,
+                    interval: 1.0 / rate,
+                })
             }
             None => None,
         };
@@ -94,7 +131,7 @@ impl SensorNoise {
         Ok(Self {
             imu,
             encoder_resolution,
-            suspension_variance,
+            suspension,
             position_variance,
             heading_variance,
         })
@@ -149,4 +186,34 @@ fn imu_noise<E>(imu: &ImuConfig, rate: f64) -> Result<ImuNoise, EstimateError<E>
         position: imu.position,
         to_imu: transpose(&Attitude::new(roll, pitch, yaw).rotation()),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SuspensionNoise;
+
+    /// A coordinate that crosses a count or more between readings reads
+    /// with the count's uniform variance `res²/12`; one that takes `k`
+    /// readings to cross a count, with `k` times it (its `k` readings
+    /// share one error); at rest, bounded; the white noise adds.
+    #[test]
+    fn a_slow_coordinate_shares_its_counts_error_between_readings() {
+        let res = 0.002;
+        let q = SuspensionNoise {
+            resolution: res,
+            variance: 0.0,
+            interval: 0.01,
+        };
+        let uniform = res * res / 12.0;
+        assert_eq!(q.variance(1.0), uniform);
+        assert_eq!(q.variance(res / 0.01), uniform);
+        let slow = res / 0.01 / 25.0;
+        assert!((q.variance(slow) / uniform - 25.0).abs() < 1e-12);
+        assert!(q.variance(0.0).is_finite() && q.variance(0.0) >= 1e8 * uniform);
+        let noisy = SuspensionNoise {
+            variance: 1e-6,
+            ..q
+        };
+        assert!((noisy.variance(slow) - 25.0 * uniform - 1e-6).abs() < 1e-18);
+    }
 }

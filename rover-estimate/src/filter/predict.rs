@@ -8,8 +8,11 @@
 //! y ← y + h·A⁻¹·f(t, y)           (m times, J and A held)
 //! Φ_y = A⁻ᵐ                       (∂y⁺/∂y of the steps, J held)
 //! Φ = S(y⁺)·Φ_y·S(y)⁻¹  ⊕  e^(−dt/τ)·I₆   (error coordinates; biases)
-//! P ← Φ·P·Φᵀ + diag(q²)·dt  ⊕  σ_b²·(1 − e^(−2dt/τ))
+//! P ← Φ·P·Φᵀ + diag(q²)·dt + dt²·σ_τ²·Σ_k b_k·b_kᵀ  ⊕  σ_b²·(1 − e^(−2dt/τ))
 //! ```
+//! `b_k = ∂f/∂τ_k` is the model's response to wheel `k`'s torque, by
+//! differences every `torque_response_every` predictions
+//! ([`super::FilterConfig::torque_sigma`]).
 //! `S(y)` is the identity but for the attitude's block `T = R·E`
 //! (`rotation::error_map`): `S(y⁺)·…·S(y)⁻¹` carries the frame's turn
 //! over the step, so the attitude's error obeys `δθ̇ = R·δΩ` to first
@@ -50,6 +53,17 @@ impl<M: ProcessModel> Estimator<M> {
             .set_inputs(torques, steering)
             .map_err(model_error)?;
         self.linearize_step()?;
+        self.torque_response(torques, steering)?;
+        for ((last, change), now) in self
+            .estimate
+            .torques
+            .iter_mut()
+            .zip(&mut self.estimate.torque_change)
+            .zip(torques)
+        {
+            *change = if last.is_nan() { 0.0 } else { now - *last };
+            *last = *now;
+        }
         let substeps = self.config.substeps;
         let h = dt / substeps as f64;
         self.step
@@ -103,6 +117,45 @@ impl<M: ProcessModel> Estimator<M> {
         Ok(())
     }
 
+    /// `b_k = ∂f/∂τ_k` at the step's start into
+    /// `linearization.torque_response` when it is due (module docs), from
+    /// one right-hand side per wheel with its torque nudged;
+    /// `work.step` holds `f` under `torques`.
+    fn torque_response(&mut self, torques: &[f64], steering: &[f64]) -> Result<(), M::Error> {
+        let lin = &mut self.linearization;
+        if (self.config.torque_sigma == 0.0 && self.config.torque_change_scale == 0.0)
+            || lin
+                .torque_response_age
+                .is_some_and(|age| age < self.config.torque_response_every)
+        {
+            return Ok(());
+        }
+        let t = self.estimate.t;
+        let dim = self.layout.dim;
+        let model_error = |source| EstimateError::Model { t, source };
+        let work = &mut self.work;
+        for k in 0..self.layout.wheels {
+            work.nudged_torques.copy_from_slice(torques);
+            let nudge = 1e-3 * (1.0 + libm::fabs(torques[k]));
+            work.nudged_torques[k] += nudge;
+            self.model
+                .set_inputs(&work.nudged_torques, steering)
+                .map_err(model_error)?;
+            self.model
+                .rhs(t, &self.estimate.y, &mut work.nudged_rhs)
+                .map_err(model_error)?;
+            let row = &mut lin.torque_response[k * dim..(k + 1) * dim];
+            for ((b, nudged), f) in row.iter_mut().zip(&work.nudged_rhs).zip(&work.step) {
+                *b = (nudged - f) / nudge;
+            }
+        }
+        self.model
+            .set_inputs(torques, steering)
+            .map_err(model_error)?;
+        lin.torque_response_age = Some(0);
+        Ok(())
+    }
+
     /// `P ← Φ·P·Φᵀ + Q` (module docs), `start_inverse = T(y)⁻¹` and
     /// `end = T(y⁺)`.
     fn propagate_covariance(
@@ -135,6 +188,31 @@ impl<M: ProcessModel> Estimator<M> {
         transition.apply(p);
         for (i, q) in self.process_noise.iter().enumerate() {
             p[i * len + i] += q * dt;
+        }
+        let sigma = self.config.torque_sigma;
+        let follow = self.config.torque_change_scale;
+        if sigma > 0.0 || follow > 0.0 {
+            let dim = layout.dim;
+            let responses = self.linearization.torque_response.chunks_exact(dim);
+            for (b, change) in responses.zip(&self.estimate.torque_change) {
+                let moving = follow * change;
+                let scale = (sigma * sigma + moving * moving) * dt * dt;
+                // A torque moves accelerations only: the attitude's rows
+                // (Euler rates) of `b` are zero, and so in error
+                // coordinates too.
+                for (i, bi) in b.iter().enumerate() {
+                    if *bi == 0.0 {
+                        continue;
+                    }
+                    let row = &mut p[i * len..i * len + dim];
+                    for (pij, bj) in row.iter_mut().zip(b) {
+                        *pij += scale * bi * bj;
+                    }
+                }
+            }
+            if let Some(age) = &mut self.linearization.torque_response_age {
+                *age += 1;
+            }
         }
         if let Some((decay, gyro, accel)) = bias {
             let (g, a) = (layout.gyro_bias(), layout.accel_bias());

@@ -216,22 +216,28 @@ impl<M: ProcessModel> Estimator<M> {
         self.estimate.wheel_angles_t = Some(self.estimate.t);
     }
 
-    /// The suspension encoders' update: each coordinate read directly.
+    /// The suspension encoders' update: each coordinate read directly,
+    /// its quantization's variance by the coordinate's rate
+    /// (`SuspensionNoise::variance`), `√(ẏ² + σ_ẏ²)` at the estimate.
     pub(super) fn suspension(&mut self, values: &[f64]) -> Result<(), M::Error> {
         let t = self.estimate.t;
-        let Some(variance) = self.noise.suspension_variance else {
+        let Some(noise) = self.noise.suspension else {
             return Err(EstimateError::NoSensor {
                 t,
                 sensor: "suspension_encoders",
             });
         };
-        check_len("suspension", self.layout.n - 6, values.len())?;
+        let n = self.layout.n;
+        check_len("suspension", n - 6, values.len())?;
         check_finite(t, "suspension", values)?;
         self.begin();
+        let len = self.layout.len;
         for (i, z) in values.iter().enumerate() {
             let residual = z - self.estimate.y[6 + i];
+            let (rate, r) = (n + 6 + i, &self.estimate);
+            let speed = libm::sqrt(r.y[rate] * r.y[rate] + r.p[rate * len + rate]);
             self.unit_row(6 + i);
-            self.scalar(residual, variance, "suspension encoder", i)?;
+            self.scalar(residual, noise.variance(speed), "suspension encoder", i)?;
         }
         self.inject()
     }
