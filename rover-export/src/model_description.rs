@@ -105,7 +105,7 @@ pub fn model_description(version: FmiVersion, header: &Header<'_>, vars: &Variab
             );
             let _ = writeln!(
                 x,
-                "  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\" providesDirectionalDerivatives=\"false\"/>",
+                "  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"false\" canSerializeFMUstate=\"false\"/>",
                 escape(h.model_identifier)
             );
         }
