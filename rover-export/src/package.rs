@@ -69,11 +69,14 @@ pub fn find_library(kind: LibraryKind, explicit: Option<&Path>) -> Result<PathBu
         looked.push(p);
     }
     if let Some(dir) = std::env::current_exe().ok().and_then(|e| e.parent().map(Path::to_path_buf)) {
-        let p = dir.join(&file);
-        if p.is_file() {
-            return Ok(p);
+        // `cargo build -p rover-plant` puts it beside `rover`; `cargo
+        // test`, which builds it as the tests' dependency, in `deps/`.
+        for p in [dir.join(&file), dir.join("deps").join(&file)] {
+            if p.is_file() {
+                return Ok(p);
+            }
+            looked.push(p);
         }
-        looked.push(p);
     }
     Err(ExportError::Library(format!(
         "the prebuilt plant library {file} was not found (looked at {}): build it with `{BUILD_COMMAND}` (with `--release` for a release `rover`), which puts it beside the `rover` executable, or name it with --library or {LIBRARY_DIR_VAR}",

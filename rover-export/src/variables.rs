@@ -88,7 +88,12 @@ impl Variables {
                 name,
                 value_reference: k as u32,
                 unit: ascii_unit(units[k]),
-                description: meanings[k].to_string(),
+                // A meaning repeated over coordinates or wheels says which.
+                description: if meanings.iter().filter(|m| **m == meanings[k]).count() > 1 {
+                    format!("{} ({})", meanings[k], columns.names()[k])
+                } else {
+                    meanings[k].to_string()
+                },
                 role,
                 start: 0.0,
             });

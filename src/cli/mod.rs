@@ -22,7 +22,7 @@ pub use check::{CheckArgs, check};
 #[cfg(feature = "codegen")]
 pub use codegen::{CodegenArgs, CodegenLevel, codegen};
 pub use estimate::{EstimateArgs, estimate};
-pub use export::{ExportArgs, ExportKind, export};
+pub use export::{CArgs, ExportArgs, ExportKind, FmiArg, FmuArgs, InputsArg, export};
 pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, calibrated, reproduce, steer};
