@@ -13,7 +13,9 @@ fn root() -> &'static Path {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("export").join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("export")
+        .join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -25,7 +27,11 @@ fn plant_library(file: &str) -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let deps = exe.parent().unwrap();
     let p = deps.join(file);
-    assert!(p.is_file(), "{} is missing: cargo builds it as the tests' dependency", p.display());
+    assert!(
+        p.is_file(),
+        "{} is missing: cargo builds it as the tests' dependency",
+        p.display()
+    );
     p
 }
 
@@ -65,15 +71,33 @@ fn the_c_example_ends_where_rover_simulate_ends() {
     })
     .unwrap();
     assert_eq!(written.outputs, names.len());
-    for f in ["rover_plant.h", "librover_plant.a", "main.c", "scenario/scenario.toml", "scenario/export_rough.asc"] {
+    for f in [
+        "rover_plant.h",
+        "librover_plant.a",
+        "main.c",
+        "scenario/scenario.toml",
+        "scenario/export_rough.asc",
+    ] {
         assert!(out.join(f).is_file(), "{f}");
     }
     // The command the export prints, as a user runs it.
     let compile = rover_export::package::compile_command();
-    let status = Command::new("sh").arg("-c").arg(&compile).current_dir(&out).status().unwrap();
+    let status = Command::new("sh")
+        .arg("-c")
+        .arg(&compile)
+        .current_dir(&out)
+        .status()
+        .unwrap();
     assert!(status.success(), "{compile}");
-    let run = Command::new(out.join("rover_main")).current_dir(&out).output().unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let run = Command::new(out.join("rover_main"))
+        .current_dir(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let printed = String::from_utf8(run.stdout).unwrap();
     let lines: Vec<(&str, f64)> = printed
         .lines()
@@ -86,7 +110,10 @@ fn the_c_example_ends_where_rover_simulate_ends() {
     for ((name, value), (csv_name, csv_value)) in lines.iter().zip(names.iter().zip(&last)) {
         assert_eq!(name, csv_name);
         // %.17g and Rust's shortest form name the same double.
-        assert_eq!(value, csv_value, "{name}: the C example's final state is the CLI's");
+        assert_eq!(
+            value, csv_value,
+            "{name}: the C example's final state is the CLI's"
+        );
     }
 }
 
@@ -116,7 +143,8 @@ fn an_fmu_holds_its_description_library_and_resources() {
         "resources/export.toml",
         "resources/export_rough.asc",
     ] {
-        if entry.contains("x86_64-linux") && !cfg!(all(target_arch = "x86_64", target_os = "linux")) {
+        if entry.contains("x86_64-linux") && !cfg!(all(target_arch = "x86_64", target_os = "linux"))
+        {
             continue;
         }
         assert!(text.contains(entry), "{entry}");
@@ -143,9 +171,17 @@ fn export_names_a_missing_library_and_a_bad_scenario() {
     };
     let m = fmu(Some(dir.join("nowhere.so")), "scenarios/export_rough.toml");
     assert!(
-        m.starts_with("error: --library ") && m.contains("no such file") && m.contains("cargo build -p rover-plant"),
+        m.starts_with("error: --library ")
+            && m.contains("no such file")
+            && m.contains("cargo build -p rover-plant"),
         "{m}"
     );
-    let m = fmu(Some(plant_library("librover_plant.so")), "scenarios/nowhere.toml");
-    assert!(m.contains("nowhere.toml") && m.contains("cannot read the scenario file"), "{m}");
+    let m = fmu(
+        Some(plant_library("librover_plant.so")),
+        "scenarios/nowhere.toml",
+    );
+    assert!(
+        m.contains("nowhere.toml") && m.contains("cannot read the scenario file"),
+        "{m}"
+    );
 }

@@ -61,7 +61,8 @@ pub fn path_of_uri(uri: &str) -> Result<PathBuf, String> {
         out.push(bytes[i]);
         i += 1;
     }
-    let path = String::from_utf8(out).map_err(|_| format!("fmuResourceLocation {uri:?} is not UTF-8"))?;
+    let path =
+        String::from_utf8(out).map_err(|_| format!("fmuResourceLocation {uri:?} is not UTF-8"))?;
     // On Windows, `/C:/…`.
     #[cfg(windows)]
     let path = path.trim_start_matches('/').to_string();
@@ -92,14 +93,24 @@ pub unsafe fn instantiate(
         let name = unsafe { handle::text(instance_name, "instanceName") }?;
         let guid = unsafe { handle::text(guid, "fmuGUID") }?;
         if fmu_type != 1 {
-            return Err(format!("fmuType = {fmu_type}: this FMU is Co-Simulation only (fmi2CoSimulation = 1)"));
+            return Err(format!(
+                "fmuType = {fmu_type}: this FMU is Co-Simulation only (fmi2CoSimulation = 1)"
+            ));
         }
-        let location = unsafe { handle::text(resource_location, "fmuResourceLocation") }
-            .map_err(|e| format!("{e}: the plant reads its scenario from the FMU's resources folder"))?;
+        let location =
+            unsafe { handle::text(resource_location, "fmuResourceLocation") }.map_err(|e| {
+                format!("{e}: the plant reads its scenario from the FMU's resources folder")
+            })?;
         let instance = fmi3::open(&path_of_uri(location)?, guid, factory)?;
-        let ptr = Handle::create(instance, Logger::Fmi2 { env, log }, name, Mode::Instantiated);
+        let ptr = Handle::create(
+            instance,
+            Logger::Fmi2 { env, log },
+            name,
+            Mode::Instantiated,
+        );
         let h: &Handle = unsafe { &*ptr.cast::<Handle>() };
-        h.logging_on.store(logging_on != 0, std::sync::atomic::Ordering::Relaxed);
+        h.logging_on
+            .store(logging_on != 0, std::sync::atomic::Ordering::Relaxed);
         Ok(ptr)
     }));
     let message = match made {
@@ -113,7 +124,12 @@ pub unsafe fn instantiate(
         unsafe { std::ffi::CStr::from_ptr(instance_name) }.to_owned()
     };
     let _ = catch_unwind(AssertUnwindSafe(|| {
-        log_to(&Logger::Fmi2 { env, log }, &name, status::ERROR, &format!("fmi2Instantiate: {message}"))
+        log_to(
+            &Logger::Fmi2 { env, log },
+            &name,
+            status::ERROR,
+            &format!("fmi2Instantiate: {message}"),
+        )
     }));
     std::ptr::null_mut()
 }
@@ -127,7 +143,10 @@ pub unsafe fn setup_experiment(instance: *mut c_void, start_time: f64) -> c_int 
     unsafe {
         handle::call(instance, "fmi2SetupExperiment", |slot, _| {
             if slot.mode != Mode::Instantiated {
-                return Err(format!("called in {:?} mode: call it after instantiating or resetting", slot.mode));
+                return Err(format!(
+                    "called in {:?} mode: call it after instantiating or resetting",
+                    slot.mode
+                ));
             }
             fmi3::check_start(start_time)
         })
@@ -144,7 +163,10 @@ pub unsafe fn enter_initialization_mode(instance: *mut c_void) -> c_int {
     unsafe {
         handle::call(instance, "fmi2EnterInitializationMode", |slot, _| {
             if slot.mode != Mode::Instantiated {
-                return Err(format!("called in {:?} mode: call it once after instantiating or resetting", slot.mode));
+                return Err(format!(
+                    "called in {:?} mode: call it once after instantiating or resetting",
+                    slot.mode
+                ));
             }
             slot.mode = Mode::Initialization;
             Ok(())
@@ -178,7 +200,9 @@ pub unsafe fn get_real_status(instance: *mut c_void, kind: c_int, value: *mut f6
     unsafe {
         handle::call(instance, "fmi2GetRealStatus", |slot, _| {
             if kind != 2 {
-                return Err(format!("status kind {kind}: only fmi2LastSuccessfulTime (2) is a Real status"));
+                return Err(format!(
+                    "status kind {kind}: only fmi2LastSuccessfulTime (2) is a Real status"
+                ));
             }
             let v = handle::slice_mut(value, 1, "value")?;
             v[0] = fmi3::live(slot).time();

@@ -6,8 +6,8 @@
 //! and a logged message.
 
 use std::ffi::{c_char, c_int, c_void};
-use std::path::Path;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::Path;
 
 use crate::handle::{self, Fmi3Log, Handle, Logger, Mode, Outcome, Slot, log_to, status};
 use crate::instance::Instance;
@@ -57,12 +57,14 @@ pub unsafe fn instantiate_co_simulation(
         if event_mode_used {
             return Err("eventModeUsed: this FMU has no event mode (hasEventMode = false)".into());
         }
-        let resources = unsafe { handle::text(resource_path, "resourcePath") }
-            .map_err(|e| format!("{e}: the plant reads its scenario from the FMU's resources folder"))?;
+        let resources = unsafe { handle::text(resource_path, "resourcePath") }.map_err(|e| {
+            format!("{e}: the plant reads its scenario from the FMU's resources folder")
+        })?;
         let instance = open(Path::new(resources), token, factory)?;
         let ptr = Handle::create(instance, logger_copy(&logger), name, Mode::Instantiated);
         let h: &Handle = unsafe { &*ptr.cast::<Handle>() };
-        h.logging_on.store(logging_on, std::sync::atomic::Ordering::Relaxed);
+        h.logging_on
+            .store(logging_on, std::sync::atomic::Ordering::Relaxed);
         Ok(ptr)
     }));
     let message = match made {
@@ -71,7 +73,12 @@ pub unsafe fn instantiate_co_simulation(
         Err(_) => "internal error (a bug in rover-export; please report it)".into(),
     };
     let _ = catch_unwind(AssertUnwindSafe(|| {
-        log_to(&logger, c"", status::ERROR, &format!("fmi3InstantiateCoSimulation: {message}"))
+        log_to(
+            &logger,
+            c"",
+            status::ERROR,
+            &format!("fmi3InstantiateCoSimulation: {message}"),
+        )
     }));
     std::ptr::null_mut()
 }
@@ -79,8 +86,14 @@ pub unsafe fn instantiate_co_simulation(
 fn logger_copy(l: &Logger) -> Logger {
     match l {
         Logger::None => Logger::None,
-        Logger::Fmi3 { env, log } => Logger::Fmi3 { env: *env, log: *log },
-        Logger::Fmi2 { env, log } => Logger::Fmi2 { env: *env, log: *log },
+        Logger::Fmi3 { env, log } => Logger::Fmi3 {
+            env: *env,
+            log: *log,
+        },
+        Logger::Fmi2 { env, log } => Logger::Fmi2 {
+            env: *env,
+            log: *log,
+        },
     }
 }
 
@@ -100,7 +113,9 @@ pub unsafe fn unsupported(instance: *mut c_void, function: &str) -> c_int {
 
 /// The run of a slot checked live by [`handle::call`].
 pub(crate) fn live(slot: &mut Slot) -> &mut Instance {
-    slot.instance.as_mut().expect("handle::call checks the instance")
+    slot.instance
+        .as_mut()
+        .expect("handle::call checks the instance")
 }
 
 /// Start time and the initialization mode (FMI 3's EnterInitializationMode,
@@ -123,7 +138,10 @@ pub unsafe fn enter_initialization_mode(instance: *mut c_void, start_time: f64) 
     unsafe {
         handle::call(instance, "fmi3EnterInitializationMode", |slot, _| {
             if slot.mode != Mode::Instantiated {
-                return Err(format!("called in {:?} mode: call it once after instantiating or resetting", slot.mode));
+                return Err(format!(
+                    "called in {:?} mode: call it once after instantiating or resetting",
+                    slot.mode
+                ));
             }
             check_start(start_time)?;
             slot.mode = Mode::Initialization;
@@ -142,7 +160,10 @@ pub unsafe fn exit_initialization_mode(instance: *mut c_void, function: &str) ->
     unsafe {
         handle::call(instance, function, |slot, _| {
             if slot.mode != Mode::Initialization {
-                return Err(format!("called in {:?} mode: enter the initialization mode first", slot.mode));
+                return Err(format!(
+                    "called in {:?} mode: enter the initialization mode first",
+                    slot.mode
+                ));
             }
             slot.mode = Mode::Step;
             Ok(())
@@ -228,7 +249,9 @@ pub unsafe fn set_float64(
     unsafe {
         handle::call(instance, function, |slot, _| {
             if n_values != n_vr {
-                return Err(format!("{n_vr} value references but {n_values} values: every variable is a scalar"));
+                return Err(format!(
+                    "{n_vr} value references but {n_values} values: every variable is a scalar"
+                ));
             }
             if slot.mode == Mode::Terminated {
                 return Err("the instance is terminated: reset it to set inputs".into());
@@ -247,7 +270,12 @@ pub unsafe fn set_float64(
 
 /// One communication step (FMI 3's DoStep and FMI 2's); `time_after`
 /// takes the time reached, whether or not the step failed.
-pub(crate) fn step(slot: &mut Slot, current: f64, step: f64, time_after: &mut f64) -> Result<(), String> {
+pub(crate) fn step(
+    slot: &mut Slot,
+    current: f64,
+    step: f64,
+    time_after: &mut f64,
+) -> Result<(), String> {
     if slot.mode != Mode::Step {
         return Err(format!(
             "called in {:?} mode: exit the initialization mode first",
@@ -278,7 +306,12 @@ pub unsafe fn do_step(
     let mut reached = current_communication_point;
     let outcome = unsafe {
         handle::call(instance, "fmi3DoStep", |slot, _| {
-            step(slot, current_communication_point, communication_step_size, &mut reached)
+            step(
+                slot,
+                current_communication_point,
+                communication_step_size,
+                &mut reached,
+            )
         })
     };
     unsafe {

@@ -11,8 +11,8 @@
 
 use std::ffi::{CStr, CString, c_char, c_int, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use crate::instance::Instance;
 
@@ -145,8 +145,20 @@ impl Handle {
             .vars
             .list
             .iter()
-            .filter(|v| matches!(v.role, crate::variables::Role::Time | crate::variables::Role::Output(_)))
-            .map(|v| CString::new(if v.role == crate::variables::Role::Time { "t" } else { v.name.as_str() }).unwrap_or_default())
+            .filter(|v| {
+                matches!(
+                    v.role,
+                    crate::variables::Role::Time | crate::variables::Role::Output(_)
+                )
+            })
+            .map(|v| {
+                CString::new(if v.role == crate::variables::Role::Time {
+                    "t"
+                } else {
+                    v.name.as_str()
+                })
+                .unwrap_or_default()
+            })
             .collect();
         let handle = Box::new(Handle {
             magic: AtomicU64::new(LIVE),
@@ -179,14 +191,29 @@ pub fn log_to(logger: &Logger, name: &CStr, status: c_int, message: &str) {
     };
     match logger {
         Logger::None => {}
-        Logger::Fmi3 { env, log: Some(log) } => {
+        Logger::Fmi3 {
+            env,
+            log: Some(log),
+        } => {
             let text = CString::new(message.replace('\0', " ")).unwrap_or_default();
             unsafe { log(*env, status, category.as_ptr(), text.as_ptr()) };
         }
-        Logger::Fmi2 { env, log: Some(log) } => {
+        Logger::Fmi2 {
+            env,
+            log: Some(log),
+        } => {
             // The message is a format: its percent signs are doubled.
-            let text = CString::new(message.replace('\0', " ").replace('%', "%%")).unwrap_or_default();
-            unsafe { log(*env, name.as_ptr(), status, category.as_ptr(), text.as_ptr()) };
+            let text =
+                CString::new(message.replace('\0', " ").replace('%', "%%")).unwrap_or_default();
+            unsafe {
+                log(
+                    *env,
+                    name.as_ptr(),
+                    status,
+                    category.as_ptr(),
+                    text.as_ptr(),
+                )
+            };
         }
         Logger::Fmi3 { log: None, .. } | Logger::Fmi2 { log: None, .. } => {}
     }
@@ -228,13 +255,18 @@ pub unsafe fn call(
             Err(_) => {
                 handle.log(
                     status::FATAL,
-                    &format!("{function}: the instance is unusable after an internal error; free it"),
+                    &format!(
+                        "{function}: the instance is unusable after an internal error; free it"
+                    ),
                 );
                 return Outcome::Fatal;
             }
         };
         if slot.instance.is_none() {
-            handle.log(status::FATAL, &format!("{function}: the instance was freed; create a new one"));
+            handle.log(
+                status::FATAL,
+                &format!("{function}: the instance was freed; create a new one"),
+            );
             return Outcome::Fatal;
         }
         match f(&mut slot, handle) {
@@ -271,7 +303,10 @@ pub unsafe fn free(ptr: *mut c_void, function: &str) {
     let handle: &Handle = unsafe { &*ptr.cast::<Handle>() };
     let _ = catch_unwind(AssertUnwindSafe(|| {
         if handle.magic.swap(FREED, Ordering::AcqRel) != LIVE {
-            handle.log(status::ERROR, &format!("{function}: the instance was already freed"));
+            handle.log(
+                status::ERROR,
+                &format!("{function}: the instance was already freed"),
+            );
             return;
         }
         let taken = match handle.slot.lock() {

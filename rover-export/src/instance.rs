@@ -52,7 +52,11 @@ impl Instance {
 
     /// [`Instance::open`] with the settings given (the C library's inputs
     /// are always on).
-    pub fn open_with(dir: &Path, settings: ExportSettings, factory: Factory) -> Result<Self, String> {
+    pub fn open_with(
+        dir: &Path,
+        settings: ExportSettings,
+        factory: Factory,
+    ) -> Result<Self, String> {
         let scenario = dir.join(SCENARIO_FILE);
         Self::open_scenario(&scenario, settings, factory)
     }
@@ -194,10 +198,7 @@ impl Instance {
             ));
         }
         if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-            return Err(format!(
-                "{what}[{k}] is {}: give finite numbers",
-                values[k]
-            ));
+            return Err(format!("{what}[{k}] is {}: give finite numbers", values[k]));
         }
         target.copy_from_slice(values);
         self.dirty = true;

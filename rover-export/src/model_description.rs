@@ -137,7 +137,9 @@ pub fn model_description(version: FmiVersion, header: &Header<'_>, vars: &Variab
         } else {
             format!(" unit=\"{}\"", escape(v.unit))
         };
-        let start = start.map(|s| format!(" start=\"{s:?}\"")).unwrap_or_default();
+        let start = start
+            .map(|s| format!(" start=\"{s:?}\""))
+            .unwrap_or_default();
         match version {
             FmiVersion::Fmi3 => {
                 let _ = writeln!(
@@ -171,10 +173,18 @@ pub fn model_description(version: FmiVersion, header: &Header<'_>, vars: &Variab
     match version {
         FmiVersion::Fmi3 => {
             for &k in &outputs {
-                let _ = writeln!(x, "    <Output valueReference=\"{}\"/>", vars.list[k].value_reference);
+                let _ = writeln!(
+                    x,
+                    "    <Output valueReference=\"{}\"/>",
+                    vars.list[k].value_reference
+                );
             }
             for &k in &outputs {
-                let _ = writeln!(x, "    <InitialUnknown valueReference=\"{}\"/>", vars.list[k].value_reference);
+                let _ = writeln!(
+                    x,
+                    "    <InitialUnknown valueReference=\"{}\"/>",
+                    vars.list[k].value_reference
+                );
             }
         }
         FmiVersion::Fmi2 => {

@@ -68,7 +68,10 @@ pub fn find_library(kind: LibraryKind, explicit: Option<&Path>) -> Result<PathBu
         }
         looked.push(p);
     }
-    if let Some(dir) = std::env::current_exe().ok().and_then(|e| e.parent().map(Path::to_path_buf)) {
+    if let Some(dir) = std::env::current_exe()
+        .ok()
+        .and_then(|e| e.parent().map(Path::to_path_buf))
+    {
         // `cargo build -p rover-plant` puts it beside `rover`; `cargo
         // test`, which builds it as the tests' dependency, in `deps/`.
         for p in [dir.join(&file), dir.join("deps").join(&file)] {
@@ -80,7 +83,11 @@ pub fn find_library(kind: LibraryKind, explicit: Option<&Path>) -> Result<PathBu
     }
     Err(ExportError::Library(format!(
         "the prebuilt plant library {file} was not found (looked at {}): build it with `{BUILD_COMMAND}` (with `--release` for a release `rover`), which puts it beside the `rover` executable, or name it with --library or {LIBRARY_DIR_VAR}",
-        looked.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+        looked
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
     )))
 }
 
@@ -94,12 +101,18 @@ pub fn platform(version: FmiVersion) -> Result<&'static str, ExportError> {
         (FmiVersion::Fmi3, "aarch64", "macos") => "aarch64-darwin",
         (FmiVersion::Fmi3, "x86_64", "windows") => "x86_64-windows",
         (FmiVersion::Fmi2, "x86_64", "linux") => "linux64",
-        (FmiVersion::Fmi2, "x86_64", "macos") | (FmiVersion::Fmi2, "aarch64", "macos") => "darwin64",
+        (FmiVersion::Fmi2, "x86_64", "macos") | (FmiVersion::Fmi2, "aarch64", "macos") => {
+            "darwin64"
+        }
         (FmiVersion::Fmi2, "x86_64", "windows") => "win64",
         _ => {
             return Err(ExportError::Usage(format!(
                 "no FMI {} platform name for {arch}-{os}",
-                if version == FmiVersion::Fmi3 { "3.0" } else { "2.0" }
+                if version == FmiVersion::Fmi3 {
+                    "3.0"
+                } else {
+                    "2.0"
+                }
             )));
         }
     };
@@ -163,7 +176,8 @@ impl Scratch {
                 .map(|d| d.as_nanos())
                 .unwrap_or(0)
         ));
-        std::fs::create_dir_all(&dir).map_err(|e| ExportError::io(&dir, "create a scratch folder", e))?;
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| ExportError::io(&dir, "create a scratch folder", e))?;
         Ok(Scratch(dir))
     }
 }
@@ -180,7 +194,12 @@ pub fn export_fmu(options: &FmuOptions) -> Result<Written, ExportError> {
     let library = std::fs::read(&options.library)
         .map_err(|e| ExportError::io(&options.library, "read the plant library", e))?;
     let scratch = Scratch::new("fmu")?;
-    let packed = pack(options.rover.as_deref(), &options.scenario, &scratch.0, options.inputs)?;
+    let packed = pack(
+        options.rover.as_deref(),
+        &options.scenario,
+        &scratch.0,
+        options.inputs,
+    )?;
     let spec = &packed.prepared.spec;
     let stem = options
         .scenario
@@ -235,8 +254,10 @@ pub fn export_fmu(options: &FmuOptions) -> Result<Written, ExportError> {
         });
     }
     let mut bytes = Vec::new();
-    write_zip(&mut bytes, &entries).map_err(|e| ExportError::io(&options.out, "write the FMU", e))?;
-    std::fs::write(&options.out, bytes).map_err(|e| ExportError::io(&options.out, "write the FMU", e))?;
+    write_zip(&mut bytes, &entries)
+        .map_err(|e| ExportError::io(&options.out, "write the FMU", e))?;
+    std::fs::write(&options.out, bytes)
+        .map_err(|e| ExportError::io(&options.out, "write the FMU", e))?;
     let inputs = vars.list.iter().filter(|v| v.is_input()).count();
     Ok(Written {
         path: options.out.clone(),
@@ -292,15 +313,23 @@ pub fn export_c(options: &COptions) -> Result<Written, ExportError> {
     let lib = out.join(library_file(LibraryKind::Static));
     std::fs::copy(&options.library, &lib)
         .map_err(|e| ExportError::io(&options.library, "copy the static library", e))?;
-    let instance = Instance::open_with(&out.join("scenario"), packed.settings.clone(), crate::run::builtin)
-        .map_err(ExportError::Usage)?;
+    let instance = Instance::open_with(
+        &out.join("scenario"),
+        packed.settings.clone(),
+        crate::run::builtin,
+    )
+    .map_err(ExportError::Usage)?;
     let inputs = instance.vars.list.iter().filter(|v| v.is_input()).count();
     Ok(Written {
         path: out.clone(),
         identifier: LIBRARY.into(),
         outputs: instance.row().len(),
         inputs,
-        next: format!("cd {} && {} && ./rover_main", out.display(), compile_command()),
+        next: format!(
+            "cd {} && {} && ./rover_main",
+            out.display(),
+            compile_command()
+        ),
     })
 }
 

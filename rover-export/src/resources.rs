@@ -90,16 +90,17 @@ pub fn pack(
     dir: &Path,
     inputs: Inputs,
 ) -> Result<Packed, ExportError> {
-    let prepared = Prepared::from_file(rover, scenario)
-        .map_err(|e| ExportError::Prepare(Box::new(e)))?;
+    let prepared =
+        Prepared::from_file(rover, scenario).map_err(|e| ExportError::Prepare(Box::new(e)))?;
     // It must run: a scenario that cannot start fails here, not in the
     // importer.
     prepared
         .stepper(false)
         .map_err(|e| ExportError::Prepare(Box::new(e)))?;
-    let mut table: toml::Table = prepared.text.parse().map_err(|e| {
-        ExportError::Usage(format!("{}: {e}", scenario.display()))
-    })?;
+    let mut table: toml::Table = prepared
+        .text
+        .parse()
+        .map_err(|e| ExportError::Usage(format!("{}: {e}", scenario.display())))?;
     std::fs::create_dir_all(dir).map_err(|e| ExportError::io(dir, "create the folder", e))?;
     let mut copies: BTreeMap<String, PathBuf> = BTreeMap::new();
     let base = prepared.base.clone();
@@ -123,7 +124,8 @@ pub fn pack(
     let mut files = Vec::new();
     for (name, source) in &copies {
         let to = dir.join(name);
-        std::fs::copy(source, &to).map_err(|e| ExportError::io(source, "copy into the export", e))?;
+        std::fs::copy(source, &to)
+            .map_err(|e| ExportError::io(source, "copy into the export", e))?;
         files.push(name.clone());
     }
     let text = format!(

@@ -7,8 +7,8 @@
 use rover_dynamics::plant::Plant;
 use rover_runtime::row::Columns;
 use rover_runtime::sim::{CommandError, RunError};
-use rover_scenario::prepare::{Prepared, PrepareError};
 use rover_scenario::Stepper;
+use rover_scenario::prepare::{PrepareError, Prepared};
 
 /// A scenario's run, advanced by the caller (an FMU's importer, a C
 /// program). Every method but the constructor's allocates nothing.

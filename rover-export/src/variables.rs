@@ -115,7 +115,10 @@ impl Variables {
                 push(
                     format!("tau{}_cmd", j + 1),
                     "N.m",
-                    format!("wheel {}'s motor torque command, added to the scenario's own (positive drives forward)", j + 1),
+                    format!(
+                        "wheel {}'s motor torque command, added to the scenario's own (positive drives forward)",
+                        j + 1
+                    ),
                     Role::Torque(j),
                     0.0,
                 );
@@ -125,7 +128,10 @@ impl Variables {
                     push(
                         format!("delta{}_cmd", j + 1),
                         "rad",
-                        format!("wheel {}'s steering command, added to the scenario's own (positive turns left)", j + 1),
+                        format!(
+                            "wheel {}'s steering command, added to the scenario's own (positive turns left)",
+                            j + 1
+                        ),
                         Role::Steering(j),
                         0.0,
                     );
@@ -137,7 +143,10 @@ impl Variables {
                     push(
                         format!("y0_{}_cmd", i + 1),
                         if linear { "m" } else { "rad" },
-                        format!("suspension coordinate y{}'s spring neutral: the active suspension's set-point", i + 1),
+                        format!(
+                            "suspension coordinate y{}'s spring neutral: the active suspension's set-point",
+                            i + 1
+                        ),
                         Role::Neutral(i),
                         c.neutral,
                     );

@@ -20,7 +20,12 @@ pub struct Entry {
 /// Write `entries` as a zip archive to `out`. Entries and the archive must
 /// stay under 4 GiB (no ZIP64); larger ones are refused.
 pub fn write_zip<W: Write>(out: &mut W, entries: &[Entry]) -> io::Result<()> {
-    let too_big = |what: &str| io::Error::new(io::ErrorKind::InvalidInput, format!("{what} is 4 GiB or more: the FMU's zip has no ZIP64"));
+    let too_big = |what: &str| {
+        io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("{what} is 4 GiB or more: the FMU's zip has no ZIP64"),
+        )
+    };
     let mut central = Vec::new();
     let mut offset: u64 = 0;
     // 1980-01-01 00:00, the format's earliest time: archives of the same
@@ -64,7 +69,11 @@ pub fn write_zip<W: Write>(out: &mut W, entries: &[Entry]) -> io::Result<()> {
         central.extend_from_slice(&0u16.to_le_bytes()); // disk
         central.extend_from_slice(&0u16.to_le_bytes()); // internal attributes
         // External attributes: a regular file, rw-r--r-- (rwxr-xr-x for a library).
-        let mode: u32 = if e.name.ends_with(".so") || e.name.ends_with(".dylib") { 0o100755 } else { 0o100644 };
+        let mode: u32 = if e.name.ends_with(".so") || e.name.ends_with(".dylib") {
+            0o100755
+        } else {
+            0o100644
+        };
         central.extend_from_slice(&(mode << 16).to_le_bytes());
         central.extend_from_slice(&here.to_le_bytes());
         central.extend_from_slice(name);
@@ -95,8 +104,14 @@ mod tests {
     #[test]
     fn entries_read_back_from_their_headers() {
         let entries = vec![
-            Entry { name: "modelDescription.xml".into(), data: b"<fmiModelDescription/>".to_vec() },
-            Entry { name: "resources/empty".into(), data: Vec::new() },
+            Entry {
+                name: "modelDescription.xml".into(),
+                data: b"<fmiModelDescription/>".to_vec(),
+            },
+            Entry {
+                name: "resources/empty".into(),
+                data: Vec::new(),
+            },
         ];
         let mut zip = Vec::new();
         write_zip(&mut zip, &entries).unwrap();
@@ -116,7 +131,11 @@ mod tests {
         let end = zip.len() - 22;
         assert_eq!(u32_at(end), 0x0605_4b50);
         assert_eq!(u16_at(end + 10), 2);
-        assert_eq!(u32_at(end + 16) as usize, at, "the directory follows the last entry");
+        assert_eq!(
+            u32_at(end + 16) as usize,
+            at,
+            "the directory follows the last entry"
+        );
         // The checksum of a known string (the format's CRC-32).
         assert_eq!(crc32fast::hash(b"123456789"), 0xcbf4_3926);
     }

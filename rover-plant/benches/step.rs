@@ -21,7 +21,12 @@ use criterion::Criterion;
 use rover_plant as _;
 
 unsafe extern "C" {
-    fn rover_create(scenario: *const c_char, out: *mut *mut c_void, m: *mut c_char, n: usize) -> c_int;
+    fn rover_create(
+        scenario: *const c_char,
+        out: *mut *mut c_void,
+        m: *mut c_char,
+        n: usize,
+    ) -> c_int;
     fn rover_step(p: *mut c_void, dt: f64) -> c_int;
     fn rover_reset(p: *mut c_void) -> c_int;
     fn rover_destroy(p: *mut c_void);
@@ -59,7 +64,10 @@ const STEP: f64 = 1e-3;
 const RESET_EVERY: u64 = 10_000;
 
 fn plant() -> *mut c_void {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/export_rough.toml");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenarios/export_rough.toml"
+    );
     let path = CString::new(path).unwrap();
     let mut p = std::ptr::null_mut();
     let mut message = [0 as c_char; 512];

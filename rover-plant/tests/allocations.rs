@@ -8,7 +8,12 @@ use std::ffi::{CString, c_char, c_int, c_void};
 use rover_plant as _;
 
 unsafe extern "C" {
-    fn rover_create(scenario: *const c_char, out: *mut *mut c_void, m: *mut c_char, n: usize) -> c_int;
+    fn rover_create(
+        scenario: *const c_char,
+        out: *mut *mut c_void,
+        m: *mut c_char,
+        n: usize,
+    ) -> c_int;
     fn rover_step(p: *mut c_void, dt: f64) -> c_int;
     fn rover_set_torques(p: *mut c_void, v: *const f64, n: usize) -> c_int;
     fn rover_outputs(p: *mut c_void, out: *mut f64, n: usize) -> c_int;
@@ -17,11 +22,17 @@ unsafe extern "C" {
 
 #[test]
 fn two_thousand_steps_of_the_c_library_allocate_nothing() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/export_rough.toml");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenarios/export_rough.toml"
+    );
     let path = CString::new(path).unwrap();
     let mut p = std::ptr::null_mut();
     let mut message = [0 as c_char; 512];
-    assert_eq!(unsafe { rover_create(path.as_ptr(), &mut p, message.as_mut_ptr(), 512) }, 0);
+    assert_eq!(
+        unsafe { rover_create(path.as_ptr(), &mut p, message.as_mut_ptr(), 512) },
+        0
+    );
     let mut out = vec![0.0; 70];
     assert_eq!(unsafe { rover_step(p, 1e-3) }, 0);
     let probe = allocation_counter::measure(|| {
@@ -37,7 +48,11 @@ fn two_thousand_steps_of_the_c_library_allocate_nothing() {
             assert_eq!(unsafe { rover_outputs(p, out.as_mut_ptr(), out.len()) }, 0);
         }
     });
-    assert_eq!(counts.count_total, 0, "{} allocations in 2000 steps", counts.count_total);
+    assert_eq!(
+        counts.count_total, 0,
+        "{} allocations in 2000 steps",
+        counts.count_total
+    );
     assert!(out[1] > 0.0, "the rover drove: X = {}", out[1]);
     unsafe { rover_destroy(p) };
 }

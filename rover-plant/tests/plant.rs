@@ -45,8 +45,13 @@ unsafe extern "C" {
     ) -> c_int;
     fn fmi3ExitInitializationMode(i: *mut c_void) -> c_int;
     fn fmi3GetFloat64(i: *mut c_void, vr: *const u32, nvr: usize, v: *mut f64, nv: usize) -> c_int;
-    fn fmi3SetFloat64(i: *mut c_void, vr: *const u32, nvr: usize, v: *const f64, nv: usize)
-    -> c_int;
+    fn fmi3SetFloat64(
+        i: *mut c_void,
+        vr: *const u32,
+        nvr: usize,
+        v: *const f64,
+        nv: usize,
+    ) -> c_int;
     fn fmi3DoStep(
         i: *mut c_void,
         current: f64,
@@ -90,19 +95,35 @@ impl Messages {
         (self as *const Self).cast_mut().cast()
     }
     fn last(&self) -> String {
-        self.0.lock().unwrap().last().map(|m| m.1.clone()).unwrap_or_default()
+        self.0
+            .lock()
+            .unwrap()
+            .last()
+            .map(|m| m.1.clone())
+            .unwrap_or_default()
     }
 }
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
 }
 
 /// The shipped rough-ground scenario packed into a fresh folder `name`.
 fn packed(name: &str, inputs: Inputs) -> (PathBuf, String) {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rover-plant").join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("rover-plant")
+        .join(name);
     let _ = std::fs::remove_dir_all(&dir);
-    let p = pack(None, &root().join("scenarios/export_rough.toml"), &dir, inputs).unwrap();
+    let p = pack(
+        None,
+        &root().join("scenarios/export_rough.toml"),
+        &dir,
+        inputs,
+    )
+    .unwrap();
     (dir, p.settings.token)
 }
 
@@ -132,7 +153,10 @@ fn initialized(dir: &Path, token: &str, log: &Messages) -> *mut c_void {
     let i = instantiate(dir, token, log);
     assert!(!i.is_null(), "instantiate: {}", log.last());
     unsafe {
-        assert_eq!(fmi3EnterInitializationMode(i, false, 0.0, 0.0, true, 10.0), status::OK);
+        assert_eq!(
+            fmi3EnterInitializationMode(i, false, 0.0, 0.0, true, 10.0),
+            status::OK
+        );
         assert_eq!(fmi3ExitInitializationMode(i), status::OK);
     }
     i
@@ -154,7 +178,9 @@ fn get(i: *mut c_void, vrs: &[u32]) -> (c_int, Vec<f64>) {
 fn simulated(scenario: &Path) -> Vec<Vec<f64>> {
     let prepared = Prepared::from_file(None, scenario).unwrap();
     let mut csv = Vec::new();
-    let summary = prepared.run(false, &mut csv, &AtomicBool::new(false), |_| {}).unwrap();
+    let summary = prepared
+        .run(false, &mut csv, &AtomicBool::new(false), |_| {})
+        .unwrap();
     assert!(summary.complete);
     String::from_utf8(csv)
         .unwrap()
@@ -176,7 +202,10 @@ fn an_fmu_stepped_at_the_output_instants_gives_the_csv_rows() {
     for (k, row) in rows.iter().enumerate().take(301) {
         let (s, values) = get(i, &vrs);
         assert_eq!(s, status::OK);
-        assert_eq!(&values, row, "row {k}: the FMU's outputs are the CSV's, bit for bit");
+        assert_eq!(
+            &values, row,
+            "row {k}: the FMU's outputs are the CSV's, bit for bit"
+        );
         let (s, reached) = step(i, t, h);
         assert_eq!(s, status::OK, "{}", log.last());
         t = reached;
@@ -202,7 +231,10 @@ fn steps_between_output_instants_land_on_the_communication_points() {
     let (_, x_odd) = get(i, &[1]);
     assert_eq!(unsafe { fmi3Reset(i) }, status::OK);
     unsafe {
-        assert_eq!(fmi3EnterInitializationMode(i, false, 0.0, 0.0, false, 0.0), status::OK);
+        assert_eq!(
+            fmi3EnterInitializationMode(i, false, 0.0, 0.0, false, 0.0),
+            status::OK
+        );
         assert_eq!(fmi3ExitInitializationMode(i), status::OK);
     }
     let mut t2 = 0.0;
@@ -211,8 +243,17 @@ fn steps_between_output_instants_land_on_the_communication_points() {
         t2 = step(i, t2, h).1;
     }
     let (_, x_even) = get(i, &[1]);
-    assert!(x_odd[0] > 0.02, "the speed loop drove the rover: X = {}", x_odd[0]);
-    assert!((x_odd[0] - x_even[0]).abs() < 1e-4, "{} against {}", x_odd[0], x_even[0]);
+    assert!(
+        x_odd[0] > 0.02,
+        "the speed loop drove the rover: X = {}",
+        x_odd[0]
+    );
+    assert!(
+        (x_odd[0] - x_even[0]).abs() < 1e-4,
+        "{} against {}",
+        x_odd[0],
+        x_even[0]
+    );
     unsafe { fmi3FreeInstance(i) };
 }
 
@@ -296,10 +337,16 @@ fn an_instance_used_after_it_was_freed_is_refused_with_a_message() {
     let i = initialized(&dir, &token, &log);
     unsafe { fmi3FreeInstance(i) };
     assert_eq!(step(i, 0.0, 0.01).0, status::FATAL);
-    assert_eq!(log.last(), "fmi3DoStep: the instance was freed; create a new one");
+    assert_eq!(
+        log.last(),
+        "fmi3DoStep: the instance was freed; create a new one"
+    );
     assert_eq!(get(i, &[1]).0, status::FATAL);
     unsafe { fmi3FreeInstance(i) };
-    assert_eq!(log.last(), "fmi3FreeInstance: the instance was already freed");
+    assert_eq!(
+        log.last(),
+        "fmi3FreeInstance: the instance was already freed"
+    );
     // A null instance.
     assert_eq!(step(std::ptr::null_mut(), 0.0, 0.01).0, status::FATAL);
 }
@@ -320,8 +367,14 @@ fn torque_inputs_reach_the_wheels() {
     );
     assert_eq!(get(i, &vrs).1, torques);
     let nan = [f64::NAN];
-    assert_eq!(unsafe { fmi3SetFloat64(i, vrs.as_ptr(), 1, nan.as_ptr(), 1) }, status::ERROR);
-    assert_eq!(log.last(), "fmi3SetFloat64: tau1_cmd (value reference 70) set to NaN: give a finite number");
+    assert_eq!(
+        unsafe { fmi3SetFloat64(i, vrs.as_ptr(), 1, nan.as_ptr(), 1) },
+        status::ERROR
+    );
+    assert_eq!(
+        log.last(),
+        "fmi3SetFloat64: tau1_cmd (value reference 70) set to NaN: give a finite number"
+    );
     assert_eq!(step(i, 0.0, 0.01).0, status::OK);
     // The row's torque columns hold the speed loop's plus the command.
     let names = Prepared::from_file(None, &dir.join(SCENARIO_FILE)).unwrap();
@@ -330,13 +383,19 @@ fn torque_inputs_reach_the_wheels() {
     let with = get(i, &[tau1]).1[0];
     assert_eq!(unsafe { fmi3Reset(i) }, status::OK);
     unsafe {
-        assert_eq!(fmi3EnterInitializationMode(i, false, 0.0, 0.0, false, 0.0), status::OK);
+        assert_eq!(
+            fmi3EnterInitializationMode(i, false, 0.0, 0.0, false, 0.0),
+            status::OK
+        );
         assert_eq!(fmi3ExitInitializationMode(i), status::OK);
     }
     assert_eq!(get(i, &vrs).1, [0.0; 4], "a reset puts the inputs back");
     assert_eq!(step(i, 0.0, 0.01).0, status::OK);
     let without = get(i, &[tau1]).1[0];
-    assert!((with - without - 0.5).abs() < 0.05, "{with} against {without}");
+    assert!(
+        (with - without - 0.5).abs() < 0.05,
+        "{with} against {without}"
+    );
     unsafe { fmi3FreeInstance(i) };
 }
 
@@ -346,11 +405,21 @@ fn the_c_api_reports_bad_input_and_use_after_destroy() {
     let mut p: *mut c_void = std::ptr::null_mut();
     let mut message = [0 as c_char; 512];
     let missing = CString::new(dir.join("nowhere.toml").display().to_string()).unwrap();
-    let s = unsafe { rover_create(missing.as_ptr(), &mut p, message.as_mut_ptr(), message.len()) };
+    let s = unsafe {
+        rover_create(
+            missing.as_ptr(),
+            &mut p,
+            message.as_mut_ptr(),
+            message.len(),
+        )
+    };
     assert_eq!(s, 1);
     assert!(p.is_null());
     let m = unsafe { CStr::from_ptr(message.as_ptr()) }.to_string_lossy();
-    assert!(m.contains("nowhere.toml") && m.contains("cannot read the scenario file"), "{m}");
+    assert!(
+        m.contains("nowhere.toml") && m.contains("cannot read the scenario file"),
+        "{m}"
+    );
 
     let path = CString::new(dir.join(SCENARIO_FILE).display().to_string()).unwrap();
     let s = unsafe { rover_create(path.as_ptr(), &mut p, message.as_mut_ptr(), message.len()) };
@@ -360,7 +429,9 @@ fn the_c_api_reports_bad_input_and_use_after_destroy() {
     assert_eq!(n, 70);
     let three = [1.0, 2.0, 3.0];
     assert_eq!(unsafe { rover_set_torques(p, three.as_ptr(), 3) }, 1);
-    let m = unsafe { CStr::from_ptr(rover_error_message(p)) }.to_string_lossy().into_owned();
+    let m = unsafe { CStr::from_ptr(rover_error_message(p)) }
+        .to_string_lossy()
+        .into_owned();
     assert_eq!(m, "rover_set_torques: 3 torques given, the rover takes 4");
     assert_eq!(unsafe { rover_step(p, -1.0) }, 1);
     assert_eq!(unsafe { rover_step(p, 0.001) }, 0);
@@ -370,7 +441,9 @@ fn the_c_api_reports_bad_input_and_use_after_destroy() {
     assert_eq!(out[0], 0.001);
     unsafe { rover_destroy(p) };
     assert_eq!(unsafe { rover_step(p, 0.001) }, 2);
-    let m = unsafe { CStr::from_ptr(rover_error_message(p)) }.to_string_lossy().into_owned();
+    let m = unsafe { CStr::from_ptr(rover_error_message(p)) }
+        .to_string_lossy()
+        .into_owned();
     assert_eq!(m, "the instance was destroyed; create a new one");
     assert_eq!(unsafe { rover_step(std::ptr::null_mut(), 0.001) }, 2);
 }

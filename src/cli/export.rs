@@ -99,7 +99,10 @@ pub fn export(args: &ExportArgs) -> Result<Written, CliError> {
     match &args.kind {
         ExportKind::Fmu(a) => {
             let rover_path = a.rover.as_deref().map(Path::new);
-            let inputs: Vec<&Path> = [Some(a.scenario.as_path()), rover_path].into_iter().flatten().collect();
+            let inputs: Vec<&Path> = [Some(a.scenario.as_path()), rover_path]
+                .into_iter()
+                .flatten()
+                .collect();
             CliError::check_output_file("--out", &a.out, &inputs)?;
             let library = package::find_library(LibraryKind::Shared, a.library.as_deref())?;
             Ok(package::export_fmu(&FmuOptions {
