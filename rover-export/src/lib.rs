@@ -61,6 +61,9 @@ pub use error::ExportError;
 #[macro_export]
 macro_rules! entry_points {
     ($factory:path) => {
+        // The standard's functions: their safety is FMI's (and the C
+        // header's) contract with the caller.
+        #[allow(clippy::missing_safety_doc)]
         const _: () = {
             use ::std::ffi::{c_char, c_int, c_void};
             use $crate::{capi, fmi2, fmi3, handle};
