@@ -84,7 +84,7 @@ fn main() {
         b.iter_custom(|iters| {
             let mut total = Duration::ZERO;
             for _ in 0..iters {
-                if k % RESET_EVERY == 0 {
+                if k.is_multiple_of(RESET_EVERY) {
                     assert_eq!(unsafe { rover_reset(p) }, 0);
                 }
                 k += 1;
@@ -103,7 +103,7 @@ fn main() {
     let mut times = Vec::with_capacity(n);
     ALLOCATIONS.store(0, Ordering::Relaxed);
     for i in 0..n as u64 {
-        if i % RESET_EVERY == 0 {
+        if i.is_multiple_of(RESET_EVERY) {
             assert_eq!(unsafe { rover_reset(p) }, 0);
         }
         COUNTING.store(true, Ordering::Relaxed);
