@@ -18,7 +18,7 @@ fi
 # shellcheck disable=SC1091
 source "$venv/bin/activate"
 python -m pip install --quiet --upgrade pip
-python -m pip install --quiet "maturin>=1.9,<2" pytest numpy pandas pyarrow ray gymnasium
+python -m pip install --quiet "maturin>=1.9,<2" pytest numpy pandas pyarrow ray gymnasium "fmpy==0.3.32"
 
 maturin develop --release --locked
 
@@ -29,6 +29,11 @@ if [ -z "${ROVER_CLI:-}" ]; then
         cargo build -p rover --locked
     fi
     export ROVER_CLI="$target/debug/rover"
+fi
+# The prebuilt plant library `rover export` packs into FMUs, beside the
+# executable (the cargo tests build it too).
+if [ ! -f "$(dirname "$ROVER_CLI")/librover_plant.so" ]; then
+    cargo build -p rover-plant --locked --profile "$(basename "$(dirname "$ROVER_CLI")" | sed 's/^debug$/dev/')"
 fi
 
 # Ray's token authentication writes under $HOME; a local test cluster

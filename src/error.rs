@@ -72,6 +72,9 @@ pub enum CliError {
     #[cfg(feature = "reproduce")]
     #[error("{0}")]
     Reproduce(String),
+    /// An FMU or C library could not be exported.
+    #[error("{0}")]
+    Export(rover_export::ExportError),
     /// The live server or view could not start or serve.
     #[cfg(feature = "drive")]
     #[error("{0}")]
@@ -81,6 +84,15 @@ pub enum CliError {
 impl From<PrepareError> for CliError {
     fn from(e: PrepareError) -> Self {
         CliError::Prepare(Box::new(e))
+    }
+}
+
+impl From<rover_export::ExportError> for CliError {
+    fn from(e: rover_export::ExportError) -> Self {
+        match e {
+            rover_export::ExportError::Prepare(p) => CliError::Prepare(p),
+            e => CliError::Export(e),
+        }
     }
 }
 

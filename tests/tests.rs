@@ -11,6 +11,7 @@ mod commands;
 mod control;
 #[cfg(feature = "drive")]
 mod drive;
+mod export;
 mod failures;
 mod fidelity;
 mod fixed_step;

@@ -444,6 +444,12 @@ impl Columns {
         self.names.iter().position(|n| n == name)
     }
 
+    /// What each column is, in order (the meaning of docs/CLI.md's column
+    /// table); the index a column is repeated over is its name's number.
+    pub fn meanings(&self) -> Vec<&'static str> {
+        self.columns.iter().map(|c| c.field.meaning).collect()
+    }
+
     /// Each column's unit symbol; `coordinate_linear` tells which
     /// suspension coordinates are lengths (the others are angles).
     pub fn units(&self, coordinate_linear: &[bool]) -> Vec<&'static str> {

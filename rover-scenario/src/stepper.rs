@@ -17,6 +17,10 @@ use rover_runtime::control::ControlError;
 use rover_terrain::Terrain;
 
 use rover_runtime::row::{Columns, RowInputs};
+
+/// Two times within this fraction of (1 + t) are one instant, as the
+/// driver takes them.
+const SAME_INSTANT: f64 = 1e-12;
 use rover_runtime::sim::{CommandError, Driver, RoverSystem, RunError, RunOptions};
 
 /// A run under the caller's control (see the module's documentation).
@@ -114,6 +118,37 @@ impl<P: Plant + Clone> Stepper<P> {
         Ok(())
     }
 
+    /// Advance to the time `until` \[s\] (a co-simulation master's next
+    /// communication point), through every output instant before it: with
+    /// `until` on an output instant, the steps of [`Stepper::step`], and so
+    /// the whole run's rows there; between them, the integrator also lands
+    /// on `until` (a fixed-step method shortens one step, an adaptive one
+    /// chooses its steps anew). A time not after the current one does
+    /// nothing. Allocates nothing; fails as [`Stepper::step`].
+    pub fn advance_to(&mut self, until: f64) -> Result<(), RunError> {
+        if let Some(e) = &self.failed {
+            return Err(e.clone());
+        }
+        while until - self.t > SAME_INSTANT * (1.0 + self.t) {
+            let stepped = self
+                .driver
+                .advance_until(
+                    &mut self.sys,
+                    &mut self.integ,
+                    &mut self.t,
+                    &mut self.y,
+                    until,
+                    &mut |_, _, _| Ok(()),
+                )
+                .and_then(|_| self.refresh());
+            if let Err(e) = stepped {
+                self.failed = Some(e.clone());
+                return Err(e);
+            }
+        }
+        Ok(())
+    }
+
     /// The wheel states, contact reports and torques at (t, y), as the
     /// whole run evaluates them at an output instant.
     fn refresh(&mut self) -> Result<(), RunError> {
@@ -200,6 +235,18 @@ impl<P: Plant + Clone> Stepper<P> {
             self.integ.restart();
         }
         Ok(())
+    }
+
+    /// Move spring `coord`'s neutral (an active suspension's set-point,
+    /// 0-based over the suspension coordinates) to `neutral` \[rad or m\]
+    /// ([`Controller::set_neutral`](rover_runtime::control::Controller::set_neutral));
+    /// the integrator restarts when it changes.
+    pub fn set_neutral(&mut self, coord: usize, neutral: f64) {
+        if self.sys.control.neutrals().get(coord) != Some(&neutral) {
+            let sys = &mut self.sys;
+            sys.control.set_neutral(coord, neutral, &mut sys.plant);
+            self.integ.restart();
+        }
     }
 
     /// Hold the speed set-point at `speed` [m/s] ([`Controller::set_speed`](rover_runtime::control::Controller::set_speed)).

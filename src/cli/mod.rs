@@ -4,6 +4,7 @@ mod check;
 #[cfg(feature = "codegen")]
 mod codegen;
 mod estimate;
+mod export;
 mod linearize;
 #[cfg(feature = "reproduce")]
 mod reproduce;
@@ -21,6 +22,7 @@ pub use check::{CheckArgs, check};
 #[cfg(feature = "codegen")]
 pub use codegen::{CodegenArgs, CodegenLevel, codegen};
 pub use estimate::{EstimateArgs, estimate};
+pub use export::{CArgs, ExportArgs, ExportKind, FmiArg, FmuArgs, InputsArg, export};
 pub use linearize::{LinearizeArgs, linearize_cmd};
 #[cfg(feature = "reproduce")]
 pub use reproduce::{ReproduceArgs, calibrated, reproduce, steer};
@@ -46,6 +48,8 @@ pub enum Command {
     Simulate(SimulateArgs),
     /// Estimate a run's state from its sensor log with the rover's own model (an extended Kalman filter) and with dead reckoning, against the truth when known (docs/ESTIMATE.md).
     Estimate(EstimateArgs),
+    /// Export a rover's plant for other tools: an FMI 3.0 or 2.0 Co-Simulation FMU, or a C library (docs/EXPORT.md).
+    Export(ExportArgs),
     /// The rover's modes on flat ground, parked, driving straight or turning steadily: frequencies, damping and shapes of its small motions.
     Linearize(LinearizeArgs),
     /// Write a rover's generated, allocation-free plant as a standalone Rust module.
@@ -98,6 +102,11 @@ pub fn run(cli: Cli) -> Result<ExitCode, CliError> {
             } else {
                 ExitCode::from(1)
             })
+        }
+        Command::Export(a) => {
+            let written = export(&a)?;
+            print_stdout(&export::report(&written))?;
+            Ok(ExitCode::SUCCESS)
         }
         Command::Sweep(a) => {
             sweep(&a)?;

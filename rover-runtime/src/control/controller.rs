@@ -172,6 +172,18 @@ impl Controller {
         &self.steerable
     }
 
+    /// Move spring `coord`'s neutral y0 to `neutral` (an active
+    /// suspension's set-point given from outside, as a rig's controller
+    /// gives it), in the controller's record and in `plant`; the
+    /// integrator should be restarted (a jump of the right-hand side). A
+    /// coordinate past the rover's is ignored.
+    pub fn set_neutral<P: Plant + ?Sized>(&mut self, coord: usize, neutral: f64, plant: &mut P) {
+        if let Some(n) = self.neutral.get_mut(coord) {
+            *n = neutral;
+            plant.set_spring_neutral(coord, neutral);
+        }
+    }
+
     /// The current spring neutrals y0 (moved by the active suspension).
     pub fn neutrals(&self) -> &[f64] {
         &self.neutral

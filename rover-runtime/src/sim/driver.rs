@@ -203,12 +203,45 @@ impl Driver {
     where
         F: FnMut(f64, &[f64], &mut RoverSystem<P, H>) -> Result<(), RunError>,
     {
+        self.advance_until(sys, integ, t, y, f64::INFINITY, on_sensor)
+            .map(|_| ())
+    }
+
+    /// The next output instant \[s\].
+    pub fn next_output(&self) -> f64 {
+        (self.k_out as f64 * self.opts.output_step).min(self.opts.duration)
+    }
+
+    /// [`Driver::advance_with`], stopping at `until` when it comes before
+    /// the next output instant: a communication point of a co-simulation
+    /// master (an FMU's step) that is no output instant. The integrator
+    /// lands there as on any event, without a restart; the next call goes
+    /// on to the output instant. Returns whether an output instant was
+    /// reached. With `until` on the output instants, the steps are those of
+    /// [`Driver::advance`]. Allocates nothing but what the callback does.
+    pub fn advance_until<P: Plant, H: HeightField, I: Integrator, F>(
+        &mut self,
+        sys: &mut RoverSystem<P, H>,
+        integ: &mut I,
+        t: &mut f64,
+        y: &mut [f64],
+        until: f64,
+        on_sensor: &mut F,
+    ) -> Result<bool, RunError>
+    where
+        F: FnMut(f64, &[f64], &mut RoverSystem<P, H>) -> Result<(), RunError>,
+    {
         loop {
             let t_out = self.k_out as f64 * self.opts.output_step;
             while self.next_break < self.breaks.len() && self.breaks[self.next_break] <= *t {
                 self.next_break += 1;
             }
             let mut target = t_out.min(self.opts.duration);
+            // A stop within rounding of the output instant is the instant.
+            let stop = (until < target - SAME_INSTANT * (1.0 + target)).then_some(until);
+            if let Some(u) = stop {
+                target = u;
+            }
             if let Some(dt) = self.sample {
                 target = target.min(self.k_sample as f64 * dt);
             }
@@ -244,7 +277,10 @@ impl Driver {
             self.sensor_due(sys, *t, y, on_sensor)?;
             if (t_out - *t).abs() <= SAME_INSTANT * (1.0 + *t) || self.finished(*t) {
                 self.k_out += 1;
-                return Ok(());
+                return Ok(true);
+            }
+            if stop.is_some_and(|u| (u - *t).abs() <= SAME_INSTANT * (1.0 + *t)) {
+                return Ok(false);
             }
         }
     }
