@@ -8,9 +8,12 @@
 //! crates never depend on it.
 
 pub mod access;
+#[cfg(feature = "mcap")]
+pub mod foxglove;
 pub mod ghost;
 pub mod live;
 pub mod protocol;
+pub mod row_feed;
 pub mod rut_feed;
 pub mod server;
 
@@ -624,6 +627,9 @@ fn launch<P: Plant + Clone + Send + 'static>(
     });
     let terrain = scenario.terrain.build(base).map_err(other)?;
     let start = [sim.y()[0], sim.y()[1]];
+    #[cfg(feature = "mcap")]
+    let foxglove =
+        Arc::new(foxglove::FoxgloveFeed::new(spec, sim.columns(), &terrain, start).map_err(other)?);
     let listener = bind(args.port)?;
     let addr = listener.local_addr().map_err(other)?;
     let port = addr.port();
@@ -643,6 +649,8 @@ fn launch<P: Plant + Clone + Send + 'static>(
             estimate,
             info,
             rate_hz: args.rate,
+            #[cfg(feature = "mcap")]
+            foxglove,
         },
         Access::new(addr, &who.allowed, Some(who.token.clone())),
     );
