@@ -27,6 +27,8 @@ pub struct McapLog<W: Write + Seek> {
     label: String,
     spec: Spec,
     writer: Option<mcap::Writer<W>>,
+    /// The sink, once the log is finished.
+    done: Option<W>,
     channels: Option<Channels>,
     ids: [u16; 4],
     sequence: u32,
@@ -53,13 +55,18 @@ impl<W: Write + Seek> McapLog<W> {
             .compression(None)
             .profile("")
             .library(format!("rover {}", env!("CARGO_PKG_VERSION")));
-        let writer = options
-            .create(out)
-            .map_err(|e| std::io::Error::other(format!("{label}: {e}")))?;
+        let writer = match options.create(out) {
+            Ok(w) => w,
+            Err(mcap::McapError::Io(e)) => {
+                return Err(std::io::Error::new(e.kind(), format!("{label}: {e}")));
+            }
+            Err(e) => return Err(std::io::Error::other(format!("{label}: {e}"))),
+        };
         Ok(McapLog {
             label,
             spec: spec.clone(),
             writer: Some(writer),
+            done: None,
             channels: None,
             ids: [0; 4],
             sequence: 0,
@@ -74,8 +81,22 @@ impl<W: Write + Seek> McapLog<W> {
         self.rows
     }
 
-    fn failed(&self, e: impl std::fmt::Display) -> std::io::Error {
-        std::io::Error::other(format!("{}: {e}", self.label))
+    /// The sink the log was written to, once finished
+    /// ([`RowSink::finish`]).
+    pub fn into_inner(self) -> Option<W> {
+        self.done
+    }
+
+    /// An error of the log, headed by its name, with its causes (the
+    /// mcap crate's I/O error says only that it was one).
+    fn failed(&self, e: impl std::error::Error) -> std::io::Error {
+        let mut text = format!("{}: {e}", self.label);
+        let mut cause = e.source();
+        while let Some(c) = cause {
+            text.push_str(&format!(": {c}"));
+            cause = c.source();
+        }
+        std::io::Error::other(text)
     }
 
     fn write(&mut self, topic: Topic, t_ns: u64, data: &[u8]) -> std::io::Result<()> {
@@ -178,6 +199,9 @@ impl<W: Write + Seek> RowSink for McapLog<W> {
             return Ok(());
         };
         w.finish().map_err(|e| self.failed(e))?;
-        w.into_inner().flush().map_err(|e| self.failed(e))
+        let mut out = w.into_inner();
+        out.flush().map_err(|e| self.failed(e))?;
+        self.done = Some(out);
+        Ok(())
     }
 }
