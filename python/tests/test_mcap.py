@@ -5,6 +5,8 @@ wheel's frame, composed down the tree, at run.csv's wheel centre."""
 
 import json
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -187,3 +189,16 @@ def test_rover_simulate_refuses_an_mcap_it_cannot_create(cli, tmp_path):
     assert done.returncode != 0
     assert "run.mcap: cannot create the MCAP log" in done.stderr
     assert '"failed"' in (out / "summary.json").read_text()
+
+
+def test_the_shipped_layout_reads_only_the_logs_topics_and_columns():
+    layout = json.loads((Path(__file__).resolve().parents[2] / "docs/view/rover-layout.json").read_text())
+    panels = layout["configById"]
+    column = re.compile(r"^(t|X|Y|Z|phi|theta|psi|vx|V_set|(Fn|Fd|Fc|slip|sinkage|tau|delta)[1-6])$")
+    paths = [p["value"] for c in panels.values() for p in c.get("paths", [])]
+    assert len(paths) > 10
+    for path in paths:
+        topic, field = path.split(".", 1)
+        assert topic == "/row" and column.match(field), path
+    scene = panels["3D!rover"]
+    assert set(scene["topics"]) <= set(SCHEMAS) and scene["followTf"] == "body"
