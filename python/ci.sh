@@ -18,7 +18,12 @@ fi
 # shellcheck disable=SC1091
 source "$venv/bin/activate"
 python -m pip install --quiet --upgrade pip
-python -m pip install --quiet "maturin>=1.9,<2" pytest numpy pandas pyarrow ray gymnasium "fmpy==0.3.32"
+# mcap and mcap-protobuf-support: the MCAP project's reader and protobuf
+# decoder, which read a run's run.mcap back (tests/test_mcap.py); FMPy,
+# the importer that validates and simulates an exported FMU
+# (tests/test_fmu.py).
+python -m pip install --quiet "maturin>=1.9,<2" pytest numpy pandas pyarrow ray gymnasium \
+    "mcap==1.6.0" "mcap-protobuf-support==0.6.0" "fmpy==0.3.32"
 
 maturin develop --release --locked
 

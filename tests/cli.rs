@@ -38,6 +38,7 @@ fn simulate_writes_every_output_for_both_paper_rovers() {
             quiet: true,
             no_plots: false,
             generic: false,
+            mcap: false,
         };
         let report = simulate(&args).unwrap();
         assert!(report.summary.complete);
@@ -117,6 +118,7 @@ fn bad_scenario_in(name: &str, text: &str) -> String {
         quiet: true,
         no_plots: true,
         generic: false,
+        mcap: false,
     };
     let e = simulate(&args).expect_err("the scenario is bad");
     e.to_string().replace(&dir.display().to_string(), "<dir>")
@@ -207,6 +209,7 @@ fn simulate_writes_the_sensor_log_beside_the_run() {
         quiet: true,
         no_plots: true,
         generic: false,
+        mcap: false,
     };
     let report = simulate(&args).unwrap();
     assert!(report.summary.complete);
@@ -254,6 +257,7 @@ fn an_output_path_that_is_a_file_is_refused_with_a_fix() {
         quiet: true,
         no_plots: true,
         generic: false,
+        mcap: false,
     };
     let e = simulate(&args)
         .expect_err("the output is a file")
@@ -449,6 +453,7 @@ fn reduced_levels_of_example_2_run_their_generated_plant_and_match_the_generic_o
             quiet: true,
             no_plots: true,
             generic,
+            mcap: false,
         };
         simulate(&args).unwrap().summary
     };

@@ -236,6 +236,7 @@ fn view_serves_a_finished_run() {
         quiet: true,
         no_plots: true,
         generic: false,
+        mcap: false,
     })
     .unwrap();
     let viewing = rover::drive::start_view(&rover::drive::ViewArgs {
@@ -312,6 +313,7 @@ fn view_draws_the_terrain_the_run_had_without_its_scenario() {
             quiet: true,
             no_plots: true,
             generic: false,
+            mcap: false,
         })
         .unwrap()
     };
@@ -640,6 +642,7 @@ fn stopping_the_view_frees_its_port() {
         quiet: true,
         no_plots: true,
         generic: false,
+        mcap: false,
     })
     .unwrap();
     let viewing = rover::drive::start_view(&rover::drive::ViewArgs {

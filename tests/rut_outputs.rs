@@ -37,6 +37,7 @@ fn a_run_on_soil_writes_its_ruts_as_the_next_runs_terrain() {
         quiet: true,
         no_plots: false,
         generic: false,
+        mcap: false,
     })
     .unwrap();
     assert!(report.summary.complete, "{:?}", report.summary.error);
@@ -152,6 +153,7 @@ fn a_run_on_soil_writes_its_ruts_as_the_next_runs_terrain() {
         quiet: true,
         no_plots: true,
         generic: false,
+        mcap: false,
     })
     .unwrap();
     assert!(report.summary.ruts.is_none());

@@ -237,6 +237,7 @@ def simulate(
     scenario: Optional[ScenarioLike] = None,
     *,
     generic: bool = False,
+    mcap: Optional[Union[str, "os.PathLike[str]"]] = None,
 ) -> Result:
     """Run ``scenario`` (a path, TOML text or a dict) with ``rover`` (a
     loaded rover, a name, a path, TOML text or a dict; None: the scenario's
@@ -244,7 +245,11 @@ def simulate(
     ``simulate(scenario)`` for a scenario that names its rover. ``generic``
     runs the interpreted plant even for a built-in rover. Raises RoverError
     for a scenario that cannot run. A scenario with ``[sensors]`` also
-    gives its sensor log (``Result.sensors``).
+    gives its sensor log (``Result.sensors``). With ``mcap`` (a file's
+    path), the run is also written there as an MCAP log of Foxglove
+    messages, as ``rover simulate --mcap`` writes ``run.mcap``
+    (docs/VIEW.md); a path that cannot be written raises RoverError
+    before the run starts.
 
     Ctrl-C (SIGINT, or any signal whose Python handler raises) stops the
     run within one output interval and 50 ms: the handler's exception
@@ -255,7 +260,7 @@ def simulate(
     text, origin, base, note = _scenario_source(scenario)
     with _noted(note), _python_words():
         (columns, data, rows), summary, units, sensors, raised = _native.simulate(
-            rover, text, origin, base, generic
+            rover, text, origin, base, generic, None if mcap is None else os.fspath(mcap)
         )
     table = np.frombuffer(data, dtype=np.float64).reshape(rows, len(columns))
     log = None if sensors is None else _column_table(sensors)

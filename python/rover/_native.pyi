@@ -87,12 +87,18 @@ Log = Union[str, list[tuple[str, Any]]]
 
 def load(source: str, text: Optional[bool] = None, origin: Optional[str] = None) -> Rover: ...
 def simulate(
-    rover: Optional[Rover], text: str, origin: str, base: str, generic: bool = False
+    rover: Optional[Rover],
+    text: str,
+    origin: str,
+    base: str,
+    generic: bool = False,
+    mcap: Optional[str] = None,
 ) -> tuple[Table, str, list[str], Optional[Table], Optional[BaseException]]:
     """A whole run: the trajectory (row after row), the summary as JSON,
     the columns' units, the sensor log of a scenario with [sensors]
     (column after column, NaN where no fix was due) and the exception a
-    signal handler raised, which stopped the run."""
+    signal handler raised, which stopped the run. With `mcap`, the run's
+    MCAP log is written to that path."""
 
 def estimate(
     rover: Optional[Rover],

@@ -279,8 +279,13 @@ type WholeRun<'py> = (
 
 /// A whole run, as `rover simulate` runs it ([`WholeRun`]); Ctrl-C stops
 /// it as it stops the command line's.
+///
+/// With `mcap` (a file's path), the run's MCAP log is written there as
+/// `rover simulate --mcap` writes it; a path that cannot be written is an
+/// error before the run starts. (A scenario's `[output] mcap` names no
+/// file: Python writes one only where `mcap` says.)
 #[pyfunction]
-#[pyo3(signature = (rover, text, origin, base, generic=false))]
+#[pyo3(signature = (rover, text, origin, base, generic=false, mcap=None))]
 fn simulate<'py>(
     py: Python<'py>,
     rover: Option<&Rover>,
@@ -288,19 +293,42 @@ fn simulate<'py>(
     origin: &str,
     base: &str,
     generic: bool,
+    mcap: Option<std::path::PathBuf>,
 ) -> PyResult<WholeRun<'py>> {
+    use rover_scenario::output::foxglove::McapLog;
     let prepared = prepare(rover, text, origin, base).map_err(py_err)?;
     let with_sensors = prepared.scenario.sensors.is_some();
+    let mut log_file = match &mcap {
+        Some(path) => {
+            let file = rover_files::create_fresh(path).map_err(|e| {
+                RoverError::new_err(format!(
+                    "error: mcap={}: cannot create the MCAP log: {e}\n  = help: give the path of a file in a folder you can write",
+                    path.display()
+                ))
+            })?;
+            let log = McapLog::new(
+                std::io::BufWriter::new(file),
+                &prepared.spec,
+                path.display().to_string(),
+            )
+            .map_err(|e| RoverError::new_err(format!("error: {e}")))?;
+            Some(log)
+        }
+        None => None,
+    };
     let run = py.detach(|| -> Result<_, PrepareError> {
         let mut csv = Vec::new();
         let mut log = Vec::new();
         let stop = AtomicBool::new(false);
         let mut signals = Signals::new();
         // Polled at each output row, as the run polls `stop`.
-        let summary = prepared.run_with_sensors(
+        let summary = prepared.run_with_outputs(
             generic,
             &mut csv,
             with_sensors.then_some(&mut log),
+            log_file
+                .as_mut()
+                .map(|l| l as &mut dyn rover_scenario::output::RowSink),
             &stop,
             |_| {
                 if signals.poll() {

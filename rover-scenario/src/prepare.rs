@@ -32,9 +32,10 @@ use rover_runtime::generic_plant::TooLarge;
 use rover_runtime::quasi_static::QuasiStaticError;
 use rover_spec::{Spec, SpecError};
 
+use crate::output::RowSink;
 use crate::output::Summary;
 use crate::scenario::{Scenario, ScenarioError, line_of_field};
-use crate::simulate::{SetupError, simulate_with_sensors};
+use crate::simulate::{SetupError, simulate_with_outputs};
 use crate::stepper::Stepper;
 
 /// Why a run could not be prepared or could not start.
@@ -353,17 +354,31 @@ impl Prepared {
         interrupt: &AtomicBool,
         progress: impl FnMut(f64),
     ) -> Result<Summary, PrepareError> {
+        self.run_with_outputs(generic, csv, sensors, None, interrupt, progress)
+    }
+
+    /// [`Prepared::run_with_sensors`], handing each row also to `rows`
+    /// (`rover simulate --mcap`'s log, [`crate::output::RowSink`]).
+    pub fn run_with_outputs<W: Write, S: Write>(
+        &self,
+        generic: bool,
+        csv: W,
+        sensors: Option<S>,
+        rows: Option<&mut dyn RowSink>,
+        interrupt: &AtomicBool,
+        progress: impl FnMut(f64),
+    ) -> Result<Summary, PrepareError> {
         let plant = self.plant(generic)?;
         let (model, name) = (&self.spec.model, &self.spec.name);
         let (scenario, base) = (&self.scenario, &self.base);
         // Each kind of plant runs its own instance of the run: the right-hand
         // side calls the generated plant without a second dispatch.
         let run = match plant {
-            RunPlant::Generated(p) => simulate_with_sensors(
-                p, model, name, scenario, base, csv, sensors, interrupt, progress,
+            RunPlant::Generated(p) => simulate_with_outputs(
+                p, model, name, scenario, base, csv, sensors, rows, interrupt, progress,
             ),
-            RunPlant::Generic(p) => simulate_with_sensors(
-                p, model, name, scenario, base, csv, sensors, interrupt, progress,
+            RunPlant::Generic(p) => simulate_with_outputs(
+                p, model, name, scenario, base, csv, sensors, rows, interrupt, progress,
             ),
         };
         run.map_err(|e| self.locate(e))

@@ -38,6 +38,9 @@
 //! [sensors.position_fix]     # also [sensors.suspension_encoders], [sensors.heading_fix]
 //! rate = 0.1
 //! sigma = 0.05
+//!
+//! [output]
+//! mcap = true                # run.mcap beside run.csv (docs/VIEW.md)
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -107,6 +110,20 @@ pub struct Scenario {
     /// go to `sensors.csv`, and the run lands on their instants.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sensors: Option<rover_estimate::SensorConfig>,
+    /// What a run writes besides run.csv and summary.json (`[output]`).
+    #[serde(default)]
+    pub output: OutputConfig,
+}
+
+/// The `[output]` table: the files a run writes besides run.csv and
+/// summary.json.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputConfig {
+    /// `run.mcap` beside run.csv: the run as an MCAP log of Foxglove
+    /// messages (docs/VIEW.md), as `rover simulate --mcap` writes it.
+    #[serde(default)]
+    pub mcap: bool,
 }
 
 /// The four fidelity levels of MODEL.md §9.
@@ -364,6 +381,7 @@ impl Scenario {
             path_from: None,
             profile: false,
             sensors: None,
+            output: OutputConfig::default(),
         }
     }
 

@@ -11,7 +11,9 @@ use rover_dynamics::Model;
 use rover_dynamics::attitude::Attitude;
 use rover_dynamics::plant::Plant;
 
-use crate::output::{CsvWriter, RunEnd, RunLog, Status, Summary, axles_by_rest_x, plant_label};
+use crate::output::{
+    CsvWriter, RowSink, RunEnd, RunLog, Status, Summary, axles_by_rest_x, plant_label,
+};
 use crate::scenario::{FidelityLevel, Scenario};
 use crate::sensor_log::SensorLogWriter;
 use rover_dynamics::wheel_ground::ContactMethod;
@@ -69,6 +71,10 @@ pub enum SetupError {
     /// The CSV could not be started.
     #[error("cannot write the CSV: {0}")]
     Io(#[from] std::io::Error),
+    /// Another sink of the rows (the MCAP log) could not be started or
+    /// finished; the message names its file.
+    #[error("{0}")]
+    Sink(String),
     /// A quasi-static run has no path to follow.
     #[error("path_from: {0}")]
     Path(String),
@@ -105,6 +111,10 @@ impl SetupError {
             _ => None,
         }
     }
+}
+
+fn sink_error(e: std::io::Error) -> SetupError {
+    SetupError::Sink(e.to_string())
 }
 
 fn soil_wheel_help(e: &rover_runtime::ground::SoilWheelError) -> &'static str {
@@ -435,6 +445,27 @@ pub fn simulate_with_sensors<P: Plant, W: Write, S: Write>(
     csv: W,
     sensors: Option<S>,
     interrupt: &AtomicBool,
+    progress: impl FnMut(f64),
+) -> Result<Summary, SetupError> {
+    simulate_with_outputs(
+        plant, model, name, scenario, base_dir, csv, sensors, None, interrupt, progress,
+    )
+}
+
+/// [`simulate_with_sensors`], handing each row also to `rows` (the MCAP
+/// log): the same values as the CSV's, computed once. A sink that cannot
+/// write stops the run as failed, like the CSV; it is finished (given the
+/// ground) also after a failure.
+pub fn simulate_with_outputs<P: Plant, W: Write, S: Write>(
+    plant: P,
+    model: &Model,
+    name: &str,
+    scenario: &Scenario,
+    base_dir: &Path,
+    csv: W,
+    sensors: Option<S>,
+    mut rows: Option<&mut dyn RowSink>,
+    interrupt: &AtomicBool,
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
     let mut plant = plant;
@@ -449,6 +480,7 @@ pub fn simulate_with_sensors<P: Plant, W: Write, S: Write>(
             scenario,
             base_dir,
             csv,
+            rows,
             interrupt,
             progress,
         );
@@ -463,6 +495,9 @@ pub fn simulate_with_sensors<P: Plant, W: Write, S: Write>(
     let k = model.wheels.len();
     let columns = Columns::on_ground(model.m(), k, !sys.spin_range().is_empty());
     let mut writer = CsvWriter::new(csv, &columns)?;
+    if let Some(r) = rows.as_deref_mut() {
+        r.start(&columns).map_err(sink_error)?;
+    }
     let mut recorder = match (&scenario.sensors, sensors) {
         (Some(config), Some(out)) => Some(SensorRecorder::new(config, model, sys.dim(), out)?),
         _ => None,
@@ -484,6 +519,9 @@ pub fn simulate_with_sensors<P: Plant, W: Write, S: Write>(
             let s = row.system;
             let inputs = RowInputs::of_system(s, row.t, row.y, s.control.speed_setpoint(row.t));
             let values = writer.write(&inputs)?;
+            if let Some(r) = rows.as_deref_mut() {
+                r.row(values)?;
+            }
             log.record(values, s.reports().iter().map(|r| r.deep));
             progress(row.t);
             Ok(())
@@ -495,6 +533,10 @@ pub fn simulate_with_sensors<P: Plant, W: Write, S: Write>(
     );
     let wall = started.elapsed().as_secs_f64();
     writer.into_inner()?;
+    if let Some(r) = rows {
+        r.finish(sys.ground.as_ref().map(|g| &g.terrain))
+            .map_err(sink_error)?;
+    }
     if let Some(r) = recorder {
         r.log.into_inner()?;
     }
@@ -695,6 +737,7 @@ fn quasi_static_run<W: Write>(
     scenario: &Scenario,
     base_dir: &Path,
     csv: W,
+    mut rows: Option<&mut dyn RowSink>,
     interrupt: &AtomicBool,
     mut progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
@@ -730,6 +773,9 @@ fn quasi_static_run<W: Write>(
     );
     let columns = Columns::new(model.m(), k);
     let mut writer = CsvWriter::new(csv, &columns)?;
+    if let Some(r) = rows.as_deref_mut() {
+        r.start(&columns).map_err(sink_error)?;
+    }
     let started = Instant::now();
     let mut log = RunLog::imposed(scenario.settle, k);
     let mut stop = (Status::Completed, None, scenario.duration);
@@ -785,10 +831,17 @@ fn quasi_static_run<W: Write>(
             neutrals: control.neutrals(),
             speed_setpoint: control.speed_setpoint(t),
         };
-        log.record(writer.write(&inputs)?, std::iter::empty());
+        let values = writer.write(&inputs)?;
+        if let Some(r) = rows.as_deref_mut() {
+            r.row(values)?;
+        }
+        log.record(values, std::iter::empty());
         progress(t);
     }
     writer.into_inner()?;
+    if let Some(r) = rows {
+        r.finish(Some(&terrain)).map_err(sink_error)?;
+    }
     let wall = started.elapsed().as_secs_f64();
     let (status, error, t_end) = stop;
     Ok(log.summary(

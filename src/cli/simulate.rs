@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rover_scenario::output::{Status, Summary};
+use rover_scenario::output::{RowSink, Status, Summary};
 use rover_scenario::prepare::Prepared;
 
 use rover_files::{OutputDir, same_file};
@@ -37,6 +37,11 @@ pub struct SimulateArgs {
     /// simplified and linearized levels).
     #[arg(long)]
     pub generic: bool,
+    /// Also write `run.mcap` beside run.csv: the run as an MCAP log of
+    /// Foxglove messages, for Foxglove or Lichtblick (docs/VIEW.md); as the
+    /// scenario's `[output] mcap = true`.
+    #[arg(long)]
+    pub mcap: bool,
 }
 
 /// What a run produced.
@@ -81,7 +86,7 @@ fn interrupt_flag() -> Arc<AtomicBool> {
 /// The outputs of a run interrupted before its first step: no CSV nor
 /// sensor log, and a summary that says so.
 fn interrupted_outputs(out: &Path, why: &str) {
-    for name in ["run.csv", SENSORS_CSV] {
+    for name in ["run.csv", SENSORS_CSV, RUN_MCAP] {
         remove_regular(&out.join(name));
     }
     let json = serde_json::json!({ "status": "interrupted", "complete": false, "error": why });
@@ -112,6 +117,9 @@ impl Drop for Preparing {
 /// The sensor log's name, beside `run.csv` when the scenario has
 /// `[sensors]`.
 const SENSORS_CSV: &str = "sensors.csv";
+
+/// The MCAP log's name, beside `run.csv` with `--mcap` or `[output] mcap`.
+pub const RUN_MCAP: &str = "run.mcap";
 
 /// Remove `path` if it is a regular file (a link of that name stays, and
 /// nothing it points to is touched); best effort.
@@ -151,12 +159,13 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
     let csv_path = out.join("run.csv");
     let summary_path = out.join("summary.json");
     let sensors_path = out.join(SENSORS_CSV);
+    let mcap_path = out.join(RUN_MCAP);
     let inputs = [
         Some(args.scenario.as_path()),
         args.rover.as_deref().map(Path::new),
     ];
     for input in inputs.into_iter().flatten() {
-        for output in [&csv_path, &summary_path, &sensors_path] {
+        for output in [&csv_path, &summary_path, &sensors_path, &mcap_path] {
             if same_file(input, output) {
                 return Err(CliError::Usage(format!(
                     "--out {}: its {} is the input {}, which the run would overwrite; give another folder",
@@ -199,6 +208,18 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
             None
         }
     };
+    // The MCAP log, written as the run goes; without it an earlier run's
+    // is removed, so that it never passes for this one's.
+    let with_mcap = args.mcap || scenario.output.mcap;
+    let mut mcap = if with_mcap {
+        Some(mcap_log(&out, &mcap_path, spec)?)
+    } else {
+        if std::fs::symlink_metadata(&mcap_path).is_ok_and(|m| m.is_file()) {
+            std::fs::remove_file(&mcap_path)
+                .map_err(|e| CliError::io(&mcap_path, "remove an earlier run's MCAP log", e))?;
+        }
+        None
+    };
     let bar = if args.quiet {
         ProgressBar::hidden()
     } else {
@@ -214,13 +235,23 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         preparing.take();
         bar.set_position((1000.0 * t / duration) as u64);
     };
-    let summary = prepared.run_with_sensors(args.generic, csv, sensors, &flag, progress)?;
+    let summary = prepared.run_with_outputs(
+        args.generic,
+        csv,
+        sensors,
+        mcap.as_mut().map(|m| m as &mut dyn RowSink),
+        &flag,
+        progress,
+    )?;
     bar.finish_and_clear();
     // The rut grids before the summary that says the run is done: a
     // summary never points at an earlier run's ruts.
     let mut files = vec![csv_path.clone(), summary_path.clone()];
     if scenario.sensors.is_some() {
         files.push(sensors_path);
+    }
+    if with_mcap {
+        files.push(mcap_path);
     }
     files.extend(rut_files(&out, &prepared, &summary)?);
     let json = serde_json::to_string_pretty(&summary)
@@ -365,6 +396,7 @@ fn fail_outputs(csv: &Path, summary: &Path, e: &CliError) {
     remove_regular(csv);
     if let Some(dir) = csv.parent() {
         remove_regular(&dir.join(SENSORS_CSV));
+        remove_regular(&dir.join(RUN_MCAP));
     }
     let json = serde_json::json!({
         "status": "failed",
@@ -432,4 +464,48 @@ fn plots(
     _settle: f64,
 ) -> Result<Vec<PathBuf>, CliError> {
     Ok(Vec::new())
+}
+
+/// The MCAP log of a run, `run.mcap` in `out`, started afresh.
+#[cfg(feature = "mcap")]
+fn mcap_log(
+    out: &OutputDir,
+    path: &Path,
+    spec: &rover_spec::Spec,
+) -> Result<rover_scenario::output::foxglove::McapLog<BufWriter<std::fs::File>>, CliError> {
+    let (_, file) = out
+        .create_fresh(RUN_MCAP)
+        .map_err(|e| CliError::io(path, "create the MCAP log", e))?;
+    rover_scenario::output::foxglove::McapLog::new(
+        BufWriter::new(file),
+        spec,
+        path.display().to_string(),
+    )
+    .map_err(|e| CliError::io(path, "write the MCAP log", e))
+}
+
+/// Without the `mcap` feature: a clear refusal.
+#[cfg(not(feature = "mcap"))]
+fn mcap_log(_out: &OutputDir, path: &Path, _spec: &rover_spec::Spec) -> Result<NoMcap, CliError> {
+    Err(CliError::Usage(format!(
+        "{}: this rover was built without the `mcap` feature: rebuild with `--features mcap` (a default feature), or drop `--mcap` and `[output] mcap`",
+        path.display()
+    )))
+}
+
+/// The MCAP log's place in a build without the `mcap` feature (never made).
+#[cfg(not(feature = "mcap"))]
+enum NoMcap {}
+
+#[cfg(not(feature = "mcap"))]
+impl RowSink for NoMcap {
+    fn start(&mut self, _: &rover_runtime::row::Columns) -> std::io::Result<()> {
+        match *self {}
+    }
+    fn row(&mut self, _: &[f64]) -> std::io::Result<()> {
+        match *self {}
+    }
+    fn finish(&mut self, _: Option<&rover_runtime::terrain::Terrain>) -> std::io::Result<()> {
+        match *self {}
+    }
 }

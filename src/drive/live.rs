@@ -4,7 +4,7 @@
 //! the web side can only reach it through [`Shared`]: a command or a
 //! reader never holds the loop up for longer than a copy.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -28,6 +28,7 @@ use rover_scenario::simulate::SetupError;
 use rover_terrain::ruts::RutMap;
 
 use super::ghost::Ghost;
+use super::row_feed::RowFeed;
 use super::rut_feed::{RUT_PERIOD, RutFeed};
 
 /// The fixed-step method of the loop.
@@ -230,6 +231,10 @@ pub struct Shared {
     /// The ruts' tiles, copied by the loop every [`RUT_PERIOD`] when the
     /// ground keeps ruts.
     pub ruts: Mutex<RutFeed>,
+    /// Every step's row, while [`Shared::row_readers`] is not 0.
+    pub rows: Mutex<RowFeed>,
+    /// Clients reading [`Shared::rows`] (the Foxglove sessions).
+    pub row_readers: AtomicUsize,
 }
 
 /// The fastest speed set-point, in the rover's largest wheel radii a
@@ -998,6 +1003,9 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
                 sim.reset();
                 command.stop();
                 error = None;
+                if let Ok(mut feed) = shared.rows.lock() {
+                    feed.clear();
+                }
             }
         }
         let stepping = !paused && error.is_none();
@@ -1008,12 +1016,24 @@ pub fn run<P: Plant>(sim: &mut Sim<P>, shared: &Shared, max_wall_s: Option<f64>)
             steps += 1;
             window_sim += sim.h();
         }
+        // Every step's row for the clients that take them all; the row
+        // is computed once for them and the state below.
+        let mut row_now = false;
+        if stepping && shared.row_readers.load(Ordering::Relaxed) > 0 {
+            sim.row(&mut row);
+            row_now = true;
+            if let Ok(mut feed) = shared.rows.try_lock() {
+                feed.push(&row);
+            }
+        }
         let publish_every = shared.publish_every.load(Ordering::Relaxed).max(1);
         if tick >= published_at + publish_every
             && let Ok(mut s) = shared.state.try_lock()
         {
             published_at = tick;
-            sim.row(&mut row);
+            if !row_now {
+                sim.row(&mut row);
+            }
             s.values.copy_from_slice(&row);
             if !estimate.is_empty() && s.estimate.len() == estimate.len() {
                 sim.estimate_row(&mut estimate);
@@ -1113,6 +1133,8 @@ pub fn shared(columns: usize, wheels: usize, rate_hz: f64) -> Arc<Shared> {
         publish_every: AtomicU64::new(((rate_hz / 30.0).floor() as u64).max(1)),
         stop: AtomicBool::new(false),
         ruts: Mutex::new(RutFeed::default()),
+        rows: Mutex::new(RowFeed::new(columns)),
+        row_readers: AtomicUsize::new(0),
     })
 }
 

@@ -8,9 +8,12 @@
 //! crates never depend on it.
 
 pub mod access;
+#[cfg(feature = "mcap")]
+pub mod foxglove;
 pub mod ghost;
 pub mod live;
 pub mod protocol;
+pub mod row_feed;
 pub mod rut_feed;
 pub mod server;
 
@@ -21,10 +24,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread::JoinHandle;
 
 use clap::Args;
-use rover_dynamics::HeightField;
 use rover_dynamics::plant::Plant;
 use rover_runtime::row::Columns;
 use rover_runtime::terrain::Terrain;
+use rover_scenario::output::HeightGrid;
 use rover_scenario::prepare::{Prepared, RunPlant, load_rover};
 use rover_scenario::scenario::Scenario;
 use rover_spec::sketch::Sketch;
@@ -335,15 +338,8 @@ fn meta(
         }
     }
     if let Some(info) = info {
-        let xs = info.rest.iter().map(|p| p[0]);
-        let ys = info.rest.iter().map(|p| p[1]);
-        let span = |v: &mut dyn Iterator<Item = f64>| {
-            let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-                (a.min(x), b.max(x))
-            });
-            hi - lo
-        };
         let r_max = info.radius.iter().cloned().fold(0.0, f64::max);
+        let [length, width, height] = rover_scenario::output::body_box(&info.rest, &info.radius);
         m["rest"] = json!(info.rest);
         m["radius"] = json!(info.radius);
         m["steerable"] = json!(info.steerable);
@@ -364,11 +360,7 @@ fn meta(
         // A brisk walking pace for the rover's size: two wheel radii a second.
         m["speed_hint"] = json!(2.0 * r_max);
         m["max_speed"] = json!(info.max_speed());
-        m["body"] = json!({
-            "length": 0.8 * span(&mut xs.clone()).max(2.0 * r_max),
-            "width": (span(&mut ys.clone()) - 2.0 * r_max).max(r_max),
-            "height": r_max,
-        });
+        m["body"] = json!({"length": length, "width": width, "height": height});
     }
     if let Some(e) = estimate {
         m["estimate"] = e;
@@ -395,7 +387,7 @@ pub fn terrain_json(terrain: &Terrain, centre: [f64; 2]) -> String {
 }
 
 /// The margin around a run's path that its replay's ground covers \[m\].
-pub const PATH_MARGIN: f64 = 5.0;
+pub use rover_scenario::output::PATH_MARGIN;
 
 /// The ground under a run's path, for its replay: heights on a grid of at
 /// most 256 nodes a side over the rectangle the path (`lo`…`hi` in X and
@@ -410,38 +402,23 @@ pub fn path_terrain_json(terrain: &Terrain, lo: [f64; 2], hi: [f64; 2]) -> Strin
 }
 
 /// Heights on a grid over the rectangle `lo`…`hi` (within the terrain's
-/// map), its cells square, at most 256 nodes along the longer side.
+/// map), its cells square, at most 256 nodes along the longer side
+/// ([`HeightGrid::sample`], as the Foxglove terrain).
 fn grid_json(terrain: &Terrain, lo: [f64; 2], hi: [f64; 2]) -> String {
-    const N: usize = 256;
-    let b = terrain.bounds();
-    let x0 = b.x_min.max(lo[0]);
-    let x1 = b.x_max.min(hi[0]).max(x0);
-    let y0 = b.y_min.max(lo[1]);
-    let y1 = b.y_max.min(hi[1]).max(y0);
-    let cell = (x1 - x0).max(y1 - y0) / (N - 1) as f64;
-    let nodes = |w: f64| {
-        if cell > 0.0 {
-            ((w / cell).ceil() as usize + 1).clamp(2, N)
-        } else {
-            2
+    let g = HeightGrid::sample(terrain, lo, hi, 256);
+    let mut z = String::with_capacity(g.z.len() * 8);
+    for (k, h) in g.z.iter().enumerate() {
+        if k > 0 {
+            z.push(',');
         }
-    };
-    let (nx, ny) = (nodes(x1 - x0), nodes(y1 - y0));
-    let (dx, dy) = ((x1 - x0) / (nx - 1) as f64, (y1 - y0) / (ny - 1) as f64);
-    let mut z = String::with_capacity(nx * ny * 8);
-    for j in 0..ny {
-        for i in 0..nx {
-            if i + j > 0 {
-                z.push(',');
-            }
-            match terrain.height(x0 + i as f64 * dx, y0 + j as f64 * dy) {
-                Ok(h) if h.is_finite() => z.push_str(&format!("{h:.4}")),
-                _ => z.push_str("null"),
-            }
+        match h {
+            Some(h) => z.push_str(&format!("{h:.4}")),
+            None => z.push_str("null"),
         }
     }
     format!(
-        "{{\"x0\":{x0},\"y0\":{y0},\"dx\":{dx},\"dy\":{dy},\"nx\":{nx},\"ny\":{ny},\"z\":[{z}]}}"
+        "{{\"x0\":{},\"y0\":{},\"dx\":{},\"dy\":{},\"nx\":{},\"ny\":{},\"z\":[{z}]}}",
+        g.x0, g.y0, g.dx, g.dy, g.nx, g.ny
     )
 }
 
@@ -624,6 +601,9 @@ fn launch<P: Plant + Clone + Send + 'static>(
     });
     let terrain = scenario.terrain.build(base).map_err(other)?;
     let start = [sim.y()[0], sim.y()[1]];
+    #[cfg(feature = "mcap")]
+    let foxglove =
+        Arc::new(foxglove::FoxgloveFeed::new(spec, sim.columns(), &terrain, start).map_err(other)?);
     let listener = bind(args.port)?;
     let addr = listener.local_addr().map_err(other)?;
     let port = addr.port();
@@ -643,6 +623,8 @@ fn launch<P: Plant + Clone + Send + 'static>(
             estimate,
             info,
             rate_hz: args.rate,
+            #[cfg(feature = "mcap")]
+            foxglove,
         },
         Access::new(addr, &who.allowed, Some(who.token.clone())),
     );

@@ -83,6 +83,9 @@ pub enum Content {
         info: RoverInfo,
         /// The loop's rate \[Hz\].
         rate_hz: f64,
+        /// The Foxglove channels (`foxglove.websocket.v1` clients).
+        #[cfg(feature = "mcap")]
+        foxglove: Arc<super::foxglove::FoxgloveFeed>,
     },
     /// A finished run: `/run.csv` is its CSV.
     View {
@@ -274,6 +277,9 @@ struct Request {
     origin: Option<String>,
     authorization: Option<String>,
     websocket_key: Option<String>,
+    /// The `Sec-WebSocket-Protocol` subprotocols offered, every such
+    /// header's list joined.
+    protocols: Vec<String>,
     /// Whether it announces a body (none is read).
     body: bool,
     /// A header that must come once came twice.
@@ -292,6 +298,11 @@ impl Request {
     fn query_token(&self) -> Option<&str> {
         let (_, query) = self.target.split_once('?')?;
         query.split('&').find_map(|p| p.strip_prefix("token="))
+    }
+
+    /// Whether the client offers the WebSocket subprotocol `name`.
+    fn offers(&self, name: &str) -> bool {
+        self.protocols.iter().any(|p| p == name)
     }
 
     fn credentials(&self) -> Credentials<'_> {
@@ -383,6 +394,13 @@ fn read_request(stream: &mut TcpStream) -> Result<Request, HeadError> {
                 &mut req.repeated,
                 "Sec-WebSocket-Key",
             ),
+            "sec-websocket-protocol" => req.protocols.extend(
+                value
+                    .iter()
+                    .flat_map(|v| v.split(','))
+                    .map(|p| p.trim().to_string())
+                    .filter(|p| !p.is_empty()),
+            ),
             "transfer-encoding" => req.body = true,
             "content-length" => req.body |= value.as_deref() != Some("0"),
             _ => {}
@@ -473,7 +491,13 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
         );
     }
     let path = req.path();
-    let check = if path == "/ws" && matches!(app.content, Content::Drive { .. }) {
+    // A Foxglove client (docs/VIEW.md) connects at `/` or `/ws` with its
+    // subprotocol: a WebSocket, checked as one.
+    let foxglove = req.websocket_key.is_some()
+        && req.offers(FOXGLOVE_SUBPROTOCOL)
+        && (path == "/" || path == "/ws")
+        && matches!(app.content, Content::Drive { .. });
+    let check = if foxglove || (path == "/ws" && matches!(app.content, Content::Drive { .. })) {
         app.access.check_websocket(&req.credentials())
     } else {
         app.access.check_request(&req.credentials())
@@ -496,6 +520,9 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
             "text/plain",
             b"a GET has no body here\n",
         );
+    }
+    if foxglove {
+        return foxglove_session(stream, req, app);
     }
     match path {
         "/" | "/index.html" => respond(
@@ -547,11 +574,7 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
         },
         "/ws" => match (&app.content, &req.websocket_key) {
             (Content::Drive { .. }, Some(key)) => {
-                let accept = tungstenite::handshake::derive_accept_key(key.as_bytes());
-                let head = format!(
-                    "HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Accept: {accept}\r\n\r\n"
-                );
-                stream.write_all(head.as_bytes())?;
+                stream.write_all(switching(key, None).as_bytes())?;
                 let ws = WebSocket::from_partially_read(
                     stream,
                     req.rest,
@@ -578,6 +601,54 @@ fn connection(mut stream: TcpStream, app: &App) -> std::io::Result<()> {
     }
 }
 
+/// The subprotocol of Foxglove's live protocol.
+const FOXGLOVE_SUBPROTOCOL: &str = "foxglove.websocket.v1";
+
+/// The WebSocket handshake's answer, accepting `key` (with `subprotocol`).
+fn switching(key: &str, subprotocol: Option<&str>) -> String {
+    let accept = tungstenite::handshake::derive_accept_key(key.as_bytes());
+    let protocol = subprotocol
+        .map(|p| format!("Sec-WebSocket-Protocol: {p}\r\n"))
+        .unwrap_or_default();
+    format!(
+        "HTTP/1.1 101 Switching Protocols\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Accept: {accept}\r\n{protocol}\r\n"
+    )
+}
+
+/// A Foxglove client, admitted: the handshake, then its session.
+#[cfg(feature = "mcap")]
+fn foxglove_session(mut stream: TcpStream, req: Request, app: &App) -> std::io::Result<()> {
+    let (
+        Content::Drive {
+            shared,
+            info,
+            rate_hz,
+            foxglove,
+            ..
+        },
+        Some(key),
+    ) = (&app.content, &req.websocket_key)
+    else {
+        return Ok(());
+    };
+    stream.write_all(switching(key, Some(FOXGLOVE_SUBPROTOCOL)).as_bytes())?;
+    let ws =
+        WebSocket::from_partially_read(stream, req.rest, Role::Server, Some(websocket_config()));
+    super::foxglove::session(ws, foxglove, shared, info, *rate_hz, || app.stopping());
+    Ok(())
+}
+
+/// Without the `mcap` feature, no Foxglove channels: a clear refusal.
+#[cfg(not(feature = "mcap"))]
+fn foxglove_session(mut stream: TcpStream, _req: Request, _app: &App) -> std::io::Result<()> {
+    respond(
+        &mut stream,
+        "501 Not Implemented",
+        "text/plain",
+        b"this rover was built without the `mcap` feature: no Foxglove channels\n",
+    )
+}
+
 /// The loop publishes at the highest rate any client asked for.
 fn update_publication(app: &App, shared: &Shared, rate_hz: f64) {
     let Ok(rates) = app.rates.lock() else { return };
@@ -594,6 +665,7 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
         estimate,
         info,
         rate_hz,
+        ..
     } = &app.content
     else {
         return;
