@@ -46,6 +46,7 @@ fn the_c_example_ends_where_rover_simulate_ends() {
         quiet: true,
         no_plots: true,
         generic: false,
+        mcap: false,
     })
     .unwrap();
     assert!(report.summary.complete);
