@@ -3,7 +3,9 @@
 //! map, its speed loop, RK4 at 1 ms, the generated plant): criterion's
 //! median, then 10⁶ steps each timed on its own for the median and the
 //! 99th and 99.9th percentiles, with the heap allocations the steps made
-//! counted (a counting global allocator). The run is reset to t = 0 every
+//! counted (a counting global allocator); then a fixed arithmetic chain of
+//! the same median length timed alike, for the machine's own jitter. The
+//! run is reset to t = 0 every
 //! 10 s of simulated time, outside the timing, so that the rover stays on
 //! its map (docs/EXPORT.md, "Timing").
 //!
@@ -125,4 +127,39 @@ fn main() {
         times[n - 1].as_secs_f64() * 1e6
     );
     unsafe { rover_destroy(p) };
+
+    // The machine's own jitter: a fixed arithmetic chain of about the
+    // step's median length, timed the same way. Its tail is what the
+    // operating system adds to any 8 µs of work on this machine; the
+    // step's tail above it is the step's own.
+    let median = at(0.5);
+    let mut rounds = 1000u64;
+    let work = |rounds: u64| {
+        let mut x = black_box(1.0f64);
+        for _ in 0..rounds {
+            x = x.mul_add(0.999_999_9, 1e-9);
+        }
+        black_box(x)
+    };
+    for _ in 0..20 {
+        let start = Instant::now();
+        work(rounds);
+        let us = start.elapsed().as_secs_f64() * 1e6;
+        rounds = ((rounds as f64) * median / us.max(1e-3)).max(1.0) as u64;
+    }
+    let mut control = Vec::with_capacity(n);
+    for _ in 0..n {
+        let start = Instant::now();
+        work(rounds);
+        control.push(start.elapsed());
+    }
+    control.sort();
+    let at = |q: f64| control[((n as f64 * q) as usize).min(n - 1)].as_secs_f64() * 1e6;
+    println!(
+        "fixed work of the same median, {n} runs: median {:.2} µs, 99th percentile {:.2} µs, 99.9th percentile {:.2} µs, max {:.2} µs",
+        at(0.5),
+        at(0.99),
+        at(0.999),
+        control[n - 1].as_secs_f64() * 1e6
+    );
 }
