@@ -3,18 +3,15 @@
 //! map, its speed loop, RK4 at 1 ms, the generated plant): criterion's
 //! median, then 10⁶ steps each timed on its own for the median and the
 //! 99th and 99.9th percentiles, with the heap allocations the steps made
-//! counted (a counting global allocator); then a fixed arithmetic chain of
-//! the same median length timed alike, for the machine's own jitter. The
-//! run is reset to t = 0 every
-//! 10 s of simulated time, outside the timing, so that the rover stays on
-//! its map (docs/EXPORT.md, "Timing").
+//! counted (allocation_counter); then a fixed arithmetic chain of the
+//! same median length timed alike, for the machine's own jitter. The run
+//! is reset to t = 0 every 10 s of simulated time, outside the timing, so
+//! that the rover stays on its map (docs/EXPORT.md, "Timing").
 //!
 //! `cargo bench -p rover-plant --bench step -- --warm-up-time 1 --measurement-time 3`
 
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::ffi::{CString, c_char, c_int, c_void};
 use std::hint::black_box;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use criterion::Criterion;
@@ -33,33 +30,6 @@ unsafe extern "C" {
     fn rover_reset(p: *mut c_void) -> c_int;
     fn rover_destroy(p: *mut c_void);
 }
-
-/// Counts the allocations made while `COUNTING` is set.
-struct Counting;
-
-static COUNTING: AtomicBool = AtomicBool::new(false);
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static ALLOCATOR: Counting = Counting;
 
 const STEP: f64 = 1e-3;
 /// Steps between resets: 10 s simulated.
@@ -103,20 +73,20 @@ fn main() {
     // 10⁶ steps, each timed, the allocations of the steps counted.
     let n = 1_000_000usize;
     let mut times = Vec::with_capacity(n);
-    ALLOCATIONS.store(0, Ordering::Relaxed);
-    for i in 0..n as u64 {
-        if i.is_multiple_of(RESET_EVERY) {
-            assert_eq!(unsafe { rover_reset(p) }, 0);
-        }
-        COUNTING.store(true, Ordering::Relaxed);
-        let start = Instant::now();
-        let s = unsafe { rover_step(black_box(p), STEP) };
-        let elapsed = start.elapsed();
-        COUNTING.store(false, Ordering::Relaxed);
-        assert_eq!(s, 0);
-        times.push(elapsed);
+    let mut allocations = 0;
+    for _ in 0..n as u64 / RESET_EVERY {
+        assert_eq!(unsafe { rover_reset(p) }, 0);
+        allocations += allocation_counter::measure(|| {
+            for _ in 0..RESET_EVERY {
+                let start = Instant::now();
+                let s = unsafe { rover_step(black_box(p), STEP) };
+                let elapsed = start.elapsed();
+                assert_eq!(s, 0);
+                times.push(elapsed);
+            }
+        })
+        .count_total;
     }
-    let allocations = ALLOCATIONS.load(Ordering::Relaxed);
     times.sort();
     let at = |q: f64| times[((n as f64 * q) as usize).min(n - 1)].as_secs_f64() * 1e6;
     println!(

@@ -23,7 +23,6 @@
 //! `status` message of level error; the session and the simulation go on.
 
 use std::collections::HashMap;
-use std::io::ErrorKind;
 use std::net::TcpStream;
 use std::sync::atomic::Ordering;
 use std::time::Duration;
@@ -35,13 +34,11 @@ use rover_scenario::output::foxglove::{Channels, Topic, nanoseconds};
 use rover_spec::Spec;
 use serde::Deserialize;
 use serde_json::json;
-use tungstenite::protocol::frame::CloseFrame;
-use tungstenite::protocol::frame::coding::CloseCode;
 use tungstenite::{Message, WebSocket};
 
 use super::live::{RoverInfo, Shared};
 use super::protocol;
-use super::server::MAX_MESSAGE;
+use super::server::{close_oversized, read_timed_out};
 
 /// The WebSocket subprotocol.
 pub const SUBPROTOCOL: &str = "foxglove.websocket.v1";
@@ -388,15 +385,10 @@ pub fn session(
             Ok(Message::Close(_)) => break,
             Ok(_) => {}
             Err(tungstenite::Error::Capacity(_)) => {
-                let _ = ws.close(Some(CloseFrame {
-                    code: CloseCode::Size,
-                    reason: format!("messages are at most {MAX_MESSAGE} bytes").into(),
-                }));
-                let _ = ws.flush();
+                close_oversized(&mut ws);
                 break;
             }
-            Err(tungstenite::Error::Io(e))
-                if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut) => {}
+            Err(e) if read_timed_out(&e) => {}
             Err(_) => break,
         }
         for m in out.drain(..) {

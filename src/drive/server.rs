@@ -53,6 +53,22 @@ pub const MAX_MESSAGE: usize = 64 * 1024;
 /// connection ends.
 pub const MAX_WRITE_BUFFER: usize = 1024 * 1024;
 
+/// Ends a connection whose client sent a message over [`MAX_MESSAGE`],
+/// saying why.
+pub(super) fn close_oversized(ws: &mut WebSocket<TcpStream>) {
+    let _ = ws.close(Some(CloseFrame {
+        code: CloseCode::Size,
+        reason: format!("messages are at most {MAX_MESSAGE} bytes").into(),
+    }));
+    let _ = ws.flush();
+}
+
+/// A read that found nothing within its timeout: the connection goes on.
+pub(super) fn read_timed_out(e: &tungstenite::Error) -> bool {
+    matches!(e, tungstenite::Error::Io(e)
+        if matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut))
+}
+
 /// The WebSocket's limits: small buffers, [`MAX_MESSAGE`] in.
 fn websocket_config() -> WebSocketConfig {
     WebSocketConfig::default()
@@ -738,18 +754,10 @@ fn session(mut ws: WebSocket<TcpStream>, app: &App) {
             Ok(Message::Close(_)) => break,
             Ok(_) => {}
             Err(tungstenite::Error::Capacity(_)) => {
-                let _ = ws.close(Some(CloseFrame {
-                    code: CloseCode::Size,
-                    reason: format!("messages are at most {MAX_MESSAGE} bytes").into(),
-                }));
-                let _ = ws.flush();
+                close_oversized(&mut ws);
                 break;
             }
-            Err(tungstenite::Error::Io(e))
-                if matches!(
-                    e.kind(),
-                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
-                ) => {}
+            Err(e) if read_timed_out(&e) => {}
             Err(_) => break,
         }
         let now = Instant::now();
