@@ -24,7 +24,7 @@ use rover_dynamics::wheel_ground::ContactMethod;
 use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::GenericPlant;
 use rover_runtime::terrain::Terrain;
-use support::{model, system, system_on};
+use support::{driven, model, path_from, system, system_on};
 
 /// A small deterministic generator (xorshift64*), so the states are seeded.
 struct Rng(u64);
@@ -249,27 +249,6 @@ fn one_model<P: Plant + Clone>(c: &mut Criterion, name: &str, generated: P) {
     group.finish();
 }
 
-/// `count` states 1 ms apart from `start` on (RK4, 1 ms).
-fn path_from<P: Plant>(
-    terrain: &Terrain,
-    model: &Model,
-    plant: P,
-    start: &[f64],
-    count: usize,
-) -> Vec<Vec<f64>> {
-    let (mut sys, mut y) = system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
-    y.copy_from_slice(start);
-    let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
-    let mut t = 0.0;
-    (0..count)
-        .map(|k| {
-            rk4.advance(&mut sys, &mut t, &mut y, (k + 1) as f64 * 1e-3)
-                .unwrap();
-            y.clone()
-        })
-        .collect()
-}
-
 /// The right-hand side with contact on `terrain` at the states of `path`
 /// in turn, as benchmark `what`/`id` (the time of one evaluation).
 #[allow(clippy::too_many_arguments)]
@@ -294,15 +273,6 @@ fn bench_path<P: Plant>(
             black_box(&dy);
         })
     });
-}
-
-/// The state after driving `seconds` on `terrain` from the start (RK4, 1 ms).
-fn driven<P: Plant>(terrain: &Terrain, model: &Model, plant: P, seconds: f64) -> Vec<f64> {
-    let (mut sys, mut y) = system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
-    let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
-    let mut t = 0.0;
-    rk4.advance(&mut sys, &mut t, &mut y, seconds).unwrap();
-    y
 }
 
 /// The generated plant through its typed API (`FixedPlant`, nalgebra

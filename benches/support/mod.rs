@@ -9,7 +9,7 @@ use rover_dynamics::height_field::Bounds;
 use rover_dynamics::plant::Plant;
 use rover_dynamics::soil::Soil;
 use rover_dynamics::wheel_ground::ContactMethod;
-use rover_integrate::OdeSystem;
+use rover_integrate::{FixedStepConfig, Integrator, OdeSystem, Rk4};
 use rover_runtime::control::{Controller, ControllerConfig, Profile, SpeedConfig};
 use rover_runtime::ground::Ground;
 use rover_runtime::sim::RoverSystem;
@@ -125,4 +125,36 @@ pub fn rough_field() -> Grid {
     }
     .grid()
     .unwrap()
+}
+
+/// The state after driving `seconds` on `terrain` from the start (RK4,
+/// 1 ms, the sampled search).
+pub fn driven<P: Plant>(terrain: &Terrain, model: &Model, plant: P, seconds: f64) -> Vec<f64> {
+    let (mut sys, mut y) = system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+    let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
+    let mut t = 0.0;
+    rk4.advance(&mut sys, &mut t, &mut y, seconds).unwrap();
+    y
+}
+
+/// `count` states 1 ms apart from `start` on `terrain` (RK4, 1 ms, the
+/// sampled search).
+pub fn path_from<P: Plant>(
+    terrain: &Terrain,
+    model: &Model,
+    plant: P,
+    start: &[f64],
+    count: usize,
+) -> Vec<Vec<f64>> {
+    let (mut sys, mut y) = system_on(terrain.clone(), model, plant, ContactMethod::Meridional);
+    y.copy_from_slice(start);
+    let mut rk4 = Rk4::new(y.len(), &FixedStepConfig { step: 1e-3 }).unwrap();
+    let mut t = 0.0;
+    (0..count)
+        .map(|k| {
+            rk4.advance(&mut sys, &mut t, &mut y, (k + 1) as f64 * 1e-3)
+                .unwrap();
+            y.clone()
+        })
+        .collect()
 }

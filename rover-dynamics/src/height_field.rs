@@ -4,6 +4,8 @@
 
 use core::fmt;
 
+use crate::bicubic::BicubicCell;
+
 /// A ground surface `Z_G(X, Y)` (MODEL.md §6), queried in the simulation hot loop.
 ///
 /// The contact search calls these a few times per wheel per right-hand-side
@@ -65,6 +67,27 @@ pub trait HeightField {
     fn plane(&self) -> Option<Plane> {
         None
     }
+
+    /// A token naming this surface, for the queries that keep a piece of
+    /// it between calls ([`HeightField::bicubic_cell`]): two values that
+    /// give the same token give the same heights everywhere, and a token
+    /// is never handed to another surface. 0 (the default) names none:
+    /// nothing is kept.
+    fn surface(&self) -> u64 {
+        0
+    }
+
+    /// The interior bicubic cell that holds (`x`, `y`), for a surface made
+    /// of them (a grid under its bicubic interpolant, away from its edges);
+    /// `None` (the default) elsewhere. A terrain that gives a cell must give
+    /// exactly the cell's heights and gradients
+    /// ([`BicubicCell::height_gradient`]) at every point the cell holds, and
+    /// a nonzero [`HeightField::surface`]. The contact search keeps each
+    /// wheel's last few cells ([`crate::bicubic::KeptCells`]).
+    fn bicubic_cell(&self, x: f64, y: f64) -> Option<BicubicCell> {
+        let _ = (x, y);
+        None
+    }
 }
 
 /// A plane `Z = height + gradient·((X, Y) − origin)` \[m\].
@@ -111,6 +134,14 @@ impl<H: HeightField + ?Sized> HeightField for &H {
 
     fn plane(&self) -> Option<Plane> {
         (**self).plane()
+    }
+
+    fn surface(&self) -> u64 {
+        (**self).surface()
+    }
+
+    fn bicubic_cell(&self, x: f64, y: f64) -> Option<BicubicCell> {
+        (**self).bicubic_cell(x, y)
     }
 }
 

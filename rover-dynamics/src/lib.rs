@@ -37,6 +37,7 @@ extern crate alloc;
 extern crate std;
 
 pub mod attitude;
+pub mod bicubic;
 pub mod contact;
 pub mod cpu;
 pub mod described;

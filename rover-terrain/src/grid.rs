@@ -1,6 +1,9 @@
 //! A regular grid of heights with a bicubic (default) or bilinear interpolant.
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use rover_dynamics::bicubic::{self, BicubicCell};
 
 use serde::{Deserialize, Serialize};
 
@@ -79,8 +82,9 @@ pub enum EdgePolicy {
 /// Heights are stored row by row from the south row (`j = 0`), west to east:
 /// `heights[j·nx + i]`. The map covers `[X0, X0 + (nx−1)·dx] × [Y0, Y0 + (ny−1)·dy]`
 /// (node to node; a file's cells are read as nodes at their centres).
-/// Cloning is cheap: the heights are shared.
-#[derive(Debug, Clone, PartialEq)]
+/// Cloning is cheap: the heights are shared. Two grids are equal when
+/// their nodes, interpolant and edge policy are.
+#[derive(Debug, Clone)]
 pub struct Grid {
     origin: [f64; 2],
     spacing: [f64; 2],
@@ -101,6 +105,31 @@ pub struct Grid {
     curvatures: Arc<LazyCells>,
     interpolation: Interpolation,
     edge: EdgePolicy,
+    /// This grid's [`HeightField::surface`] token: one per grid built,
+    /// interpolant and edge policy chosen; its clones (the same heights)
+    /// share it.
+    surface: u64,
+}
+
+impl PartialEq for Grid {
+    /// Everything but the surface token (a grid read twice is one ground).
+    fn eq(&self, other: &Grid) -> bool {
+        self.origin == other.origin
+            && self.spacing == other.spacing
+            && self.nx == other.nx
+            && self.ny == other.ny
+            && self.heights == other.heights
+            && self.interpolation == other.interpolation
+            && self.edge == other.edge
+    }
+}
+
+/// The last [`Grid`]'s surface token (0 names no surface).
+static SURFACES: AtomicU64 = AtomicU64::new(0);
+
+/// A token no grid has had.
+fn new_surface() -> u64 {
+    SURFACES.fetch_add(1, Ordering::Relaxed) + 1
 }
 
 impl Grid {
@@ -182,6 +211,7 @@ impl Grid {
             heights,
             interpolation: Interpolation::default(),
             edge: EdgePolicy::default(),
+            surface: new_surface(),
         })
     }
 
@@ -215,12 +245,14 @@ impl Grid {
     /// The same grid with another interpolant.
     pub fn with_interpolation(mut self, interpolation: Interpolation) -> Grid {
         self.interpolation = interpolation;
+        self.surface = new_surface();
         self
     }
 
     /// The same grid with another edge policy.
     pub fn with_edge_policy(mut self, edge: EdgePolicy) -> Grid {
         self.edge = edge;
+        self.surface = new_surface();
         self
     }
 
@@ -494,12 +526,7 @@ impl Grid {
         // Interpolate each stencil row along X (value and X-derivative); ghost
         // rows extrapolate from real rows, which is the same as extrapolating
         // their nodes because both steps are linear.
-        let along = |p: [f64; 4]| -> [f64; 2] {
-            [
-                wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3],
-                dwx[0] * p[0] + dwx[1] * p[1] + dwx[2] * p[2] + dwx[3] * p[3],
-            ]
-        };
+        let along = |p: [f64; 4]| bicubic::along(&wx, &dwx, &p);
         let rows = match block {
             // Written out: `block.map(…)` was an out-of-line
             // `array::try_map` call on every query with a gradient
@@ -509,15 +536,7 @@ impl Grid {
                 along(stencil(self.nx, i, |c| self.at(c, r)))
             }),
         };
-        let mut z = 0.0;
-        let mut dz_dt = 0.0;
-        let mut dz_ds = 0.0;
-        for k in 0..4 {
-            z += wy[k] * rows[k][0];
-            dz_dt += wy[k] * rows[k][1];
-            dz_ds += dwy[k] * rows[k][0];
-        }
-        (z, dz_dt, dz_ds)
+        bicubic::across(&wy, &dwy, &rows)
     }
 
     #[inline]
@@ -544,6 +563,31 @@ impl HeightField for Grid {
     #[inline]
     fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
         self.evaluate(x, y)
+    }
+
+    fn surface(&self) -> u64 {
+        self.surface
+    }
+
+    /// The interior cell of (`x`, `y`) under the bicubic interpolant:
+    /// `None` on the bilinear one, in the cells along the map's edges
+    /// (their stencils take ghost nodes) and off the map.
+    #[inline]
+    fn bicubic_cell(&self, x: f64, y: f64) -> Option<BicubicCell> {
+        if self.interpolation != Interpolation::Bicubic {
+            return None;
+        }
+        let [(i, _, clamp_x), (j, _, clamp_y)] = self.cell(x, y).ok()?;
+        if clamp_x || clamp_y {
+            return None;
+        }
+        let [p0, p1, p2, p3] = self.interior_block(i, j)?;
+        Some(BicubicCell {
+            origin: self.origin,
+            spacing: self.spacing,
+            corner: [i as f64, j as f64],
+            nodes: [*p0, *p1, *p2, *p3],
+        })
     }
 
     /// The highest node whose cell's stencil reaches into `area` (plus the
@@ -589,16 +633,12 @@ impl HeightField for Grid {
 }
 
 /// The bicubic height on an interior cell from its 4 × 4 nodes and the
-/// kernel weights along X (`wx`) and Y (`wy`): one expression for
-/// [`Grid::height_only`] and [`Grid::sample_lattice`], so both give the same
-/// bits.
+/// kernel weights along X (`wx`) and Y (`wy`): one expression
+/// (`rover_dynamics::bicubic::height`) for [`Grid::height_only`],
+/// [`Grid::sample_lattice`] and a kept cell, so all give the same bits.
 #[inline(always)]
 fn interior_height(block: [&[f64; 4]; 4], wx: [f64; 4], wy: [f64; 4]) -> f64 {
-    let mut z = 0.0;
-    for (w, p) in wy.iter().zip(block) {
-        z += w * (wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3]);
-    }
-    z
+    bicubic::height(block, &wx, &wy)
 }
 
 /// The bound of the interpolant's gradient magnitude on cell (i, j), at

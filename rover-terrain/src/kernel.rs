@@ -14,25 +14,10 @@
 //! differences `(p1 − p−1)/2`: it passes through the nodes, is C1 across
 //! cells, and reproduces polynomials up to degree 2 exactly.
 
-/// Catmull–Rom weights `[w−1, w0, w1, w2]` at `t` and their `t`-derivatives.
-#[inline]
-pub(crate) fn catmull_rom(t: f64) -> ([f64; 4], [f64; 4]) {
-    let t2 = t * t;
-    let t3 = t2 * t;
-    let w = [
-        0.5 * (-t + 2.0 * t2 - t3),
-        0.5 * (2.0 - 5.0 * t2 + 3.0 * t3),
-        0.5 * (t + 4.0 * t2 - 3.0 * t3),
-        0.5 * (-t2 + t3),
-    ];
-    let dw = [
-        0.5 * (-1.0 + 4.0 * t - 3.0 * t2),
-        0.5 * (-10.0 * t + 9.0 * t2),
-        0.5 * (1.0 + 8.0 * t - 9.0 * t2),
-        0.5 * (-2.0 * t + 3.0 * t2),
-    ];
-    (w, dw)
-}
+/// Catmull–Rom weights `[w−1, w0, w1, w2]` at `t` and their
+/// `t`-derivatives: `rover_dynamics::bicubic`'s, which the contact search's
+/// kept cells evaluate too.
+pub(crate) use rover_dynamics::bicubic::catmull_rom;
 
 /// The four stencil values `p(k−1) … p(k+2)` around cell `k` of a line of `n ≥ 2`
 /// nodes, with ghost nodes beyond either end.

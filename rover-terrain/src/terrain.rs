@@ -8,6 +8,7 @@ use super::height_field::{Bounds, HeightField, OffMap, Plane};
 use super::sinusoid::Sinusoid;
 use super::slope::Slope;
 use super::step::Step;
+use rover_dynamics::bicubic::BicubicCell;
 
 /// Any terrain: the analytic library (exact heights and gradients, unbounded)
 /// or a grid (loaded from a file, or the random field of MODEL.md §11).
@@ -123,6 +124,22 @@ impl HeightField for Terrain {
         match self {
             Terrain::Flat(t) => t.plane(),
             Terrain::Slope(t) => t.plane(),
+            _ => None,
+        }
+    }
+
+    #[inline]
+    fn surface(&self) -> u64 {
+        match self {
+            Terrain::Grid(t) => t.surface(),
+            _ => 0,
+        }
+    }
+
+    #[inline]
+    fn bicubic_cell(&self, x: f64, y: f64) -> Option<BicubicCell> {
+        match self {
+            Terrain::Grid(t) => t.bicubic_cell(x, y),
             _ => None,
         }
     }

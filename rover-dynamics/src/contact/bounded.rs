@@ -39,7 +39,10 @@
 //! closed form. A terrain that gives no curvature bound (a step, a bilinear
 //! grid, a square reaching off a clamped map) takes the meridional search.
 
-use crate::height_field::{HeightField, OffMap, Plane};
+use core::cell::RefCell;
+
+use crate::bicubic::{BicubicCell, KeptCells};
+use crate::height_field::{Bounds, HeightField, OffMap, Plane};
 
 use super::math;
 use super::meridional::{MeridionalContact, Runs, clearance_slope, crossing_from, cut_by_plane};
@@ -103,6 +106,13 @@ pub struct SearchMemory {
     certificates: [Certificate; 2],
     current: usize,
     proven: bool,
+    /// The terrain all this was learnt on ([`HeightField::surface`]): a
+    /// wheel put on another terrain forgets everything.
+    surface: u64,
+    /// The last few bicubic cells the wheel's queries fell in: a query in
+    /// one of them is the cell's polynomial, evaluated from the kept
+    /// nodes, with the terrain's bits ([`KeptCells`]).
+    cells: KeptCells,
 }
 
 impl SearchMemory {
@@ -134,7 +144,10 @@ impl SearchMemory {
             ((k as f64).abs() < limit).then_some(k)
         };
         let (Some(i), Some(j)) = (cell(x), cell(y)) else {
-            *self = SearchMemory::default();
+            *self = SearchMemory {
+                surface: self.surface,
+                ..SearchMemory::default()
+            };
             return None;
         };
         let key = [i, j];
@@ -143,7 +156,7 @@ impl SearchMemory {
         }
         let slack = 1e-9 * (quantum + x.abs() + y.abs());
         let at = |k: i64| k as f64 * quantum;
-        let square = crate::height_field::Bounds {
+        let square = Bounds {
             x_min: at(i - 2) - slack,
             x_max: at(i + 3) + slack,
             y_min: at(j - 2) - slack,
@@ -217,6 +230,33 @@ struct Leaf {
     root: Option<RimAngle>,
     /// Smallest |h'| a crossing's arc provably keeps \[m/rad\].
     slope: f64,
+    /// Where the crossing was found, to predict where it moves
+    /// ([`Root`]).
+    found: Root,
+}
+
+/// A crossing, with what predicts where it goes when the wheel moves: the
+/// rim point there, and the ground's gradient and the clearance's slope
+/// `h'` from Newton's last query, next to it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Root {
+    at: RimAngle,
+    point: [f64; 3],
+    gradient: [f64; 2],
+    /// `h'` \[m/rad\]; 0 where the crossing was found without it (no
+    /// prediction then).
+    rate: f64,
+}
+
+impl Default for Root {
+    fn default() -> Root {
+        Root {
+            at: RimAngle::default(),
+            point: [0.0; 3],
+            gradient: [0.0; 2],
+            rate: 0.0,
+        }
+    }
 }
 
 impl Leaf {
@@ -229,6 +269,7 @@ impl Leaf {
             depth: (-a.h).max(-b.h).max(0.0),
             root: None,
             slope: 0.0,
+            found: Root::default(),
         }
     }
 }
@@ -283,9 +324,10 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
                 let mut leaf = Leaf::settled(&a, &b, sides);
                 if below_a != below_b {
                     let root = self.crossing(&a, &b)?;
-                    scan.cross(root);
-                    leaf.root = Some(root);
+                    scan.cross(root.at);
+                    leaf.root = Some(root.at);
                     leaf.slope = slope;
+                    leaf.found = root;
                 }
                 scan.record(leaf);
                 true
@@ -301,7 +343,7 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
             } else if level >= MAX_LEVEL {
                 scan.unproven();
                 if below_a != below_b {
-                    scan.cross(self.crossing(&a, &b)?);
+                    scan.cross(self.crossing(&a, &b)?.at);
                 }
                 true
             } else {
@@ -360,13 +402,13 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
                 _ if !holds(dh, leaf.margin) => None,
                 None => Some(moved_leaf),
                 Some(_) if !holds(ds, leaf.slope) => None,
-                Some(last_root) => {
-                    self.newton_from(leaf.lo, leaf.hi, last_root)?
-                        .map(|root| Leaf {
-                            root: Some(root),
-                            ..moved_leaf
-                        })
-                }
+                Some(_) => self
+                    .newton_from(leaf.lo, leaf.hi, self.predicted(leaf))?
+                    .map(|root| Leaf {
+                        root: Some(root.at),
+                        found: root,
+                        ..moved_leaf
+                    }),
             };
             if let Some(kept) = kept {
                 if let Some(root) = kept.root {
@@ -395,17 +437,23 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
     /// `Δ = −h/h'` lands where `|h| ≤ K·Δ²/2` (Taylor, `|h''| ≤ K`): once that
     /// is below the tolerance, the landing point is the root without another
     /// query. `None` if a step leaves the interval or eight do not settle.
-    fn newton_in(&self, lo: f64, hi: f64, beta: f64) -> Result<Option<RimAngle>, OffMap> {
+    fn newton_in(&self, lo: f64, hi: f64, beta: f64) -> Result<Option<Root>, OffMap> {
         self.newton_from(lo, hi, RimAngle::new(beta))
     }
 
     /// [`Search::newton_in`] from a rim angle whose sine and cosine are known.
-    fn newton_from(&self, lo: f64, hi: f64, start: RimAngle) -> Result<Option<RimAngle>, OffMap> {
+    fn newton_from(&self, lo: f64, hi: f64, start: RimAngle) -> Result<Option<Root>, OffMap> {
         let mut at = start;
         for _ in 0..8 {
-            let (h, slope) = clearance_slope(self.terrain, &self.frame, at)?;
+            let (h, slope, gradient) = clearance_slope_gradient(self.terrain, &self.frame, at)?;
+            let root = |at: RimAngle| Root {
+                at,
+                point: self.frame.point_sc(at.sin, at.cos),
+                gradient,
+                rate: slope,
+            };
             if h.abs() <= CROSSING_TOLERANCE {
-                return Ok(Some(at));
+                return Ok(Some(root(at)));
             }
             let step = -h / slope;
             at = turned(at, step);
@@ -413,16 +461,41 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
                 return Ok(None);
             }
             if 0.5 * self.k * step * step <= CROSSING_TOLERANCE {
-                return Ok(Some(at));
+                return Ok(Some(root(at)));
             }
         }
         Ok(None)
     }
 
+    /// Where the crossing of `leaf` is now, to first order: the rim point
+    /// at its last root moved by `Δ` since, which changes the clearance there
+    /// by `Δz − ∇Z_G·Δxy` (the ground's gradient from the last query); one
+    /// step along the clearance's last slope from there. The last root itself
+    /// where that step is not finite or leaves the arc. Newton's method
+    /// starts from here: the root it finds does not depend on the start
+    /// beyond the tolerance, and from a start this near it usually settles
+    /// in one query instead of two.
+    fn predicted(&self, leaf: &Leaf) -> RimAngle {
+        let last = leaf.found;
+        let p = self.frame.point_sc(last.at.sin, last.at.cos);
+        let d = [0, 1, 2].map(|k| p[k] - last.point[k]);
+        let h = d[2] - last.gradient[0] * d[0] - last.gradient[1] * d[1];
+        let step = -h / last.rate;
+        if !(step.abs() < 0.05) {
+            return last.at;
+        }
+        let at = turned(last.at, step);
+        if at.beta > leaf.lo && at.beta < leaf.hi {
+            at
+        } else {
+            last.at
+        }
+    }
+
     /// The crossing between `a` and `b` (on opposite sides, `h` monotone
     /// between them): Newton's method from the end nearer the ground, or the
     /// meridional search's safeguarded iteration if it leaves the arc.
-    fn crossing(&self, a: &Node, b: &Node) -> Result<RimAngle, OffMap> {
+    fn crossing(&self, a: &Node, b: &Node) -> Result<Root, OffMap> {
         let near = if a.h.abs() <= b.h.abs() { a } else { b };
         let guess = (near.slope != 0.0).then(|| near.at.beta - near.h / near.slope);
         if let Some(start) = guess
@@ -432,15 +505,33 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
         {
             return Ok(root);
         }
-        crossing_from(
+        let at = crossing_from(
             self.terrain,
             &self.frame,
             [a.at.beta, a.h],
             [b.at.beta, b.h],
             guess,
             CROSSING_TOLERANCE,
-        )
+        )?;
+        Ok(Root {
+            at,
+            ..Root::default()
+        })
     }
+}
+
+/// [`clearance_slope`] with the ground's gradient at the rim point.
+#[inline]
+fn clearance_slope_gradient<H: HeightField + ?Sized>(
+    terrain: &H,
+    frame: &RimFrame,
+    at: RimAngle,
+) -> Result<(f64, f64, [f64; 2]), OffMap> {
+    let (s, c) = (at.sin, at.cos);
+    let p = frame.point_sc(s, c);
+    let (z, [zx, zy]) = terrain.height_gradient(p[0], p[1])?;
+    let t = frame.tangent_sc(s, c);
+    Ok((p[2] - z, t[2] - zx * t[0] - zy * t[1], [zx, zy]))
 }
 
 /// The rim angle `at` turned by `step`: its sine and cosine by the angle
@@ -651,6 +742,85 @@ fn reach(frame: &RimFrame, top: f64) -> Option<(f64, f64)> {
     }
 }
 
+/// The terrain as one wheel's search sees it: through the wheel's kept
+/// cells ([`KeptCells`]), which answer with the terrain's own bits. A query
+/// outside them keeps the terrain's cell there, if it gives one
+/// ([`HeightField::bicubic_cell`]).
+struct Kept<'a, H: ?Sized> {
+    terrain: &'a H,
+    /// `None` for a terrain without cells.
+    cells: Option<RefCell<&'a mut KeptCells>>,
+}
+
+impl<H: HeightField + ?Sized> Kept<'_, H> {
+    /// The kept cell's answer `from_cell`, or the terrain's new cell's
+    /// (then kept), or `None` where the terrain has none.
+    #[inline(always)]
+    fn through<T>(
+        &self,
+        x: f64,
+        y: f64,
+        from_cell: impl Fn(&KeptCells) -> Option<T>,
+        from_new: impl Fn(&BicubicCell) -> Option<T>,
+    ) -> Option<T> {
+        let mut cells = self.cells.as_ref()?.try_borrow_mut().ok()?;
+        if let Some(value) = from_cell(&cells) {
+            return Some(value);
+        }
+        let cell = self.terrain.bicubic_cell(x, y)?;
+        cells.keep(&cell);
+        from_new(&cell)
+    }
+}
+
+impl<H: HeightField + ?Sized> HeightField for Kept<'_, H> {
+    #[inline]
+    fn height(&self, x: f64, y: f64) -> Result<f64, OffMap> {
+        match self.through(x, y, |c| c.height(x, y), |c| c.height(x, y)) {
+            Some(z) => Ok(z),
+            None => self.terrain.height(x, y),
+        }
+    }
+
+    #[inline]
+    fn height_gradient(&self, x: f64, y: f64) -> Result<(f64, [f64; 2]), OffMap> {
+        let found = self.through(
+            x,
+            y,
+            |c| c.height_gradient(x, y),
+            |c| c.height_gradient(x, y),
+        );
+        match found {
+            Some(value) => Ok(value),
+            None => self.terrain.height_gradient(x, y),
+        }
+    }
+
+    fn max_height_in(&self, area: &Bounds) -> Option<f64> {
+        self.terrain.max_height_in(area)
+    }
+
+    fn max_slope_in(&self, area: &Bounds) -> Option<f64> {
+        self.terrain.max_slope_in(area)
+    }
+
+    fn max_curvature_in(&self, area: &Bounds) -> Option<f64> {
+        self.terrain.max_curvature_in(area)
+    }
+
+    fn plane(&self) -> Option<Plane> {
+        self.terrain.plane()
+    }
+
+    fn surface(&self) -> u64 {
+        self.terrain.surface()
+    }
+
+    fn bicubic_cell(&self, x: f64, y: f64) -> Option<BicubicCell> {
+        self.terrain.bicubic_cell(x, y)
+    }
+}
+
 impl BoundedContact {
     /// The patches of a wheel with centre `centre`, unit spin axis `axis`
     /// (both inertial) and radius `radius`, written into `out` (reset
@@ -680,6 +850,13 @@ impl BoundedContact {
         out: &mut Contact,
     ) -> Result<(), OffMap> {
         *out = Contact::default();
+        let surface = terrain.surface();
+        if memory.surface != surface {
+            *memory = SearchMemory {
+                surface,
+                ..SearchMemory::default()
+            };
+        }
         let Some(frame) = RimFrame::new(centre, axis, radius) else {
             return Ok(());
         };
@@ -710,8 +887,12 @@ impl BoundedContact {
                 return Ok(());
             }
         }
-        let search = Search {
+        let kept = Kept {
             terrain,
+            cells: (surface != 0).then(|| RefCell::new(&mut memory.cells)),
+        };
+        let search = Search {
+            terrain: &kept,
             frame,
             k,
             rounding,
@@ -746,8 +927,8 @@ impl BoundedContact {
         memory.proven = proven;
         memory.current ^= 1;
         out.deep = deep;
-        runs.measure_shallow(terrain, &frame)?;
-        runs.emit(terrain, &frame, out)
+        runs.measure_shallow(&kept, &frame)?;
+        runs.emit(&kept, &frame, out)
     }
 
     /// [`BoundedContact::find_into`] returning the contact.
