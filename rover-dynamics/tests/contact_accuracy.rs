@@ -263,3 +263,91 @@ fn a_search_that_remembers_finds_what_a_fresh_search_finds() {
         );
     }
 }
+
+/// The same walks as above, each wheel's search once on the terrain itself
+/// (its bicubic cells kept between queries, `KeptCells`) and once through
+/// a probe that hides them (every query the grid's own): the same patches
+/// bit for bit, and the same number of terrain queries. A memory taken to
+/// another terrain forgets what it learnt on the first: it finds what a
+/// fresh memory finds there, bit for bit.
+#[test]
+fn kept_cells_change_no_bit_of_the_contact() {
+    use rover_dynamics::contact::SearchMemory;
+    let search = BoundedContact::default();
+    let bits = |c: &Contact| {
+        c.patches()
+            .iter()
+            .flat_map(|p| {
+                let mut v = p.point.map(f64::to_bits).to_vec();
+                v.extend(p.normal.map(f64::to_bits));
+                v.push(p.deflection.to_bits());
+                v
+            })
+            .collect::<Vec<_>>()
+    };
+    let mut rng = Rng::new(0x6e11_5eed);
+    let mut grids = 0;
+    for (name, t, area) in terrains() {
+        if !matches!(t, Terrain::Grid(_)) {
+            continue;
+        }
+        grids += 1;
+        let hidden = Probe::new(&t, true);
+        let mut compared = 0;
+        for walk in 0..20 {
+            let (mut centre, axis, radius) = pose(&mut rng, &t, area);
+            let (mut kept, mut plain) = (SearchMemory::default(), SearchMemory::default());
+            for step in 0..50 {
+                // Steps of 0.1 mm, a 2 cm jump every tenth (across cells).
+                let scale = if step % 10 == 9 { 2e-2 } else { 1e-4 };
+                centre[0] += rng.uniform(0.0, scale);
+                centre[1] += rng.uniform(-scale, scale);
+                centre[2] += rng.uniform(-0.1, 0.1) * scale;
+                let (mut a, mut b) = (Contact::default(), Contact::default());
+                search
+                    .find_with(&t, centre, axis, radius, &mut kept, &mut a)
+                    .unwrap();
+                search
+                    .find_with(&hidden, centre, axis, radius, &mut plain, &mut b)
+                    .unwrap();
+                assert_eq!(
+                    (a.count, a.deep, bits(&a)),
+                    (b.count, b.deep, bits(&b)),
+                    "{name}, walk {walk}, step {step}"
+                );
+                compared += usize::from(a.count > 0);
+            }
+        }
+        assert!(compared > 300, "{name}: only {compared} contacts");
+    }
+    assert!(grids >= 2);
+
+    // A memory taken from one grid to another.
+    let (first, second) = (
+        terrain("kind = \"random\"\nz_r = 0.2\nseed = 1\nextent = [-3.0, 3.0, -3.0, 3.0]"),
+        terrain("kind = \"random\"\nz_r = 0.2\nseed = 2\nextent = [-3.0, 3.0, -3.0, 3.0]"),
+    );
+    let axis = [0.0, 1.0, 0.0];
+    let mut moved = 0;
+    for k in 0..200 {
+        let x = -1.0 + 0.01 * f64::from(k);
+        let top = first.height(x, 0.5).unwrap().max(second.height(x, 0.5).unwrap());
+        let centre = [x, 0.5, top + 0.2 - 0.01];
+        let mut memory = SearchMemory::default();
+        let mut contact = Contact::default();
+        search
+            .find_with(&first, centre, axis, 0.2, &mut memory, &mut contact)
+            .unwrap();
+        search
+            .find_with(&second, centre, axis, 0.2, &mut memory, &mut contact)
+            .unwrap();
+        let fresh = search.find(&second, centre, axis, 0.2).unwrap();
+        assert_eq!(
+            (contact.count, bits(&contact)),
+            (fresh.count, bits(&fresh)),
+            "x = {x}"
+        );
+        moved += usize::from(fresh.count > 0);
+    }
+    assert!(moved > 100, "only {moved} contacts");
+}

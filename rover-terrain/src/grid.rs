@@ -1011,6 +1011,87 @@ mod tests {
         );
     }
 
+    /// A kept cell (`rover_dynamics::bicubic::KeptCells`) answers with the
+    /// grid's bits: along walks that cross cell edges (and stop exactly on
+    /// them, and on nodes), in the map's edge cells (which give no cell:
+    /// the grid answers), beyond a clamped edge, and off the map; the
+    /// bilinear interpolant gives no cells.
+    #[test]
+    fn kept_cells_give_the_grid_bits() {
+        use rover_dynamics::bicubic::KeptCells;
+        let f = |x: f64, y: f64| 0.03 * (7.0 * x).sin() * (5.0 * y).cos() + 0.01 * (23.0 * y).sin();
+        let mut rng = crate::prng::SplitMix64::new(0x6e11_ce11_0b17_5eed);
+        for edge in [EdgePolicy::Error, EdgePolicy::Clamp] {
+            let grid = Grid::from_fn([-1.0, -0.5], [0.1, 0.05], 21, 23, f)
+                .unwrap()
+                .with_edge_policy(edge);
+            let mut kept = KeptCells::default();
+            let (mut hits, mut new, mut edges, mut on_lines) = (0, 0, 0, 0);
+            let (mut x, mut y) = (0.0, 0.0);
+            for step in 0..40_000 {
+                if step % 100 == 0 {
+                    // Anywhere, up to a cell beyond the map.
+                    x = -1.1 + 2.2 * rng.next_f64();
+                    y = -0.55 + 1.1 * rng.next_f64();
+                } else {
+                    x += 0.02 * (rng.next_f64() - 0.5);
+                    y += 0.01 * (rng.next_f64() - 0.5);
+                }
+                let (mut qx, mut qy) = (x, y);
+                // Now and then exactly on a node line, as the grid places it.
+                if step % 7 == 0 {
+                    qx = -1.0 + ((x + 1.0) / 0.1).round() * 0.1;
+                    on_lines += 1;
+                }
+                if step % 11 == 0 {
+                    qy = -0.5 + ((y + 0.5) / 0.05).round() * 0.05;
+                }
+                let grid_value = grid.height_gradient(qx, qy);
+                let value = match kept.height_gradient(qx, qy) {
+                    Some(v) => {
+                        hits += 1;
+                        Ok(v)
+                    }
+                    None => match grid.bicubic_cell(qx, qy) {
+                        Some(cell) => {
+                            new += 1;
+                            kept.keep(&cell);
+                            let v = cell.height_gradient(qx, qy);
+                            assert_eq!(v, kept.height_gradient(qx, qy));
+                            Ok(v.expect("a cell holds the point it was given for"))
+                        }
+                        None => {
+                            edges += 1;
+                            grid_value
+                        }
+                    },
+                };
+                let bits = |r: Result<(f64, [f64; 2]), OffMap>| {
+                    r.map(|(z, [a, b])| [z.to_bits(), a.to_bits(), b.to_bits()])
+                };
+                assert_eq!(bits(value), bits(grid_value), "{edge:?} at ({qx}, {qy})");
+                let height = kept.height(qx, qy).map(f64::to_bits);
+                if let Some(h) = height {
+                    assert_eq!(Ok(h), grid.height(qx, qy).map(f64::to_bits), "({qx}, {qy})");
+                }
+            }
+            assert!(
+                hits > 20_000 && new > 1000 && edges > 1000 && on_lines > 5000,
+                "{edge:?}: {hits} hits, {new} cells, {edges} at the edges"
+            );
+        }
+        let bilinear = Grid::from_fn([0.0, 0.0], [0.1, 0.1], 8, 8, f)
+            .unwrap()
+            .with_interpolation(Interpolation::Bilinear);
+        assert_eq!(bilinear.bicubic_cell(0.35, 0.35), None);
+        // Another interpolant or edge policy is another surface.
+        let grid = Grid::from_fn([0.0, 0.0], [0.1, 0.1], 8, 8, f).unwrap();
+        let other = grid.clone().with_edge_policy(EdgePolicy::Clamp);
+        assert_eq!(grid.surface(), grid.clone().surface());
+        assert_ne!(grid.surface(), other.surface());
+        assert_ne!(grid.surface(), 0);
+    }
+
     /// The height-only query is the full query's height, bit for bit, inside
     /// the map, in its edge cells (ghost nodes) and beyond a clamped edge.
     #[test]

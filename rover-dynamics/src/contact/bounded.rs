@@ -210,6 +210,10 @@ struct Certificate {
     /// How far the rim can come down before it can reach the ground beyond
     /// the searched arc \[m\].
     cover: f64,
+    /// The rim (centre, down, forward) where the crossings' roots were last
+    /// refined: `centre`, `down` and `forward` until a search keeps the
+    /// certificate in place ([`Search::reuse_in_place`]).
+    refined: [[f64; 3]; 3],
     leaves: [Leaf; MAX_LEAVES],
     count: usize,
 }
@@ -230,33 +234,32 @@ struct Leaf {
     root: Option<RimAngle>,
     /// Smallest |h'| a crossing's arc provably keeps \[m/rad\].
     slope: f64,
-    /// Where the crossing was found, to predict where it moves
-    /// ([`Root`]).
-    found: Root,
-}
-
-/// A crossing, with what predicts where it goes when the wheel moves: the
-/// rim point there, and the ground's gradient and the clearance's slope
-/// `h'` from Newton's last query, next to it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Root {
-    at: RimAngle,
-    point: [f64; 3],
+    /// The ground's gradient and the clearance's slope `h'` \[m/rad\] from
+    /// the last query of a crossing's Newton iteration, next to its root:
+    /// what predicts where the crossing moves ([`Search::predicted`]); a
+    /// zero slope where the crossing was found without them.
     gradient: [f64; 2],
-    /// `h'` \[m/rad\]; 0 where the crossing was found without it (no
-    /// prediction then).
     rate: f64,
 }
 
-impl Default for Root {
-    fn default() -> Root {
-        Root {
-            at: RimAngle::default(),
-            point: [0.0; 3],
-            gradient: [0.0; 2],
-            rate: 0.0,
-        }
-    }
+/// How a certificate kept in place fared ([`Search::reuse_in_place`]).
+enum InPlace {
+    /// Every arc kept its outcome; the certificate holds for this rim.
+    Done,
+    /// The arc at this index is to be searched again; the arcs before it
+    /// are in the scan; the changes of the clearances and their slopes.
+    Stopped(usize, [f64; 2]),
+    /// The certificate does not cover this rim: a fresh search.
+    Invalid,
+}
+
+/// A crossing, with the ground's gradient and the clearance's slope from
+/// the last query before it (see [`Leaf`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Root {
+    at: RimAngle,
+    gradient: [f64; 2],
+    rate: f64,
 }
 
 impl Leaf {
@@ -269,7 +272,8 @@ impl Leaf {
             depth: (-a.h).max(-b.h).max(0.0),
             root: None,
             slope: 0.0,
-            found: Root::default(),
+            gradient: [0.0; 2],
+            rate: 0.0,
         }
     }
 }
@@ -327,7 +331,8 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
                     scan.cross(root.at);
                     leaf.root = Some(root.at);
                     leaf.slope = slope;
-                    leaf.found = root;
+                    leaf.gradient = root.gradient;
+                    leaf.rate = root.rate;
                 }
                 scan.record(leaf);
                 true
@@ -359,18 +364,67 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
         self.settle(mid, b, level + 1, scan)
     }
 
-    /// The search of a wheel that has moved since `c` was made, into `scan`
-    /// (new, for this rim): every arc of `c` whose margins still hold keeps
-    /// its outcome (a crossing refined by Newton's method from its last
-    /// root), the others are searched again from fresh queries at their
-    /// ends. False if the certificate does not cover the rim any more (the
-    /// caller searches afresh). `slopes` are `sqrt(1 + G²)` and
+    /// The search of a wheel that has moved since `c` was made, with `c`
+    /// kept in place: while every arc's margins still hold for the whole
+    /// move since `c`'s search (the margins are not touched, the move is
+    /// measured from where they were proved), only the crossings' roots are
+    /// refined again and written back, and nothing is copied. Where an
+    /// arc's margins no longer hold (or a root's Newton iteration leaves its
+    /// arc), [`InPlace::Stopped`] says at which arc; the roots before it are
+    /// refined for this rim already, and [`Search::reuse`] takes over from
+    /// there into a new certificate. `slopes` are `sqrt(1 + G²)` and
     /// `sqrt(1 + G²) + C·R`, the factors from the rim's displacement to the
     /// clearances' and to their slopes' (see [`SearchMemory`]).
-    fn reuse(&self, c: &Certificate, slopes: [f64; 2], scan: &mut Scan) -> Result<bool, OffMap> {
+    fn reuse_in_place(
+        &self,
+        c: &mut Certificate,
+        slopes: [f64; 2],
+        scan: &mut Scan,
+    ) -> Result<InPlace, OffMap> {
+        let Some((dh, ds)) = self.change_since(c, slopes) else {
+            return Ok(InPlace::Invalid);
+        };
+        scan.restart_in_place();
+        let refined = c.refined;
+        let count = c.count.min(MAX_LEAVES);
+        for (i, leaf) in c.leaves[..count].iter_mut().enumerate() {
+            if leaf.below != scan.start.is_some() {
+                return Ok(InPlace::Invalid);
+            }
+            // (NaN never holds.)
+            if !(dh < leaf.margin) {
+                return Ok(InPlace::Stopped(i, [dh, ds]));
+            }
+            if let Some(last_root) = leaf.root {
+                if !(ds < leaf.slope) {
+                    return Ok(InPlace::Stopped(i, [dh, ds]));
+                }
+                let start = self.predicted(&refined, leaf, last_root);
+                let Some(root) = self.newton_from(leaf.lo, leaf.hi, start)? else {
+                    return Ok(InPlace::Stopped(i, [dh, ds]));
+                };
+                leaf.root = Some(root.at);
+                leaf.gradient = root.gradient;
+                leaf.rate = root.rate;
+                scan.cross(root.at);
+            }
+            scan.deepen((leaf.depth - dh).max(0.0));
+        }
+        if scan.start.is_some() {
+            return Ok(InPlace::Invalid);
+        }
+        let f = &self.frame;
+        c.refined = [f.centre, f.down, f.forward];
+        Ok(InPlace::Done)
+    }
+
+    /// How much the clearances (`dh`) and their slopes (`ds`) along the rim
+    /// can have changed since `c`'s search, rounding included; `None` when
+    /// `c` is for another radius or no longer covers the rim.
+    fn change_since(&self, c: &Certificate, slopes: [f64; 2]) -> Option<(f64, f64)> {
         let f = &self.frame;
         if f.radius != c.radius {
-            return Ok(false);
+            return None;
         }
         let apart = |a: [f64; 3], b: [f64; 3]| norm([0, 1, 2].map(|k| a[k] - b[k]));
         // Every rim point P = G + R·(cos β·d + sin β·f) moved by at most δ.
@@ -381,32 +435,55 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
             moved * slopes[1] + self.rounding,
         );
         // (NaN never holds.)
+        (dh < c.cover).then_some((dh, ds))
+    }
+
+    /// The search of a wheel that has moved since `c` was made, into `scan`
+    /// (new, for this rim): every arc of `c` whose margins still hold keeps
+    /// its outcome (a crossing refined by Newton's method from its last
+    /// root), the others are searched again from fresh queries at their
+    /// ends. The first `refined` arcs were kept by
+    /// [`Search::reuse_in_place`], and are in `scan` already; `dh` and `ds`
+    /// are the changes it measured. False if the certificate does not
+    /// cover the rim any more (the caller searches afresh).
+    fn reuse(
+        &self,
+        c: &Certificate,
+        [dh, ds]: [f64; 2],
+        scan: &mut Scan,
+        refined: usize,
+    ) -> Result<bool, OffMap> {
+        let f = &self.frame;
+        // (NaN never holds.)
         let holds = |change: f64, margin: f64| change < margin;
-        if !holds(dh, c.cover) {
-            return Ok(false);
-        }
-        scan.restart(f, c.cover - dh);
+        // The first `refined` arcs are in the scan already.
+        scan.certify(f, c.cover - dh);
         let mut last: Option<Node> = None;
-        for leaf in &c.leaves[..c.count.min(MAX_LEAVES)] {
-            if leaf.below != scan.start.is_some() {
-                return Ok(false);
-            }
+        for (i, leaf) in c.leaves[..c.count.min(MAX_LEAVES)].iter().enumerate() {
             let moved_leaf = Leaf {
                 margin: leaf.margin - dh,
                 depth: (leaf.depth - dh).max(0.0),
                 slope: leaf.slope - ds,
                 ..*leaf
             };
+            if i < refined {
+                scan.record(moved_leaf);
+                continue;
+            }
+            if leaf.below != scan.start.is_some() {
+                return Ok(false);
+            }
             // The arc's outcome, if its margins still hold.
             let kept = match leaf.root {
                 _ if !holds(dh, leaf.margin) => None,
                 None => Some(moved_leaf),
                 Some(_) if !holds(ds, leaf.slope) => None,
-                Some(_) => self
-                    .newton_from(leaf.lo, leaf.hi, self.predicted(leaf))?
+                Some(last_root) => self
+                    .newton_from(leaf.lo, leaf.hi, self.predicted(&c.refined, leaf, last_root))?
                     .map(|root| Leaf {
                         root: Some(root.at),
-                        found: root,
+                        gradient: root.gradient,
+                        rate: root.rate,
                         ..moved_leaf
                     }),
             };
@@ -448,7 +525,6 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
             let (h, slope, gradient) = clearance_slope_gradient(self.terrain, &self.frame, at)?;
             let root = |at: RimAngle| Root {
                 at,
-                point: self.frame.point_sc(at.sin, at.cos),
                 gradient,
                 rate: slope,
             };
@@ -467,28 +543,36 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
         Ok(None)
     }
 
-    /// Where the crossing of `leaf` is now, to first order: the rim point
-    /// at its last root moved by `Δ` since, which changes the clearance there
-    /// by `Δz − ∇Z_G·Δxy` (the ground's gradient from the last query); one
-    /// step along the clearance's last slope from there. The last root itself
-    /// where that step is not finite or leaves the arc. Newton's method
-    /// starts from here: the root it finds does not depend on the start
-    /// beyond the tolerance, and from a start this near it usually settles
-    /// in one query instead of two.
-    fn predicted(&self, leaf: &Leaf) -> RimAngle {
-        let last = leaf.found;
-        let p = self.frame.point_sc(last.at.sin, last.at.cos);
-        let d = [0, 1, 2].map(|k| p[k] - last.point[k]);
-        let h = d[2] - last.gradient[0] * d[0] - last.gradient[1] * d[1];
-        let step = -h / last.rate;
-        if !(step.abs() < 0.05) {
-            return last.at;
+    /// Where the crossing of `leaf`, last at `last` on the rim `refined`
+    /// (centre, down, forward), is now, to first order: the rim point at
+    /// `last` has moved by `Δ` since,
+    /// which changes the clearance there by `Δz − ∇Z_G·Δxy` (the ground's
+    /// gradient from the last query); one step along the clearance's last
+    /// slope from there. The last root itself where that step is not finite,
+    /// leaves the arc, or is so short that Newton's first step from there
+    /// settles anyway. Newton's method starts from here: the root it
+    /// finds does not depend on the start beyond the tolerance, and from a
+    /// start this near it often settles in one query instead of two.
+    fn predicted(&self, refined: &[[f64; 3]; 3], leaf: &Leaf, last: RimAngle) -> RimAngle {
+        let f = &self.frame;
+        let [centre, down, forward] = refined;
+        let (sin, cos) = (last.sin, last.cos);
+        let d = [0, 1, 2].map(|k| {
+            (f.centre[k] - centre[k])
+                + f.radius * (cos * (f.down[k] - down[k]) + sin * (f.forward[k] - forward[k]))
+        });
+        let h = d[2] - leaf.gradient[0] * d[0] - leaf.gradient[1] * d[1];
+        let step = -h / leaf.rate;
+        // From the last root, Newton's first step would settle at once
+        // (see `newton_from`), or the prediction is out of reach.
+        if !(step.abs() < 0.05) || 0.5 * self.k * step * step <= CROSSING_TOLERANCE {
+            return last;
         }
-        let at = turned(last.at, step);
+        let at = turned(last, step);
         if at.beta > leaf.lo && at.beta < leaf.hi {
             at
         } else {
-            last.at
+            last
         }
     }
 
@@ -515,7 +599,8 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
         )?;
         Ok(Root {
             at,
-            ..Root::default()
+            gradient: [0.0; 2],
+            rate: 0.0,
         })
     }
 }
@@ -650,18 +735,31 @@ impl<'m> Scan<'m> {
     /// A scan from the start of the rim `frame`, its certificate covering the
     /// rim `cover` below the searched arc's ends (every search starts here).
     fn restart(&mut self, frame: &RimFrame, cover: f64) {
-        self.runs = Runs::default();
-        self.start = None;
-        self.depth = 0.0;
-        self.deep = false;
-        self.proven = true;
+        self.restart_in_place();
+        self.certify(frame, cover);
+    }
+
+    /// A new certificate for the rim `frame`, covering it `cover` below the
+    /// searched arc's ends, without a recorded arc yet.
+    fn certify(&mut self, frame: &RimFrame, cover: f64) {
         let c = &mut *self.certificate;
         c.centre = frame.centre;
         c.down = frame.down;
         c.forward = frame.forward;
         c.radius = frame.radius;
         c.cover = cover;
+        c.refined = [frame.centre, frame.down, frame.forward];
         c.count = 0;
+    }
+
+    /// A scan from the start of the rim whose certificate stays where it is
+    /// ([`Search::reuse_in_place`]): no arc is recorded.
+    fn restart_in_place(&mut self) {
+        self.runs = Runs::default();
+        self.start = None;
+        self.depth = 0.0;
+        self.deep = false;
+        self.proven = true;
     }
 
     /// A settled arc, for the certificate.
@@ -901,13 +999,22 @@ impl BoundedContact {
         let (old, new) = {
             let [first, second] = &mut memory.certificates;
             if memory.current == 0 {
-                (&*first, second)
+                (first, second)
             } else {
-                (&*second, first)
+                (second, first)
             }
         };
         let mut scan = Scan::new(new);
-        let reused = memory.proven && search.reuse(old, slopes, &mut scan)?;
+        let mut in_place = false;
+        let reused = memory.proven
+            && match search.reuse_in_place(old, slopes, &mut scan)? {
+                InPlace::Done => {
+                    in_place = true;
+                    true
+                }
+                InPlace::Stopped(refined, change) => search.reuse(old, change, &mut scan, refined)?,
+                InPlace::Invalid => false,
+            };
         if !reused {
             // The arc searched reaches `PAD` above the terrain's highest
             // point, so that a certificate still covers every rim point that
@@ -925,7 +1032,9 @@ impl BoundedContact {
         }
         let (mut runs, deep, proven) = (scan.runs, scan.deep, scan.proven);
         memory.proven = proven;
-        memory.current ^= 1;
+        if !in_place {
+            memory.current ^= 1;
+        }
         out.deep = deep;
         runs.measure_shallow(&kept, &frame)?;
         runs.emit(&kept, &frame, out)
