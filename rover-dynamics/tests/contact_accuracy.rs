@@ -331,7 +331,10 @@ fn kept_cells_change_no_bit_of_the_contact() {
     let mut moved = 0;
     for k in 0..200 {
         let x = -1.0 + 0.01 * f64::from(k);
-        let top = first.height(x, 0.5).unwrap().max(second.height(x, 0.5).unwrap());
+        let top = first
+            .height(x, 0.5)
+            .unwrap()
+            .max(second.height(x, 0.5).unwrap());
         let centre = [x, 0.5, top + 0.2 - 0.01];
         let mut memory = SearchMemory::default();
         let mut contact = Contact::default();

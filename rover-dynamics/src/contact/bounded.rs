@@ -87,8 +87,15 @@ pub const CROSSING_TOLERANCE: f64 = 1e-12;
 ///   (every rim point within δ of where it was, clearances within
 ///   `δ·sqrt(1 + G²)`, their slopes within `δ·(sqrt(1 + G²) + C·R)`) keeps
 ///   the outcome of every arc whose margins hold: a crossing is refined by
-///   Newton's method from its last root, and only the arcs whose margins
-///   no longer hold are searched again.
+///   Newton's method from where its last root has moved to first order
+///   (its last gradient and slope), and only the arcs whose margins no
+///   longer hold are searched again. While all hold, the certificate is
+///   kept in place and only its roots are written.
+/// - The last few bicubic cells the wheel's queries fell in
+///   ([`KeptCells`]), which answer with the terrain's bits.
+///
+/// All of it belongs to one terrain ([`HeightField::surface`]): a memory
+/// used on another forgets it first.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SearchMemory {
     /// The lattice cell of the wheel's centre and the lattice's side
@@ -479,7 +486,11 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
                 None => Some(moved_leaf),
                 Some(_) if !holds(ds, leaf.slope) => None,
                 Some(last_root) => self
-                    .newton_from(leaf.lo, leaf.hi, self.predicted(&c.refined, leaf, last_root))?
+                    .newton_from(
+                        leaf.lo,
+                        leaf.hi,
+                        self.predicted(&c.refined, leaf, last_root),
+                    )?
                     .map(|root| Leaf {
                         root: Some(root.at),
                         gradient: root.gradient,
@@ -1012,7 +1023,9 @@ impl BoundedContact {
                     in_place = true;
                     true
                 }
-                InPlace::Stopped(refined, change) => search.reuse(old, change, &mut scan, refined)?,
+                InPlace::Stopped(refined, change) => {
+                    search.reuse(old, change, &mut scan, refined)?
+                }
                 InPlace::Invalid => false,
             };
         if !reused {
