@@ -105,7 +105,7 @@ impl BicubicCell {
         let u = (x - self.origin[0]) / self.spacing[0];
         let v = (y - self.origin[1]) / self.spacing[1];
         let (t, s) = (u - self.corner[0], v - self.corner[1]);
-        (t >= 0.0 && t < 1.0 && s >= 0.0 && s < 1.0).then_some((t, s))
+        ((0.0..1.0).contains(&t) && (0.0..1.0).contains(&s)).then_some((t, s))
     }
 
     /// Height \[m\] and gradient at (`x`, `y`) if the point is in the
@@ -181,7 +181,7 @@ impl KeptCells {
         let v = (y - self.origin[1]) / self.spacing[1];
         for (k, corner) in self.corners.iter().enumerate() {
             let (t, s) = (u - corner[0], v - corner[1]);
-            if t >= 0.0 && t < 1.0 && s >= 0.0 && s < 1.0 {
+            if (0.0..1.0).contains(&t) && (0.0..1.0).contains(&s) {
                 return Some((k, t, s));
             }
         }

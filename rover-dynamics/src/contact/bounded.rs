@@ -392,18 +392,19 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
             return Ok(InPlace::Invalid);
         };
         scan.restart_in_place();
+        // (NaN never holds.)
+        let holds = |change: f64, margin: f64| change < margin;
         let refined = c.refined;
         let count = c.count.min(MAX_LEAVES);
         for (i, leaf) in c.leaves[..count].iter_mut().enumerate() {
             if leaf.below != scan.start.is_some() {
                 return Ok(InPlace::Invalid);
             }
-            // (NaN never holds.)
-            if !(dh < leaf.margin) {
+            if !holds(dh, leaf.margin) {
                 return Ok(InPlace::Stopped(i, [dh, ds]));
             }
             if let Some(last_root) = leaf.root {
-                if !(ds < leaf.slope) {
+                if !holds(ds, leaf.slope) {
                     return Ok(InPlace::Stopped(i, [dh, ds]));
                 }
                 let start = self.predicted(&refined, leaf, last_root);
@@ -576,7 +577,8 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
         let step = -h / leaf.rate;
         // From the last root, Newton's first step would settle at once
         // (see `newton_from`), or the prediction is out of reach.
-        if !(step.abs() < 0.05) || 0.5 * self.k * step * step <= CROSSING_TOLERANCE {
+        let within_reach = step.abs() < 0.05;
+        if !within_reach || 0.5 * self.k * step * step <= CROSSING_TOLERANCE {
             return last;
         }
         let at = turned(last, step);
