@@ -97,6 +97,36 @@ pub struct BicubicCell {
     pub nodes: [[f64; 4]; 4],
 }
 
+/// Height \[m\] and gradient of a cell's 16 nodes at its local
+/// coordinates `(t, s)`, the node spacing `spacing` \[m\]: the grid's
+/// operations in the grid's order.
+#[inline(always)]
+fn cell_height_gradient(
+    nodes: &[[f64; 4]; 4],
+    t: f64,
+    s: f64,
+    spacing: [f64; 2],
+) -> (f64, [f64; 2]) {
+    let (wx, dwx) = catmull_rom(t);
+    let (wy, dwy) = catmull_rom(s);
+    let [p0, p1, p2, p3] = nodes;
+    let rows = [
+        along(&wx, &dwx, p0),
+        along(&wx, &dwx, p1),
+        along(&wx, &dwx, p2),
+        along(&wx, &dwx, p3),
+    ];
+    let (z, dz_dt, dz_ds) = across(&wy, &dwy, &rows);
+    (z, [dz_dt / spacing[0], dz_ds / spacing[1]])
+}
+
+/// Height \[m\] of a cell's 16 nodes at its local coordinates `(t, s)`.
+#[inline(always)]
+fn cell_height(nodes: &[[f64; 4]; 4], t: f64, s: f64) -> f64 {
+    let [p0, p1, p2, p3] = nodes;
+    height([p0, p1, p2, p3], &catmull_rom(t).0, &catmull_rom(s).0)
+}
+
 impl BicubicCell {
     /// The local coordinates `(t, s)` of (`x`, `y`) in the cell, if it is
     /// there (false for NaN).
@@ -113,29 +143,14 @@ impl BicubicCell {
     #[inline]
     pub fn height_gradient(&self, x: f64, y: f64) -> Option<(f64, [f64; 2])> {
         let (t, s) = self.local(x, y)?;
-        let (wx, dwx) = catmull_rom(t);
-        let (wy, dwy) = catmull_rom(s);
-        let [p0, p1, p2, p3] = &self.nodes;
-        let rows = [
-            along(&wx, &dwx, p0),
-            along(&wx, &dwx, p1),
-            along(&wx, &dwx, p2),
-            along(&wx, &dwx, p3),
-        ];
-        let (z, dz_dt, dz_ds) = across(&wy, &dwy, &rows);
-        Some((z, [dz_dt / self.spacing[0], dz_ds / self.spacing[1]]))
+        Some(cell_height_gradient(&self.nodes, t, s, self.spacing))
     }
 
     /// Height \[m\] at (`x`, `y`) if the point is in the cell, else `None`.
     #[inline]
     pub fn height(&self, x: f64, y: f64) -> Option<f64> {
         let (t, s) = self.local(x, y)?;
-        let [p0, p1, p2, p3] = &self.nodes;
-        Some(height(
-            [p0, p1, p2, p3],
-            &catmull_rom(t).0,
-            &catmull_rom(s).0,
-        ))
+        Some(cell_height(&self.nodes, t, s))
     }
 }
 
@@ -193,17 +208,7 @@ impl KeptCells {
     #[inline]
     pub fn height_gradient(&self, x: f64, y: f64) -> Option<(f64, [f64; 2])> {
         let (k, t, s) = self.find(x, y)?;
-        let (wx, dwx) = catmull_rom(t);
-        let (wy, dwy) = catmull_rom(s);
-        let [p0, p1, p2, p3] = &self.nodes[k];
-        let rows = [
-            along(&wx, &dwx, p0),
-            along(&wx, &dwx, p1),
-            along(&wx, &dwx, p2),
-            along(&wx, &dwx, p3),
-        ];
-        let (z, dz_dt, dz_ds) = across(&wy, &dwy, &rows);
-        Some((z, [dz_dt / self.spacing[0], dz_ds / self.spacing[1]]))
+        Some(cell_height_gradient(&self.nodes[k], t, s, self.spacing))
     }
 
     /// Height \[m\] at (`x`, `y`), if a kept cell holds it:
@@ -211,12 +216,7 @@ impl KeptCells {
     #[inline]
     pub fn height(&self, x: f64, y: f64) -> Option<f64> {
         let (k, t, s) = self.find(x, y)?;
-        let [p0, p1, p2, p3] = &self.nodes[k];
-        Some(height(
-            [p0, p1, p2, p3],
-            &catmull_rom(t).0,
-            &catmull_rom(s).0,
-        ))
+        Some(cell_height(&self.nodes[k], t, s))
     }
 
     /// Forgets every cell.

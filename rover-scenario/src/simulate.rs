@@ -402,7 +402,7 @@ pub(crate) fn run_options(scenario: &Scenario) -> RunOptions {
 /// Run `scenario` with `plant` (whose model is `model`, named `name`),
 /// writing the CSV to `csv`. `progress(t)` is called at every output row.
 /// The readings of the scenario's `[sensors]` are not written
-/// ([`simulate_with_sensors`] writes them), but the run lands on their
+/// ([`simulate_with_outputs`] writes them), but the run lands on their
 /// instants all the same: its rows are those of the run that writes them.
 ///
 /// A plant that does not fit the model (another number of coordinates or
@@ -419,7 +419,7 @@ pub fn simulate<P: Plant, W: Write>(
     interrupt: &AtomicBool,
     progress: impl FnMut(f64),
 ) -> Result<Summary, SetupError> {
-    simulate_with_sensors(
+    simulate_with_outputs(
         plant,
         model,
         name,
@@ -427,6 +427,7 @@ pub fn simulate<P: Plant, W: Write>(
         base_dir,
         csv,
         None::<std::io::Sink>,
+        None,
         interrupt,
         progress,
     )
@@ -434,28 +435,11 @@ pub fn simulate<P: Plant, W: Write>(
 
 /// [`simulate`], writing the readings of the scenario's `[sensors]` to
 /// `sensors` at each sensor instant (t = 0 first; the columns of
-/// [`rover_estimate::sensors::columns`]), when both are given. A log that
-/// cannot be written stops the run as failed, like the CSV.
-pub fn simulate_with_sensors<P: Plant, W: Write, S: Write>(
-    plant: P,
-    model: &Model,
-    name: &str,
-    scenario: &Scenario,
-    base_dir: &Path,
-    csv: W,
-    sensors: Option<S>,
-    interrupt: &AtomicBool,
-    progress: impl FnMut(f64),
-) -> Result<Summary, SetupError> {
-    simulate_with_outputs(
-        plant, model, name, scenario, base_dir, csv, sensors, None, interrupt, progress,
-    )
-}
-
-/// [`simulate_with_sensors`], handing each row also to `rows` (the MCAP
-/// log): the same values as the CSV's, computed once. A sink that cannot
-/// write stops the run as failed, like the CSV; it is finished (given the
-/// ground) also after a failure.
+/// [`rover_estimate::sensors::columns`]), when both are given, and handing
+/// each row also to `rows` (the MCAP log): the same values as the CSV's,
+/// computed once. A log or sink that cannot be written stops the run as
+/// failed, like the CSV; a sink is finished (given the ground) also after
+/// a failure.
 pub fn simulate_with_outputs<P: Plant, W: Write, S: Write>(
     plant: P,
     model: &Model,

@@ -200,6 +200,12 @@ pub(crate) fn check<E>(
 }
 
 impl FilterConfig {
+    /// Whether the torques carry a noise (`torque_sigma` or
+    /// `torque_change_scale` above 0): the prediction then needs `∂f/∂τ`.
+    pub(crate) fn torque_noise(&self) -> bool {
+        self.torque_sigma > 0.0 || self.torque_change_scale > 0.0
+    }
+
     /// Every field in range.
     pub(crate) fn validate<E>(&self) -> Result<(), EstimateError<E>> {
         if self.substeps == 0 {

@@ -123,7 +123,7 @@ impl<M: ProcessModel> Estimator<M> {
     /// `work.step` holds `f` under `torques`.
     fn torque_response(&mut self, torques: &[f64], steering: &[f64]) -> Result<(), M::Error> {
         let lin = &mut self.linearization;
-        if (self.config.torque_sigma == 0.0 && self.config.torque_change_scale == 0.0)
+        if !self.config.torque_noise()
             || lin
                 .torque_response_age
                 .is_some_and(|age| age < self.config.torque_response_every)
@@ -189,9 +189,8 @@ impl<M: ProcessModel> Estimator<M> {
         for (i, q) in self.process_noise.iter().enumerate() {
             p[i * len + i] += q * dt;
         }
-        let sigma = self.config.torque_sigma;
-        let follow = self.config.torque_change_scale;
-        if sigma > 0.0 || follow > 0.0 {
+        if self.config.torque_noise() {
+            let (sigma, follow) = (self.config.torque_sigma, self.config.torque_change_scale);
             let dim = layout.dim;
             let responses = self.linearization.torque_response.chunks_exact(dim);
             for (b, change) in responses.zip(&self.estimate.torque_change) {

@@ -234,8 +234,10 @@ impl<M: ProcessModel> Estimator<M> {
         let len = self.layout.len;
         for (i, z) in values.iter().enumerate() {
             let residual = z - self.estimate.y[6 + i];
-            let (rate, r) = (n + 6 + i, &self.estimate);
-            let speed = libm::sqrt(r.y[rate] * r.y[rate] + r.p[rate * len + rate]);
+            // The coordinate's rate: its estimate with its uncertainty.
+            let k = n + 6 + i;
+            let (rate, variance) = (self.estimate.y[k], self.estimate.p[k * len + k]);
+            let speed = libm::sqrt(rate * rate + variance);
             self.unit_row(6 + i);
             self.scalar(residual, noise.variance(speed), "suspension encoder", i)?;
         }
