@@ -46,7 +46,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut sys = RoverSystem::new(plant, Some(ground), control);
     let mut integrator = IntegratorConfig::Bdf(BdfConfig {
         rtol: 1e-6,
-        atol: 1e-8,
+        atol: Some(1e-8),
         max_order: 2,
         ..Default::default()
     })

@@ -51,9 +51,11 @@ use mujoco::{Mujoco, Setup};
 const DURATION: f64 = 40.0;
 /// Our fixed step, and the step at which the single evaluations are sampled [s].
 const STEP: f64 = 1e-3;
-/// Relative tolerances of our BDF runs: the scenarios' default, and one
-/// as loose as MuJoCo's longest steps are accurate (docs/ENGINES.md).
-const BDF_RTOL: [f64; 2] = [1e-6, 1e-4];
+/// Our BDF runs: the scenarios' default integrator as it is (`None`), and
+/// at uniform tolerances `rtol`, `atol = rtol/100` (docs/ENGINES.md).
+const BDF_RTOL: [Option<f64>; 3] = [None, Some(1e-6), Some(1e-4)];
+/// The fine RK4 step the BDF runs' end states are measured against [s].
+const FINE_STEP: f64 = 1e-4;
 
 /// Steps of the fixed-step linearly implicit method (ROS2) \[s\].
 const ROS2_STEPS: [f64; 2] = [5e-3, 1e-2];
@@ -202,19 +204,36 @@ fn rover_fixed<P: Plant, I: Integrator, E: std::fmt::Debug>(
     terrain: &Terrain,
     method: impl Fn(usize, &FixedStepConfig) -> Result<I, E>,
 ) -> End {
-    let make = |dim| method(dim, &FixedStepConfig { step: STEP }).unwrap();
+    rover_fixed_at(model, plant, terrain, method, STEP)
+}
+
+/// [`rover_fixed`] at the step `step`.
+fn rover_fixed_at<P: Plant, I: Integrator, E: std::fmt::Debug>(
+    model: &Model,
+    plant: P,
+    terrain: &Terrain,
+    method: impl Fn(usize, &FixedStepConfig) -> Result<I, E>,
+    step: f64,
+) -> End {
+    let make = |dim| method(dim, &FixedStepConfig { step }).unwrap();
     let (_, y, _) = drive(model, plant, terrain, make, DURATION);
     end_of(model, &y)
 }
 
-/// The run with a scenario's default integrator at relative tolerance
-/// `rtol` (its default 1e-6; `atol` 100 times less); also its right-hand
-/// sides.
-fn rover_bdf<P: Plant>(model: &Model, plant: P, terrain: &Terrain, rtol: f64) -> (End, u64) {
+/// The run with a scenario's default integrator, as it is (`rtol` None:
+/// its tolerances per component, docs/PERFORMANCE.md) or at the uniform
+/// relative tolerance `rtol` with `atol` 100 times less; also its
+/// right-hand sides.
+fn rover_bdf<P: Plant>(
+    model: &Model,
+    plant: P,
+    terrain: &Terrain,
+    rtol: Option<f64>,
+) -> (End, u64) {
     let mut config = rover_scenario::scenario::default_integrator();
-    if let IntegratorConfig::Bdf(bdf) = &mut config {
+    if let (IntegratorConfig::Bdf(bdf), Some(rtol)) = (&mut config, rtol) {
         bdf.rtol = rtol;
-        bdf.atol = rtol / 100.0;
+        bdf.atol = Some(rtol / 100.0);
     }
     let make = |dim| config.build(dim).unwrap();
     let (_, y, bdf) = drive(model, plant, terrain, make, DURATION);
@@ -288,6 +307,19 @@ fn check_same_motion(reference: &End, other: &End, tol: &Tolerance, label: &str)
         "{label} does not drive as rover does, nothing to compare: {}",
         bad.join("; ")
     );
+}
+
+/// A BDF run's name: its default tolerances, or `rtol`.
+fn bdf_label(rtol: Option<f64>) -> String {
+    rtol.map_or_else(|| "default".to_owned(), |r| format!("rtol_{r:e}"))
+}
+
+/// G's distance [m] and the larger difference of roll and pitch [°]
+/// between two ends.
+fn distance(a: &End, b: &End) -> (f64, f64) {
+    let position = ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.z - b.z).powi(2)).sqrt();
+    let attitude = (a.roll - b.roll).abs().max((a.pitch - b.pitch).abs()).to_degrees();
+    (position, attitude)
 }
 
 fn print_end(label: &str, e: &End) {
@@ -378,11 +410,23 @@ fn main() {
             &ground.tolerance,
             "rover's semi-implicit Euler",
         );
+        let fine = rover_fixed_at(
+            &model,
+            rover_models::Swing4::new(),
+            terrain,
+            Rk4::new,
+            FINE_STEP,
+        );
+        print_end("rover RK4 0.1 ms", &fine);
         for rtol in BDF_RTOL {
             let (bdf, rhs) = rover_bdf(&model, rover_models::Swing4::new(), terrain, rtol);
-            let label = format!("rover BDF rtol {rtol:e} ({rhs} RHS)");
+            let label = format!("rover BDF {} ({rhs} RHS)", bdf_label(rtol));
             print_end(&label, &bdf);
             check_same_motion(&reference, &bdf, &ground.tolerance, &label);
+            let (position, attitude) = distance(&fine, &bdf);
+            println!(
+                "    from RK4 0.1 ms: {position:.1e} m, {attitude:.1e}° (roll, pitch)"
+            );
         }
         for step in ROS2_STEPS {
             let (ros2, rhs) = rover_ros2(&model, rover_models::Swing4::new(), terrain, step);
@@ -416,7 +460,7 @@ fn main() {
             },
         );
         for rtol in BDF_RTOL {
-            let id = BenchmarkId::new("rover_bdf", format!("generated_rtol_{rtol:e}"));
+            let id = BenchmarkId::new("rover_bdf", format!("generated_{}", bdf_label(rtol)));
             group.bench_function(id, |b| {
                 b.iter(|| {
                     black_box(

@@ -37,6 +37,20 @@ impl Integrator for AnyIntegrator {
         }
     }
 
+    fn advance_output<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: &mut f64,
+        y: &mut [f64],
+        t_target: f64,
+        t_limit: f64,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        match self {
+            Self::Bdf(m) => m.advance_output(sys, t, y, t_target, t_limit),
+            _ => self.advance(sys, t, y, t_target),
+        }
+    }
+
     fn restart(&mut self) {
         match self {
             Self::Rk4(m) => m.restart(),

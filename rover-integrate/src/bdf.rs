@@ -4,11 +4,13 @@ use super::bdf_state::BdfHistory;
 use super::call_check::{check_call, first_non_finite};
 use super::jacobian::{JacobianScratch, jacobian};
 use super::lu::Lu;
-use super::norm::{error_norm, scaled_norm};
+use super::norm::{Atol, error_norm, scaled_norm};
 use super::resume::Resume;
 use super::step_size::{StartingStep, clamp_to_target, next_after_landing, starting_step};
 use super::tableau::{BDF_GAMMA, BDF_MAX_ORDER, NDF_KAPPA};
-use super::{BdfConfig, ConfigError, IntegrateError, Integrator, OdeSystem, Stats};
+use super::{
+    BdfConfig, ConfigError, FALLBACK_ERROR_SCALE, IntegrateError, Integrator, OdeSystem, Stats,
+};
 
 /// Newton iterations allowed per step attempt.
 const NEWTON_MAXITER: usize = 4;
@@ -17,8 +19,9 @@ const SAFETY: f64 = 0.9;
 /// Bounds on the step change after an error-test failure and after a success.
 const MIN_FACTOR: f64 = 0.2;
 const MAX_FACTOR: f64 = 10.0;
-/// A step increase smaller than this is not worth a new LU factorization (ode15s: 1.2).
+/// A step increase smaller than this is not taken (ode15s: 1.2).
 const MIN_INCREASE: f64 = 1.2;
+
 /// Step reduction after a Newton failure with a fresh Jacobian.
 const NEWTON_FAILURE_FACTOR: f64 = 0.5;
 /// Step reduction after a candidate state that is not finite.
@@ -38,9 +41,11 @@ const SIDE_LANDING_RATIO: f64 = 0.999;
 /// ```text
 /// (1 − κ_k)·γ_k·(y_{n+1} − y^(0)) + Σ_{m=1..k} γ_m·∇^m y_n − h·f(t_{n+1}, y_{n+1}) = 0
 /// ```
-/// by simplified Newton iterations with `I − h/((1 − κ_k)γ_k)·J` factored once per step size
-/// and order, the Jacobian `J` (exact or finite differences) reused across steps and
-/// re-evaluated only when Newton fails to converge (then the step is halved if it fails again);
+/// by simplified Newton iterations with `I − c·J`, `c = h/((1 − κ_k)γ_k)`, factored again only
+/// when `c` moves more than 30 % from the `c` of the factors in hand (a changed step size or
+/// order within that band is corrected in the iteration, as CVODE does), the Jacobian `J`
+/// (exact or finite differences) reused across steps and re-evaluated only when Newton fails
+/// to converge with factors of the step's own `c` (then the step is halved if it fails again);
 /// estimate the local error as `(κ_k·γ_k + 1/(k+1))·(y_{n+1} − y^(0))`; after `k + 1` steps at
 /// one size, compare the errors the orders k − 1, k, k + 1 would make and take the order that
 /// allows the largest step (Shampine & Reichelt, §2.3).
@@ -73,6 +78,13 @@ pub struct Bdf {
     lu: Lu,
     /// `c = h/α` the factors in `lu` belong to; NaN when they are out of date.
     lu_c: f64,
+    /// The last attempt's Newton iteration used factors of another `c` (within `lu_band`).
+    lu_stale: bool,
+    /// Each component's absolute tolerance (from `atol`, or `rtol` times the system's error
+    /// scale), set at every start.
+    atol: Vec<f64>,
+    /// The weight of each component's relative tolerance (the system's, or 1).
+    relative: Vec<f64>,
     y_pred: Vec<f64>,
     psi: Vec<f64>,
     d: Vec<f64>,
@@ -118,6 +130,9 @@ impl Bdf {
             jac_current: false,
             lu: Lu::new(dim),
             lu_c: f64::NAN,
+            lu_stale: false,
+            atol: v(),
+            relative: vec![1.0; dim],
             y_pred: v(),
             psi: v(),
             d: v(),
@@ -147,6 +162,37 @@ impl Bdf {
         self.kappa[k] * BDF_GAMMA[k] + 1.0 / (k as f64 + 1.0)
     }
 
+    /// Each component's absolute tolerance and the weight of its relative one: the
+    /// configuration's `atol` and 1 when it gives one, else `rtol` times the system's error
+    /// scale and the system's weight (a scale that is not positive and finite, or none at
+    /// all, counts as [`FALLBACK_ERROR_SCALE`]; a weight outside [0, 1] as 1).
+    fn set_tolerances<S: OdeSystem + ?Sized>(&mut self, sys: &S) {
+        let rtol = self.config.rtol;
+        self.relative.fill(1.0);
+        if let Some(atol) = self.config.atol {
+            self.atol.fill(atol);
+            return;
+        }
+        if !sys.error_scale(&mut self.atol, &mut self.relative) {
+            self.atol.fill(FALLBACK_ERROR_SCALE);
+            self.relative.fill(1.0);
+        }
+        for (a, r) in self.atol.iter_mut().zip(&mut self.relative) {
+            let scale = if a.is_finite() && *a > 0.0 {
+                *a
+            } else {
+                FALLBACK_ERROR_SCALE
+            };
+            *a = rtol * scale;
+            *r = if (0.0..=1.0).contains(r) { *r } else { 1.0 };
+        }
+    }
+
+    /// The absolute tolerance of each component in use (filled at the first step).
+    pub fn absolute_tolerances(&self) -> &[f64] {
+        &self.atol
+    }
+
     /// Starts at order 1 from `(t, y)`: evaluates `f`, picks the starting step the first
     /// time, and evaluates the Jacobian if there is none yet.
     fn start<S: OdeSystem + ?Sized>(
@@ -158,10 +204,14 @@ impl Bdf {
         self.stats.rhs_evals += 1;
         sys.rhs(t, y, &mut self.f)
             .map_err(|source| IntegrateError::Rhs { t, source })?;
+        self.set_tolerances(sys);
         if self.h <= 0.0 {
             let limits = StartingStep {
                 rtol: self.config.rtol,
-                atol: self.config.atol,
+                atol: Atol::PerComponent {
+            atol: &self.atol,
+            relative: &self.relative,
+        },
                 order: 1,
                 max_step: self.config.max_step,
             };
@@ -236,7 +286,11 @@ impl Bdf {
         sys: &mut S,
         t_new: f64,
     ) -> Result<Attempt, IntegrateError<S::Error>> {
-        let BdfConfig { rtol, atol, .. } = self.config;
+        let rtol = self.config.rtol;
+        let atol = Atol::PerComponent {
+            atol: &self.atol,
+            relative: &self.relative,
+        };
         let k = self.hist.order;
         let alpha = (1.0 - self.kappa[k]) * BDF_GAMMA[k];
         let c = self.hist.h / alpha;
@@ -244,14 +298,21 @@ impl Bdf {
         self.hist.psi(alpha, &mut self.psi);
         self.f_pred_valid = false;
 
-        if self.lu_c.to_bits() != c.to_bits() {
+        // Factor again only when `c` left the band around the factors' own (or they are out
+        // of date: NaN fails the test); within it, correct the step size in the iteration.
+        if !((c / self.lu_c - 1.0).abs() <= self.config.lu_band) {
             self.stats.lu_decompositions += 1;
             if self.lu.factor_shifted(&self.jac, c).is_err() {
                 self.lu_c = f64::NAN;
+                self.lu_stale = false;
                 return Ok(Attempt::NewtonFailed);
             }
             self.lu_c = c;
         }
+        self.lu_stale = self.lu_c.to_bits() != c.to_bits();
+        // (I − c_lu·J)⁻¹ for (I − c·J)⁻¹: the corrections of the linear part scaled by
+        // 2/(1 + c/c_lu) (CVODE's step-size correction for a BDF with an older matrix).
+        let correction = 2.0 / (1.0 + c / self.lu_c);
 
         // Simplified Newton on d = y_{n+1} − y^(0): (I − cJ)·Δ = c·f(y^(0) + d) − ψ − d,
         // stopped by the convergence-rate test of Hairer & Wanner II, §IV.8 (eq. 8.10–8.11).
@@ -279,6 +340,11 @@ impl Bdf {
                 self.delta[i] = c * self.f[i] - self.psi[i] - self.d[i];
             }
             self.lu.solve(&mut self.delta);
+            if self.lu_stale {
+                for di in &mut self.delta {
+                    *di *= correction;
+                }
+            }
             let norm = scaled_norm(&self.delta, &self.y_pred, rtol, atol);
             if !norm.is_finite() {
                 break;
@@ -338,11 +404,12 @@ impl Bdf {
             return (k, 1.0);
         }
         let BdfConfig {
-            rtol,
-            atol,
-            max_order,
-            ..
+            rtol, max_order, ..
         } = self.config;
+        let atol = Atol::PerComponent {
+            atol: &self.atol,
+            relative: &self.relative,
+        };
         let y = self.hist.row(0);
         let factor_for = |order: usize, e: f64| e.powf(-1.0 / (order as f64 + 1.0));
         let mut best = (k, factor_for(k, err));
@@ -370,13 +437,17 @@ impl Bdf {
     }
 }
 
-impl Integrator for Bdf {
-    fn advance<S: OdeSystem + ?Sized>(
+impl Bdf {
+    /// [`Integrator::advance`] (`t_limit == t_target`) and
+    /// [`Integrator::advance_output`]: steps may pass `t_target`, not `t_limit`, and the
+    /// solution at `t_target` then comes from the interpolant of the step that passed it.
+    fn advance_to<S: OdeSystem + ?Sized>(
         &mut self,
         sys: &mut S,
         t: &mut f64,
         y: &mut [f64],
         t_target: f64,
+        t_limit: f64,
     ) -> Result<(), IntegrateError<S::Error>> {
         if check_call(self.dim, sys, *t, y, t_target)? {
             return Ok(());
@@ -386,6 +457,18 @@ impl Integrator for Bdf {
             self.t_hist = *t;
         }
         self.resume.invalidate();
+        // An earlier call's last step may have passed this target already.
+        if self.t_hist >= t_target {
+            self.hist
+                .interpolate((t_target - self.t_hist) / self.hist.h, y);
+            *t = t_target;
+            self.resume.record(*t, y);
+            return Ok(());
+        }
+        let passing = t_limit > t_target;
+        // A step passes the output instant by at most the span of this call, so that a run's
+        // steps stay within about two output steps, as they do when every output lands.
+        let reach = t_target + (t_target - *t);
         let BdfConfig {
             max_step,
             min_step,
@@ -412,7 +495,13 @@ impl Integrator for Bdf {
                     min_step,
                 });
             }
-            let (h, lands) = clamp_to_target(self.t_hist, h_wanted, t_target);
+            // Past the output instant while the step ends before the limit; else land on it.
+            let h_pass = h_wanted.min(reach - self.t_hist);
+            let (h, lands) = if passing && h_pass > 0.0 && self.t_hist + h_pass < t_limit {
+                (h_pass, false)
+            } else {
+                clamp_to_target(self.t_hist, h_wanted, t_target)
+            };
             // A landing step much shorter than the step the history is scaled for would, once
             // committed, have its Newton and rounding errors amplified by (h_wanted/h)^k when
             // the next step re-scales the differences back up. Such a step is taken from a
@@ -434,7 +523,11 @@ impl Integrator for Bdf {
                 self.stats.steps += 1;
                 self.jac_current = false;
                 self.hist.commit(&self.d);
-                if t_new > *t {
+                if t_new > t_target {
+                    // Passed the output instant: the interpolant of the step gives it.
+                    self.hist.interpolate((t_target - t_new) / h, y);
+                    *t = t_target;
+                } else if t_new > *t {
                     *t = t_new;
                     y.copy_from_slice(self.hist.row(0));
                 }
@@ -464,7 +557,10 @@ impl Integrator for Bdf {
                 }
                 Attempt::NewtonFailed => {
                     self.stats.rejected_steps += 1;
-                    if self.jac_current {
+                    if self.lu_stale {
+                        // Retry the same step with factors of its own `c` first.
+                        self.lu_c = f64::NAN;
+                    } else if self.jac_current {
                         self.h = h * NEWTON_FAILURE_FACTOR;
                     } else {
                         // Retry the same step with a fresh Jacobian.
@@ -486,6 +582,29 @@ impl Integrator for Bdf {
         }
         self.resume.record(*t, y);
         Ok(())
+    }
+}
+
+impl Integrator for Bdf {
+    fn advance<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: &mut f64,
+        y: &mut [f64],
+        t_target: f64,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        self.advance_to(sys, t, y, t_target, t_target)
+    }
+
+    fn advance_output<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: &mut f64,
+        y: &mut [f64],
+        t_target: f64,
+        t_limit: f64,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        self.advance_to(sys, t, y, t_target, t_limit.max(t_target))
     }
 
     fn restart(&mut self) {

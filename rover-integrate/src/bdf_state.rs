@@ -76,6 +76,19 @@ impl BdfHistory {
         }
     }
 
+    /// The interpolating polynomial at `t_n + s·h` (`s ≤ 0` between the last points):
+    /// `Σ_{j=0..k} D_j·φ_j(s)`.
+    pub(crate) fn interpolate(&self, s: f64, out: &mut [f64]) {
+        out.copy_from_slice(self.row(0));
+        let mut phi = 1.0;
+        for j in 1..=self.order {
+            phi *= (s + j as f64 - 1.0) / j as f64;
+            for (o, dj) in out.iter_mut().zip(self.row(j)) {
+                *o += phi * dj;
+            }
+        }
+    }
+
     /// `ψ = (1/α_k)·Σ_{m=1..k} γ_m·D_m`, the known part of the corrector equation.
     pub(crate) fn psi(&self, alpha: f64, out: &mut [f64]) {
         out.fill(0.0);
@@ -190,6 +203,24 @@ mod tests {
                 );
             }
             assert!((hist.h - h * factor).abs() < 1e-15);
+        }
+    }
+
+    /// The interpolant of order k reproduces a degree-k polynomial between the grid points.
+    #[test]
+    fn interpolant_reproduces_a_polynomial_of_the_order() {
+        let p = |t: f64| 1.0 - 2.0 * t + 0.5 * t * t * t;
+        let (t_n, h, k) = (2.0, 0.3, 3);
+        let mut hist = BdfHistory::new(1);
+        for (j, dj) in differences(p, t_n, h, k).into_iter().enumerate() {
+            hist.d[j] = dj;
+        }
+        hist.order = k;
+        for s in [0.0, -0.25, -0.5, -1.0, -2.7] {
+            let mut out = [0.0];
+            hist.interpolate(s, &mut out);
+            let want = p(t_n + s * h);
+            assert!((out[0] - want).abs() < 1e-13, "s {s}: {} vs {want}", out[0]);
         }
     }
 

@@ -83,10 +83,15 @@ impl Default for AdaptiveConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BdfConfig {
-    /// Relative tolerance of the local error (default 1e-6).
+    /// Relative tolerance of the local error (default [`BDF_DEFAULT_RTOL`]).
     pub rtol: f64,
-    /// Absolute tolerance of the local error, in the state's SI units (default 1e-9).
-    pub atol: f64,
+    /// Absolute tolerance of the local error, one value for every component, in the state's
+    /// SI units, with the relative tolerance on every component. Default: none, and each
+    /// component `i` gets `rtol·scale_i` from the system's
+    /// [`error_scale`](crate::OdeSystem::error_scale) (a rover's: lengths, angles, velocities
+    /// and rates each on their own scale), or `rtol·1e-6` where the system gives no scale.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub atol: Option<f64>,
     /// Highest order used, 1 to 5 (default 5, as ode15s). Orders 1–2 are A-stable; lower
     /// it to 2 for heavily damped oscillatory stiffness.
     pub max_order: usize,
@@ -102,19 +107,34 @@ pub struct BdfConfig {
     /// Where the Newton iterations' Jacobian comes from (default `"system"`: the rover's
     /// own where its plant has one, differences otherwise).
     pub jacobian: JacobianSource,
+    /// The LU factors of the Newton matrix `I − c_lu·J` (`c = h/α`) serve a step of another
+    /// `c` while `|c/c_lu − 1|` stays within this band, in [0, 1) (default 0.3, CVODE's): the
+    /// Newton iteration then scales its corrections by `2/(1 + c/c_lu)` instead of factoring
+    /// again. 0 factors again at every change of step size or order.
+    pub lu_band: f64,
 }
+
+/// BDF's relative tolerance when a configuration gives none. With a rover's error scales
+/// (`rover_runtime::sim::ErrorScale`) it holds 1 µm, 10 µrad, 0.1 mm/s and 1 mrad/s.
+pub const BDF_DEFAULT_RTOL: f64 = 1e-3;
+
+/// The error scale of every component of a system that gives none
+/// ([`OdeSystem::error_scale`](crate::OdeSystem::error_scale)), when no `atol` is given: with
+/// the default `rtol`, an absolute tolerance of 1e-9.
+pub const FALLBACK_ERROR_SCALE: f64 = 1e-6;
 
 impl Default for BdfConfig {
     fn default() -> Self {
         Self {
-            rtol: 1e-6,
-            atol: 1e-9,
+            rtol: BDF_DEFAULT_RTOL,
+            atol: None,
             max_order: 5,
             ndf: true,
             max_step: f64::INFINITY,
             min_step: 1e-10,
             max_steps: 100_000,
             jacobian: JacobianSource::System,
+            lu_band: 0.3,
         }
     }
 }
@@ -184,7 +204,7 @@ impl AdaptiveConfig {
 impl BdfConfig {
     /// Checks every field.
     pub fn validate(&self) -> Result<(), ConfigError> {
-        check_tolerances("bdf", self.rtol, self.atol)?;
+        check_tolerances("bdf", self.rtol, self.atol.unwrap_or(1.0))?;
         if !(1..=5).contains(&self.max_order) {
             return Err(ConfigError {
                 method: "bdf",
@@ -193,6 +213,16 @@ impl BdfConfig {
                 problem: "must be 1, 2, 3, 4 or 5",
                 hint: "5 is the default (as ode15s); 2 is the highest A-stable order",
             });
+        }
+        if !(0.0..1.0).contains(&self.lu_band) {
+            return Err(bad(
+                "bdf",
+                "lu_band",
+                self.lu_band,
+                "must be in [0, 1)",
+                "0.3 (the default) reuses the Newton matrix's LU factors while the step changes \
+                 by less than 30 %; 0 factors again at every change",
+            ));
         }
         check_limits("bdf", self.max_step, self.min_step, self.max_steps)
     }

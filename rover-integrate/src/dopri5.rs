@@ -1,7 +1,7 @@
 //! Adaptive explicit Runge–Kutta: Dormand–Prince 5(4) with a PI step-size controller.
 
 use super::call_check::{check_call, first_non_finite};
-use super::norm::error_norm;
+use super::norm::{Atol, error_norm};
 use super::resume::Resume;
 use super::step_size::{StartingStep, clamp_to_target, next_after_landing, starting_step};
 use super::tableau::DOPRI5;
@@ -90,7 +90,7 @@ impl Dopri5 {
         if self.h <= 0.0 {
             let limits = StartingStep {
                 rtol: self.config.rtol,
-                atol: self.config.atol,
+                atol: Atol::Uniform(self.config.atol),
                 order: 4,
                 max_step: self.config.max_step,
             };
@@ -154,7 +154,7 @@ impl Dopri5 {
             y,
             &self.y_new,
             self.config.rtol,
-            self.config.atol,
+            Atol::Uniform(self.config.atol),
         );
         if !err.is_finite() {
             // A finite state with a non-finite error estimate: a stage blew up.

@@ -19,6 +19,24 @@ pub trait Integrator {
         t_target: f64,
     ) -> Result<(), IntegrateError<S::Error>>;
 
+    /// Advances `(t, y)` to the output instant `t_target` (`*t == t_target` on success), where
+    /// nothing changes: a method with an interpolant may step past it, never past `t_limit`
+    /// (≥ `t_target`: the next instant where the caller may change the system or restart),
+    /// and give the solution there from the interpolant, its history staying on its own steps;
+    /// the next call goes on from that history when it starts from exactly the time and state
+    /// this one ended at. Default: [`advance`](Integrator::advance) to `t_target`.
+    fn advance_output<S: OdeSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        t: &mut f64,
+        y: &mut [f64],
+        t_target: f64,
+        t_limit: f64,
+    ) -> Result<(), IntegrateError<S::Error>> {
+        let _ = t_limit;
+        self.advance(sys, t, y, t_target)
+    }
+
     /// Tells the integrator that the right-hand side changed discontinuously (a new control
     /// sample): history from before is dropped, the step size is kept as a first guess.
     /// A changed state is detected without it.

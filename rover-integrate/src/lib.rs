@@ -83,7 +83,10 @@ mod tableau;
 
 pub use any_integrator::AnyIntegrator;
 pub use bdf::Bdf;
-pub use config::{AdaptiveConfig, BdfConfig, FixedStepConfig, IntegratorConfig};
+pub use config::{
+    AdaptiveConfig, BDF_DEFAULT_RTOL, BdfConfig, FALLBACK_ERROR_SCALE, FixedStepConfig,
+    IntegratorConfig,
+};
 pub use config_error::ConfigError;
 pub use dopri5::Dopri5;
 pub use error::IntegrateError;

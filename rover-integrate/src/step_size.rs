@@ -2,7 +2,7 @@
 //! and the step-size controllers.
 
 use super::call_check::check_finite;
-use super::norm::scaled_norm;
+use super::norm::{Atol, scaled_norm};
 use super::{IntegrateError, OdeSystem, Stats};
 
 /// Relative slack under which the rest of the interval is taken in one (slightly longer)
@@ -42,11 +42,11 @@ pub(crate) fn fixed_steps<E>(
 }
 
 /// Tolerances and limits the starting-step heuristic needs.
-pub(crate) struct StartingStep {
+pub(crate) struct StartingStep<'a> {
     /// Relative tolerance.
     pub rtol: f64,
-    /// Absolute tolerance.
-    pub atol: f64,
+    /// Absolute tolerances.
+    pub atol: Atol<'a>,
     /// Order `q` of the local error estimate (the error behaves like `h^(q+1)`).
     pub order: u32,
     /// Largest step allowed \[s\].
@@ -68,7 +68,7 @@ pub(crate) fn starting_step<S: OdeSystem + ?Sized>(
     t0: f64,
     y0: &[f64],
     f0: &[f64],
-    limits: &StartingStep,
+    limits: &StartingStep<'_>,
     y1: &mut [f64],
     f1: &mut [f64],
     stats: &mut Stats,

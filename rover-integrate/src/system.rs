@@ -51,6 +51,20 @@ pub trait OdeSystem {
     /// nothing.
     fn step_accepted(&mut self, _t: f64, _y: &[f64]) {}
 
+    /// Each component's error scale, in its own units (m, rad, m/s, …): the magnitude below
+    /// which its error counts in absolute rather than relative terms, and whether its size
+    /// counts at all. An adaptive method whose configuration gives no `atol` controls component
+    /// `i`'s local error to `rtol·(scale_i + relative_i·|y_i|)`, so that one `rtol` means the
+    /// same for a length and an angular rate, and a tighter `rtol` tightens every component.
+    /// `relative_i` is 1 for most components; 0 for one whose size means nothing (a position
+    /// or a heading, which the dynamics does not depend on: 1e-3 of a position 1 km from the
+    /// origin would be a metre). Fills `scale` (positive finite entries) and `relative` (each
+    /// in [0, 1]), both of length [`dim`](OdeSystem::dim), and returns true; default: false,
+    /// and the method uses a uniform `atol` instead (see the method's configuration).
+    fn error_scale(&self, _scale: &mut [f64], _relative: &mut [f64]) -> bool {
+        false
+    }
+
     /// The system's own Jacobian `∂f/∂y` at `(t, y)`, row-major (`jac[i·dim + j] =
     /// ∂f_i/∂y_j`), for the implicit methods (BDF, ROS2), with the number of right-hand-side
     /// evaluations it spent. It may approximate: the methods need it for convergence and

@@ -73,7 +73,7 @@ fn integrators_allocate_nothing_per_step_after_warm_up() {
         }),
         IntegratorConfig::Bdf(BdfConfig {
             rtol: 1e-6,
-            atol: 1e-9,
+            atol: Some(1e-9),
             ..BdfConfig::default()
         }),
     ] {

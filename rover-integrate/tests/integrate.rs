@@ -286,7 +286,7 @@ fn dopri5(rtol: f64, atol: f64) -> IntegratorConfig {
 fn bdf(rtol: f64, atol: f64) -> IntegratorConfig {
     IntegratorConfig::Bdf(BdfConfig {
         rtol,
-        atol,
+        atol: Some(atol),
         ..BdfConfig::default()
     })
 }
@@ -558,6 +558,76 @@ fn bdf_solves_robertson_like_a_tight_explicit_reference() {
         assert!((y.iter().sum::<f64>() - 1.0).abs() < 1e-12, "mass {y:?}");
     }
     assert!(stats.steps < 1000, "{stats:?}");
+}
+
+/// Keeping the Newton matrix's LU factors while the step changes by less than 30 % (the
+/// default `lu_band`) gives Robertson's solution to the same tolerance as factoring at every
+/// change (`lu_band = 0`), with fewer factorizations.
+#[test]
+fn bdf_reuses_its_lu_factors_across_small_step_changes() {
+    let targets = [0.4, 4.0, 40.0, 400.0];
+    let y0 = [1.0, 0.0, 0.0];
+    let (reference, _) = run(&dopri5(1e-10, 1e-14), &mut Robertson, &y0, &targets);
+    let with_band = |lu_band: f64| {
+        IntegratorConfig::Bdf(BdfConfig {
+            rtol: 1e-6,
+            atol: Some(1e-10),
+            lu_band,
+            ..BdfConfig::default()
+        })
+    };
+    let (fresh, fresh_stats) = run(&with_band(0.0), &mut Robertson, &y0, &targets);
+    let (reused, reused_stats) = run(&with_band(0.3), &mut Robertson, &y0, &targets);
+    for ((a, b), r) in fresh.iter().zip(&reused).zip(&reference) {
+        for i in 0..3 {
+            let tol = 1e-5 * r[i].abs() + 1e-9;
+            assert!((a[i] - r[i]).abs() < tol, "fresh LU, {i}: {} vs {}", a[i], r[i]);
+            assert!((b[i] - r[i]).abs() < tol, "kept LU, {i}: {} vs {}", b[i], r[i]);
+        }
+        assert!((b.iter().sum::<f64>() - 1.0).abs() < 1e-12, "mass {b:?}");
+    }
+    assert!(
+        2 * reused_stats.lu_decompositions < fresh_stats.lu_decompositions,
+        "kept {reused_stats:?}, fresh {fresh_stats:?}"
+    );
+}
+
+/// Van der Pol's oscillator at μ = 1000 (Hairer & Wanner II, §IV.1), a stiff limit cycle
+/// whose steps change all the time: the same end state with and without reusing the LU.
+#[test]
+fn bdf_keeps_van_der_pol_with_kept_lu_factors() {
+    struct VanDerPol;
+    impl OdeSystem for VanDerPol {
+        type Error = Infallible;
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Infallible> {
+            dy[0] = y[1];
+            dy[1] = 1000.0 * ((1.0 - y[0] * y[0]) * y[1]) - y[0];
+            Ok(())
+        }
+    }
+    let targets = outputs(300.0, 10);
+    let y0 = [2.0, 0.0];
+    let config = |lu_band: f64| {
+        IntegratorConfig::Bdf(BdfConfig {
+            rtol: 1e-8,
+            atol: Some(1e-10),
+            lu_band,
+            ..BdfConfig::default()
+        })
+    };
+    let (fresh, fresh_stats) = run(&config(0.0), &mut VanDerPol, &y0, &targets);
+    let (reused, reused_stats) = run(&config(0.3), &mut VanDerPol, &y0, &targets);
+    for (a, b) in fresh.iter().zip(&reused) {
+        // x stays within [−2, 2]; 1e-4 is ~1000 times the tolerance, far below the cycle's scale.
+        assert!((a[0] - b[0]).abs() < 1e-4, "{a:?} vs {b:?}");
+    }
+    assert!(
+        reused_stats.lu_decompositions < fresh_stats.lu_decompositions,
+        "kept {reused_stats:?}, fresh {fresh_stats:?}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -35,7 +35,7 @@ fn settle(model: &Model, seconds: f64) -> (RoverSystem<GenericPlant, Terrain>, V
     // a lateral damper of C/v_ε = 5e4 N·s/m per wheel, so BDF, as the paper's ode15s.
     let mut integ = IntegratorConfig::Bdf(BdfConfig {
         rtol: 1e-6,
-        atol: 1e-8,
+        atol: Some(1e-8),
         ..Default::default()
     })
     .build(2 * n + 1)

@@ -184,8 +184,6 @@ fn default_rollover() -> f64 {
 /// the active-suspension runs.
 pub fn default_integrator() -> IntegratorConfig {
     IntegratorConfig::Bdf(BdfConfig {
-        rtol: 1e-6,
-        atol: 1e-8,
         max_order: 2,
         ..BdfConfig::default()
     })

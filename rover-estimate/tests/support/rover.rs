@@ -71,7 +71,7 @@ pub fn open_loop<P: Plant>(
 pub fn truth_integrator(dim: usize) -> AnyIntegrator {
     IntegratorConfig::Bdf(BdfConfig {
         rtol: 1e-8,
-        atol: 1e-10,
+        atol: Some(1e-10),
         ..BdfConfig::default()
     })
     .build(dim)

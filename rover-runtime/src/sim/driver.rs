@@ -258,7 +258,15 @@ impl Driver {
                 target = self.breaks[self.next_break];
             }
             sys.set_next_break(at_break.then_some(target));
-            let advanced = integ.advance(sys, t, y, target);
+            // An output instant that is no other event changes nothing: the
+            // integrator may step past it, up to the next event, and give
+            // the state there from its interpolant.
+            let limit = self.next_event(until, target);
+            let advanced = if limit > target + SAME_INSTANT * (1.0 + target) {
+                integ.advance_output(sys, t, y, target, limit)
+            } else {
+                integ.advance(sys, t, y, target)
+            };
             sys.set_next_break(None);
             if let Err(e) = advanced {
                 let at = e.time().unwrap_or(*t);
@@ -283,6 +291,24 @@ impl Driver {
                 return Ok(false);
             }
         }
+    }
+
+    /// The first instant after `target` at which the run may change the
+    /// system or restart the integrator: the next breakpoint, controller
+    /// sample or sensor instant, the stop `until`, or the run's end; for
+    /// [`Integrator::advance_output`].
+    fn next_event(&self, until: f64, target: f64) -> f64 {
+        let mut limit = self.opts.duration.min(until);
+        if let Some(&b) = self.breaks.get(self.next_break) {
+            limit = limit.min(b);
+        }
+        if let Some(dt) = self.sample {
+            limit = limit.min(self.k_sample as f64 * dt);
+        }
+        if let Some(dt) = self.sensor {
+            limit = limit.min(self.k_sensor as f64 * dt);
+        }
+        limit.max(target)
     }
 
     /// The sensors' callback, when a sensor instant is due at `t`.

@@ -12,4 +12,4 @@ pub use driver::{Driver, RunOptions};
 pub use error::{CommandError, EMBEDDED_SINKAGE, EMBEDDED_SLIP, EMBEDDED_TIME, RunError, SimError};
 pub use profile::{Profile, RhsProfile};
 pub use run::{OutputRow, RunOutcome, Stop, run, run_with_sensors};
-pub use system::RoverSystem;
+pub use system::{ErrorScale, RoverSystem};
