@@ -89,7 +89,7 @@ pub struct BdfConfig {
     /// SI units, with the relative tolerance on every component. Default: none, and each
     /// component `i` gets `rtol·scale_i` from the system's
     /// [`error_scale`](crate::OdeSystem::error_scale) (a rover's: lengths, angles, velocities
-    /// and rates each on their own scale), or `rtol·1e-6` where the system gives no scale.
+    /// and rates each on their own scale), or `rtol·1e-5` where the system gives no scale.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub atol: Option<f64>,
     /// Highest order used, 1 to 5 (default 5, as ode15s). Orders 1–2 are A-stable; lower
@@ -115,13 +115,14 @@ pub struct BdfConfig {
 }
 
 /// BDF's relative tolerance when a configuration gives none. With a rover's error scales
-/// (`rover_runtime::sim::ErrorScale`) it holds 1 µm, 10 µrad, 0.1 mm/s and 1 mrad/s.
-pub const BDF_DEFAULT_RTOL: f64 = 1e-3;
+/// (`rover_runtime::sim::ErrorScale`) the absolute tolerances are 0.1 µm, 1 µrad, 10 µm/s and
+/// 0.1 mrad/s.
+pub const BDF_DEFAULT_RTOL: f64 = 1e-4;
 
 /// The error scale of every component of a system that gives none
 /// ([`OdeSystem::error_scale`](crate::OdeSystem::error_scale)), when no `atol` is given: with
 /// the default `rtol`, an absolute tolerance of 1e-9.
-pub const FALLBACK_ERROR_SCALE: f64 = 1e-6;
+pub const FALLBACK_ERROR_SCALE: f64 = 1e-5;
 
 impl Default for BdfConfig {
     fn default() -> Self {
