@@ -1,5 +1,5 @@
 //! The paper's runs at the accuracy the user is promised: each scenario's
-//! own integrator (BDF, rtol 1e-6) ends within 1 mm and 0.1° of a
+//! own integrator (BDF at its default tolerances) ends within 1 mm and 0.01° of a
 //! tight-tolerance run of the same model, stored in
 //! `tests/data/paper_final_states.toml` so that CI need not repeat it.
 
@@ -9,7 +9,7 @@ use std::path::Path;
 use crate::support::run::{rover_of, run_in};
 
 #[test]
-fn the_paper_runs_end_within_a_millimetre_and_a_tenth_of_a_degree_of_the_reference() {
+fn the_paper_runs_end_within_a_millimetre_and_a_hundredth_of_a_degree_of_the_reference() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("tests/data/paper_final_states.toml")).unwrap();
     let references: BTreeMap<String, BTreeMap<String, f64>> = toml::from_str(&text).unwrap();
@@ -28,11 +28,11 @@ fn the_paper_runs_end_within_a_millimetre_and_a_tenth_of_a_degree_of_the_referen
             .map(|d| d * d)
             .sum::<f64>()
             .sqrt();
-        // Measured: 4e-9 to 6e-7 m and 1e-7 to 7e-6°.
+        // Measured: 5e-7 to 2.3e-4 m and 3e-5 to 1.2e-3° (Fig. 15 the largest).
         assert!(distance < 1e-3, "{name}: {distance} m from the reference");
         for k in ["phi", "theta", "psi"] {
             let d = (value(k) - reference[k]).to_degrees();
-            assert!(d.abs() < 0.1, "{name}: {k} {d}° from the reference");
+            assert!(d.abs() < 0.01, "{name}: {k} {d}° from the reference");
         }
     }
 }

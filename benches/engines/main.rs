@@ -318,7 +318,10 @@ fn bdf_label(rtol: Option<f64>) -> String {
 /// between two ends.
 fn distance(a: &End, b: &End) -> (f64, f64) {
     let position = ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.z - b.z).powi(2)).sqrt();
-    let attitude = (a.roll - b.roll).abs().max((a.pitch - b.pitch).abs()).to_degrees();
+    let attitude = (a.roll - b.roll)
+        .abs()
+        .max((a.pitch - b.pitch).abs())
+        .to_degrees();
     (position, attitude)
 }
 
@@ -424,9 +427,7 @@ fn main() {
             print_end(&label, &bdf);
             check_same_motion(&reference, &bdf, &ground.tolerance, &label);
             let (position, attitude) = distance(&fine, &bdf);
-            println!(
-                "    from RK4 0.1 ms: {position:.1e} m, {attitude:.1e}° (roll, pitch)"
-            );
+            println!("    from RK4 0.1 ms: {position:.1e} m, {attitude:.1e}° (roll, pitch)");
         }
         for step in ROS2_STEPS {
             let (ros2, rhs) = rover_ros2(&model, rover_models::Swing4::new(), terrain, step);

@@ -209,9 +209,9 @@ impl Bdf {
             let limits = StartingStep {
                 rtol: self.config.rtol,
                 atol: Atol::PerComponent {
-            atol: &self.atol,
-            relative: &self.relative,
-        },
+                    atol: &self.atol,
+                    relative: &self.relative,
+                },
                 order: 1,
                 max_step: self.config.max_step,
             };

@@ -63,10 +63,9 @@ mod tests {
         let atol = [1e-3, 1e-5, 1e-2];
         let rtol = 1e-2;
         // Weights 1e-3 + 0.02, 1e-5 + 0.005, 1e-2 + 0.
-        let want = ((1e-3f64 / 0.021).powi(2)
-            + (2e-5f64 / 0.00501).powi(2)
-            + (3e-2f64 / 0.01).powi(2))
-            / 3.0;
+        let want =
+            ((1e-3f64 / 0.021).powi(2) + (2e-5f64 / 0.00501).powi(2) + (3e-2f64 / 0.01).powi(2))
+                / 3.0;
         let ones = [1.0; 3];
         let per = |atol| Atol::PerComponent {
             atol,

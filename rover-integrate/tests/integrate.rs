@@ -581,8 +581,18 @@ fn bdf_reuses_its_lu_factors_across_small_step_changes() {
     for ((a, b), r) in fresh.iter().zip(&reused).zip(&reference) {
         for i in 0..3 {
             let tol = 1e-5 * r[i].abs() + 1e-9;
-            assert!((a[i] - r[i]).abs() < tol, "fresh LU, {i}: {} vs {}", a[i], r[i]);
-            assert!((b[i] - r[i]).abs() < tol, "kept LU, {i}: {} vs {}", b[i], r[i]);
+            assert!(
+                (a[i] - r[i]).abs() < tol,
+                "fresh LU, {i}: {} vs {}",
+                a[i],
+                r[i]
+            );
+            assert!(
+                (b[i] - r[i]).abs() < tol,
+                "kept LU, {i}: {} vs {}",
+                b[i],
+                r[i]
+            );
         }
         assert!((b.iter().sum::<f64>() - 1.0).abs() < 1e-12, "mass {b:?}");
     }
@@ -686,7 +696,10 @@ fn bdf_interpolates_output_instants_it_steps_past() {
         assert_eq!(t2.to_bits(), target.to_bits());
         let exact = StiffLinear::exact(target);
         assert!(max_abs_diff(&y1, &exact) < 1e-5, "landed at {target}");
-        assert!(max_abs_diff(&y2, &exact) < 1e-5, "passed at {target}: {y2:?}");
+        assert!(
+            max_abs_diff(&y2, &exact) < 1e-5,
+            "passed at {target}: {y2:?}"
+        );
     }
     let (a, b) = (landed.stats(), passed.stats());
     assert!(

@@ -23,7 +23,8 @@
 //! file = "drive.csv"         # header t,tau1,…,delta1,…; relative to this file
 //!
 //! [integrator.bdf]            # the default: orders 1–2, like ode15s
-//! rtol = 1e-6
+//! rtol = 1e-4                # the default; `atol` (m, rad, m/s, rad/s alike)
+//!                            # replaces the per-component absolute tolerances
 //!
 //! [sensors]                   # optional: sensors.csv beside run.csv (docs/ESTIMATE.md)
 //! seed = 1
@@ -177,7 +178,9 @@ fn default_rollover() -> f64 {
     80.0
 }
 /// The integrator of a scenario without `[integrator]`: BDF/NDF of orders
-/// 1–2 with 1e-6 relative error, like the paper's ode15s:
+/// 1–2, like the paper's ode15s, at BDF's default tolerances (rtol 1e-4
+/// and the rover's error scales per state component,
+/// `rover_runtime::sim::ErrorScale`):
 /// a rover standing on the ground is stiff (the regularized cornering law
 /// is a lateral damper of C/v_ε = 5·10⁴ N·s/m per wheel), which makes an
 /// explicit method crawl; orders above 2 are not A-stable and stalled on

@@ -89,7 +89,8 @@ pub enum SimulationError {
 /// A run of one rover, assembled call by call; [`Simulation::run`] runs it.
 ///
 /// Every setting has the default a scenario file has when it leaves the
-/// table out: flat ground, no motor torque, no steering, BDF at rtol 1e-6,
+/// table out: flat ground, no motor torque, no steering, BDF at its default
+/// tolerances (rtol 1e-4, absolute tolerances per state component),
 /// 20 output rows per second, the rover at rest at the origin with its
 /// wheels on the ground. Nothing is checked until `run`, which reports the
 /// first problem.
@@ -178,7 +179,7 @@ impl<P: Plant> Simulation<P> {
     }
 
     /// The integrator (`[integrator.<method>]`; default BDF of orders 1–2
-    /// at rtol 1e-6, [`crate::scenario::default_integrator`]).
+    /// at its default tolerances, [`crate::scenario::default_integrator`]).
     pub fn integrator(mut self, integrator: IntegratorConfig) -> Self {
         self.scenario.integrator = integrator;
         self
