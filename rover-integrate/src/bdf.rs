@@ -300,7 +300,8 @@ impl Bdf {
 
         // Factor again only when `c` left the band around the factors' own (or they are out
         // of date: NaN fails the test); within it, correct the step size in the iteration.
-        if !((c / self.lu_c - 1.0).abs() <= self.config.lu_band) {
+        let in_band = (c / self.lu_c - 1.0).abs() <= self.config.lu_band;
+        if !in_band {
             self.stats.lu_decompositions += 1;
             if self.lu.factor_shifted(&self.jac, c).is_err() {
                 self.lu_c = f64::NAN;

@@ -31,9 +31,8 @@ pub trait Integrator {
         t: &mut f64,
         y: &mut [f64],
         t_target: f64,
-        t_limit: f64,
+        _t_limit: f64,
     ) -> Result<(), IntegrateError<S::Error>> {
-        let _ = t_limit;
         self.advance(sys, t, y, t_target)
     }
 
