@@ -41,13 +41,41 @@ fn variant(text: &str, longest: f64, integrator: &str) -> String {
     out
 }
 
+/// The scenario's text with `rtol = 1e-6` in its `[integrator.bdf]` table
+/// (one is added where the scenario names no integrator): its own
+/// integrator, held tighter than the default; other methods are kept.
+fn tightened(text: &str) -> String {
+    if text.contains("[integrator.bdf]") {
+        let mut out = String::new();
+        for line in text.lines() {
+            out.push_str(line);
+            out.push('\n');
+            if line.trim_start().starts_with("[integrator.bdf]") {
+                out.push_str("rtol = 1e-6\n");
+            }
+        }
+        out
+    } else if text.contains("[integrator") {
+        text.to_owned()
+    } else {
+        format!("{text}\n[integrator.bdf]\nrtol = 1e-6\n")
+    }
+}
+
 /// Every scenario of `scenarios/` but the LRV on rough soil, its first
 /// 30 s, with the plant `rover simulate` runs (the built-in rovers'
 /// generated plants and their exact Jacobian): ROS2 at 5 ms ends within
-/// 2 mm and 0.01° of the scenario's own integrator, and at 10 ms within
-/// 1 cm and 0.05°. ROS2 is second order only with the exact Jacobian: the
-/// generic plant's is differenced, and on Fig. 8's rough turn it ends
-/// 1.6 mm and 0.064° of yaw off at 10 ms (0.0007° with the generated plant).
+/// 2 mm and 0.01° of the scenario's own integrator at `rtol = 1e-6`, and
+/// at 10 ms within 1 cm and 0.05°. The reference is tighter than the
+/// default (`rtol = 1e-4`), which is itself 0.025° off a tight run in
+/// `soil_pocket`'s pitch at 30 s: the wheels' presses are written into the
+/// ruts at the ends of the steps, so the ruts the rear wheels meet, and the
+/// pitch, depend on the steps to a few hundredths of a degree there (the
+/// runs agree again once the rover is out of the pocket): `soil_pocket` is
+/// run whole, to where it has left the pocket. ROS2 is second order only
+/// with the exact Jacobian: the generic plant's is differenced, and on
+/// Fig. 8's rough turn it ends 1.6 mm and 0.064° of yaw off at 10 ms
+/// (0.0007° with the generated plant).
 #[test]
 fn ros2_is_stable_at_5_and_10_ms_on_every_shipped_scenario() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
@@ -63,7 +91,17 @@ fn ros2_is_stable_at_5_and_10_ms_on_every_shipped_scenario() {
         if name == "soil_lrv.toml" {
             continue;
         }
-        let reference = run_plant_in(&rover, &variant(&text, 30.0, ""), &dir, false);
+        let longest = if name == "soil_pocket.toml" {
+            50.0
+        } else {
+            30.0
+        };
+        let reference = run_plant_in(
+            &rover,
+            &variant(&tightened(&text), longest, ""),
+            &dir,
+            false,
+        );
         assert!(
             reference.summary.complete,
             "{name}: {:?}",
@@ -71,7 +109,7 @@ fn ros2_is_stable_at_5_and_10_ms_on_every_shipped_scenario() {
         );
         for (step, position, angle_deg) in [(5e-3, 2e-3, 0.01), (1e-2, 1e-2, 0.05)] {
             let table = format!("\n[integrator.ros2]\nstep = {step}\n");
-            let r = run_plant_in(&rover, &variant(&text, 30.0, &table), &dir, false);
+            let r = run_plant_in(&rover, &variant(&text, longest, &table), &dir, false);
             assert!(
                 r.summary.complete,
                 "{name} at {step} s: {:?}",

@@ -633,12 +633,12 @@ impl OdeSystem for FarTraveller {
 /// position 1e6 m from the origin to its scale in metres, not to 1e-4 of a million metres.
 #[test]
 fn bdf_holds_each_component_to_the_systems_error_scale() {
-    let (x0, v0, t_end) = (1e6, 1.0, 5.0);
+    let (x0, v0, t_end) = (1e6, 1.0, 5.0_f64);
     let config = BdfConfig {
         rtol: 1e-4,
         ..BdfConfig::default()
     };
-    let exact = x0 + v0 * (1.0 - (-t_end as f64).exp());
+    let exact = x0 + v0 * (1.0 - (-t_end).exp());
     let mut errors = Vec::new();
     for scaled in [true, false] {
         let mut bdf = Bdf::new(2, &config).unwrap();
