@@ -293,7 +293,7 @@ impl Graph {
     }
     /// |a|.
     pub fn abs(&mut self, a: Id) -> Id {
-        self.unary(a, libm::fabs, Node::Abs)
+        self.unary(a, f64::abs, Node::Abs)
     }
     /// atan2(a, b).
     pub fn atan2(&mut self, a: Id, b: Id) -> Id {
@@ -304,14 +304,14 @@ impl Graph {
         if a == b {
             return a;
         }
-        self.binary(a, b, libm::fmax, Node::Max)
+        self.binary(a, b, f64::max, Node::Max)
     }
     /// min(a, b).
     pub fn min(&mut self, a: Id, b: Id) -> Id {
         if a == b {
             return a;
         }
-        self.binary(a, b, libm::fmin, Node::Min)
+        self.binary(a, b, f64::min, Node::Min)
     }
     /// |a| with the sign of b.
     pub fn copysign(&mut self, a: Id, b: Id) -> Id {
@@ -341,10 +341,10 @@ impl Graph {
                 Node::Sqrt(a) => libm::sqrt(g(a)),
                 Node::Exp(a) => libm::exp(g(a)),
                 Node::Ln(a) => libm::log(g(a)),
-                Node::Abs(a) => libm::fabs(g(a)),
+                Node::Abs(a) => f64::abs(g(a)),
                 Node::Atan2(a, b) => libm::atan2(g(a), g(b)),
-                Node::Max(a, b) => libm::fmax(g(a), g(b)),
-                Node::Min(a, b) => libm::fmin(g(a), g(b)),
+                Node::Max(a, b) => f64::max(g(a), g(b)),
+                Node::Min(a, b) => f64::min(g(a), g(b)),
                 Node::Copysign(a, b) => libm::copysign(g(a), g(b)),
                 Node::Ge(a, b) => {
                     if g(a) >= g(b) {

@@ -107,19 +107,19 @@ impl Scalar for f64 {
     }
     #[inline(always)]
     fn abs(self) -> Self {
-        libm::fabs(self)
+        f64::abs(self)
     }
     #[inline(always)]
     fn max(self, other: Self) -> Self {
-        libm::fmax(self, other)
+        f64::max(self, other)
     }
     #[inline(always)]
     fn min(self, other: Self) -> Self {
-        libm::fmin(self, other)
+        f64::min(self, other)
     }
     #[inline(always)]
     fn copysign(self, sign: Self) -> Self {
-        libm::copysign(self, sign)
+        f64::copysign(self, sign)
     }
     #[inline(always)]
     fn atan(self) -> Self {

@@ -569,10 +569,12 @@ impl<H: HeightField + ?Sized> Search<'_, H> {
         let f = &self.frame;
         let [centre, down, forward] = refined;
         let (sin, cos) = (last.sin, last.cos);
-        let d = [0, 1, 2].map(|k| {
+        // Written out: `array::map` was left a call per element here.
+        let moved = |k: usize| {
             (f.centre[k] - centre[k])
                 + f.radius * (cos * (f.down[k] - down[k]) + sin * (f.forward[k] - forward[k]))
-        });
+        };
+        let d = [moved(0), moved(1), moved(2)];
         let h = d[2] - leaf.gradient[0] * d[0] - leaf.gradient[1] * d[1];
         let step = -h / leaf.rate;
         // From the last root, Newton's first step would settle at once
