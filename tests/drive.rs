@@ -347,6 +347,23 @@ fn view_draws_the_terrain_the_run_had_without_its_scenario() {
         (grid, z)
     };
     let (grid, z) = heights();
+    // The same ground as the scenario's terrain built anew and sampled
+    // under the path of run.csv (`rover view --scenario`): the run's own
+    // terrain, sampled at its end, is that terrain.
+    let rebuilt = rover::drive::start_view(&rover::drive::ViewArgs {
+        out: out.clone(),
+        rover: None,
+        scenario: Some(scenario.clone().into()),
+        port: 0,
+        allow_origin: Vec::new(),
+    })
+    .unwrap();
+    assert_eq!(
+        body(rebuilt.port),
+        grid,
+        "the ground of the run's end against the rebuilt terrain"
+    );
+    rebuilt.stop();
     let relief = z.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
         - z.iter().cloned().fold(f64::INFINITY, f64::min);
     assert!(relief > 0.05, "relief {relief} m: drawn flat");

@@ -469,20 +469,58 @@ impl Grid {
                 .ok_or_else(|| off(x, y0.unwrap_or(f64::NAN)))?;
             columns.push((i, catmull_rom(t).0));
         }
+        // An interior cell's height is `Σ_r wy_r·(wx·row_r)` over its four
+        // node rows (`bicubic::height`). The products `wx·row_r` of a column
+        // depend on the node row and the column only: every output row whose
+        // stencil takes node row `r` shares them, so each is computed once
+        // per node row and the sum over the rows is the same operations in
+        // the same order. `dots[r % 4]` holds node row `r`'s, `held[r % 4]`
+        // says which node row it holds.
+        let mut dots = [(); 4].map(|_| vec![0.0; xs.len()]);
+        let mut held = [usize::MAX; 4];
         for (j_out, &y) in ys.iter().enumerate() {
             let (j, s, _) = self
                 .locate(y, 1)
                 .ok_or_else(|| off(x0.unwrap_or(f64::NAN), y))?;
             let (wy, _) = catmull_rom(s);
-            for (i_out, (&x, &(i, wx))) in xs.iter().zip(&columns).enumerate() {
-                let z = match self.interior_block(i, j).filter(|_| bicubic) {
-                    Some(block) => interior_height(block, wx, wy),
-                    None => self.height_only(x, y)?,
+            let interior_row = bicubic && j > 0 && j + 2 < self.ny;
+            if interior_row {
+                for r in j - 1..j + 3 {
+                    if held[r % 4] != r {
+                        self.row_dots(r, &columns, &mut dots[r % 4]);
+                        held[r % 4] = r;
+                    }
+                }
+            }
+            for (i_out, (&x, &(i, _))) in xs.iter().zip(&columns).enumerate() {
+                let z = if interior_row && i > 0 && i + 2 < self.nx {
+                    let mut z = 0.0;
+                    for (k, w) in wy.iter().enumerate() {
+                        z += w * dots[(j - 1 + k) % 4][i_out];
+                    }
+                    z
+                } else {
+                    self.height_only(x, y)?
                 };
                 emit(i_out, j_out, z);
             }
         }
         Ok(())
+    }
+
+    /// `wx·row` for node row `r` under each column `(i, wx)` whose stencil
+    /// is interior (`bicubic::height`'s inner products, in its order); 0
+    /// under the others, which are not read.
+    fn row_dots(&self, r: usize, columns: &[(usize, [f64; 4])], out: &mut [f64]) {
+        let row = &self.heights[r * self.nx..(r + 1) * self.nx];
+        for (d, &(i, wx)) in out.iter_mut().zip(columns) {
+            *d = if i > 0 && i + 2 < self.nx {
+                let p = &row[i - 1..i + 3];
+                wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3]
+            } else {
+                0.0
+            };
+        }
     }
 
     /// The 4 × 4 nodes around cell (i, j), rows of increasing Y, when none is

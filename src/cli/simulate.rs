@@ -235,11 +235,15 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         preparing.take();
         bar.set_position((1000.0 * t / duration) as u64);
     };
+    // The ground under the path for `rover view`, sampled from the run's
+    // own terrain at its end.
+    let mut view = rover_scenario::output::PathGround::new(rover_scenario::output::VIEW_NODES);
+    let mut sinks = (&mut view, mcap.as_mut());
     let summary = prepared.run_with_outputs(
         args.generic,
         csv,
         sensors,
-        mcap.as_mut().map(|m| m as &mut dyn RowSink),
+        Some(&mut sinks as &mut dyn RowSink),
         &flag,
         progress,
     )?;
@@ -260,7 +264,12 @@ fn simulate_in(args: &SimulateArgs, summarized: &mut bool) -> Result<SimulateRep
         .map_err(|e| CliError::io(&summary_path, "write the summary", e))?;
     *summarized = true;
     #[cfg(feature = "drive")]
-    crate::drive::write_view_terrain(&out, &prepared, summary.status == Status::Interrupted);
+    crate::drive::write_view_terrain(
+        &out,
+        &prepared,
+        &view,
+        summary.status == Status::Interrupted,
+    );
     // A user who stopped the run wants it to stop: no plots, which take
     // seconds for a long run.
     if !args.no_plots && summary.status != Status::Interrupted {

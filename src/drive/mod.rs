@@ -27,7 +27,7 @@ use clap::Args;
 use rover_dynamics::plant::Plant;
 use rover_runtime::row::Columns;
 use rover_runtime::terrain::Terrain;
-use rover_scenario::output::HeightGrid;
+use rover_scenario::output::{HeightGrid, PathGround, VIEW_NODES};
 use rover_scenario::prepare::{Prepared, RunPlant, load_rover};
 use rover_scenario::scenario::Scenario;
 use rover_spec::sketch::Sketch;
@@ -374,45 +374,45 @@ fn meta(
     m.to_string()
 }
 
-/// Heights on a grid of at most 256 × 256 nodes over the terrain's map
-/// (or 40 m × 40 m around `centre` on an unbounded terrain), for the
-/// page's mesh. Nodes off the map are `null`.
+/// Heights on a grid of at most [`VIEW_NODES`] × [`VIEW_NODES`] nodes over
+/// the terrain's map (or 40 m × 40 m around `centre` on an unbounded
+/// terrain), for the page's mesh. Nodes off the map are `null`.
 pub fn terrain_json(terrain: &Terrain, centre: [f64; 2]) -> String {
     let half = 20.0;
-    grid_json(
+    grid_json(&HeightGrid::sample(
         terrain,
         [centre[0] - half, centre[1] - half],
         [centre[0] + half, centre[1] + half],
-    )
+        VIEW_NODES,
+    ))
 }
 
 /// The margin around a run's path that its replay's ground covers \[m\].
 pub use rover_scenario::output::PATH_MARGIN;
 
 /// The ground under a run's path, for its replay: heights on a grid of at
-/// most 256 nodes a side over the rectangle the path (`lo`…`hi` in X and
-/// Y) covers, [`PATH_MARGIN`] wider on every side, within the terrain's
-/// map; the same form as [`terrain_json`].
+/// most [`VIEW_NODES`] nodes a side over the rectangle the path (`lo`…`hi`
+/// in X and Y) covers, [`PATH_MARGIN`] wider on every side, within the
+/// terrain's map; the same form as [`terrain_json`].
 pub fn path_terrain_json(terrain: &Terrain, lo: [f64; 2], hi: [f64; 2]) -> String {
-    grid_json(
+    grid_json(&HeightGrid::sample(
         terrain,
         [lo[0] - PATH_MARGIN, lo[1] - PATH_MARGIN],
         [hi[0] + PATH_MARGIN, hi[1] + PATH_MARGIN],
-    )
+        VIEW_NODES,
+    ))
 }
 
-/// Heights on a grid over the rectangle `lo`…`hi` (within the terrain's
-/// map), its cells square, at most 256 nodes along the longer side
-/// ([`HeightGrid::sample`], as the Foxglove terrain).
-fn grid_json(terrain: &Terrain, lo: [f64; 2], hi: [f64; 2]) -> String {
-    let g = HeightGrid::sample(terrain, lo, hi, 256);
+/// `g` as the page's JSON: `x0`, `y0`, `dx`, `dy`, `nx`, `ny` and the
+/// heights `z` row after row, each to 0.1 mm (`null` off the map).
+fn grid_json(g: &HeightGrid) -> String {
     let mut z = String::with_capacity(g.z.len() * 8);
     for (k, h) in g.z.iter().enumerate() {
         if k > 0 {
             z.push(',');
         }
         match h {
-            Some(h) => z.push_str(&format!("{h:.4}")),
+            Some(h) => push_tenths_of_mm(&mut z, *h),
             None => z.push_str("null"),
         }
     }
@@ -420,6 +420,25 @@ fn grid_json(terrain: &Terrain, lo: [f64; 2], hi: [f64; 2]) -> String {
         "{{\"x0\":{},\"y0\":{},\"dx\":{},\"dy\":{},\"nx\":{},\"ny\":{},\"z\":[{z}]}}",
         g.x0, g.y0, g.dx, g.dy, g.nx, g.ny
     )
+}
+
+/// `metres` with four decimals, rounded to the nearest 0.1 mm, written
+/// from integers: formatting 65,536 heights with `{:.4}` was a sixth of a
+/// short `rover simulate` (its exact-precision path, an allocation each).
+/// A height beyond ±9e14 m (none on any map) is written as Rust prints it.
+fn push_tenths_of_mm(out: &mut String, metres: f64) {
+    use std::fmt::Write;
+    let tenths = (metres * 1e4).round();
+    if tenths.abs() >= 9e18 {
+        let _ = write!(out, "{metres}");
+        return;
+    }
+    let tenths = tenths as i64;
+    if tenths < 0 {
+        out.push('-');
+    }
+    let magnitude = tenths.unsigned_abs();
+    let _ = write!(out, "{}.{:04}", magnitude / 10_000, magnitude % 10_000);
 }
 
 /// The rectangle (lowest X and Y, highest X and Y) a run's path covers,
@@ -450,30 +469,35 @@ fn path_box(text: &str) -> Option<([f64; 2], [f64; 2])> {
 pub const VIEW_TERRAIN: &str = "terrain.json";
 
 /// Write [`VIEW_TERRAIN`] into a run's output folder: the ground under the
-/// path of its `run.csv` ([`path_terrain_json`]), so that `rover view`
-/// draws the terrain the run had. Best effort: a failure is a warning on
-/// stderr, and the run's outputs stand.
-pub fn write_view_terrain(out: &rover_files::OutputDir, prepared: &Prepared, interrupted: bool) {
+/// run's path, as `view` (the run's own [`PathGround`] sink) sampled it
+/// from the terrain the run drove on, so that `rover view` draws the
+/// terrain the run had. Best effort: a failure is a warning on stderr, and
+/// the run's outputs stand.
+pub fn write_view_terrain(
+    out: &rover_files::OutputDir,
+    prepared: &Prepared,
+    view: &PathGround,
+    interrupted: bool,
+) {
     let path = out.join(VIEW_TERRAIN);
     if interrupted {
-        // Stopped by the user: no second build of the terrain (seconds on
-        // a fine one), and no earlier run's ground left to pass for this
-        // run's.
+        // Stopped by the user: no earlier run's ground left to pass for
+        // this run's.
         let _ = out.write_whole(VIEW_TERRAIN, b"null");
         return;
     }
-    let json = rover_files::read_entry(out.path(), "run.csv", rover_files::Limit::Data)
-        .map_err(|e| e.to_string())
-        .and_then(|bytes| {
-            let text = String::from_utf8_lossy(&bytes);
-            let (lo, hi) = path_box(&text).ok_or("run.csv has no rows")?;
-            let terrain = prepared
-                .scenario
-                .terrain
-                .build(&prepared.base)
-                .map_err(|e| e.to_string())?;
-            Ok(path_terrain_json(&terrain, lo, hi))
-        });
+    let json = match (view.grid(), view.path().covered()) {
+        (Some(grid), _) => Ok(grid_json(grid)),
+        (None, None) => Err("run.csv has no rows".to_string()),
+        // In free flight the run had no ground: the scenario's terrain
+        // under the path.
+        (None, Some((lo, hi))) => prepared
+            .scenario
+            .terrain
+            .build(&prepared.base)
+            .map(|terrain| path_terrain_json(&terrain, lo, hi))
+            .map_err(|e| e.to_string()),
+    };
     // Without the ground, `null`: an earlier run's terrain never passes
     // for this one's.
     let (json, why) = match json {
@@ -898,4 +922,48 @@ pub fn start_view(args: &ViewArgs) -> Result<Viewing, CliError> {
     let port = addr.port();
     let server = Server::start(listener, app).map_err(other)?;
     Ok(Viewing { port, server })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::push_tenths_of_mm;
+
+    fn written(metres: f64) -> String {
+        let mut s = String::new();
+        push_tenths_of_mm(&mut s, metres);
+        s
+    }
+
+    /// Four decimals, rounded to the nearest 0.1 mm, as `{:.4}` writes
+    /// them away from ties; a height that rounds to zero carries no sign.
+    #[test]
+    fn heights_are_written_to_a_tenth_of_a_millimetre() {
+        for (h, want) in [
+            (0.0, "0.0000"),
+            (0.25, "0.2500"),
+            (-0.25, "-0.2500"),
+            (0.123_44, "0.1234"),
+            (0.123_46, "0.1235"),
+            (-1.000_04, "-1.0000"),
+            (-0.000_04, "0.0000"),
+            (12.3, "12.3000"),
+            (-3_456.789_01, "-3456.7890"),
+        ] {
+            assert_eq!(written(h), want, "{h}");
+        }
+        // Against the standard formatting over a sweep of heights away
+        // from ties, and read back within half a tenth of a millimetre.
+        for k in -2_000..2_000 {
+            let h = k as f64 * 0.001_234_7 + 1e-7;
+            let w = written(h);
+            let want = format!("{h:.4}");
+            let want = if want == "-0.0000" {
+                "0.0000".into()
+            } else {
+                want
+            };
+            assert_eq!(w, want, "{h}");
+            assert!((w.parse::<f64>().unwrap() - h).abs() <= 5e-5 + 1e-12, "{h}");
+        }
+    }
 }

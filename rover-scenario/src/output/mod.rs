@@ -16,7 +16,7 @@ mod write_whole;
 pub use body_box::body_box;
 pub use circle_fit::{Circle, fit_circle};
 pub use csv_writer::CsvWriter;
-pub use height_grid::{HeightGrid, PATH_MARGIN};
+pub use height_grid::{HeightGrid, PATH_MARGIN, PathBox, PathGround, VIEW_NODES};
 pub use row_sink::RowSink;
 pub use rut_grid::{MAX_RUT_NODES, RUT_FILES, RUT_PNG_SCALE, RutGrid, RutGridInfo, RutSummary};
 pub use slide::{

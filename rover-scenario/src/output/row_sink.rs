@@ -16,3 +16,45 @@ pub trait RowSink {
     /// the ground the run drove on (`None` in free flight).
     fn finish(&mut self, terrain: Option<&Terrain>) -> std::io::Result<()>;
 }
+
+impl<T: RowSink + ?Sized> RowSink for &mut T {
+    fn start(&mut self, columns: &Columns) -> std::io::Result<()> {
+        (**self).start(columns)
+    }
+    fn row(&mut self, values: &[f64]) -> std::io::Result<()> {
+        (**self).row(values)
+    }
+    fn finish(&mut self, terrain: Option<&Terrain>) -> std::io::Result<()> {
+        (**self).finish(terrain)
+    }
+}
+
+/// No sink: nothing to do.
+impl<T: RowSink> RowSink for Option<T> {
+    fn start(&mut self, columns: &Columns) -> std::io::Result<()> {
+        self.as_mut().map_or(Ok(()), |s| s.start(columns))
+    }
+    fn row(&mut self, values: &[f64]) -> std::io::Result<()> {
+        self.as_mut().map_or(Ok(()), |s| s.row(values))
+    }
+    fn finish(&mut self, terrain: Option<&Terrain>) -> std::io::Result<()> {
+        self.as_mut().map_or(Ok(()), |s| s.finish(terrain))
+    }
+}
+
+/// Two sinks, each given every call in turn; the first error is returned,
+/// after both have had the call (each finishes even when the other fails).
+impl<A: RowSink, B: RowSink> RowSink for (A, B) {
+    fn start(&mut self, columns: &Columns) -> std::io::Result<()> {
+        let a = self.0.start(columns);
+        a.and(self.1.start(columns))
+    }
+    fn row(&mut self, values: &[f64]) -> std::io::Result<()> {
+        let a = self.0.row(values);
+        a.and(self.1.row(values))
+    }
+    fn finish(&mut self, terrain: Option<&Terrain>) -> std::io::Result<()> {
+        let a = self.0.finish(terrain);
+        a.and(self.1.finish(terrain))
+    }
+}

@@ -16,7 +16,7 @@ use rover_spec::Spec;
 use rover_terrain::Terrain;
 
 use super::channels::{Channels, Topic};
-use crate::output::{HeightGrid, PATH_MARGIN, RowSink};
+use crate::output::{PathBox, RowSink};
 
 /// Most terrain nodes along the mesh's longer side: 192 × 192 nodes, a
 /// few MB.
@@ -32,8 +32,7 @@ pub struct McapLog<W: Write + Seek> {
     channels: Option<Channels>,
     ids: [u16; 4],
     sequence: u32,
-    path: Option<([f64; 2], [f64; 2])>,
-    pose: [usize; 2],
+    path: PathBox,
     rows: u64,
 }
 
@@ -70,8 +69,7 @@ impl<W: Write + Seek> McapLog<W> {
             channels: None,
             ids: [0; 4],
             sequence: 0,
-            path: None,
-            pose: [1, 2],
+            path: PathBox::default(),
             rows: 0,
         })
     }
@@ -148,10 +146,7 @@ impl<W: Write + Seek> RowSink for McapLog<W> {
             return Err(self.failed(e));
         }
         self.ids = ids;
-        self.pose = [
-            columns.position("X").unwrap_or(1),
-            columns.position("Y").unwrap_or(2),
-        ];
+        self.path.start(columns);
         self.channels = Some(channels);
         Ok(())
     }
@@ -173,25 +168,12 @@ impl<W: Write + Seek> RowSink for McapLog<W> {
         self.channels = Some(channels);
         result?;
         self.rows += 1;
-        let p = [values[self.pose[0]], values[self.pose[1]]];
-        self.path = Some(match self.path {
-            None => (p, p),
-            Some((lo, hi)) => (
-                [lo[0].min(p[0]), lo[1].min(p[1])],
-                [hi[0].max(p[0]), hi[1].max(p[1])],
-            ),
-        });
+        self.path.add(values);
         Ok(())
     }
 
     fn finish(&mut self, terrain: Option<&Terrain>) -> std::io::Result<()> {
-        if let (Some(terrain), Some((lo, hi))) = (terrain, self.path) {
-            let grid = HeightGrid::sample(
-                terrain,
-                [lo[0] - PATH_MARGIN, lo[1] - PATH_MARGIN],
-                [hi[0] + PATH_MARGIN, hi[1] + PATH_MARGIN],
-                MCAP_TERRAIN_NODES,
-            );
+        if let Some(grid) = terrain.and_then(|t| self.path.ground(t, MCAP_TERRAIN_NODES)) {
             let mesh = Channels::terrain(&grid)?;
             self.write(Topic::Terrain, 0, &mesh)?;
         }
