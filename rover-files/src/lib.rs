@@ -17,8 +17,10 @@
 //! fix it, so that every caller's error type (which names the file) can
 //! carry them unchanged.
 
+mod number;
 mod read;
 mod write;
 
+pub use number::{push_f64, write_f64};
 pub use read::{Limit, NotUtf8, excerpt, line_column, read, read_entry, read_text};
 pub use write::{OutputDir, create_fresh, same_file, write_whole};

@@ -52,8 +52,10 @@ pub fn format_asc(grid: &Grid) -> String {
     for j in (0..grid.ny()).rev() {
         let row = &grid.heights()[j * grid.nx()..(j + 1) * grid.nx()];
         for (i, z) in row.iter().enumerate() {
-            let sep = if i == 0 { "" } else { " " };
-            let _ = write!(out, "{sep}{z}");
+            if i > 0 {
+                out.push(' ');
+            }
+            rover_files::push_f64(&mut out, *z);
         }
         out.push('\n');
     }

@@ -46,8 +46,10 @@ pub fn format_csv(grid: &Grid) -> String {
     let _ = writeln!(out, "x0,y0,dx,dy\n{x0},{y0},{dx},{dy}");
     for row in grid.heights().chunks(grid.nx()) {
         for (i, z) in row.iter().enumerate() {
-            let sep = if i == 0 { "" } else { "," };
-            let _ = write!(out, "{sep}{z}");
+            if i > 0 {
+                out.push(',');
+            }
+            rover_files::push_f64(&mut out, *z);
         }
         out.push('\n');
     }

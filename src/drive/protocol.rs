@@ -405,7 +405,7 @@ pub fn apply(r: &Request, inbox: &mut Inbox) {
 /// A number as JSON (non-finite values are `null`).
 fn num(out: &mut String, v: f64) {
     if v.is_finite() {
-        let _ = write!(out, "{v}");
+        rover_files::push_f64(out, v);
     } else {
         out.push_str("null");
     }

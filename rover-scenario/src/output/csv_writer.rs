@@ -58,7 +58,7 @@ pub(crate) fn write_finite_row<W: Write>(
         if k > 0 {
             out.write_all(b",")?;
         }
-        write!(out, "{v}")?;
+        rover_files::write_f64(out, *v)?;
     }
     out.write_all(b"\n")
 }
