@@ -41,16 +41,25 @@ fn variant(text: &str, longest: f64, integrator: &str) -> String {
     out
 }
 
-/// The scenario's text with `rtol = 1e-6` in its `[integrator.bdf]` table
-/// (one is added where the scenario names no integrator): its own
-/// integrator, held tighter than the default; other methods are kept.
+/// The scenario's text with `rtol = 1e-6` in its `[integrator.bdf]` table,
+/// in place of its own (a table is added where the scenario names no
+/// integrator): its own integrator, held tighter than the default; other
+/// methods are kept.
 fn tightened(text: &str) -> String {
     if text.contains("[integrator.bdf]") {
         let mut out = String::new();
+        let mut in_bdf = false;
         for line in text.lines() {
+            let trimmed = line.trim_start();
+            if trimmed.starts_with('[') {
+                in_bdf = trimmed.starts_with("[integrator.bdf]");
+            } else if in_bdf && trimmed.starts_with("rtol") {
+                // The scenario's own, replaced.
+                continue;
+            }
             out.push_str(line);
             out.push('\n');
-            if line.trim_start().starts_with("[integrator.bdf]") {
+            if in_bdf && trimmed.starts_with("[integrator.bdf]") {
                 out.push_str("rtol = 1e-6\n");
             }
         }
