@@ -1,6 +1,6 @@
-//! `rover export fmu <rover> --scenario <file> --out <file.fmu> [--fmi 2]
-//! [--inputs torques]` and `rover export c <rover> --scenario <file> --out
-//! <dir>`: the plant as an FMU or a C library (docs/EXPORT.md).
+//! `rover export fmu ROVER --scenario FILE --out FILE.fmu [--fmi 2]
+//! [--inputs torques]` and `rover export c ROVER --scenario FILE --out DIR`:
+//! the plant as an FMU or a C library (docs/EXPORT.md).
 
 use std::path::{Path, PathBuf};
 
