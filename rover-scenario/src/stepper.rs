@@ -65,7 +65,8 @@ impl<P: Plant + Clone> Stepper<P> {
                 ..run_options(scenario)
             },
         )
-        .with_sensor_period(sensor_period(scenario));
+        .with_sensor_period(sensor_period(scenario))
+        .with_landing(scenario.duration);
         let mut s = Self {
             start: sys.clone(),
             integ_start: integ.clone(),

@@ -87,6 +87,38 @@ fn a_stepped_run_gives_the_whole_runs_rows_bit_for_bit_with_every_integrator() {
 }
 
 #[test]
+fn without_a_sampled_controller_a_stepped_run_lands_on_the_whole_runs_end() {
+    // With no controller sample at the run's end, the whole run's last
+    // step lands there because the run ends; a stepped run has no end of
+    // its own and goes on, but lands there too (BDF steps past the other
+    // output instants and interpolates them).
+    for integrator in ["", "[integrator.bdf]\nrtol = 1e-6\n"] {
+        let text = scenario(integrator).replace(
+            "[control.active_suspension]\nsample_time = 0.1\nkp_pitch = 0.6\nkp_roll = 0.6\n",
+            "",
+        );
+        assert!(!text.contains("active_suspension"));
+        let p = prepared(&text);
+        let whole = whole_rows(&p, false);
+        let mut s = p.stepper(false).unwrap_or_else(|e| panic!("{e}"));
+        for (k, want) in whole.iter().enumerate() {
+            if k > 0 {
+                s.step(1).unwrap_or_else(|e| panic!("{integrator}: {e}"));
+            }
+            let got = stepped_row(&s);
+            let same = got
+                .iter()
+                .zip(want)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same, "{integrator:?} row {k} at t = {}", want[0]);
+        }
+        // And goes on past it.
+        s.step(2).unwrap_or_else(|e| panic!("{integrator}: {e}"));
+        assert!(s.time() > 3.0 + 0.09, "{}", s.time());
+    }
+}
+
+#[test]
 fn with_sensor_instants_a_stepped_run_still_gives_the_whole_runs_rows_with_every_integrator() {
     // The integrator lands on every sensor instant (100 Hz, between the
     // 20 Hz output instants) whether the readings are written or not.

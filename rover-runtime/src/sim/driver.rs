@@ -63,6 +63,9 @@ pub struct Driver {
     slipping_since: Option<f64>,
     /// The end of settling: a rover landing on its wheels is not embedded.
     settle: f64,
+    /// An instant no step reaches past while it is ahead
+    /// ([`Driver::with_landing`]).
+    landing: f64,
 }
 
 impl Driver {
@@ -88,7 +91,18 @@ impl Driver {
             next_break: 0,
             slipping_since: None,
             settle: control.settle_time(),
+            landing: f64::INFINITY,
         }
+    }
+
+    /// The schedule with the integrator landing on `at` (no step passes it
+    /// while it is ahead; an output instant within rounding of it is it)
+    /// though the run goes on: a stepped run with no end of its own lands
+    /// on its scenario's end as the whole run does, and so takes the whole
+    /// run's steps and times up to it.
+    pub fn with_landing(mut self, at: f64) -> Self {
+        self.landing = at;
+        self
     }
 
     /// The schedule with sensor instants every `period` seconds from t = 0
@@ -237,6 +251,9 @@ impl Driver {
                 self.next_break += 1;
             }
             let mut target = t_out.min(self.opts.duration);
+            if self.landing > *t {
+                target = target.min(self.landing);
+            }
             // A stop within rounding of the output instant is the instant.
             let stop = (until < target - SAME_INSTANT * (1.0 + target)).then_some(until);
             if let Some(u) = stop {
@@ -295,10 +312,14 @@ impl Driver {
 
     /// The first instant after `target` at which the run may change the
     /// system or restart the integrator: the next breakpoint, controller
-    /// sample or sensor instant, the stop `until`, or the run's end; for
+    /// sample or sensor instant, the stop `until`, the landing instant, or
+    /// the run's end; for
     /// [`Integrator::advance_output`].
     fn next_event(&self, until: f64, target: f64) -> f64 {
         let mut limit = self.opts.duration.min(until);
+        if self.landing >= target {
+            limit = limit.min(self.landing);
+        }
         if let Some(&b) = self.breaks.get(self.next_break) {
             limit = limit.min(b);
         }
