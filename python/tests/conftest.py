@@ -5,6 +5,7 @@ import shutil
 import signal
 import subprocess
 import threading
+import time
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -60,11 +61,22 @@ LONG = {
 @contextmanager
 def interrupt_after(seconds):
     """SIGINT to this process in `seconds`, as Ctrl-C sends it; never
-    after the block."""
-    timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
+    after the block. Yields a list that holds, once sent, the
+    `time.monotonic()` of the signal. Python's own handler is installed
+    for the block: a process started with SIGINT ignored (a shell's
+    background job) keeps it ignored, and the signal would never arrive."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    sent = []
+
+    def send():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(seconds, send)
     timer.start()
     try:
-        yield
+        yield sent
     finally:
         timer.cancel()
         timer.join()
+        signal.signal(signal.SIGINT, previous)

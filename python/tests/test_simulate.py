@@ -166,11 +166,10 @@ def test_a_rover_that_cannot_climb_the_soil_is_embedded():
 
 
 def test_ctrl_c_stops_a_whole_run_and_keeps_what_it_computed():
-    started = time.monotonic()
-    with interrupt_after(0.3), pytest.raises(KeyboardInterrupt) as e:
+    with interrupt_after(0.3) as sent, pytest.raises(KeyboardInterrupt) as e:
         rover.simulate(None, LONG)
-    waited = time.monotonic() - started
-    assert 0.3 <= waited < 1.3
+    # The run stops within a second of the signal.
+    assert sent and time.monotonic() - sent[0] < 1.0
     r = e.value.result
     assert r.status == "interrupted"
     assert r.error.startswith("interrupted by the user at t = ")

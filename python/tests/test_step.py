@@ -187,11 +187,10 @@ def test_long_steps_let_other_threads_run(data):
 
 def test_ctrl_c_stops_a_long_step_at_the_last_step_completed():
     sim = rover.Simulation(None, LONG)
-    started = time.monotonic()
-    with interrupt_after(0.3), pytest.raises(KeyboardInterrupt):
+    with interrupt_after(0.3) as sent, pytest.raises(KeyboardInterrupt):
         sim.step(10**9)
-    waited = time.monotonic() - started
-    assert 0.3 <= waited < 1.3
+    # The step stops within a second of the signal.
+    assert sent and time.monotonic() - sent[0] < 1.0
     k = round(sim.time / sim.dt)
     assert k > 0 and sim.time < LONG["duration"]
     assert sim.error is None and sim.row["t"] == sim.time
