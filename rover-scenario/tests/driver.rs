@@ -59,6 +59,34 @@ fn stepped_row(s: &rover_scenario::Stepper<rover_scenario::prepare::RunPlant>) -
     row
 }
 
+/// Steps `p` one output interval at a time and checks each row against the
+/// whole run's `whole`, bit for bit; `what` heads the message. Returns the
+/// stepper, at the whole run's end.
+fn assert_steps_give(
+    p: &Prepared,
+    generic: bool,
+    whole: &[Vec<f64>],
+    what: &str,
+) -> rover_scenario::Stepper<rover_scenario::prepare::RunPlant> {
+    let mut s = p.stepper(generic).unwrap_or_else(|e| panic!("{e}"));
+    for (k, want) in whole.iter().enumerate() {
+        if k > 0 {
+            s.step(1).unwrap_or_else(|e| panic!("{what}: {e}"));
+        }
+        let got = stepped_row(&s);
+        let same = got
+            .iter()
+            .zip(want)
+            .all(|(a, b)| a.to_bits() == b.to_bits());
+        assert!(
+            same,
+            "{what} row {k} at t = {}: stepped {got:?}, whole {want:?}",
+            want[0]
+        );
+    }
+    s
+}
+
 #[test]
 fn a_stepped_run_gives_the_whole_runs_rows_bit_for_bit_with_every_integrator() {
     for integrator in INTEGRATORS {
@@ -66,22 +94,12 @@ fn a_stepped_run_gives_the_whole_runs_rows_bit_for_bit_with_every_integrator() {
         for generic in [false, true] {
             let whole = whole_rows(&p, generic);
             assert_eq!(whole.len(), 61, "{integrator}");
-            let mut s = p.stepper(generic).unwrap_or_else(|e| panic!("{e}"));
-            for (k, want) in whole.iter().enumerate() {
-                if k > 0 {
-                    s.step(1).unwrap_or_else(|e| panic!("{integrator}: {e}"));
-                }
-                let got = stepped_row(&s);
-                let same = got
-                    .iter()
-                    .zip(want)
-                    .all(|(a, b)| a.to_bits() == b.to_bits());
-                assert!(
-                    same,
-                    "{integrator} (generic {generic}) row {k} at t = {}: stepped {got:?}, whole {want:?}",
-                    want[0]
-                );
-            }
+            assert_steps_give(
+                &p,
+                generic,
+                &whole,
+                &format!("{integrator} (generic {generic})"),
+            );
         }
     }
 }
@@ -100,18 +118,7 @@ fn without_a_sampled_controller_a_stepped_run_lands_on_the_whole_runs_end() {
         assert!(!text.contains("active_suspension"));
         let p = prepared(&text);
         let whole = whole_rows(&p, false);
-        let mut s = p.stepper(false).unwrap_or_else(|e| panic!("{e}"));
-        for (k, want) in whole.iter().enumerate() {
-            if k > 0 {
-                s.step(1).unwrap_or_else(|e| panic!("{integrator}: {e}"));
-            }
-            let got = stepped_row(&s);
-            let same = got
-                .iter()
-                .zip(want)
-                .all(|(a, b)| a.to_bits() == b.to_bits());
-            assert!(same, "{integrator:?} row {k} at t = {}", want[0]);
-        }
+        let mut s = assert_steps_give(&p, false, &whole, &format!("{integrator:?}"));
         // And goes on past it.
         s.step(2).unwrap_or_else(|e| panic!("{integrator}: {e}"));
         assert!(s.time() > 3.0 + 0.09, "{}", s.time());
@@ -127,21 +134,7 @@ fn with_sensor_instants_a_stepped_run_still_gives_the_whole_runs_rows_with_every
         let p = prepared(&format!("{}{sensors}", scenario(integrator)));
         let whole = whole_rows(&p, false);
         assert_eq!(whole.len(), 61, "{integrator}");
-        let mut s = p.stepper(false).unwrap_or_else(|e| panic!("{e}"));
-        for (k, want) in whole.iter().enumerate() {
-            if k > 0 {
-                s.step(1).unwrap_or_else(|e| panic!("{integrator}: {e}"));
-            }
-            let got = stepped_row(&s);
-            let same = got
-                .iter()
-                .zip(want)
-                .all(|(a, b)| a.to_bits() == b.to_bits());
-            assert!(
-                same,
-                "{integrator} row {k}: stepped {got:?}, whole {want:?}"
-            );
-        }
+        assert_steps_give(&p, false, &whole, integrator);
     }
 }
 
